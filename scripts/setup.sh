@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs the Debian packages locbench needs, only those that are missing.
+# Run as root on Debian 12 (or with sudo available). No network fetches at build time.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev        # linear algebra (poses, covariances)
+  libgtest-dev libgmock-dev   # unit tests
+  libbenchmark-dev     # speed kernels
+  libfmt-dev           # formatting
+  nlohmann-json3-dev   # reports, options, JSON inputs
+  libcli11-dev         # command line
+  zlib1g-dev           # reading .gz logs in place
+  libvalijson-dev      # JSON Schema validation of reports in tests
+  librapidcheck-dev    # property tests of the readers
+  libboost-dev         # Boost.Math distributions (t, normal, chi-square quantiles), header-only
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "setup: installing missing Debian packages: ${missing[*]}" >&2
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
+    echo "setup: need root to install ${missing[*]}" >&2; exit 2; fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
