@@ -1,0 +1,94 @@
+#pragma once
+// The report model: what an experiment measured, with where and how it was measured.
+// Written as JSON (reports/report_json.h) following reports/report.schema.json.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "algorithms/core/statistics.h"
+
+namespace locbench::reports {
+
+inline constexpr const char* kReportSchema = "locbench.report/1";
+
+// Who produced the report: tool, build and machine.
+struct Provenance {
+  std::string tool_version;
+  std::string git_revision;
+  std::string compiler;
+  std::string compiler_flags;
+  std::string build_type;
+  std::string host;
+  std::string utc_time;       // ISO 8601, e.g. 2026-11-21T23:59:00Z
+  std::string command_line;
+};
+
+struct DatasetRef {
+  std::string name;      // e.g. "sim/corridor", "aces"
+  std::string path;      // file or folder read, or "simulated"
+  std::string checksum;  // "crc32:…" of the file bytes, or of the scenario JSON when simulated
+  std::size_t records = 0;
+  double duration_s = 0.0;
+};
+
+// One metric of one method on one dataset, summarised over runs (or over samples of one run).
+struct MetricResult {
+  std::string method;   // e.g. "odometry_nominal"
+  std::string dataset;  // e.g. "sim_corridor"
+  std::string variant;  // the metric, e.g. "final_position_error"
+  std::string unit;     // "m", "rad", "s", …
+  std::string better = "lower";  // "lower" or "higher": which direction is an improvement
+  std::string over;     // what the statistics run over: "monte_carlo_runs", "relations", …
+  Summary summary;
+  std::vector<double> values;  // the samples summarised (may be empty for large series)
+
+  // Stable key `method/dataset/variant`, matched across runs by gates.
+  std::string name() const { return method + "/" + dataset + "/" + variant; }
+};
+
+// A published table beside our numbers.
+struct PublishedRow {
+  std::string label;
+  std::optional<double> published;
+  std::optional<double> ours;
+};
+struct PublishedComparison {
+  std::string source;  // e.g. "thesis Table 3.2"
+  std::string quantity;
+  std::string unit;
+  std::vector<PublishedRow> rows;
+  std::string note;    // where and why the figures differ
+};
+
+// A case that could not be run (missing dataset, bad input…), recorded instead of aborting.
+struct CaseNote {
+  std::string name;
+  std::string status;  // "skipped" or "failed"
+  std::string reason;
+};
+
+// What an experiment returns (no provenance: the CLI adds that).
+struct ExperimentResults {
+  std::string experiment;
+  std::string description;
+  std::vector<std::uint64_t> seeds;
+  std::vector<DatasetRef> datasets;
+  nlohmann::json configuration = nlohmann::json::object();
+  std::vector<MetricResult> results;
+  std::vector<PublishedComparison> published;
+  std::vector<CaseNote> cases;
+};
+
+struct Report {
+  Provenance provenance;
+  ExperimentResults body;
+};
+
+// Builds a MetricResult from samples (Student-t 95% interval of the mean).
+MetricResult make_metric(std::string method, std::string dataset, std::string variant,
+                         std::string unit, std::string over, std::span<const double> values,
+                         bool keep_values = true);
+
+}  // namespace locbench::reports

@@ -1,0 +1,180 @@
+#include "reports/report_json.h"
+
+#include <cmath>
+#include <fstream>
+
+#include "algorithms/core/errors.h"
+
+namespace locbench::reports {
+namespace {
+using nlohmann::json;
+
+json optional_number(const std::optional<double>& v) {
+  return v && std::isfinite(*v) ? json(*v) : json(nullptr);
+}
+
+json metric_to_json(const MetricResult& m) {
+  const Summary& s = m.summary;
+  json j = {{"name", m.name()},     {"method", m.method}, {"dataset", m.dataset},
+            {"variant", m.variant}, {"unit", m.unit},     {"better", m.better},
+            {"over", m.over},       {"n", s.n},           {"mean", s.mean},
+            {"stddev", s.stddev},   {"ci95", {s.ci95_low, s.ci95_high}},
+            {"median", s.median},   {"min", s.min},       {"max", s.max}};
+  if (!m.values.empty()) j["values"] = m.values;
+  return j;
+}
+
+template <typename T>
+T get(const json& j, const char* key, const std::string& source, const std::string& where) {
+  if (!j.is_object() || !j.contains(key)) {
+    throw InputError(source, 0, where + ": missing field \"" + key + "\"");
+  }
+  try {
+    return j.at(key).get<T>();
+  } catch (const json::exception&) {
+    throw InputError(source, 0, where + ": field \"" + key + "\" has the wrong type");
+  }
+}
+
+}  // namespace
+
+json to_json(const Report& r) {
+  const Provenance& p = r.provenance;
+  const ExperimentResults& b = r.body;
+  json j;
+  j["schema"] = kReportSchema;
+  j["context"] = {{"tool", "locbench"},          {"tool_version", p.tool_version},
+                  {"git_revision", p.git_revision}, {"compiler", p.compiler},
+                  {"compiler_flags", p.compiler_flags}, {"build_type", p.build_type},
+                  {"host", p.host},              {"utc_time", p.utc_time},
+                  {"command_line", p.command_line}};
+  j["experiment"] = {{"name", b.experiment}, {"description", b.description}};
+  j["seeds"] = b.seeds;
+  j["datasets"] = json::array();
+  for (const DatasetRef& d : b.datasets) {
+    j["datasets"].push_back({{"name", d.name}, {"path", d.path}, {"checksum", d.checksum},
+                             {"records", d.records}, {"duration_s", d.duration_s}});
+  }
+  j["configuration"] = b.configuration;
+  j["results"] = json::array();
+  for (const MetricResult& m : b.results) j["results"].push_back(metric_to_json(m));
+  j["published"] = json::array();
+  for (const PublishedComparison& c : b.published) {
+    json rows = json::array();
+    for (const PublishedRow& row : c.rows) {
+      rows.push_back({{"label", row.label},
+                      {"published", optional_number(row.published)},
+                      {"ours", optional_number(row.ours)}});
+    }
+    j["published"].push_back({{"source", c.source}, {"quantity", c.quantity}, {"unit", c.unit},
+                              {"rows", rows}, {"note", c.note}});
+  }
+  j["cases"] = json::array();
+  for (const CaseNote& c : b.cases) {
+    j["cases"].push_back({{"name", c.name}, {"status", c.status}, {"reason", c.reason}});
+  }
+  return j;
+}
+
+Report report_from_json(const json& j, const std::string& source) {
+  if (!j.is_object()) throw InputError(source, 0, "expected a JSON object (a locbench report)");
+  const auto schema = get<std::string>(j, "schema", source, "report");
+  if (schema != kReportSchema) {
+    throw InputError(source, 0, "expected schema \"" + std::string(kReportSchema) +
+                                    "\", found \"" + schema + "\"");
+  }
+  Report r;
+  const json& c = j.contains("context") ? j.at("context") : json::object();
+  Provenance& p = r.provenance;
+  p.tool_version = get<std::string>(c, "tool_version", source, "context");
+  p.git_revision = get<std::string>(c, "git_revision", source, "context");
+  p.compiler = get<std::string>(c, "compiler", source, "context");
+  p.compiler_flags = get<std::string>(c, "compiler_flags", source, "context");
+  p.build_type = get<std::string>(c, "build_type", source, "context");
+  p.host = get<std::string>(c, "host", source, "context");
+  p.utc_time = get<std::string>(c, "utc_time", source, "context");
+  p.command_line = get<std::string>(c, "command_line", source, "context");
+  ExperimentResults& b = r.body;
+  const json& e = j.contains("experiment") ? j.at("experiment") : json::object();
+  b.experiment = get<std::string>(e, "name", source, "experiment");
+  b.description = get<std::string>(e, "description", source, "experiment");
+  b.seeds = get<std::vector<std::uint64_t>>(j, "seeds", source, "report");
+  for (const json& d : get<json>(j, "datasets", source, "report")) {
+    b.datasets.push_back({get<std::string>(d, "name", source, "dataset"),
+                          get<std::string>(d, "path", source, "dataset"),
+                          get<std::string>(d, "checksum", source, "dataset"),
+                          get<std::size_t>(d, "records", source, "dataset"),
+                          get<double>(d, "duration_s", source, "dataset")});
+  }
+  b.configuration = get<json>(j, "configuration", source, "report");
+  for (const json& m : get<json>(j, "results", source, "report")) {
+    MetricResult x;
+    const std::string where = "result";
+    x.method = get<std::string>(m, "method", source, where);
+    x.dataset = get<std::string>(m, "dataset", source, where);
+    x.variant = get<std::string>(m, "variant", source, where);
+    x.unit = get<std::string>(m, "unit", source, where);
+    x.better = get<std::string>(m, "better", source, where);
+    x.over = get<std::string>(m, "over", source, where);
+    x.summary.n = get<std::size_t>(m, "n", source, where);
+    x.summary.mean = get<double>(m, "mean", source, where);
+    x.summary.stddev = get<double>(m, "stddev", source, where);
+    const auto ci = get<std::vector<double>>(m, "ci95", source, where);
+    if (ci.size() != 2) throw InputError(source, 0, "result: ci95 must have 2 numbers");
+    x.summary.ci95_low = ci[0];
+    x.summary.ci95_high = ci[1];
+    x.summary.median = get<double>(m, "median", source, where);
+    x.summary.min = get<double>(m, "min", source, where);
+    x.summary.max = get<double>(m, "max", source, where);
+    if (m.contains("values")) x.values = get<std::vector<double>>(m, "values", source, where);
+    b.results.push_back(std::move(x));
+  }
+  for (const json& pc : get<json>(j, "published", source, "report")) {
+    PublishedComparison x;
+    x.source = get<std::string>(pc, "source", source, "published");
+    x.quantity = get<std::string>(pc, "quantity", source, "published");
+    x.unit = get<std::string>(pc, "unit", source, "published");
+    x.note = get<std::string>(pc, "note", source, "published");
+    for (const json& row : get<json>(pc, "rows", source, "published")) {
+      PublishedRow pr;
+      pr.label = get<std::string>(row, "label", source, "published row");
+      if (row.contains("published") && !row["published"].is_null()) {
+        pr.published = get<double>(row, "published", source, "published row");
+      }
+      if (row.contains("ours") && !row["ours"].is_null()) {
+        pr.ours = get<double>(row, "ours", source, "published row");
+      }
+      x.rows.push_back(std::move(pr));
+    }
+    b.published.push_back(std::move(x));
+  }
+  for (const json& cn : get<json>(j, "cases", source, "report")) {
+    b.cases.push_back({get<std::string>(cn, "name", source, "case"),
+                       get<std::string>(cn, "status", source, "case"),
+                       get<std::string>(cn, "reason", source, "case")});
+  }
+  return r;
+}
+
+std::filesystem::path write_report(const Report& report, const std::filesystem::path& path) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  std::ofstream out(path);
+  if (!out) throw InputError(path.string(), 0, "cannot open report file for writing");
+  out << to_json(report).dump(2) << '\n';
+  if (!out) throw InputError(path.string(), 0, "failed writing the report");
+  return path;
+}
+
+Report read_report(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string(), 0, "cannot open report");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(path.string(), 0, std::string("not valid JSON: ") + e.what());
+  }
+  return report_from_json(j, path.string());
+}
+
+}  // namespace locbench::reports

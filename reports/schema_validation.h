@@ -1,0 +1,14 @@
+#pragma once
+// Validation of report JSON against reports/report.schema.json (valijson).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace locbench::reports {
+
+// The schema text (embedded at build time).
+const char* report_schema_text();
+// Every violation as "path: description"; empty when the document is a valid report.
+std::vector<std::string> validate_report_json(const nlohmann::json& document);
+
+}  // namespace locbench::reports
