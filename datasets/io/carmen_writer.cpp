@@ -1,0 +1,275 @@
+#include "datasets/io/carmen_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <initializer_list>
+#include <stdexcept>
+#include <vector>
+
+#include "datasets/io/carmen_laser.h"
+#include "datasets/io/number_format.h"
+#include "datasets/io/text_writer.h"
+
+namespace locbench {
+namespace {
+
+constexpr double kBearingTolerance = 1e-9;  // [rad]
+
+[[noreturn]] void reject(const std::string& what) {
+  throw std::invalid_argument("write_carmen_log: " + what);
+}
+
+bool has_space(const std::string& s) {
+  return std::any_of(s.begin(), s.end(), [](char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+  });
+}
+
+template <typename Records, typename Time>
+void check_order(const Records& records, const char* type, Time time_of) {
+  for (std::size_t i = 1; i < records.size(); ++i) {
+    if (time_of(records[i]) < time_of(records[i - 1])) {
+      reject(std::string(type) + " " + std::to_string(i) + " goes back in time");
+    }
+  }
+}
+
+void check_finite(std::initializer_list<double> values, const char* type, std::size_t i) {
+  for (const double v : values) {
+    if (!std::isfinite(v))
+      reject(std::string(type) + " " + std::to_string(i) + " has a non-finite value");
+  }
+}
+
+void check_log(const Log& log) {
+  check_order(log.encoders, "ENCODER", [](const auto& r) { return r.t; });
+  check_order(log.odometry, "ODOM", [](const auto& r) { return r.t; });
+  check_order(log.compass, "COMPASS", [](const auto& r) { return r.t; });
+  check_order(log.truth, "TRUEPOS", [](const auto& r) { return r.t; });
+  check_order(log.laser, "FLASER", [](const auto& r) { return r.scan.timestamp; });
+  for (std::size_t i = 0; i < log.encoders.size(); ++i)
+    check_finite({log.encoders[i].t}, "ENCODER", i);
+  for (std::size_t i = 0; i < log.odometry.size(); ++i) {
+    const auto& r = log.odometry[i];
+    check_finite({r.t, r.pose.x, r.pose.y, r.pose.theta, r.tv, r.rv}, "ODOM", i);
+  }
+  for (std::size_t i = 0; i < log.compass.size(); ++i) {
+    check_finite({log.compass[i].t, log.compass[i].heading}, "COMPASS", i);
+  }
+  for (std::size_t i = 0; i < log.truth.size(); ++i) {
+    const auto& r = log.truth[i];
+    check_finite(
+        {r.t, r.pose.x, r.pose.y, r.pose.theta, r.odom_pose.x, r.odom_pose.y, r.odom_pose.theta},
+        "TRUEPOS", i);
+  }
+  for (std::size_t i = 0; i < log.laser.size(); ++i) {
+    const auto& r = log.laser[i];
+    check_finite({r.scan.timestamp, r.pose.x, r.pose.y, r.pose.theta, r.odom_pose.x, r.odom_pose.y,
+                  r.odom_pose.theta},
+                 "FLASER", i);
+    if (r.scan.ranges.empty()) reject("FLASER " + std::to_string(i) + " has no ranges");
+    for (const double v : r.scan.ranges) {
+      if (!std::isfinite(v) || v < 0.0) {
+        reject("FLASER " + std::to_string(i) + " has a range that is negative or not finite");
+      }
+    }
+    const auto expected = flaser_bearings(r.scan.ranges.size());
+    bool same = r.scan.bearings.size() == expected.size();
+    for (std::size_t k = 0; same && k < expected.size(); ++k) {
+      same = std::abs(r.scan.bearings[k] - expected[k]) <= kBearingTolerance;
+    }
+    if (!same) {
+      reject("FLASER " + std::to_string(i) +
+             ": bearings must follow the FLASER convention (n beams over 180° from −90°)");
+    }
+  }
+  for (const auto& [name, value] : log.params) {
+    if (name.empty() || value.empty() || has_space(name) || has_space(value)) {
+      reject("PARAM '" + name + "': names and values must be non-empty and without whitespace");
+    }
+  }
+}
+
+// log.params, with the laser PARAM records made to agree with the scans.
+std::map<std::string, std::string> params_for(const Log& log) {
+  std::map<std::string, std::string> params = log.params;
+  CarmenLaserSetup declared;
+  try {
+    declared = carmen_laser_setup(params);
+  } catch (const std::invalid_argument& e) {
+    reject(e.what());
+  }
+  if (log.laser.empty()) return params;
+  const Scan& first = log.laser.front().scan;
+  for (const auto& r : log.laser) {
+    const Pose2& a = r.scan.sensor_pose;
+    const Pose2& b = first.sensor_pose;
+    if (r.scan.max_range != first.max_range || a.x != b.x || a.y != b.y || a.theta != b.theta) {
+      reject("FLASER scans must share one max range and sensor pose (they are PARAM records)");
+    }
+  }
+  if (!std::isfinite(first.max_range) || !(first.max_range > 0.0) ||
+      !std::isfinite(first.sensor_pose.x) || !std::isfinite(first.sensor_pose.y) ||
+      !std::isfinite(first.sensor_pose.theta)) {
+    reject("FLASER max range must be finite and positive, and the sensor pose finite");
+  }
+  auto set = [&](std::string_view name, double value) {
+    std::string text;
+    append_number(text, value);
+    params[std::string(name)] = text;
+  };
+  if (declared.max_range != first.max_range) set(kParamLaserMaxRange, first.max_range);
+  const Pose2& want = first.sensor_pose;
+  const Pose2& have = declared.sensor_pose;
+  if (want.x != have.x) set(kParamLaserOffset, want.x);
+  if (want.y != have.y) set(kParamLaserSideOffset, want.y);
+  if (want.theta != have.theta) set(kParamLaserAngularOffset, want.theta);
+  return params;
+}
+
+// Formats records into text chunks handed to `sink`.
+class Formatter {
+ public:
+  explicit Formatter(std::function<void(std::string_view)> sink) : sink_(std::move(sink)) {}
+
+  void number(double v) {
+    append_number(buf_, v);
+    buf_.push_back(' ');
+  }
+  void integer(std::int64_t v) {
+    append_number(buf_, v);
+    buf_.push_back(' ');
+  }
+  void text(std::string_view s) {
+    buf_.append(s);
+    buf_.push_back(' ');
+  }
+  void pose(const Pose2& p) {
+    number(p.x);
+    number(p.y);
+    number(p.theta);
+  }
+  // timestamp host logger_timestamp, end of line.
+  void end_record(double t) {
+    number(t);
+    buf_.append("locbench ");
+    append_number(buf_, t);
+    buf_.push_back('\n');
+    if (buf_.size() >= (std::size_t{1} << 20)) flush();
+  }
+  void line(std::string_view s) {
+    buf_.append(s);
+    buf_.push_back('\n');
+  }
+  void flush() {
+    if (!buf_.empty()) sink_(buf_);
+    buf_.clear();
+  }
+
+ private:
+  std::function<void(std::string_view)> sink_;
+  std::string buf_;
+};
+
+void format(const Log& log, const std::map<std::string, std::string>& params, Formatter& out) {
+  out.line("# CARMEN log written by locbench; see datasets/FORMAT.md");
+  for (const auto& [name, value] : params) {
+    out.text("PARAM");
+    out.text(name);
+    out.text(value);
+    out.end_record(0.0);
+  }
+  // Records merged by time; ties keep this type order and the order within each type.
+  enum Type : unsigned char { kEncoder, kOdom, kCompass, kTruth, kLaser };
+  struct Entry {
+    double t;
+    Type type;
+    std::size_t index;
+  };
+  std::vector<Entry> entries;
+  entries.reserve(log.encoders.size() + log.odometry.size() + log.compass.size() +
+                  log.truth.size() + log.laser.size());
+  for (std::size_t i = 0; i < log.encoders.size(); ++i)
+    entries.push_back({log.encoders[i].t, kEncoder, i});
+  for (std::size_t i = 0; i < log.odometry.size(); ++i)
+    entries.push_back({log.odometry[i].t, kOdom, i});
+  for (std::size_t i = 0; i < log.compass.size(); ++i)
+    entries.push_back({log.compass[i].t, kCompass, i});
+  for (std::size_t i = 0; i < log.truth.size(); ++i) entries.push_back({log.truth[i].t, kTruth, i});
+  for (std::size_t i = 0; i < log.laser.size(); ++i) {
+    entries.push_back({log.laser[i].scan.timestamp, kLaser, i});
+  }
+  std::stable_sort(entries.begin(), entries.end(),
+                   [](const Entry& a, const Entry& b) { return a.t < b.t; });
+  for (const Entry& e : entries) {
+    switch (e.type) {
+      case kEncoder: {
+        const auto& r = log.encoders[e.index];
+        out.text("ENCODER");
+        out.integer(r.left);
+        out.integer(r.right);
+        out.end_record(r.t);
+        break;
+      }
+      case kOdom: {
+        const auto& r = log.odometry[e.index];
+        out.text("ODOM");
+        out.pose(r.pose);
+        out.number(r.tv);
+        out.number(r.rv);
+        out.number(0.0);  // accel is not kept
+        out.end_record(r.t);
+        break;
+      }
+      case kCompass: {
+        const auto& r = log.compass[e.index];
+        out.text("COMPASS");
+        out.number(r.heading);
+        out.end_record(r.t);
+        break;
+      }
+      case kTruth: {
+        const auto& r = log.truth[e.index];
+        out.text("TRUEPOS");
+        out.pose(r.pose);
+        out.pose(r.odom_pose);
+        out.end_record(r.t);
+        break;
+      }
+      case kLaser: {
+        const auto& r = log.laser[e.index];
+        out.text("FLASER");
+        out.integer(static_cast<std::int64_t>(r.scan.ranges.size()));
+        for (const double v : r.scan.ranges) out.number(v);
+        out.pose(r.pose);
+        out.pose(r.odom_pose);
+        out.end_record(r.scan.timestamp);
+        break;
+      }
+    }
+  }
+  out.flush();
+}
+
+}  // namespace
+
+void write_carmen_log(const Log& log, const std::filesystem::path& path) {
+  check_log(log);  // before creating the file
+  const auto params = params_for(log);
+  TextWriter writer(path);
+  Formatter out([&](std::string_view chunk) { writer.write(chunk); });
+  format(log, params, out);
+  writer.close();
+}
+
+std::string format_carmen_log(const Log& log) {
+  check_log(log);
+  const auto params = params_for(log);
+  std::string text;
+  Formatter out([&](std::string_view chunk) { text.append(chunk); });
+  format(log, params, out);
+  return text;
+}
+
+}  // namespace locbench

@@ -1,0 +1,12 @@
+#pragma once
+// Short dataset names derived from file names, for Log::name.
+#include <filesystem>
+#include <string>
+
+namespace locbench {
+
+// The file name without ".gz" and without a known format extension (.clf, .log, .carmen,
+// .relations, .dat, .txt, .tum): "…/aces.from_bag.clf.gz" → "aces.from_bag".
+std::string dataset_name_from_file(const std::filesystem::path& path);
+
+}  // namespace locbench

@@ -1,0 +1,49 @@
+#pragma once
+// Reads text line by line from a file (plain or gzip-compressed, detected from the content) or
+// from memory, counting 1-based line numbers for error messages.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+struct gzFile_s;
+
+namespace locbench {
+
+class LineReader {
+ public:
+  // Opens `path`. Throws InputError when it is missing, a folder or unreadable.
+  explicit LineReader(const std::filesystem::path& path);
+  // Reads `text` (not copied: it must outlive the reader); `source_name` names it in errors.
+  LineReader(std::string_view text, std::string source_name);
+  ~LineReader();
+  LineReader(const LineReader&) = delete;
+  LineReader& operator=(const LineReader&) = delete;
+
+  // The next line without its line ending ("\n" or "\r\n"); false at the end of the input.
+  // The view stays valid until the next call. Throws InputError on a corrupt or truncated gzip
+  // stream, on a read error, and at the end of an input that is empty or only whitespace.
+  bool next(std::string_view& line);
+
+  // 1-based number of the line last returned by next() (0 before the first).
+  std::size_t line_number() const { return line_number_; }
+  // The file name (or source name) used in error messages.
+  const std::string& source() const { return source_; }
+
+ private:
+  bool fill();          // reads more of the file into buffer_; false at its end
+  void check_stream();  // throws InputError if zlib reported an error
+  void finish();        // end of input: empty-input check, closes the file
+
+  std::string source_;
+  gzFile_s* file_ = nullptr;
+  std::string buffer_;  // file data not yet returned: buffer_[begin_, buffer_.size())
+  std::size_t begin_ = 0;
+  std::string_view text_;  // in-memory input still to return
+  bool from_file_ = false;
+  bool at_end_ = false;
+  bool has_content_ = false;  // a non-whitespace character was seen
+  std::size_t line_number_ = 0;
+};
+
+}  // namespace locbench

@@ -1,0 +1,21 @@
+#pragma once
+// Loads any supported log from a path-like spec, choosing the reader from the name.
+#include <filesystem>
+#include <string>
+
+#include "datasets/log/log.h"
+
+namespace locbench {
+
+// Accepted specs:
+// - a CARMEN log file *.clf, *.log or *.carmen, optionally gzip-compressed (*.clf.gz, …);
+// - a Freiburg relations file *.relations(.gz): a Log holding only the relations;
+// - an MRCLAM dataset folder with an optional robot suffix: "…/MRCLAM_Dataset6#robot2"
+//   (robot 1 without a suffix).
+// Throws InputError for anything else (naming the accepted formats) and for malformed input.
+Log load_log(const std::string& spec);
+
+// Reads a relations file (plain or gzip) into log.relations, replacing any already there.
+void attach_relations(Log& log, const std::filesystem::path& relations_path);
+
+}  // namespace locbench

@@ -1,0 +1,19 @@
+#include "datasets/io/number_format.h"
+
+#include <charconv>
+
+namespace locbench {
+
+void append_number(std::string& out, double v) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);  // shortest round-trip form
+  out.append(buf, res.ptr);
+}
+
+void append_number(std::string& out, std::int64_t v) {
+  char buf[24];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, res.ptr);
+}
+
+}  // namespace locbench

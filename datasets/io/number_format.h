@@ -1,0 +1,12 @@
+#pragma once
+// Numbers printed for the text formats: the shortest text that reads back to the same value.
+#include <cstdint>
+#include <string>
+
+namespace locbench {
+
+// Appends the shortest decimal form of `v` that parses back to exactly `v` (e.g. "0.1", "1e+20").
+void append_number(std::string& out, double v);
+void append_number(std::string& out, std::int64_t v);
+
+}  // namespace locbench

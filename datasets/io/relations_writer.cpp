@@ -1,0 +1,42 @@
+#include "datasets/io/relations_writer.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "datasets/io/number_format.h"
+#include "datasets/io/text_writer.h"
+
+namespace locbench {
+
+std::string format_relations(const std::vector<Relation>& relations) {
+  std::string out = "# t1 t2 x y z roll pitch yaw\n";
+  for (std::size_t i = 0; i < relations.size(); ++i) {
+    const Relation& r = relations[i];
+    for (const double v : {r.t1, r.t2, r.delta.x, r.delta.y, r.delta.theta}) {
+      if (!std::isfinite(v)) {
+        throw std::invalid_argument("write_relations: relation " + std::to_string(i) +
+                                    " has a non-finite value");
+      }
+    }
+    append_number(out, r.t1);
+    out.push_back(' ');
+    append_number(out, r.t2);
+    out.push_back(' ');
+    append_number(out, r.delta.x);
+    out.push_back(' ');
+    append_number(out, r.delta.y);
+    out += " 0 0 0 ";
+    append_number(out, r.delta.theta);
+    out.push_back('\n');
+  }
+  return out;
+}
+
+void write_relations(const std::vector<Relation>& relations, const std::filesystem::path& path) {
+  const std::string text = format_relations(relations);
+  TextWriter writer(path);
+  writer.write(text);
+  writer.close();
+}
+
+}  // namespace locbench

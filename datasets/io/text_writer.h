@@ -1,0 +1,30 @@
+#pragma once
+// Writes a text file, gzip-compressed when the path ends in ".gz", plain otherwise.
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+struct gzFile_s;
+
+namespace locbench {
+
+class TextWriter {
+ public:
+  // Creates (or truncates) `path`. Throws InputError if it cannot be opened for writing.
+  explicit TextWriter(const std::filesystem::path& path);
+  ~TextWriter();  // closes without error checks; call close() to see errors
+  TextWriter(const TextWriter&) = delete;
+  TextWriter& operator=(const TextWriter&) = delete;
+
+  void write(std::string_view text);  // throws InputError on a write error
+  void close();                       // flushes and closes; throws InputError on failure
+
+ private:
+  std::string path_;
+  gzFile_s* file_ = nullptr;
+};
+
+// True if the file name ends in ".gz" (case-insensitive).
+bool has_gz_suffix(const std::filesystem::path& path);
+
+}  // namespace locbench

@@ -1,0 +1,42 @@
+#include "datasets/io/tum_writer.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "datasets/io/number_format.h"
+#include "datasets/io/text_writer.h"
+
+namespace locbench {
+
+std::string format_tum(const Trajectory& trajectory) {
+  std::string out = "# timestamp x y z qx qy qz qw\n";
+  const auto& poses = trajectory.poses();
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const StampedPose& p = poses[i];
+    if (!std::isfinite(p.t) || !std::isfinite(p.pose.x) || !std::isfinite(p.pose.y) ||
+        !std::isfinite(p.pose.theta)) {
+      throw std::invalid_argument("write_tum: pose " + std::to_string(i) +
+                                  " has a non-finite value");
+    }
+    append_number(out, p.t);
+    out.push_back(' ');
+    append_number(out, p.pose.x);
+    out.push_back(' ');
+    append_number(out, p.pose.y);
+    out += " 0 0 0 ";
+    append_number(out, std::sin(0.5 * p.pose.theta));
+    out.push_back(' ');
+    append_number(out, std::cos(0.5 * p.pose.theta));
+    out.push_back('\n');
+  }
+  return out;
+}
+
+void write_tum(const Trajectory& trajectory, const std::filesystem::path& path) {
+  const std::string text = format_tum(trajectory);
+  TextWriter writer(path);
+  writer.write(text);
+  writer.close();
+}
+
+}  // namespace locbench

@@ -1,0 +1,223 @@
+// Fuzzing: valid files mutated at random (tokens dropped, duplicated or replaced, lines cut,
+// random bytes) are either read or rejected with InputError — never a crash, never another
+// exception (the tests run under ASan and UBSan).
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <functional>
+
+#include "datasets/io/carmen_reader.h"
+#include "datasets/io/carmen_writer.h"
+#include "datasets/io/relations_reader.h"
+#include "datasets/io/tum_reader.h"
+#include "io_test_support.h"
+#include "log_generators.h"
+#include "tests/test_data.h"
+
+namespace locbench {
+namespace {
+
+const std::string kSample =
+    "# sample\n"
+    "PARAM robot_front_laser_max 50 0 h 0\n"
+    "PARAM robot_wheelbase 0.5\n"
+    "ODOM 0.1 0.2 0.3 0.5 -0.25 0 1 h 1\n"
+    "ENCODER -3 4 1 h 1\n"
+    "COMPASS 1.25 2 h 2\n"
+    "TRUEPOS 1 2 3 4 5 -1 2 h 2\n"
+    "FLASER 5 1 2 3 4 5 0 0 0 0 0 0 2 h 2\n"
+    "ROBOTLASER1 0 -1.57 3.14 0.01 81.9 0.01 0 3 1 1 1 0 0 0 0 0 0 0 0 0 0 0 0 0 2 h 2\n"
+    "FLASER 4 1 2 3 50 0 0 0 0 0 0 3 h 3\n"
+    "ODOM 0.1 0.2 0.3 0.5 -0.25 0 3 h 3\n";
+
+const std::vector<std::string> kNastyTokens = {"",
+                                               "nan",
+                                               "-nan",
+                                               "inf",
+                                               "-inf",
+                                               "1e999",
+                                               "-1e999",
+                                               "1e-999",
+                                               "abc",
+                                               "0x10",
+                                               "+",
+                                               "-",
+                                               "1e",
+                                               "#",
+                                               "FLASER",
+                                               "ODOM",
+                                               "PARAM",
+                                               "-1",
+                                               "0",
+                                               "99999999999999999999",
+                                               "-9223372036854775809",
+                                               "1.5.5",
+                                               "--1",
+                                               "+-1",
+                                               "1,5",
+                                               "\xff\xfe",
+                                               std::string("1\0"
+                                                           "2",
+                                                           3),
+                                               "\t",
+                                               "\r",
+                                               "\n"};
+
+// Tokens of a line; joins with a single space.
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : line) {
+    if (c == ' ') {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur.push_back(c);
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+std::string join(const std::vector<std::string>& tokens) {
+  std::string out;
+  for (std::size_t i = 0; i < tokens.size(); ++i) out += (i ? " " : "") + tokens[i];
+  return out;
+}
+
+// Applies 1–6 random mutations to `text`.
+std::string mutate(std::string text) {
+  const int count = *rc::gen::inRange(1, 7);
+  for (int m = 0; m < count; ++m) {
+    std::vector<std::string> lines;
+    std::size_t start = 0;
+    for (;;) {
+      const auto nl = text.find('\n', start);
+      lines.push_back(text.substr(start, nl == std::string::npos ? std::string::npos : nl - start));
+      if (nl == std::string::npos) break;
+      start = nl + 1;
+    }
+    const std::size_t li = *rc::gen::inRange<std::size_t>(0, lines.size());
+    auto tokens = split(lines[li]);
+    const std::size_t ti = *rc::gen::inRange<std::size_t>(0, tokens.size());
+    switch (*rc::gen::inRange(0, 9)) {
+      case 0:  // drop a token
+        tokens.erase(tokens.begin() + static_cast<std::ptrdiff_t>(ti));
+        lines[li] = join(tokens);
+        break;
+      case 1:  // duplicate a token
+        tokens.insert(tokens.begin() + static_cast<std::ptrdiff_t>(ti), tokens[ti]);
+        lines[li] = join(tokens);
+        break;
+      case 2:  // replace a token with a nasty one
+        tokens[ti] = *rc::gen::elementOf(kNastyTokens);
+        lines[li] = join(tokens);
+        break;
+      case 3:  // replace a token with random bytes
+        tokens[ti] = *rc::gen::container<std::string>(rc::gen::arbitrary<char>());
+        lines[li] = join(tokens);
+        break;
+      case 4:  // truncate the line
+        lines[li] = lines[li].substr(0, *rc::gen::inRange<std::size_t>(0, lines[li].size() + 1));
+        break;
+      case 5:  // drop or duplicate a line
+        if (*rc::gen::arbitrary<bool>()) {
+          lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(li));
+        } else {
+          lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(li), lines[li]);
+        }
+        break;
+      case 6: {  // swap two lines (breaks time order)
+        const std::size_t lj = *rc::gen::inRange<std::size_t>(0, lines.size());
+        std::swap(lines[li], lines[lj]);
+        break;
+      }
+      case 7: {  // insert random bytes anywhere
+        const std::string bytes = *rc::gen::container<std::string>(rc::gen::arbitrary<char>());
+        lines[li].insert(*rc::gen::inRange<std::size_t>(0, lines[li].size() + 1), bytes);
+        break;
+      }
+      default:  // replace a number with one of another magnitude
+        tokens[ti] = std::to_string(*rc::gen::arbitrary<std::int64_t>());
+        lines[li] = join(tokens);
+        break;
+    }
+    text.clear();
+    for (std::size_t i = 0; i < lines.size(); ++i) text += (i ? "\n" : "") + lines[i];
+  }
+  return text;
+}
+
+// Runs `read`; fails the property unless it returns or throws InputError.
+void reads_or_rejects(const std::function<void()>& read) {
+  try {
+    read();
+    RC_TAG("read");
+  } catch (const InputError&) {
+    RC_TAG("rejected");
+  } catch (const std::exception& e) {
+    RC_FAIL(std::string("threw something other than InputError: ") + e.what());
+  } catch (...) {
+    RC_FAIL("threw a non-exception");
+  }
+}
+
+RC_GTEST_PROP(CarmenFuzz, MutatedSampleLogIsReadOrRejectedWithInputError, ()) {
+  const std::string text = mutate(kSample);
+  reads_or_rejects([&] { parse_carmen_log(text, "fuzz.clf"); });
+}
+
+RC_GTEST_PROP(CarmenFuzz, MutatedRandomLogIsReadOrRejectedWithInputError, ()) {
+  const std::string text = mutate(format_carmen_log(testing::random_carmen_log()));
+  reads_or_rejects([&] { parse_carmen_log(text, "fuzz.clf"); });
+}
+
+RC_GTEST_PROP(CarmenFuzz, RandomBytesAreReadOrRejectedWithInputError, ()) {
+  const auto text = *rc::gen::container<std::string>(rc::gen::arbitrary<char>());
+  reads_or_rejects([&] { parse_carmen_log(text, "fuzz.clf"); });
+}
+
+RC_GTEST_PROP(RelationsFuzz, MutatedRelationsAreReadOrRejectedWithInputError, ()) {
+  const std::string text = mutate(
+      "# t1 t2 x y z roll pitch yaw\n90.239599 90.719599 0.422330 -0.000750 0 0 0 0.017260\n"
+      "1 2 3 4 5 6 7 8\n");
+  reads_or_rejects([&] { parse_relations(text, "fuzz.relations"); });
+}
+
+RC_GTEST_PROP(TumFuzz, MutatedTrajectoriesAreReadOrRejectedWithInputError, ()) {
+  const std::string text =
+      mutate("# tum\n1 0 0 0 0 0 0 1\n2 1 2 0 0 0 0.7071067811865476 0.7071067811865476\n");
+  reads_or_rejects([&] { parse_tum(text, "fuzz.tum"); });
+}
+
+// Bytes of a valid .clf.gz flipped or cut: zlib errors surface as InputError.
+TEST(CarmenFuzz, CorruptedGzipFilesAreReadOrRejectedWithInputError) {
+  testing::ScratchDir dir;
+  std::string text = kSample;
+  for (int i = 0; i < 300; ++i) {
+    text += fmt::format("ODOM 0.1 0.2 0.3 0.5 -0.25 0 {} h 0\n", 10 + i);
+  }
+  const std::string packed = testing::gzip(text);
+  int run = 0;
+  const auto result = rc::check("corrupt gzip", [&] {
+    std::string bytes = packed;
+    const int edits = *rc::gen::inRange(1, 4);
+    for (int e = 0; e < edits; ++e) {
+      const auto i = *rc::gen::inRange<std::size_t>(0, bytes.size());
+      if (*rc::gen::arbitrary<bool>()) {
+        bytes[i] = *rc::gen::arbitrary<char>();
+      } else {
+        bytes.resize(i);
+      }
+      if (bytes.empty()) break;
+    }
+    const auto path = dir.file(fmt::format("f{}.clf.gz", run++));
+    testing::write_bytes(path, bytes);
+    reads_or_rejects([&] { read_carmen_log(path); });
+  });
+  EXPECT_TRUE(result);
+}
+
+}  // namespace
+}  // namespace locbench
