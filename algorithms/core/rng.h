@@ -17,8 +17,14 @@ class Rng {
   // An independent stream for sub-task `index` of a run with this seed (Monte-Carlo run k,
   // sensor j...), so results do not depend on the order or thread tasks run in.
   static Rng stream(std::uint64_t seed, std::uint64_t index) {
-    return Rng(splitmix64(seed ^ splitmix64(index + 0x9E3779B97F4A7C15ULL)));
+    return Rng(derive_seed(seed, index));
   }
+  // The seed of sub-task `index` of a run with base seed `seed` (recorded in reports). Kept
+  // below 2^53 so every JSON reader, JavaScript included, reads it back exactly.
+  static std::uint64_t derive_seed(std::uint64_t seed, std::uint64_t index) {
+    return splitmix64(seed ^ splitmix64(index + 0x9E3779B97F4A7C15ULL)) & kMaxJsonSafeSeed;
+  }
+  static constexpr std::uint64_t kMaxJsonSafeSeed = (std::uint64_t{1} << 53) - 1;
 
   // Uniform on [0, 1), 53 random bits.
   double uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }

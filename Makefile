@@ -1,0 +1,37 @@
+# The two commands of the README: `make run` and `make test`. Both install missing Debian
+# packages first (scripts/setup.sh), so they work on a fresh Debian 12 machine as root.
+JOBS ?= $(shell nproc)
+RELEASE := build/release
+TESTBUILD := build/test
+OUT ?= out
+
+.PHONY: all setup build run test bench clean
+
+all: build
+
+setup:
+	@./scripts/setup.sh
+
+# Release build of the CLI and the speed kernels (no tests).
+build: setup
+	@cmake -S . -B $(RELEASE) -DCMAKE_BUILD_TYPE=Release -DLOCBENCH_BUILD_TESTS=OFF >/dev/null
+	@cmake --build $(RELEASE) -j$(JOBS) --target locbench
+
+# Default suite on embedded defaults → JSON reports under $(OUT)/ and a summary table.
+run: build
+	$(RELEASE)/cli/locbench run --out $(OUT)
+
+# Debug + AddressSanitizer + UndefinedBehaviorSanitizer, warnings as errors, every test via CTest.
+test: setup
+	@cmake -S . -B $(TESTBUILD) -DCMAKE_BUILD_TYPE=Debug -DLOCBENCH_SANITIZE=ON -DLOCBENCH_WERROR=ON >/dev/null
+	@cmake --build $(TESTBUILD) -j$(JOBS)
+	cd $(TESTBUILD) && ctest --output-on-failure -j$(JOBS)
+
+# Google Benchmark kernels (Release), JSON in $(OUT)/speed.json.
+bench: build
+	@cmake --build $(RELEASE) -j$(JOBS) --target locbench_speed
+	@mkdir -p $(OUT)
+	$(RELEASE)/benchmarks/speed/locbench_speed --benchmark_out=$(OUT)/speed.json --benchmark_out_format=json
+
+clean:
+	rm -rf build $(OUT)

@@ -1,0 +1,51 @@
+#pragma once
+// An experiment names its inputs, the methods it compares and the metrics; it runs them (over
+// seeds where it is Monte-Carlo) and returns results. It does not print or write files.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "reports/report.h"
+
+namespace locbench::experiments {
+
+struct RunOptions {
+  std::uint64_t seed = 1;
+  std::optional<int> runs;                  // Monte-Carlo runs; the experiment's default if unset
+  std::filesystem::path data_root;          // real datasets (LOCBENCH_DATA)
+  std::function<void(double)> progress;     // fraction done in [0, 1]; may be empty
+  void report_progress(double f) const {
+    if (progress) progress(f);
+  }
+};
+
+class Experiment {
+ public:
+  virtual ~Experiment() = default;
+  // Stable name, e.g. "odometry/sim_corridor"; also the report's file stem.
+  virtual std::string name() const = 0;
+  virtual std::string description() const = 0;
+  // Part of the default suite run by `locbench run` with no argument.
+  virtual bool in_default_suite() const { return true; }
+  // Every option with its default; a user's configuration is merged over it.
+  virtual nlohmann::json default_config() const = 0;
+  virtual reports::ExperimentResults run(const nlohmann::json& config,
+                                         const RunOptions& options) const = 0;
+};
+
+// All experiments, in a fixed order.
+const std::vector<std::unique_ptr<Experiment>>& all_experiments();
+// nullptr when no experiment has that name.
+const Experiment* find_experiment(const std::string& name);
+
+// Merges `overrides` into `defaults` recursively; a key absent from the defaults or a value of
+// another JSON type is a UsageError naming the key.
+nlohmann::json merge_config(const nlohmann::json& defaults, const nlohmann::json& overrides,
+                            const std::string& path = "");
+
+}  // namespace locbench::experiments

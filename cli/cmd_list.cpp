@@ -1,0 +1,88 @@
+// `locbench list`: experiments, simulator scenarios, and the real datasets found with their
+// record counts and time spans.
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "algorithms/core/errors.h"
+#include "benchmarks/experiments/experiment.h"
+#include "cli/commands.h"
+#include "datasets/catalog/dataset_catalog.h"
+#include "datasets/log/data_root.h"
+#include "datasets/sim/presets.h"
+
+namespace locbench::cli {
+namespace {
+
+struct ListArgs {
+  std::string data;
+  bool no_load = false;
+};
+
+std::string counts(const Log& log) {
+  std::string s;
+  auto add = [&s](std::size_t n, const char* what) {
+    if (n == 0) return;
+    if (!s.empty()) s += ", ";
+    s += fmt::format("{} {}", n, what);
+  };
+  add(log.odometry.size(), "ODOM");
+  add(log.encoders.size(), "ENCODER");
+  add(log.compass.size(), "COMPASS");
+  add(log.laser.size(), "FLASER");
+  add(log.truth.size(), "TRUEPOS");
+  add(log.landmarks.size(), "landmark");
+  add(log.relations.size(), "relations");
+  return s;
+}
+
+int list(const ListArgs& args) {
+  std::cout << "Experiments (* = default suite):\n";
+  for (const auto& e : experiments::all_experiments()) {
+    std::cout << fmt::format("  {} {:<26} {}\n", e->in_default_suite() ? '*' : ' ', e->name(),
+                             e->description());
+  }
+  std::cout << "\nSimulator scenarios (locbench simulate NAME):\n";
+  for (const sim::PresetInfo& p : sim::preset_list()) {
+    std::cout << fmt::format("    {:<26} {}\n", p.name, p.description);
+  }
+  const std::filesystem::path root = args.data.empty() ? data_root() : std::filesystem::path(args.data);
+  std::cout << "\nDatasets under " << root.string() << ":\n";
+  for (const DatasetEntry& d : dataset_catalog()) {
+    const std::string path = (root / d.path).string();
+    if (!std::filesystem::exists(path.substr(0, path.find('#')))) {
+      std::cout << fmt::format("    {:<26} absent ({})\n", d.name, d.path);
+      continue;
+    }
+    if (!d.reader_pending.empty()) {
+      std::cout << fmt::format("    {:<26} present; reader arrives with {}\n", d.name,
+                               d.reader_pending);
+      continue;
+    }
+    if (args.no_load) {
+      std::cout << fmt::format("    {:<26} present\n", d.name);
+      continue;
+    }
+    try {
+      const Log log = load_catalog_dataset(d, root);
+      const auto [t0, t1] = log.time_span();
+      std::cout << fmt::format("    {:<26} {:.1f} s from t = {:.3f}: {}\n", d.name, t1 - t0, t0,
+                               counts(log));
+    } catch (const InputError& e) {
+      std::cout << fmt::format("    {:<26} unreadable: {}\n", d.name, e.what());
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Action add_list_command(CLI::App& app) {
+  auto args = std::make_shared<ListArgs>();
+  CLI::App* cmd = app.add_subcommand("list", "List experiments, scenarios and datasets found");
+  cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+  cmd->add_flag("--no-load", args->no_load, "Only check that datasets exist; do not read them");
+  return [args] { return list(*args); };
+}
+
+}  // namespace locbench::cli

@@ -1,0 +1,134 @@
+// `locbench run [EXPERIMENT…]`: run experiments and write one JSON report each.
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iostream>
+
+#include "algorithms/core/errors.h"
+#include "algorithms/core/rng.h"
+#include "benchmarks/experiments/experiment.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "datasets/log/data_root.h"
+#include "reports/provenance.h"
+#include "reports/report_json.h"
+#include "reports/schema_validation.h"
+#include "reports/summary_table.h"
+
+namespace locbench::cli {
+namespace {
+
+struct RunArgs {
+  std::vector<std::string> experiments;
+  std::uint64_t seed = 1;
+  int runs = 0;
+  std::string out = "out";
+  std::string config;
+  std::string data;
+};
+
+// Experiments named on the command line: exact names, or a group prefix ("odometry" selects
+// every "odometry/…"); none selects the default suite.
+std::vector<const experiments::Experiment*> select(const std::vector<std::string>& names) {
+  std::vector<const experiments::Experiment*> chosen;
+  if (names.empty()) {
+    for (const auto& e : experiments::all_experiments()) {
+      if (e->in_default_suite()) chosen.push_back(e.get());
+    }
+    return chosen;
+  }
+  for (const std::string& n : names) {
+    std::size_t before = chosen.size();
+    for (const auto& e : experiments::all_experiments()) {
+      if (e->name() == n || e->name().rfind(n + "/", 0) == 0) chosen.push_back(e.get());
+    }
+    if (chosen.size() == before) {
+      throw UsageError("no experiment named \"" + n + "\" (see `locbench list`)");
+    }
+  }
+  return chosen;
+}
+
+nlohmann::json load_overrides(const std::string& path) {
+  if (path.empty()) return nlohmann::json::object();
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "cannot open configuration file");
+  try {
+    nlohmann::json j = nlohmann::json::parse(in);
+    if (!j.is_object()) {
+      throw InputError(path, 0, "expected a JSON object keyed by experiment name");
+    }
+    return j;
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(path, 0, std::string("not valid JSON: ") + e.what());
+  }
+}
+
+int run(const RunArgs& args, const std::string& command_line) {
+  const auto chosen = select(args.experiments);
+  const nlohmann::json overrides = load_overrides(args.config);
+  for (const auto& [name, value] : overrides.items()) {
+    if (!experiments::find_experiment(name)) {
+      throw InputError(args.config, 0, "configuration for unknown experiment \"" + name + "\"");
+    }
+  }
+  experiments::RunOptions options;
+  options.seed = args.seed;
+  if (args.runs > 0) options.runs = args.runs;
+  options.data_root = args.data.empty() ? data_root() : std::filesystem::path(args.data);
+
+  std::vector<reports::Report> written;
+  int exit_code = kExitOk;
+  for (const experiments::Experiment* e : chosen) {
+    nlohmann::json config = e->default_config();
+    if (overrides.contains(e->name())) {
+      config = experiments::merge_config(config, overrides.at(e->name()));
+    }
+    reports::Report report;
+    {
+      ProgressBar bar(e->name());
+      options.progress = [&bar](double f) { bar.update(f); };
+      try {
+        report.body = e->run(config, options);
+      } catch (const InputError& err) {
+        std::cerr << "locbench: " << e->name() << ": error: " << err.what() << '\n';
+        exit_code = kExitBadInput;
+        continue;
+      }
+    }
+    report.provenance = reports::current_provenance(command_line);
+    const nlohmann::json j = reports::to_json(report);
+    if (const auto errors = reports::validate_report_json(j); !errors.empty()) {
+      throw std::logic_error(e->name() + " produced a report that violates the schema: " +
+                             errors.front());
+    }
+    const auto path = std::filesystem::path(args.out) / (e->name() + ".json");
+    reports::write_report(report, path);
+    std::cerr << "wrote " << path.string() << '\n';
+    written.push_back(std::move(report));
+  }
+  std::cout << reports::summary_table(written);
+  return exit_code;
+}
+
+}  // namespace
+
+Action add_run_command(CLI::App& app, const std::string& command_line) {
+  auto args = std::make_shared<RunArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "run", "Run experiments (default: the default suite) and write JSON reports");
+  cmd->add_option("experiments", args->experiments,
+                  "Experiment names or groups (e.g. odometry/sim_corridor, odometry)");
+  cmd->add_option("--seed", args->seed, "Base seed of every random run (0 … 2^53 − 1)")
+      ->check(CLI::Range(std::uint64_t{0}, Rng::kMaxJsonSafeSeed))
+      ->capture_default_str();
+  cmd->add_option("--runs", args->runs, "Monte-Carlo runs (default: each experiment's own)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("-o,--out", args->out, "Folder for reports")->capture_default_str();
+  cmd->add_option("--config", args->config,
+                  "JSON file {\"experiment/name\": {option: value}} overriding defaults");
+  cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+  return [args, command_line] { return run(*args, command_line); };
+}
+
+}  // namespace locbench::cli

@@ -1,0 +1,20 @@
+#pragma once
+// One small file per verb; each registers its sub-command and returns the exit code.
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace locbench::cli {
+
+// Exit codes of every verb.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitCheckFailed = 1;  // a gate or check failed
+inline constexpr int kExitBadInput = 2;     // bad input or usage
+inline constexpr int kExitInternal = 3;     // a bug: please report
+
+// Each add_* registers a sub-command on `app` and returns the action to run when it is chosen.
+using Action = std::function<int()>;
+Action add_list_command(CLI::App& app);
+Action add_simulate_command(CLI::App& app);
+Action add_run_command(CLI::App& app, const std::string& command_line);
+
+}  // namespace locbench::cli

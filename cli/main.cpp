@@ -1,0 +1,46 @@
+// locbench: benchmarks and evaluation for mobile-robot localization. One verb per job.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <map>
+
+#include "algorithms/core/errors.h"
+#include "cli/commands.h"
+
+int main(int argc, char** argv) {
+  using namespace locbench::cli;
+  std::string command_line;
+  for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
+
+  CLI::App app{"locbench — benchmarks and accuracy reports for mobile-robot localization"};
+  app.set_version_flag("--version", std::string(LOCBENCH_VERSION));
+  app.require_subcommand(1);
+  std::map<CLI::App*, Action> actions;
+  auto add = [&](Action a) { actions[app.get_subcommands({}).back()] = std::move(a); };
+  add(add_list_command(app));
+  add(add_simulate_command(app));
+  add(add_run_command(app, command_line));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help or the error
+    return code == 0 ? kExitOk : kExitBadInput;
+  }
+  try {
+    for (auto& [sub, action] : actions) {
+      if (sub->parsed()) return action();
+    }
+    return kExitBadInput;
+  } catch (const locbench::InputError& e) {
+    std::fprintf(stderr, "locbench: error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const locbench::UsageError& e) {
+    std::fprintf(stderr, "locbench: usage error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "locbench: internal error: %s\n", e.what());
+    return kExitInternal;
+  }
+}

@@ -1,0 +1,35 @@
+#pragma once
+// 2D laser scanner like the SICK LMS 200 (§5.4: 181 beams over −90°…90° at 1°, 5 Hz,
+// σ = 5 mm), ray-cast against the world LineMap from the sensor's true pose (the robot's true
+// pose composed with the mount). The sweep is instantaneous. Per beam, exclusively: with
+// probability `dropout` → max_range; with probability `spurious` → uniform on [0, true range)
+// (a short return from dust or a passer-by); otherwise
+// scale · range + offset + N(0, σ²), clipped to [0, max_range]. No hit → max_range.
+#include <vector>
+
+#include "algorithms/core/line_map.h"
+#include "algorithms/core/pose2.h"
+#include "algorithms/core/rng.h"
+#include "algorithms/core/scan.h"
+#include "datasets/sim/scenario.h"
+
+namespace locbench::sim {
+
+class LaserModel {
+ public:
+  LaserModel(const LaserConfig& c, const LineMap& world, Rng rng);
+
+  const std::vector<double>& bearings() const { return bearings_; }
+  // Noise-free ranges from the robot at `robot` (max_range where nothing is hit).
+  std::vector<double> true_ranges(const Pose2& robot) const;
+  // A measured scan; sensor_pose = mount, timestamp as given.
+  Scan measure(const Pose2& robot, double timestamp);
+
+ private:
+  LaserConfig config_;
+  const LineMap& world_;
+  Rng rng_;
+  std::vector<double> bearings_;
+};
+
+}  // namespace locbench::sim

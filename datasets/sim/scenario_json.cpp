@@ -1,0 +1,349 @@
+#include "datasets/sim/scenario_json.h"
+
+#include <array>
+#include <utility>
+
+#include "algorithms/core/errors.h"
+#include "datasets/sim/json_fields.h"
+#include "datasets/sim/presets.h"
+
+namespace locbench::sim {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr std::array<std::pair<WorldKind, const char*>, 5> kWorldKinds{{
+    {WorldKind::kNone, "none"},
+    {WorldKind::kRoom, "room"},
+    {WorldKind::kCorridor, "corridor"},
+    {WorldKind::kFile, "file"},
+    {WorldKind::kInline, "inline"},
+}};
+constexpr std::array<std::pair<MotionKind, const char*>, 3> kMotionKinds{{
+    {MotionKind::kStraight, "straight"},
+    {MotionKind::kUmbmark, "umbmark"},
+    {MotionKind::kWaypoints, "waypoints"},
+}};
+constexpr std::array<std::pair<SlipRateUnit, const char*>, 2> kSlipUnits{{
+    {SlipRateUnit::kPerSample, "per_sample"},
+    {SlipRateUnit::kPerMetre, "per_metre"},
+}};
+constexpr std::array<std::pair<DisturbanceZone::Shape, const char*>, 2> kZoneShapes{{
+    {DisturbanceZone::Shape::kRectangle, "rectangle"},
+    {DisturbanceZone::Shape::kCircle, "circle"},
+}};
+
+template <typename E, std::size_t N>
+const char* name_of(const std::array<std::pair<E, const char*>, N>& table, E value) {
+  for (const auto& [v, name] : table) {
+    if (v == value) return name;
+  }
+  return "?";
+}
+
+template <typename E, std::size_t N>
+void read_enum(JsonObject& o, const char* key,
+               const std::array<std::pair<E, const char*>, N>& table, E& out) {
+  if (!o.has(key)) {
+    o.raw(key);
+    return;
+  }
+  std::string text;
+  o.read(key, text);
+  std::string allowed;
+  for (const auto& [v, name] : table) {
+    if (text == name) {
+      out = v;
+      return;
+    }
+    allowed += (allowed.empty() ? "" : ", ") + std::string(name);
+  }
+  o.fail(key, "unknown value '" + text + "' (expected one of: " + allowed + ")");
+}
+
+json vec(const Eigen::Vector2d& v) { return json::array({v.x(), v.y()}); }
+json pose(const Pose2& p) { return json::array({p.x, p.y, p.theta}); }
+
+json geometry_json(const WheelGeometry& g) {
+  return {{"diameter_left", g.diameter_left},
+          {"diameter_right", g.diameter_right},
+          {"wheelbase", g.wheelbase}};
+}
+void read_geometry(JsonObject o, WheelGeometry& g) {
+  o.read("diameter_left", g.diameter_left);
+  o.read("diameter_right", g.diameter_right);
+  o.read("wheelbase", g.wheelbase);
+  o.finish();
+}
+
+json timing_json(const SensorTiming& t) {
+  return {{"enabled", t.enabled}, {"rate", t.rate}, {"latency", t.latency}, {"jitter", t.jitter}};
+}
+// Timing fields sit beside the sensor's own fields in the same object.
+void read_timing(JsonObject& o, SensorTiming& t) {
+  o.read("enabled", t.enabled);
+  o.read("rate", t.rate);
+  o.read("latency", t.latency);
+  o.read("jitter", t.jitter);
+}
+
+json slip_profile_json(const SlipProfile& p) {
+  return {{"rate", p.rate}, {"magnitude_min", p.magnitude_min}, {"magnitude_max", p.magnitude_max}};
+}
+void read_slip_profile(JsonObject o, SlipProfile& p) {
+  o.read("rate", p.rate);
+  o.read("magnitude_min", p.magnitude_min);
+  o.read("magnitude_max", p.magnitude_max);
+  o.finish();
+}
+
+json zone_json(const DisturbanceZone& z) {
+  json j = {{"shape", name_of(kZoneShapes, z.shape)}, {"bias", z.bias}};
+  if (z.shape == DisturbanceZone::Shape::kCircle) {
+    j["center"] = vec(z.center);
+    j["radius"] = z.radius;
+  } else {
+    j["min"] = vec(z.min);
+    j["max"] = vec(z.max);
+  }
+  return j;
+}
+DisturbanceZone read_zone(const json& v, const std::string& path, const std::string& source) {
+  JsonObject o(v, path, source);
+  DisturbanceZone z;
+  read_enum(o, "shape", kZoneShapes, z.shape);
+  o.read("bias", z.bias);
+  if (z.shape == DisturbanceZone::Shape::kCircle) {
+    o.read("center", z.center);
+    o.read("radius", z.radius);
+  } else {
+    o.read("min", z.min);
+    o.read("max", z.max);
+  }
+  o.finish();
+  return z;
+}
+
+void read_world(JsonObject o, WorldConfig& w) {
+  read_enum(o, "kind", kWorldKinds, w.kind);
+  o.read("corridor_length", w.corridor_length);
+  o.read("corridor_width", w.corridor_width);
+  o.read("file", w.file);
+  if (const auto* segs = o.raw("segments")) {
+    if (!segs->is_array()) o.fail("segments", "expected an array, found " + json_type_name(*segs));
+    w.segments.clear();
+    for (std::size_t i = 0; i < segs->size(); ++i) {
+      Eigen::Vector4d s;
+      read_numbers((*segs)[i], s.data(), 4, o.path_of("segments") + "[" + std::to_string(i) + "]",
+                   o.source());
+      w.segments.push_back(s);
+    }
+  }
+  o.finish();
+}
+
+void read_motion(JsonObject o, MotionConfig& m) {
+  read_enum(o, "kind", kMotionKinds, m.kind);
+  o.read("distance", m.distance);
+  o.read("side", m.side);
+  o.read("runs", m.runs);
+  if (const auto* wps = o.raw("waypoints")) {
+    if (!wps->is_array()) o.fail("waypoints", "expected an array, found " + json_type_name(*wps));
+    m.waypoints.clear();
+    for (std::size_t i = 0; i < wps->size(); ++i) {
+      Eigen::Vector2d p;
+      read_numbers((*wps)[i], p.data(), 2, o.path_of("waypoints") + "[" + std::to_string(i) + "]",
+                   o.source());
+      m.waypoints.push_back(p);
+    }
+  }
+  o.finish();
+}
+
+void read_compass(JsonObject o, CompassConfig& c) {
+  read_timing(o, c.timing);
+  o.read("resolution", c.resolution);
+  o.read("noise", c.noise);
+  o.read("bias", c.bias);
+  if (const auto* zones = o.raw("zones")) {
+    if (!zones->is_array()) o.fail("zones", "expected an array, found " + json_type_name(*zones));
+    c.zones.clear();
+    for (std::size_t i = 0; i < zones->size(); ++i) {
+      c.zones.push_back(
+          read_zone((*zones)[i], o.path_of("zones") + "[" + std::to_string(i) + "]", o.source()));
+    }
+  }
+  o.finish();
+}
+
+void read_laser(JsonObject o, LaserConfig& l) {
+  read_timing(o, l.timing);
+  o.read("beams", l.beams);
+  o.read("first_bearing", l.first_bearing);
+  o.read("last_bearing", l.last_bearing);
+  o.read("max_range", l.max_range);
+  o.read("noise", l.noise);
+  o.read("range_offset", l.range_offset);
+  o.read("range_scale", l.range_scale);
+  o.read("dropout", l.dropout);
+  o.read("spurious", l.spurious);
+  o.read("mount", l.mount);
+  o.finish();
+}
+
+}  // namespace
+
+const char* to_string(WorldKind k) { return name_of(kWorldKinds, k); }
+const char* to_string(MotionKind k) { return name_of(kMotionKinds, k); }
+const char* to_string(SlipRateUnit u) { return name_of(kSlipUnits, u); }
+
+json to_json(const Scenario& s) {
+  json segments = json::array();
+  for (const auto& seg : s.world.segments) segments.push_back({seg[0], seg[1], seg[2], seg[3]});
+  json waypoints = json::array();
+  for (const auto& w : s.motion.waypoints) waypoints.push_back(vec(w));
+  json zones = json::array();
+  for (const auto& z : s.compass.zones) zones.push_back(zone_json(z));
+
+  json compass = timing_json(s.compass.timing);
+  compass.update({{"resolution", s.compass.resolution},
+                  {"noise", s.compass.noise},
+                  {"bias", s.compass.bias},
+                  {"zones", zones}});
+  json laser = timing_json(s.laser.timing);
+  laser.update({{"beams", s.laser.beams},
+                {"first_bearing", s.laser.first_bearing},
+                {"last_bearing", s.laser.last_bearing},
+                {"max_range", s.laser.max_range},
+                {"noise", s.laser.noise},
+                {"range_offset", s.laser.range_offset},
+                {"range_scale", s.laser.range_scale},
+                {"dropout", s.laser.dropout},
+                {"spurious", s.laser.spurious},
+                {"mount", pose(s.laser.mount)}});
+
+  return {
+      {"name", s.name},
+      {"description", s.description},
+      {"world",
+       {{"kind", to_string(s.world.kind)},
+        {"corridor_length", s.world.corridor_length},
+        {"corridor_width", s.world.corridor_width},
+        {"file", s.world.file},
+        {"segments", segments}}},
+      {"start", pose(s.start)},
+      {"robot",
+       {{"nominal", geometry_json(s.robot.nominal)},
+        {"actual", geometry_json(s.robot.actual)},
+        {"encoder",
+         {{"gear_ratio", s.robot.encoder.gear_ratio},
+          {"counts_per_rev", s.robot.encoder.counts_per_rev}}}}},
+      {"drive",
+       {{"speed", s.drive.speed},
+        {"turn_rate", s.drive.turn_rate},
+        {"pause", s.drive.pause},
+        {"equal_wheel_ticks", s.drive.equal_wheel_ticks}}},
+      {"motion",
+       {{"kind", to_string(s.motion.kind)},
+        {"distance", s.motion.distance},
+        {"side", s.motion.side},
+        {"runs", s.motion.runs},
+        {"waypoints", waypoints}}},
+      {"physics", {{"step", s.physics.step}, {"trajectory_rate", s.physics.trajectory_rate}}},
+      {"floor", {{"k_left", s.floor.k_left}, {"k_right", s.floor.k_right}}},
+      {"slip",
+       {{"unit", to_string(s.slip.unit)},
+        {"straight", slip_profile_json(s.slip.straight)},
+        {"turn", slip_profile_json(s.slip.turn)}}},
+      {"encoders", timing_json(s.encoders.timing)},
+      {"odometry", timing_json(s.odometry.timing)},
+      {"compass", compass},
+      {"laser", laser},
+      {"truth", {{"rate", s.truth.rate}}},
+  };
+}
+
+Scenario scenario_from_json(const json& j, const std::string& source) {
+  JsonObject top(j, "", source);
+  Scenario s;
+  if (top.has("preset")) {
+    std::string name;
+    top.read("preset", name);
+    try {
+      s = preset(name);
+    } catch (const UsageError& e) {
+      top.fail("preset", e.what());
+    }
+  } else {
+    top.raw("preset");
+  }
+  top.read("name", s.name);
+  top.read("description", s.description);
+  read_world(top.object("world"), s.world);
+  top.read("start", s.start);
+  {
+    JsonObject robot = top.object("robot");
+    read_geometry(robot.object("nominal"), s.robot.nominal);
+    read_geometry(robot.object("actual"), s.robot.actual);
+    JsonObject enc = robot.object("encoder");
+    enc.read("gear_ratio", s.robot.encoder.gear_ratio);
+    enc.read("counts_per_rev", s.robot.encoder.counts_per_rev);
+    enc.finish();
+    robot.finish();
+  }
+  {
+    JsonObject drive = top.object("drive");
+    drive.read("speed", s.drive.speed);
+    drive.read("turn_rate", s.drive.turn_rate);
+    drive.read("pause", s.drive.pause);
+    drive.read("equal_wheel_ticks", s.drive.equal_wheel_ticks);
+    drive.finish();
+  }
+  read_motion(top.object("motion"), s.motion);
+  {
+    JsonObject physics = top.object("physics");
+    physics.read("step", s.physics.step);
+    physics.read("trajectory_rate", s.physics.trajectory_rate);
+    physics.finish();
+  }
+  {
+    JsonObject floor = top.object("floor");
+    floor.read("k_left", s.floor.k_left);
+    floor.read("k_right", s.floor.k_right);
+    floor.finish();
+  }
+  {
+    JsonObject slip = top.object("slip");
+    read_enum(slip, "unit", kSlipUnits, s.slip.unit);
+    read_slip_profile(slip.object("straight"), s.slip.straight);
+    read_slip_profile(slip.object("turn"), s.slip.turn);
+    slip.finish();
+  }
+  for (auto [key, timing] :
+       {std::pair{"encoders", &s.encoders.timing}, std::pair{"odometry", &s.odometry.timing}}) {
+    JsonObject o = top.object(key);
+    read_timing(o, *timing);
+    o.finish();
+  }
+  read_compass(top.object("compass"), s.compass);
+  read_laser(top.object("laser"), s.laser);
+  {
+    JsonObject truth = top.object("truth");
+    truth.read("rate", s.truth.rate);
+    truth.finish();
+  }
+  top.finish();
+  try {
+    validate(s);
+  } catch (const UsageError& e) {
+    throw InputError(source, 0, e.what());
+  }
+  return s;
+}
+
+Scenario load_scenario(const std::filesystem::path& path) {
+  return scenario_from_json(read_json_file(path.string()), path.string());
+}
+
+}  // namespace locbench::sim

@@ -1,0 +1,45 @@
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "algorithms/core/errors.h"
+#include "benchmarks/experiments/experiment.h"
+
+namespace locbench::experiments {
+namespace {
+
+TEST(MergeConfig, OverridesKnownKeysRecursivelyAndKeepsTheRest) {
+  const nlohmann::json d = {{"runs", 20}, {"scenario", {{"speed", 0.25}, {"name", "corridor"}}}};
+  const nlohmann::json m = merge_config(d, {{"scenario", {{"speed", 0.5}}}});
+  EXPECT_EQ(m["runs"], 20);
+  EXPECT_EQ(m["scenario"]["speed"], 0.5);
+  EXPECT_EQ(m["scenario"]["name"], "corridor");
+}
+
+TEST(MergeConfig, RejectsAnUnknownKeyByItsPath) {
+  const nlohmann::json d = {{"scenario", {{"speed", 0.25}}}};
+  try {
+    merge_config(d, {{"scenario", {{"sped", 0.5}}}});
+    FAIL();
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("scenario.sped"), std::string::npos) << e.what();
+  }
+}
+
+TEST(MergeConfig, RejectsAValueOfTheWrongType) {
+  EXPECT_THROW(merge_config({{"runs", 20}}, {{"runs", "many"}}), UsageError);
+  EXPECT_NO_THROW(merge_config({{"speed", 0.25}}, {{"speed", 1}}));  // int where a double is
+}
+
+TEST(Registry, EveryExperimentHasAUniqueNameAndAValidDefaultConfig) {
+  std::set<std::string> names;
+  for (const auto& e : all_experiments()) {
+    EXPECT_TRUE(names.insert(e->name()).second) << e->name();
+    EXPECT_TRUE(e->default_config().is_object()) << e->name();
+    EXPECT_EQ(find_experiment(e->name()), e.get());
+  }
+  EXPECT_EQ(find_experiment("no/such"), nullptr);
+}
+
+}  // namespace
+}  // namespace locbench::experiments

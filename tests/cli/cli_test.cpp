@@ -1,0 +1,137 @@
+// Runs the locbench binary as a user would and checks exit codes, outputs and reports.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "datasets/io/carmen_reader.h"
+#include "reports/report_json.h"
+#include "reports/schema_validation.h"
+#include "tests/test_data.h"
+
+namespace locbench {
+namespace {
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+Outcome run_locbench(const std::string& args) {
+  const std::string cmd = std::string(LOCBENCH_EXE) + " " + args + " 2>&1";
+  Outcome o;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return o;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe)) o.output += buf.data();
+  const int status = pclose(pipe);
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
+
+TEST(Cli, EveryVerbHasHelp) {
+  for (const char* verb : {"list", "simulate", "run"}) {
+    const Outcome o = run_locbench(std::string(verb) + " --help");
+    EXPECT_EQ(o.exit_code, 0) << verb;
+    EXPECT_NE(o.output.find("Usage"), std::string::npos) << o.output;
+  }
+}
+
+TEST(Cli, UnknownVerbOrOptionIsAUsageErrorWithExitCode2) {
+  EXPECT_EQ(run_locbench("frobnicate").exit_code, 2);
+  EXPECT_EQ(run_locbench("run --no-such-option").exit_code, 2);
+  EXPECT_EQ(run_locbench("").exit_code, 2);
+}
+
+TEST(Cli, RunningAnUnknownExperimentExitsWith2AndSaysSo) {
+  const Outcome o = run_locbench("run no/such_experiment");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("no experiment named \"no/such_experiment\""), std::string::npos)
+      << o.output;
+}
+
+TEST(Cli, ListNamesTheExperimentsAndScenarios) {
+  const Outcome o = run_locbench("list --no-load");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("odometry/sim_corridor"), std::string::npos);
+  EXPECT_NE(o.output.find("corridor"), std::string::npos);
+  EXPECT_NE(o.output.find("umbmark_trilobot"), std::string::npos);
+}
+
+TEST(Cli, SimulateWritesALogThatReadsBack) {
+  testing::ScratchDir dir;
+  const auto log_path = dir.file("corridor.clf.gz");
+  const auto tum_path = dir.file("truth.tum");
+  const Outcome o = run_locbench("simulate corridor --seed 3 -o " + log_path.string() +
+                                 " --truth-tum " + tum_path.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const Log log = read_carmen_log(log_path);
+  EXPECT_GT(log.encoders.size(), 100u);
+  EXPECT_GT(log.truth.size(), 10u);
+  EXPECT_TRUE(log.nominal_model().has_value());
+  EXPECT_TRUE(std::filesystem::exists(tum_path));
+}
+
+TEST(Cli, SimulateRejectsAMalformedScenarioFileWithExitCode2) {
+  testing::ScratchDir dir;
+  std::ofstream(dir.file("bad.json")) << "{\"robot\": {\"no_such_key\": 1}}";
+  const Outcome o = run_locbench("simulate " + dir.file("bad.json").string() + " -o " +
+                                 dir.file("x.clf").string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("no_such_key"), std::string::npos) << o.output;
+}
+
+TEST(Cli, RunWritesASchemaValidReportForTheSimulatedSmokeExperiment) {
+  testing::ScratchDir dir;
+  const Outcome o = run_locbench("run odometry/sim_corridor --runs 3 --seed 5 --out " +
+                                 dir.path().string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto path = dir.file("odometry/sim_corridor.json");
+  ASSERT_TRUE(std::filesystem::exists(path)) << o.output;
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const auto errors = reports::validate_report_json(j);
+  EXPECT_TRUE(errors.empty()) << errors.front();
+  EXPECT_EQ(j["seeds"].size(), 3u);
+  EXPECT_EQ(j["results"][0]["n"], 3);
+  EXPECT_NE(o.output.find("final_position_error"), std::string::npos) << o.output;
+}
+
+TEST(Cli, TheSameSeedGivesTheSameResults) {
+  testing::ScratchDir dir;
+  const std::string args = "run odometry/sim_corridor --runs 2 --seed 11 --out ";
+  ASSERT_EQ(run_locbench(args + (dir.path() / "a").string()).exit_code, 0);
+  ASSERT_EQ(run_locbench(args + (dir.path() / "b").string()).exit_code, 0);
+  const auto a = reports::read_report(dir.path() / "a/odometry/sim_corridor.json");
+  const auto b = reports::read_report(dir.path() / "b/odometry/sim_corridor.json");
+  ASSERT_EQ(a.body.results.size(), b.body.results.size());
+  for (std::size_t i = 0; i < a.body.results.size(); ++i) {
+    EXPECT_EQ(a.body.results[i].values, b.body.results[i].values);
+  }
+}
+
+TEST(Cli, RunOnRealLogsWritesAValidReport) {
+  LOCBENCH_REQUIRE_DATA("slam_benchmark/clf/aces.from_bag.clf.gz");
+  testing::ScratchDir dir;
+  const Outcome o = run_locbench("run odometry/real_logs --out " + dir.path().string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto r = reports::read_report(dir.file("odometry/real_logs.json"));
+  EXPECT_FALSE(r.body.results.empty());
+  EXPECT_FALSE(r.body.datasets.empty());
+  EXPECT_TRUE(reports::validate_report_json(reports::to_json(r)).empty());
+}
+
+TEST(Cli, ABadConfigurationFileExitsWith2) {
+  testing::ScratchDir dir;
+  std::ofstream(dir.file("c.json")) << "{\"odometry/sim_corridor\": {\"runz\": 3}}";
+  const Outcome o = run_locbench("run odometry/sim_corridor --config " +
+                                 dir.file("c.json").string() + " --out " + dir.path().string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("runz"), std::string::npos) << o.output;
+}
+
+}  // namespace
+}  // namespace locbench
