@@ -5,7 +5,10 @@ RELEASE := build/release
 TESTBUILD := build/test
 OUT ?= out
 
-.PHONY: all setup build run test bench clean
+BASELINE := benchmarks/baselines/default
+RULES := benchmarks/baselines/rules.json
+
+.PHONY: all setup build run test gate baseline bench clean
 
 all: build
 
@@ -21,11 +24,27 @@ build: setup
 run: build
 	$(RELEASE)/cli/locbench run --out $(OUT)
 
-# Debug + AddressSanitizer + UndefinedBehaviorSanitizer, warnings as errors, every test via CTest.
+# Debug + AddressSanitizer + UndefinedBehaviorSanitizer, warnings as errors, every test via CTest,
+# then the default suite gated against the committed baseline.
 test: setup
 	@cmake -S . -B $(TESTBUILD) -DCMAKE_BUILD_TYPE=Debug -DLOCBENCH_SANITIZE=ON -DLOCBENCH_WERROR=ON >/dev/null
 	@cmake --build $(TESTBUILD) -j$(JOBS)
 	cd $(TESTBUILD) && ctest --output-on-failure -j$(JOBS)
+	@$(MAKE) --no-print-directory gate LOCBENCH=$(TESTBUILD)/cli/locbench
+
+# Run the default suite and compare it with the baseline (exit 1 on a regression).
+LOCBENCH ?= $(RELEASE)/cli/locbench
+GATE_OUT := build/gate
+gate:
+	@rm -rf $(GATE_OUT) && mkdir -p $(GATE_OUT)
+	$(LOCBENCH) run --out $(GATE_OUT)/reports > $(GATE_OUT)/summary.txt
+	$(LOCBENCH) gate $(GATE_OUT)/reports --baseline $(BASELINE) --rules $(RULES) \
+	  --markdown $(GATE_OUT)/gate.md --json $(GATE_OUT)/gate.json
+
+# Refresh the committed baseline deliberately (review the diff, then commit it).
+baseline: build
+	@rm -rf $(BASELINE)
+	$(RELEASE)/cli/locbench run --out $(BASELINE)
 
 # Google Benchmark kernels (Release), JSON in $(OUT)/speed.json.
 bench: build

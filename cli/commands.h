@@ -16,5 +16,6 @@ using Action = std::function<int()>;
 Action add_list_command(CLI::App& app);
 Action add_simulate_command(CLI::App& app);
 Action add_run_command(CLI::App& app, const std::string& command_line);
+Action add_gate_command(CLI::App& app);
 
 }  // namespace locbench::cli

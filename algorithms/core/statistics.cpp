@@ -90,3 +90,78 @@ Summary summarize(std::span<const double> v) {
 }
 
 }  // namespace locbench
+
+namespace locbench {
+namespace {
+
+// Number of ways n1 values of `a` and n2 of `b` can be ordered with exactly u (a > b) pairs:
+// f(n1, n2, u) = f(n1 − 1, n2, u − n2) + f(n1, n2 − 1, u) (the largest value is an a or a b).
+double u_count(int n1, int n2, int u, std::vector<std::vector<std::vector<double>>>& memo) {
+  if (u < 0) return 0.0;
+  if (n1 == 0 || n2 == 0) return u == 0 ? 1.0 : 0.0;
+  double& m = memo[n1][n2][u];
+  if (m >= 0.0) return m;
+  m = u_count(n1 - 1, n2, u - n2, memo) + u_count(n1, n2 - 1, u, memo);
+  return m;
+}
+
+}  // namespace
+
+MannWhitneyResult mann_whitney_u(std::span<const double> a, std::span<const double> b) {
+  require_nonempty(a, "mann_whitney_u");
+  require_nonempty(b, "mann_whitney_u");
+  const int n1 = static_cast<int>(a.size()), n2 = static_cast<int>(b.size());
+  MannWhitneyResult r;
+  bool ties = false;
+  for (double x : a) {
+    for (double y : b) {
+      if (x > y) r.u += 1.0;
+      else if (x == y) { r.u += 0.5; ties = true; }
+    }
+  }
+  std::vector<double> all(a.begin(), a.end());
+  all.insert(all.end(), b.begin(), b.end());
+  std::sort(all.begin(), all.end());
+  for (std::size_t i = 1; i < all.size(); ++i) ties = ties || all[i] == all[i - 1];
+
+  const double n1n2 = static_cast<double>(n1) * n2;
+  if (!ties && n1 <= 10 && n2 <= 10) {
+    std::vector<std::vector<std::vector<double>>> memo(
+        n1 + 1, std::vector<std::vector<double>>(n2 + 1, std::vector<double>(n1 * n2 + 1, -1.0)));
+    double total = 0.0, at_least = 0.0, at_most = 0.0;
+    const int u = static_cast<int>(r.u);
+    for (int k = 0; k <= n1 * n2; ++k) {
+      const double c = u_count(n1, n2, k, memo);
+      total += c;
+      if (k >= u) at_least += c;
+      if (k <= u) at_most += c;
+    }
+    r.p_greater = at_least / total;
+    r.p_less = at_most / total;
+    r.exact = true;
+  } else {
+    // Tie-corrected variance: n1 n2/12 · ((n + 1) − Σ(t³ − t)/(n(n − 1))).
+    const double n = n1 + n2;
+    double tie_term = 0.0;
+    for (std::size_t i = 0; i < all.size();) {
+      std::size_t j = i;
+      while (j < all.size() && all[j] == all[i]) ++j;
+      const double t = static_cast<double>(j - i);
+      tie_term += t * t * t - t;
+      i = j;
+    }
+    const double var = n1n2 / 12.0 * ((n + 1.0) - tie_term / (n * (n - 1.0)));
+    const double mu = n1n2 / 2.0;
+    if (var <= 0.0) {
+      r.p_greater = r.p_less = 1.0;
+    } else {
+      const double sd = std::sqrt(var);
+      r.p_greater = normal_upper_tail((r.u - mu - 0.5) / sd);
+      r.p_less = normal_upper_tail((mu - r.u - 0.5) / sd);
+    }
+  }
+  r.p_two_sided = std::min(1.0, 2.0 * std::min(r.p_greater, r.p_less));
+  return r;
+}
+
+}  // namespace locbench

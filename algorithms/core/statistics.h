@@ -34,3 +34,20 @@ double normal_quantile(double p);
 double normal_upper_tail(double z);
 
 }  // namespace locbench
+
+namespace locbench {
+
+// Mann–Whitney U test of two independent samples. U counts pairs (a_i, b_j) with a_i > b_j
+// (ties count ½). p-values are exact when both samples have at most 10 values and no ties
+// (all orderings enumerated by recursion), else from the normal approximation with tie
+// correction and continuity correction.
+struct MannWhitneyResult {
+  double u = 0.0;
+  double p_greater = 1.0;   // H1: values of `a` tend to be larger than those of `b`
+  double p_less = 1.0;      // H1: values of `a` tend to be smaller
+  double p_two_sided = 1.0;
+  bool exact = false;
+};
+MannWhitneyResult mann_whitney_u(std::span<const double> a, std::span<const double> b);
+
+}  // namespace locbench

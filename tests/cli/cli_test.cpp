@@ -33,7 +33,7 @@ Outcome run_locbench(const std::string& args) {
 }
 
 TEST(Cli, EveryVerbHasHelp) {
-  for (const char* verb : {"list", "simulate", "run"}) {
+  for (const char* verb : {"list", "simulate", "run", "gate"}) {
     const Outcome o = run_locbench(std::string(verb) + " --help");
     EXPECT_EQ(o.exit_code, 0) << verb;
     EXPECT_NE(o.output.find("Usage"), std::string::npos) << o.output;
@@ -131,6 +131,44 @@ TEST(Cli, ABadConfigurationFileExitsWith2) {
                                  dir.file("c.json").string() + " --out " + dir.path().string());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("runz"), std::string::npos) << o.output;
+}
+
+TEST(Cli, GatePassesOnTheBaselineAndFailsWithExitCode1OnAWorsenedResult) {
+  testing::ScratchDir dir;
+  ASSERT_EQ(run_locbench("run odometry/sim_corridor --runs 3 --out " + (dir.path() / "base").string())
+                .exit_code, 0);
+  const std::string base = (dir.path() / "base").string();
+  const Outcome same = run_locbench("gate " + base + " --baseline " + base);
+  EXPECT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_NE(same.output.find("gate: PASSED"), std::string::npos);
+
+  // Worsen one result fourfold and move its interval with it, as a real regression would
+  // (with 3 runs the 95% interval is wide: ± 4.3·s/√3).
+  const auto path = dir.path() / "base/odometry/sim_corridor.json";
+  std::ifstream in(path);
+  nlohmann::json j = nlohmann::json::parse(in);
+  for (auto& r : j["results"]) {
+    if (r["name"] == "odometry_nominal/sim_corridor/final_position_error") {
+      const double shift = 3.0 * r["mean"].get<double>();
+      r["mean"] = r["mean"].get<double>() + shift;
+      r["ci95"][0] = r["ci95"][0].get<double>() + shift;
+      r["ci95"][1] = r["ci95"][1].get<double>() + shift;
+    }
+  }
+  std::filesystem::create_directories(dir.path() / "worse");
+  std::ofstream(dir.path() / "worse/sim_corridor.json") << j.dump();
+  const Outcome worse = run_locbench("gate " + (dir.path() / "worse").string() + " --baseline " +
+                                     base + " --markdown " + dir.file("gate.md").string() +
+                                     " --json " + dir.file("gate.json").string());
+  EXPECT_EQ(worse.exit_code, 1) << worse.output;
+  EXPECT_NE(worse.output.find("regressed"), std::string::npos) << worse.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("gate.md")));
+  std::ifstream verdict(dir.file("gate.json"));
+  EXPECT_EQ(nlohmann::json::parse(verdict)["passed"], false);
+}
+
+TEST(Cli, GateOnMissingInputExitsWith2) {
+  EXPECT_EQ(run_locbench("gate /nonexistent --baseline /nonexistent").exit_code, 2);
 }
 
 }  // namespace

@@ -61,3 +61,39 @@ TEST(Summarize, RejectsAnEmptySample) {
 
 }  // namespace
 }  // namespace locbench
+
+namespace locbench {
+namespace {
+
+TEST(MannWhitney, CompletelySeparatedSamplesOfThreeGiveTheExactOneInTwenty) {
+  // 3 + 3 values: C(6, 3) = 20 orderings; all a above all b happens once → p = 0.05.
+  const std::vector<double> a{4, 5, 6}, b{1, 2, 3};
+  const MannWhitneyResult r = mann_whitney_u(a, b);
+  EXPECT_TRUE(r.exact);
+  EXPECT_DOUBLE_EQ(r.u, 9.0);
+  EXPECT_NEAR(r.p_greater, 0.05, 1e-12);
+  EXPECT_NEAR(r.p_less, 1.0, 1e-12);
+  EXPECT_NEAR(r.p_two_sided, 0.10, 1e-12);
+}
+
+TEST(MannWhitney, InterleavedSamplesAreNotSignificant) {
+  const std::vector<double> a{1, 3, 5, 7}, b{2, 4, 6, 8};
+  const MannWhitneyResult r = mann_whitney_u(a, b);
+  EXPECT_DOUBLE_EQ(r.u, 6.0);  // 0 + 1 + 2 + 3
+  EXPECT_GT(r.p_two_sided, 0.5);
+}
+
+TEST(MannWhitney, LargeSamplesUseTheNormalApproximation) {
+  // a = 1..20, b = 11..30.
+  std::vector<double> a, b;
+  for (int i = 1; i <= 20; ++i) a.push_back(i);
+  for (int i = 11; i <= 30; ++i) b.push_back(i);
+  const MannWhitneyResult r = mann_whitney_u(a, b);
+  EXPECT_FALSE(r.exact);  // ties between the samples (11..20)
+  // Pairs a > b: a = 12..20 beat 1..9 of b = 11..19 → Σ_{k=1}^{9} k = 45; 10 ties × ½ = 5.
+  EXPECT_DOUBLE_EQ(r.u, 50.0);
+  EXPECT_LT(r.p_less, 0.001);  // a is clearly smaller
+}
+
+}  // namespace
+}  // namespace locbench

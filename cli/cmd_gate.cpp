@@ -1,0 +1,59 @@
+// `locbench gate CURRENT… --baseline BASELINE… [--rules RULES.json]`: fail (exit 1) when a
+// result got worse than the rules allow.
+#include <fstream>
+#include <iostream>
+
+#include "algorithms/core/errors.h"
+#include "cli/commands.h"
+#include "reports/gate.h"
+
+namespace locbench::cli {
+namespace {
+
+struct GateArgs {
+  std::vector<std::string> current;
+  std::vector<std::string> baseline;
+  std::string rules;
+  std::string markdown;
+  std::string json;
+};
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path, 0, "cannot open for writing");
+  out << text;
+}
+
+int gate(const GateArgs& args) {
+  const reports::GateInput baseline = reports::load_gate_input(args.baseline);
+  const reports::GateInput current = reports::load_gate_input(args.current);
+  const reports::GateRules rules =
+      args.rules.empty() ? reports::default_gate_rules() : reports::load_gate_rules(args.rules);
+  const reports::GateVerdict verdict = reports::evaluate_gate(baseline, current, rules);
+  std::cout << reports::gate_table(verdict);
+  if (!args.markdown.empty()) write_text(args.markdown, reports::gate_markdown(verdict));
+  if (!args.json.empty()) {
+    write_text(args.json, reports::gate_json(verdict, baseline, current).dump(2) + "\n");
+  }
+  return verdict.passed() ? kExitOk : kExitCheckFailed;
+}
+
+}  // namespace
+
+Action add_gate_command(CLI::App& app) {
+  auto args = std::make_shared<GateArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "gate", "Compare reports (or Google Benchmark JSON) with a baseline; exit 1 on regression");
+  cmd->add_option("current", args->current, "Current reports: files or folders of *.json")
+      ->required();
+  cmd->add_option("--baseline", args->baseline, "Baseline reports: files or folders")
+      ->required();
+  cmd->add_option("--rules", args->rules,
+                  "Rules JSON (default: every result may worsen by 5% and must leave its 95% "
+                  "interval to fail)");
+  cmd->add_option("--markdown", args->markdown, "Also write a Markdown summary (for CI logs)");
+  cmd->add_option("--json", args->json, "Also write the verdict as JSON");
+  return [args] { return gate(*args); };
+}
+
+}  // namespace locbench::cli

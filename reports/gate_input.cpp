@@ -1,0 +1,129 @@
+#include "reports/gate_input.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "algorithms/core/errors.h"
+#include "reports/report_json.h"
+
+namespace locbench::reports {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+double to_ns(double t, const std::string& unit, const std::string& file) {
+  if (unit == "ns") return t;
+  if (unit == "us") return t * 1e3;
+  if (unit == "ms") return t * 1e6;
+  if (unit == "s") return t * 1e9;
+  throw InputError(file, 0, "benchmark time_unit \"" + unit + "\": expected ns, us, ms or s");
+}
+
+void add_benchmarks(const json& j, const std::string& file, GateInput& in) {
+  std::map<std::string, std::vector<double>> iterations;
+  std::map<std::string, double> means;
+  for (const json& b : j.at("benchmarks")) {
+    if (!b.is_object() || !b.contains("name") || !b.contains("real_time")) continue;  // BigO/RMS
+    const std::string name = b.value("run_name", b.at("name").get<std::string>());
+    const std::string unit = b.value("time_unit", "ns");
+    if (!b.at("real_time").is_number()) {
+      throw InputError(file, 0, "benchmark " + name + ": real_time is not a number");
+    }
+    const double t = to_ns(b.at("real_time").get<double>(), unit, file);
+    if (b.value("run_type", "iteration") == "aggregate") {
+      if (b.value("aggregate_name", "") == "mean") means[name] = t;
+    } else {
+      iterations[name].push_back(t);
+    }
+  }
+  for (const auto& [name, mean] : means) {
+    if (!iterations.count(name)) iterations[name] = {mean};
+  }
+  for (auto& [name, samples] : iterations) {
+    GateSeries s;
+    s.key = "bench:" + name;
+    s.unit = "ns";
+    s.is_time = true;
+    std::vector<double> sorted = samples;
+    std::sort(sorted.begin(), sorted.end());
+    s.value = sorted[sorted.size() / 2];
+    if (sorted.size() % 2 == 0) s.value = 0.5 * (sorted[sorted.size() / 2 - 1] + s.value);
+    s.n = samples.size();
+    s.samples = std::move(samples);
+    in.series[s.key] = std::move(s);
+  }
+}
+
+void add_report(const json& j, const std::string& file, GateInput& in) {
+  const Report r = report_from_json(j, file);
+  for (const CaseNote& c : r.body.cases) {
+    if (c.status == "skipped") {
+      in.skipped[r.body.experiment].insert(c.name.substr(c.name.rfind('/') + 1));
+    }
+  }
+  for (const MetricResult& m : r.body.results) {
+    GateSeries s;
+    s.key = r.body.experiment + ":" + m.name();
+    s.experiment = r.body.experiment;
+    s.dataset = m.dataset;
+    s.unit = m.unit;
+    s.better = m.better;
+    s.value = m.summary.mean;
+    s.n = m.summary.n;
+    s.ci95_low = m.summary.ci95_low;
+    s.ci95_high = m.summary.ci95_high;
+    s.samples = m.values;
+    if (in.series.count(s.key)) throw InputError(file, 0, "result " + s.key + " appears twice");
+    in.series[s.key] = std::move(s);
+  }
+}
+
+void add_file(const fs::path& path, GateInput& in) {
+  std::ifstream f(path);
+  if (!f) throw InputError(path.string(), 0, "cannot open");
+  json j;
+  try {
+    j = json::parse(f);
+  } catch (const json::parse_error& e) {
+    throw InputError(path.string(), 0, std::string("not valid JSON: ") + e.what());
+  }
+  in.sources.push_back(path.string());
+  if (j.is_object() && j.contains("benchmarks") && j.at("benchmarks").is_array()) {
+    add_benchmarks(j, path.string(), in);
+  } else if (j.is_object() && j.contains("schema") && j.at("schema").is_string() &&
+             j.at("schema").get<std::string>().rfind("locbench.gate/", 0) == 0) {
+    in.sources.pop_back();  // a gate verdict lying among the reports: not an input
+  } else if (j.is_object() && j.contains("schema")) {
+    add_report(j, path.string(), in);
+  } else {
+    throw InputError(path.string(), 0,
+                     "expected a locbench report (\"schema\") or Google Benchmark JSON "
+                     "(\"benchmarks\")");
+  }
+}
+
+}  // namespace
+
+GateInput load_gate_input(const std::vector<std::string>& paths) {
+  GateInput in;
+  for (const std::string& p : paths) {
+    if (fs::is_directory(p)) {
+      std::vector<fs::path> files;
+      for (const auto& e : fs::recursive_directory_iterator(p)) {
+        if (e.is_regular_file() && e.path().extension() == ".json") files.push_back(e.path());
+      }
+      std::sort(files.begin(), files.end());
+      if (files.empty()) throw InputError(p, 0, "folder holds no .json report");
+      for (const auto& f : files) add_file(f, in);
+    } else if (fs::exists(p)) {
+      add_file(p, in);
+    } else {
+      throw InputError(p, 0, "no such file or folder");
+    }
+  }
+  return in;
+}
+
+}  // namespace locbench::reports
