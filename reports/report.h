@@ -43,6 +43,10 @@ struct MetricResult {
   std::string over;     // what the statistics run over: "monte_carlo_runs", "relations", …
   Summary summary;
   std::vector<double> values;  // the samples summarised (may be empty for large series)
+  // For estimated parameters: whether the data determine it, and in plain words why not and
+  // what extra measurement would (empty when it is identifiable or the question does not apply).
+  std::optional<bool> identifiable;
+  std::string note;
 
   // Stable key `method/dataset/variant`, matched across runs by gates.
   std::string name() const { return method + "/" + dataset + "/" + variant; }
@@ -79,6 +83,7 @@ struct ExperimentResults {
   std::vector<MetricResult> results;
   std::vector<PublishedComparison> published;
   std::vector<CaseNote> cases;
+  std::vector<std::string> notes;  // findings in plain words (what agrees, what does not, why)
 };
 
 struct Report {
@@ -90,5 +95,11 @@ struct Report {
 MetricResult make_metric(std::string method, std::string dataset, std::string variant,
                          std::string unit, std::string over, std::span<const double> values,
                          bool keep_values = true);
+// One estimate with its standard error (n = the measurements it came from): mean = value,
+// stddev = standard error, ci95 = value ± 1.96·SE (normal), over = "estimate". A non-finite
+// standard error (not identifiable) is written as stddev 0 with an empty interval around the
+// value and identifiable = false.
+MetricResult make_estimate(std::string method, std::string dataset, std::string variant,
+                           std::string unit, double value, double standard_error, std::size_t n);
 
 }  // namespace locbench::reports

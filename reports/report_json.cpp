@@ -21,6 +21,8 @@ json metric_to_json(const MetricResult& m) {
             {"stddev", s.stddev},   {"ci95", {s.ci95_low, s.ci95_high}},
             {"median", s.median},   {"min", s.min},       {"max", s.max}};
   if (!m.values.empty()) j["values"] = m.values;
+  if (m.identifiable) j["identifiable"] = *m.identifiable;
+  if (!m.note.empty()) j["note"] = m.note;
   return j;
 }
 
@@ -73,6 +75,7 @@ json to_json(const Report& r) {
   for (const CaseNote& c : b.cases) {
     j["cases"].push_back({{"name", c.name}, {"status", c.status}, {"reason", c.reason}});
   }
+  j["notes"] = b.notes;
   return j;
 }
 
@@ -127,6 +130,8 @@ Report report_from_json(const json& j, const std::string& source) {
     x.summary.min = get<double>(m, "min", source, where);
     x.summary.max = get<double>(m, "max", source, where);
     if (m.contains("values")) x.values = get<std::vector<double>>(m, "values", source, where);
+    if (m.contains("identifiable")) x.identifiable = get<bool>(m, "identifiable", source, where);
+    if (m.contains("note")) x.note = get<std::string>(m, "note", source, where);
     b.results.push_back(std::move(x));
   }
   for (const json& pc : get<json>(j, "published", source, "report")) {
@@ -153,6 +158,7 @@ Report report_from_json(const json& j, const std::string& source) {
                        get<std::string>(cn, "status", source, "case"),
                        get<std::string>(cn, "reason", source, "case")});
   }
+  if (j.contains("notes")) b.notes = get<std::vector<std::string>>(j, "notes", source, "report");
   return r;
 }
 

@@ -22,8 +22,9 @@ GateInput from_report(const Report& r, const testing::ScratchDir& dir, const std
 // Replaces the sample report's values (n = 3) by `values`.
 Report with_values(std::vector<double> values) {
   Report r = testing::sample_report();
-  r.body.results[0] = make_metric("odometry_nominal", "sim_corridor", "final_position_error", "m",
-                                  "monte_carlo_runs", values);
+  r.body.results.clear();
+  r.body.results.push_back(make_metric("odometry_nominal", "sim_corridor", "final_position_error", "m",
+                                  "monte_carlo_runs", values));
   return r;
 }
 

@@ -21,6 +21,22 @@ TEST(ReportJson, SampleReportIsValidAgainstTheSchema) {
   EXPECT_EQ(j["published"][0]["rows"][1]["ours"], nullptr);
 }
 
+TEST(ReportJson, AnUndeterminedEstimateIsFlaggedWithItsReason) {
+  const nlohmann::json j = to_json(testing::sample_report());
+  const nlohmann::json& e = j["results"][1];
+  EXPECT_EQ(e["name"], "umbmark_improved/sim_trilobot/E_o");
+  EXPECT_EQ(e["identifiable"], false);
+  EXPECT_EQ(e["note"], "only E_o/E_b is determined by the square");
+  EXPECT_EQ(e["over"], "estimate");
+}
+
+TEST(MakeEstimate, GivesANormalIntervalFromTheStandardError) {
+  const MetricResult m = make_estimate("ml", "sim", "wheelbase", "m", 0.2, 0.001, 50);
+  EXPECT_NEAR(m.summary.ci95_low, 0.2 - 1.96 * 0.001, 1e-6);
+  EXPECT_NEAR(m.summary.ci95_high, 0.2 + 1.96 * 0.001, 1e-6);
+  EXPECT_FALSE(m.identifiable.has_value());
+}
+
 TEST(ReportJson, SchemaRejectsAReportWithoutProvenance) {
   nlohmann::json j = to_json(testing::sample_report());
   j["context"].erase("git_revision");

@@ -1,4 +1,5 @@
 #pragma once
+#include <limits>
 #include <vector>
 
 #include "reports/report.h"
@@ -21,6 +22,10 @@ inline reports::Report sample_report() {
   r.body.published.push_back(
       {"thesis Table 3.2", "final error", "mm", {{"run 1", 580.0, 512.3}, {"run 2", 551.0, std::nullopt}}, "differs because…"});
   r.body.cases.push_back({"odometry/aces", "skipped", "dataset not found"});
+  r.body.results.push_back(reports::make_estimate("umbmark_improved", "sim_trilobot", "E_o", "",
+                                                  1.0, std::numeric_limits<double>::infinity(), 10));
+  r.body.results.back().note = "only E_o/E_b is determined by the square";
+  r.body.notes.push_back("a finding in plain words");
   return r;
 }
 
