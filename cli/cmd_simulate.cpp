@@ -39,8 +39,7 @@ int simulate(const SimulateArgs& args) {
   const sim::SimulationResult result = sim::simulate(scenario, args.seed);
   write_carmen_log(result.log, args.out);
   if (!args.truth_tum.empty()) {
-    Trajectory truth;
-    for (const auto& p : result.trajectory) truth.push_back({p.t, p.pose});
+    const Trajectory truth = sim::true_trajectory(result);
     write_tum(truth, args.truth_tum);
   }
   const auto [t0, t1] = result.log.time_span();

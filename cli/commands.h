@@ -17,5 +17,6 @@ Action add_list_command(CLI::App& app);
 Action add_simulate_command(CLI::App& app);
 Action add_run_command(CLI::App& app, const std::string& command_line);
 Action add_gate_command(CLI::App& app);
+Action add_calibrate_command(CLI::App& app, const std::string& command_line);
 
 }  // namespace locbench::cli

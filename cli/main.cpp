@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   add(add_list_command(app));
   add(add_simulate_command(app));
   add(add_run_command(app, command_line));
+  add(add_calibrate_command(app, command_line));
   add(add_gate_command(app));
 
   try {

@@ -17,6 +17,11 @@ std::string summary_table(const std::vector<Report>& reports) {
   for (const Report& r : reports) {
     for (const MetricResult& m : r.body.results) {
       const Summary& s = m.summary;
+      if (m.identifiable.has_value() && !*m.identifiable) {
+        out += fmt::format("{:<{}}  {:>5}  {:>12.6g}  {:>12}  {:>27}  {}\n", m.name(), w, s.n,
+                           s.mean, "—", "not identifiable", m.unit);
+        continue;
+      }
       out += fmt::format("{:<{}}  {:>5}  {:>12.6g}  {:>12.6g}  [{:>12.6g}, {:>12.6g}]  {}\n",
                          m.name(), w, s.n, s.mean, s.stddev, s.ci95_low, s.ci95_high, m.unit);
     }

@@ -69,8 +69,7 @@ class OdometrySimCorridor final : public Experiment {
       const sim::SimulationResult sim = sim::simulate(scenario, seed);
       const auto nominal = sim.log.nominal_model();
       if (!nominal) throw std::logic_error("simulated log lacks the nominal model PARAMs");
-      Trajectory truth;
-      for (const auto& p : sim.trajectory) truth.push_back({p.t, p.pose});
+      const Trajectory truth = sim::true_trajectory(sim);
       // The robot knows its start pose; dead reckoning starts at the first ENCODER sample.
       const auto start = truth.pose_at(sim.log.encoders.front().t);
       if (!start) throw std::logic_error("first encoder sample outside the true trajectory");

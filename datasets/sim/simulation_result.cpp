@@ -1,25 +1,18 @@
 #include "datasets/sim/simulation_result.h"
 
-#include <algorithm>
+#include "datasets/sim/umbmark_input.h"
 
 namespace locbench::sim {
 
 UmbmarkSummary summarize_umbmark(const std::vector<UmbmarkRun>& runs) {
-  UmbmarkSummary s;
-  int n_cw = 0, n_ccw = 0;
-  for (const auto& r : runs) {
-    if (r.direction == Direction::kClockwise) {
-      s.centroid_cw += r.error.head<2>();
-      ++n_cw;
-    } else {
-      s.centroid_ccw += r.error.head<2>();
-      ++n_ccw;
-    }
-  }
-  if (n_cw > 0) s.centroid_cw /= n_cw;
-  if (n_ccw > 0) s.centroid_ccw /= n_ccw;
-  s.e_max_syst = std::max(s.centroid_cw.norm(), s.centroid_ccw.norm());
-  return s;
+  const UmbmarkCentroids c = umbmark_centroids(umbmark_returns(runs));
+  return {c.cw, c.ccw, c.e_max_syst};
+}
+
+Trajectory true_trajectory(const SimulationResult& result) {
+  Trajectory t;
+  for (const TrajectoryPoint& p : result.trajectory) t.push_back({p.t, p.pose});
+  return t;
 }
 
 }  // namespace locbench::sim

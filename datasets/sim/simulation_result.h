@@ -9,6 +9,7 @@
 #include "algorithms/core/line_map.h"
 #include "algorithms/core/pose2.h"
 #include "algorithms/core/robot_params.h"
+#include "algorithms/core/trajectory.h"
 #include "datasets/log/log.h"
 #include "datasets/sim/motion_program.h"
 #include "datasets/sim/scenario.h"
@@ -75,6 +76,10 @@ struct UmbmarkSummary {
   double e_max_syst = 0.0;
 };
 UmbmarkSummary summarize_umbmark(const std::vector<UmbmarkRun>& runs);
+
+struct SimulationResult;
+// The true trajectory as a core Trajectory (interpolable in time).
+Trajectory true_trajectory(const SimulationResult& result);
 
 struct SimulationResult {
   Log log;

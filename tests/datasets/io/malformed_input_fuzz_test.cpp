@@ -9,6 +9,9 @@
 
 #include "datasets/io/carmen_reader.h"
 #include "datasets/io/carmen_writer.h"
+#include "datasets/io/censi_results_reader.h"
+#include "datasets/io/censi_tuple_reader.h"
+#include "datasets/io/relative_motion_reader.h"
 #include "datasets/io/relations_reader.h"
 #include "datasets/io/tum_reader.h"
 #include "io_test_support.h"
@@ -217,6 +220,45 @@ TEST(CarmenFuzz, CorruptedGzipFilesAreReadOrRejectedWithInputError) {
     reads_or_rejects([&] { read_carmen_log(path); });
   });
   EXPECT_TRUE(result);
+}
+
+RC_GTEST_PROP(CensiTupleFuzz, MutatedTuplesAreReadOrRejectedWithInputError, ()) {
+  const std::string text = mutate(
+      "{ \"T\": 7.943960e-01, \"phi_l\": 1.401765e-01, \"phi_r\": -1.373157e-01, \"sm\": [ "
+      "1.092608e-03, -5.089714e-04, -2.748851e-02 ] }\n"
+      "{ \"T\": 0.79, \"phi_l\": 0.49, \"phi_r\": -0.49, \"sm\": [ 0.0013, -9.7e-05, -0.18 ] }"
+      "{ \"T\": 0.8, \"phi_l\": 0.5, \"phi_r\": 0.5, \"sm\": [ 0.01, 0, 0 ] }\n");
+  reads_or_rejects([&] { parse_censi_tuples(text, "fuzz.tuple"); });
+}
+
+RC_GTEST_PROP(CensiResultsFuzz, MutatedResultsAreReadOrRejectedWithInputError, ()) {
+  const std::string text = mutate(
+      "{ \"axle\": 0.0878146, \"l_diam\": 0.0410529, \"r_diam\": 0.041384, \"l_x\": "
+      "-0.00265427, \"l_y\": 0.00583491, \"l_theta\": -1.55197, \"E_d\": 1.00807, \"E_b\": "
+      "0.975718,\n\"covariance\": [ [ 4, 0, 0, 0, 0, 0 ], [ 0, 9, 0, 0, 0, 0 ],\n[ 0, 0, 16, 0, 0, "
+      "1 ], [ 0, 0, 0, 1, 0, 0 ], [ 0, 0, 0, 0, 1, 0 ], [ 0, 0, 1, 0, 0, 25 ] ] }\n");
+  reads_or_rejects([&] { parse_censi_results(text, "fuzz_results.json"); });
+}
+
+RC_GTEST_PROP(RelativeMotionFuzz, MutatedMotionPairsAreReadOrRejectedWithInputError, ()) {
+  const std::string odom = mutate(" 0 0 0\n 0.113 -8.3e-05 0\n 0.115 -0.0001 0\n");
+  const std::string ref =
+      mutate(" 0 0 0\n 0.113001 -0.000942 0.003906\n 0.1108986065228533 0.0022428 0\n");
+  reads_or_rejects([&] { parse_relative_motion_pairs(odom, "odom.txt", ref, "sm.txt"); });
+}
+
+RC_GTEST_PROP(RelativeMotionFuzz, MutatedTickMotionsAreReadOrRejectedWithInputError, ()) {
+  const std::string text = mutate(
+      "0 0 -0.000735349  1.50913e-05  0.000174196\n-0.0212839  0.0210924   0.0154077 0.000291585 "
+      " -0.0023148\n");
+  reads_or_rejects([&] { parse_tick_motions(text, "dd.txt"); });
+}
+
+RC_GTEST_PROP(CalibrationFuzz, RandomBytesAreReadOrRejectedWithInputError, ()) {
+  const auto text = *rc::gen::container<std::string>(rc::gen::arbitrary<char>());
+  reads_or_rejects([&] { parse_censi_tuples(text, "fuzz.tuple"); });
+  reads_or_rejects([&] { parse_censi_results(text, "fuzz_results.json"); });
+  reads_or_rejects([&] { parse_tick_motions(text, "dd.txt"); });
 }
 
 }  // namespace

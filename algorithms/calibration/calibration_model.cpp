@@ -1,0 +1,202 @@
+#include "algorithms/calibration/calibration_model.h"
+
+#include <cmath>
+
+#include "algorithms/core/angle.h"
+
+namespace locbench {
+namespace {
+
+// sin(θ)/θ, (1 − cos θ)/θ and their derivatives, with series near θ = 0.
+struct ArcTerms {
+  double s = 1.0, c = 0.0, ds = 0.0, dc = 0.5;
+};
+ArcTerms arc_terms(double th) {
+  ArcTerms t;
+  if (std::abs(th) < 1e-4) {
+    const double th2 = th * th;
+    t.s = 1.0 - th2 / 6.0;
+    t.c = th / 2.0 - th * th2 / 24.0;
+    t.ds = -th / 3.0 + th * th2 / 30.0;
+    t.dc = 0.5 - th2 / 8.0;
+  } else {
+    const double sn = std::sin(th), cs = std::cos(th);
+    t.s = sn / th;
+    t.c = (1.0 - cs) / th;
+    t.ds = (th * cs - sn) / (th * th);
+    t.dc = (th * sn - (1.0 - cs)) / (th * th);
+  }
+  return t;
+}
+
+// Wheel travel (U_L, U_R) of an increment and the track that turns it into a rotation.
+struct WheelTravel {
+  double left = 0.0, right = 0.0, track = 1.0;
+};
+WheelTravel wheel_travel(const CalibrationData& data, const OdometryIncrement& inc,
+                         const Eigen::Vector3d& q, double virtual_track) {
+  switch (data.kind) {
+    case OdometryInputKind::kWheelTicks:
+      return {q(0) * data.meters_per_tick_left * inc.first,
+              q(1) * data.meters_per_tick_right * inc.second, q(2)};
+    case OdometryInputKind::kWheelAngles:
+      return {q(0) * inc.first, q(1) * inc.second, q(2)};
+    case OdometryInputKind::kBodyIncrements:
+    case OdometryInputKind::kVelocityIntegrals:
+      break;
+  }
+  const ArcIncrement a = arc_of(data, inc, q);
+  return {a.distance - 0.5 * virtual_track * a.rotation,
+          a.distance + 0.5 * virtual_track * a.rotation, virtual_track};
+}
+
+}  // namespace
+
+std::array<std::string, 3> odometry_parameter_names(OdometryInputKind kind) {
+  switch (kind) {
+    case OdometryInputKind::kWheelTicks:
+      return {"left_scale", "right_scale", "wheelbase"};
+    case OdometryInputKind::kWheelAngles:
+      return {"r_L", "r_R", "b"};
+    case OdometryInputKind::kBodyIncrements:
+      return {"translation_scale", "rotation_scale", "rotation_per_distance"};
+    case OdometryInputKind::kVelocityIntegrals:
+      return {"tv_scale", "rv_scale", "rv_bias"};
+  }
+  return {"p0", "p1", "p2"};
+}
+
+std::array<std::string, 3> sensor_parameter_names() {
+  return {"sensor_x", "sensor_y", "sensor_theta"};
+}
+
+Eigen::Matrix<double, 6, 1> ModelParameters::vector() const {
+  Eigen::Matrix<double, 6, 1> v;
+  v << odometry, sensor.x, sensor.y, sensor.theta;
+  return v;
+}
+
+ModelParameters ModelParameters::from_vector(const Eigen::Matrix<double, 6, 1>& v) {
+  ModelParameters p;
+  p.odometry = v.head<3>();
+  p.sensor = Pose2(v(3), v(4), v(5));
+  return p;
+}
+
+ModelParameters nominal_parameters(const CalibrationData& data) {
+  ModelParameters p;
+  p.odometry = data.nominal;
+  p.sensor = data.nominal_sensor_pose;
+  return p;
+}
+
+ArcIncrement arc_of(const CalibrationData& data, const OdometryIncrement& inc,
+                    const Eigen::Vector3d& q) {
+  switch (data.kind) {
+    case OdometryInputKind::kWheelTicks:
+    case OdometryInputKind::kWheelAngles: {
+      // ΔD = (U_L + U_R)/2, Δθ = (U_R − U_L)/B (eq. 1.1, 1.2).
+      const WheelTravel u = wheel_travel(data, inc, q, 1.0);
+      return {0.5 * (u.left + u.right), (u.right - u.left) / u.track};
+    }
+    case OdometryInputKind::kBodyIncrements:
+      return {q(0) * inc.first, q(1) * inc.second + q(2) * inc.first};
+    case OdometryInputKind::kVelocityIntegrals:
+      return {q(0) * inc.first, q(1) * inc.second + q(2) * inc.dt};
+  }
+  return {};
+}
+
+Pose2 arc_displacement(double distance, double rotation) {
+  const ArcTerms t = arc_terms(rotation);
+  return {distance * t.s, distance * t.c, rotation};
+}
+
+Pose2 predict_robot_displacement(const CalibrationData& data, const CalibrationSample& sample,
+                                 const Eigen::Vector3d& odometry) {
+  // Compose in plain doubles (Pose2 would wrap the heading at every step; only the final one
+  // is wrapped).
+  double x = 0.0, y = 0.0, th = 0.0;
+  for (const OdometryIncrement& inc : sample.increments) {
+    const ArcIncrement a = arc_of(data, inc, odometry);
+    const ArcTerms t = arc_terms(a.rotation);
+    const double ax = a.distance * t.s, ay = a.distance * t.c;
+    const double c = std::cos(th), s = std::sin(th);
+    x += c * ax - s * ay;
+    y += s * ax + c * ay;
+    th += a.rotation;
+  }
+  return {x, y, th};
+}
+
+Pose2 predict_reference(const CalibrationData& data, const CalibrationSample& sample,
+                        const ModelParameters& p) {
+  const Pose2 o = predict_robot_displacement(data, sample, p.odometry);
+  if (!data.sensor_reference) return o;
+  return p.sensor.inverse() * o * p.sensor;
+}
+
+Eigen::Vector3d reference_residual(const CalibrationData& data, const CalibrationSample& sample,
+                                   const ModelParameters& p) {
+  const Pose2 e = predict_reference(data, sample, p);
+  return {e.x - sample.reference.x, e.y - sample.reference.y,
+          angle_diff(e.theta, sample.reference.theta)};
+}
+
+NoiseShape odometry_noise_shape(const CalibrationData& data, const CalibrationSample& sample,
+                                const ModelParameters& p, double virtual_track) {
+  NoiseShape out;
+  double x = 0.0, y = 0.0, th = 0.0;
+  const std::size_t n = sample.increments.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const OdometryIncrement& inc = sample.increments[k];
+    const WheelTravel u = wheel_travel(data, inc, p.odometry, virtual_track);
+    const double dist = 0.5 * (u.left + u.right), rot = (u.right - u.left) / u.track;
+    const ArcTerms t = arc_terms(rot);
+    const double ax = dist * t.s, ay = dist * t.c;
+    const double c = std::cos(th), s = std::sin(th);
+    // F_p = ∂(p ∘ a)/∂p, R = ∂(p ∘ a)/∂a, A = ∂a/∂(ΔD, Δθ), B = ∂(ΔD, Δθ)/∂(U_L, U_R).
+    Eigen::Matrix3d Fp;
+    Fp << 1, 0, -s * ax - c * ay, 0, 1, c * ax - s * ay, 0, 0, 1;
+    Eigen::Matrix3d R;
+    R << c, -s, 0, s, c, 0, 0, 0, 1;
+    Eigen::Matrix<double, 3, 2> A;
+    A << t.s, dist * t.ds, t.c, dist * t.dc, 0, 1;
+    Eigen::Matrix2d B;
+    B << 0.5, 0.5, -1.0 / u.track, 1.0 / u.track;
+    const Eigen::Matrix<double, 3, 2> Fu = R * A * B;
+    const Eigen::Vector2d wheel_var(std::abs(u.left), std::abs(u.right));
+    out.per_k2 = Fp * out.per_k2 * Fp.transpose() + Fu * wheel_var.asDiagonal() * Fu.transpose();
+    out.quantization = Fp * out.quantization * Fp.transpose();
+    if (data.kind == OdometryInputKind::kWheelTicks && data.quantized_ticks &&
+        (k == 0 || k + 1 == n)) {
+      // e_start on the first increment, e_end on the last, C²/12 each (uniform remainders).
+      const double cl = p.odometry(0) * data.meters_per_tick_left;
+      const double cr = p.odometry(1) * data.meters_per_tick_right;
+      const double share = (n == 1) ? 2.0 : 1.0;
+      const Eigen::Vector2d q(share * cl * cl / 12.0, share * cr * cr / 12.0);
+      out.quantization += Fu * q.asDiagonal() * Fu.transpose();
+    }
+    x += c * ax - s * ay;
+    y += s * ax + c * ay;
+    th += rot;
+  }
+  if (data.sensor_reference) {
+    // s = ℓ⁻¹ ∘ o ∘ ℓ: s_t = R(−ℓθ)(o_t + (R(oθ) − I)ℓ_t), s_θ = o_θ.
+    const Pose2& l = p.sensor;
+    const double cl = std::cos(l.theta), sl = std::sin(l.theta);
+    const double co = std::cos(th), so = std::sin(th);
+    const Eigen::Vector2d dRl(-so * l.x - co * l.y, co * l.x - so * l.y);
+    Eigen::Matrix2d Rt;
+    Rt << cl, sl, -sl, cl;  // R(−ℓθ)
+    Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+    G.topLeftCorner<2, 2>() = Rt;
+    G.topRightCorner<2, 1>() = Rt * dRl;
+    G(2, 2) = 1.0;
+    out.per_k2 = G * out.per_k2 * G.transpose();
+    out.quantization = G * out.quantization * G.transpose();
+  }
+  return out;
+}
+
+}  // namespace locbench

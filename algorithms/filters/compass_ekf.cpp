@@ -1,0 +1,93 @@
+#include "algorithms/filters/compass_ekf.h"
+
+#include <cmath>
+#include <utility>
+
+#include "algorithms/core/errors.h"
+#include "algorithms/core/json_options.h"
+
+namespace locbench {
+namespace {
+
+void validate(const CompassEkfOptions& o) {
+  if (!(o.compass_variance > 0.0))
+    throw UsageError("CompassEkfOptions: compass_variance must be > 0");
+  if (!(o.initial_covariance.array() >= 0.0).all()) {
+    throw UsageError("CompassEkfOptions: initial_covariance must be >= 0");
+  }
+  if (!(o.process_noise_scale >= 0.0)) {
+    throw UsageError("CompassEkfOptions: process_noise_scale must be >= 0");
+  }
+}
+
+void require_wheelbase(double b) {
+  if (!(b > 0.0) || !std::isfinite(b)) throw UsageError("CompassEkf: wheelbase must be > 0");
+}
+
+}  // namespace
+
+void to_json(nlohmann::json& j, const CompassEkfOptions& o) {
+  j = {{"noise", o.noise},
+       {"compass_variance", o.compass_variance},
+       {"initial_covariance", vector3_json(o.initial_covariance)},
+       {"process_noise_scale", o.process_noise_scale}};
+}
+
+void from_json(const nlohmann::json& j, CompassEkfOptions& o) {
+  StrictJsonReader r(j, "CompassEkfOptions");
+  r.read_object("noise", o.noise);
+  r.read("compass_variance", o.compass_variance);
+  r.read("initial_covariance", o.initial_covariance);
+  r.read("process_noise_scale", o.process_noise_scale);
+  r.finish();
+  validate(o);
+}
+
+CompassEkf::CompassEkf(const CompassEkfOptions& options, double wheelbase, const Pose2& start)
+    : options_(options),
+      wheelbase_(wheelbase),
+      x_(to_vector(start)),
+      p_(options.initial_covariance.asDiagonal()) {
+  validate(options);
+  require_wheelbase(wheelbase);
+}
+
+CompassEkf::CompassEkf(ProcessNoiseModel process_noise, double compass_variance,
+                       const Matrix3& initial_covariance, double wheelbase, const Pose2& start)
+    : custom_q_(std::move(process_noise)),
+      wheelbase_(wheelbase),
+      x_(to_vector(start)),
+      p_(symmetrize(initial_covariance)) {
+  options_.compass_variance = compass_variance;
+  if (!custom_q_) throw UsageError("CompassEkf: empty process-noise model");
+  if (!(compass_variance > 0.0)) throw UsageError("CompassEkf: compass_variance must be > 0");
+  require_wheelbase(wheelbase);
+}
+
+Matrix3 CompassEkf::process_noise(const WheelDisplacement& u) const {
+  if (custom_q_) return custom_q_(x_, u, wheelbase_);
+  return options_.process_noise_scale *
+         adaptive_process_noise(options_.noise, x_(2), u, wheelbase_);
+}
+
+CompassFilterStep CompassEkf::step(const WheelDisplacement& u,
+                                   std::optional<double> compass_heading) {
+  const Matrix3 q = process_noise(u);  // Q(k−1) at X̂(k−1) (eq. 4.43)
+  const MotionPrediction pred = predict_motion(x_, u, wheelbase_);
+  x_ = pred.mean;
+  p_ = symmetrize(pred.jacobian * p_ * pred.jacobian.transpose() + q);
+  CompassFilterStep out;
+  if (compass_heading) {
+    const CompassInnovation c =
+        compass_innovation(x_, p_, *compass_heading, options_.compass_variance);
+    apply_compass_update(x_, p_, c);
+    out.updated = true;
+    out.innovation = c.innovation;
+    out.innovation_variance = c.variance;
+  }
+  out.mean = x_;
+  out.covariance = p_;
+  return out;
+}
+
+}  // namespace locbench

@@ -1,0 +1,177 @@
+#include "algorithms/slip/indirect_kalman_filter.h"
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "algorithms/core/angle.h"
+#include "algorithms/core/errors.h"
+#include "algorithms/core/json_options.h"
+
+namespace locbench {
+namespace {
+
+void validate(const IndirectKfOptions& o) {
+  if (!(o.initial_covariance.array() >= 0.0).all()) {
+    throw UsageError("IndirectKfOptions.initial_covariance: must be >= 0");
+  }
+  if (!(o.process_noise.array() >= 0.0).all()) {
+    throw UsageError("IndirectKfOptions.process_noise: must be >= 0");
+  }
+  if (!(o.heading_variance > 0.0)) throw UsageError("IndirectKfOptions.heading_variance: must be > 0");
+}
+
+nlohmann::json vec6_json(const Vector6& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (int i = 0; i < 6; ++i) a.push_back(v(i));
+  return a;
+}
+
+void read_vec6(const nlohmann::json& j, const char* key, Vector6& out, StrictJsonReader& r) {
+  // StrictJsonReader has no 6-vector reader: read it through a string-free path here.
+  const auto it = j.find(key);
+  if (it == j.end()) return;
+  if (!it->is_array() || it->size() != 6) r.fail(key, "expected an array of 6 numbers");
+  for (std::size_t i = 0; i < 6; ++i) {
+    if (!(*it)[i].is_number()) r.fail(key, "expected an array of 6 numbers");
+    out(static_cast<Eigen::Index>(i)) = (*it)[i].get<double>();
+  }
+}
+
+}  // namespace
+
+void to_json(nlohmann::json& j, const IndirectKfOptions& o) {
+  j = {{"initial_covariance", vec6_json(o.initial_covariance)},
+       {"process_noise", vec6_json(o.process_noise)},
+       {"heading_variance", o.heading_variance}};
+}
+
+void from_json(const nlohmann::json& j, IndirectKfOptions& o) {
+  StrictJsonReader r(j, "IndirectKfOptions");
+  r.read("heading_variance", o.heading_variance);
+  read_vec6(j, "initial_covariance", o.initial_covariance, r);
+  read_vec6(j, "process_noise", o.process_noise, r);
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& k = it.key();
+    if (k != "heading_variance" && k != "initial_covariance" && k != "process_noise") {
+      r.fail(k, "unknown key");
+    }
+  }
+  validate(o);
+}
+
+Matrix6 ikf_transition(const WheelDisplacement& u, double theta, double b) {
+  const double c = std::cos(theta), s = std::sin(theta);
+  const double mean_u = 0.5 * (u.right + u.left);
+  Matrix6 f = Matrix6::Identity();
+  f(0, 2) = -s * mean_u;  // (3.20)
+  f(0, 3) = c * u.right / 2.0;
+  f(0, 4) = c * u.left / 2.0;
+  f(1, 2) = c * mean_u;  // (3.21)
+  f(1, 3) = s * u.right / 2.0;
+  f(1, 4) = s * u.left / 2.0;
+  f(2, 3) = u.right / b;  // (3.22)
+  f(2, 4) = -u.left / b;
+  f(2, 5) = (u.left - u.right) / (b * b);
+  return f;
+}
+
+IndirectKalmanFilter::IndirectKalmanFilter(const IndirectKfOptions& options, double wheelbase)
+    : options_(options), wheelbase_(wheelbase) {
+  validate(options_);
+  if (!(wheelbase_ > 0.0) || !std::isfinite(wheelbase_)) {
+    throw UsageError("IndirectKalmanFilter: wheelbase must be > 0");
+  }
+  p_ = options_.initial_covariance.asDiagonal();
+}
+
+void IndirectKalmanFilter::predict(const WheelDisplacement& u, double odometry_heading) {
+  const Matrix6 f = ikf_transition(u, odometry_heading, wheelbase_);
+  x_ = f * x_;
+  p_ = f * p_ * f.transpose();
+  p_.diagonal() += options_.process_noise;
+  p_ = 0.5 * (p_ + p_.transpose());
+}
+
+IkfUpdate IndirectKalmanFilter::update_heading(double z) {
+  IkfUpdate r;
+  r.innovation = wrap_angle(z - x_(2));
+  r.innovation_variance = p_(2, 2) + options_.heading_variance;
+  const Vector6 k = p_.col(2) / r.innovation_variance;
+  x_ += k * r.innovation;
+  const Eigen::Matrix<double, 1, 6> hp = p_.row(2);
+  p_ -= k * hp;
+  p_ = 0.5 * (p_ + p_.transpose());
+  return r;
+}
+
+void IndirectKalmanFilter::update_position(const Eigen::Vector2d& z, double variance) {
+  if (!(variance > 0.0)) throw UsageError("IndirectKalmanFilter: position variance must be > 0");
+  Eigen::Matrix<double, 2, 6> h = Eigen::Matrix<double, 2, 6>::Zero();
+  h(0, 0) = h(1, 1) = 1.0;
+  const Eigen::Matrix2d s = h * p_ * h.transpose() + variance * Eigen::Matrix2d::Identity();
+  const Eigen::Matrix<double, 6, 2> k = p_ * h.transpose() * s.inverse();
+  x_ += k * (z - h * x_);
+  p_ = (Matrix6::Identity() - k * h) * p_;
+  p_ = 0.5 * (p_ + p_.transpose());
+}
+
+IkfRunResult run_indirect_kf(std::span<const IkfSample> samples, double start_heading,
+                             const IndirectKfOptions& options, double wheelbase,
+                             const std::optional<Eigen::Vector2d>& end_position_error,
+                             double end_position_variance) {
+  IndirectKalmanFilter f(options, wheelbase);
+  IkfRunResult r;
+  double theta = start_heading;  // odometry heading
+  for (const IkfSample& s : samples) {
+    f.predict(s.u, theta);
+    theta = wrap_angle(theta + (s.u.right - s.u.left) / wheelbase);
+    if (s.reference_heading) {
+      f.update_heading(angle_diff(*s.reference_heading, theta));
+      ++r.heading_updates;
+    }
+  }
+  if (end_position_error) f.update_position(*end_position_error, end_position_variance);
+  r.state = f.state();
+  r.covariance = f.covariance();
+  r.s_right = f.s_right();
+  r.s_left = f.s_left();
+  r.delta_b = f.delta_b();
+  return r;
+}
+
+IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, double start_heading,
+                                          double wheelbase, double heading_variance,
+                                          const Eigen::Vector3d& values,
+                                          std::optional<double> end_position_variance,
+                                          double relative_tolerance) {
+  // Φ = ∂[δx, δy, δθ]/∂[S_R, S_L, δB], propagated with the F blocks from Φ(0) = 0.
+  Eigen::Matrix3d phi = Eigen::Matrix3d::Zero();
+  std::vector<Eigen::RowVector3d> rows;
+  std::vector<double> variances;
+  double theta = start_heading;
+  for (const IkfSample& s : samples) {
+    const Matrix6 f = ikf_transition(s.u, theta, wheelbase);
+    phi = f.block<3, 3>(0, 0) * phi + f.block<3, 3>(0, 3);
+    theta = wrap_angle(theta + (s.u.right - s.u.left) / wheelbase);
+    if (s.reference_heading) {
+      rows.push_back(phi.row(2));
+      variances.push_back(heading_variance);
+    }
+  }
+  if (end_position_variance) {
+    rows.push_back(phi.row(0));
+    rows.push_back(phi.row(1));
+    variances.push_back(*end_position_variance);
+    variances.push_back(*end_position_variance);
+  }
+  const auto m = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd j(m, 3);
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(m, m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    j.row(i) = rows[static_cast<std::size_t>(i)];
+    cov(i, i) = variances[static_cast<std::size_t>(i)];
+  }
+  return analyze_identifiability(j, cov, {"S_R", "S_L", "dB"}, values, relative_tolerance);
+}
+
+}  // namespace locbench

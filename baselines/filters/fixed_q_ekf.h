@@ -1,0 +1,45 @@
+#pragma once
+// Baseline: the compass EKF with a fixed, experience-based process noise ("the second EKF" of
+// §4.5): X̂(k/k−1) = F(X̂(k−1)), P(k/k−1) = ∇F P(k−1) ∇Fᵀ + Q, compass update with fixed R
+// (eq. 3.27–3.28, 4.1, 4.45). Published settings: Q = diag(6.33, 6.33, 2) and R = 2, printed
+// in mm², mm², deg² and converted here to m², m², rad².
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "algorithms/core/compass_ekf_model.h"
+#include "algorithms/core/units.h"
+
+namespace locbench {
+
+struct FixedQEkfOptions {
+  // diag Q [m², m², rad²] = diag(6.33 mm², 6.33 mm², 2 deg²) (§4.5).
+  Vector3 process_noise{mm(1.0) * mm(1.0) * 6.33, mm(1.0) * mm(1.0) * 6.33,
+                        2.0 * deg(1.0) * deg(1.0)};
+  double compass_variance = 2.0 * deg(1.0) * deg(1.0);  // R = 2 deg² [rad²]
+  Vector3 initial_covariance = Vector3::Zero();         // diag P(0)
+};
+void to_json(nlohmann::json& j, const FixedQEkfOptions& o);
+// Strict: unknown keys, wrong types or invalid values throw UsageError.
+void from_json(const nlohmann::json& j, FixedQEkfOptions& o);
+
+class FixedQEkf {
+ public:
+  // Throws UsageError for invalid options or wheelbase <= 0.
+  FixedQEkf(const FixedQEkfOptions& options, double wheelbase, const Pose2& start);
+
+  // One encoder sample: predict with the wheel travel u, then correct with the compass heading
+  // [rad] if one came with it.
+  CompassFilterStep step(const WheelDisplacement& u, std::optional<double> compass_heading);
+
+  const Vector3& mean() const { return x_; }
+  const Matrix3& covariance() const { return p_; }
+
+ private:
+  Matrix3 q_;
+  double r_;
+  double wheelbase_;
+  Vector3 x_;
+  Matrix3 p_;
+};
+
+}  // namespace locbench

@@ -1,0 +1,29 @@
+#pragma once
+// Shared by the chapter-4 experiments: run the four compass-aided odometry filters on one
+// simulated run and measure them against the simulator's truth.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "datasets/sim/simulation_result.h"
+
+namespace locbench::experiments {
+
+inline constexpr int kNoiseFilters = 4;
+// Result-name spellings, in the order of FilterRun::final_position_error.
+inline const std::array<std::string, kNoiseFilters> kNoiseFilterNames = {
+    "fixed_q_ekf", "adaptive_model_ekf", "sage_husa_aekf", "vb_akf"};
+
+struct FilterRun {
+  std::array<double, kNoiseFilters> final_position_error{};  // [m]
+  std::array<double, kNoiseFilters> final_heading_error{};   // [rad]
+  std::array<std::vector<double>, kNoiseFilters> nees;       // per step, pose NEES (3 dof)
+  std::array<std::vector<double>, kNoiseFilters> nis;        // per compass update (1 dof)
+};
+
+// The published settings of §4.5 for every filter; P(0) given (the thesis uses 0).
+// `initial_covariance` is diag P(0) [m², m², rad²].
+FilterRun run_noise_filters(const sim::SimulationResult& result,
+                            const Eigen::Vector3d& initial_covariance);
+
+}  // namespace locbench::experiments

@@ -1,0 +1,236 @@
+// `locbench calibrate METHOD INPUT [--report out.json]`: calibrate odometry from measured data.
+//   umbmark-classic, umbmark-improved: INPUT is the UMBmark JSON a person fills in (README);
+//   ml: INPUT is a log (CARMEN with ENCODER + TRUEPOS, or ODOM + --relations), a Censi tuple
+//       file, or a catalog dataset name (`locbench list`), e.g. censi_khepera:l90, aces.
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "algorithms/calibration/calibration_data.h"
+#include "algorithms/calibration/ml_calibration.h"
+#include "algorithms/calibration/umbmark_design_model.h"
+#include "algorithms/calibration/umbmark_improved.h"
+#include "algorithms/core/errors.h"
+#include "baselines/calibration/umbmark_classic.h"
+#include "cli/commands.h"
+#include "datasets/catalog/calibration_catalog.h"
+#include "datasets/catalog/dataset_catalog.h"
+#include "datasets/io/censi_tuple_reader.h"
+#include "datasets/io/log_loader.h"
+#include "datasets/io/umbmark_input_reader.h"
+#include "datasets/log/data_root.h"
+#include "reports/checksum.h"
+#include "reports/provenance.h"
+#include "reports/report_json.h"
+#include "reports/schema_validation.h"
+#include "reports/summary_table.h"
+
+namespace locbench::cli {
+namespace {
+
+struct CalibrateArgs {
+  std::string method;
+  std::string input;
+  std::string report;
+  std::string relations;
+  std::string data;
+};
+
+using reports::make_estimate;
+
+// UMBmark: every output parameter; E_d and E_b carry the Fisher standard error of the square
+// (at the nominal robot, with the runs' own scatter), the rest follow by linearisation.
+reports::ExperimentResults calibrate_umbmark(const CalibrateArgs& a, bool improved) {
+  const UmbmarkInput in = read_umbmark_input(a.input);
+  reports::ExperimentResults out;
+  const std::string method = improved ? "umbmark_improved" : "umbmark_classic";
+  out.experiment = "calibrate/" + method;
+  out.description = improved ? "Improved UMBmark (thesis eq. 2.16–2.27) on a measured square"
+                             : "Classic UMBmark (Borenstein & Feng, eq. 2.3–2.13) on a measured square";
+  out.datasets.push_back({"umbmark_input", a.input, reports::file_checksum(a.input),
+                          in.runs.size(), 0.0});
+  out.configuration = {{"method", method}, {"input", a.input}};
+  const UmbmarkCentroids c = umbmark_centroids(in.runs);
+  UmbmarkIdentifiabilityOptions idopt;
+  idopt.run_sigma = c.run_sigma > 0.0 ? c.run_sigma : 0.02;
+  idopt.runs_per_direction = std::max(1, std::min(c.runs_cw, c.runs_ccw));
+  const UmbmarkDesignFinding f = analyze_umbmark_design(
+      improved ? UmbmarkDesign::kSquareWithLegTicks : UmbmarkDesign::kSquare,
+      improved ? UmbmarkParameterSet::kImproved : UmbmarkParameterSet::kClassic, in.nominal,
+      in.encoder, in.side_length, {}, idopt);
+  auto finding = [&f](const std::string& name) -> const ParameterFinding* {
+    for (const auto& p : f.report.parameters) {
+      if (p.name == name) return &p;
+    }
+    return nullptr;
+  };
+  auto remedy = [&f](const std::string& name) {
+    for (const auto& [p, r] : f.remedies) {
+      if (p == name) return "; to determine it: " + r;
+    }
+    return std::string();
+  };
+  const std::size_t n = in.runs.size();
+  const std::string ds = "input";
+  auto add = [&](const std::string& name, const std::string& unit, double value, double se,
+                 const std::string& depends_on) {
+    reports::MetricResult m = make_estimate(method, ds, name, unit, value, se, n);
+    const ParameterFinding* pf = finding(depends_on);
+    if (pf && !pf->identifiable) {
+      m = make_estimate(method, ds, name, unit, value, std::numeric_limits<double>::infinity(), n);
+      m.note = (name == depends_on ? "" : "follows from " + depends_on + ", which is not determined: ") +
+               pf->reason + remedy(depends_on);
+    }
+    out.results.push_back(std::move(m));
+  };
+  const double se_d = finding("E_d") ? finding("E_d")->standard_error : 0.0;
+  const double se_b = finding("E_b") ? finding("E_b")->standard_error : 0.0;
+  const double Bn = in.nominal.wheelbase;
+  if (!improved) {
+    const ClassicUmbmarkResult r = classic_umbmark(in);
+    const double Ed = r.E_d;
+    add("E_d", "", Ed, se_d, "E_d");
+    add("E_b", "", r.E_b, se_b, "E_b");
+    reports::MetricResult es = reports::make_metric(method, ds, "E_s", "", "input",
+                                                    std::vector<double>{r.E_s});
+    es.note = "tape-measured input (eq. 2.15), not estimated from the runs";
+    out.results.push_back(std::move(es));
+    add("D_L", "m", r.D_L, 2.0 * r.D_a / ((Ed + 1) * (Ed + 1)) * se_d, "E_d");
+    add("D_R", "m", r.D_R, 2.0 * r.D_a / ((1 / Ed + 1) * (1 / Ed + 1) * Ed * Ed) * se_d, "E_d");
+    add("B", "m", r.B_actual, Bn * se_b, "E_b");
+    add("c_L", "", r.c_L, 2.0 / ((Ed + 1) * (Ed + 1)) * se_d, "E_d");
+    add("c_R", "", r.c_R, 2.0 / ((1 / Ed + 1) * (1 / Ed + 1) * Ed * Ed) * se_d, "E_d");
+  } else {
+    const ImprovedUmbmarkResult r = improved_umbmark(in);
+    add("E_d", "", r.E_d, se_d, "E_d");
+    add("E_b", "", r.E_b, se_b, "E_b");
+    add("E_o", "", r.E_o, finding("E_o") ? finding("E_o")->standard_error : 0.0, "E_o");
+    // D_L, D_R, c_L, c_R carry the absolute scale E_o; B carries E_b.
+    add("D_L", "m", r.D_L, 0.0, "E_o");
+    add("D_R", "m", r.D_R, 0.0, "E_o");
+    add("B", "m", r.B_actual, Bn * se_b, "E_b");
+    add("c_L", "m/tick", r.c_L, 0.0, "E_o");
+    add("c_R", "m/tick", r.c_R, 0.0, "E_o");
+  }
+  out.results.push_back(reports::make_metric(method, ds, "e_max_syst_of_input", "m", "input",
+                                              std::vector<double>{c.e_max_syst}));
+  out.notes.push_back(fmt::format(
+      "Identifiability ({}; {}): Fisher rank {} of {}, condition number {:.3g}, per-run σ {:.3f} m "
+      "from the runs' scatter. Standard errors of E_d and E_b are Fisher's; derived quantities "
+      "are linearised from them.",
+      to_string(f.design), to_string(f.parameter_set), f.report.rank, f.report.parameter_count,
+      f.report.condition_number, idopt.run_sigma));
+  return out;
+}
+
+// The ML calibration's input: a catalog dataset name (optionally name:part), a Censi tuple
+// file, or a log file.
+CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref) {
+  const std::filesystem::path root = a.data.empty() ? data_root() : std::filesystem::path(a.data);
+  const std::string name = a.input.substr(0, a.input.find(':'));
+  const std::string part = a.input.find(':') == std::string::npos ? "" : a.input.substr(a.input.find(':') + 1);
+  for (const DatasetEntry& e : dataset_catalog()) {
+    if (e.name != name) continue;
+    ref = {a.input, (root / e.path).string(), "", 0, 0.0};
+    const std::string file = ref.path.substr(0, ref.path.find('#'));
+    ref.checksum = reports::file_checksum(file);
+    if (is_calibration_dataset(e)) return load_catalog_calibration_data(e, root, part);
+    const Log log = load_catalog_dataset(e, root);
+    ref.records = log.record_count();
+    if (!log.relations.empty()) return calibration_data_from_relations(log);
+    if (!log.encoders.empty()) return calibration_data_from_encoders(log);
+    return calibration_data_from_velocities(log);
+  }
+  ref = {a.input, a.input, reports::file_checksum(a.input), 0, 0.0};
+  if (a.input.find(".tuple") != std::string::npos) {
+    const auto tuples = read_censi_tuples(a.input);
+    ref.records = tuples.size();
+    return calibration_data_from_wheel_speed_tuples(tuples);
+  }
+  Log log = load_log(a.input);
+  if (!a.relations.empty()) attach_relations(log, a.relations);
+  ref.records = log.record_count();
+  if (!log.encoders.empty() && !log.truth.empty()) return calibration_data_from_encoders(log);
+  if (!log.relations.empty()) return calibration_data_from_relations(log);
+  if (!log.odometry.empty() && !log.truth.empty()) return calibration_data_from_velocities(log);
+  throw InputError(a.input, 0,
+                   "nothing to calibrate against: expected ENCODER with TRUEPOS records, ODOM with "
+                   "--relations, or ODOM velocities with ground truth");
+}
+
+reports::ExperimentResults calibrate_ml_cmd(const CalibrateArgs& a) {
+  reports::ExperimentResults out;
+  out.experiment = "calibrate/ml";
+  out.description = "Maximum-likelihood odometry (and sensor-pose) calibration";
+  reports::DatasetRef ref;
+  const CalibrationData data = ml_input(a, ref);
+  out.datasets.push_back(ref);
+  MlCalibrationOptions opt;
+  const MlCalibrationResult r = calibrate_ml(data, opt);
+  out.configuration = {{"method", "ml"}, {"input", a.input}, {"samples", r.samples_used},
+                       {"rejected", r.samples_rejected}};
+  std::string ds = ref.name;
+  for (char& ch : ds) {
+    if (ch == '/' || ch == ':') ch = '_';
+  }
+  for (const CalibratedParameter& p : r.parameters) {
+    reports::MetricResult m = make_estimate("ml", ds, p.name, "", p.value, p.standard_error,
+                                            r.samples_used);
+    m.identifiable = p.identifiable;
+    if (!p.identifiable) m.note = p.reason;
+    out.results.push_back(std::move(m));
+  }
+  out.notes.push_back(fmt::format(
+      "{} samples used, {} rejected; residual RMS {:.4g} m / {:.4g} rad; χ²/dof {:.3g}; "
+      "converged: {}.",
+      r.samples_used, r.samples_rejected, r.residual_rms_translation, r.residual_rms_rotation,
+      r.chi2_per_dof, r.converged ? "yes" : "no"));
+  return out;
+}
+
+int calibrate(const CalibrateArgs& a, const std::string& command_line) {
+  reports::Report report;
+  if (a.method == "umbmark-classic") {
+    report.body = calibrate_umbmark(a, false);
+  } else if (a.method == "umbmark-improved") {
+    report.body = calibrate_umbmark(a, true);
+  } else if (a.method == "ml") {
+    report.body = calibrate_ml_cmd(a);
+  } else {
+    throw UsageError("calibrate: METHOD must be umbmark-classic, umbmark-improved or ml, not \"" +
+                     a.method + "\"");
+  }
+  report.provenance = reports::current_provenance(command_line);
+  const nlohmann::json j = reports::to_json(report);
+  if (const auto errors = reports::validate_report_json(j); !errors.empty()) {
+    throw std::logic_error("calibrate produced a report that violates the schema: " + errors.front());
+  }
+  std::cout << reports::summary_table({report});
+  for (const auto& r : report.body.results) {
+    if (!r.note.empty()) std::cout << r.name() << ": " << r.note << '\n';
+  }
+  for (const auto& n : report.body.notes) std::cout << n << '\n';
+  if (!a.report.empty()) {
+    reports::write_report(report, a.report);
+    std::cerr << "wrote " << a.report << '\n';
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Action add_calibrate_command(CLI::App& app, const std::string& command_line) {
+  auto args = std::make_shared<CalibrateArgs>();
+  CLI::App* cmd = app.add_subcommand("calibrate", "Calibrate odometry from measured data");
+  cmd->add_option("method", args->method, "umbmark-classic, umbmark-improved or ml")->required();
+  cmd->add_option("input", args->input,
+                  "UMBmark JSON (umbmark-*), or for ml: a log, a .tuple file or a dataset name "
+                  "(e.g. censi_khepera:l90, aces, mrclam6_robot1)")
+      ->required();
+  cmd->add_option("--report", args->report, "Write the report (JSON) here");
+  cmd->add_option("--relations", args->relations, "ml: reference relations for a log's ODOM");
+  cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+  return [args, command_line] { return calibrate(*args, command_line); };
+}
+
+}  // namespace locbench::cli
