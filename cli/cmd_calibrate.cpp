@@ -125,7 +125,10 @@ reports::ExperimentResults calibrate_umbmark(const CalibrateArgs& a, bool improv
 
 // The ML calibration's input: a catalog dataset name (optionally name:part), a Censi tuple
 // file, or a log file.
-CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref) {
+// Options per input kind, as in calibration/real_logs: scan-matched or Vicon references get the
+// per-component noise model (Censi's data also his 4 × 1% outlier rejection); Freiburg
+// relations the odometry-propagated one with a rotation-per-distance term.
+CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCalibrationOptions& o) {
   const std::filesystem::path root = a.data.empty() ? data_root() : std::filesystem::path(a.data);
   const std::string name = a.input.substr(0, a.input.find(':'));
   const std::string part = a.input.find(':') == std::string::npos ? "" : a.input.substr(a.input.find(':') + 1);
@@ -134,15 +137,29 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref) {
     ref = {a.input, (root / e.path).string(), "", 0, 0.0};
     const std::string file = ref.path.substr(0, ref.path.find('#'));
     ref.checksum = reports::file_checksum(file);
-    if (is_calibration_dataset(e)) return load_catalog_calibration_data(e, root, part);
+    if (is_calibration_dataset(e)) {
+      o.noise.kind = NoiseModelKind::kPerComponent;
+      if (e.name == "censi_khepera") o.outliers = {4, 0.01};
+      return load_catalog_calibration_data(e, root, part);
+    }
     const Log log = load_catalog_dataset(e, root);
     ref.records = log.record_count();
-    if (!log.relations.empty()) return calibration_data_from_relations(log);
+    if (!log.relations.empty()) {
+      RelationSampleOptions local;
+      local.max_duration = 10.0;  // local relations only; loop closures span minutes
+      o.estimate_rotation_per_distance = true;
+      return calibration_data_from_relations(log, local);
+    }
     if (!log.encoders.empty()) return calibration_data_from_encoders(log);
-    return calibration_data_from_velocities(log);
+    SampleIntervalOptions intervals;
+    intervals.odometry_time_offset = 0.25;  // MRCLAM's velocities lead the Vicon motion
+    o.noise.kind = NoiseModelKind::kPerComponent;
+    return calibration_data_from_velocities(log, intervals);
   }
   ref = {a.input, a.input, reports::file_checksum(a.input), 0, 0.0};
   if (a.input.find(".tuple") != std::string::npos) {
+    o.noise.kind = NoiseModelKind::kPerComponent;
+    o.outliers = {4, 0.01};
     const auto tuples = read_censi_tuples(a.input);
     ref.records = tuples.size();
     return calibration_data_from_wheel_speed_tuples(tuples);
@@ -163,13 +180,13 @@ reports::ExperimentResults calibrate_ml_cmd(const CalibrateArgs& a) {
   out.experiment = "calibrate/ml";
   out.description = "Maximum-likelihood odometry (and sensor-pose) calibration";
   reports::DatasetRef ref;
-  const CalibrationData data = ml_input(a, ref);
-  out.datasets.push_back(ref);
   MlCalibrationOptions opt;
+  const CalibrationData data = ml_input(a, ref, opt);
+  out.datasets.push_back(ref);
   const MlCalibrationResult r = calibrate_ml(data, opt);
   out.configuration = {{"method", "ml"}, {"input", a.input}, {"samples", r.samples_used},
                        {"rejected", r.samples_rejected}};
-  std::string ds = ref.name;
+  std::string ds = std::filesystem::path(ref.name).filename().string();
   for (char& ch : ds) {
     if (ch == '/' || ch == ':') ch = '_';
   }

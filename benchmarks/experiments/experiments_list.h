@@ -11,6 +11,7 @@ std::unique_ptr<Experiment> make_odometry_real_logs();
 std::unique_ptr<Experiment> make_calibration_umbmark_trilobot();
 std::unique_ptr<Experiment> make_calibration_umbmark_borenstein();
 std::unique_ptr<Experiment> make_calibration_identifiability();
+std::unique_ptr<Experiment> make_calibration_real_logs();
 std::unique_ptr<Experiment> make_slip_normality_table_3_1();
 std::unique_ptr<Experiment> make_slip_compass_ekf_table_3_2();
 std::unique_ptr<Experiment> make_slip_indirect_kf_tables_3_3_3_4();

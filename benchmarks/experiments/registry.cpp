@@ -13,6 +13,7 @@ const std::vector<std::unique_ptr<Experiment>>& all_experiments() {
     v.push_back(make_calibration_umbmark_trilobot());
     v.push_back(make_calibration_umbmark_borenstein());
     v.push_back(make_calibration_identifiability());
+    v.push_back(make_calibration_real_logs());
     v.push_back(make_slip_normality_table_3_1());
     v.push_back(make_slip_compass_ekf_table_3_2());
     v.push_back(make_slip_indirect_kf_tables_3_3_3_4());

@@ -8,6 +8,7 @@
 
 #include "algorithms/slip/normality_test.h"
 #include "benchmarks/experiments/experiment.h"
+#include "reports/checksum.h"
 
 namespace locbench::experiments {
 namespace {
@@ -35,7 +36,8 @@ class SlipNormality final : public Experiment {
     const double alpha = config.at("alpha").get<double>();
     const NormalityTestResult r = skewness_kurtosis_test_binned(mid, counts, alpha);
     options.report_progress(1.0);
-    out.datasets.push_back({"thesis_table_3_1", "thesis Table 3.1 (transcribed)", "", counts.size(), 0.0});
+    out.datasets.push_back({"thesis_table_3_1", "thesis Table 3.1 (transcribed)",
+                            reports::text_checksum(config.dump()), counts.size(), 0.0});
 
     const std::string method = "skewness_kurtosis_test", ds = "thesis_table_3_1";
     const std::pair<const char*, double> stats[] = {

@@ -51,7 +51,10 @@ TEST_P(CensiKhepera, AgreesWithThePublishedSolutionWithinTheCombinedUncertainty)
         "  {:<13} ours {:+.6f} ± {:.6f} (closed form {:+.6f})  published {:+.6f} ± {:.6f}"
         "  diff/bound {:+.2f}\n",
         names[i], p.value, p.standard_error, p.closed_form, published[i], sp, diff / bound);
+    // The criterion: |ours − published| ≤ 2·√(σ_pub² + σ_ours²).
     EXPECT_LE(std::abs(diff), bound) << names[i];
+    // Stricter, since both come from the same samples: within 2 of our own (smaller) σ.
+    EXPECT_LE(std::abs(diff), 2.0 * p.standard_error) << names[i];
   }
 }
 
