@@ -7,6 +7,8 @@ OUT ?= out
 
 BASELINE := benchmarks/baselines/default
 RULES := benchmarks/baselines/rules.json
+# Monte-Carlo runs per experiment in the gate (the baseline is made with the same number).
+GATE_RUNS ?= 3
 
 .PHONY: all setup build run test gate baseline bench clean
 
@@ -37,14 +39,14 @@ LOCBENCH ?= $(RELEASE)/cli/locbench
 GATE_OUT := build/gate
 gate:
 	@rm -rf $(GATE_OUT) && mkdir -p $(GATE_OUT)
-	$(LOCBENCH) run --out $(GATE_OUT)/reports > $(GATE_OUT)/summary.txt
+	$(LOCBENCH) run --runs $(GATE_RUNS) --out $(GATE_OUT)/reports > $(GATE_OUT)/summary.txt
 	$(LOCBENCH) gate $(GATE_OUT)/reports --baseline $(BASELINE) --rules $(RULES) \
 	  --markdown $(GATE_OUT)/gate.md --json $(GATE_OUT)/gate.json
 
 # Refresh the committed baseline deliberately (review the diff, then commit it).
 baseline: build
 	@rm -rf $(BASELINE)
-	$(RELEASE)/cli/locbench run --out $(BASELINE)
+	$(RELEASE)/cli/locbench run --runs $(GATE_RUNS) --out $(BASELINE)
 
 # Google Benchmark kernels (Release), JSON in $(OUT)/speed.json.
 bench: build

@@ -24,8 +24,34 @@ struct RunArgs {
   int runs = 0;
   std::string out = "out";
   std::string config;
+  std::vector<std::string> sets;
   std::string data;
 };
+
+// `--set a.b.c=VALUE` → {"a": {"b": {"c": VALUE}}}; VALUE is read as JSON, else as a string.
+nlohmann::json parse_set(const std::string& s) {
+  const auto eq = s.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw UsageError("--set " + s + ": expected KEY.PATH=VALUE");
+  }
+  nlohmann::json value;
+  try {
+    value = nlohmann::json::parse(s.substr(eq + 1));
+  } catch (const nlohmann::json::parse_error&) {
+    value = s.substr(eq + 1);
+  }
+  const std::string path = s.substr(0, eq);
+  nlohmann::json out = value;
+  std::size_t end = path.size();
+  while (true) {
+    const std::size_t dot = path.rfind('.', end - 1);
+    const std::size_t begin = dot == std::string::npos ? 0 : dot + 1;
+    out = nlohmann::json{{path.substr(begin, end - begin), out}};
+    if (dot == std::string::npos) break;
+    end = dot;
+  }
+  return out;
+}
 
 // Experiments named on the command line: exact names, or a group prefix ("odometry" selects
 // every "odometry/…"); none selects the default suite.
@@ -67,6 +93,12 @@ nlohmann::json load_overrides(const std::string& path) {
 int run(const RunArgs& args, const std::string& command_line) {
   const auto chosen = select(args.experiments);
   const nlohmann::json overrides = load_overrides(args.config);
+  for (const std::string& set : args.sets) {
+    const std::string key = parse_set(set).begin().key();
+    bool used = false;
+    for (const auto* e : chosen) used = used || e->default_config().contains(key);
+    if (!used) throw UsageError("--set " + set + ": no chosen experiment has an option \"" + key + "\"");
+  }
   for (const auto& [name, value] : overrides.items()) {
     if (!experiments::find_experiment(name)) {
       throw InputError(args.config, 0, "configuration for unknown experiment \"" + name + "\"");
@@ -83,6 +115,11 @@ int run(const RunArgs& args, const std::string& command_line) {
     nlohmann::json config = e->default_config();
     if (overrides.contains(e->name())) {
       config = experiments::merge_config(config, overrides.at(e->name()));
+    }
+    // --set applies to every chosen experiment whose options have the key's first part.
+    for (const std::string& set : args.sets) {
+      const nlohmann::json o = parse_set(set);
+      if (config.contains(o.begin().key())) config = experiments::merge_config(config, o);
     }
     reports::Report report;
     {
@@ -127,6 +164,9 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("-o,--out", args->out, "Folder for reports")->capture_default_str();
   cmd->add_option("--config", args->config,
                   "JSON file {\"experiment/name\": {option: value}} overriding defaults");
+  cmd->add_option("--set", args->sets,
+                  "Override one option, KEY.PATH=VALUE (JSON value), e.g. "
+                  "filters.sage_husa_aekf.forgetting=0.95; repeatable");
   cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
   return [args, command_line] { return run(*args, command_line); };
 }

@@ -53,12 +53,20 @@ GateRow compare(const GateSeries& old_s, const GateSeries& new_s, const GateRule
     return row;
   }
   const bool lower_better = old_s.better != "higher";
-  const double worse = lower_better ? new_s.value - old_s.value : old_s.value - new_s.value;
+  double worse = lower_better ? new_s.value - old_s.value : old_s.value - new_s.value;
+  if (old_s.better == "closer_to_zero") worse = std::abs(new_s.value) - std::abs(old_s.value);
+  if (old_s.better == "stable") worse = std::abs(new_s.value - old_s.value);
   const double allowed =
       std::max(rule->max_relative_worsening * std::abs(old_s.value), rule->max_absolute_worsening);
   const bool has_interval = old_s.n >= 2 && rule->outside_interval;
-  const bool outside = lower_better ? new_s.value > old_s.ci95_high : new_s.value < old_s.ci95_low;
-  const bool beyond = lower_better ? new_s.value < old_s.ci95_low : new_s.value > old_s.ci95_high;
+  const bool outside_either = new_s.value > old_s.ci95_high || new_s.value < old_s.ci95_low;
+  const bool signed_rule = old_s.better == "closer_to_zero" || old_s.better == "stable";
+  const bool outside = signed_rule ? outside_either
+                                   : (lower_better ? new_s.value > old_s.ci95_high
+                                                   : new_s.value < old_s.ci95_low);
+  const bool beyond = signed_rule ? outside_either
+                                  : (lower_better ? new_s.value < old_s.ci95_low
+                                                  : new_s.value > old_s.ci95_high);
   if (worse > allowed && (!has_interval || outside)) {
     row.status = "regressed";
     row.detail = fmt::format("worse by {:.4g} {} (allowed {:.4g}{}; rule \"{}\")", worse,

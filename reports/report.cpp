@@ -27,6 +27,7 @@ MetricResult make_estimate(std::string method, std::string dataset, std::string 
   m.variant = std::move(variant);
   m.unit = std::move(unit);
   m.over = "estimate";
+  m.better = "stable";
   m.summary.n = std::max<std::size_t>(n, 1);
   m.summary.mean = m.summary.median = m.summary.min = m.summary.max = value;
   if (std::isfinite(standard_error)) {

@@ -39,7 +39,9 @@ struct MetricResult {
   std::string dataset;  // e.g. "sim_corridor"
   std::string variant;  // the metric, e.g. "final_position_error"
   std::string unit;     // "m", "rad", "s", …
-  std::string better = "lower";  // "lower" or "higher": which direction is an improvement
+  // Which change is an improvement: "lower", "higher", "closer_to_zero" (signed errors) or
+  // "stable" (estimates: any change beyond tolerance is a regression).
+  std::string better = "lower";
   std::string over;     // what the statistics run over: "monte_carlo_runs", "relations", …
   Summary summary;
   std::vector<double> values;  // the samples summarised (may be empty for large series)

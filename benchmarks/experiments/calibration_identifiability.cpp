@@ -102,6 +102,7 @@ class CalibrationIdentifiability final : public Experiment {
           reports::MetricResult r =
               reports::make_metric(methods[m], case_name, std::string(params[p]) + "_error", "",
                                    "monte_carlo_runs", err);
+          r.better = "closer_to_zero";
           for (const ParameterFinding& pf : f[m].report.parameters) {
             if (pf.name != params[p]) continue;
             r.identifiable = pf.identifiable;

@@ -212,7 +212,7 @@ class CalibrationUmbmark final : public Experiment {
         reports::MetricResult r = reports::make_metric(
             kMethodNames[m], dataset, std::string(names[p]) + "_error", "", "monte_carlo_runs",
             *errs[p]);
-        r.better = "lower";
+        r.better = "closer_to_zero";
         if (m == 1 && p == 2) {
           r.note = "input, not estimated: classic UMBmark takes E_s from a tape measurement";
         }

@@ -12,8 +12,21 @@
 
 namespace locbench::experiments {
 
+nlohmann::json default_filter_options(const Eigen::Vector3d& initial_covariance) {
+  CompassEkfOptions adaptive;
+  adaptive.initial_covariance = initial_covariance;
+  FixedQEkfOptions fixed;
+  fixed.initial_covariance = initial_covariance;
+  SageHusaOptions sage;
+  sage.initial_covariance = initial_covariance;
+  VbAkfOptions vb;
+  vb.initial_covariance = initial_covariance;
+  return {{"fixed_q_ekf", fixed}, {"adaptive_model_ekf", adaptive}, {"sage_husa_aekf", sage},
+          {"vb_akf", vb}};
+}
+
 FilterRun run_noise_filters(const sim::SimulationResult& result,
-                            const Eigen::Vector3d& initial_covariance) {
+                            const nlohmann::json& filter_options) {
   const auto model = result.log.nominal_model();
   if (!model || result.log.encoders.size() < 2) throw std::logic_error("run without encoders");
   const Trajectory truth = sim::true_trajectory(result);
@@ -24,14 +37,10 @@ FilterRun run_noise_filters(const sim::SimulationResult& result,
   if (!start) throw std::logic_error("first encoder sample outside the truth");
   const double B = model->wheelbase;
 
-  CompassEkfOptions adaptive;
-  adaptive.initial_covariance = initial_covariance;
-  FixedQEkfOptions fixed;
-  fixed.initial_covariance = initial_covariance;
-  SageHusaOptions sage;
-  sage.initial_covariance = initial_covariance;
-  VbAkfOptions vb;
-  vb.initial_covariance = initial_covariance;
+  const auto fixed = filter_options.at("fixed_q_ekf").get<FixedQEkfOptions>();
+  const auto adaptive = filter_options.at("adaptive_model_ekf").get<CompassEkfOptions>();
+  const auto sage = filter_options.at("sage_husa_aekf").get<SageHusaOptions>();
+  const auto vb = filter_options.at("vb_akf").get<VbAkfOptions>();
   FixedQEkf f0(fixed, B, *start);
   CompassEkf f1(adaptive, B, *start);
   SageHusaAekf f2(sage, B, *start);

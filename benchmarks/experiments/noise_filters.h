@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "datasets/sim/simulation_result.h"
 
 namespace locbench::experiments {
@@ -21,9 +23,13 @@ struct FilterRun {
   std::array<std::vector<double>, kNoiseFilters> nis;        // per compass update (1 dof)
 };
 
-// The published settings of §4.5 for every filter; P(0) given (the thesis uses 0).
-// `initial_covariance` is diag P(0) [m², m², rad²].
+// Every filter's options as JSON, {"fixed_q_ekf": {…}, "adaptive_model_ekf": {…},
+// "sage_husa_aekf": {…}, "vb_akf": {…}}: the published settings of §4.5 in SI, with diag P(0)
+// set to `initial_covariance` [m², m², rad²] (the thesis uses 0).
+nlohmann::json default_filter_options(const Eigen::Vector3d& initial_covariance);
+
+// Runs the four filters with `filter_options` (as above; strict: unknown keys are a UsageError).
 FilterRun run_noise_filters(const sim::SimulationResult& result,
-                            const Eigen::Vector3d& initial_covariance);
+                            const nlohmann::json& filter_options);
 
 }  // namespace locbench::experiments

@@ -90,7 +90,9 @@ class NoiseTables final : public Experiment {
            "corridor runs: final error (Tables 4.1/4.2), spread, NEES/NIS consistency";
   }
   nlohmann::json default_config() const override {
-    return {{"runs", 10}, {"scenario", sim::to_json(sim::preset("corridor"))}};
+    return {{"runs", 10},
+            {"scenario", sim::to_json(sim::preset("corridor"))},
+            {"filters", default_filter_options(kInitialCovariance)}};
   }
   reports::ExperimentResults run(const nlohmann::json& config,
                                  const RunOptions& options) const override {
@@ -102,8 +104,6 @@ class NoiseTables final : public Experiment {
     const sim::Scenario scenario = corridor_from(config);
     out.configuration = config;
     out.configuration["runs"] = runs;
-    out.configuration["initial_covariance_diag"] = {kInitialCovariance(0), kInitialCovariance(1),
-                                                    kInitialCovariance(2)};
     FilterSamples s;
     std::size_t records = 0;
     double duration = 0.0;
@@ -114,7 +114,7 @@ class NoiseTables final : public Experiment {
       const sim::SimulationResult r = sim::simulate(scenario, seed);
       records = r.log.record_count();
       duration = r.duration;
-      collect(run_noise_filters(r, kInitialCovariance), s);
+      collect(run_noise_filters(r, config.at("filters")), s);
     }
     options.report_progress(1.0);
     const std::string dataset = "sim_" + scenario.name;
@@ -190,6 +190,7 @@ class EncoderResolutionSweep final : public Experiment {
   nlohmann::json default_config() const override {
     return {{"runs", 5},
             {"scenario", sim::to_json(sim::preset("corridor"))},
+            {"filters", default_filter_options(kInitialCovariance)},
             {"meters_per_tick", {0.0000152, 0.0001, 0.001, 0.005, 0.01264}}};
   }
   reports::ExperimentResults run(const nlohmann::json& config,
@@ -216,7 +217,7 @@ class EncoderResolutionSweep final : public Experiment {
                                 static_cast<double>(runs * resolutions.size()));
         const std::uint64_t seed = Rng::derive_seed(options.seed, static_cast<std::uint64_t>(k));
         out.seeds.push_back(seed);
-        collect(run_noise_filters(sim::simulate(s, seed), kInitialCovariance), fs);
+        collect(run_noise_filters(sim::simulate(s, seed), config.at("filters")), fs);
       }
       const std::string dataset = fmt::format("sim_corridor_{:.4g}mm_per_tick", c * 1e3);
       std::string key = dataset;

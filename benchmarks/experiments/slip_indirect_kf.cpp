@@ -196,7 +196,7 @@ class SlipIndirectKf final : public Experiment {
         reports::MetricResult m = reports::make_metric(kVariantNames[v], ds, kParamNames[p],
                                                        p == 2 ? "m" : "", "monte_carlo_runs",
                                                        est[v][p]);
-        m.better = "lower";
+        m.better = "stable";  // estimates: any change is a change of method
         const ParameterFinding& f = id_straight[v].parameters[static_cast<std::size_t>(p)];
         m.identifiable = f.identifiable;
         if (!f.identifiable) {

@@ -167,6 +167,41 @@ TEST(Cli, GatePassesOnTheBaselineAndFailsWithExitCode1OnAWorsenedResult) {
   EXPECT_EQ(nlohmann::json::parse(verdict)["passed"], false);
 }
 
+TEST(Cli, SetOverridesAFilterOptionAndRejectsAnUnknownOne) {
+  testing::ScratchDir dir;
+  const Outcome ok = run_locbench("run noise/tables_4_1_4_2 --runs 1 --set "
+                                  "filters.sage_husa_aekf.forgetting=0.95 --out " +
+                                  dir.path().string());
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  const auto r = reports::read_report(dir.file("noise/tables_4_1_4_2.json"));
+  EXPECT_EQ(r.body.configuration["filters"]["sage_husa_aekf"]["forgetting"], 0.95);
+  const Outcome bad = run_locbench("run noise/tables_4_1_4_2 --runs 1 --set "
+                                   "filters.sage_husa_aekf.forgettin=0.95 --out " +
+                                   dir.path().string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("forgettin"), std::string::npos) << bad.output;
+}
+
+TEST(Cli, CalibrateRejectsAMalformedUmbmarkInputWithExitCode2) {
+  testing::ScratchDir dir;
+  std::ofstream(dir.file("u.json")) << R"({"side_length_m": 1.6})";
+  const Outcome o = run_locbench("calibrate umbmark-classic " + dir.file("u.json").string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(run_locbench("calibrate frobnicate x").exit_code, 2);
+}
+
+TEST(Cli, CalibrateClassicUmbmarkOnTheExampleWritesAValidReport) {
+  testing::ScratchDir dir;
+  const Outcome o = run_locbench("calibrate umbmark-classic examples/umbmark_trilobot.json --report " +
+                                 dir.file("c.json").string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto r = reports::read_report(dir.file("c.json"));
+  EXPECT_TRUE(reports::validate_report_json(reports::to_json(r)).empty());
+  bool has_ed = false;
+  for (const auto& m : r.body.results) has_ed = has_ed || m.variant == "E_d";
+  EXPECT_TRUE(has_ed);
+}
+
 TEST(Cli, GateOnMissingInputExitsWith2) {
   EXPECT_EQ(run_locbench("gate /nonexistent --baseline /nonexistent").exit_code, 2);
 }

@@ -187,3 +187,31 @@ TEST(GateOutput, MarkdownAndJsonCarryTheVerdict) {
 
 }  // namespace
 }  // namespace locbench::reports
+
+namespace locbench::reports {
+namespace {
+
+TEST(Gate, SignedErrorsAreJudgedByTheirDistanceFromZeroAndEstimatesByAnyChange) {
+  GateSeries base;
+  base.key = "x:m/d/E_d_error";
+  base.value = -0.001;
+  base.n = 1;
+  GateInput a, b;
+  base.better = "closer_to_zero";
+  a.series[base.key] = base;
+  GateSeries now = base;
+  now.value = -0.003;  // lower, but three times further from zero
+  b.series[base.key] = now;
+  EXPECT_FALSE(evaluate_gate(a, b, default_gate_rules()).passed());
+  base.better = now.better = "stable";
+  a.series[base.key] = base;
+  now.value = -0.00099;  // 1% change: inside the 5% tolerance
+  b.series[base.key] = now;
+  EXPECT_TRUE(evaluate_gate(a, b, default_gate_rules()).passed());
+  now.value = -0.0009;  // 10% change in either direction fails
+  b.series[base.key] = now;
+  EXPECT_FALSE(evaluate_gate(a, b, default_gate_rules()).passed());
+}
+
+}  // namespace
+}  // namespace locbench::reports
