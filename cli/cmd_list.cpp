@@ -7,6 +7,7 @@
 #include "algorithms/core/errors.h"
 #include "benchmarks/experiments/experiment.h"
 #include "cli/commands.h"
+#include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/log/data_root.h"
 #include "datasets/sim/presets.h"
@@ -52,6 +53,20 @@ int list(const ListArgs& args) {
     const std::string path = (root / d.path).string();
     if (!std::filesystem::exists(path.substr(0, path.find('#')))) {
       std::cout << fmt::format("    {:<26} absent ({})\n", d.name, d.path);
+      continue;
+    }
+    if (is_calibration_dataset(d)) {
+      std::string parts;
+      std::size_t samples = 0;
+      try {
+        for (const std::string& part : calibration_dataset_parts(d)) {
+          samples += load_catalog_calibration_data(d, root, part).samples.size();
+          parts += (parts.empty() ? "" : ", ") + (part.empty() ? std::string("all") : part);
+        }
+        std::cout << fmt::format("    {:<26} calibration samples: {} ({})\n", d.name, samples, parts);
+      } catch (const InputError& e) {
+        std::cout << fmt::format("    {:<26} unreadable: {}\n", d.name, e.what());
+      }
       continue;
     }
     if (!d.reader_pending.empty()) {
