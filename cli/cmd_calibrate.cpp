@@ -132,8 +132,8 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
   const std::filesystem::path root = a.data.empty() ? data_root() : std::filesystem::path(a.data);
   const std::string name = a.input.substr(0, a.input.find(':'));
   const std::string part = a.input.find(':') == std::string::npos ? "" : a.input.substr(a.input.find(':') + 1);
-  for (const DatasetEntry& e : dataset_catalog()) {
-    if (e.name != name) continue;
+  if (const DatasetEntry* entry = find_dataset(name)) {
+    const DatasetEntry& e = *entry;
     ref = {a.input, (root / e.path).string(), "", 0, 0.0};
     const std::string file = ref.path.substr(0, ref.path.find('#'));
     ref.checksum = reports::file_checksum(file);

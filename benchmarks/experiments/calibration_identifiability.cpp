@@ -47,8 +47,7 @@ class CalibrationIdentifiability final : public Experiment {
     reports::ExperimentResults out;
     out.experiment = name();
     out.description = description();
-    const int runs = options.runs.value_or(config.at("runs").get<int>());
-    if (runs < 1) throw UsageError(name() + ": runs must be ≥ 1");
+    const int runs = monte_carlo_runs(*this, config, options);
     sim::Scenario base = sim::scenario_from_json(config.at("scenario"), "<configuration>");
     base.slip.turn.rate = base.slip.straight.rate = 0.0;
     out.configuration = config;

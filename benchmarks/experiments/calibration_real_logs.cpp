@@ -22,13 +22,6 @@
 namespace locbench::experiments {
 namespace {
 
-const DatasetEntry* catalog_entry(const std::string& name) {
-  for (const DatasetEntry& e : dataset_catalog()) {
-    if (e.name == name) return &e;
-  }
-  return nullptr;
-}
-
 std::string key(std::string s) {
   for (char& c : s) {
     if (c == '/' || c == ':' || c == '.') c = '_';
@@ -76,7 +69,7 @@ class CalibrationRealLogs final : public Experiment {
     auto progress = [&] { options.report_progress(static_cast<double>(done++) / total); };
 
     // Censi et al.'s data: their noise model (per-component) and outlier rejection (4 × 1%).
-    const DatasetEntry* censi = catalog_entry("censi_khepera");
+    const DatasetEntry* censi = find_dataset("censi_khepera");
     int agree = 0, compared = 0;
     for (const std::string& part : parts) {
       progress();
@@ -167,7 +160,7 @@ class CalibrationRealLogs final : public Experiment {
     };
     for (const std::string& name : rel_logs) {
       progress();
-      const DatasetEntry* e = catalog_entry(name);
+      const DatasetEntry* e = find_dataset(name);
       if (!e) throw UsageError(this->name() + ": unknown dataset " + name);
       const std::string path = (options.data_root / e->path).string();
       if (!std::filesystem::exists(path)) {
@@ -183,7 +176,7 @@ class CalibrationRealLogs final : public Experiment {
     }
     for (const std::string& name : vel_logs) {
       progress();
-      const DatasetEntry* e = catalog_entry(name);
+      const DatasetEntry* e = find_dataset(name);
       if (!e) throw UsageError(this->name() + ": unknown dataset " + name);
       const std::string path = (options.data_root / e->path).string();
       if (!std::filesystem::exists(path.substr(0, path.find('#')))) {

@@ -96,8 +96,7 @@ class CalibrationUmbmark final : public Experiment {
     reports::ExperimentResults out;
     out.experiment = name();
     out.description = description();
-    const int runs = options.runs.value_or(config.at("runs").get<int>());
-    if (runs < 1) throw UsageError(name() + ": runs must be ≥ 1");
+    const int runs = monte_carlo_runs(*this, config, options);
     sim::Scenario scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
     if (scenario.motion.kind != sim::MotionKind::kUmbmark) {
       throw UsageError(name() + ": the scenario's motion must be the UMBmark square");

@@ -38,6 +38,9 @@ class Experiment {
                                          const RunOptions& options) const = 0;
 };
 
+// Monte-Carlo runs: --runs when given, else the configuration's "runs"; UsageError if < 1.
+int monte_carlo_runs(const Experiment& e, const nlohmann::json& config, const RunOptions& options);
+
 // All experiments, in a fixed order.
 const std::vector<std::unique_ptr<Experiment>>& all_experiments();
 // nullptr when no experiment has that name.

@@ -99,8 +99,7 @@ class NoiseTables final : public Experiment {
     reports::ExperimentResults out;
     out.experiment = name();
     out.description = description();
-    const int runs = options.runs.value_or(config.at("runs").get<int>());
-    if (runs < 1) throw UsageError(name() + ": runs must be ≥ 1");
+    const int runs = monte_carlo_runs(*this, config, options);
     const sim::Scenario scenario = corridor_from(config);
     out.configuration = config;
     out.configuration["runs"] = runs;
@@ -198,8 +197,7 @@ class EncoderResolutionSweep final : public Experiment {
     reports::ExperimentResults out;
     out.experiment = name();
     out.description = description();
-    const int runs = options.runs.value_or(config.at("runs").get<int>());
-    if (runs < 1) throw UsageError(name() + ": runs must be ≥ 1");
+    const int runs = monte_carlo_runs(*this, config, options);
     const sim::Scenario base = corridor_from(config);
     out.configuration = config;
     out.configuration["runs"] = runs;

@@ -60,10 +60,7 @@ class OdometryRealLogs final : public Experiment {
     std::size_t done = 0;
     for (const std::string& dataset : names) {
       options.report_progress(static_cast<double>(done++) / static_cast<double>(names.size()));
-      const DatasetEntry* entry = nullptr;
-      for (const DatasetEntry& e : dataset_catalog()) {
-        if (e.name == dataset) entry = &e;
-      }
+      const DatasetEntry* entry = find_dataset(dataset);
       if (!entry) throw UsageError("odometry/real_logs: unknown dataset \"" + dataset + "\"");
       const std::string path = (options.data_root / entry->path).string();
       if (!std::filesystem::exists(path.substr(0, path.find('#')))) {

@@ -52,8 +52,7 @@ class OdometrySimCorridor final : public Experiment {
     reports::ExperimentResults out;
     out.experiment = name();
     out.description = description();
-    const int runs = options.runs.value_or(config.at("runs").get<int>());
-    if (runs < 1) throw UsageError("odometry/sim_corridor: runs must be ≥ 1");
+    const int runs = monte_carlo_runs(*this, config, options);
     const sim::Scenario scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
     out.configuration = config;
     out.configuration["runs"] = runs;

@@ -82,9 +82,9 @@ class SlipIndirectKf final : public Experiment {
     reports::ExperimentResults out;
     out.experiment = name();
     out.description = description();
-    const int runs = options.runs.value_or(config.at("runs").get<int>());
+    const int runs = monte_carlo_runs(*this, config, options);
     const int cal_runs = config.at("calibration_runs").get<int>();
-    if (runs < 1 || cal_runs < 1) throw UsageError(name() + ": runs and calibration_runs must be ≥ 1");
+    if (cal_runs < 1) throw UsageError(name() + ": calibration_runs must be ≥ 1");
     const sim::Scenario scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
     SlipEkfOptions ekf_opt;
     from_json(config.at("detector"), ekf_opt.detector);

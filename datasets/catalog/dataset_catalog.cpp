@@ -40,6 +40,13 @@ const std::vector<DatasetEntry>& dataset_catalog() {
   return entries;
 }
 
+const DatasetEntry* find_dataset(const std::string& name) {
+  for (const DatasetEntry& e : dataset_catalog()) {
+    if (e.name == name) return &e;
+  }
+  return nullptr;
+}
+
 Log load_catalog_dataset(const DatasetEntry& entry, const std::filesystem::path& root) {
   if (!entry.reader_pending.empty()) {
     throw UsageError("dataset " + entry.name + ": no reader yet (arrives with " +

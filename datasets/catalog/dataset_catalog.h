@@ -21,6 +21,8 @@ struct DatasetEntry {
 
 // Every dataset of ../shared/datasets (see its README), in a fixed order.
 const std::vector<DatasetEntry>& dataset_catalog();
+// The entry called `name`; nullptr when there is none.
+const DatasetEntry* find_dataset(const std::string& name);
 
 // Loads an entry (with its relations attached) from under `root`; InputError if absent or
 // malformed, UsageError if no reader exists for it yet.
