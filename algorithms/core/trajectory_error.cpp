@@ -55,4 +55,15 @@ PoseErrors relation_error(const Trajectory& estimate, std::span<const Relation> 
   return out;
 }
 
+std::vector<Relation> window_relations(const Trajectory& reference, double window) {
+  std::vector<Relation> out;
+  if (reference.empty() || !(window > 0.0)) return out;
+  for (double t = reference.start_time(); t + window <= reference.end_time(); t += window) {
+    const auto a = reference.pose_at(t);
+    const auto b = reference.pose_at(t + window);
+    if (a && b) out.push_back({t, t + window, between(*a, *b)});
+  }
+  return out;
+}
+
 }  // namespace locbench

@@ -36,4 +36,8 @@ PoseErrors absolute_pose_error(const Trajectory& reference, const Trajectory& es
 // Δ_est = est(t1)⁻¹ est(t2) against Δ_ref, i.e. Δ_ref⁻¹ Δ_est.
 PoseErrors relation_error(const Trajectory& estimate, std::span<const Relation> relations);
 
+// Reference relations over consecutive windows of `window` seconds of a trajectory (e.g. a
+// ground truth), for relative-pose error where no .relations file exists.
+std::vector<Relation> window_relations(const Trajectory& reference, double window);
+
 }  // namespace locbench

@@ -18,5 +18,6 @@ std::unique_ptr<Experiment> make_slip_indirect_kf_tables_3_3_3_4();
 std::unique_ptr<Experiment> make_noise_tables();
 std::unique_ptr<Experiment> make_noise_resolution_sweep();
 std::unique_ptr<Experiment> make_noise_quantization_sigma();
+std::unique_ptr<Experiment> make_noise_real_logs();
 
 }  // namespace locbench::experiments

@@ -15,18 +15,6 @@
 namespace locbench::experiments {
 namespace {
 
-// Reference relations over consecutive windows of `window` seconds of a ground truth.
-std::vector<Relation> window_relations(const Trajectory& truth, double window) {
-  std::vector<Relation> out;
-  if (truth.empty()) return out;
-  for (double t = truth.start_time(); t + window <= truth.end_time(); t += window) {
-    const auto a = truth.pose_at(t);
-    const auto b = truth.pose_at(t + window);
-    if (a && b) out.push_back({t, t + window, between(*a, *b)});
-  }
-  return out;
-}
-
 Trajectory truth_trajectory(const Log& log) {
   Trajectory t;
   for (const TruePose& p : log.truth) t.push_back({p.t, p.pose});

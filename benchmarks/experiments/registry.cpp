@@ -20,6 +20,7 @@ const std::vector<std::unique_ptr<Experiment>>& all_experiments() {
     v.push_back(make_noise_tables());
     v.push_back(make_noise_resolution_sweep());
     v.push_back(make_noise_quantization_sigma());
+    v.push_back(make_noise_real_logs());
     return v;
   }();
   return list;

@@ -89,5 +89,17 @@ TEST(QuantizationSigma, PutsTheExactOptimumBesideThePublishedFiveMillimetres) {
   EXPECT_EQ(r.published[0].rows[0].published, 5.00);
 }
 
+TEST(NoiseRealLogs, SaysWhatCannotBeEvaluatedAndSkipsAbsentData) {
+  const Experiment* e = find_experiment("noise/real_logs");
+  ASSERT_NE(e, nullptr);
+  RunOptions o;
+  o.data_root = "/nonexistent";
+  const auto r = e->run(e->default_config(), o);
+  EXPECT_TRUE(r.results.empty());
+  EXPECT_EQ(r.cases.size(), 8u);  // every dataset skipped, none failed
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes.back().find("no compass"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace locbench::experiments
