@@ -76,7 +76,8 @@ class CalibrationRealLogs final : public Experiment {
       const std::filesystem::path results =
           options.data_root / censi->path / (part + "_results.json");
       if (!std::filesystem::exists(results)) {
-        out.cases.push_back({"censi/" + key(part), "skipped",
+        // The case name ends in the results' dataset key, so gates know these were skipped.
+        out.cases.push_back({"calibration/censi_" + key(part), "skipped",
                              "dataset not found at " + results.string() + " (set LOCBENCH_DATA)"});
         continue;
       }
