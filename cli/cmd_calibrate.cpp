@@ -186,10 +186,7 @@ reports::ExperimentResults calibrate_ml_cmd(const CalibrateArgs& a) {
   const MlCalibrationResult r = calibrate_ml(data, opt);
   out.configuration = {{"method", "ml"}, {"input", a.input}, {"samples", r.samples_used},
                        {"rejected", r.samples_rejected}};
-  std::string ds = std::filesystem::path(ref.name).filename().string();
-  for (char& ch : ds) {
-    if (ch == '/' || ch == ':') ch = '_';
-  }
+  const std::string ds = reports::key_part(std::filesystem::path(ref.name).filename().string());
   for (const CalibratedParameter& p : r.parameters) {
     reports::MetricResult m = make_estimate("ml", ds, p.name, "", p.value, p.standard_error,
                                             r.samples_used);

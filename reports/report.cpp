@@ -19,6 +19,13 @@ MetricResult make_metric(std::string method, std::string dataset, std::string va
   return m;
 }
 
+std::string key_part(std::string name) {
+  for (char& c : name) {
+    if (c == '/' || c == ':' || c == '.') c = '_';
+  }
+  return name;
+}
+
 MetricResult make_estimate(std::string method, std::string dataset, std::string variant,
                            std::string unit, double value, double standard_error, std::size_t n) {
   MetricResult m;

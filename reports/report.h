@@ -93,6 +93,10 @@ struct Report {
   ExperimentResults body;
 };
 
+// A name made safe as one part of a result key: '/', ':' and '.' become '_'
+// ("censi_khepera:l90" → "censi_khepera_l90", "12.64mm" → "12_64mm").
+std::string key_part(std::string name);
+
 // Builds a MetricResult from samples (Student-t 95% interval of the mean).
 MetricResult make_metric(std::string method, std::string dataset, std::string variant,
                          std::string unit, std::string over, std::span<const double> values,

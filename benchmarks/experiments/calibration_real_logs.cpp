@@ -22,13 +22,6 @@
 namespace locbench::experiments {
 namespace {
 
-std::string key(std::string s) {
-  for (char& c : s) {
-    if (c == '/' || c == ':' || c == '.') c = '_';
-  }
-  return s;
-}
-
 reports::MetricResult one_value(const std::string& method, const std::string& dataset,
                                 const std::string& variant, const std::string& unit,
                                 double value) {
@@ -77,7 +70,7 @@ class CalibrationRealLogs final : public Experiment {
           options.data_root / censi->path / (part + "_results.json");
       if (!std::filesystem::exists(results)) {
         // The case name ends in the results' dataset key, so gates know these were skipped.
-        out.cases.push_back({"calibration/censi_" + key(part), "skipped",
+        out.cases.push_back({"calibration/censi_" + reports::key_part(part), "skipped",
                              "dataset not found at " + results.string() + " (set LOCBENCH_DATA)"});
         continue;
       }
@@ -87,7 +80,7 @@ class CalibrationRealLogs final : public Experiment {
       o.noise.kind = NoiseModelKind::kPerComponent;
       o.outliers = {4, 0.01};
       const MlCalibrationResult r = calibrate_ml(data, o);
-      const std::string ds = "censi_" + key(part);
+      const std::string ds = "censi_" + reports::key_part(part);
       out.datasets.push_back({ds, (options.data_root / censi->path / (part + ".tuple.gz")).string(),
                               reports::file_checksum(options.data_root / censi->path / (part + ".tuple.gz")),
                               data.samples.size(), 0.0});
@@ -133,7 +126,7 @@ class CalibrationRealLogs final : public Experiment {
     auto held_out = [&](const std::string& name, const CalibrationData& d,
                         const MlCalibrationOptions& o, const std::string& path) {
       const HeldOutEvaluation h = evaluate_held_out(d, o, fraction);
-      const std::string ds = key(name);
+      const std::string ds = reports::key_part(name);
       out.datasets.push_back({ds, path, reports::file_checksum(path.substr(0, path.find('#'))),
                               d.samples.size(), 0.0});
       for (const CalibratedParameter& p : h.calibration.parameters) {

@@ -217,11 +217,8 @@ class EncoderResolutionSweep final : public Experiment {
         out.seeds.push_back(seed);
         collect(run_noise_filters(sim::simulate(s, seed), config.at("filters")), fs);
       }
-      const std::string dataset = fmt::format("sim_corridor_{:.4g}mm_per_tick", c * 1e3);
-      std::string key = dataset;
-      for (char& ch : key) {
-        if (ch == '.') ch = '_';
-      }
+      const std::string key =
+          reports::key_part(fmt::format("sim_corridor_{:.4g}mm_per_tick", c * 1e3));
       out.datasets.push_back({key, "simulated", reports::text_checksum(sim::to_json(s).dump()),
                               0, 0.0});
       add_filter_results(out, key, fs);
@@ -258,11 +255,7 @@ class QuantizationSigma final : public Experiment {
     for (std::size_t i = 0; i < cs.size(); ++i) {
       // Computed in millimetres (the functions are unit-agnostic), as the thesis does.
       const QuantizationSigmaComparison q = compare_quantization_sigma(cs[i], ps[i], pg[i]);
-      const std::string ds = fmt::format("c_{:.2f}mm", cs[i]);
-      std::string key = ds;
-      for (char& ch : key) {
-        if (ch == '.') ch = '_';
-      }
+      const std::string key = reports::key_part(fmt::format("c_{:.2f}mm", cs[i]));
       auto one = [&](const std::string& v, const std::string& unit, double x) {
         out.results.push_back(reports::make_metric("quantization_model", key, v, unit, "closed_form",
                                                    std::vector<double>{x}));
