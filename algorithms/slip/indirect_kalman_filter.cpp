@@ -115,28 +115,45 @@ void IndirectKalmanFilter::update_position(const Eigen::Vector2d& z, double vari
   p_ = 0.5 * (p_ + p_.transpose());
 }
 
-IkfRunResult run_indirect_kf(std::span<const IkfSample> samples, double start_heading,
-                             const IndirectKfOptions& options, double wheelbase,
-                             const std::optional<Eigen::Vector2d>& end_position_error,
-                             double end_position_variance) {
+void IndirectKalmanFilter::start_run() {
+  x_.head<3>().setZero();
+  p_.block<3, 6>(0, 0).setZero();
+  p_.block<6, 3>(0, 0).setZero();
+  p_.block<3, 3>(0, 0) = options_.initial_covariance.head<3>().asDiagonal();
+}
+
+IkfRunResult run_indirect_kf(std::span<const IkfRun> runs, const IndirectKfOptions& options,
+                             double wheelbase) {
   IndirectKalmanFilter f(options, wheelbase);
   IkfRunResult r;
-  double theta = start_heading;  // odometry heading
-  for (const IkfSample& s : samples) {
-    f.predict(s.u, theta);
-    theta = wrap_angle(theta + (s.u.right - s.u.left) / wheelbase);
-    if (s.reference_heading) {
-      f.update_heading(angle_diff(*s.reference_heading, theta));
-      ++r.heading_updates;
+  for (const IkfRun& run : runs) {
+    f.start_run();
+    double theta = run.start_heading;  // odometry heading
+    for (const IkfSample& s : run.samples) {
+      f.predict(s.u, theta);
+      theta = wrap_angle(theta + (s.u.right - s.u.left) / wheelbase);
+      if (s.reference_heading) {
+        f.update_heading(angle_diff(*s.reference_heading, theta));
+        ++r.heading_updates;
+      }
     }
+    if (run.end_position_error) f.update_position(*run.end_position_error, run.end_position_variance);
   }
-  if (end_position_error) f.update_position(*end_position_error, end_position_variance);
   r.state = f.state();
   r.covariance = f.covariance();
   r.s_right = f.s_right();
   r.s_left = f.s_left();
   r.delta_b = f.delta_b();
   return r;
+}
+
+IkfRunResult run_indirect_kf(std::span<const IkfSample> samples, double start_heading,
+                             const IndirectKfOptions& options, double wheelbase,
+                             const std::optional<Eigen::Vector2d>& end_position_error,
+                             double end_position_variance) {
+  const IkfRun run{{samples.begin(), samples.end()}, start_heading, end_position_error,
+                   end_position_variance};
+  return run_indirect_kf(std::span<const IkfRun>(&run, 1), options, wheelbase);
 }
 
 IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, double start_heading,

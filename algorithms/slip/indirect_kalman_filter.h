@@ -72,6 +72,10 @@ class IndirectKalmanFilter {
   // Ours: a position reference, Z = (x, y)_reference − (x, y)_odometry [m], variance per axis.
   void update_position(const Eigen::Vector2d& z, double variance);
 
+  // Ours: a new run from a known start pose (UMBmark's runs restart at the mark): the pose-error
+  // block and its cross-covariances go back to their initial values, the parameters carry over.
+  void start_run();
+
   const Vector6& state() const { return x_; }
   const Matrix6& covariance() const { return p_; }
   double s_right() const { return x_(3); }
@@ -104,6 +108,17 @@ IkfRunResult run_indirect_kf(std::span<const IkfSample> samples, double start_he
                              const IndirectKfOptions& options, double wheelbase,
                              const std::optional<Eigen::Vector2d>& end_position_error = {},
                              double end_position_variance = 0.0);
+
+// Several runs from known start poses, one filter: the parameters carry over from run to run
+// (start_run between them); each run may end with a measured position error.
+struct IkfRun {
+  std::vector<IkfSample> samples;
+  double start_heading = 0.0;
+  std::optional<Eigen::Vector2d> end_position_error;
+  double end_position_variance = 0.0;
+};
+IkfRunResult run_indirect_kf(std::span<const IkfRun> runs, const IndirectKfOptions& options,
+                             double wheelbase);
 
 // What a run's measurements determine about [S_R, S_L, δB]: the sensitivity of each heading
 // measurement (and of the end position, if measured) to the parameters, propagated with
