@@ -80,6 +80,11 @@ UmbmarkSummary summarize_umbmark(const std::vector<UmbmarkRun>& runs);
 struct SimulationResult;
 // The true trajectory as a core Trajectory (interpolable in time).
 Trajectory true_trajectory(const SimulationResult& result);
+// Where dead reckoning of the run's ENCODER records with the log's nominal model (PARAM) ends up,
+// relative to the truth, at the last instant both cover: between(truth, odometry), i.e. the
+// odometry end pose in the true end frame. std::logic_error for a run without encoders, nominal
+// model or trajectory (a simulator configuration mistake, not user input).
+Pose2 dead_reckoning_end_error(const SimulationResult& result);
 
 struct SimulationResult {
   Log log;
