@@ -15,6 +15,15 @@
 
 namespace locbench::sim {
 
+// A scan with what each beam really saw: the index of the world segment whose return it is, or
+// kNoSegment for no return, a dropout or a spurious short return. The ground truth of the
+// matcher experiments (point-assignment precision and recall).
+struct LabelledScan {
+  static constexpr int kNoSegment = -1;
+  Scan scan;
+  std::vector<int> segment;  // per beam
+};
+
 class LaserModel {
  public:
   LaserModel(const LaserConfig& c, const LineMap& world, Rng rng);
@@ -24,6 +33,8 @@ class LaserModel {
   std::vector<double> true_ranges(const Pose2& robot) const;
   // A measured scan; sensor_pose = mount, timestamp as given.
   Scan measure(const Pose2& robot, double timestamp);
+  // The same scan (same random draws) with the true segment of every beam.
+  LabelledScan measure_labelled(const Pose2& robot, double timestamp);
 
  private:
   LaserConfig config_;

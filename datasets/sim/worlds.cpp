@@ -1,5 +1,7 @@
 #include "datasets/sim/worlds.h"
 
+#include <cmath>
+
 #include "algorithms/core/errors.h"
 #include "datasets/sim/json_fields.h"
 
@@ -36,6 +38,73 @@ std::vector<Rect> room_obstacles() {
       {{4.0, 4.0}, {6.0, 6.0}},  // B: 2 × 2 m free-standing
       {{0.0, 5.0}, {1.0, 7.0}},  // C: 1 × 2 m against the left wall
   };
+}
+
+LineMap random_room(Rng& rng, const RandomRoomOptions& o) {
+  if (!(o.min_size > 0.0) || o.max_size < o.min_size || o.boxes < 0 || o.clearance < 0.0) {
+    throw UsageError("random_room: need 0 < min_size ≤ max_size, boxes ≥ 0, clearance ≥ 0");
+  }
+  const double w = rng.uniform(o.min_size, o.max_size);
+  const double h = rng.uniform(o.min_size, o.max_size);
+  LineMap m;
+  m.name = "random_room";
+  m.segments = {seg(0, 0, w, 0), seg(w, 0, w, h), seg(w, h, 0, h), seg(0, h, 0, 0)};
+  std::vector<Rect> boxes;
+  for (int b = 0, attempts = 0; b < o.boxes && attempts < 100 * (o.boxes + 1); ++attempts) {
+    const double bw = rng.uniform(0.5, 2.0), bh = rng.uniform(0.5, 2.0);
+    const double lo_x = o.clearance, hi_x = w - o.clearance - bw;
+    const double lo_y = o.clearance, hi_y = h - o.clearance - bh;
+    if (hi_x <= lo_x || hi_y <= lo_y) continue;
+    const Rect r{{rng.uniform(lo_x, hi_x), rng.uniform(lo_y, hi_y)}, {}};
+    const Rect box{r.min, r.min + Eigen::Vector2d(bw, bh)};
+    bool clear = true;
+    for (const Rect& q : boxes) {
+      if (box.min.x() < q.max.x() + o.clearance && q.min.x() < box.max.x() + o.clearance &&
+          box.min.y() < q.max.y() + o.clearance && q.min.y() < box.max.y() + o.clearance) {
+        clear = false;
+      }
+    }
+    if (!clear) continue;
+    boxes.push_back(box);
+    const double x0 = box.min.x(), y0 = box.min.y(), x1 = box.max.x(), y1 = box.max.y();
+    for (const Segment& s : {seg(x0, y0, x1, y0), seg(x1, y0, x1, y1), seg(x1, y1, x0, y1),
+                             seg(x0, y1, x0, y0)}) {
+      m.segments.push_back(s);
+    }
+    ++b;
+  }
+  return m;
+}
+
+bool in_free_space(const LineMap& room, const Eigen::Vector2d& p, double margin) {
+  for (const Segment& s : room.segments) {
+    if (distance_to_segment(s, p) < margin) return false;
+  }
+  // A ray to the right crosses the outer wall once and each box it passes twice, or once when
+  // it starts inside that box: the point is free ⇔ the total is odd.
+  int crossings = 0;
+  for (const Segment& s : room.segments) {
+    const Eigen::Vector2d a = s.p1, b = s.p2;
+    if ((a.y() > p.y()) != (b.y() > p.y())) {
+      const double x = a.x() + (p.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x());
+      if (x > p.x()) ++crossings;
+    }
+  }
+  return crossings % 2 == 1;
+}
+
+LineMap tiled_rooms(int count) {
+  if (count < 1) throw UsageError("tiled_rooms: count must be ≥ 1");
+  const LineMap room = room_world();
+  const int k = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
+  LineMap m;
+  m.name = "tiled_rooms_" + std::to_string(count);
+  m.segments.reserve(room.segments.size() * static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector2d shift(10.0 * (i % k), 10.0 * (i / k));
+    for (const Segment& s : room.segments) m.segments.push_back({s.p1 + shift, s.p2 + shift});
+  }
+  return m;
 }
 
 LineMap room_world() {

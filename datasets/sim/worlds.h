@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "algorithms/core/line_map.h"
+#include "algorithms/core/rng.h"
 #include "datasets/sim/scenario.h"
 
 namespace locbench::sim {
@@ -34,6 +35,26 @@ inline constexpr double kRoomSize = 8.0;  // [m]
 std::vector<Rect> room_obstacles();
 // The 14-segment room ("room").
 LineMap room_world();
+// A random rectangular room for the matcher experiments: width and height uniform in
+// [min_size, max_size], origin at the lower-left corner, `boxes` free-standing axis-aligned
+// boxes (sides uniform in [0.5, 2] m) that keep `clearance` from the walls and from each other
+// (placement retried; fewer boxes when the room is full). 4 + 4·boxes segments. Deterministic
+// for a given Rng state.
+struct RandomRoomOptions {
+  double min_size = 6.0;   // [m]
+  double max_size = 12.0;  // [m]
+  int boxes = 3;
+  double clearance = 1.0;  // [m]
+};
+LineMap random_room(Rng& rng, const RandomRoomOptions& options = {});
+// Free space of a room made by random_room or room_world: a point at least `margin` from every
+// segment and outside every box (for drawing random robot poses).
+bool in_free_space(const LineMap& room, const Eigen::Vector2d& p, double margin);
+// `count` copies of the 14-segment room tiled in a square grid 10 m apart (room i at
+// ((i mod k)·10, (i div k)·10), k = ⌈√count⌉): maps of 14·count segments in which the view from
+// the first room is the same as in room_world() (for cost against map size).
+LineMap tiled_rooms(int count);
+
 // A closed corridor along +x: walls y = ±width/2 for x ∈ [0, length] and end walls at x = 0 and
 // x = length ("corridor").
 LineMap corridor_world(double length, double width = 1.8);

@@ -148,5 +148,31 @@ TEST(LaserInSimulation, ScansAt5HzWithTheOdometryPoseAndLatency) {
   EXPECT_EQ(r.log.laser[0].scan.ranges.size(), 181u);
 }
 
+TEST_F(LaserModelTest, LabelledScanNamesTheSegmentEachBeamHitAndNothingForDropouts) {
+  LaserConfig c = config();
+  c.noise = 0.005;
+  c.dropout = 0.2;
+  LaserModel m(c, world_, Rng(3));
+  LaserModel same(c, world_, Rng(3));
+  const LabelledScan l = m.measure_labelled(Pose2(3.0, 0.2, 0.0), 1.0);
+  const Scan s = same.measure(Pose2(3.0, 0.2, 0.0), 1.0);
+  ASSERT_EQ(l.segment.size(), l.scan.ranges.size());
+  EXPECT_EQ(l.scan.ranges, s.ranges);  // the same draws as measure()
+  int dropped = 0;
+  for (std::size_t i = 0; i < l.segment.size(); ++i) {
+    if (l.scan.ranges[i] >= c.max_range) {
+      EXPECT_EQ(l.segment[i], LabelledScan::kNoSegment);
+      ++dropped;
+      continue;
+    }
+    ASSERT_GE(l.segment[i], 0);
+    // The labelled segment is the one the beam's end point lies on (within the noise).
+    const Eigen::Vector2d p(3.0 + l.scan.ranges[i] * std::cos(l.scan.bearings[i]),
+                            0.2 + l.scan.ranges[i] * std::sin(l.scan.bearings[i]));
+    EXPECT_LT(distance_to_segment(world_.segments[static_cast<std::size_t>(l.segment[i])], p), 0.03);
+  }
+  EXPECT_GT(dropped, 20);  // ~36 of 181
+}
+
 }  // namespace
 }  // namespace locbench::sim

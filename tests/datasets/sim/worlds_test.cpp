@@ -118,5 +118,44 @@ TEST(BuildWorld, MakesTheWorldAScenarioNames) {
   EXPECT_EQ(build_world(w).segments.size(), 1u);
 }
 
+TEST(RandomRoom, IsDeterministicClosedAndHasFourSegmentsPerBox) {
+  Rng a(7), b(7);
+  const LineMap r1 = random_room(a), r2 = random_room(b);
+  ASSERT_EQ(r1.segments.size(), r2.segments.size());
+  EXPECT_EQ(r1.segments.size() % 4, 0u);
+  EXPECT_GE(r1.segments.size(), 8u);  // walls + at least one box in a ≥ 6 m room
+  for (std::size_t i = 0; i < r1.segments.size(); ++i) {
+    EXPECT_EQ(r1.segments[i].p1, r2.segments[i].p1);
+    EXPECT_GT(r1.segments[i].length(), 0.4);
+  }
+}
+
+TEST(RandomRoom, FreeSpaceExcludesBoxesWallsAndTheOutside) {
+  const LineMap room = room_world();
+  EXPECT_TRUE(in_free_space(room, {2.0, 1.0}, 0.3));   // the thesis pose
+  EXPECT_TRUE(in_free_space(room, {2.0, 5.0}, 0.3));   // left of box B: ray crosses B twice
+  EXPECT_FALSE(in_free_space(room, {5.0, 5.0}, 0.3));  // inside B
+  EXPECT_FALSE(in_free_space(room, {6.0, 0.5}, 0.1));  // inside A (against the bottom wall)
+  EXPECT_FALSE(in_free_space(room, {0.5, 6.0}, 0.1));  // inside C (against the left wall)
+  EXPECT_FALSE(in_free_space(room, {9.0, 1.0}, 0.1));  // outside the room
+  EXPECT_FALSE(in_free_space(room, {2.0, 0.2}, 0.3));  // too close to the bottom wall
+}
+
+TEST(TiledRooms, RepeatTheRoomAndKeepTheFirstRoomsView) {
+  const LineMap m = tiled_rooms(100);
+  EXPECT_EQ(m.segments.size(), 1400u);
+  const LineMap room = room_world();
+  const Eigen::Vector2d o(2.0, 1.0);
+  for (double a = 0.0; a < 6.28; a += 0.1) {
+    const auto h1 = room.ray_cast(o, a, 8.0);
+    const auto h2 = m.ray_cast(o, a, 8.0);
+    ASSERT_EQ(h1.has_value(), h2.has_value());
+    if (h1) {
+      EXPECT_NEAR(h1->range, h2->range, 1e-12);
+    }
+  }
+  EXPECT_THROW(tiled_rooms(0), UsageError);
+}
+
 }  // namespace
 }  // namespace locbench::sim
