@@ -1,0 +1,131 @@
+#include "algorithms/pose_correction/ekf_tracker.h"
+
+#include <Eigen/LU>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <cmath>
+
+#include "algorithms/core/angle.h"
+#include "algorithms/core/errors.h"
+#include "algorithms/core/json_options.h"
+
+namespace locbench::pose_correction {
+namespace {
+
+double chi_square_quantile(int dof, double p) {
+  return boost::math::quantile(boost::math::chi_squared(static_cast<double>(dof)), p);
+}
+
+}  // namespace
+
+void validate(const EkfTrackerOptions& o) {
+  if (!(o.wheel_noise.k_right >= 0.0) || !(o.wheel_noise.k_left >= 0.0) ||
+      !std::isfinite(o.wheel_noise.k_right) || !std::isfinite(o.wheel_noise.k_left)) {
+    throw UsageError("EkfTrackerOptions.wheel_noise: k_right and k_left must be >= 0 m");
+  }
+  if (!(o.initial_covariance.array() >= 0.0).all() || !o.initial_covariance.allFinite()) {
+    throw UsageError("EkfTrackerOptions.initial_covariance: must be >= 0");
+  }
+  if (!(o.gate_probability >= 0.0 && o.gate_probability < 1.0)) {
+    throw UsageError("EkfTrackerOptions.gate_probability: must be in [0, 1)");
+  }
+  validate(o.correction);
+}
+
+void to_json(nlohmann::json& j, const EkfTrackerOptions& o) {
+  j = {{"wheel_noise_k_right", o.wheel_noise.k_right},
+       {"wheel_noise_k_left", o.wheel_noise.k_left},
+       {"initial_covariance", vector3_json(o.initial_covariance)},
+       {"gate_probability", o.gate_probability},
+       {"correction", o.correction}};
+}
+
+void from_json(const nlohmann::json& j, EkfTrackerOptions& o) {
+  StrictJsonReader r(j, "EkfTrackerOptions");
+  r.read("wheel_noise_k_right", o.wheel_noise.k_right);
+  r.read("wheel_noise_k_left", o.wheel_noise.k_left);
+  r.read("initial_covariance", o.initial_covariance);
+  r.read("gate_probability", o.gate_probability);
+  r.read_object("correction", o.correction);
+  r.finish();
+  validate(o);
+}
+
+EkfTracker::EkfTracker(const EkfTrackerOptions& options, double wheelbase, const Pose2& start)
+    : options_(options),
+      wheelbase_(wheelbase),
+      x_(to_vector(start)),
+      p_(options.initial_covariance.asDiagonal()) {
+  validate(options_);
+  if (!(wheelbase > 0.0) || !std::isfinite(wheelbase)) {
+    throw UsageError("EkfTracker: wheelbase must be > 0");
+  }
+  if (!x_.allFinite()) throw UsageError("EkfTracker: the start pose is not finite");
+}
+
+void EkfTracker::predict(const WheelDisplacement& u) {
+  // X̂(k/k−1) = F(X̂(k−1)) (6.39); P(k/k−1) = ∇F P ∇Fᵀ + F_Δ Σ_Δ F_Δᵀ (6.40, slides).
+  const Pose2 p = to_pose(x_);
+  p_ = symmetrize(propagate_covariance(p_, p, u, wheelbase_, options_.wheel_noise));
+  x_ = to_vector(odometry_step(p, u, wheelbase_));
+}
+
+TrackerUpdate EkfTracker::update(const PoseCorrection& correction) {
+  TrackerUpdate out;
+  out.correction = correction;
+  if (correction.position_fixed) {
+    // Eq. 6.41: H = I, ν = Z − X̂ = (Δx, Δy, Δθ).
+    Vector3 nu = correction.delta;
+    nu(2) = wrap_angle(nu(2));
+    const Matrix3 r = symmetrize(correction.covariance);
+    const Matrix3 s = p_ + r;
+    const Matrix3 s_inv = s.inverse();
+    out.innovation = nu;
+    out.nis = nu.dot(s_inv * nu);
+    out.dof = 3;
+    if (options_.gate_probability > 0.0 &&
+        out.nis > chi_square_quantile(3, options_.gate_probability)) {
+      out.gated_out = true;
+      return out;
+    }
+    const Matrix3 k = p_ * s_inv;
+    x_ += k * nu;
+    x_(2) = wrap_angle(x_(2));
+    // Joseph form (I − K)P(I − K)ᵀ + K R Kᵀ, algebraically the thesis's (I − KH)P.
+    const Matrix3 i_k = Matrix3::Identity() - k;
+    p_ = symmetrize(i_k * p_ * i_k.transpose() + k * r * k.transpose());
+    out.kind = TrackerUpdateKind::kFull;
+  } else if (correction.heading_fixed) {
+    // Eq. 6.42: H = [0 0 1], ν = Δθ.
+    const double nu = wrap_angle(correction.delta(2));
+    const double r = correction.covariance(2, 2);
+    const double s = p_(2, 2) + r;
+    out.innovation = {0.0, 0.0, nu};
+    out.nis = nu * nu / s;
+    out.dof = 1;
+    if (options_.gate_probability > 0.0 &&
+        out.nis > chi_square_quantile(1, options_.gate_probability)) {
+      out.gated_out = true;
+      return out;
+    }
+    const Vector3 k = p_.col(2) / s;
+    x_ += k * nu;
+    x_(2) = wrap_angle(x_(2));
+    const Eigen::RowVector3d h_p = p_.row(2);
+    p_ = symmetrize(p_ - k * h_p);
+    out.kind = TrackerUpdateKind::kHeading;
+  }
+  return out;
+}
+
+TrackerUpdate EkfTracker::correct(std::span<const laser::SegmentMatch> matches,
+                                  const LineMap& map, const Pose2& sensor_mount) {
+  return update(correct_pose(matches, map, pose(), sensor_mount, options_.correction));
+}
+
+TrackerUpdate EkfTracker::correct(const Scan& scan, const LineMap& map,
+                                  const laser::SegmentMatcher& matcher) {
+  const laser::MatchResult m = matcher.match(scan, map, pose());
+  return correct(m.matches, map, scan.sensor_pose);
+}
+
+}  // namespace locbench::pose_correction

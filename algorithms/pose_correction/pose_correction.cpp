@@ -1,0 +1,73 @@
+#include "algorithms/pose_correction/pose_correction.h"
+
+#include <cmath>
+#include <limits>
+
+#include "algorithms/core/angle.h"
+#include "algorithms/core/errors.h"
+#include "algorithms/core/json_options.h"
+
+namespace locbench::pose_correction {
+
+void validate(const PoseCorrectionOptions& o) {
+  validate(o.orientation);
+  validate(o.position);
+  if (o.iterations < 1) throw UsageError("PoseCorrectionOptions.iterations: must be >= 1");
+}
+
+void to_json(nlohmann::json& j, const PoseCorrectionOptions& o) {
+  j = {{"orientation", o.orientation}, {"position", o.position}, {"iterations", o.iterations}};
+}
+
+void from_json(const nlohmann::json& j, PoseCorrectionOptions& o) {
+  StrictJsonReader r(j, "PoseCorrectionOptions");
+  r.read_object("orientation", o.orientation);
+  r.read_object("position", o.position);
+  r.read("iterations", o.iterations);
+  r.finish();
+  validate(o);
+}
+
+PoseCorrection correct_pose(std::span<const laser::SegmentMatch> matches, const LineMap& map,
+                            const Pose2& estimate, const Pose2& sensor_mount,
+                            const PoseCorrectionOptions& options) {
+  validate(options);
+  if (!std::isfinite(estimate.x) || !std::isfinite(estimate.y) ||
+      !std::isfinite(estimate.theta)) {
+    throw UsageError("correct_pose: the estimate is not finite");
+  }
+  PoseCorrection out;
+  out.corrected = estimate;
+  Pose2 pose = estimate;
+  for (int pass = 0; pass < options.iterations; ++pass) {
+    out.orientation = correct_orientation(matches, map, pose, sensor_mount, options.orientation);
+    out.segments_used = out.orientation.segments.size();
+    if (!out.orientation.fixed) break;
+    out.heading_fixed = true;
+    // Eq. 6.21: re-project with the corrected heading, then the position LS.
+    pose = Pose2{pose.x, pose.y, pose.theta + out.orientation.delta};
+    out.position = correct_position(matches, map, pose, sensor_mount, options.position);
+    out.position_fixed = out.position.fixed;
+    if (out.position.fixed) pose = Pose2{pose.x + out.position.delta.x(),
+                                          pose.y + out.position.delta.y(), pose.theta};
+  }
+  out.corrected = pose;
+  out.delta = {pose.x - estimate.x, pose.y - estimate.y, angle_diff(pose.theta, estimate.theta)};
+
+  const double inf = std::numeric_limits<double>::infinity();
+  out.covariance.setZero();
+  out.covariance(2, 2) = out.heading_fixed ? out.orientation.variance : inf;
+  if (out.position_fixed) {
+    const Eigen::Vector2d g = out.position.heading_sensitivity;
+    const double v = out.orientation.variance;
+    out.covariance.topLeftCorner<2, 2>() = out.position.covariance + v * g * g.transpose();
+    out.covariance.block<2, 1>(0, 2) = v * g;
+    out.covariance.block<1, 2>(2, 0) = v * g.transpose();
+  } else {
+    out.covariance(0, 0) = inf;
+    out.covariance(1, 1) = inf;
+  }
+  return out;
+}
+
+}  // namespace locbench::pose_correction

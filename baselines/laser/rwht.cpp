@@ -1,0 +1,340 @@
+#include "baselines/laser/rwht.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <utility>
+#include <string>
+
+#include "algorithms/core/angle.h"
+#include "baselines/laser/extraction_steps.h"
+
+namespace locbench::laser {
+namespace {
+
+using detail::IndexRange;
+constexpr double kMaxCells = 2e7;  // 240 MB of accumulator: a bin size error, not a setting
+
+// The scan's beam spacing: the median bearing step between consecutive points (robust to
+// missing beams).
+double beam_spacing(std::span<const ScanPoint> points) {
+  std::vector<double> steps;
+  steps.reserve(points.size());
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const double d = std::abs(points[i].bearing - points[i - 1].bearing);
+    if (d > 0.0) steps.push_back(d);
+  }
+  if (steps.empty()) return 1.0;
+  const auto mid = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+  std::nth_element(steps.begin(), mid, steps.end());
+  return *mid;
+}
+
+struct Accumulator {
+  std::size_t n_alpha = 0, n_r = 0;
+  double d_alpha = 0.0, d_r = 0.0;
+  std::vector<double> cos_a, sin_a;
+  std::vector<double> votes;
+  std::vector<std::uint32_t> voters;
+
+  Accumulator(double angle_bin, double range_bin, double r_max) : d_r(range_bin) {
+    n_alpha = static_cast<std::size_t>(std::ceil(2.0 * kPi / angle_bin - 1e-9));
+    d_alpha = 2.0 * kPi / static_cast<double>(n_alpha);
+    n_r = static_cast<std::size_t>(std::floor(r_max / range_bin)) + 1;
+    cos_a.resize(n_alpha);
+    sin_a.resize(n_alpha);
+    for (std::size_t k = 0; k < n_alpha; ++k) {
+      cos_a[k] = std::cos(alpha(k));
+      sin_a[k] = std::sin(alpha(k));
+    }
+    votes.assign(n_alpha * n_r, 0.0);
+    voters.assign(n_alpha * n_r, 0);
+  }
+  double alpha(std::size_t k) const { return -kPi + (static_cast<double>(k) + 0.5) * d_alpha; }
+  double r(std::size_t j) const { return (static_cast<double>(j) + 0.5) * d_r; }
+  std::size_t cell(std::size_t k, std::size_t j) const { return k * n_r + j; }
+
+  void vote(const Eigen::Vector2d& p, double weight) {
+    for (std::size_t k = 0; k < n_alpha; ++k) {
+      const double rr = p.x() * cos_a[k] + p.y() * sin_a[k];
+      if (rr < 0.0) continue;
+      const auto j = static_cast<std::size_t>(rr / d_r);
+      if (j >= n_r) continue;
+      votes[cell(k, j)] += weight;
+      ++voters[cell(k, j)];
+    }
+  }
+
+  // Whether (k, j) beats every other cell within `radius` bins (α wraps; ties go to the lower
+  // cell index so a plateau yields one peak).
+  bool is_peak(std::size_t k, std::size_t j, int radius) const {
+    const double v = votes[cell(k, j)];
+    const auto na = static_cast<long>(n_alpha);
+    for (int dk = -radius; dk <= radius; ++dk) {
+      const auto kk = static_cast<std::size_t>(((static_cast<long>(k) + dk) % na + na) % na);
+      for (int dj = -radius; dj <= radius; ++dj) {
+        const long jl = static_cast<long>(j) + dj;
+        if (jl < 0 || jl >= static_cast<long>(n_r)) continue;
+        const auto jj = static_cast<std::size_t>(jl);
+        if (kk == k && jj == j) continue;
+        const double u = votes[cell(kk, jj)];
+        if (u > v || (u == v && cell(kk, jj) < cell(k, j))) return false;
+      }
+    }
+    return true;
+  }
+};
+
+struct Candidate {
+  double votes;
+  std::size_t k, j;
+};
+
+}  // namespace
+
+void validate(const RwhtOptions& o) {
+  const std::string who = "RwhtOptions";
+  detail::validate(o.breakpoints, who);
+  detail::validate(o.acceptance, who);
+  detail::require(o.angle_bin > 0.0 && o.angle_bin <= kPi, who + ": angle_bin must be in (0, pi] rad");
+  detail::require(o.range_bin > 0.0 && std::isfinite(o.range_bin),
+                  who + ": range_bin must be > 0 m");
+  detail::require(o.min_peak_votes >= 0.0 && std::isfinite(o.min_peak_votes),
+                  who + ": min_peak_votes must be >= 0 m");
+  detail::require(o.nms_radius >= 1, who + ": nms_radius must be >= 1 bin");
+  detail::require(o.inlier_distance > 0.0 && std::isfinite(o.inlier_distance),
+                  who + ": inlier_distance must be > 0 m");
+  detail::require(o.max_gap_points >= 0, who + ": max_gap_points must be >= 0");
+}
+
+RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame,
+                          const RwhtOptions& options) {
+  validate(options);
+  RwhtExtraction out;
+  std::size_t& work = out.extraction.work;
+  const std::size_t n = points.size();
+  if (n < options.acceptance.min_points || n < 2) return out;
+  const std::vector<Eigen::Vector2d> s = detail::sensor_points(points);
+  const std::vector<IndexRange> runs = detail::breakpoint_runs(points, options.breakpoints);
+  const std::vector<std::size_t> run_of = detail::run_index(runs, n);
+  work += n;
+
+  // 1. vote
+  double r_max = 0.0;
+  for (const ScanPoint& p : points) r_max = std::max(r_max, p.range);
+  const double n_cells = std::ceil(2.0 * kPi / options.angle_bin) *
+                         (std::floor(r_max / options.range_bin) + 1.0);
+  detail::require(n_cells <= kMaxCells, "RwhtOptions: angle_bin and range_bin give " +
+                                            std::to_string(n_cells) + " cells (max " +
+                                            std::to_string(kMaxCells) + ")");
+  Accumulator acc(options.angle_bin, options.range_bin, r_max);
+  out.cells = acc.n_alpha * acc.n_r;
+  const double dphi = beam_spacing(points);
+  for (std::size_t i = 0; i < n; ++i) acc.vote(s[i], points[i].range * dphi);
+  work += n * acc.n_alpha;
+
+  // 2. peaks with non-maximum suppression, strongest first
+  std::vector<Candidate> candidates;
+  for (std::size_t k = 0; k < acc.n_alpha; ++k) {
+    for (std::size_t j = 0; j < acc.n_r; ++j) {
+      const std::size_t c = acc.cell(k, j);
+      if (acc.votes[c] <= 0.0) continue;
+      // thresholds on the cell with its two range neighbours: a short line whose votes
+      // straddle a range-bin boundary still counts all of them
+      double votes = 0.0;
+      std::size_t voters = 0;
+      for (std::size_t jj = j > 0 ? j - 1 : 0; jj <= j + 1 && jj < acc.n_r; ++jj) {
+        votes += acc.votes[acc.cell(k, jj)];
+        voters += acc.voters[acc.cell(k, jj)];
+      }
+      if (votes < options.min_peak_votes || voters < options.acceptance.min_points) continue;
+      if (acc.is_peak(k, j, options.nms_radius)) candidates.push_back({acc.votes[c], k, j});
+    }
+  }
+  work += out.cells;
+  std::sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
+    return a.votes != b.votes ? a.votes > b.votes : acc.cell(a.k, a.j) < acc.cell(b.k, b.j);
+  });
+
+  // 3. points of each peak: band, refit, inliers, contiguous pieces. A point belongs to one
+  // line; a later line may take the end point of an earlier one's stretch when it lies nearer
+  // to it (the stronger line would otherwise keep the first beam past a corner).
+  constexpr std::size_t kFree = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> owner(n, kFree);
+  std::vector<LineParams> line_of;  // sensor-frame fit of every line, when it was accepted
+  std::vector<std::size_t> peak_of;
+  std::vector<std::size_t> members, previous, all;
+  std::vector<Eigen::Vector2d> scratch;
+  const double half_sin = std::sin(0.5 * acc.d_alpha);
+  const auto gap = static_cast<std::size_t>(options.max_gap_points);
+  // Whether point i ends its line's stretch of the scan (only such points can change lines).
+  const auto at_end = [&](std::size_t i) {
+    return i == 0 || i + 1 == n || owner[i - 1] != owner[i] || owner[i + 1] != owner[i];
+  };
+  const auto fit_members = [&]() {
+    scratch.clear();
+    for (const std::size_t i : members) scratch.push_back(s[i]);
+    return fit_line(scratch).line;
+  };
+  for (const Candidate& c : candidates) {
+    const RwhtPeak peak{{acc.r(c.j), acc.alpha(c.k)}, c.votes};
+    members.clear();
+    const detail::LineNormal cell(peak.cell);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double band =
+          0.5 * acc.d_r + points[i].range * half_sin + 3.0 * options.breakpoints.range_sigma;
+      if (cell.distance(s[i]) <= band) {
+        members.push_back(i);
+      }
+    }
+    work += n;
+    if (members.size() < options.acceptance.min_points) continue;
+    // The band also catches stray points of other walls crossing it: start from its largest
+    // contiguous stretch and trim it until all its points are within inlier_distance.
+    {
+      const std::vector<IndexRange> pieces = detail::contiguous_pieces(members, run_of, gap);
+      const IndexRange largest = *std::max_element(
+          pieces.begin(), pieces.end(),
+          [](const IndexRange& a, const IndexRange& b) { return a.size() < b.size(); });
+      members.erase(members.begin() + static_cast<std::ptrdiff_t>(largest.end), members.end());
+      members.erase(members.begin(), members.begin() + static_cast<std::ptrdiff_t>(largest.begin));
+    }
+    while (members.size() >= options.acceptance.min_points) {
+      // Of the first, the last and the farthest point, drop the one whose removal leaves the
+      // smallest largest residual: a stray point at an end of the stretch has the leverage to
+      // pull the fit onto itself and need not be the farthest.
+      const auto worst_residual = [&](std::size_t skip, std::size_t& at) {
+        scratch.clear();
+        for (std::size_t m = 0; m < members.size(); ++m) {
+          if (m != skip) scratch.push_back(s[members[m]]);
+        }
+        const detail::LineNormal l(fit_line(scratch).line);
+        double worst = -1.0;
+        for (std::size_t m = 0; m < members.size(); ++m) {
+          const double d = m == skip ? -1.0 : l.distance(s[members[m]]);
+          if (d > worst) worst = d, at = m;
+        }
+        work += 2 * members.size();
+        return worst;
+      };
+      std::size_t farthest = 0, ignored = 0;
+      if (worst_residual(members.size(), farthest) <= options.inlier_distance) break;
+      std::size_t drop = farthest;
+      double best = worst_residual(farthest, ignored);
+      for (const std::size_t end_point : {std::size_t{0}, members.size() - 1}) {
+        const double r = worst_residual(end_point, ignored);
+        if (r < best) best = r, drop = end_point;
+      }
+      members.erase(members.begin() + static_cast<std::ptrdiff_t>(drop));
+    }
+    if (members.size() < options.acceptance.min_points) continue;
+    for (int round = 0; round < 3; ++round) {
+      const detail::LineNormal fitted(fit_members());
+      previous.swap(members);
+      members.clear();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (fitted.distance(s[i]) <= options.inlier_distance) members.push_back(i);
+      }
+      work += n;
+      if (members == previous || members.size() < options.acceptance.min_points) break;
+    }
+    if (members.size() < options.acceptance.min_points) continue;
+    // A second peak of a line already found (its butterfly spreads over neighbouring cells).
+    const LineParams line = fit_members();
+    if (std::any_of(line_of.begin(), line_of.end(), [&](const LineParams& l) {
+          return std::abs(angle_diff(l.beta, line.beta)) < acc.d_alpha &&
+                 std::abs(l.rho - line.rho) < acc.d_r;
+        })) {
+      continue;
+    }
+    // A held end point moves when it is nearer to this line than to its holder's, both lines
+    // fitted without it (a point must not pull the line it is judged against towards itself).
+    LineParams own = line;
+    previous.clear();
+    for (const std::size_t i : members) {
+      if (owner[i] == kFree) previous.push_back(i);
+    }
+    if (previous.size() >= 2 && previous.size() < members.size()) {
+      scratch.clear();
+      for (const std::size_t i : previous) scratch.push_back(s[i]);
+      own = fit_line(scratch).line;
+    }
+    std::erase_if(members, [&](std::size_t i) {
+      if (owner[i] == kFree) return false;
+      if (!at_end(i)) return true;
+      scratch.clear();  // the holder's line without i, for the same reason
+      for (std::size_t j = 0; j < n; ++j) {
+        if (owner[j] == owner[i] && j != i) scratch.push_back(s[j]);
+      }
+      work += n;
+      const LineParams holder = scratch.size() >= 2 ? fit_line(scratch).line : line_of[owner[i]];
+      return !(detail::LineNormal(own).distance(s[i]) <
+               detail::LineNormal(holder).distance(s[i]));
+    });
+    all = members;
+    bool produced = false;
+    for (const IndexRange& piece : detail::contiguous_pieces(all, run_of, gap)) {
+      const auto idx = std::span<const std::size_t>(all).subspan(piece.begin, piece.size());
+      const std::optional<LineFit> fit =
+          detail::accepted_fit(idx, s, options.acceptance, scratch);
+      if (!fit) continue;
+      for (const std::size_t i : idx) owner[i] = line_of.size();
+      line_of.push_back(fit->line);
+      peak_of.push_back(out.peaks.size());
+      produced = true;
+    }
+    if (produced) out.peaks.push_back(peak);
+  }
+
+  // The lines as their points finally stand: a line that lost points is cut and checked again,
+  // and points left without a line join the line of a neighbour in the scan within
+  // inlier_distance (the last step of the agglomerative extractor too).
+  std::vector<std::vector<std::size_t>> held(line_of.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] != kFree) held[owner[i]].push_back(i);
+  }
+  std::fill(owner.begin(), owner.end(), kFree);
+  for (std::size_t l = 0; l < held.size(); ++l) {
+    for (const IndexRange& piece : detail::contiguous_pieces(held[l], run_of, gap)) {
+      const auto idx = std::span<const std::size_t>(held[l]).subspan(piece.begin, piece.size());
+      if (!detail::accepted_fit(idx, s, options.acceptance, scratch)) continue;
+      for (const std::size_t i : idx) owner[i] = l;
+    }
+  }
+  const std::vector<std::size_t> settled = owner;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (settled[i] != kFree) continue;
+    double best = options.inlier_distance;
+    for (const std::size_t j : {i - 1, i + 1}) {  // i − 1 wraps to a huge index at i = 0
+      if (j >= n || settled[j] == kFree || run_of[j] != run_of[i]) continue;
+      ++work;
+      const double d = detail::LineNormal(line_of[settled[j]]).distance(s[i]);
+      if (d <= best) best = d, owner[i] = settled[j];
+    }
+  }
+  for (auto& h : held) h.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] != kFree) held[owner[i]].push_back(i);
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> order;  // (first beam, line)
+  std::vector<ExtractedLine> lines;
+  std::vector<std::size_t> line_peak;
+  for (std::size_t l = 0; l < held.size(); ++l) {
+    for (const IndexRange& piece : detail::contiguous_pieces(held[l], run_of, gap)) {
+      const auto idx = std::span<const std::size_t>(held[l]).subspan(piece.begin, piece.size());
+      if (detail::append_if_accepted(points, idx, s, frame, options.acceptance, scratch, lines)) {
+        line_peak.push_back(peak_of[l]);
+        order.emplace_back(lines.back().points.front().beam, lines.size() - 1);
+      }
+    }
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [beam, l] : order) {
+    out.extraction.lines.push_back(std::move(lines[l]));
+    out.line_peak.push_back(line_peak[l]);
+  }
+  return out;
+}
+
+}  // namespace locbench::laser
