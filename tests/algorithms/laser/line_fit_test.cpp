@@ -59,5 +59,21 @@ TEST(ScanPoints, SkipsInvalidBeamsAndAppliesMountThenPose) {
   EXPECT_NEAR(pts[0].world.y(), 3.1, 1e-12);
 }
 
+TEST(ScanPoints, EvenlySpacedBearingsGiveTheSamePointsAsDirectTrigonometry) {
+  // The fast path rotates cos/sin from beam to beam; it must agree with std::cos/std::sin.
+  Scan s;
+  s.bearings = even_bearings(1441, -std::numbers::pi / 2, std::numbers::pi / 2);
+  s.ranges.assign(s.bearings.size(), 7.5);
+  s.max_range = 8.0;
+  s.sensor_pose = Pose2{0.2, -0.1, 0.3};
+  const Pose2 robot{3.0, 4.0, 2.0};
+  const auto pts = scan_points(s, robot);
+  ASSERT_EQ(pts.size(), 1441u);
+  for (const ScanPoint& p : pts) {
+    const Eigen::Vector2d want = robot * (s.sensor_pose * s.point(p.beam));
+    EXPECT_NEAR((p.world - want).norm(), 0.0, 1e-12) << p.beam;
+  }
+}
+
 }  // namespace
 }  // namespace locbench::laser
