@@ -25,9 +25,13 @@ build: setup
 	  -DLOCBENCH_BUILD_TESTS=OFF >/dev/null
 	@cmake --build $(RELEASE) -j$(JOBS) --target locbench
 
-# Default suite on embedded defaults → JSON reports under $(OUT)/ and a summary table.
+# Default suite on embedded defaults → JSON reports under $(OUT)/, a summary table, and the page
+# a person reads, $(OUT)/report.html (tables and gnuplot charts, self-contained). Monte-Carlo
+# runs use every core (THREADS, default all; results are the same for any number).
+THREADS ?= $(shell nproc)
 run: build
-	$(RELEASE)/cli/locbench run --out $(OUT)
+	$(RELEASE)/cli/locbench run --out $(OUT) --threads $(THREADS)
+	$(RELEASE)/cli/locbench report $(OUT) -o $(OUT)/report.html
 
 # Debug + AddressSanitizer + UndefinedBehaviorSanitizer, warnings as errors, every test via CTest,
 # then the default suite gated against the committed baseline.

@@ -7,12 +7,15 @@
 #include "algorithms/core/errors.h"
 #include "algorithms/core/rng.h"
 #include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/parallel_tasks.h"
+#include "benchmarks/experiments/shard.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "datasets/log/data_root.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
+#include "reports/shard_report.h"
 #include "reports/summary_table.h"
 
 namespace locbench::cli {
@@ -26,6 +29,8 @@ struct RunArgs {
   std::string config;
   std::vector<std::string> sets;
   std::string data;
+  int threads = experiments::hardware_threads();
+  std::string shard;  // "K/N", empty: the whole experiment
 };
 
 // `--set a.b.c=VALUE` → {"a": {"b": {"c": VALUE}}}; VALUE is read as JSON, else as a string.
@@ -75,6 +80,10 @@ std::vector<const experiments::Experiment*> select(const std::vector<std::string
   return chosen;
 }
 
+std::string args_shard_label(const experiments::Shard& s) {
+  return fmt::format("shard {}/{}", s.index, s.count);
+}
+
 nlohmann::json load_overrides(const std::string& path) {
   if (path.empty()) return nlohmann::json::object();
   std::ifstream in(path);
@@ -88,6 +97,40 @@ nlohmann::json load_overrides(const std::string& path) {
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(path, 0, std::string("not valid JSON: ") + e.what());
   }
+}
+
+// Shard K/N of one experiment: its tasks' records → <out>/<experiment>.shard-K-of-N.json.
+void run_shard(const experiments::Experiment& e, const nlohmann::json& config,
+               experiments::RunOptions options, const experiments::Shard& shard,
+               const std::string& out, const std::string& command_line) {
+  reports::ShardReport r;
+  r.experiment = e.name();
+  r.description = e.description();
+  r.configuration = config;
+  r.seed = options.seed;
+  r.runs = options.runs;
+  r.index = shard.index;
+  r.count = shard.count;
+  r.tasks = e.task_count(config, options);
+  const std::vector<int> tasks = experiments::shard_tasks(shard, r.tasks);
+  {
+    ProgressBar bar(e.name() + " " + args_shard_label(shard));
+    options.progress = [&bar](double f) { bar.update(f); };
+    const std::vector<nlohmann::json> records =
+        tasks.empty() ? std::vector<nlohmann::json>{} : e.run_tasks(config, options, tasks);
+    for (std::size_t i = 0; i < tasks.size(); ++i) r.records.push_back({tasks[i], records[i]});
+  }
+  r.provenance = reports::current_provenance(command_line);
+  r.provenance.threads = options.threads;
+  if (const auto errors = reports::validate_shard_json(reports::to_json(r)); !errors.empty()) {
+    throw std::logic_error(e.name() + " produced a shard that violates the schema: " +
+                           errors.front());
+  }
+  const auto path = std::filesystem::path(out) /
+                    fmt::format("{}.shard-{}-of-{}.json", e.name(), shard.index, shard.count);
+  reports::write_shard_report(r, path);
+  std::cerr << "wrote " << path.string() << " (" << tasks.size() << " of " << r.tasks
+            << " tasks)\n";
 }
 
 int run(const RunArgs& args, const std::string& command_line) {
@@ -108,6 +151,9 @@ int run(const RunArgs& args, const std::string& command_line) {
   options.seed = args.seed;
   if (args.runs > 0) options.runs = args.runs;
   options.data_root = args.data.empty() ? data_root() : std::filesystem::path(args.data);
+  options.threads = args.threads;
+  std::optional<experiments::Shard> shard;
+  if (!args.shard.empty()) shard = experiments::parse_shard(args.shard);
 
   std::vector<reports::Report> written;
   int exit_code = kExitOk;
@@ -120,6 +166,10 @@ int run(const RunArgs& args, const std::string& command_line) {
     for (const std::string& set : args.sets) {
       const nlohmann::json o = parse_set(set);
       if (config.contains(o.begin().key())) config = experiments::merge_config(config, o);
+    }
+    if (shard) {
+      run_shard(*e, config, options, *shard, args.out, command_line);
+      continue;
     }
     reports::Report report;
     {
@@ -134,6 +184,7 @@ int run(const RunArgs& args, const std::string& command_line) {
       }
     }
     report.provenance = reports::current_provenance(command_line);
+    report.provenance.threads = options.threads;
     const nlohmann::json j = reports::to_json(report);
     if (const auto errors = reports::validate_report_json(j); !errors.empty()) {
       throw std::logic_error(e->name() + " produced a report that violates the schema: " +
@@ -144,7 +195,7 @@ int run(const RunArgs& args, const std::string& command_line) {
     std::cerr << "wrote " << path.string() << '\n';
     written.push_back(std::move(report));
   }
-  std::cout << reports::summary_table(written);
+  if (!shard) std::cout << reports::summary_table(written);
   return exit_code;
 }
 
@@ -167,6 +218,15 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--set", args->sets,
                   "Override one option, KEY.PATH=VALUE (JSON value), e.g. "
                   "filters.sage_husa_aekf.forgetting=0.95; repeatable");
+  cmd->add_option("--threads", args->threads,
+                  "Worker threads for Monte-Carlo runs (default: all cores); results are the same "
+                  "for any number")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--shard", args->shard,
+                  "Run only shard K of N (tasks i with i mod N = K-1) and write "
+                  "<out>/<experiment>.shard-K-of-N.json for `locbench merge`")
+      ->type_name("K/N");
   cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
   return [args, command_line] { return run(*args, command_line); };
 }

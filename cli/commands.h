@@ -18,5 +18,8 @@ Action add_simulate_command(CLI::App& app);
 Action add_run_command(CLI::App& app, const std::string& command_line);
 Action add_gate_command(CLI::App& app);
 Action add_calibrate_command(CLI::App& app, const std::string& command_line);
+Action add_merge_command(CLI::App& app, const std::string& command_line);
+Action add_report_command(CLI::App& app);
+Action add_match_command(CLI::App& app, const std::string& command_line);
 
 }  // namespace locbench::cli

@@ -23,6 +23,9 @@ int main(int argc, char** argv) {
   add(add_run_command(app, command_line));
   add(add_calibrate_command(app, command_line));
   add(add_gate_command(app));
+  add(add_merge_command(app, command_line));
+  add(add_report_command(app));
+  add(add_match_command(app, command_line));
 
   try {
     app.parse(argc, argv);

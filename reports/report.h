@@ -23,6 +23,8 @@ struct Provenance {
   std::string host;
   std::string utc_time;       // ISO 8601, e.g. 2026-11-21T23:59:00Z
   std::string command_line;
+  std::optional<int> threads;  // worker threads of the Monte-Carlo runs (results never depend on it)
+  std::optional<int> shards;   // set when the report was merged from this many shard reports
 };
 
 struct DatasetRef {
@@ -68,6 +70,27 @@ struct PublishedComparison {
   std::string note;    // where and why the figures differ
 };
 
+// A series to plot: named (x, y) points, e.g. the truth's trajectory or a filter's error.
+struct PlotSeries {
+  std::string name;  // legend, e.g. "truth", "fixed_q_ekf"
+  std::vector<double> x;
+  std::vector<double> y;  // same length as x
+};
+// A chart a reader wants beside the numbers (drawn by `locbench report`). Kinds:
+// "trajectory" (x, y in the plane, equal axes), "error_vs_distance" (error against distance
+// travelled), "histogram" (series y values are samples; x is unused and empty).
+struct Plot {
+  std::string name;  // stable id within the experiment, e.g. "trajectories_run_0"
+  std::string kind;
+  std::string title;
+  std::string x_label;
+  std::string x_unit;
+  std::string y_label;
+  std::string y_unit;
+  std::vector<PlotSeries> series;
+  std::string note;  // what the chart shows, e.g. "run 0 of 20"
+};
+
 // A case that could not be run (missing dataset, bad input…), recorded instead of aborting.
 struct CaseNote {
   std::string name;
@@ -86,6 +109,7 @@ struct ExperimentResults {
   std::vector<PublishedComparison> published;
   std::vector<CaseNote> cases;
   std::vector<std::string> notes;  // findings in plain words (what agrees, what does not, why)
+  std::vector<Plot> plots;         // optional series for charts (trajectories, error vs distance)
 };
 
 struct Report {

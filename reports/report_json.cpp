@@ -38,18 +38,50 @@ T get(const json& j, const char* key, const std::string& source, const std::stri
   }
 }
 
+json plot_to_json(const Plot& p) {
+  json series = json::array();
+  for (const PlotSeries& s : p.series) {
+    series.push_back({{"name", s.name}, {"x", s.x}, {"y", s.y}});
+  }
+  return {{"name", p.name},
+          {"kind", p.kind},
+          {"title", p.title},
+          {"x", {{"label", p.x_label}, {"unit", p.x_unit}}},
+          {"y", {{"label", p.y_label}, {"unit", p.y_unit}}},
+          {"series", series},
+          {"note", p.note}};
+}
+
+Plot plot_from_json(const json& j, const std::string& source) {
+  Plot p;
+  p.name = get<std::string>(j, "name", source, "plot");
+  p.kind = get<std::string>(j, "kind", source, "plot");
+  p.title = get<std::string>(j, "title", source, "plot");
+  const json x = get<json>(j, "x", source, "plot");
+  const json y = get<json>(j, "y", source, "plot");
+  p.x_label = get<std::string>(x, "label", source, "plot x");
+  p.x_unit = get<std::string>(x, "unit", source, "plot x");
+  p.y_label = get<std::string>(y, "label", source, "plot y");
+  p.y_unit = get<std::string>(y, "unit", source, "plot y");
+  if (j.contains("note")) p.note = get<std::string>(j, "note", source, "plot");
+  for (const json& s : get<json>(j, "series", source, "plot")) {
+    PlotSeries ps;
+    ps.name = get<std::string>(s, "name", source, "plot series");
+    ps.x = get<std::vector<double>>(s, "x", source, "plot series");
+    ps.y = get<std::vector<double>>(s, "y", source, "plot series");
+    if (p.kind != "histogram" && ps.x.size() != ps.y.size()) {
+      throw InputError(source, 0, "plot " + p.name + ", series " + ps.name +
+                                      ": x and y differ in length");
+    }
+    p.series.push_back(std::move(ps));
+  }
+  return p;
+}
+
 }  // namespace
 
-json to_json(const Report& r) {
-  const Provenance& p = r.provenance;
-  const ExperimentResults& b = r.body;
+json results_to_json(const ExperimentResults& b) {
   json j;
-  j["schema"] = kReportSchema;
-  j["context"] = {{"tool", "locbench"},          {"tool_version", p.tool_version},
-                  {"git_revision", p.git_revision}, {"compiler", p.compiler},
-                  {"compiler_flags", p.compiler_flags}, {"build_type", p.build_type},
-                  {"host", p.host},              {"utc_time", p.utc_time},
-                  {"command_line", p.command_line}};
   j["experiment"] = {{"name", b.experiment}, {"description", b.description}};
   j["seeds"] = b.seeds;
   j["datasets"] = json::array();
@@ -76,19 +108,29 @@ json to_json(const Report& r) {
     j["cases"].push_back({{"name", c.name}, {"status", c.status}, {"reason", c.reason}});
   }
   j["notes"] = b.notes;
+  if (!b.plots.empty()) {
+    j["plots"] = json::array();
+    for (const Plot& p : b.plots) j["plots"].push_back(plot_to_json(p));
+  }
   return j;
 }
 
-Report report_from_json(const json& j, const std::string& source) {
-  if (!j.is_object()) throw InputError(source, 0, "expected a JSON object (a locbench report)");
-  const auto schema = get<std::string>(j, "schema", source, "report");
-  if (schema != kReportSchema) {
-    throw InputError(source, 0, "expected schema \"" + std::string(kReportSchema) +
-                                    "\", found \"" + schema + "\"");
-  }
-  Report r;
-  const json& c = j.contains("context") ? j.at("context") : json::object();
-  Provenance& p = r.provenance;
+json to_json(const Report& r) {
+  const Provenance& p = r.provenance;
+  json j = results_to_json(r.body);
+  j["schema"] = kReportSchema;
+  j["context"] = {{"tool", "locbench"},          {"tool_version", p.tool_version},
+                  {"git_revision", p.git_revision}, {"compiler", p.compiler},
+                  {"compiler_flags", p.compiler_flags}, {"build_type", p.build_type},
+                  {"host", p.host},              {"utc_time", p.utc_time},
+                  {"command_line", p.command_line}};
+  if (p.threads) j["context"]["threads"] = *p.threads;
+  if (p.shards) j["context"]["shards"] = *p.shards;
+  return j;
+}
+
+Provenance provenance_from_json(const json& c, const std::string& source) {
+  Provenance p;
   p.tool_version = get<std::string>(c, "tool_version", source, "context");
   p.git_revision = get<std::string>(c, "git_revision", source, "context");
   p.compiler = get<std::string>(c, "compiler", source, "context");
@@ -97,7 +139,20 @@ Report report_from_json(const json& j, const std::string& source) {
   p.host = get<std::string>(c, "host", source, "context");
   p.utc_time = get<std::string>(c, "utc_time", source, "context");
   p.command_line = get<std::string>(c, "command_line", source, "context");
-  ExperimentResults& b = r.body;
+  if (c.contains("threads")) p.threads = get<int>(c, "threads", source, "context");
+  if (c.contains("shards")) p.shards = get<int>(c, "shards", source, "context");
+  return p;
+}
+
+json provenance_to_json(const Provenance& p) {
+  Report r;
+  r.provenance = p;
+  return to_json(r).at("context");
+}
+
+ExperimentResults results_from_json(const json& j, const std::string& source) {
+  if (!j.is_object()) throw InputError(source, 0, "expected a JSON object (experiment results)");
+  ExperimentResults b;
   const json& e = j.contains("experiment") ? j.at("experiment") : json::object();
   b.experiment = get<std::string>(e, "name", source, "experiment");
   b.description = get<std::string>(e, "description", source, "experiment");
@@ -159,6 +214,25 @@ Report report_from_json(const json& j, const std::string& source) {
                        get<std::string>(cn, "reason", source, "case")});
   }
   if (j.contains("notes")) b.notes = get<std::vector<std::string>>(j, "notes", source, "report");
+  if (j.contains("plots")) {
+    for (const json& p : get<json>(j, "plots", source, "report")) {
+      b.plots.push_back(plot_from_json(p, source));
+    }
+  }
+  return b;
+}
+
+Report report_from_json(const json& j, const std::string& source) {
+  if (!j.is_object()) throw InputError(source, 0, "expected a JSON object (a locbench report)");
+  const auto schema = get<std::string>(j, "schema", source, "report");
+  if (schema != kReportSchema) {
+    throw InputError(source, 0, "expected schema \"" + std::string(kReportSchema) +
+                                    "\", found \"" + schema + "\"");
+  }
+  Report r;
+  r.provenance =
+      provenance_from_json(j.contains("context") ? j.at("context") : json::object(), source);
+  r.body = results_from_json(j, source);
   return r;
 }
 

@@ -6,13 +6,13 @@
 #include <valijson/validator.hpp>
 
 #include "report_schema.h"  // generated
+#include "shard_schema.h"   // generated
 
 namespace locbench::reports {
 
-const char* report_schema_text() { return kReportSchemaJson; }
+namespace {
 
-std::vector<std::string> validate_report_json(const nlohmann::json& document) {
-  static const nlohmann::json schema_doc = nlohmann::json::parse(kReportSchemaJson);
+std::vector<std::string> validate(const nlohmann::json& schema_doc, const nlohmann::json& document) {
   valijson::Schema schema;
   valijson::SchemaParser parser;
   valijson::adapters::NlohmannJsonAdapter schema_adapter(schema_doc);
@@ -31,6 +31,21 @@ std::vector<std::string> validate_report_json(const nlohmann::json& document) {
     }
   }
   return errors;
+}
+
+}  // namespace
+
+const char* report_schema_text() { return kReportSchemaJson; }
+const char* shard_schema_text() { return kShardSchemaJson; }
+
+std::vector<std::string> validate_report_json(const nlohmann::json& document) {
+  static const nlohmann::json schema_doc = nlohmann::json::parse(kReportSchemaJson);
+  return validate(schema_doc, document);
+}
+
+std::vector<std::string> validate_shard_json(const nlohmann::json& document) {
+  static const nlohmann::json schema_doc = nlohmann::json::parse(kShardSchemaJson);
+  return validate(schema_doc, document);
 }
 
 }  // namespace locbench::reports

@@ -10,5 +10,8 @@ namespace locbench::reports {
 const char* report_schema_text();
 // Every violation as "path: description"; empty when the document is a valid report.
 std::vector<std::string> validate_report_json(const nlohmann::json& document);
+// The same for shard reports against reports/shard.schema.json.
+const char* shard_schema_text();
+std::vector<std::string> validate_shard_json(const nlohmann::json& document);
 
 }  // namespace locbench::reports

@@ -13,6 +13,7 @@
 #include "baselines/calibration/umbmark_classic.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/experiments_list.h"
+#include "benchmarks/experiments/monte_carlo.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
@@ -22,7 +23,17 @@
 namespace locbench::experiments {
 namespace {
 
-class CalibrationIdentifiability final : public Experiment {
+struct IdentifiabilityCase {
+  std::string name;
+  UmbmarkErrorParams truth;
+};
+struct IdentifiabilitySetup {
+  sim::Scenario base;  // slip off
+  std::vector<IdentifiabilityCase> cases;
+  nlohmann::json configuration;
+};
+
+class CalibrationIdentifiability final : public MonteCarloExperiment<IdentifiabilitySetup> {
  public:
   std::string name() const override { return "calibration/identifiability"; }
   std::string description() const override {
@@ -42,45 +53,69 @@ class CalibrationIdentifiability final : public Experiment {
               {{"name", "all"}, {"E_d", 1.005}, {"E_b", 1.02}, {"E_o", 0.99}}}}};
   }
 
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const override {
+  IdentifiabilitySetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+    IdentifiabilitySetup u;
+    u.base = sim::scenario_from_json(config.at("scenario"), "<configuration>");
+    u.base.slip.turn.rate = u.base.slip.straight.rate = 0.0;
+    u.configuration = config;
+    u.configuration["runs"] = plan.runs;
+    u.configuration["scenario"] = sim::to_json(u.base);
+    for (const auto& cs : config.at("cases")) {
+      u.cases.push_back({cs.at("name").get<std::string>(),
+                         {cs.at("E_d").get<double>(), cs.at("E_b").get<double>(),
+                          cs.at("E_o").get<double>()}});
+    }
+    return u;
+  }
+
+  // Task t is run t % runs of case t / runs.
+  int tasks(const IdentifiabilitySetup& u, const McPlan& plan) const override {
+    return static_cast<int>(u.cases.size()) * plan.runs;
+  }
+
+  static std::uint64_t seed_of(const McPlan& plan, int task) {
+    // Case c (0-based) uses seeds derive_seed(seed, (c + 1)·1000 + k), as before tasks existed.
+    const auto c = static_cast<std::uint64_t>(task / plan.runs);
+    const auto k = static_cast<std::uint64_t>(task % plan.runs);
+    return Rng::derive_seed(plan.seed, (c + 1) * 1000 + k);
+  }
+
+  nlohmann::json run_task(const IdentifiabilitySetup& u, const McPlan& plan,
+                          int task) const override {
+    const IdentifiabilityCase& cs = u.cases[static_cast<std::size_t>(task / plan.runs)];
+    sim::Scenario s = u.base;
+    s.robot.actual = true_geometry(u.base.robot.nominal, cs.truth);
+    const sim::SimulationResult r = sim::simulate(s, seed_of(plan, task));
+    const UmbmarkInput in = sim::umbmark_input(s, r.umbmark_runs, 1.0);  // no tape
+    const ClassicUmbmarkResult cl = classic_umbmark(in);
+    const ImprovedUmbmarkResult im = improved_umbmark(in);
+    return {{"estimates", {{cl.E_d, cl.E_b, cl.E_s}, {im.E_d, im.E_b, im.E_o}}},
+            {"run_sigma", cl.centroids.run_sigma}};
+  }
+
+  reports::ExperimentResults summarise(const IdentifiabilitySetup& u, const McPlan& plan,
+                                       const std::vector<nlohmann::json>& records) const override {
     reports::ExperimentResults out;
     out.experiment = name();
     out.description = description();
-    const int runs = monte_carlo_runs(*this, config, options);
-    sim::Scenario base = sim::scenario_from_json(config.at("scenario"), "<configuration>");
-    base.slip.turn.rate = base.slip.straight.rate = 0.0;
-    out.configuration = config;
-    out.configuration["runs"] = runs;
-    out.configuration["scenario"] = sim::to_json(base);
-    out.datasets.push_back({"sim/" + base.name, "simulated",
+    out.configuration = u.configuration;
+    out.datasets.push_back({"sim/" + u.base.name, "simulated",
                             reports::text_checksum(out.configuration["scenario"].dump()), 0, 0.0});
-
     UmbmarkIdentifiabilityOptions idopt;
-    idopt.runs_per_direction = base.motion.runs;
-    const auto& cases = config.at("cases");
-    std::size_t c = 0;
-    for (const auto& cs : cases) {
-      options.report_progress(static_cast<double>(c++) / static_cast<double>(cases.size()));
-      const std::string case_name = cs.at("name").get<std::string>();
-      const UmbmarkErrorParams truth{cs.at("E_d").get<double>(), cs.at("E_b").get<double>(),
-                                     cs.at("E_o").get<double>()};
-      sim::Scenario s = base;
-      s.robot.actual = true_geometry(base.robot.nominal, truth);
+    idopt.runs_per_direction = u.base.motion.runs;
+    for (std::size_t c = 0; c < u.cases.size(); ++c) {
+      const IdentifiabilityCase& cs = u.cases[c];
+      sim::Scenario s = u.base;
+      s.robot.actual = true_geometry(u.base.robot.nominal, cs.truth);
       std::vector<double> est[2][3];
       std::vector<double> sigma;
-      for (int k = 0; k < runs; ++k) {
-        const std::uint64_t seed =
-            Rng::derive_seed(options.seed, c * 1000 + static_cast<std::uint64_t>(k));
-        out.seeds.push_back(seed);
-        const sim::SimulationResult r = sim::simulate(s, seed);
-        const UmbmarkInput in = sim::umbmark_input(s, r.umbmark_runs, 1.0);  // no tape
-        const ClassicUmbmarkResult cl = classic_umbmark(in);
-        const ImprovedUmbmarkResult im = improved_umbmark(in);
-        sigma.push_back(cl.centroids.run_sigma);
-        const double e[2][3] = {{cl.E_d, cl.E_b, cl.E_s}, {im.E_d, im.E_b, im.E_o}};
+      for (int k = 0; k < plan.runs; ++k) {
+        const int task = static_cast<int>(c) * plan.runs + k;
+        out.seeds.push_back(seed_of(plan, task));
+        const nlohmann::json& r = records[static_cast<std::size_t>(task)];
+        sigma.push_back(r.at("run_sigma").get<double>());
         for (int m = 0; m < 2; ++m) {
-          for (int p = 0; p < 3; ++p) est[m][p].push_back(e[m][p]);
+          for (int p = 0; p < 3; ++p) est[m][p].push_back(r.at("estimates").at(m).at(p).get<double>());
         }
       }
       idopt.run_sigma = mean(sigma);
@@ -92,14 +127,14 @@ class CalibrationIdentifiability final : public Experiment {
                                  s.motion.side, {}, idopt)};
       const char* methods[2] = {"umbmark_classic", "umbmark_improved"};
       const char* params[3] = {"E_d", "E_b", "E_o"};
-      const double true_values[3] = {truth.E_d, truth.E_b, truth.E_o};
+      const double true_values[3] = {cs.truth.E_d, cs.truth.E_b, cs.truth.E_o};
       for (int m = 0; m < 2; ++m) {
         for (int p = 0; p < 3; ++p) {
           if (m == 0 && p == 2) continue;  // classic takes E_s as an input (here 1: no tape)
           std::vector<double> err;
           for (double v : est[m][p]) err.push_back(v - true_values[p]);
           reports::MetricResult r =
-              reports::make_metric(methods[m], case_name, std::string(params[p]) + "_error", "",
+              reports::make_metric(methods[m], cs.name, std::string(params[p]) + "_error", "",
                                    "monte_carlo_runs", err);
           r.better = "closer_to_zero";
           for (const ParameterFinding& pf : f[m].report.parameters) {
@@ -111,7 +146,6 @@ class CalibrationIdentifiability final : public Experiment {
         }
       }
     }
-    options.report_progress(1.0);
     out.notes.push_back(
         "Read the E_o_0.99 and E_o_1.01 cases: the improved method's E_o estimate does not follow "
         "the true E_o (its error is ≈ −(E_o − 1)), because the square's return errors see E_b and "

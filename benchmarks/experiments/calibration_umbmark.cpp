@@ -7,6 +7,7 @@
 // pose errors, what the square can identify, and Table 2.1 beside our figures.
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 
 #include "algorithms/calibration/umbmark_design_model.h"
@@ -18,6 +19,7 @@
 #include "baselines/calibration/umbmark_classic.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/experiments_list.h"
+#include "benchmarks/experiments/monte_carlo.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
@@ -64,7 +66,30 @@ struct Samples {
   std::vector<double> run_sigma;
 };
 
-class CalibrationUmbmark final : public Experiment {
+struct UmbmarkSetup {
+  sim::Scenario scenario;  // with the effects switched as configured
+  ClassicUmbmarkOptions classic;
+  ImprovedUmbmarkOptions improved;
+  std::vector<Eigen::Vector2d> validation;
+  nlohmann::json configuration;
+};
+
+// One Monte-Carlo experiment: per method (uncalibrated, classic, improved) E_max,syst after
+// re-running the square, validation-path errors and E_d, E_b, E_o errors against the truth.
+struct UmbmarkRecord {
+  std::array<double, kMethods> e_max_after{};
+  std::array<double, kMethods> validation_position{};
+  std::array<double, kMethods> validation_heading{};
+  std::array<std::array<double, 3>, kMethods> parameter_error{};
+  double run_sigma = 0.0;
+  std::size_t records = 0;
+  double duration = 0.0;
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(UmbmarkRecord, e_max_after, validation_position,
+                                   validation_heading, parameter_error, run_sigma, records,
+                                   duration)
+
+class CalibrationUmbmark final : public MonteCarloExperiment<UmbmarkSetup> {
  public:
   explicit CalibrationUmbmark(std::string preset) : preset_(std::move(preset)) {}
 
@@ -91,13 +116,10 @@ class CalibrationUmbmark final : public Experiment {
                                     {-0.2 * L, 0.3 * L}, {0.0, 0.0}})}};
   }
 
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    const int runs = monte_carlo_runs(*this, config, options);
-    sim::Scenario scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
+  UmbmarkSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+    UmbmarkSetup u;
+    sim::Scenario& scenario = u.scenario;
+    scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
     if (scenario.motion.kind != sim::MotionKind::kUmbmark) {
       throw UsageError(name() + ": the scenario's motion must be the UMBmark square");
     }
@@ -114,64 +136,81 @@ class CalibrationUmbmark final : public Experiment {
       scenario.robot.nominal.diameter_left *= e_s;
       scenario.robot.nominal.diameter_right *= e_s;
     }
-    ClassicUmbmarkOptions classic_opt;
-    ImprovedUmbmarkOptions improved_opt;
-    classic_opt.angles = improved_opt.angles =
+    u.classic.angles = u.improved.angles =
         angle_formula(config.at("angle_formula").get<std::string>());
-    std::vector<Eigen::Vector2d> validation;
     for (const auto& w : config.at("validation_waypoints")) {
-      validation.emplace_back(w.at(0).get<double>(), w.at(1).get<double>());
+      u.validation.emplace_back(w.at(0).get<double>(), w.at(1).get<double>());
     }
-    out.configuration = config;
-    out.configuration["runs"] = runs;
-    out.configuration["scenario"] = sim::to_json(scenario);
+    u.configuration = config;
+    u.configuration["runs"] = plan.runs;
+    u.configuration["scenario"] = sim::to_json(scenario);
+    return u;
+  }
 
+  nlohmann::json run_task(const UmbmarkSetup& u, const McPlan& plan, int k) const override {
+    const sim::Scenario& scenario = u.scenario;
+    const std::uint64_t seed = plan.run_seed(k);
+    const sim::SimulationResult before = sim::simulate(scenario, seed);
+    const UmbmarkErrorParams truth = error_params(scenario.robot.nominal, scenario.robot.actual);
+    const UmbmarkInput input = sim::umbmark_input(scenario, before.umbmark_runs, 1.0);
+    const ClassicUmbmarkResult classic = classic_umbmark(input, u.classic);
+    const ImprovedUmbmarkResult improved = improved_umbmark(input, u.improved);
+    UmbmarkRecord r;
+    r.run_sigma = classic.centroids.run_sigma;
+    r.records = before.log.record_count();
+    r.duration = before.duration;
+    const WheelGeometry corrected[kMethods] = {scenario.robot.nominal, classic.corrected,
+                                               improved.corrected};
+    const double estimates[kMethods][3] = {{1.0, 1.0, 1.0},
+                                           {classic.E_d, classic.E_b, classic.E_s},
+                                           {improved.E_d, improved.E_b, improved.E_o}};
+    for (int m = 0; m < kMethods; ++m) {
+      sim::Scenario again = scenario;
+      again.robot.nominal = corrected[m];
+      const sim::SimulationResult after = sim::simulate(again, Rng::derive_seed(seed, 1));
+      r.e_max_after[m] = sim::summarize_umbmark(after.umbmark_runs).e_max_syst;
+      sim::Scenario check = again;
+      check.motion.kind = sim::MotionKind::kWaypoints;
+      check.motion.waypoints = u.validation;
+      const auto [pos, head] =
+          final_dead_reckoning_error(sim::simulate(check, Rng::derive_seed(seed, 2)));
+      r.validation_position[m] = pos;
+      r.validation_heading[m] = head;
+      r.parameter_error[m] = {estimates[m][0] - truth.E_d, estimates[m][1] - truth.E_b,
+                              estimates[m][2] - truth.E_o};
+    }
+    return r;
+  }
+
+  reports::ExperimentResults summarise(const UmbmarkSetup& u, const McPlan& plan,
+                                       const std::vector<nlohmann::json>& records) const override {
+    reports::ExperimentResults out;
+    out.experiment = name();
+    out.description = description();
+    out.configuration = u.configuration;
     Samples s;
     std::vector<std::array<double, 3>> table_rows;  // E_max,syst before / classic / improved
-    sim::SimulationResult first;
-    for (int k = 0; k < runs; ++k) {
-      options.report_progress(static_cast<double>(k) / runs);
-      const std::uint64_t seed = Rng::derive_seed(options.seed, static_cast<std::uint64_t>(k));
-      out.seeds.push_back(seed);
-      const sim::SimulationResult before = sim::simulate(scenario, seed);
-      if (k == 0) first = before;
-      const UmbmarkErrorParams truth = error_params(scenario.robot.nominal, scenario.robot.actual);
-      const UmbmarkInput input = sim::umbmark_input(scenario, before.umbmark_runs, 1.0);
-      const ClassicUmbmarkResult classic = classic_umbmark(input, classic_opt);
-      const ImprovedUmbmarkResult improved = improved_umbmark(input, improved_opt);
-      s.run_sigma.push_back(classic.centroids.run_sigma);
-      const WheelGeometry corrected[kMethods] = {scenario.robot.nominal, classic.corrected,
-                                                 improved.corrected};
-      const double estimates[kMethods][3] = {{1.0, 1.0, 1.0},
-                                             {classic.E_d, classic.E_b, classic.E_s},
-                                             {improved.E_d, improved.E_b, improved.E_o}};
-      std::array<double, 3> row{};
+    for (std::size_t k = 0; k < records.size(); ++k) {
+      out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
+      const auto r = records[k].get<UmbmarkRecord>();
+      s.run_sigma.push_back(r.run_sigma);
       for (int m = 0; m < kMethods; ++m) {
-        sim::Scenario again = scenario;
-        again.robot.nominal = corrected[m];
-        const sim::SimulationResult after = sim::simulate(again, Rng::derive_seed(seed, 1));
-        const double e_max = sim::summarize_umbmark(after.umbmark_runs).e_max_syst;
-        s.e_max_after[m].push_back(e_max);
-        row[m] = e_max;
-        sim::Scenario check = again;
-        check.motion.kind = sim::MotionKind::kWaypoints;
-        check.motion.waypoints = validation;
-        const auto [pos, head] = final_dead_reckoning_error(sim::simulate(check, Rng::derive_seed(seed, 2)));
-        s.validation_position[m].push_back(pos);
-        s.validation_heading[m].push_back(head);
+        s.e_max_after[m].push_back(r.e_max_after[m]);
+        s.validation_position[m].push_back(r.validation_position[m]);
+        s.validation_heading[m].push_back(r.validation_heading[m]);
         if (m > 0) {
-          s.E_d_error[m].push_back(estimates[m][0] - truth.E_d);
-          s.E_b_error[m].push_back(estimates[m][1] - truth.E_b);
-          s.E_o_error[m].push_back(estimates[m][2] - truth.E_o);
+          s.E_d_error[m].push_back(r.parameter_error[m][0]);
+          s.E_b_error[m].push_back(r.parameter_error[m][1]);
+          s.E_o_error[m].push_back(r.parameter_error[m][2]);
         }
       }
-      table_rows.push_back(row);
+      table_rows.push_back(r.e_max_after);
     }
-    options.report_progress(1.0);
+    const auto first = records.front().get<UmbmarkRecord>();
     const std::string dataset = "sim_" + preset_;
-    out.datasets.push_back({"sim/" + scenario.name, "simulated",
+    out.datasets.push_back({"sim/" + u.scenario.name, "simulated",
                             reports::text_checksum(out.configuration["scenario"].dump()),
-                            first.log.record_count(), first.duration});
+                            first.records, first.duration});
     for (int m = 0; m < kMethods; ++m) {
       const std::string method = kMethodNames[m];
       out.results.push_back(reports::make_metric(method, dataset, "e_max_syst", "m",
@@ -181,7 +220,7 @@ class CalibrationUmbmark final : public Experiment {
       out.results.push_back(reports::make_metric(method, dataset, "validation_final_heading_error",
                                                  "rad", "monte_carlo_runs", s.validation_heading[m]));
     }
-    add_parameter_results(out, dataset, scenario, s);
+    add_parameter_results(out, dataset, u.scenario, s);
     add_table_2_1(out, table_rows);
     return out;
   }

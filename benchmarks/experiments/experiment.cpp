@@ -1,6 +1,8 @@
 #include "benchmarks/experiments/experiment.h"
 
 #include "algorithms/core/errors.h"
+#include "reports/report_json.h"
+#include "reports/shard_report.h"
 
 namespace locbench::experiments {
 
@@ -9,6 +11,25 @@ const Experiment* find_experiment(const std::string& name) {
     if (e->name() == name) return e.get();
   }
   return nullptr;
+}
+
+int Experiment::task_count(const nlohmann::json&, const RunOptions&) const { return 1; }
+
+std::vector<nlohmann::json> Experiment::run_tasks(const nlohmann::json& config,
+                                                  const RunOptions& options,
+                                                  const std::vector<int>& tasks) const {
+  std::vector<nlohmann::json> records;
+  for (int t : tasks) {
+    if (t != 0) throw std::logic_error(name() + ": task " + std::to_string(t) + " of 1");
+    records.push_back(reports::canonical_record(reports::results_to_json(run(config, options))));
+  }
+  return records;
+}
+
+reports::ExperimentResults Experiment::summarise_records(
+    const nlohmann::json&, const RunOptions&, const std::vector<nlohmann::json>& records) const {
+  if (records.size() != 1) throw std::logic_error(name() + ": expected the record of its one task");
+  return reports::results_from_json(records.front(), name() + " (shard record)");
 }
 
 int monte_carlo_runs(const Experiment& e, const nlohmann::json& config, const RunOptions& options) {

@@ -19,6 +19,7 @@ struct RunOptions {
   std::optional<int> runs;                  // Monte-Carlo runs; the experiment's default if unset
   std::filesystem::path data_root;          // real datasets (LOCBENCH_DATA)
   std::function<void(double)> progress;     // fraction done in [0, 1]; may be empty
+  int threads = 1;                          // worker threads (results never depend on it)
   void report_progress(double f) const {
     if (progress) progress(f);
   }
@@ -36,6 +37,23 @@ class Experiment {
   virtual nlohmann::json default_config() const = 0;
   virtual reports::ExperimentResults run(const nlohmann::json& config,
                                          const RunOptions& options) const = 0;
+
+  // Tasks for shards and merge (`locbench run --shard K/N`, `locbench merge`). An experiment is
+  // split into tasks 0 … task_count − 1, each returning a JSON record, and a summary of all
+  // records in task order that equals run(). Monte-Carlo experiments derive from
+  // MonteCarloExperiment (monte_carlo.h: one task per run). The defaults here make the whole
+  // experiment one task whose record is its results, so shard 1 runs it and the others hold
+  // nothing.
+  virtual int task_count(const nlohmann::json& config, const RunOptions& options) const;
+  // The records of `tasks` (ascending, each < task_count), in that order, canonical (as read
+  // back from their JSON text: reports::canonical_record).
+  virtual std::vector<nlohmann::json> run_tasks(const nlohmann::json& config,
+                                                const RunOptions& options,
+                                                const std::vector<int>& tasks) const;
+  // The results from every task's record, records[i] being task i's.
+  virtual reports::ExperimentResults summarise_records(
+      const nlohmann::json& config, const RunOptions& options,
+      const std::vector<nlohmann::json>& records) const;
 };
 
 // Monte-Carlo runs: --runs when given, else the configuration's "runs"; UsageError if < 1.

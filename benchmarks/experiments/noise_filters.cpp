@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "algorithms/core/dead_reckoning.h"
 #include "algorithms/filters/compass_ekf.h"
 #include "algorithms/filters/compass_odometry_input.h"
 #include "algorithms/filters/consistency.h"
@@ -58,11 +59,14 @@ FilterRun run_noise_filters(const sim::SimulationResult& result,
     last[3] = f3.step(s.u, s.compass).filter;
     t_last = s.t;
     for (int f = 0; f < kNoiseFilters; ++f) {
+      run.estimates[f].push_back({s.t, last[f].pose()});
       run.nees[f].push_back(pose_nees(*tp, last[f].mean, last[f].covariance));
       if (last[f].updated) run.nis[f].push_back(nis(last[f].innovation, last[f].innovation_variance));
     }
   }
   const Pose2 end = *truth.pose_at(t_last);
+  run.truth = truth;
+  run.odometry = dead_reckon_encoders(result.log.encoders, *model, *start);
   for (int f = 0; f < kNoiseFilters; ++f) {
     const Pose2 e = between(end, last[f].pose());
     run.final_position_error[f] = std::hypot(e.x, e.y);

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "algorithms/core/trajectory.h"
 #include "datasets/sim/simulation_result.h"
 
 namespace locbench::experiments {
@@ -21,6 +22,11 @@ struct FilterRun {
   std::array<double, kNoiseFilters> final_heading_error{};   // [rad]
   std::array<std::vector<double>, kNoiseFilters> nees;       // per step, pose NEES (3 dof)
   std::array<std::vector<double>, kNoiseFilters> nis;        // per compass update (1 dof)
+  // For charts: each filter's estimate at every step, the truth, and dead reckoning with the
+  // nominal model from the same start.
+  std::array<Trajectory, kNoiseFilters> estimates;
+  Trajectory truth;
+  Trajectory odometry;
 };
 
 // Every filter's options as JSON, {"fixed_q_ekf": {…}, "adaptive_model_ekf": {…},

@@ -8,6 +8,7 @@
 // - noise/quantization_sigma: the Gaussian stand-in of the quantization error (eq. 4.27–4.35).
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 
 #include "algorithms/core/errors.h"
@@ -17,7 +18,9 @@
 #include "algorithms/filters/quantization_noise.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/experiments_list.h"
+#include "benchmarks/experiments/monte_carlo.h"
 #include "benchmarks/experiments/noise_filters.h"
+#include "benchmarks/experiments/plot_series.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
@@ -37,14 +40,45 @@ struct FilterSamples {
   std::vector<std::vector<double>> nis[kNoiseFilters];
 };
 
-void collect(const FilterRun& r, FilterSamples& s) {
+// One Monte-Carlo run of the four filters, as a task record (see monte_carlo.h).
+struct FilterRecord {
+  std::array<double, kNoiseFilters> final_error{};
+  std::array<double, kNoiseFilters> heading_error{};
+  std::array<std::vector<double>, kNoiseFilters> nees;
+  std::array<std::vector<double>, kNoiseFilters> nis;
+  std::size_t records = 0;
+  double duration = 0.0;
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FilterRecord, final_error, heading_error, nees, nis, records,
+                                   duration)
+
+FilterRecord record_of(const FilterRun& r, const sim::SimulationResult& sim) {
+  FilterRecord x;
+  x.final_error = r.final_position_error;
+  x.heading_error = r.final_heading_error;
+  x.nees = r.nees;
+  x.nis = r.nis;
+  x.records = sim.log.record_count();
+  x.duration = sim.duration;
+  return x;
+}
+
+void collect(const FilterRecord& r, FilterSamples& s) {
   for (int f = 0; f < kNoiseFilters; ++f) {
-    s.final_error[f].push_back(r.final_position_error[f]);
-    s.heading_error[f].push_back(r.final_heading_error[f]);
+    s.final_error[f].push_back(r.final_error[f]);
+    s.heading_error[f].push_back(r.heading_error[f]);
     s.nees[f].push_back(r.nees[f]);
     s.nis[f].push_back(r.nis[f]);
   }
 }
+
+// Error against distance travelled is sampled every kDistanceStep metres of the true path.
+constexpr double kDistanceStep = 0.25;  // [m]
+
+struct NoiseSetup {
+  sim::Scenario scenario;
+  nlohmann::json configuration;
+};
 
 // Truncates series to a common length so they can be averaged per step.
 std::vector<std::vector<double>> common_length(std::vector<std::vector<double>> v) {
@@ -82,7 +116,38 @@ sim::Scenario corridor_from(const nlohmann::json& config) {
   return sim::scenario_from_json(config.at("scenario"), "<configuration>");
 }
 
-class NoiseTables final : public Experiment {
+// Trajectories of run 0 and the mean error against distance travelled, for the report's charts.
+void add_plots(reports::ExperimentResults& out, const McPlan& plan,
+               const std::vector<nlohmann::json>& records) {
+  reports::Plot traj{"trajectories_run_0", "trajectory",
+                     "Trajectories of run 0: truth, odometry and the four filters", "x", "m", "y",
+                     "m", {}, "Monte-Carlo run 0 (seed " + std::to_string(plan.run_seed(0)) + ")"};
+  for (const auto& j : records.front().at("trajectories")) {
+    traj.series.push_back({j.at("name").get<std::string>(), j.at("x").get<std::vector<double>>(),
+                           j.at("y").get<std::vector<double>>()});
+  }
+  out.plots.push_back(std::move(traj));
+  reports::Plot dist{"error_vs_distance", "error_vs_distance",
+                     "Position error against distance travelled (mean over runs)",
+                     "distance travelled", "m", "position error", "m", {},
+                     fmt::format("mean over {} Monte-Carlo runs, every {:g} m of the true path",
+                                 records.size(), kDistanceStep)};
+  std::vector<std::string> names(kNoiseFilterNames.begin(), kNoiseFilterNames.end());
+  names.push_back("odometry_nominal");
+  for (std::size_t f = 0; f < names.size(); ++f) {
+    std::vector<std::vector<double>> runs;
+    std::size_t longest = 0;
+    for (const auto& r : records) {
+      runs.push_back(r.at("error_at_distance").at(f).get<std::vector<double>>());
+      longest = std::max(longest, runs.back().size());
+    }
+    dist.series.push_back(mean_over_runs(
+        names[f], distance_grid(kDistanceStep * static_cast<double>(longest), kDistanceStep), runs));
+  }
+  out.plots.push_back(std::move(dist));
+}
+
+class NoiseTables final : public MonteCarloExperiment<NoiseSetup> {
  public:
   std::string name() const override { return "noise/tables_4_1_4_2"; }
   std::string description() const override {
@@ -94,33 +159,59 @@ class NoiseTables final : public Experiment {
             {"scenario", sim::to_json(sim::preset("corridor"))},
             {"filters", default_filter_options(kInitialCovariance)}};
   }
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const override {
+  NoiseSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+    NoiseSetup u{corridor_from(config), config};
+    u.configuration["runs"] = plan.runs;
+    return u;
+  }
+
+  nlohmann::json run_task(const NoiseSetup& u, const McPlan& plan, int k) const override {
+    const sim::SimulationResult r = sim::simulate(u.scenario, plan.run_seed(k));
+    const FilterRun run = run_noise_filters(r, u.configuration.at("filters"));
+    nlohmann::json rec = record_of(run, r);
+    // Chart data: each filter's and the odometry's error at every kDistanceStep of travel.
+    const std::vector<double> grid = distance_grid(run.truth.path_length(), kDistanceStep);
+    for (int f = 0; f < kNoiseFilters; ++f) {
+      rec["error_at_distance"].push_back(error_at_distances(run.truth, run.estimates[f], grid));
+    }
+    rec["error_at_distance"].push_back(error_at_distances(run.truth, run.odometry, grid));
+    if (k == 0) {
+      const auto series = [](const reports::PlotSeries& p) {
+        return nlohmann::json{{"name", p.name}, {"x", p.x}, {"y", p.y}};
+      };
+      rec["trajectories"].push_back(series(trajectory_series("truth", run.truth)));
+      rec["trajectories"].push_back(series(trajectory_series("odometry_nominal", run.odometry)));
+      for (int f = 0; f < kNoiseFilters; ++f) {
+        rec["trajectories"].push_back(series(trajectory_series(kNoiseFilterNames[f], run.estimates[f])));
+      }
+    }
+    return rec;
+  }
+
+  reports::ExperimentResults summarise(const NoiseSetup& u, const McPlan& plan,
+                                       const std::vector<nlohmann::json>& records) const override {
     reports::ExperimentResults out;
     out.experiment = name();
     out.description = description();
-    const int runs = monte_carlo_runs(*this, config, options);
-    const sim::Scenario scenario = corridor_from(config);
-    out.configuration = config;
-    out.configuration["runs"] = runs;
+    out.configuration = u.configuration;
+    const sim::Scenario& scenario = u.scenario;
+    const int runs = plan.runs;
     FilterSamples s;
-    std::size_t records = 0;
+    std::size_t records_count = 0;
     double duration = 0.0;
     for (int k = 0; k < runs; ++k) {
-      options.report_progress(static_cast<double>(k) / runs);
-      const std::uint64_t seed = Rng::derive_seed(options.seed, static_cast<std::uint64_t>(k));
-      out.seeds.push_back(seed);
-      const sim::SimulationResult r = sim::simulate(scenario, seed);
-      records = r.log.record_count();
+      out.seeds.push_back(plan.run_seed(k));
+      const auto r = records[static_cast<std::size_t>(k)].get<FilterRecord>();
+      records_count = r.records;
       duration = r.duration;
-      collect(run_noise_filters(r, config.at("filters")), s);
+      collect(r, s);
     }
-    options.report_progress(1.0);
     const std::string dataset = "sim_" + scenario.name;
     out.datasets.push_back({"sim/" + scenario.name, "simulated",
-                            reports::text_checksum(sim::to_json(scenario).dump()), records,
+                            reports::text_checksum(sim::to_json(scenario).dump()), records_count,
                             duration});
     add_filter_results(out, dataset, s);
+    add_plots(out, plan, records);
     // Tables 4.1/4.2: final error [mm], AEKF / fixed Q / adaptive, 10 runs.
     const double published[10][3] = {{64, 100, 91}, {236, 81, 74}, {306, 101, 94}, {106, 57, 45},
                                       {25, 60, 47},  {145, 50, 38}, {256, 90, 83}, {284, 89, 73},
@@ -179,7 +270,13 @@ class NoiseTables final : public Experiment {
   }
 };
 
-class EncoderResolutionSweep final : public Experiment {
+struct SweepSetup {
+  std::vector<double> resolutions;      // [m per tick]
+  std::vector<sim::Scenario> scenarios;  // one per resolution
+  nlohmann::json configuration;
+};
+
+class EncoderResolutionSweep final : public MonteCarloExperiment<SweepSetup> {
  public:
   std::string name() const override { return "noise/encoder_resolution_sweep"; }
   std::string description() const override {
@@ -192,38 +289,54 @@ class EncoderResolutionSweep final : public Experiment {
             {"filters", default_filter_options(kInitialCovariance)},
             {"meters_per_tick", {0.0000152, 0.0001, 0.001, 0.005, 0.01264}}};
   }
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    const int runs = monte_carlo_runs(*this, config, options);
+  SweepSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+    SweepSetup u;
     const sim::Scenario base = corridor_from(config);
-    out.configuration = config;
-    out.configuration["runs"] = runs;
-    const auto resolutions = config.at("meters_per_tick").get<std::vector<double>>();
-    std::size_t done = 0;
-    for (double c : resolutions) {
+    u.configuration = config;
+    u.configuration["runs"] = plan.runs;
+    for (double c : config.at("meters_per_tick").get<std::vector<double>>()) {
       if (!(c > 0.0)) throw UsageError(name() + ": meters_per_tick must be > 0");
       sim::Scenario s = base;
       // Counts per wheel revolution giving c metres per tick on the nominal left wheel.
       s.robot.encoder.gear_ratio = 1.0;
       s.robot.encoder.counts_per_rev = kPi * s.robot.nominal.diameter_left / c;
+      u.resolutions.push_back(c);
+      u.scenarios.push_back(s);
+    }
+    return u;
+  }
+
+  // Task t is run t % runs at resolution t / runs (every resolution sees the same seeds).
+  int tasks(const SweepSetup& u, const McPlan& plan) const override {
+    return static_cast<int>(u.scenarios.size()) * plan.runs;
+  }
+
+  nlohmann::json run_task(const SweepSetup& u, const McPlan& plan, int task) const override {
+    const sim::Scenario& s = u.scenarios[static_cast<std::size_t>(task / plan.runs)];
+    const sim::SimulationResult r = sim::simulate(s, plan.run_seed(task % plan.runs));
+    return record_of(run_noise_filters(r, u.configuration.at("filters")), r);
+  }
+
+  reports::ExperimentResults summarise(const SweepSetup& u, const McPlan& plan,
+                                       const std::vector<nlohmann::json>& records) const override {
+    reports::ExperimentResults out;
+    out.experiment = name();
+    out.description = description();
+    out.configuration = u.configuration;
+    for (std::size_t i = 0; i < u.scenarios.size(); ++i) {
       FilterSamples fs;
-      for (int k = 0; k < runs; ++k) {
-        options.report_progress(static_cast<double>(done++) /
-                                static_cast<double>(runs * resolutions.size()));
-        const std::uint64_t seed = Rng::derive_seed(options.seed, static_cast<std::uint64_t>(k));
-        out.seeds.push_back(seed);
-        collect(run_noise_filters(sim::simulate(s, seed), config.at("filters")), fs);
+      for (int k = 0; k < plan.runs; ++k) {
+        out.seeds.push_back(plan.run_seed(k));
+        collect(records[i * static_cast<std::size_t>(plan.runs) + static_cast<std::size_t>(k)]
+                    .get<FilterRecord>(),
+                fs);
       }
       const std::string key =
-          reports::key_part(fmt::format("sim_corridor_{:.4g}mm_per_tick", c * 1e3));
-      out.datasets.push_back({key, "simulated", reports::text_checksum(sim::to_json(s).dump()),
-                              0, 0.0});
+          reports::key_part(fmt::format("sim_corridor_{:.4g}mm_per_tick", u.resolutions[i] * 1e3));
+      out.datasets.push_back({key, "simulated",
+                              reports::text_checksum(sim::to_json(u.scenarios[i]).dump()), 0, 0.0});
       add_filter_results(out, key, fs);
     }
-    options.report_progress(1.0);
     return out;
   }
 };

@@ -17,6 +17,13 @@ const std::vector<std::unique_ptr<Experiment>>& all_experiments() {
     v.push_back(make_slip_normality_table_3_1());
     v.push_back(make_slip_compass_ekf_table_3_2());
     v.push_back(make_slip_indirect_kf_tables_3_3_3_4());
+    v.push_back(make_slip_ikf_vs_calibration());
+    v.push_back(make_laser_matcher_accuracy());
+    v.push_back(make_laser_table_6_1());
+    v.push_back(make_laser_table_6_2());
+    v.push_back(make_laser_tables_6_3_6_4());
+    v.push_back(make_laser_tracking_table_6_5());
+    v.push_back(make_laser_real_logs());
     v.push_back(make_noise_tables());
     v.push_back(make_noise_resolution_sweep());
     v.push_back(make_noise_quantization_sigma());

@@ -15,6 +15,7 @@
 #include "algorithms/core/statistics.h"
 #include "algorithms/slip/slip_compass_ekf.h"
 #include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/monte_carlo.h"
 #include "benchmarks/experiments/slip_sim.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
@@ -33,7 +34,18 @@ const char* const kDisturbedMethods[4] = {"ekf_no_slip_correction", "ekf_slip_co
                                           "ekf_slip_correction_latched",
                                           "ekf_slip_correction_latched_gyro"};
 
-class SlipCompassEkf final : public Experiment {
+struct CompassSetup {
+  sim::Scenario scenario;
+  sim::Scenario disturbed;  // with the compass disturbance zone
+  SlipEkfOptions ekf_opt;
+  double large = 0.0;       // [m] a "large" slip
+  slip_sim::GyroConfig gyro;
+  int cal_runs = 4;
+  slip_sim::CalibratedModels cal;
+  nlohmann::json configuration;
+};
+
+class SlipCompassEkf final : public MonteCarloExperiment<CompassSetup> {
  public:
   std::string name() const override { return "slip/compass_ekf_table_3_2"; }
   std::string description() const override {
@@ -54,60 +66,101 @@ class SlipCompassEkf final : public Experiment {
              {{"min", {4.0, -0.9}}, {"max", {6.0, 0.9}}, {"bias_deg", 30.0}}}};
   }
 
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    const int runs = monte_carlo_runs(*this, config, options);
-    const int cal_runs = config.at("calibration_runs").get<int>();
-    if (cal_runs < 1) throw UsageError(name() + ": calibration_runs must be ≥ 1");
-    const sim::Scenario scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
-    SlipEkfOptions ekf_opt;
-    from_json(config.at("detector"), ekf_opt.detector);
-    ekf_opt.latch_tolerance = deg(config.at("latch_tolerance_deg").get<double>());
-    const double large = mm(config.at("large_slip_mm").get<double>());
-    slip_sim::GyroConfig gyro;
-    gyro.bias = deg(config.at("gyro").at("bias_deg_per_s").get<double>());
-    gyro.noise_density = deg(config.at("gyro").at("noise_deg_per_sqrt_s").get<double>());
-    sim::Scenario disturbed = scenario;
+  CompassSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+    CompassSetup u;
+    u.cal_runs = config.at("calibration_runs").get<int>();
+    if (u.cal_runs < 1) throw UsageError(name() + ": calibration_runs must be ≥ 1");
+    u.scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
+    from_json(config.at("detector"), u.ekf_opt.detector);
+    u.ekf_opt.latch_tolerance = deg(config.at("latch_tolerance_deg").get<double>());
+    u.large = mm(config.at("large_slip_mm").get<double>());
+    u.gyro.bias = deg(config.at("gyro").at("bias_deg_per_s").get<double>());
+    u.gyro.noise_density = deg(config.at("gyro").at("noise_deg_per_sqrt_s").get<double>());
+    u.disturbed = u.scenario;
     {
       const auto& z = config.at("disturbance_zone");
       sim::DisturbanceZone zone;
       zone.min = {z.at("min").at(0).get<double>(), z.at("min").at(1).get<double>()};
       zone.max = {z.at("max").at(0).get<double>(), z.at("max").at(1).get<double>()};
       zone.bias = deg(z.at("bias_deg").get<double>());
-      disturbed.compass.zones.push_back(zone);
+      u.disturbed.compass.zones.push_back(zone);
     }
-    out.configuration = config;
-    out.configuration["runs"] = runs;
-
+    u.configuration = config;
+    u.configuration["runs"] = plan.runs;
+    u.configuration["scenario"] = sim::to_json(u.scenario);
     // Slip models (μ, σ of θ_E − θ_C and of θ_E − θ_G) from calibration runs.
-    const slip_sim::CalibratedModels cal = slip_sim::calibrate(scenario, options.seed, cal_runs, gyro);
+    u.cal = slip_sim::calibrate(u.scenario, plan.seed, u.cal_runs, u.gyro);
+    return u;
+  }
+
+  nlohmann::json run_task(const CompassSetup& u, const McPlan& plan, int k) const override {
+    const SlipModel& compass_model = u.cal.compass;
+    const SlipModel& gyro_model = *u.cal.gyro;
+    const std::uint64_t seed = plan.run_seed(k);
+    const sim::SimulationResult r = sim::simulate(u.scenario, seed);
+    const slip_sim::RunData d = slip_sim::run_data(r, *r.log.nominal_model(), {}, nullptr);
+    SlipEkfOptions o = u.ekf_opt;
+    o.correct_slip = false;
+    const SlipEkfRun without = run_slip_ekf(d.samples, d.initial_compass, compass_model, {}, o,
+                                            d.wheelbase, d.truth.front());
+    o.correct_slip = true;
+    const SlipEkfRun with = run_slip_ekf(d.samples, d.initial_compass, compass_model, {}, o,
+                                         d.wheelbase, d.truth.front());
+    const slip_sim::DetectionScore sc = slip_sim::score_detections(with, r, u.large);
+    nlohmann::json rec = {{"error_without", slip_sim::final_position_error(without, d)},
+                          {"error_with", slip_sim::final_position_error(with, d)},
+                          {"true_events", sc.true_events},
+                          {"detections", sc.detections},
+                          {"true_positives", sc.true_positives},
+                          {"wrong_wheel", sc.wrong_wheel},
+                          {"large_events", sc.large_events},
+                          {"large_detected", sc.large_detected},
+                          {"records", r.log.record_count()},
+                          {"duration", r.duration}};
+    // The same seed with a compass disturbance zone.
+    const sim::SimulationResult rd = sim::simulate(u.disturbed, seed);
+    Rng g = Rng::stream(seed, slip_sim::kGyroStream);
+    const slip_sim::RunData dd = slip_sim::run_data(rd, *rd.log.nominal_model(), u.gyro, &g);
+    for (int m = 0; m < 4; ++m) {
+      SlipEkfOptions od = u.ekf_opt;
+      od.correct_slip = m > 0;
+      od.latch_disturbance = m >= 2;
+      od.gyro_fallback = m == 3;
+      const SlipEkfRun run = run_slip_ekf(dd.samples, dd.initial_compass, compass_model,
+                                          gyro_model, od, dd.wheelbase, dd.truth.front());
+      rec["error_disturbed"].push_back(slip_sim::final_position_error(run, dd));
+    }
+    return rec;
+  }
+
+  reports::ExperimentResults summarise(const CompassSetup& u, const McPlan& plan,
+                                       const std::vector<nlohmann::json>& records) const override {
+    reports::ExperimentResults out;
+    out.experiment = name();
+    out.description = description();
+    out.configuration = u.configuration;
+    const sim::Scenario& scenario = u.scenario;
+    const SlipEkfOptions& ekf_opt = u.ekf_opt;
+    const double large = u.large;
+    const int cal_runs = u.cal_runs;
+    const slip_sim::CalibratedModels& cal = u.cal;
     const SlipModel& compass_model = cal.compass;
     const SlipModel& gyro_model = *cal.gyro;
-
     std::vector<double> err_without, err_with, precision, recall, recall_large, wrong_wheel;
     std::vector<double> err_dist[4];
     std::size_t total_events = 0, total_tp = 0, total_det = 0, total_large = 0, total_large_tp = 0;
-    sim::SimulationResult first;
-    for (int k = 0; k < runs; ++k) {
-      options.report_progress(static_cast<double>(k) / runs);
-      const std::uint64_t seed = Rng::derive_seed(options.seed, static_cast<std::uint64_t>(k));
-      out.seeds.push_back(seed);
-      const sim::SimulationResult r = sim::simulate(scenario, seed);
-      if (k == 0) first = r;
-      const slip_sim::RunData d = slip_sim::run_data(r, *r.log.nominal_model(), {}, nullptr);
-      SlipEkfOptions o = ekf_opt;
-      o.correct_slip = false;
-      const SlipEkfRun without = run_slip_ekf(d.samples, d.initial_compass, compass_model, {}, o,
-                                              d.wheelbase, d.truth.front());
-      o.correct_slip = true;
-      const SlipEkfRun with = run_slip_ekf(d.samples, d.initial_compass, compass_model, {}, o,
-                                           d.wheelbase, d.truth.front());
-      err_without.push_back(slip_sim::final_position_error(without, d));
-      err_with.push_back(slip_sim::final_position_error(with, d));
-      const slip_sim::DetectionScore sc = slip_sim::score_detections(with, r, large);
+    for (std::size_t k = 0; k < records.size(); ++k) {
+      out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
+      const nlohmann::json& rec = records[k];
+      err_without.push_back(rec.at("error_without").get<double>());
+      err_with.push_back(rec.at("error_with").get<double>());
+      slip_sim::DetectionScore sc;
+      sc.true_events = rec.at("true_events").get<std::size_t>();
+      sc.detections = rec.at("detections").get<std::size_t>();
+      sc.true_positives = rec.at("true_positives").get<std::size_t>();
+      sc.wrong_wheel = rec.at("wrong_wheel").get<std::size_t>();
+      sc.large_events = rec.at("large_events").get<std::size_t>();
+      sc.large_detected = rec.at("large_detected").get<std::size_t>();
       total_events += sc.true_events;
       total_tp += sc.true_positives;
       total_det += sc.detections;
@@ -119,29 +172,17 @@ class SlipCompassEkf final : public Experiment {
         wrong_wheel.push_back(static_cast<double>(sc.wrong_wheel) / static_cast<double>(sc.true_events));
       }
       if (sc.large_events > 0) recall_large.push_back(static_cast<double>(sc.large_detected) / static_cast<double>(sc.large_events));
-
-      // The same seed with a compass disturbance zone.
-      const sim::SimulationResult rd = sim::simulate(disturbed, seed);
-      Rng g = Rng::stream(seed, slip_sim::kGyroStream);
-      const slip_sim::RunData dd = slip_sim::run_data(rd, *rd.log.nominal_model(), gyro, &g);
-      for (int m = 0; m < 4; ++m) {
-        SlipEkfOptions od = ekf_opt;
-        od.correct_slip = m > 0;
-        od.latch_disturbance = m >= 2;
-        od.gyro_fallback = m == 3;
-        const SlipEkfRun run = run_slip_ekf(dd.samples, dd.initial_compass, compass_model,
-                                            gyro_model, od, dd.wheelbase, dd.truth.front());
-        err_dist[m].push_back(slip_sim::final_position_error(run, dd));
-      }
+      for (int m = 0; m < 4; ++m) err_dist[m].push_back(rec.at("error_disturbed").at(m).get<double>());
     }
-    options.report_progress(1.0);
-    out.configuration["scenario"] = sim::to_json(scenario);
+    const nlohmann::json& first = records.front();
+    const auto first_records = first.at("records").get<std::size_t>();
+    const auto first_duration = first.at("duration").get<double>();
     out.datasets.push_back({"sim/" + scenario.name, "simulated",
                             reports::text_checksum(out.configuration["scenario"].dump()),
-                            first.log.record_count(), first.duration});
+                            first_records, first_duration});
     out.datasets.push_back({"sim/" + scenario.name + "_disturbed", "simulated",
-                            reports::text_checksum(sim::to_json(disturbed).dump()),
-                            first.log.record_count(), first.duration});
+                            reports::text_checksum(sim::to_json(u.disturbed).dump()),
+                            first_records, first_duration});
     const std::string ds = "sim_" + scenario.name;
     out.results.push_back(reports::make_metric("ekf_no_slip_correction", ds, "final_position_error",
                                                "m", "monte_carlo_runs", err_without));

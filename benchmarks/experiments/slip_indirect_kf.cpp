@@ -8,6 +8,7 @@
 // What the runs can determine is taken from the stacked measurement Jacobian of the IKF.
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 
 #include "algorithms/core/errors.h"
@@ -16,6 +17,7 @@
 #include "algorithms/slip/indirect_kalman_filter.h"
 #include "algorithms/slip/slip_compass_ekf.h"
 #include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/monte_carlo.h"
 #include "benchmarks/experiments/slip_sim.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
@@ -54,7 +56,17 @@ std::string describe(const IdentifiabilityReport& r) {
   return s;
 }
 
-class SlipIndirectKf final : public Experiment {
+struct IkfSetup {
+  sim::Scenario scenario;
+  SlipEkfOptions ekf_opt;
+  IndirectKfOptions ikf_opt;
+  bool corrected_travel = false;
+  double end_var = 0.0;  // [m²] variance of the measured end position
+  SlipModel model;       // μ, σ of Δθ' from the calibration runs
+  nlohmann::json configuration;
+};
+
+class SlipIndirectKf final : public MonteCarloExperiment<IkfSetup> {
  public:
   std::string name() const override { return "slip/indirect_kf_tables_3_3_3_4"; }
   std::string description() const override {
@@ -77,25 +89,65 @@ class SlipIndirectKf final : public Experiment {
             {"slip_corrected_travel", false}};
   }
 
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const override {
+  IkfSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+    IkfSetup u;
+    const int cal_runs = config.at("calibration_runs").get<int>();
+    if (cal_runs < 1) throw UsageError(name() + ": calibration_runs must be ≥ 1");
+    u.scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
+    from_json(config.at("detector"), u.ekf_opt.detector);
+    from_json(config.at("ikf"), u.ikf_opt);
+    u.corrected_travel = config.at("slip_corrected_travel").get<bool>();
+    u.end_var = std::pow(mm(config.at("end_position_sigma_mm").get<double>()), 2);
+    u.configuration = config;
+    u.configuration["runs"] = plan.runs;
+    u.configuration["scenario"] = sim::to_json(u.scenario);
+    u.model = slip_sim::calibrate(u.scenario, plan.seed, cal_runs, {}).compass;
+    return u;
+  }
+
+  // Run k: the IKF's estimates [variant][S_R, S_L, δB] from the slip-corrected EKF's log.
+  nlohmann::json run_task(const IkfSetup& u, const McPlan& plan, int k) const override {
+    const NominalModel nominal = u.scenario.robot.params().nominal_model();
+    const double b = nominal.wheelbase;
+    const sim::SimulationResult sim = sim::simulate(u.scenario, plan.run_seed(k));
+    const slip_sim::RunData d = slip_sim::run_data(sim, nominal, {}, nullptr);
+    const SlipEkfRun ekf = run_slip_ekf(d.samples, d.initial_compass, u.model, {}, u.ekf_opt, b,
+                                        d.truth.front());
+    // IKF input: slip-corrected travel (eq. 3.25 note), compass heading where trusted.
+    std::vector<IkfSample> s;
+    Pose2 odo = d.truth.front();
+    for (std::size_t i = 0; i < d.samples.size(); ++i) {
+      const SlipEkfStep& st = ekf.steps[i];
+      IkfSample x{u.corrected_travel ? st.decision.wheels : d.samples[i].u, {}};
+      if (st.source == HeadingSource::kCompass) x.reference_heading = d.samples[i].compass;
+      s.push_back(x);
+      odo = odometry_step(odo, x.u, b);
+    }
+    const Eigen::Vector2d end_err(d.truth.back().x - odo.x, d.truth.back().y - odo.y);
+    // Ours: δB, undetermined on straight runs, is held at 0 (prior variance 0) when the end
+    // position is used; the thesis's variant estimates all three.
+    IndirectKfOptions frozen = u.ikf_opt;
+    frozen.initial_covariance(5) = 0.0;
+    const IkfRunResult r[kVariants] = {
+        run_indirect_kf(s, d.truth.front().theta, u.ikf_opt, b),
+        run_indirect_kf(s, d.truth.front().theta, frozen, b, end_err, u.end_var)};
+    nlohmann::json rec = {{"records", sim.log.record_count()}, {"duration", sim.duration}};
+    for (int v = 0; v < kVariants; ++v) {
+      rec["estimates"].push_back({r[v].s_right, r[v].s_left, r[v].delta_b});
+    }
+    return rec;
+  }
+
+  reports::ExperimentResults summarise(const IkfSetup& u, const McPlan& plan,
+                                       const std::vector<nlohmann::json>& records) const override {
     reports::ExperimentResults out;
     out.experiment = name();
     out.description = description();
-    const int runs = monte_carlo_runs(*this, config, options);
-    const int cal_runs = config.at("calibration_runs").get<int>();
-    if (cal_runs < 1) throw UsageError(name() + ": calibration_runs must be ≥ 1");
-    const sim::Scenario scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
-    SlipEkfOptions ekf_opt;
-    from_json(config.at("detector"), ekf_opt.detector);
-    IndirectKfOptions ikf_opt;
-    from_json(config.at("ikf"), ikf_opt);
-    const bool corrected_travel = config.at("slip_corrected_travel").get<bool>();
-    const double end_var = std::pow(mm(config.at("end_position_sigma_mm").get<double>()), 2);
-    out.configuration = config;
-    out.configuration["runs"] = runs;
-
-    const SlipModel model = slip_sim::calibrate(scenario, options.seed, cal_runs, {}).compass;
+    out.configuration = u.configuration;
+    const sim::Scenario& scenario = u.scenario;
+    const IndirectKfOptions& ikf_opt = u.ikf_opt;
+    const double end_var = u.end_var;
+    const int runs = plan.runs;
     const RobotParams robot = scenario.robot.params();
     const NominalModel nominal = robot.nominal_model();
     const double b = nominal.wheelbase;
@@ -103,45 +155,18 @@ class SlipIndirectKf final : public Experiment {
     const double true_values[3] = {robot.actual.diameter_right / robot.nominal.diameter_right - 1.0,
                                    robot.actual.diameter_left / robot.nominal.diameter_left - 1.0,
                                    robot.actual.wheelbase - robot.nominal.wheelbase};
-
     std::vector<double> est[kVariants][3];
-    std::vector<slip_sim::RunData> logs;
-    std::vector<sim::SimulationResult> sims;
     for (int k = 0; k < runs; ++k) {
-      options.report_progress(0.5 * k / runs);
-      const std::uint64_t seed = Rng::derive_seed(options.seed, static_cast<std::uint64_t>(k));
-      out.seeds.push_back(seed);
-      sims.push_back(sim::simulate(scenario, seed));
-      const slip_sim::RunData d = slip_sim::run_data(sims.back(), nominal, {}, nullptr);
-      const SlipEkfRun ekf = run_slip_ekf(d.samples, d.initial_compass, model, {}, ekf_opt, b,
-                                          d.truth.front());
-      // IKF input: slip-corrected travel (eq. 3.25 note), compass heading where trusted.
-      std::vector<IkfSample> s;
-      Pose2 odo = d.truth.front();
-      for (std::size_t i = 0; i < d.samples.size(); ++i) {
-        const SlipEkfStep& st = ekf.steps[i];
-        IkfSample x{corrected_travel ? st.decision.wheels : d.samples[i].u, {}};
-        if (st.source == HeadingSource::kCompass) x.reference_heading = d.samples[i].compass;
-        s.push_back(x);
-        odo = odometry_step(odo, x.u, b);
-      }
-      const Eigen::Vector2d end_err(d.truth.back().x - odo.x, d.truth.back().y - odo.y);
-      // Ours: δB, undetermined on straight runs, is held at 0 (prior variance 0) when the end
-      // position is used; the thesis's variant estimates all three.
-      IndirectKfOptions frozen = ikf_opt;
-      frozen.initial_covariance(5) = 0.0;
-      const IkfRunResult r[kVariants] = {
-          run_indirect_kf(s, d.truth.front().theta, ikf_opt, b),
-          run_indirect_kf(s, d.truth.front().theta, frozen, b, end_err, end_var)};
+      out.seeds.push_back(plan.run_seed(k));
+      const nlohmann::json& rec = records[static_cast<std::size_t>(k)];
       for (int v = 0; v < kVariants; ++v) {
-        est[v][0].push_back(r[v].s_right);
-        est[v][1].push_back(r[v].s_left);
-        est[v][2].push_back(r[v].delta_b);
+        for (int p = 0; p < 3; ++p) est[v][p].push_back(rec.at("estimates").at(v).at(p).get<double>());
       }
-      logs.push_back(d);
     }
 
-    // Corrected models and the re-run of the second EKF on the same logs (Table 3.4).
+    // Corrected models and the re-run of the second EKF on the same logs (Table 3.4): the
+    // models need every run's estimates, so the runs are simulated again here (same seeds, so
+    // the same logs), in parallel, each writing only its own slot.
     const auto corrected = [&](int v) {
       NominalModel m = nominal;
       m.meters_per_tick_right *= 1.0 + mean(est[v][0]);
@@ -152,18 +177,23 @@ class SlipIndirectKf final : public Experiment {
     const NominalModel models[4] = {nominal, corrected(0), corrected(1), robot.actual_model()};
     const char* model_names[4] = {"ekf_nominal_model", "ekf_ikf_heading_only_model",
                                   "ekf_ikf_heading_end_position_model", "ekf_true_geometry"};
-    std::vector<double> err[4], improvement[4];
-    for (int k = 0; k < runs; ++k) {
-      options.report_progress(0.5 + 0.5 * k / runs);
+    std::vector<std::array<double, 4>> per_run(static_cast<std::size_t>(runs));
+    parallel_tasks(plan.threads, per_run.size(), [&](std::size_t k) {
+      const sim::SimulationResult sim = sim::simulate(scenario, plan.run_seed(static_cast<int>(k)));
       for (int m = 0; m < 4; ++m) {
-        const slip_sim::RunData d = slip_sim::run_data(sims[static_cast<std::size_t>(k)], models[m], {}, nullptr);
-        const SlipEkfRun r = run_slip_ekf(d.samples, d.initial_compass, model, {}, ekf_opt,
+        const slip_sim::RunData d = slip_sim::run_data(sim, models[m], {}, nullptr);
+        const SlipEkfRun r = run_slip_ekf(d.samples, d.initial_compass, u.model, {}, u.ekf_opt,
                                           models[m].wheelbase, d.truth.front());
-        err[m].push_back(slip_sim::final_position_error(r, d));
+        per_run[k][static_cast<std::size_t>(m)] = slip_sim::final_position_error(r, d);
+      }
+    });
+    std::vector<double> err[4], improvement[4];
+    for (const auto& e : per_run) {
+      for (int m = 0; m < 4; ++m) {
+        err[m].push_back(e[static_cast<std::size_t>(m)]);
         improvement[m].push_back(100.0 * (1.0 - err[m].back() / err[0].back()));
       }
     }
-    options.report_progress(1.0);
 
     // What the paths determine (commanded paths, exact null directions).
     const double step = scenario.drive.speed / scenario.encoders.timing.rate;
@@ -181,7 +211,8 @@ class SlipIndirectKf final : public Experiment {
     out.configuration["scenario"] = sim::to_json(scenario);
     out.datasets.push_back({"sim/" + scenario.name, "simulated",
                             reports::text_checksum(out.configuration["scenario"].dump()),
-                            sims.front().log.record_count(), sims.front().duration});
+                            records.front().at("records").get<std::size_t>(),
+                            records.front().at("duration").get<double>()});
     const std::string ds = "sim_" + scenario.name;
     const char* remedy[3] = {
         "a straight run's headings fix only S_R − S_L; the common scale needs a distance "
@@ -242,7 +273,7 @@ class SlipIndirectKf final : public Experiment {
         "filter reached them is not recoverable from the text. Its δB = −0.000036 is in mm "
         "(B' = 197.929964 mm), i.e. no correction.",
         true_values[0] - true_values[1], describe(id_straight[0]),
-        config.at("end_position_sigma_mm").get<double>(), describe(id_straight[1]));
+        u.configuration.at("end_position_sigma_mm").get<double>(), describe(id_straight[1]));
     out.published.push_back(std::move(t33));
 
     reports::PublishedComparison t34;
@@ -291,7 +322,7 @@ class SlipIndirectKf final : public Experiment {
         "returning swing uncorrected: the 'corrected' dead reckoning drifts by metres over 10 m. "
         "Harmless inside the compass EKF (the compass heading is absolute), fatal for the IKF's "
         "odometry heading; set slip_corrected_travel = true to see it.",
-        corrected_travel ? "slip-corrected travel (as the thesis)" : "raw encoder travel (default)"));
+        u.corrected_travel ? "slip-corrected travel (as the thesis)" : "raw encoder travel (default)"));
     out.notes.push_back(
         "The δθ row of F uses the nominal B and the odometry heading; the transition is the 6×6 "
         "of eq. 3.20–3.23 (the printed eq. 3.25 repeats the S_L row). Measurement sign: "

@@ -10,30 +10,17 @@
 #include "datasets/io/carmen_reader.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
+#include "tests/cli/cli_helpers.h"
 #include "tests/test_data.h"
 
 namespace locbench {
 namespace {
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-Outcome run_locbench(const std::string& args) {
-  const std::string cmd = std::string(LOCBENCH_EXE) + " " + args + " 2>&1";
-  Outcome o;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return o;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe)) o.output += buf.data();
-  const int status = pclose(pipe);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
+using testing::Outcome;
+using testing::run_locbench;
 
 TEST(Cli, EveryVerbHasHelp) {
-  for (const char* verb : {"list", "simulate", "run", "gate"}) {
+  for (const char* verb : {"list", "simulate", "run", "gate", "merge", "report"}) {
     const Outcome o = run_locbench(std::string(verb) + " --help");
     EXPECT_EQ(o.exit_code, 0) << verb;
     EXPECT_NE(o.output.find("Usage"), std::string::npos) << o.output;

@@ -97,5 +97,38 @@ TEST(ReportJson, MissingFieldIsNamed) {
   }
 }
 
+TEST(ReportJson, PlotsThreadsAndShardsRoundTripAndValidate) {
+  Report r = testing::sample_report();
+  r.provenance.threads = 3;
+  r.provenance.shards = 4;
+  r.body.plots.push_back({"error_vs_distance", "error_vs_distance", "Error", "distance travelled",
+                          "m", "position error", "m",
+                          {{"odometry_nominal", {0.0, 0.25, 0.5}, {0.0, 0.01, 0.03}}},
+                          "mean over 3 runs"});
+  const nlohmann::json j = to_json(r);
+  const auto errors = validate_report_json(j);
+  EXPECT_TRUE(errors.empty()) << errors.front();
+  EXPECT_EQ(j["context"]["threads"], 3);
+  EXPECT_EQ(j["plots"][0]["x"]["unit"], "m");
+  const Report back = report_from_json(j, "r.json");
+  EXPECT_EQ(back.provenance.shards, 4);
+  ASSERT_EQ(back.body.plots.size(), 1u);
+  EXPECT_EQ(back.body.plots[0].series[0].y, (std::vector<double>{0.0, 0.01, 0.03}));
+  EXPECT_EQ(to_json(back), j);
+}
+
+TEST(ReportJson, SchemaRejectsAPlotOfUnknownKind) {
+  Report r = testing::sample_report();
+  r.body.plots.push_back({"p", "pie", "t", "x", "", "y", "", {}, ""});
+  EXPECT_FALSE(validate_report_json(to_json(r)).empty());
+}
+
+TEST(ReportJson, ResultsRoundTripExactlyWithoutTheContext) {
+  const ExperimentResults b = testing::sample_report().body;
+  const nlohmann::json j = results_to_json(b);
+  EXPECT_FALSE(j.contains("context"));
+  EXPECT_EQ(results_to_json(results_from_json(j, "x")), j);
+}
+
 }  // namespace
 }  // namespace locbench::reports

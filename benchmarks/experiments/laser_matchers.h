@@ -1,0 +1,25 @@
+#pragma once
+// The scan-to-map matchers the laser experiments compare, built from one configuration object
+// {"eap": EapOptions, "split_and_merge": …, "agglomerative": …, "rwht": …} (each matcher's
+// options as JSON; a missing key keeps that matcher's defaults). Internal to the experiments.
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "algorithms/core/line_map.h"
+#include "algorithms/laser/segment_match.h"
+
+namespace locbench::experiments {
+
+// Every matcher's default options, keyed by its name.
+nlohmann::json default_matcher_options();
+
+// The matchers named in `which` (in that order) with options from `options`; "eap_indexed" is
+// the EAP matcher with a grid index built for `map` (required for it). UsageError for an unknown
+// name.
+std::vector<std::unique_ptr<laser::SegmentMatcher>> make_matchers(
+    const std::vector<std::string>& which, const nlohmann::json& options,
+    const LineMap* map = nullptr);
+
+}  // namespace locbench::experiments

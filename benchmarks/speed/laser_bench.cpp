@@ -1,0 +1,115 @@
+// Google Benchmark kernels of the chapter-5 matchers: one whole scan-to-map match (points →
+// matched segments with their fitted lines) per iteration, for EAP (plain and indexed), the
+// split-and-merge and agglomerative extract-then-match pipelines and the RWHT.
+//   BM_Match_<matcher>/n/m: n beams over ±90° (181, 361, 721, 1441) against m segments
+//   (tiled copies of the thesis's room: 14, 98, 994, 9996 segments), from the thesis pose
+//   (2.0, 1.0, 46°) with the estimate off by (0.1 m, 0.1 m, −3°) as in Table 6.2. The n sweep
+//   at m = 14 fits the complexity in n (BM_..._BigO rows); the m sweep at n = 181 shows the
+//   cost against map size. Counters: segments matched, `work` (inner-loop tests), and bytes of
+//   the match result (memory per scan; the grid index's own size is `index_bytes`).
+// Targets (issue #5, 181 beams, 14 segments): EAP ≤ 10 µs per scan; ≥ 20× faster than
+// agglomerative and ≥ 3× faster than split-and-merge; indexed EAP at 10 000 segments within 2×
+// of its 14-segment time. Compare ratios within one run (benchmarks/baselines/rules.json).
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+
+#include "algorithms/core/rng.h"
+#include "algorithms/core/units.h"
+#include "algorithms/laser/eap_matcher.h"
+#include "algorithms/laser/segment_grid_index.h"
+#include "baselines/laser/extract_then_match.h"
+#include "datasets/sim/laser_model.h"
+#include "datasets/sim/worlds.h"
+
+namespace locbench {
+namespace {
+
+const Pose2 kTruth(2.0, 1.0, deg(46.0));
+const Pose2 kEstimate(2.1, 1.1, deg(43.0));
+
+int rooms_for(int m) { return m <= 14 ? 1 : (m + 13) / 14; }
+
+const LineMap& world(int m) {
+  static std::map<int, LineMap> cache;
+  auto it = cache.find(m);
+  if (it == cache.end()) it = cache.emplace(m, sim::tiled_rooms(rooms_for(m))).first;
+  return it->second;
+}
+
+const Scan& scan(int n) {
+  static std::map<int, Scan> cache;
+  auto it = cache.find(n);
+  if (it == cache.end()) {
+    sim::LaserConfig c;
+    c.timing.enabled = true;
+    c.beams = n;
+    c.noise = mm(5.0);
+    sim::LaserModel laser(c, world(14), Rng(7));
+    it = cache.emplace(n, laser.measure(kTruth, 0.0)).first;
+  }
+  return it->second;
+}
+
+std::size_t result_bytes(const laser::MatchResult& r) {
+  std::size_t b = sizeof(r) + r.matches.capacity() * sizeof(laser::SegmentMatch);
+  for (const auto& m : r.matches) b += m.points.capacity() * sizeof(laser::ScanPoint);
+  return b;
+}
+
+void run(benchmark::State& state, const laser::SegmentMatcher& matcher, const LineMap& map) {
+  const Scan& s = scan(static_cast<int>(state.range(0)));
+  laser::MatchResult r;
+  for (auto _ : state) {
+    r = matcher.match(s, map, kEstimate);
+    benchmark::DoNotOptimize(r);
+  }
+  state.SetComplexityN(state.range(0));
+  state.counters["segments_matched"] = static_cast<double>(r.matches.size());
+  state.counters["work"] = static_cast<double>(r.work);
+  state.counters["result_bytes"] = static_cast<double>(result_bytes(r));
+  state.counters["map_segments"] = static_cast<double>(map.segments.size());
+}
+
+void BM_Match_eap(benchmark::State& state) {
+  run(state, laser::EapMatcher(), world(static_cast<int>(state.range(1))));
+}
+void BM_Match_eap_indexed(benchmark::State& state) {
+  const LineMap& map = world(static_cast<int>(state.range(1)));
+  static std::map<int, std::shared_ptr<const laser::SegmentGridIndex>> indices;
+  auto& index = indices[static_cast<int>(state.range(1))];
+  if (!index) index = std::make_shared<const laser::SegmentGridIndex>(map);
+  state.counters["index_bytes"] = static_cast<double>(index->entries() * sizeof(std::uint32_t));
+  run(state, laser::EapMatcher(index), index->map());
+}
+void BM_Match_split_and_merge(benchmark::State& state) {
+  run(state, laser::SplitAndMergeMatcher(), world(static_cast<int>(state.range(1))));
+}
+void BM_Match_agglomerative(benchmark::State& state) {
+  run(state, laser::AgglomerativeMatcher(), world(static_cast<int>(state.range(1))));
+}
+void BM_Match_rwht(benchmark::State& state) {
+  run(state, laser::RwhtMatcher(), world(static_cast<int>(state.range(1))));
+}
+
+// n sweep at the room (complexity in n), then m sweep at 181 beams.
+void beams_sweep(benchmark::internal::Benchmark* b) {
+  for (int n : {181, 361, 721, 1441}) b->Args({n, 14});
+  b->Complexity();
+}
+void map_sweep(benchmark::internal::Benchmark* b) {
+  for (int m : {98, 994, 9996}) b->Args({181, m});
+}
+
+BENCHMARK(BM_Match_eap)->Apply(beams_sweep);
+BENCHMARK(BM_Match_eap_indexed)->Apply(beams_sweep);
+BENCHMARK(BM_Match_split_and_merge)->Apply(beams_sweep);
+BENCHMARK(BM_Match_agglomerative)->Apply(beams_sweep);
+BENCHMARK(BM_Match_rwht)->Apply(beams_sweep);
+BENCHMARK(BM_Match_eap)->Name("BM_Match_eap_mapsize")->Apply(map_sweep);
+BENCHMARK(BM_Match_eap_indexed)->Name("BM_Match_eap_indexed_mapsize")->Apply(map_sweep);
+BENCHMARK(BM_Match_split_and_merge)->Name("BM_Match_split_and_merge_mapsize")->Apply(map_sweep);
+
+}  // namespace
+}  // namespace locbench

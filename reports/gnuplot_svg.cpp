@@ -1,0 +1,111 @@
+#include "reports/gnuplot_svg.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace locbench::reports {
+namespace {
+
+std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+bool executable(const std::filesystem::path& p) {
+  return std::filesystem::is_regular_file(p) && access(p.c_str(), X_OK) == 0;
+}
+
+// A fresh, private temporary folder removed on scope exit.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "locbench-gnuplot-XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) throw std::runtime_error("cannot create a temporary folder");
+    path = tmpl;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
+
+}  // namespace
+
+std::optional<std::filesystem::path> find_gnuplot() {
+  if (const char* env = std::getenv("LOCBENCH_GNUPLOT"); env && *env) {
+    if (executable(env)) return std::filesystem::path(env);
+    return std::nullopt;
+  }
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    if (dir.empty()) continue;
+    const std::filesystem::path p = std::filesystem::path(dir) / "gnuplot";
+    if (executable(p)) return p;
+  }
+  return std::nullopt;
+}
+
+std::string run_gnuplot(const std::filesystem::path& gnuplot, const std::string& script) {
+  TempDir dir;
+  const auto script_path = dir.path / "chart.gp";
+  const auto svg_path = dir.path / "chart.svg";
+  const auto err_path = dir.path / "stderr.txt";
+  {
+    std::ofstream out(script_path);
+    out << script;
+    if (!out) throw std::runtime_error("cannot write " + script_path.string());
+  }
+  // Paths are ours (no quotes in them); gnuplot's path may come from $LOCBENCH_GNUPLOT.
+  const std::string quoted = "'" + std::regex_replace(gnuplot.string(), std::regex("'"), "'\\''") + "'";
+  const std::string cmd = quoted + " '" + script_path.string() + "' > '" + svg_path.string() +
+                          "' 2> '" + err_path.string() + "'";
+  const int status = std::system(cmd.c_str());
+  const std::string svg = read_file(svg_path);
+  if (status != 0 || svg.find("<svg") == std::string::npos) {
+    throw std::runtime_error("gnuplot failed (" + gnuplot.string() + "): " + read_file(err_path));
+  }
+  return svg;
+}
+
+std::string inline_svg(const std::string& svg, const std::string& prefix) {
+  std::string s = svg;
+  const auto start = s.find("<svg");
+  if (start != std::string::npos) s = s.substr(start);
+  static const std::regex id_re(R"re(\bid=(['"])([^'"]+)\1)re");
+  std::set<std::string> ids;
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), id_re); it != std::sregex_iterator(); ++it) {
+    ids.insert((*it)[2].str());
+  }
+  for (const std::string& id : ids) {
+    const std::string to = prefix + id;
+    for (const std::string& q : {std::string("'"), std::string("\"")}) {
+      for (const std::string& pre : {std::string("id="), std::string("href=")}) {
+        const std::string from_text = pre + q + (pre == "href=" ? "#" : "") + id + q;
+        const std::string to_text = pre + q + (pre == "href=" ? "#" : "") + to + q;
+        for (std::size_t p = s.find(from_text); p != std::string::npos;
+             p = s.find(from_text, p + to_text.size())) {
+          s.replace(p, from_text.size(), to_text);
+        }
+      }
+    }
+    const std::string from_url = "url(#" + id + ")";
+    const std::string to_url = "url(#" + to + ")";
+    for (std::size_t p = s.find(from_url); p != std::string::npos; p = s.find(from_url, p + to_url.size())) {
+      s.replace(p, from_url.size(), to_url);
+    }
+  }
+  return s;
+}
+
+}  // namespace locbench::reports

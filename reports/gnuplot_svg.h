@@ -1,0 +1,20 @@
+#pragma once
+// Runs Debian's gnuplot (gnuplot-nox) to draw charts as SVG for the HTML report.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace locbench::reports {
+
+// $LOCBENCH_GNUPLOT when set, else `gnuplot` on $PATH; nullopt when there is none.
+std::optional<std::filesystem::path> find_gnuplot();
+
+// Runs `gnuplot` on `script` (which sets the svg terminal and plots to stdout) and returns the
+// SVG it wrote; std::runtime_error with gnuplot's messages when it fails.
+std::string run_gnuplot(const std::filesystem::path& gnuplot, const std::string& script);
+
+// An SVG document made fit to inline into HTML: the XML declaration dropped and every id made
+// unique with `prefix` (references included), so several charts can share one page.
+std::string inline_svg(const std::string& svg, const std::string& prefix);
+
+}  // namespace locbench::reports

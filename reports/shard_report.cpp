@@ -1,0 +1,124 @@
+#include "reports/shard_report.h"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "algorithms/core/errors.h"
+#include "reports/report_json.h"
+
+namespace locbench::reports {
+namespace {
+using nlohmann::json;
+
+template <typename T>
+T get(const json& j, const char* key, const std::string& source) {
+  if (!j.is_object() || !j.contains(key)) {
+    throw InputError(source, 0, std::string("shard report: missing field \"") + key + "\"");
+  }
+  try {
+    return j.at(key).get<T>();
+  } catch (const json::exception&) {
+    throw InputError(source, 0, std::string("shard report: field \"") + key +
+                                    "\" has the wrong type");
+  }
+}
+
+}  // namespace
+
+json encode_nonfinite(const json& j) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
+    const double v = j.get<double>();
+    return {{"nonfinite", std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf")}};
+  }
+  if (j.is_array() || j.is_object()) {
+    json out = j;
+    for (auto it = out.begin(); it != out.end(); ++it) *it = encode_nonfinite(*it);
+    return out;
+  }
+  return j;
+}
+
+json decode_nonfinite(const json& j) {
+  if (j.is_object() && j.size() == 1 && j.contains("nonfinite") && j["nonfinite"].is_string()) {
+    const std::string& s = j["nonfinite"].get_ref<const std::string&>();
+    if (s == "nan") return std::numeric_limits<double>::quiet_NaN();
+    if (s == "inf") return std::numeric_limits<double>::infinity();
+    if (s == "-inf") return -std::numeric_limits<double>::infinity();
+  }
+  if (j.is_array() || j.is_object()) {
+    json out = j;
+    for (auto it = out.begin(); it != out.end(); ++it) *it = decode_nonfinite(*it);
+    return out;
+  }
+  return j;
+}
+
+json canonical_record(const json& record) {
+  return decode_nonfinite(json::parse(encode_nonfinite(record).dump()));
+}
+
+json to_json(const ShardReport& s) {
+  json records = json::array();
+  for (const ShardRecord& r : s.records) {
+    records.push_back({{"task", r.task}, {"record", encode_nonfinite(r.record)}});
+  }
+  return {{"schema", kShardSchema},
+          {"context", provenance_to_json(s.provenance)},
+          {"experiment", {{"name", s.experiment}, {"description", s.description}}},
+          {"configuration", s.configuration},
+          {"seed", s.seed},
+          {"runs", s.runs ? json(*s.runs) : json(nullptr)},
+          {"shard", {{"index", s.index}, {"count", s.count}, {"tasks", s.tasks}}},
+          {"records", records}};
+}
+
+ShardReport shard_report_from_json(const json& j, const std::string& source) {
+  if (!j.is_object()) throw InputError(source, 0, "expected a JSON object (a locbench shard)");
+  const auto schema = get<std::string>(j, "schema", source);
+  if (schema != kShardSchema) {
+    throw InputError(source, 0, "expected schema \"" + std::string(kShardSchema) + "\", found \"" +
+                                    schema + "\"" +
+                                    (schema == kReportSchema ? " (a full report, not a shard)" : ""));
+  }
+  ShardReport s;
+  s.provenance = provenance_from_json(get<json>(j, "context", source), source);
+  const json e = get<json>(j, "experiment", source);
+  s.experiment = get<std::string>(e, "name", source);
+  s.description = get<std::string>(e, "description", source);
+  s.configuration = get<json>(j, "configuration", source);
+  s.seed = get<std::uint64_t>(j, "seed", source);
+  const json runs = get<json>(j, "runs", source);
+  if (!runs.is_null()) s.runs = get<int>(j, "runs", source);
+  const json sh = get<json>(j, "shard", source);
+  s.index = get<int>(sh, "index", source);
+  s.count = get<int>(sh, "count", source);
+  s.tasks = get<int>(sh, "tasks", source);
+  for (const json& r : get<json>(j, "records", source)) {
+    s.records.push_back({get<int>(r, "task", source), decode_nonfinite(get<json>(r, "record", source))});
+  }
+  return s;
+}
+
+std::filesystem::path write_shard_report(const ShardReport& shard, const std::filesystem::path& path) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  std::ofstream out(path);
+  if (!out) throw InputError(path.string(), 0, "cannot open shard report for writing");
+  out << to_json(shard).dump(1) << '\n';
+  if (!out) throw InputError(path.string(), 0, "failed writing the shard report");
+  return path;
+}
+
+ShardReport read_shard_report(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path.string(), 0, "cannot open shard report");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw InputError(path.string(), 0, std::string("not valid JSON: ") + e.what());
+  }
+  return shard_report_from_json(j, path.string());
+}
+
+}  // namespace locbench::reports

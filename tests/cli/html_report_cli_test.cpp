@@ -1,0 +1,180 @@
+// `locbench report`: the page a person reads, rendered in headless Chromium the way they would
+// open it — charts drawn (inline SVG with plotted paths), no console errors, a screenshot kept in
+// the build folder (LOCBENCH_ARTIFACT_DIR) as the test's artifact.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "tests/cli/cli_helpers.h"
+#include "tests/test_data.h"
+
+namespace locbench {
+namespace {
+
+using testing::Outcome;
+using testing::run_locbench;
+using testing::run_shell;
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Rendered {
+  int exit_code = -1;
+  std::string dom;
+  std::string log;  // Chromium's stderr log
+};
+
+// Headless Chromium with a fresh profile and no network features; --dump-dom, or a screenshot
+// when `screenshot` is set.
+Rendered render(const std::filesystem::path& html, const std::filesystem::path& profile,
+                const std::string& screenshot = "") {
+  const std::string flags =
+      "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+      "--disable-background-networking --disable-component-update --disable-sync "
+      "--enable-logging=stderr --v=0 --user-data-dir=" + profile.string();
+  const auto dom = profile.string() + ".dom";
+  const auto log = profile.string() + ".log";
+  const std::string what = screenshot.empty()
+                               ? "--dump-dom"
+                               : "--screenshot=" + screenshot + " --window-size=1280,4000";
+  Rendered r;
+  r.exit_code = run_shell("chromium " + flags + " " + what + " file://" +
+                          std::filesystem::absolute(html).string() + " > " + dom + " 2> " + log)
+                    .exit_code;
+  r.dom = slurp(dom);
+  r.log = slurp(log);
+  return r;
+}
+
+// Console messages, and errors other than the D-Bus noise of a machine without a session bus.
+std::vector<std::string> problems(const std::string& log) {
+  std::vector<std::string> out;
+  std::istringstream in(log);
+  for (std::string line; std::getline(in, line);) {
+    const bool console = line.find("CONSOLE") != std::string::npos;
+    const bool error = line.find(":ERROR:") != std::string::npos &&
+                       line.find(":ERROR:dbus/") == std::string::npos;
+    if (console || error) out.push_back(line);
+  }
+  return out;
+}
+
+// The most line segments in one SVG path of `svg` (a plotted series has many; a frame few).
+std::size_t longest_path(const std::string& svg) {
+  std::size_t best = 0;
+  for (std::size_t at = svg.find(" d="); at != std::string::npos; at = svg.find(" d=", at + 1)) {
+    const char quote = svg[at + 3];
+    const std::size_t end = svg.find(quote, at + 4);
+    const std::string d = svg.substr(at + 4, end - at - 4);
+    best = std::max<std::size_t>(best, static_cast<std::size_t>(std::count(d.begin(), d.end(), 'L')));
+  }
+  return best;
+}
+
+std::size_t count_of(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+class HtmlReport : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (run_shell("command -v chromium").exit_code != 0) {
+      GTEST_SKIP() << "chromium not installed (scripts/setup.sh installs it)";
+    }
+  }
+  testing::ScratchDir dir;
+};
+
+TEST_F(HtmlReport, RendersInChromiumWithItsChartsTablesAndNoConsoleErrors) {
+  const std::string reports = (dir.path() / "reports").string();
+  ASSERT_EQ(run_locbench("run odometry/sim_corridor noise/tables_4_1_4_2 --runs 5 --out " + reports)
+                .exit_code, 0);
+  const std::filesystem::path artifacts(LOCBENCH_ARTIFACT_DIR);
+  std::filesystem::create_directories(artifacts);
+  const auto html = artifacts / "report.html";
+  const Outcome o = run_locbench("report " + reports + " -o " + html.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::string page = slurp(html);
+  EXPECT_EQ(page.find("<script"), std::string::npos);
+  EXPECT_EQ(std::regex_search(page, std::regex(R"((src|href)="?https?:)")), false);
+
+  const Rendered r = render(html, dir.path() / "profile");
+  ASSERT_EQ(r.exit_code, 0) << r.log;
+  // Every chart figure holds an SVG with plotted paths: 2 + 2 plots, and histograms of the
+  // final errors (5 runs each). (std::regex would recurse too deep on whole SVGs.)
+  int charts = 0;
+  for (std::size_t at = r.dom.find("<figure class=\"chart\""); at != std::string::npos;
+       at = r.dom.find("<figure class=\"chart\"", at + 1)) {
+    ++charts;
+    const std::string f = r.dom.substr(at, r.dom.find("</figure>", at) - at);
+    EXPECT_NE(f.find("<svg"), std::string::npos) << f.substr(0, 300);
+    if (f.find("data-kind=\"histogram\"") != std::string::npos) {
+      // Filled boxes: one legend swatch per method plus the bins with counts.
+      EXPECT_GE(count_of(f, "<polygon"), 8u) << f.substr(0, 300);
+    } else {
+      EXPECT_GE(longest_path(f), 10u) << f.substr(0, 300);
+    }
+  }
+  EXPECT_GE(charts, 6) << r.dom.substr(0, 500);
+  EXPECT_NE(r.dom.find("data-kind=\"trajectory\""), std::string::npos);
+  EXPECT_NE(r.dom.find("data-kind=\"error_vs_distance\""), std::string::npos);
+  EXPECT_NE(r.dom.find("data-kind=\"histogram\""), std::string::npos);
+  EXPECT_NE(r.dom.find("Published vs ours: thesis Tables 4.1/4.2"), std::string::npos);
+  EXPECT_NE(r.dom.find("mean ± 95% interval"), std::string::npos);
+  EXPECT_NE(r.dom.find("<h3>Findings</h3>"), std::string::npos);
+  const auto found = problems(r.log);
+  EXPECT_TRUE(found.empty()) << found.front();
+
+  const auto shot = artifacts / "report_screenshot.png";
+  std::filesystem::remove(shot);
+  const Rendered s = render(html, dir.path() / "profile2", shot.string());
+  ASSERT_EQ(s.exit_code, 0) << s.log;
+  ASSERT_TRUE(std::filesystem::exists(shot));
+  EXPECT_GT(std::filesystem::file_size(shot), 50'000u);  // a page of tables and charts, not blank
+}
+
+// The check above can fail: a page that logs to the console is caught.
+TEST_F(HtmlReport, TheConsoleCheckCatchesAPageThatLogsAnError) {
+  const auto html = dir.file("bad.html");
+  std::ofstream(html) << "<!DOCTYPE html><html><body><script>console.error('boom')</script></body></html>";
+  const Rendered r = render(html, dir.path() / "profile");
+  ASSERT_EQ(r.exit_code, 0) << r.log;
+  const auto found = problems(r.log);
+  ASSERT_EQ(found.size(), 1u) << r.log;
+  EXPECT_NE(found[0].find("boom"), std::string::npos);
+}
+
+TEST(ReportCommand, WithoutGnuplotExitsWith2AndSaysWhatToInstall) {
+  testing::ScratchDir dir;
+  ASSERT_EQ(run_locbench("run slip/normality_table_3_1 --out " + dir.path().string()).exit_code, 0);
+  const Outcome o = testing::run_shell("LOCBENCH_GNUPLOT=/nonexistent/gnuplot " +
+                                       std::string(LOCBENCH_EXE) + " report " +
+                                       dir.path().string() + " -o " + dir.file("r.html").string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("gnuplot-nox"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("r.html")));
+}
+
+TEST(ReportCommand, RefusesAShardAndSaysToMergeFirst) {
+  testing::ScratchDir dir;
+  ASSERT_EQ(run_locbench("run slip/normality_table_3_1 --shard 1/1 --out " + dir.path().string())
+                .exit_code, 0);
+  const Outcome o = run_locbench("report " +
+                                 dir.file("slip/normality_table_3_1.shard-1-of-1.json").string() +
+                                 " -o " + dir.file("r.html").string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("locbench merge"), std::string::npos) << o.output;
+}
+
+}  // namespace
+}  // namespace locbench

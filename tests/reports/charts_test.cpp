@@ -1,0 +1,74 @@
+#include "reports/charts.h"
+
+#include <gtest/gtest.h>
+
+namespace locbench::reports {
+namespace {
+
+TEST(Histogram, CountsEverySampleOnceInEqualBinsOverThePooledRange) {
+  // Pooled range [0, 4], 4 bins of width 1: 4.0 goes into the last bin.
+  const Histogram h = histogram({{0.0, 0.5, 1.5, 4.0}, {2.0, 2.5, 3.9}}, 4);
+  EXPECT_DOUBLE_EQ(h.low, 0.0);
+  EXPECT_DOUBLE_EQ(h.width, 1.0);
+  EXPECT_EQ(h.counts[0], (std::vector<int>{2, 1, 0, 1}));
+  EXPECT_EQ(h.counts[1], (std::vector<int>{0, 0, 2, 1}));
+}
+
+TEST(Histogram, LeavesOutNonFiniteSamplesAndSurvivesAConstantSample) {
+  const Histogram h = histogram({{1.0, 1.0, std::numeric_limits<double>::quiet_NaN()}}, 5);
+  EXPECT_GT(h.width, 0.0);
+  int total = 0;
+  for (int c : h.counts[0]) total += c;
+  EXPECT_EQ(total, 2);
+}
+
+TEST(MetricHistograms, DrawsErrorsOverMonteCarloRunsGroupedByDatasetAndVariant) {
+  ExperimentResults r;
+  const std::vector<double> five{1, 2, 3, 4, 5};
+  r.results.push_back(make_metric("a", "sim", "final_position_error", "m", "monte_carlo_runs", five));
+  r.results.push_back(make_metric("b", "sim", "final_position_error", "m", "monte_carlo_runs", five));
+  r.results.push_back(make_metric("a", "sim", "nees_time_average", "", "time_steps", five));
+  r.results.push_back(make_metric("a", "sim", "ape_rmse_error", "m", "monte_carlo_runs",
+                                  std::vector<double>{1, 2}));  // too few values
+  const auto plots = metric_histograms(r);
+  ASSERT_EQ(plots.size(), 1u);
+  EXPECT_EQ(plots[0].kind, "histogram");
+  ASSERT_EQ(plots[0].series.size(), 2u);
+  EXPECT_EQ(plots[0].series[1].name, "b");
+  EXPECT_EQ(plots[0].series[1].y, five);
+  EXPECT_EQ(plots[0].x_unit, "m");
+}
+
+Plot trajectory(double width, double height) {
+  return {"t", "trajectory", "title's", "x", "m", "y", "m",
+          {{"truth", {0, width}, {0, height}}, {"odometry_nominal", {0, width}, {0, 0.9 * height}}},
+          ""};
+}
+
+TEST(PlotScript, WritesEachSeriesAsADatablockWithPlainTextTitles) {
+  const std::string s = plot_script(trajectory(2.0, 1.0));
+  EXPECT_NE(s.find("set terminal svg"), std::string::npos);
+  EXPECT_NE(s.find("noenhanced"), std::string::npos);  // "odometry_nominal" keeps its underscore
+  EXPECT_NE(s.find("$s0 << EOD\n0 0\n2 1\nEOD"), std::string::npos) << s;
+  EXPECT_NE(s.find("title 'odometry_nominal'"), std::string::npos);
+  EXPECT_NE(s.find("set title 'title''s'"), std::string::npos) << s;  // quote doubled
+  EXPECT_NE(s.find("set xlabel 'x [m]'"), std::string::npos);
+}
+
+TEST(PlotScript, DrawsAPlaneTrajectoryToScaleButNotACorridor) {
+  EXPECT_NE(plot_script(trajectory(2.0, 1.0)).find("set size ratio -1"), std::string::npos);
+  EXPECT_EQ(plot_script(trajectory(10.0, 0.3)).find("set size ratio -1"), std::string::npos);
+}
+
+TEST(PlotScript, DrawsAHistogramAsBoxesOfTheBinnedCounts) {
+  const Plot p = histogram_plot("h", "errors", "final error", "m",
+                                {{"a", {}, {0.0, 0.0, 1.0, 1.0, 1.0}}}, "");
+  const std::string s = plot_script(p);
+  EXPECT_NE(s.find("with boxes"), std::string::npos);
+  EXPECT_NE(s.find("set boxwidth 0.2 absolute"), std::string::npos) << s;  // 5 bins over [0, 1]
+  EXPECT_NE(s.find("0.1 2\n"), std::string::npos) << s;
+  EXPECT_NE(s.find("0.9 3\n"), std::string::npos) << s;
+}
+
+}  // namespace
+}  // namespace locbench::reports
