@@ -10,7 +10,7 @@ RULES := benchmarks/baselines/rules.json
 # Monte-Carlo runs per experiment in the gate (the baseline is made with the same number).
 GATE_RUNS ?= 3
 
-.PHONY: all setup build run test gate baseline bench clean
+.PHONY: all setup build run test gate baseline bench bench-gate speed-baseline clean
 
 all: build
 
@@ -62,6 +62,24 @@ bench: setup
 	@cmake --build $(BENCHBUILD) -j$(JOBS) --target locbench_speed
 	@mkdir -p $(OUT)
 	$(BENCHBUILD)/benchmarks/speed/locbench_speed --benchmark_out=$(OUT)/speed.json --benchmark_out_format=json
+
+# The matcher kernels (181 beams, 5 repetitions) gated by same-run speed ratios against the
+# committed benchmarks/baselines/speed/laser.json (rules: benchmarks/baselines/speed_rules.json).
+SPEED_BASELINE := benchmarks/baselines/speed/laser.json
+SPEED_RULES := benchmarks/baselines/speed_rules.json
+SPEED_ARGS := --benchmark_filter='Match.*/181/' --benchmark_repetitions=5 --benchmark_min_time=0.05
+bench-gate: build
+	@cmake -S . -B $(BENCHBUILD) -DCMAKE_BUILD_TYPE=Release -DLOCBENCH_BUILD_TESTS=OFF >/dev/null
+	@cmake --build $(BENCHBUILD) -j$(JOBS) --target locbench_speed
+	@mkdir -p $(OUT)
+	$(BENCHBUILD)/benchmarks/speed/locbench_speed $(SPEED_ARGS) --benchmark_out=$(OUT)/speed_laser.json --benchmark_out_format=json
+	$(RELEASE)/cli/locbench gate $(OUT)/speed_laser.json --baseline $(SPEED_BASELINE) --rules $(SPEED_RULES)
+
+# Refresh the speed baseline deliberately (same machine class as the gate; review, commit).
+speed-baseline: setup
+	@cmake -S . -B $(BENCHBUILD) -DCMAKE_BUILD_TYPE=Release -DLOCBENCH_BUILD_TESTS=OFF >/dev/null
+	@cmake --build $(BENCHBUILD) -j$(JOBS) --target locbench_speed
+	$(BENCHBUILD)/benchmarks/speed/locbench_speed $(SPEED_ARGS) --benchmark_out=$(SPEED_BASELINE) --benchmark_out_format=json
 
 clean:
 	rm -rf build $(OUT)

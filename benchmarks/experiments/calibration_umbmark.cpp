@@ -12,7 +12,6 @@
 
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
-#include "algorithms/core/dead_reckoning.h"
 #include "algorithms/core/errors.h"
 #include "algorithms/core/rng.h"
 #include "algorithms/core/statistics.h"
@@ -41,18 +40,7 @@ UmbmarkAngleFormula angle_formula(const std::string& s) {
 
 // Final pose error of dead reckoning (with the robot's nominal model) on a simulated run.
 std::pair<double, double> final_dead_reckoning_error(const sim::SimulationResult& r) {
-  const auto model = r.log.nominal_model();
-  if (!model || r.log.encoders.empty() || r.trajectory.empty()) {
-    throw std::logic_error("validation run without encoders or nominal model");
-  }
-  const Trajectory truth = sim::true_trajectory(r);
-  const auto start = truth.pose_at(r.log.encoders.front().t);
-  if (!start) throw std::logic_error("validation run: first encoder sample outside the truth");
-  const Trajectory odo = dead_reckon_encoders(r.log.encoders, *model, *start);
-  // Compare at the last instant both cover (the last ENCODER record may be logged a few ms
-  // after the last true pose sample).
-  const double t_end = std::min(odo.end_time(), truth.end_time());
-  const Pose2 e = between(*truth.pose_at(t_end), *odo.pose_at(t_end));
+  const Pose2 e = sim::dead_reckoning_end_error(r);
   return {std::hypot(e.x, e.y), std::abs(e.theta)};
 }
 
