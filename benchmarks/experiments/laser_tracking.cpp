@@ -52,10 +52,12 @@ struct Record {
   double full_updates = 0.0, heading_updates = 0.0;  // ekf_eap
   std::size_t records = 0;
   double duration = 0.0;
+  // Run 0 only: x and y of the truth and of each method at every scan (for the report's chart).
+  std::vector<std::vector<double>> path_x, path_y;  // [truth, method…][scan]
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, final_position_error, final_heading_error,
                                    rms_position_error, full_updates, heading_updates, records,
-                                   duration)
+                                   duration, path_x, path_y)
 
 class LaserTracking final : public MonteCarloExperiment<Setup> {
  public:
@@ -109,6 +111,10 @@ class LaserTracking final : public MonteCarloExperiment<Setup> {
     rec.records = r.log.record_count();
     rec.duration = r.duration;
     std::vector<double> sq[kMethods];
+    if (k == 0) {
+      rec.path_x.assign(kMethods + 1, {});
+      rec.path_y.assign(kMethods + 1, {});
+    }
     std::size_t next_scan = 0;
     while (next_scan < scans.size() && scans[next_scan].scan.timestamp <= enc.front().t) ++next_scan;
     for (std::size_t i = 1; i < enc.size(); ++i) {
@@ -135,6 +141,13 @@ class LaserTracking final : public MonteCarloExperiment<Setup> {
         const Pose2 est[kMethods] = {odo, ekf_eap.pose(), ekf_sm.pose(), line_kf.pose()};
         for (int m = 0; m < kMethods; ++m) {
           sq[m].push_back(std::pow(est[m].x - t.x, 2) + std::pow(est[m].y - t.y, 2));
+        }
+        if (k == 0) {
+          for (int m = 0; m <= kMethods; ++m) {
+            const Pose2& p = m == 0 ? t : est[m - 1];
+            rec.path_x[static_cast<std::size_t>(m)].push_back(p.x);
+            rec.path_y[static_cast<std::size_t>(m)].push_back(p.y);
+          }
         }
       }
     }
@@ -180,6 +193,21 @@ class LaserTracking final : public MonteCarloExperiment<Setup> {
       out.results.push_back(reports::make_metric(kMethodNames[m], ds, "rms_position_error", "m",
                                                  "monte_carlo_runs", rms[m]));
     }
+    reports::Plot plot;
+    plot.name = "trajectories_run_0";
+    plot.kind = "trajectory";
+    plot.title = "Corridor run 0: truth and each estimate at every scan";
+    plot.x_label = "x";
+    plot.y_label = "y";
+    plot.x_unit = plot.y_unit = "m";
+    plot.note = "run 0 of " + std::to_string(records.size());
+    for (int m = 0; m <= kMethods; ++m) {
+      plot.series.push_back({m == 0 ? "truth" : kMethodNames[m - 1],
+                             first.path_x[static_cast<std::size_t>(m)],
+                             first.path_y[static_cast<std::size_t>(m)]});
+    }
+    out.plots.push_back(std::move(plot));
+
     reports::PublishedComparison t;
     t.source = "thesis Table 6.5";
     t.quantity = "E_error (6.43) of the chapter-6 EKF per run";
