@@ -22,6 +22,7 @@ std::unique_ptr<Experiment> make_laser_table_6_2();
 std::unique_ptr<Experiment> make_laser_tables_6_3_6_4();
 std::unique_ptr<Experiment> make_laser_tracking_table_6_5();
 std::unique_ptr<Experiment> make_laser_real_logs();
+std::unique_ptr<Experiment> make_laser_rwht_bins();
 std::unique_ptr<Experiment> make_noise_tables();
 std::unique_ptr<Experiment> make_noise_resolution_sweep();
 std::unique_ptr<Experiment> make_noise_quantization_sigma();

@@ -24,6 +24,7 @@ const std::vector<std::unique_ptr<Experiment>>& all_experiments() {
     v.push_back(make_laser_tables_6_3_6_4());
     v.push_back(make_laser_tracking_table_6_5());
     v.push_back(make_laser_real_logs());
+    v.push_back(make_laser_rwht_bins());
     v.push_back(make_noise_tables());
     v.push_back(make_noise_resolution_sweep());
     v.push_back(make_noise_quantization_sigma());

@@ -103,6 +103,21 @@ TEST(LaserExperiments, CorridorTrackingKeepsTheEkfWithinCentimetres) {
             m.at("ekf_eap/" + ds + "/final_position_error").summary.mean);
 }
 
+TEST(LaserExperiments, RwhtPeakErrorGrowsWithTheBinsButTheRefitDoesNot) {
+  const auto e = make_laser_rwht_bins();
+  nlohmann::json c = e->default_config();
+  c["angle_bins_deg"] = {0.25, 4.0};
+  c["range_bins_cm"] = {1.25, 20.0};
+  const auto m = run(*e, 2, nullptr, c);
+  const auto v = [&](const char* ds, const char* what) {
+    return m.at(std::string("rwht/") + ds + "/" + what).summary.mean;
+  };
+  EXPECT_GT(v("room_a4deg_r20cm", "peak_rho_error"), 5 * v("room_a0_25deg_r1_25cm", "peak_rho_error"));
+  EXPECT_NEAR(v("room_a4deg_r20cm", "refit_rho_error"), v("room_a0_25deg_r1_25cm", "refit_rho_error"),
+              0.001);
+  EXPECT_GT(v("room_a0_25deg_r1_25cm", "cells"), 200 * v("room_a4deg_r20cm", "cells"));
+}
+
 TEST(LaserExperiments, LaserResultsDoNotDependOnTheThreadCount) {
   const auto e = make_laser_matcher_accuracy();
   RunOptions one, two;
