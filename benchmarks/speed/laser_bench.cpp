@@ -14,12 +14,17 @@
 
 #include <map>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "algorithms/core/rng.h"
 #include "algorithms/core/units.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/laser/segment_grid_index.h"
 #include "baselines/laser/extract_then_match.h"
+#include "datasets/catalog/dataset_catalog.h"
+#include "datasets/io/scan_json_reader.h"
+#include "datasets/log/data_root.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
 
@@ -110,6 +115,88 @@ BENCHMARK(BM_Match_rwht)->Apply(beams_sweep);
 BENCHMARK(BM_Match_eap)->Name("BM_Match_eap_mapsize")->Apply(map_sweep);
 BENCHMARK(BM_Match_eap_indexed)->Name("BM_Match_eap_indexed_mapsize")->Apply(map_sweep);
 BENCHMARK(BM_Match_split_and_merge)->Name("BM_Match_split_and_merge_mapsize")->Apply(map_sweep);
+
+// ---- Real scans: every extractor on the first 200 FLASER scans of each Freiburg log and on the
+// three Queens hallway scans (541 beams over 270°), read from $LOCBENCH_DATA; skipped with a
+// message when the data are absent. Time per iteration covers all the dataset's scans
+// (counter `scans`); EAP matches each scan against its own split-and-merge lines (a map of the
+// right size and shape for that scan, built outside the timed loop).
+constexpr std::size_t kRealScans = 200;
+
+const std::vector<Scan>* real_scans(const std::string& dataset) {
+  static std::map<std::string, std::vector<Scan>> cache;
+  if (auto it = cache.find(dataset); it != cache.end()) return &it->second;
+  std::vector<Scan> scans;
+  try {
+    if (dataset == "queens") {
+      for (int i = 1; i <= 3; ++i) {
+        const auto p = data_root() / ("laser_scans/kam3k_queens/laser_scan_" + std::to_string(i) + ".json.gz");
+        if (!std::filesystem::exists(p)) return nullptr;
+        scans.push_back(read_scan_json(p));
+      }
+    } else {
+      const DatasetEntry* e = find_dataset(dataset);
+      if (!e || !std::filesystem::exists(data_root() / e->path)) return nullptr;
+      const Log log = load_catalog_dataset(*e, data_root());
+      for (std::size_t i = 0; i < log.laser.size() && i < kRealScans; ++i) scans.push_back(log.laser[i].scan);
+    }
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+  return &cache.emplace(dataset, std::move(scans)).first->second;
+}
+
+void BM_RealScans(benchmark::State& state, const std::string& dataset, const std::string& method) {
+  const std::vector<Scan>* scans = real_scans(dataset);
+  if (!scans || scans->empty()) {
+    state.SkipWithError(("dataset " + dataset + " not found under " + data_root().string() +
+                         " (set LOCBENCH_DATA)").c_str());
+    return;
+  }
+  const laser::SplitAndMergeMatcher sm;
+  const laser::AgglomerativeMatcher agg;
+  const laser::RwhtMatcher rwht;
+  const laser::EapMatcher eap;
+  std::vector<LineMap> own_lines;
+  if (method == "eap") {
+    for (const Scan& s : *scans) {
+      LineMap m;
+      for (const auto& l : sm.extract_lines(s).lines) m.segments.push_back(l.fit.segment());
+      own_lines.push_back(std::move(m));
+    }
+  }
+  std::size_t lines = 0;
+  for (auto _ : state) {
+    lines = 0;
+    for (std::size_t i = 0; i < scans->size(); ++i) {
+      const Scan& s = (*scans)[i];
+      if (method == "split_and_merge") lines += sm.extract_lines(s).lines.size();
+      if (method == "agglomerative") lines += agg.extract_lines(s).lines.size();
+      if (method == "rwht") lines += rwht.extract_lines(s).lines.size();
+      if (method == "eap") lines += eap.match(s, own_lines[i], Pose2()).matches.size();
+    }
+    benchmark::DoNotOptimize(lines);
+  }
+  state.counters["scans"] = static_cast<double>(scans->size());
+  state.counters["beams"] = static_cast<double>(scans->front().ranges.size());
+  state.counters["lines_per_scan"] = static_cast<double>(lines) / static_cast<double>(scans->size());
+  state.counters["per_scan"] = benchmark::Counter(
+      static_cast<double>(state.iterations() * scans->size()),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+const bool kRealScanBenchmarks = [] {
+  for (const char* dataset : {"aces", "intel", "mit_csail", "queens"}) {
+    for (const char* method : {"eap", "split_and_merge", "agglomerative", "rwht"}) {
+      benchmark::RegisterBenchmark(
+          (std::string("BM_RealScans/") + dataset + "/" + method).c_str(),
+          [d = std::string(dataset), m = std::string(method)](benchmark::State& st) {
+            BM_RealScans(st, d, m);
+          })->Unit(benchmark::kMicrosecond);
+    }
+  }
+  return true;
+}();
 
 }  // namespace
 }  // namespace locbench
