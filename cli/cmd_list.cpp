@@ -43,6 +43,33 @@ int list(const ListArgs& args) {
     std::cout << fmt::format("  {} {:<26} {}\n", e->in_default_suite() ? '*' : ' ', e->name(),
                              e->description());
   }
+  std::cout << "\nMethods (the name each has in result keys; thesis = proposed, baseline = compared against):\n";
+  struct Method {
+    const char* name;
+    const char* where;
+    const char* what;
+  };
+  static constexpr Method kMethods[] = {
+      {"umbmark_classic", "baselines/calibration", "baseline: Borenstein & Feng's UMBmark (eq. 2.3–2.13)"},
+      {"umbmark_improved", "algorithms/calibration", "thesis: improved UMBmark (eq. 2.16–2.27)"},
+      {"ml", "algorithms/calibration", "ours: maximum-likelihood odometry + sensor-pose calibration"},
+      {"slip_detector", "algorithms/slip", "thesis: compass slip detection and correction (eq. 3.3–3.17)"},
+      {"ikf_*", "algorithms/slip", "thesis: indirect Kalman filter for S_L, S_R, δB (eq. 3.18–3.26)"},
+      {"adaptive_model_ekf", "algorithms/filters", "thesis: compass EKF with the adaptive odometry noise (eq. 4.36–4.44)"},
+      {"fixed_q_ekf", "baselines/filters", "baseline: EKF with fixed Q"},
+      {"sage_husa_aekf", "baselines/filters", "baseline: Sage–Husa AEKF (Deng forgetting, Zhang fix)"},
+      {"vb_akf", "baselines/filters", "baseline: variational-Bayes AKF (Särkkä & Nummenmaa 2009)"},
+      {"eap", "algorithms/laser", "thesis: Effective-Area-of-Plane matcher (eq. 5.6–5.17); eap_indexed: + grid index"},
+      {"split_and_merge", "baselines/laser", "baseline: split-and-merge extraction + line-to-map matching"},
+      {"agglomerative", "baselines/laser", "baseline: agglomerative (Arras-style) clustering + matching"},
+      {"rwht", "baselines/laser", "baseline: Range Weighted Hough Transform (Forsberg et al.)"},
+      {"point_to_line, point_to_point", "algorithms/pose_correction", "thesis: position correction (eq. 6.22–6.38)"},
+      {"ekf_eap", "algorithms/pose_correction", "thesis: EKF tracker fusing odometry and corrections (eq. 6.39–6.42)"},
+      {"kalman_line_features", "baselines/localization", "baseline: the slides' (α, r) line-feature Kalman localizer"},
+  };
+  for (const Method& m : kMethods) {
+    std::cout << fmt::format("    {:<26} {:<27} {}\n", m.name, m.where, m.what);
+  }
   std::cout << "\nSimulator scenarios (locbench simulate NAME):\n";
   for (const sim::PresetInfo& p : sim::preset_list()) {
     std::cout << fmt::format("    {:<26} {}\n", p.name, p.description);

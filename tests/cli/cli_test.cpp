@@ -46,6 +46,9 @@ TEST(Cli, ListNamesTheExperimentsAndScenarios) {
   EXPECT_NE(o.output.find("odometry/sim_corridor"), std::string::npos);
   EXPECT_NE(o.output.find("corridor"), std::string::npos);
   EXPECT_NE(o.output.find("umbmark_trilobot"), std::string::npos);
+  // …and every method with where it lives.
+  EXPECT_NE(o.output.find("split_and_merge            baselines/laser"), std::string::npos);
+  EXPECT_NE(o.output.find("eap                        algorithms/laser"), std::string::npos);
 }
 
 TEST(Cli, SimulateWritesALogThatReadsBack) {
