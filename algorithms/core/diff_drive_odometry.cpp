@@ -1,6 +1,9 @@
 #include "algorithms/core/diff_drive_odometry.h"
 
 #include <cmath>
+#include <string>
+
+#include "algorithms/core/errors.h"
 
 namespace locbench {
 
@@ -40,6 +43,12 @@ Matrix3 propagate_covariance(const Matrix3& sigma, const Pose2& p, const WheelDi
   sigma_u(0, 0) = noise.k_right * std::abs(u.right);
   sigma_u(1, 1) = noise.k_left * std::abs(u.left);
   return Fp * sigma * Fp.transpose() + Fu * sigma_u * Fu.transpose();
+}
+
+void require_positive_wheelbase(double wheelbase, const char* who) {
+  if (!(wheelbase > 0.0) || !std::isfinite(wheelbase)) {
+    throw UsageError(std::string(who) + ": wheelbase must be > 0");
+  }
 }
 
 }  // namespace locbench

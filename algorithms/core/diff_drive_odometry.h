@@ -35,6 +35,10 @@ inline BodyIncrement body_increment(const WheelDisplacement& u, double wheelbase
 // x' = x + ΔD cos(θ + Δθ/2), y' = y + ΔD sin(θ + Δθ/2), θ' = θ + Δθ.
 Pose2 odometry_step(const Pose2& p, const WheelDisplacement& u, double wheelbase);
 
+// Throws UsageError "<who>: wheelbase must be > 0" unless the wheelbase is positive and finite
+// (every filter and detector built on the odometry model checks its wheelbase this way).
+void require_positive_wheelbase(double wheelbase, const char* who);
+
 // Noise growth coefficients of Σ_Δ: variance of each wheel's travel per metre it travels [m].
 struct WheelNoise {
   double k_right = 0.0;

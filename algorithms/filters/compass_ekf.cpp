@@ -20,10 +20,6 @@ void validate(const CompassEkfOptions& o) {
   }
 }
 
-void require_wheelbase(double b) {
-  if (!(b > 0.0) || !std::isfinite(b)) throw UsageError("CompassEkf: wheelbase must be > 0");
-}
-
 }  // namespace
 
 void to_json(nlohmann::json& j, const CompassEkfOptions& o) {
@@ -49,7 +45,7 @@ CompassEkf::CompassEkf(const CompassEkfOptions& options, double wheelbase, const
       x_(to_vector(start)),
       p_(options.initial_covariance.asDiagonal()) {
   validate(options);
-  require_wheelbase(wheelbase);
+  require_positive_wheelbase(wheelbase, "CompassEkf");
 }
 
 CompassEkf::CompassEkf(ProcessNoiseModel process_noise, double compass_variance,
@@ -61,7 +57,7 @@ CompassEkf::CompassEkf(ProcessNoiseModel process_noise, double compass_variance,
   options_.compass_variance = compass_variance;
   if (!custom_q_) throw UsageError("CompassEkf: empty process-noise model");
   if (!(compass_variance > 0.0)) throw UsageError("CompassEkf: compass_variance must be > 0");
-  require_wheelbase(wheelbase);
+  require_positive_wheelbase(wheelbase, "CompassEkf");
 }
 
 Matrix3 CompassEkf::process_noise(const WheelDisplacement& u) const {

@@ -56,9 +56,7 @@ EkfTracker::EkfTracker(const EkfTrackerOptions& options, double wheelbase, const
       x_(to_vector(start)),
       p_(options.initial_covariance.asDiagonal()) {
   validate(options_);
-  if (!(wheelbase > 0.0) || !std::isfinite(wheelbase)) {
-    throw UsageError("EkfTracker: wheelbase must be > 0");
-  }
+  require_positive_wheelbase(wheelbase, "EkfTracker");
   if (!x_.allFinite()) throw UsageError("EkfTracker: the start pose is not finite");
 }
 

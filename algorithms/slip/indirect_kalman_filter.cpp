@@ -78,9 +78,7 @@ Matrix6 ikf_transition(const WheelDisplacement& u, double theta, double b) {
 IndirectKalmanFilter::IndirectKalmanFilter(const IndirectKfOptions& options, double wheelbase)
     : options_(options), wheelbase_(wheelbase) {
   validate(options_);
-  if (!(wheelbase_ > 0.0) || !std::isfinite(wheelbase_)) {
-    throw UsageError("IndirectKalmanFilter: wheelbase must be > 0");
-  }
+  require_positive_wheelbase(wheelbase_, "IndirectKalmanFilter");
   p_ = options_.initial_covariance.asDiagonal();
 }
 

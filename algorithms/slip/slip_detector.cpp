@@ -105,9 +105,7 @@ SlipDetector::SlipDetector(const SlipModel& model, const SlipDetectorOptions& op
   if (!(model_.stddev > 0.0) || !std::isfinite(model_.mean)) {
     throw UsageError("SlipDetector: the slip model needs a finite mean and σ > 0");
   }
-  if (!(wheelbase_ > 0.0) || !std::isfinite(wheelbase_)) {
-    throw UsageError("SlipDetector: wheelbase must be > 0");
-  }
+  require_positive_wheelbase(wheelbase_, "SlipDetector");
   z_ = slip_threshold(options_.probability);
 }
 

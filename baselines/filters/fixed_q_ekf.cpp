@@ -43,9 +43,7 @@ FixedQEkf::FixedQEkf(const FixedQEkfOptions& options, double wheelbase, const Po
       x_(to_vector(start)),
       p_(options.initial_covariance.asDiagonal()) {
   validate(options);
-  if (!(wheelbase > 0.0) || !std::isfinite(wheelbase)) {
-    throw UsageError("FixedQEkf: wheelbase must be > 0");
-  }
+  require_positive_wheelbase(wheelbase, "FixedQEkf");
 }
 
 CompassFilterStep FixedQEkf::step(const WheelDisplacement& u,

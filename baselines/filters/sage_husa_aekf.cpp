@@ -63,9 +63,7 @@ SageHusaAekf::SageHusaAekf(const SageHusaOptions& options, double wheelbase, con
       r_mean_(options.initial_measurement_mean),
       r_var_(options.initial_measurement_noise) {
   validate(options);
-  if (!(wheelbase > 0.0) || !std::isfinite(wheelbase)) {
-    throw UsageError("SageHusaAekf: wheelbase must be > 0");
-  }
+  require_positive_wheelbase(wheelbase, "SageHusaAekf");
 }
 
 SageHusaStep SageHusaAekf::step(const WheelDisplacement& u, std::optional<double> compass_heading) {

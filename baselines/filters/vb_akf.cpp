@@ -58,9 +58,7 @@ VbAkf::VbAkf(const VbAkfOptions& options, double wheelbase, const Pose2& start)
       alpha_(options.initial_shape),
       beta_(options.initial_shape * options.initial_measurement_variance) {
   validate(options);
-  if (!(wheelbase > 0.0) || !std::isfinite(wheelbase)) {
-    throw UsageError("VbAkf: wheelbase must be > 0");
-  }
+  require_positive_wheelbase(wheelbase, "VbAkf");
 }
 
 VbAkfStep VbAkf::step(const WheelDisplacement& u, std::optional<double> compass_heading) {

@@ -57,9 +57,7 @@ LineFeatureKalmanLocalizer::LineFeatureKalmanLocalizer(const LineFeatureKalmanOp
       x_(to_vector(start)),
       p_(options.initial_covariance.asDiagonal()) {
   validate(options_);
-  if (!(wheelbase > 0.0) || !std::isfinite(wheelbase)) {
-    throw UsageError("LineFeatureKalmanLocalizer: wheelbase must be > 0");
-  }
+  require_positive_wheelbase(wheelbase, "LineFeatureKalmanLocalizer");
   if (!x_.allFinite()) throw UsageError("LineFeatureKalmanLocalizer: the start is not finite");
   gate_ = validation_gate(options_.gate_probability);
 }
