@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
 #include <iostream>
 
 #include "algorithms/core/errors.h"
@@ -16,6 +15,7 @@
 #include "cli/commands.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/odometry_interpolation.h"
+#include "datasets/io/tum_writer.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
 #include "reports/provenance.h"
@@ -50,12 +50,7 @@ int match(const MatchArgs& a, const std::string& command_line) {
       log.odometry.empty() ? std::nullopt : std::optional<Trajectory>(odometry_trajectory(log));
 
   std::vector<double> segments, fixed, shift, turn, points;
-  std::ofstream tum;
-  if (!a.tum.empty()) {
-    tum.open(a.tum);
-    if (!tum) throw UsageError("match: cannot write " + a.tum);
-    tum.precision(9);
-  }
+  Trajectory corrected;  // for --tum
   std::size_t skipped = 0;
   for (const LaserReading& reading : log.laser) {
     Pose2 estimate = reading.pose;
@@ -78,11 +73,7 @@ int match(const MatchArgs& a, const std::string& command_line) {
     shift.push_back(std::hypot(c.delta.x(), c.delta.y()));
     turn.push_back(std::abs(c.delta.z()));
     points.push_back(valid ? static_cast<double>(n) / static_cast<double>(valid) : 0.0);
-    if (tum) {
-      const Pose2& q = c.corrected;
-      tum << reading.scan.timestamp << ' ' << q.x << ' ' << q.y << " 0 0 0 " << std::sin(q.theta / 2)
-          << ' ' << std::cos(q.theta / 2) << '\n';
-    }
+    corrected.push_back({reading.scan.timestamp, c.corrected});
   }
   if (segments.empty()) {
     throw InputError(a.log, 0, "a pose for each scan: FLASER poses or ODOM records covering them");
@@ -123,7 +114,10 @@ int match(const MatchArgs& a, const std::string& command_line) {
     reports::write_report(report, a.report);
     std::cerr << "wrote " << a.report << '\n';
   }
-  if (tum) std::cerr << "wrote " << a.tum << '\n';
+  if (!a.tum.empty()) {
+    write_tum(corrected, a.tum);
+    std::cerr << "wrote " << a.tum << '\n';
+  }
   return kExitOk;
 }
 

@@ -38,7 +38,7 @@ TEST(MatchCli, MatchesEveryScanOfASimulatedRoomLogAndWritesAValidReportAndTum) {
   std::ifstream in(tum);
   std::string line;
   int lines = 0;
-  while (std::getline(in, line)) ++lines;
+  while (std::getline(in, line)) lines += !line.empty() && line[0] != '#';  // poses, not header
   EXPECT_EQ(lines, 299);
 }
 
