@@ -1,0 +1,105 @@
+#pragma once
+// What the simulation gets wrong: `diagnose_log` takes a log, the nominal model it declares
+// (PARAM records) and the reference it carries (TRUEPOS, .relations or a compass), and
+//  1. computes residuals of the nominal model against the reference (motion_windows.h,
+//     odometry_model.h; compass readings against ground truth: compass_channel.h);
+//  2. runs the residual battery (residual_tests.h) at a Bonferroni-divided level;
+//  3. fits every applicable catalog cause (cause_catalog.h) by maximum likelihood with a 95%
+//     interval on every parameter, and keeps causes by forward selection: the cause with the
+//     largest likelihood-ratio statistic enters while LR ≥ χ²_k(1 − α/m), α the false-alarm
+//     level per log and m the number of causes tried on the channel;
+//  4. measures each kept cause's gain on held-out windows (every third block of 10 windows is
+//     held out; the fit uses the rest): predictive log-likelihood and relative-pose error;
+//  5. reports residual structure no kept cause explains, confounded causes with the
+//     combination the data determine, and a one-sentence verdict.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "algorithms/diagnosis/motion_windows.h"
+#include "algorithms/diagnosis/residual_tests.h"
+#include "datasets/log/log.h"
+
+namespace locbench::diagnosis {
+
+struct DiagnosisOptions {
+  double false_alarm = 0.01;  // per log and channel, divided over the causes tried (Bonferroni)
+  WindowOptions windows;
+  std::size_t rpe_chain = 10;   // windows chained into one relative-pose segment
+  std::size_t block = 10;       // hold-out block length in windows (every third block held out)
+};
+void to_json(nlohmann::json& j, const DiagnosisOptions& o);
+void from_json(const nlohmann::json& j, DiagnosisOptions& o);  // strict: unknown key → UsageError
+
+struct Estimate {
+  std::string name;
+  double value = 0.0;
+  double lo = 0.0, hi = 0.0;  // 95%
+};
+
+struct Gain {
+  std::string metric;
+  double before = 0.0, after = 0.0;
+  double relative() const { return before != 0.0 ? (before - after) / std::abs(before) : 0.0; }
+};
+
+struct Cause {
+  std::string id;
+  std::string channel;  // "odometry" or "compass"
+  bool detected = false;
+  std::string statistic = "likelihood_ratio";
+  double value = 0.0, threshold = 0.0;
+  std::vector<Estimate> parameters;
+  nlohmann::json extra = nlohmann::json::object();  // e.g. region, sensor
+  bool identifiable = true;
+  std::string explanation;
+  std::vector<Gain> gains;  // the first is the cause's primary metric
+};
+
+struct Unexplained {
+  std::string test, residual, variable;
+  double statistic = 0.0, p_value = 1.0, strength = 0.0;
+};
+
+struct ConfoundedGroup {
+  std::vector<std::string> ids;
+  std::string combination;  // what the data determine, e.g. "E_o/E_b = 1.0102 [1.0091, 1.0113]"
+  std::string explanation;
+};
+
+struct Diagnosis {
+  std::string log;
+  std::string reference;
+  nlohmann::json nominal_model;
+  double false_alarm = 0.01;
+  std::vector<ResidualTest> residual_tests;
+  std::vector<Cause> causes;  // detected first, by evidence; then the rest
+  std::vector<std::string> detected;
+  std::vector<Unexplained> unexplained;
+  std::vector<ConfoundedGroup> confounded;
+  std::vector<std::string> not_testable;  // catalog ids this input cannot show, with why
+  std::vector<Gain> overall_gain;          // all kept causes together
+  std::string verdict;
+};
+
+// Throws InputError for logs without odometry or reference, too short, or with implausible units.
+Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options = {});
+
+// A histogram of residuals (e.g. thesis Table 3.1):
+// {"residual": "...", "unit": "deg"|"rad"|"mm"|"m", "edges": [...], "counts": [...]}.
+struct ResidualHistogram {
+  std::string residual;
+  std::string unit;
+  std::vector<double> edges;   // SI after reading (rad or m)
+  std::vector<double> counts;
+};
+// Throws InputError (file, what was expected) for malformed histograms.
+ResidualHistogram read_histogram(const nlohmann::json& j, const std::string& file);
+Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name,
+                             const DiagnosisOptions& options = {});
+
+// The report, "schema": "locbench.diagnosis/1".
+nlohmann::json to_json(const Diagnosis& d);
+
+}  // namespace locbench::diagnosis

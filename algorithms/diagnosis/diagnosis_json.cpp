@@ -1,0 +1,71 @@
+// The diagnosis report, "schema": "locbench.diagnosis/1" (README, "Diagnosis").
+#include <cmath>
+
+#include "algorithms/diagnosis/diagnosis.h"
+
+namespace locbench::diagnosis {
+namespace {
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json gain_json(const Gain& g) {
+  return {{"metric", g.metric}, {"before", number(g.before)}, {"after", number(g.after)},
+          {"relative", number(g.relative())}};
+}
+
+}  // namespace
+
+nlohmann::json to_json(const Diagnosis& d) {
+  nlohmann::json j;
+  j["schema"] = "locbench.diagnosis/1";
+  j["log"] = d.log;
+  j["reference"] = d.reference;
+  j["nominal_model"] = d.nominal_model;
+  j["false_alarm"] = d.false_alarm;
+  j["residual_tests"] = nlohmann::json::array();
+  for (const auto& t : d.residual_tests) {
+    j["residual_tests"].push_back({{"name", t.name}, {"residual", t.residual}, {"variable", t.variable},
+                                   {"statistic", t.statistic}, {"value", number(t.value)},
+                                   {"p_value", number(t.p_value)}, {"strength", number(t.strength)},
+                                   {"passed", t.passed}});
+  }
+  j["causes"] = nlohmann::json::array();
+  for (const auto& c : d.causes) {
+    nlohmann::json cj{{"id", c.id},
+                      {"channel", c.channel},
+                      {"detected", c.detected},
+                      {"evidence", {{"statistic", c.statistic}, {"value", number(c.value)}, {"threshold", number(c.threshold)}}},
+                      {"parameters", nlohmann::json::object()},
+                      {"identifiable", c.identifiable},
+                      {"explanation", c.explanation}};
+    for (const auto& p : c.parameters) {
+      cj["parameters"][p.name] = {{"value", number(p.value)}, {"ci95", {number(p.lo), number(p.hi)}}};
+    }
+    for (const auto& [k, v] : c.extra.items()) cj["parameters"][k] = v;
+    if (!c.gains.empty()) {
+      cj["gain"] = gain_json(c.gains.front());
+      for (std::size_t i = 1; i < c.gains.size(); ++i) cj["gain"]["also"].push_back(gain_json(c.gains[i]));
+    } else {
+      cj["gain"] = nullptr;
+    }
+    j["causes"].push_back(cj);
+  }
+  j["detected"] = d.detected;
+  j["unexplained"] = nlohmann::json::array();
+  for (const auto& u : d.unexplained) {
+    j["unexplained"].push_back({{"test", u.test}, {"residual", u.residual}, {"variable", u.variable},
+                                {"statistic", number(u.statistic)}, {"p_value", number(u.p_value)},
+                                {"strength", number(u.strength)}});
+  }
+  j["confounded"] = nlohmann::json::array();
+  for (const auto& g : d.confounded) {
+    j["confounded"].push_back({{"ids", g.ids}, {"combination", g.combination}, {"explanation", g.explanation}});
+  }
+  j["not_testable"] = d.not_testable;
+  j["gain"] = nlohmann::json::array();
+  for (const auto& g : d.overall_gain) j["gain"].push_back(gain_json(g));
+  j["verdict"] = d.verdict;
+  return j;
+}
+
+}  // namespace locbench::diagnosis

@@ -1,0 +1,134 @@
+#include "algorithms/diagnosis/ml_fit.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace locbench::diagnosis {
+namespace {
+
+struct Coordinates {
+  const std::vector<FitParameter>& p;
+  std::vector<double> values(const Eigen::VectorXd& z) const {
+    std::vector<double> v(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) v[i] = p[i].positive ? std::exp(z[i]) : z[i];
+    return v;
+  }
+  double step(std::size_t i) const { return p[i].positive ? 1e-4 : 1e-4 * p[i].scale; }
+};
+
+}  // namespace
+
+FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params,
+                             int max_iterations) {
+  const std::size_t n = params.size();
+  const Coordinates coords{params};
+  Eigen::VectorXd z(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    z[i] = params[i].positive ? std::log(std::max(params[i].initial, 1e-300)) : params[i].initial;
+  }
+  auto f = [&](const Eigen::VectorXd& x) {
+    const double v = nll(coords.values(x));
+    return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
+  };
+  auto gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g,
+                              Eigen::MatrixXd& h) {
+    g.resize(n);
+    h.resize(n, n);
+    std::vector<double> fp(n), fm(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      Eigen::VectorXd a = x, b = x;
+      a[i] += coords.step(i);
+      b[i] -= coords.step(i);
+      fp[i] = f(a);
+      fm[i] = f(b);
+      g[i] = (fp[i] - fm[i]) / (2.0 * coords.step(i));
+      h(i, i) = (fp[i] - 2.0 * fx + fm[i]) / (coords.step(i) * coords.step(i));
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i + 1; j < n; ++j) {
+        Eigen::VectorXd pp = x, pm = x, mp = x, mm = x;
+        pp[i] += coords.step(i), pp[j] += coords.step(j);
+        pm[i] += coords.step(i), pm[j] -= coords.step(j);
+        mp[i] -= coords.step(i), mp[j] += coords.step(j);
+        mm[i] -= coords.step(i), mm[j] -= coords.step(j);
+        h(i, j) = h(j, i) =
+            (f(pp) - f(pm) - f(mp) + f(mm)) / (4.0 * coords.step(i) * coords.step(j));
+      }
+    }
+  };
+
+  FitResult r;
+  double fx = f(z);
+  Eigen::VectorXd g;
+  Eigen::MatrixXd h;
+  double lambda = 1e-3;
+  for (r.iterations = 0; r.iterations < max_iterations && n > 0; ++r.iterations) {
+    gradient_hessian(z, fx, g, h);
+    // Levenberg damping on the scaled diagonal until the step lowers the NLL.
+    bool improved = false;
+    for (int tries = 0; tries < 30 && !improved; ++tries) {
+      Eigen::MatrixXd a = h;
+      for (std::size_t i = 0; i < n; ++i) a(i, i) += lambda * std::max(std::abs(h(i, i)), 1e-12);
+      Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
+      Eigen::VectorXd dz = -ldlt.solve(g);
+      if (ldlt.info() != Eigen::Success || !dz.allFinite() || !ldlt.isPositive()) {
+        lambda *= 10.0;
+        continue;
+      }
+      const Eigen::VectorXd zn = z + dz;
+      const double fn = f(zn);
+      if (fn < fx) {
+        const double gain = fx - fn;
+        z = zn;
+        fx = fn;
+        lambda = std::max(lambda / 10.0, 1e-9);
+        improved = true;
+        if (gain < 1e-9 * (1.0 + std::abs(fx))) r.converged = true;
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    if (!improved) {
+      r.converged = true;  // no descent step exists at this resolution: a (local) minimum
+      break;
+    }
+    if (r.converged) break;
+  }
+  r.nll = fx;
+  r.values = coords.values(z);
+  r.ci_low.assign(n, 0.0);
+  r.ci_high.assign(n, 0.0);
+  r.standard_errors.assign(n, std::numeric_limits<double>::infinity());
+  r.covariance = Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::quiet_NaN());
+  if (n == 0) return r;
+  gradient_hessian(z, fx, g, h);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (h + h.transpose()));
+  r.hessian_ok = eig.eigenvalues().minCoeff() > 1e-12 * std::max(1.0, eig.eigenvalues().maxCoeff());
+  if (r.hessian_ok) {
+    r.covariance = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() *
+                   eig.eigenvectors().transpose();
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double se = r.hessian_ok ? std::sqrt(std::max(r.covariance(i, i), 0.0))
+                                   : std::numeric_limits<double>::infinity();
+    r.standard_errors[i] = se;
+    const double lo = z[i] - 1.959963984540054 * se, hi = z[i] + 1.959963984540054 * se;
+    r.ci_low[i] = params[i].positive ? std::exp(lo) : lo;
+    r.ci_high[i] = params[i].positive ? std::exp(hi) : hi;
+    for (std::size_t j = i + 1; j < n && r.hessian_ok; ++j) {
+      const double c = r.covariance(i, j) / std::sqrt(r.covariance(i, i) * r.covariance(j, j));
+      if (std::abs(c) > r.max_abs_correlation) {
+        r.max_abs_correlation = std::abs(c);
+        r.most_correlated_a = static_cast<int>(i);
+        r.most_correlated_b = static_cast<int>(j);
+      }
+    }
+  }
+  if (!r.hessian_ok) r.max_abs_correlation = 1.0;
+  return r;
+}
+
+}  // namespace locbench::diagnosis

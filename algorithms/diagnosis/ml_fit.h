@@ -1,0 +1,39 @@
+#pragma once
+// Maximum-likelihood fitting of a few parameters: minimises a negative log-likelihood by a
+// damped Newton method with a finite-difference gradient and Hessian, and gives each parameter
+// a Wald 95% interval from the observed Fisher information (the Hessian at the optimum).
+// Parameters that must stay positive are fitted on a log scale and their intervals mapped back.
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace locbench::diagnosis {
+
+struct FitParameter {
+  std::string name;
+  double initial = 0.0;
+  double scale = 1.0;     // a typical size of a change (sets finite-difference steps)
+  bool positive = false;  // fitted as log(value)
+};
+
+struct FitResult {
+  std::vector<double> values;
+  std::vector<double> ci_low, ci_high;  // Wald 95% (on the log scale for positive parameters)
+  std::vector<double> standard_errors;  // of the fitted coordinate (log for positive ones)
+  Eigen::MatrixXd covariance;           // of the fitted coordinates (inverse Hessian)
+  double nll = 0.0;                     // at the optimum
+  int iterations = 0;
+  bool converged = false;
+  bool hessian_ok = true;               // positive definite at the optimum
+  double max_abs_correlation = 0.0;     // between any two fitted coordinates
+  int most_correlated_a = -1, most_correlated_b = -1;
+};
+
+using NegLogLikelihood = std::function<double(const std::vector<double>& values)>;
+
+// `nll` may return +inf for invalid values (the step is then shortened).
+FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params,
+                             int max_iterations = 60);
+
+}  // namespace locbench::diagnosis

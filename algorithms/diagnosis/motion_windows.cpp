@@ -1,0 +1,233 @@
+#include "algorithms/diagnosis/motion_windows.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "algorithms/core/angle.h"
+#include "algorithms/core/errors.h"
+
+namespace locbench::diagnosis {
+
+std::string to_string(OdometryKind k) { return k == OdometryKind::kEncoder ? "encoder" : "odometry_pose"; }
+std::string to_string(ReferenceKind k) {
+  switch (k) {
+    case ReferenceKind::kTruePose: return "truepos";
+    case ReferenceKind::kRelations: return "relations";
+    case ReferenceKind::kCompass: return "compass";
+  }
+  return "?";
+}
+
+std::string MotionData::describe() const {
+  switch (reference) {
+    case ReferenceKind::kTruePose:
+      return fmt::format("TRUEPOS ground truth ({} poses), {} windows", truth.size(), windows.size());
+    case ReferenceKind::kRelations:
+      return fmt::format("reference relations ({} windows)", windows.size());
+    case ReferenceKind::kCompass:
+      return fmt::format("compass heading increments ({} readings), {} windows", compass.size(),
+                         windows.size());
+  }
+  return "";
+}
+
+std::optional<Pose2> interpolate_truth(const std::vector<TruePose>& truth, double t) {
+  if (truth.empty() || t < truth.front().t || t > truth.back().t) return std::nullopt;
+  auto it = std::lower_bound(truth.begin(), truth.end(), t,
+                             [](const TruePose& p, double v) { return p.t < v; });
+  if (it == truth.begin()) return it->pose;
+  const TruePose& b = *it;
+  const TruePose& a = *(it - 1);
+  const double dt = b.t - a.t;
+  const double s = dt > 0.0 ? (t - a.t) / dt : 0.0;
+  return Pose2(a.pose.x + s * (b.pose.x - a.pose.x), a.pose.y + s * (b.pose.y - a.pose.y),
+               a.pose.theta + s * angle_diff(b.pose.theta, a.pose.theta));
+}
+
+std::optional<double> interpolate_compass(const std::vector<CompassReading>& compass, double t) {
+  if (compass.empty() || t < compass.front().t || t > compass.back().t) return std::nullopt;
+  auto it = std::lower_bound(compass.begin(), compass.end(), t,
+                             [](const CompassReading& p, double v) { return p.t < v; });
+  if (it == compass.begin()) return it->heading;
+  const auto& b = *it;
+  const auto& a = *(it - 1);
+  const double dt = b.t - a.t;
+  const double s = dt > 0.0 ? (t - a.t) / dt : 0.0;
+  return wrap_angle(a.heading + s * angle_diff(b.heading, a.heading));
+}
+
+namespace {
+
+void check_nominal(const Log& log, const NominalModel& m) {
+  auto bad = [&](const std::string& what) { throw InputError(log.source, 0, what); };
+  if (!(m.wheelbase > 0.0) || !(m.meters_per_tick_left > 0.0) || !(m.meters_per_tick_right > 0.0)) {
+    bad("PARAM robot_wheelbase and robot_meters_per_tick_left/right must be positive");
+  }
+  if (m.wheelbase > 5.0) {
+    bad(fmt::format("PARAM robot_wheelbase = {} m is implausible: expected metres (not mm)", m.wheelbase));
+  }
+  if (m.meters_per_tick_left > 0.01 || m.meters_per_tick_right > 0.01) {
+    bad(fmt::format("PARAM robot_meters_per_tick_left/right = {}/{} are implausible: expected metres "
+                    "per tick (below 0.01; millimetres by mistake?)",
+                    m.meters_per_tick_left, m.meters_per_tick_right));
+  }
+}
+
+// ΔD, Δθ between consecutive dead-reckoned poses (ΔD signed along the mid heading).
+OdometryStep pose_step(const OdometryReading& a, const OdometryReading& b) {
+  const double dth = angle_diff(b.pose.theta, a.pose.theta);
+  const double mid = a.pose.theta + 0.5 * dth;
+  const double dx = b.pose.x - a.pose.x, dy = b.pose.y - a.pose.y;
+  double d = std::hypot(dx, dy);
+  if (dx * std::cos(mid) + dy * std::sin(mid) < 0.0) d = -d;
+  return {a.t, b.t, d, dth};
+}
+
+void fill_covariates(MotionData& m, MotionWindow& w) {
+  const double base = m.nominal.wheelbase > 0.0 ? m.nominal.wheelbase : 0.5;
+  for (std::size_t i = w.first; i < w.last; ++i) {
+    const auto& s = m.steps[i];
+    double dd = 0.0, dth = 0.0, travel = 0.0;
+    if (m.odometry == OdometryKind::kEncoder) {
+      const double ul = s.a * m.nominal.meters_per_tick_left, ur = s.b * m.nominal.meters_per_tick_right;
+      dd = 0.5 * (ul + ur);
+      dth = (ur - ul) / m.nominal.wheelbase;
+      travel = std::abs(ul) + std::abs(ur);
+    } else {
+      dd = s.a;
+      dth = s.b;
+      travel = std::abs(dd - 0.5 * base * dth) + std::abs(dd + 0.5 * base * dth);
+    }
+    w.distance += std::abs(dd);
+    w.signed_distance += dd;
+    w.turn += dth;
+    w.wheel_travel += travel;
+  }
+}
+
+}  // namespace
+
+MotionData build_motion_data(const Log& log, const WindowOptions& options) {
+  MotionData m;
+  const std::string file = log.source.empty() ? log.name : log.source;
+  if (!log.encoders.empty()) {
+    m.odometry = OdometryKind::kEncoder;
+    const auto nominal = log.nominal_model();
+    if (!nominal) {
+      throw InputError(file, 0,
+                       "ENCODER records need the nominal model: PARAM robot_meters_per_tick_left, "
+                       "robot_meters_per_tick_right and robot_wheelbase");
+    }
+    m.nominal = *nominal;
+    check_nominal(log, m.nominal);
+    for (std::size_t i = 1; i < log.encoders.size(); ++i) {
+      const auto& a = log.encoders[i - 1];
+      const auto& b = log.encoders[i];
+      m.steps.push_back({a.t, b.t, static_cast<double>(b.left - a.left),
+                         static_cast<double>(b.right - a.right)});
+    }
+  } else if (log.odometry.size() >= 2) {
+    m.odometry = OdometryKind::kPose;
+    if (const auto nominal = log.nominal_model()) m.nominal = *nominal;
+    for (std::size_t i = 1; i < log.odometry.size(); ++i) {
+      m.steps.push_back(pose_step(log.odometry[i - 1], log.odometry[i]));
+    }
+  } else {
+    throw InputError(file, 0, "no odometry: expected ENCODER records or at least two ODOM records");
+  }
+  for (const auto& s : m.steps) {
+    if (!(s.t1 >= s.t0)) {
+      throw InputError(file, 0, fmt::format("odometry timestamps go backwards at t = {}", s.t1));
+    }
+  }
+
+  if (log.truth.size() >= 2) {
+    m.reference = ReferenceKind::kTruePose;
+    m.truth = log.truth;
+  } else if (!log.relations.empty()) {
+    m.reference = ReferenceKind::kRelations;
+  } else if (log.compass.size() >= 2) {
+    m.reference = ReferenceKind::kCompass;
+    m.compass = log.compass;
+  } else {
+    throw InputError(file, 0,
+                     "no reference to take residuals against: expected TRUEPOS ground truth, "
+                     "reference relations (--relations) or COMPASS headings");
+  }
+
+  if (m.reference == ReferenceKind::kRelations) {
+    // One window per relation: the steps from the odometry sample nearest t1 to the one nearest t2.
+    std::vector<double> times;
+    times.reserve(m.steps.size() + 1);
+    for (const auto& s : m.steps) times.push_back(s.t0);
+    times.push_back(m.steps.back().t1);
+    auto nearest = [&](double t) {
+      auto it = std::lower_bound(times.begin(), times.end(), t);
+      std::size_t i = static_cast<std::size_t>(it - times.begin());
+      if (i == times.size()) --i;
+      if (i > 0 && std::abs(times[i - 1] - t) < std::abs(times[i] - t)) --i;
+      return i;
+    };
+    for (const auto& r : log.relations) {
+      const std::size_t i = nearest(r.t1), j = nearest(r.t2);
+      if (j <= i || std::abs(times[i] - r.t1) > 0.05 || std::abs(times[j] - r.t2) > 0.05) continue;
+      if (r.t2 - r.t1 > 10.0) continue;  // local relations only (loop closures span minutes)
+      MotionWindow w;
+      w.first = i;
+      w.last = j;
+      w.t0 = times[i];
+      w.t1 = times[j];
+      w.reference = r.delta;
+      fill_covariates(m, w);
+      m.windows.push_back(w);
+    }
+  } else {
+    auto covered = [&](double t) {
+      if (m.reference == ReferenceKind::kTruePose) return interpolate_truth(m.truth, t).has_value();
+      return interpolate_compass(m.compass, t).has_value();
+    };
+    std::size_t i = 0;
+    while (i < m.steps.size()) {
+      if (!covered(m.steps[i].t0)) {
+        ++i;
+        continue;
+      }
+      MotionWindow w;
+      w.first = i;
+      w.t0 = m.steps[i].t0;
+      std::size_t j = i;
+      while (j < m.steps.size() && m.steps[j].t1 - w.t0 <= options.duration + 1e-9 &&
+             m.steps[j].t1 - m.steps[j].t0 <= options.max_gap && covered(m.steps[j].t1)) {
+        ++j;
+      }
+      if (j == i) {
+        i = i + 1;
+        continue;
+      }
+      w.last = j;
+      w.t1 = m.steps[j - 1].t1;
+      if (m.reference == ReferenceKind::kTruePose) {
+        const Pose2 p = *interpolate_truth(m.truth, w.t0);
+        w.heading = p.theta;
+        w.x = p.x;
+        w.y = p.y;
+      } else {
+        w.heading = *interpolate_compass(m.compass, w.t0);
+      }
+      fill_covariates(m, w);
+      m.windows.push_back(w);
+      i = j;
+    }
+  }
+  if (m.windows.size() < options.min_windows) {
+    throw InputError(file, 0,
+                     fmt::format("too short a log: {} windows of {} s where the odometry and the "
+                                 "reference overlap, at least {} needed",
+                                 m.windows.size(), options.duration, options.min_windows));
+  }
+  return m;
+}
+
+}  // namespace locbench::diagnosis

@@ -1,0 +1,75 @@
+#pragma once
+// A log's odometry cut into short windows, each paired with what the reference says the robot
+// really did over the same time: the residual data every odometry test and cause is fitted on.
+//
+// Odometry is either encoder counts (ENCODER: ΔN_L, ΔN_R per sample, mapped to wheel travel by
+// the PARAM model) or a dead-reckoned pose (ODOM: each step's ΔD, Δθ from consecutive poses).
+// The reference is TRUEPOS ground truth (interpolated at the odometry times, so a time offset
+// between the two can be fitted), Freiburg .relations (one window per relation) or, with
+// neither, the compass (heading increments only).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "algorithms/core/pose2.h"
+#include "algorithms/core/robot_params.h"
+#include "algorithms/core/sensor_data.h"
+#include "datasets/log/log.h"
+
+namespace locbench::diagnosis {
+
+enum class OdometryKind { kEncoder, kPose };
+enum class ReferenceKind { kTruePose, kRelations, kCompass };
+
+std::string to_string(OdometryKind k);
+std::string to_string(ReferenceKind k);
+
+// One odometry sample interval (logged times).
+struct OdometryStep {
+  double t0 = 0.0, t1 = 0.0;
+  double a = 0.0;  // encoder: ΔN_L [ticks]; pose: ΔD [m] (signed, along the mid heading)
+  double b = 0.0;  // encoder: ΔN_R [ticks]; pose: Δθ [rad]
+};
+
+struct MotionWindow {
+  std::size_t first = 0, last = 0;  // steps [first, last)
+  double t0 = 0.0, t1 = 0.0;        // logged times of the window's ends
+  Pose2 reference;                  // relations: the reference motion (fixed)
+  // Covariates under the nominal model.
+  double distance = 0.0;      // |ΔD| summed [m]
+  double signed_distance = 0.0;
+  double turn = 0.0;          // Σ Δθ [rad]
+  double wheel_travel = 0.0;  // Σ (|U_L| + |U_R|) [m] (pose odometry: |ΔD|·2 + |Δθ|·B)
+  double heading = 0.0;       // reference heading at t0 [rad] (0 for relations)
+  double x = 0.0, y = 0.0;    // reference position at t0 [m]
+};
+
+struct WindowOptions {
+  double duration = 1.0;       // target window length [s]
+  double max_gap = 1.0;        // a longer gap between odometry samples ends a window [s]
+  std::size_t min_windows = 40;  // fewer is "too short a log"
+};
+
+struct MotionData {
+  OdometryKind odometry = OdometryKind::kEncoder;
+  ReferenceKind reference = ReferenceKind::kTruePose;
+  NominalModel nominal;  // encoder logs; pose logs use wheelbase only for covariates (0 if unknown)
+  std::vector<OdometryStep> steps;
+  std::vector<MotionWindow> windows;
+  std::vector<TruePose> truth;           // kTruePose
+  std::vector<CompassReading> compass;   // kCompass
+  std::string describe() const;          // e.g. "TRUEPOS ground truth (4812 poses)"
+};
+
+// Throws InputError (naming the log) when the log has no usable odometry, no reference, too few
+// windows, or a nominal model that is missing or not in SI units (a wheelbase above 5 m, metres
+// per tick above 0.01 m — millimetres by mistake).
+MotionData build_motion_data(const Log& log, const WindowOptions& options = {});
+
+// The reference pose at logged time t (linear interpolation, heading on the circle); nullopt
+// outside the truth's time span.
+std::optional<Pose2> interpolate_truth(const std::vector<TruePose>& truth, double t);
+// The compass heading at time t (interpolated along the shorter arc); nullopt outside.
+std::optional<double> interpolate_compass(const std::vector<CompassReading>& compass, double t);
+
+}  // namespace locbench::diagnosis

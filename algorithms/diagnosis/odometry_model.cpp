@@ -1,0 +1,161 @@
+#include "algorithms/diagnosis/odometry_model.h"
+
+#include <cmath>
+
+#include "algorithms/core/angle.h"
+#include "algorithms/core/units.h"
+
+namespace locbench::diagnosis {
+namespace {
+
+// Exact arc integration of one step (eq. 1.3 with the chord of the arc).
+Pose2 advance(const Pose2& p, double dd, double dth) {
+  const double half = 0.5 * dth;
+  const double chord = std::abs(half) < 1e-6 ? dd : dd * std::sin(half) / half;
+  return {p.x + chord * std::cos(p.theta + half), p.y + chord * std::sin(p.theta + half),
+          p.theta + dth};
+}
+
+double wheelbase_or_default(const MotionData& d) { return d.nominal.wheelbase > 0.0 ? d.nominal.wheelbase : 0.5; }
+
+}  // namespace
+
+Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+  Pose2 p;
+  if (d.odometry == OdometryKind::kEncoder) {
+    const double cl = d.nominal.meters_per_tick_left * m.E_o * 2.0 / (1.0 + m.E_d);
+    const double cr = d.nominal.meters_per_tick_right * m.E_o * 2.0 * m.E_d / (1.0 + m.E_d);
+    const double b = d.nominal.wheelbase * m.E_b;
+    for (std::size_t i = w.first; i < w.last; ++i) {
+      const double ul = cl * d.steps[i].a, ur = cr * d.steps[i].b;
+      p = advance(p, 0.5 * (ul + ur), (ur - ul) / b);
+    }
+  } else {
+    for (std::size_t i = w.first; i < w.last; ++i) {
+      const auto& s = d.steps[i];
+      p = advance(p, m.velocity_scale * s.a, m.turn_rate_scale * s.b + m.turn_rate_bias * (s.t1 - s.t0));
+    }
+  }
+  return p;
+}
+
+std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w,
+                                      const OdometryModel& m) {
+  switch (d.reference) {
+    case ReferenceKind::kRelations:
+      return w.reference;
+    case ReferenceKind::kTruePose: {
+      const auto a = interpolate_truth(d.truth, w.t0 - m.time_offset);
+      const auto b = interpolate_truth(d.truth, w.t1 - m.time_offset);
+      if (!a || !b) return std::nullopt;
+      return between(*a, *b);
+    }
+    case ReferenceKind::kCompass: {
+      const auto a = interpolate_compass(d.compass, w.t0 - m.time_offset);
+      const auto b = interpolate_compass(d.compass, w.t1 - m.time_offset);
+      if (!a || !b) return std::nullopt;
+      return Pose2(0.0, 0.0, angle_diff(*b, *a));
+    }
+  }
+  return std::nullopt;
+}
+
+WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+  WindowResidual out;
+  const auto ref = reference_window(d, w, m);
+  if (!ref) return out;
+  const Pose2 pred = predict_window(d, w, m);
+  out.valid = true;
+  out.heading_only = d.reference == ReferenceKind::kCompass;
+  out.r = {ref->x - pred.x, ref->y - pred.y, angle_diff(ref->theta, pred.theta)};
+  if (out.heading_only) out.r.head<2>().setZero();
+  const double b = wheelbase_or_default(d);
+  const double growth = m.k2 * w.wheel_travel;
+  out.variance = {m.sigma_x * m.sigma_x + growth / 4.0, m.sigma_y * m.sigma_y + growth / 4.0,
+                  m.sigma_theta * m.sigma_theta + growth / (b * b)};
+  return out;
+}
+
+namespace {
+
+double log_normal(const Eigen::Vector3d& r, const Eigen::Vector3d& v, bool heading_only) {
+  double s = 0.0;
+  for (int c = heading_only ? 2 : 0; c < 3; ++c) {
+    s += -0.5 * (r[c] * r[c] / v[c] + std::log(2.0 * kPi * v[c]));
+  }
+  return s;
+}
+
+}  // namespace
+
+double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
+                               const std::vector<std::size_t>& index) {
+  double nll = 0.0;
+  const std::size_t n = index.empty() ? d.windows.size() : index.size();
+  const double b = wheelbase_or_default(d) * m.E_b;
+  for (std::size_t k = 0; k < n; ++k) {
+    const MotionWindow& w = d.windows[index.empty() ? k : index[k]];
+    const WindowResidual res = window_residual(d, w, m);
+    if (!res.valid) {
+      nll -= log_normal(Eigen::Vector3d::Zero(), res.variance, d.reference == ReferenceKind::kCompass);
+      continue;
+    }
+    double ll = log_normal(res.r, res.variance, res.heading_only);
+    if (m.slip_rate > 0.0 && m.slip_loss != 0.0 && d.odometry == OdometryKind::kEncoder &&
+        w.last > w.first) {
+      const double p = 1.0 - std::exp(-m.slip_rate * 0.5 * w.wheel_travel);
+      if (p > 0.0) {
+        double ul = 0.0, ur = 0.0;
+        for (std::size_t i = w.first; i < w.last; ++i) {
+          ul += d.steps[i].a * d.nominal.meters_per_tick_left;
+          ur += d.steps[i].b * d.nominal.meters_per_tick_right;
+        }
+        const double ns = static_cast<double>(w.last - w.first);
+        ul /= ns;
+        ur /= ns;
+        const Eigen::Vector3d shift_left{-m.slip_loss * ul / 2.0, 0.0, m.slip_loss * ul / b};
+        const Eigen::Vector3d shift_right{-m.slip_loss * ur / 2.0, 0.0, -m.slip_loss * ur / b};
+        const double l0 = std::log1p(-p) + ll;
+        const double l1 = std::log(0.5 * p) + log_normal(res.r - shift_left, res.variance, res.heading_only);
+        const double l2 = std::log(0.5 * p) + log_normal(res.r - shift_right, res.variance, res.heading_only);
+        const double mx = std::max({l0, l1, l2});
+        ll = mx + std::log(std::exp(l0 - mx) + std::exp(l1 - mx) + std::exp(l2 - mx));
+      }
+    }
+    nll -= ll;
+  }
+  return nll;
+}
+
+RelativePoseError relative_pose_error(const MotionData& d, const OdometryModel& m,
+                                      const std::vector<std::size_t>& index, std::size_t chain) {
+  RelativePoseError e;
+  double st = 0.0, sh = 0.0;
+  const std::size_t step = d.reference == ReferenceKind::kRelations ? 1 : std::max<std::size_t>(chain, 1);
+  for (std::size_t k = 0; k + step <= index.size(); k += step) {
+    Pose2 pred, ref;
+    bool ok = true;
+    for (std::size_t j = k; j < k + step && ok; ++j) {
+      const MotionWindow& w = d.windows[index[j]];
+      if (j > k && d.windows[index[j - 1]].t1 != w.t0) ok = false;  // not contiguous
+      const auto r = reference_window(d, w, m);
+      if (!r) ok = false;
+      if (!ok) break;
+      pred = pred * predict_window(d, w, m);
+      ref = ref * *r;
+    }
+    if (!ok) continue;
+    const double et = d.reference == ReferenceKind::kCompass ? 0.0 : std::hypot(ref.x - pred.x, ref.y - pred.y);
+    const double eh = angle_diff(ref.theta, pred.theta);
+    st += et * et;
+    sh += eh * eh;
+    ++e.segments;
+  }
+  if (e.segments > 0) {
+    e.translation_rms = std::sqrt(st / static_cast<double>(e.segments));
+    e.heading_rms = std::sqrt(sh / static_cast<double>(e.segments));
+  }
+  return e;
+}
+
+}  // namespace locbench::diagnosis

@@ -1,0 +1,65 @@
+#pragma once
+// The odometry model the diagnosis fits: the log's nominal model with every catalog extension
+// that acts on odometry switched on by giving its parameter a value other than the nominal one.
+//
+// Encoder odometry (eq. 1.1–1.3, with the error factors of eq. 2.1, 2.2, 2.15):
+//   c_L' = c_L·E_o·2/(1 + E_d),  c_R' = c_R·E_o·2E_d/(1 + E_d),  B' = E_b·B,
+//   U = c'·ΔN,  ΔD = (U_L + U_R)/2,  Δθ = (U_R − U_L)/B'.
+// Pose odometry (velocity logs): ΔD' = scale·ΔD, Δθ' = turn_scale·Δθ + turn_bias·Δt.
+// Both: the odometry's logged time minus the reference's is `time_offset` (the reference is read
+// at t − time_offset).
+// Noise of a window's residual r = reference − prediction (x, y along/left of the window's start
+// heading, θ): independent normal components with variance
+//   v_x = σ_x² + k²W/4,  v_y = σ_y² + k²W/4,  v_θ = σ_θ² + k²W/B²      (eq. 4.36–4.37 summed)
+// where W = Σ(|U_L| + |U_R|) is the window's wheel travel and k² (`k2`) the wheel-travel variance
+// per metre (eq. 4.16); σ are the nominal model's white noise floor (always fitted).
+// Wheel slip (§3.2): with probability p = 1 − exp(−rate·W/2) one wheel (either, equally likely)
+// loses the fraction `slip_loss` of one sample's travel, which shifts the residual by
+// (−loss·ū/2, 0, ±loss·ū/B) with ū that wheel's mean travel per sample.
+#include <Eigen/Core>
+#include <vector>
+
+#include "algorithms/diagnosis/motion_windows.h"
+
+namespace locbench::diagnosis {
+
+struct OdometryModel {
+  double E_d = 1.0, E_b = 1.0, E_o = 1.0;
+  double velocity_scale = 1.0, turn_rate_scale = 1.0, turn_rate_bias = 0.0;
+  double time_offset = 0.0;
+  double sigma_x = 1e-3, sigma_y = 1e-3, sigma_theta = 1e-3;
+  double k2 = 0.0;
+  double slip_rate = 0.0, slip_loss = 0.0;
+};
+
+struct WindowResidual {
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();         // reference − prediction
+  Eigen::Vector3d variance = Eigen::Vector3d::Ones();  // without slip
+  bool valid = false;       // the reference covers the (shifted) window
+  bool heading_only = false;
+};
+
+// The prediction of window w under model m (in the frame of the window's start).
+Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
+// The reference motion of window w read with the model's time offset.
+std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w,
+                                      const OdometryModel& m);
+WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
+
+// Negative log-likelihood of the windows `index` (all when empty) under m; windows the shifted
+// reference does not cover count with the constant of a perfect fit so that likelihoods stay
+// comparable across offsets.
+double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
+                               const std::vector<std::size_t>& index);
+
+// Relative-pose error of the windows `index`, chained into segments of `chain` consecutive
+// windows (relations: each window alone): RMS translation error [m] and RMS heading error [rad].
+struct RelativePoseError {
+  double translation_rms = 0.0;
+  double heading_rms = 0.0;
+  std::size_t segments = 0;
+};
+RelativePoseError relative_pose_error(const MotionData& d, const OdometryModel& m,
+                                      const std::vector<std::size_t>& index, std::size_t chain);
+
+}  // namespace locbench::diagnosis

@@ -1,0 +1,168 @@
+#include "algorithms/diagnosis/residual_tests.h"
+
+#include <algorithm>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <cmath>
+#include <numeric>
+
+#include "algorithms/core/statistics.h"
+
+namespace locbench::diagnosis {
+
+double two_sided_normal_p(double z) { return std::min(1.0, 2.0 * normal_upper_tail(std::abs(z))); }
+double chi2_upper_p(double x, double dof) {
+  if (!(x > 0.0)) return 1.0;
+  return boost::math::cdf(boost::math::complement(boost::math::chi_squared(dof), x));
+}
+double chi2_quantile(double p, double dof) {
+  return boost::math::quantile(boost::math::chi_squared(dof), p);
+}
+
+namespace {
+
+double correlation(std::span<const double> a, std::span<const double> b) {
+  const double ma = mean(a), mb = mean(b);
+  double sab = 0.0, saa = 0.0, sbb = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return saa > 0.0 && sbb > 0.0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+}  // namespace
+
+ResidualTest bias_test(std::span<const double> r, const std::string& residual) {
+  ResidualTest t{"bias", residual, "", "z"};
+  const double n = static_cast<double>(r.size());
+  const double s = sample_stddev(r);
+  t.strength = s > 0.0 ? mean(r) / s : 0.0;
+  t.value = t.strength * std::sqrt(n);
+  t.p_value = two_sided_normal_p(t.value);
+  return t;
+}
+
+ResidualTest dependence_test(std::span<const double> r, std::span<const double> x,
+                             const std::string& name, const std::string& residual,
+                             const std::string& variable) {
+  ResidualTest t{name, residual, variable, "z"};
+  const double rho = std::clamp(correlation(r, x), -0.999999, 0.999999);
+  t.strength = rho;
+  t.value = std::atanh(rho) * std::sqrt(std::max(0.0, static_cast<double>(r.size()) - 3.0));
+  t.p_value = two_sided_normal_p(t.value);
+  return t;
+}
+
+ResidualTest skewness_test(std::span<const double> r, const std::string& residual) {
+  ResidualTest t{"normality_skewness", residual, "", "u1"};
+  const double n = static_cast<double>(r.size());
+  const double b2 = central_moment(r, 2), b3 = central_moment(r, 3);
+  const double g1 = b2 > 0.0 ? b3 / std::pow(b2, 1.5) : 0.0;  // (3.5)
+  const double s1 = std::sqrt(6.0 * (n - 2.0) / ((n + 1.0) * (n + 3.0)));  // (3.7)
+  t.strength = g1;
+  t.value = g1 / s1;
+  t.p_value = two_sided_normal_p(t.value);
+  return t;
+}
+
+ResidualTest heavy_tail_test(std::span<const double> r, const std::string& residual) {
+  ResidualTest t{"heavy_tails", residual, "", "u2"};
+  const double n = static_cast<double>(r.size());
+  const double b2 = central_moment(r, 2), b4 = central_moment(r, 4);
+  const double g2 = b2 > 0.0 ? b4 / (b2 * b2) : 3.0;  // (3.6)
+  const double mu2 = 3.0 - 6.0 / (n + 1.0);           // (3.8)
+  const double s2 = std::sqrt(24.0 * n * (n - 2.0) * (n - 3.0) /
+                              ((n + 1.0) * (n + 1.0) * (n + 3.0) * (n + 5.0)));
+  t.strength = g2 - 3.0;
+  t.value = (g2 - mu2) / s2;
+  t.p_value = normal_upper_tail(t.value);
+  return t;
+}
+
+ResidualTest heteroscedasticity_test(std::span<const double> r, std::span<const double> x,
+                                     const std::string& residual, const std::string& variable) {
+  std::vector<double> r2(r.size());
+  for (std::size_t i = 0; i < r.size(); ++i) r2[i] = r[i] * r[i];
+  ResidualTest t = dependence_test(r2, x, "heteroscedasticity", residual, variable);
+  t.p_value = normal_upper_tail(t.value);  // one-sided: variance growing with x
+  return t;
+}
+
+ResidualTest autocorrelation_test(std::span<const double> r, const std::string& residual) {
+  ResidualTest t{"autocorrelation", residual, "lag 1", "ljung_box_q"};
+  const double n = static_cast<double>(r.size());
+  const double m = mean(r);
+  double c0 = 0.0, c1 = 0.0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    c0 += (r[i] - m) * (r[i] - m);
+    if (i > 0) c1 += (r[i] - m) * (r[i - 1] - m);
+  }
+  const double rho = c0 > 0.0 ? c1 / c0 : 0.0;
+  t.strength = rho;
+  t.value = n * (n + 2.0) * rho * rho / (n - 1.0);
+  // One-sided: a slowly varying unmodelled effect makes neighbours alike (ρ > 0). Noise at the
+  // window ends — quantization remainders, reference noise — is shared by adjacent windows with
+  // opposite signs and gives ρ ≈ −0.5 under a correct model, so ρ < 0 is not a finding.
+  t.p_value = rho > 0.0 ? 0.5 * chi2_upper_p(t.value, 1.0) : 1.0;
+  return t;
+}
+
+std::optional<Lattice> find_lattice(std::span<const double> values) {
+  if (values.size() < 20) return std::nullopt;
+  std::vector<double> v(values.begin(), values.end());
+  std::sort(v.begin(), v.end());
+  std::vector<double> distinct;
+  for (double x : v) {
+    if (distinct.empty() || x - distinct.back() > 1e-9) distinct.push_back(x);
+  }
+  if (distinct.size() < 2 || distinct.size() * 4 > v.size()) return std::nullopt;
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < distinct.size(); ++i) gaps.push_back(distinct[i] - distinct[i - 1]);
+  std::sort(gaps.begin(), gaps.end());
+  std::optional<Lattice> best;
+  // Candidates: the smallest gaps and their integer fractions (a lattice whose every other
+  // value is missing still shows its step as the smallest gap's divisor).
+  for (std::size_t g = 0; g < std::min<std::size_t>(gaps.size(), 5); ++g) {
+    for (int div = 1; div <= 4; ++div) {
+      const double s = gaps[g] / div;
+      if (!(s > 1e-9)) continue;
+      std::size_t on = 0;
+      for (double x : v) {
+        const double k = std::round(x / s);
+        if (std::abs(x - k * s) <= std::max(1e-3 * s, 1e-9)) ++on;
+      }
+      const double frac = static_cast<double>(on) / static_cast<double>(v.size());
+      if (frac >= 0.99 && (!best || s > best->step)) {
+        best = Lattice{s, frac, distinct.size(), v.size()};
+      }
+    }
+  }
+  return best;
+}
+
+std::optional<Lattice> find_integer_lattice(std::span<const std::int64_t> increments) {
+  std::vector<std::int64_t> nz;
+  for (auto d : increments) {
+    if (d != 0) nz.push_back(d < 0 ? -d : d);
+  }
+  if (nz.size() < 20) return std::nullopt;
+  // A lattice needs spread: increments that take only a few values (a servo at constant speed
+  // sampled on a fixed clock) are divisible by anything that divides those values.
+  std::vector<std::int64_t> sorted = nz;
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t distinct =
+      static_cast<std::size_t>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
+  if (distinct < 10) return std::nullopt;
+  const std::int64_t median = sorted[distinct / 2];
+  std::optional<Lattice> best;
+  for (std::int64_t g = 2; g <= std::min<std::int64_t>(1000, median / 3); ++g) {
+    std::size_t on = 0;
+    for (auto d : nz) on += d % g == 0 ? 1 : 0;
+    const double frac = static_cast<double>(on) / static_cast<double>(nz.size());
+    if (frac >= 0.99) best = Lattice{static_cast<double>(g), frac, distinct, nz.size()};
+  }
+  return best;
+}
+
+}  // namespace locbench::diagnosis

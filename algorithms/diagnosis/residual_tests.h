@@ -1,0 +1,60 @@
+#pragma once
+// The battery of residual tests: does a residual have a bias, depend on a covariate, have
+// non-normal or heavy tails, sit on a lattice, grow in variance with travel, correlate with its
+// neighbour? Each test returns its statistic and a p-value; `passed` means not significant at
+// the level the caller gives (the diagnosis divides its false-alarm level over the battery).
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace locbench::diagnosis {
+
+struct ResidualTest {
+  std::string name;       // e.g. "drift_with_distance"
+  std::string residual;   // e.g. "heading" (what was tested)
+  std::string variable;   // covariate, "" for none
+  std::string statistic;  // e.g. "z", "chi2", "lattice_fraction"
+  double value = 0.0;
+  double p_value = 1.0;
+  double strength = 0.0;  // effect size: correlation, mean/σ, excess kurtosis, …
+  bool passed = true;
+};
+
+// Mean of r is zero (z = mean/(s/√n)).
+ResidualTest bias_test(std::span<const double> r, const std::string& residual);
+// Pearson correlation of r with x (z = atanh(ρ)·√(n − 3)).
+ResidualTest dependence_test(std::span<const double> r, std::span<const double> x,
+                             const std::string& name, const std::string& residual,
+                             const std::string& variable);
+// Skewness (3.3–3.10, §3.2.1) of standardized residuals, two-sided.
+ResidualTest skewness_test(std::span<const double> r, const std::string& residual);
+// Kurtosis above normal (heavy tails), one-sided upper.
+ResidualTest heavy_tail_test(std::span<const double> r, const std::string& residual);
+// Variance growing with x: correlation of r² with x, one-sided (Breusch–Pagan-like).
+ResidualTest heteroscedasticity_test(std::span<const double> r, std::span<const double> x,
+                                     const std::string& residual, const std::string& variable);
+// Positive lag-1 autocorrelation (Ljung–Box with one lag, χ²₁, one-sided).
+ResidualTest autocorrelation_test(std::span<const double> r, const std::string& residual);
+
+// A lattice in real values: the largest step s such that at least 99% of the values lie within
+// 1e-3·s (or 1e-9 absolute) of a multiple of s; candidates are the smallest gaps between
+// distinct values. nullopt when there is none (or fewer than 20 values).
+struct Lattice {
+  double step = 0.0;
+  double on_lattice_fraction = 0.0;
+  std::size_t distinct = 0;
+  std::size_t n = 0;
+};
+std::optional<Lattice> find_lattice(std::span<const double> values);
+// A common divisor > 1 of integer increments: the largest g ≤ 1000 dividing at least 99% of
+// the non-zero ones (and at least 20 of them).
+std::optional<Lattice> find_integer_lattice(std::span<const std::int64_t> increments);
+
+// p-value helpers.
+double two_sided_normal_p(double z);
+double chi2_upper_p(double x, double dof);
+double chi2_quantile(double p, double dof);
+
+}  // namespace locbench::diagnosis

@@ -1,0 +1,131 @@
+// `locbench diagnose LOG [--relations R] [--report out.json]`: what the nominal model a log
+// declares gets wrong — residual tests, named causes with fitted parameters and 95% intervals,
+// held-out gain, unexplained structure, verdict (algorithms/diagnosis/diagnosis.h).
+// LOG is a CARMEN log (ENCODER/ODOM with TRUEPOS or COMPASS), an MRCLAM folder (#robotN), a
+// catalog dataset name (`locbench list`: aces, intel, mrclam6_robot1, …), or a histogram JSON.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "algorithms/core/errors.h"
+#include "algorithms/diagnosis/diagnosis.h"
+#include "cli/commands.h"
+#include "datasets/catalog/dataset_catalog.h"
+#include "datasets/io/log_loader.h"
+#include "datasets/log/data_root.h"
+#include "reports/provenance.h"
+#include "reports/report_json.h"
+
+namespace locbench::cli {
+namespace {
+
+struct DiagnoseArgs {
+  std::string input;
+  std::string relations;
+  std::string report;
+  std::string data;
+  double false_alarm = 0.01;
+  double window = 1.0;
+};
+
+bool ends_with(const std::string& s, const std::string& e) {
+  return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
+}
+
+void print(const diagnosis::Diagnosis& d) {
+  std::cout << "log:       " << d.log << "\nreference: " << d.reference << "\n";
+  std::size_t failed = 0;
+  for (const auto& t : d.residual_tests) failed += t.passed ? 0 : 1;
+  std::cout << fmt::format("residual tests: {} of {} significant\n", failed, d.residual_tests.size());
+  for (const auto& t : d.residual_tests) {
+    if (!t.passed) {
+      std::cout << fmt::format("  {:<22} {:<20} {:<18} {}={:.4g} p={:.3g}\n", t.name, t.residual, t.variable,
+                               t.statistic, t.value, t.p_value);
+    }
+  }
+  for (const auto& c : d.causes) {
+    if (!c.detected) continue;
+    std::cout << fmt::format("cause {:<22} {} = {:.4g} (threshold {:.4g}){}\n", c.id, c.statistic, c.value,
+                             c.threshold, c.identifiable ? "" : " — confounded");
+    for (const auto& p : c.parameters) {
+      std::cout << fmt::format("  {:<12} {:.6g}  95% [{:.6g}, {:.6g}]\n", p.name, p.value, p.lo, p.hi);
+    }
+    if (!c.gains.empty()) {
+      const auto& g = c.gains.front();
+      std::cout << fmt::format("  gain {}: {:.6g} → {:.6g} ({:+.1f}%)\n", g.metric, g.before, g.after,
+                               100.0 * g.relative());
+    }
+  }
+  for (const auto& g : d.confounded) std::cout << "confounded: " << g.combination << "\n";
+  for (const auto& u : d.unexplained) {
+    std::cout << fmt::format("unexplained: {} of {} against {} (statistic {:.4g}, p = {:.3g})\n", u.test,
+                             u.residual, u.variable.empty() ? "-" : u.variable, u.statistic, u.p_value);
+  }
+  std::cout << "verdict: " << d.verdict << "\n";
+}
+
+int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
+  diagnosis::DiagnosisOptions opt;
+  opt.false_alarm = a.false_alarm;
+  opt.windows.duration = a.window;
+  if (!(a.false_alarm > 0.0 && a.false_alarm < 0.5)) throw UsageError("--false-alarm must be in (0, 0.5)");
+  if (!(a.window > 0.0)) throw UsageError("--window must be > 0 s");
+  diagnosis::Diagnosis d;
+  if (ends_with(a.input, ".json")) {
+    std::ifstream in(a.input);
+    if (!in) throw InputError(a.input, 0, "cannot open the histogram file");
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw InputError(a.input, 0, std::string("expected JSON: ") + e.what());
+    }
+    d = diagnosis::diagnose_histogram(diagnosis::read_histogram(j, a.input), a.input, opt);
+  } else {
+    Log log;
+    if (const DatasetEntry* entry = find_dataset(a.input)) {
+      const auto root = a.data.empty() ? data_root() : std::filesystem::path(a.data);
+      log = load_catalog_dataset(*entry, root);
+    } else {
+      log = load_log(a.input);
+    }
+    if (!a.relations.empty()) attach_relations(log, a.relations);
+    if (log.source.empty()) log.source = a.input;
+    d = diagnosis::diagnose_log(log, opt);
+  }
+  print(d);
+  if (!a.report.empty()) {
+    nlohmann::json j = diagnosis::to_json(d);
+    nlohmann::json options;
+    diagnosis::to_json(options, opt);
+    j["configuration"] = options;
+    j["provenance"] = reports::provenance_to_json(reports::current_provenance(command_line));
+    std::ofstream out(a.report);
+    if (!out) throw InputError(a.report, 0, "cannot write the report");
+    out << j.dump(2) << '\n';
+    std::cerr << "wrote " << a.report << '\n';
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
+  auto args = std::make_shared<DiagnoseArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "diagnose", "What the nominal model of a log gets wrong: residual tests, named causes, fitted extensions, gain");
+  cmd->add_option("input", args->input,
+                  "A log (CARMEN .clf[.gz] with ENCODER or ODOM and TRUEPOS/COMPASS; MRCLAM folder#robotN), "
+                  "a catalog dataset name, or a residual histogram (.json)")
+      ->required();
+  cmd->add_option("--relations", args->relations, "Reference relations for the log's ODOM (.relations[.gz])");
+  cmd->add_option("--report", args->report, "Write the diagnosis (locbench.diagnosis/1 JSON) here");
+  cmd->add_option("--false-alarm", args->false_alarm, "False-alarm level per log and channel (default 0.01)");
+  cmd->add_option("--window", args->window, "Residual window length [s] (default 1)");
+  cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+  return [args, command_line] { return diagnose(*args, command_line); };
+}
+
+}  // namespace locbench::cli

@@ -1,0 +1,188 @@
+#include "datasets/diagnosis/hidden_effects.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "algorithms/core/angle.h"
+#include "algorithms/core/errors.h"
+#include "algorithms/core/rng.h"
+#include "algorithms/core/units.h"
+#include "datasets/sim/simulator.h"
+
+namespace locbench::sim {
+
+std::vector<std::pair<std::string, std::string>> hidden_effect_ids() {
+  return {{"wheel_diameter_ratio", "E_d − 1"},
+          {"wheelbase_scale", "E_b − 1"},
+          {"mean_diameter_scale", "E_o − 1"},
+          {"encoder_quantization", "step in ticks (integer ≥ 2)"},
+          {"compass_quantization", "step [rad]"},
+          {"compass_bias", "bias [rad]"},
+          {"compass_disturbance", "extra bias in a 1.5 m disc [rad]"},
+          {"wheel_slip", "events per metre of wheel travel (loss U[0.2, 0.4])"},
+          {"odometry_noise_growth", "k² [m per m of wheel travel]"},
+          {"velocity_scale", "scale − 1 (true = scale × logged; velocity odometry)"},
+          {"turn_rate_scale", "scale − 1 (velocity odometry)"},
+          {"turn_rate_bias", "bias [rad/s] (velocity odometry)"},
+          {"sensor_time_offset", "odometry latency [s] (logged − true)"}};
+}
+
+namespace {
+
+bool known(const std::string& id) {
+  for (const auto& [k, u] : hidden_effect_ids()) {
+    if (k == id) return true;
+  }
+  return false;
+}
+
+// ΔD, Δθ of consecutive ODOM poses, rescaled and re-integrated.
+void distort_velocity_odometry(Log& log, double vscale, double wscale, double wbias) {
+  if (log.odometry.size() < 2) return;
+  std::vector<OdometryReading> out{log.odometry.front()};
+  Pose2 p = log.odometry.front().pose;
+  for (std::size_t i = 1; i < log.odometry.size(); ++i) {
+    const auto& a = log.odometry[i - 1];
+    const auto& b = log.odometry[i];
+    const double dt = b.t - a.t;
+    const double dth = angle_diff(b.pose.theta, a.pose.theta);
+    const double mid = a.pose.theta + 0.5 * dth;
+    const double dx = b.pose.x - a.pose.x, dy = b.pose.y - a.pose.y;
+    double d = std::hypot(dx, dy);
+    if (dx * std::cos(mid) + dy * std::sin(mid) < 0.0) d = -d;
+    const double ld = d / vscale, lth = (dth - wbias * dt) / wscale;
+    const double half = 0.5 * lth;
+    const double chord = std::abs(half) < 1e-6 ? ld : ld * std::sin(half) / half;
+    p = Pose2(p.x + chord * std::cos(p.theta + half), p.y + chord * std::sin(p.theta + half), p.theta + lth);
+    OdometryReading r = b;
+    r.pose = p;
+    r.tv = dt > 0 ? ld / dt : 0.0;
+    r.rv = dt > 0 ? lth / dt : 0.0;
+    out.push_back(r);
+  }
+  log.odometry = out;
+}
+
+}  // namespace
+
+GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_t seed,
+                          const GeneratorOptions& o) {
+  Rng rng = Rng::stream(seed, 0);
+  Scenario s;
+  s.name = "hidden_effects";
+  s.world.kind = WorldKind::kNone;
+  s.motion.kind = MotionKind::kWaypoints;
+  s.start = Pose2(0.5 * o.area, 0.5 * o.area, rng.uniform(-kPi, kPi));
+  for (int i = 0; i < o.waypoints; ++i) {
+    s.motion.waypoints.emplace_back(rng.uniform(0.0, o.area), rng.uniform(0.0, o.area));
+  }
+  s.drive.speed = 0.3;
+  s.drive.turn_rate = deg(45.0);
+  s.drive.pause = 0.3;
+  s.encoders.timing = SensorTiming{true, 10.0, 0.0, 0.005};  // jitter: increments vary
+  s.truth.rate = 10.0;
+  if (o.velocity_odometry) s.odometry.timing = SensorTiming{true, 10.0, 0.0, 0.005};
+  if (o.compass) {
+    s.compass.timing = SensorTiming{true, 10.0, 0.0, 0.0};
+    s.compass.noise = deg(0.2);
+  }
+  GeneratedLog g;
+  g.effects = effects;
+  double vscale = 1.0, wscale = 1.0, wbias = 0.0;
+  std::int64_t tick_step = 1;
+  const double dn = s.robot.nominal.mean_diameter();
+  for (const auto& e : effects) {
+    if (!known(e.id)) throw UsageError("hidden effect: unknown id '" + e.id + "'");
+    if (!std::isfinite(e.magnitude)) throw UsageError("hidden effect " + e.id + ": magnitude must be finite");
+    const double m = e.magnitude;
+    if (e.id == "wheel_diameter_ratio") {
+      const double ed = 1.0 + m;
+      const double mean = s.robot.actual.mean_diameter();
+      s.robot.actual.diameter_left = mean * 2.0 / (1.0 + ed);
+      s.robot.actual.diameter_right = mean * 2.0 * ed / (1.0 + ed);
+      g.truth["wheel_diameter_ratio.E_d"] = ed;
+    } else if (e.id == "wheelbase_scale") {
+      s.robot.actual.wheelbase = s.robot.nominal.wheelbase * (1.0 + m);
+      g.truth["wheelbase_scale.E_b"] = 1.0 + m;
+    } else if (e.id == "mean_diameter_scale") {
+      s.robot.actual.diameter_left *= 1.0 + m;
+      s.robot.actual.diameter_right *= 1.0 + m;
+      g.truth["mean_diameter_scale.E_o"] = 1.0 + m;
+    } else if (e.id == "encoder_quantization") {
+      tick_step = static_cast<std::int64_t>(std::llround(m));
+      if (tick_step < 2) throw UsageError("encoder_quantization: the step must be an integer ≥ 2 ticks");
+      g.truth["encoder_quantization.step_m"] = static_cast<double>(tick_step) * kPi * dn / s.robot.encoder.counts_per_wheel_rev();
+    } else if (e.id == "compass_quantization") {
+      s.compass.resolution = 2.0 * kPi / std::round(2.0 * kPi / m);  // a divisor of 2π
+      g.truth["compass_quantization.step_rad"] = s.compass.resolution;
+    } else if (e.id == "compass_bias") {
+      s.compass.bias = m;
+      g.truth["compass_bias.bias_rad"] = m;
+    } else if (e.id == "compass_disturbance") {
+      DisturbanceZone z;
+      z.shape = DisturbanceZone::Shape::kCircle;
+      z.center = s.motion.waypoints[static_cast<std::size_t>(rng.uniform(0.0, 0.999) * static_cast<double>(o.waypoints))];
+      z.radius = 1.5;
+      z.bias = m;
+      s.compass.zones.push_back(z);
+      g.truth["compass_disturbance.max_bias_rad"] = m;
+      g.truth["compass_disturbance.center_x"] = z.center.x();
+      g.truth["compass_disturbance.center_y"] = z.center.y();
+    } else if (e.id == "wheel_slip") {
+      s.slip.unit = SlipRateUnit::kPerMetre;
+      s.slip.straight = {m, 0.2, 0.4};
+      s.slip.turn = {m, 0.2, 0.4};
+      g.truth["wheel_slip.rate_per_m"] = m;
+      g.truth["wheel_slip.mean_loss"] = 0.3;
+    } else if (e.id == "odometry_noise_growth") {
+      if (m < 0.0) throw UsageError("odometry_noise_growth: k² must be ≥ 0");
+      s.floor.k_left = s.floor.k_right = std::sqrt(m);
+      g.truth["odometry_noise_growth.k2_m"] = m;
+    } else if (e.id == "velocity_scale") {
+      vscale = 1.0 + m;
+      g.truth["velocity_scale.scale"] = vscale;
+    } else if (e.id == "turn_rate_scale") {
+      wscale = 1.0 + m;
+      g.truth["turn_rate_scale.scale"] = wscale;
+    } else if (e.id == "turn_rate_bias") {
+      wbias = m;
+      g.truth["turn_rate_bias.bias_rad_s"] = m;
+    } else if (e.id == "sensor_time_offset") {
+      if (o.velocity_odometry) s.odometry.timing.latency = m;
+      else s.encoders.timing.latency = m;
+      g.truth["sensor_time_offset.offset_s"] = m;
+    }
+  }
+  g.log = simulate(s, Rng::derive_seed(seed, 1)).log;
+  Log& log = g.log;
+  log.name = "sim/hidden_effects";
+  log.source = fmt::format("generated(seed={})", seed);
+  // The PARAM records declare the nominal model only: nothing of the hidden effects.
+  for (auto it = log.params.begin(); it != log.params.end();) {
+    it = it->first.rfind("sim_", 0) == 0 ? log.params.erase(it) : std::next(it);
+  }
+  if (o.compass) log.params["compass_resolution"] = "0";
+  if (tick_step > 1) {
+    for (auto& e : log.encoders) {
+      auto q = [&](std::int64_t n) { return (n >= 0 ? n / tick_step : -((-n + tick_step - 1) / tick_step)) * tick_step; };
+      e.left = q(e.left);
+      e.right = q(e.right);
+    }
+  }
+  if (o.velocity_odometry) {
+    log.encoders.clear();
+    distort_velocity_odometry(log, vscale, wscale, wbias);
+  } else {
+    log.odometry.clear();
+  }
+  Rng noise = Rng::stream(seed, 2);
+  for (auto& t : log.truth) {
+    t.pose = Pose2(t.pose.x + noise.normal(0.0, o.reference_noise_xy), t.pose.y + noise.normal(0.0, o.reference_noise_xy),
+                   t.pose.theta + noise.normal(0.0, o.reference_noise_theta));
+  }
+  log.laser.clear();
+  return g;
+}
+
+}  // namespace locbench::sim

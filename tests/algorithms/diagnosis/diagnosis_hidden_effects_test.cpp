@@ -1,0 +1,117 @@
+// Hide an effect in a simulated log, require `diagnose` to find it: name it, put the true
+// parameter inside its 95% interval (or within the stated tolerance) and report a positive
+// held-out gain — and find nothing in logs with nothing hidden. The diagnosis reads only the
+// log; the generator's truth is compared with the report here.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "algorithms/core/units.h"
+#include "algorithms/diagnosis/diagnosis.h"
+#include "datasets/diagnosis/hidden_effects.h"
+
+namespace locbench::diagnosis {
+namespace {
+
+using sim::GeneratedLog;
+using sim::HiddenEffect;
+
+const Cause* find_cause(const Diagnosis& d, const std::string& id) {
+  for (const auto& c : d.causes) {
+    if (c.id == id) return &c;
+  }
+  return nullptr;
+}
+
+bool detected(const Diagnosis& d, const std::string& id) {
+  return std::find(d.detected.begin(), d.detected.end(), id) != d.detected.end();
+}
+
+std::string summary(const Diagnosis& d) {
+  std::string s = "detected:";
+  for (const auto& id : d.detected) s += " " + id;
+  for (const auto& c : d.causes) {
+    s += "\n  " + c.id + (c.detected ? " [D]" : "") + " LR=" + std::to_string(c.value) + " thr=" + std::to_string(c.threshold);
+    for (const auto& p : c.parameters) s += " " + p.name + "=" + std::to_string(p.value) + "[" + std::to_string(p.lo) + "," + std::to_string(p.hi) + "]";
+  }
+  for (const auto& u : d.unexplained) s += "\n  unexplained " + u.test + " " + u.residual + " " + u.variable;
+  return s + "\n  verdict: " + d.verdict;
+}
+
+// The true value is in the interval, or within `tolerance` (relative to the value's size) of it.
+void expect_covers(const Diagnosis& d, const GeneratedLog& g, const std::string& key, double tolerance) {
+  const auto dot = key.find('.');
+  const Cause* c = find_cause(d, key.substr(0, dot));
+  ASSERT_NE(c, nullptr) << key;
+  const auto it = std::find_if(c->parameters.begin(), c->parameters.end(),
+                               [&](const Estimate& e) { return e.name == key.substr(dot + 1); });
+  ASSERT_NE(it, c->parameters.end()) << key;
+  const double truth = g.truth.at(key);
+  const double slack = tolerance * std::abs(truth);
+  EXPECT_TRUE(truth >= it->lo - slack && truth <= it->hi + slack)
+      << key << ": true " << truth << ", estimate " << it->value << " [" << it->lo << ", " << it->hi << "]\n"
+      << summary(d);
+}
+
+void expect_positive_gain(const Diagnosis& d, const std::string& id) {
+  const Cause* c = find_cause(d, id);
+  ASSERT_NE(c, nullptr);
+  ASSERT_FALSE(c->gains.empty()) << id;
+  EXPECT_GT(c->gains.front().relative(), 0.0)
+      << id << " " << c->gains.front().metric << ": " << c->gains.front().before << " → " << c->gains.front().after;
+}
+
+Diagnosis run(const std::vector<HiddenEffect>& effects, std::uint64_t seed, sim::GeneratorOptions o = {}) {
+  return diagnose_log(sim::generate_log(effects, seed, o).log);
+}
+
+TEST(DiagnoseHiddenEffects, NullLogsDetectNothing) {
+  for (std::uint64_t seed : {1, 2, 3}) {
+    const Diagnosis d = run({}, seed);
+    EXPECT_TRUE(d.detected.empty()) << "seed " << seed << "\n" << summary(d);
+    EXPECT_TRUE(d.unexplained.empty()) << "seed " << seed << "\n" << summary(d);
+    EXPECT_NE(d.verdict.find("No significant discrepancy"), std::string::npos) << d.verdict;
+  }
+}
+
+struct Case {
+  std::string id;
+  double magnitude;
+  std::string key;     // parameter compared with the truth
+  double tolerance;    // relative slack beyond the interval
+  bool velocity = false;
+};
+
+class OneEffect : public ::testing::TestWithParam<Case> {};
+
+TEST_P(OneEffect, IsNamedWithTheTrueParameterAndAHeldOutGain) {
+  const Case& c = GetParam();
+  sim::GeneratorOptions o;
+  o.velocity_odometry = c.velocity;
+  const GeneratedLog g = sim::generate_log({{c.id, c.magnitude}}, 11, o);
+  const Diagnosis d = diagnose_log(g.log);
+  ASSERT_TRUE(detected(d, c.id)) << summary(d);
+  EXPECT_EQ(d.detected.front(), c.id) << summary(d);
+  expect_covers(d, g, c.key, c.tolerance);
+  expect_positive_gain(d, c.id);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Catalog, OneEffect,
+    ::testing::Values(Case{"wheel_diameter_ratio", 0.004, "wheel_diameter_ratio.E_d", 0.0},
+                      Case{"wheelbase_scale", 0.01, "wheelbase_scale.E_b", 0.0},
+                      Case{"mean_diameter_scale", 0.01, "mean_diameter_scale.E_o", 0.0},
+                      Case{"odometry_noise_growth", 1e-6, "odometry_noise_growth.k2_m", 0.0},
+                      Case{"wheel_slip", 0.2, "wheel_slip.rate_per_m", 0.3},
+                      Case{"sensor_time_offset", 0.05, "sensor_time_offset.offset_s", 0.0},
+                      Case{"compass_bias", deg(2.0), "compass_bias.bias_rad", 0.0},
+                      Case{"compass_quantization", deg(2.0), "compass_quantization.step_rad", 0.0},
+                      Case{"compass_disturbance", deg(10.0), "compass_disturbance.max_bias_rad", 0.25},
+                      Case{"velocity_scale", 0.02, "velocity_scale.scale", 0.0, true},
+                      Case{"turn_rate_scale", 0.02, "turn_rate_scale.scale", 0.0, true},
+                      Case{"turn_rate_bias", 0.01, "turn_rate_bias.bias_rad_s", 0.0, true}),
+    [](const auto& p) { return p.param.id; });
+
+}  // namespace
+}  // namespace locbench::diagnosis
