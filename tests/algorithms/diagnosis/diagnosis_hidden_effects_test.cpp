@@ -81,6 +81,7 @@ struct Case {
   std::string key;     // parameter compared with the truth
   double tolerance;    // relative slack beyond the interval
   bool velocity = false;
+  int waypoints = 16;
 };
 
 class OneEffect : public ::testing::TestWithParam<Case> {};
@@ -89,6 +90,7 @@ TEST_P(OneEffect, IsNamedWithTheTrueParameterAndAHeldOutGain) {
   const Case& c = GetParam();
   sim::GeneratorOptions o;
   o.velocity_odometry = c.velocity;
+  o.waypoints = c.waypoints;
   const GeneratedLog g = sim::generate_log({{c.id, c.magnitude}}, 11, o);
   const Diagnosis d = diagnose_log(g.log);
   ASSERT_TRUE(detected(d, c.id)) << summary(d);
@@ -102,16 +104,47 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"wheel_diameter_ratio", 0.004, "wheel_diameter_ratio.E_d", 0.0},
                       Case{"wheelbase_scale", 0.01, "wheelbase_scale.E_b", 0.0},
                       Case{"mean_diameter_scale", 0.01, "mean_diameter_scale.E_o", 0.0},
-                      Case{"odometry_noise_growth", 1e-6, "odometry_noise_growth.k2_m", 0.0},
+                      Case{"odometry_noise_growth", 1e-5, "odometry_noise_growth.k2_m", 0.0},
                       Case{"wheel_slip", 0.2, "wheel_slip.rate_per_m", 0.3},
                       Case{"sensor_time_offset", 0.05, "sensor_time_offset.offset_s", 0.0},
                       Case{"compass_bias", deg(2.0), "compass_bias.bias_rad", 0.0},
-                      Case{"compass_quantization", deg(2.0), "compass_quantization.step_rad", 0.0},
+                      Case{"compass_quantization", deg(2.0), "compass_quantization.step_rad", 0.0, false, 60},
                       Case{"compass_disturbance", deg(10.0), "compass_disturbance.max_bias_rad", 0.25},
                       Case{"velocity_scale", 0.02, "velocity_scale.scale", 0.0, true},
                       Case{"turn_rate_scale", 0.02, "turn_rate_scale.scale", 0.0, true},
                       Case{"turn_rate_bias", 0.01, "turn_rate_bias.bias_rad_s", 0.0, true}),
     [](const auto& p) { return p.param.id; });
+
+}  // namespace
+}  // namespace locbench::diagnosis
+
+namespace locbench::diagnosis {
+namespace {
+
+TEST(DiagnoseHiddenEffects, TwoEffectsAtOnceAreBothNamed) {
+  const GeneratedLog g = sim::generate_log({{"wheel_diameter_ratio", 0.004}, {"compass_bias", deg(3.0)}}, 21);
+  const Diagnosis d = diagnose_log(g.log);
+  EXPECT_TRUE(detected(d, "wheel_diameter_ratio")) << summary(d);
+  EXPECT_TRUE(detected(d, "compass_bias")) << summary(d);
+  expect_covers(d, g, "wheel_diameter_ratio.E_d", 0.0);
+  expect_covers(d, g, "compass_bias.bias_rad", 0.0);
+}
+
+TEST(DiagnoseHiddenEffects, WheelbaseAndMeanDiameterTogetherAreSeparatedByGroundTruth) {
+  const GeneratedLog g = sim::generate_log({{"wheelbase_scale", 0.01}, {"mean_diameter_scale", -0.01}}, 22);
+  const Diagnosis d = diagnose_log(g.log);
+  EXPECT_TRUE(detected(d, "wheelbase_scale")) << summary(d);
+  EXPECT_TRUE(detected(d, "mean_diameter_scale")) << summary(d);
+  expect_covers(d, g, "wheelbase_scale.E_b", 0.0);
+  expect_covers(d, g, "mean_diameter_scale.E_o", 0.0);
+}
+
+TEST(DiagnoseHiddenEffects, EncoderQuantizationIsFoundAsALatticeInTheCounts) {
+  const GeneratedLog g = sim::generate_log({{"encoder_quantization", 8}}, 23);
+  const Diagnosis d = diagnose_log(g.log);
+  ASSERT_TRUE(detected(d, "encoder_quantization")) << summary(d);
+  expect_covers(d, g, "encoder_quantization.step_m", 1e-9);
+}
 
 }  // namespace
 }  // namespace locbench::diagnosis
