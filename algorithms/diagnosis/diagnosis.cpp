@@ -62,13 +62,11 @@ struct Candidate {
 
 std::vector<Candidate> odometry_candidates(const MotionData& d) {
   std::vector<Candidate> c;
-  const std::string sensor = d.reference == ReferenceKind::kCompass ? "compass" : "odometry";
   if (d.odometry == OdometryKind::kEncoder) {
     c.push_back({"wheel_diameter_ratio", {{"E_d", &OdometryModel::E_d, 1.0, 1e-3, false}}, "", false});
     c.push_back({"wheelbase_scale", {{"E_b", &OdometryModel::E_b, 1.0, 1e-3, false}}, "", false});
-    if (d.reference != ReferenceKind::kCompass) {
-      c.push_back({"mean_diameter_scale", {{"E_o", &OdometryModel::E_o, 1.0, 1e-3, false}}, "", false});
-    }
+    // On heading-only references E_o and E_b act only through E_o/E_b (confounded, reported).
+    c.push_back({"mean_diameter_scale", {{"E_o", &OdometryModel::E_o, 1.0, 1e-3, false}}, "", false});
     c.push_back({"wheel_slip",
                  {{"rate_per_m", &OdometryModel::slip_rate, 0.05, 0.01, true},
                   {"mean_loss", &OdometryModel::slip_loss, 0.2, 0.01, false}},
@@ -84,7 +82,6 @@ std::vector<Candidate> odometry_candidates(const MotionData& d) {
   c.push_back({"odometry_noise_growth", {{"k2_m", &OdometryModel::k2, 1e-6, 1e-6, true}}, "", true});
   if (d.reference != ReferenceKind::kRelations) {
     c.push_back({"sensor_time_offset", {{"offset_s", &OdometryModel::time_offset, 0.0, 0.01, false}}, "", false});
-    (void)sensor;
   }
   return c;
 }
@@ -293,6 +290,7 @@ void diagnose_odometry(const MotionData& d, const DiagnosisOptions& opt, Diagnos
   OdometryModel start = initial_noise(d, train);
   OdoFit base = fit_odometry(d, {}, start, train);
   const OdometryModel nominal_fit = base.model;
+  const double nominal_nll = base.fit.nll;
 
   // Residual battery on the nominal model.
   auto tests = odometry_battery(d, odometry_residuals(d, base.model, train));
@@ -352,11 +350,8 @@ void diagnose_odometry(const MotionData& d, const DiagnosisOptions& opt, Diagnos
   for (const Candidate* a : active) {
     for (const auto& c : candidates) {
       if (&c == a || c.noise || a->noise || c.params.size() != 1 || a->params.size() != 1) continue;
-      const double lr_c = 2.0 * (nominal_fit.sigma_theta > 0.0 ? 0.0 : 0.0);
-      (void)lr_c;
       // Both explain the data alone?
-      const bool c_alone = 2.0 * (fit_odometry(d, {}, start, train).fit.nll - alone[c.id].fit.nll) >
-                           evidence[c.id].second;
+      const bool c_alone = 2.0 * (nominal_nll - alone[c.id].fit.nll) > evidence[c.id].second;
       if (!c_alone) continue;
       const OdoFit both = fit_odometry(d, {a, &c}, nominal_fit, train);
       if (both.fit.max_abs_correlation < 0.98) continue;
@@ -369,8 +364,11 @@ void diagnose_odometry(const MotionData& d, const DiagnosisOptions& opt, Diagnos
       const double va = alone[a->id].model.*(a->params[0].field);
       const FitResult& fa = alone[a->id].fit;
       const std::size_t ia = fa.values.size() - 1;
-      g.combination = fmt::format("{} under {} = 1: {:.6g} [{:.6g}, {:.6g}] (correlation {:.4f} when fitted together)",
-                                  pa, pc, va, fa.ci_low[ia], fa.ci_high[ia], both.fit.max_abs_correlation);
+      const bool ratio = (pa == "E_b" && pc == "E_o") || (pa == "E_o" && pc == "E_b");
+      g.combination = ratio ? fmt::format("{}/{} = {:.6g} [{:.6g}, {:.6g}] (each alone: correlation {:.4f} when fitted together)",
+                                          pa, pc, va, fa.ci_low[ia], fa.ci_high[ia], both.fit.max_abs_correlation)
+                            : fmt::format("{} with {} nominal = {:.6g} [{:.6g}, {:.6g}] (correlation {:.4f} when fitted together)",
+                                          pa, pc, va, fa.ci_low[ia], fa.ci_high[ia], both.fit.max_abs_correlation);
       g.explanation = fmt::format("{} and {} act on these residuals the same way (the reference has no "
                                   "independent distance or turn measurement that separates them); only "
                                   "their combination is determined",
@@ -599,13 +597,7 @@ void diagnose_compass(const Log& log, const DiagnosisOptions& opt, Diagnosis& ou
     if (fits.count(id)) {
       const auto& [cm, f] = fits[id];
       const std::string pname = id == "compass_bias" ? "bias_rad" : id == "sensor_time_offset" ? "offset_s" : "max_bias_rad";
-      for (std::size_t i = 0; i < f.values.size(); ++i) {
-        // the parameter's last occurrence is the one this round fitted
-      }
-      for (std::size_t i = f.values.size(); i-- > 0;) {
-        (void)i;
-      }
-      // parameter order in fit_model: sigma, then the free list in order; find by value field
+      // The interval of this cause's parameter: the fit's coordinate holding its value.
       const double v = id == "compass_bias" ? cm.bias : id == "sensor_time_offset" ? cm.time_offset : cm.zone.bias;
       double lo = v, hi = v;
       for (std::size_t i = 1; i < f.values.size(); ++i) {
@@ -720,7 +712,7 @@ Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options) {
     out.not_testable.push_back("wheel_diameter_ratio, wheelbase_scale, mean_diameter_scale, encoder_quantization, wheel_slip: need ENCODER counts");
   }
   if (data.reference == ReferenceKind::kCompass) {
-    out.not_testable.push_back("mean_diameter_scale, velocity_scale: a heading reference measures no distance");
+    out.not_testable.push_back("velocity_scale: a heading reference measures no distance (and E_o only through E_o/E_b)");
   }
   const double level = options.false_alarm / static_cast<double>(std::max<std::size_t>(out.residual_tests.size(), 1));
   judge(out.residual_tests, level);

@@ -116,7 +116,11 @@ std::optional<Lattice> find_lattice(std::span<const double> values) {
   for (double x : v) {
     if (distinct.empty() || x - distinct.back() > 1e-9) distinct.push_back(x);
   }
-  if (distinct.size() < 2 || distinct.size() * 4 > v.size()) return std::nullopt;
+  // Quantized values repeat; continuous ones (almost) never do.
+  if (distinct.size() < 2 || static_cast<double>(distinct.size()) > 0.9 * static_cast<double>(v.size())) {
+    return std::nullopt;
+  }
+  const double min_step = 1e-6 * (v.back() - v.front());
   std::vector<double> gaps;
   for (std::size_t i = 1; i < distinct.size(); ++i) gaps.push_back(distinct[i] - distinct[i - 1]);
   std::sort(gaps.begin(), gaps.end());
@@ -126,11 +130,11 @@ std::optional<Lattice> find_lattice(std::span<const double> values) {
   for (std::size_t g = 0; g < std::min<std::size_t>(gaps.size(), 5); ++g) {
     for (int div = 1; div <= 4; ++div) {
       const double s = gaps[g] / div;
-      if (!(s > 1e-9)) continue;
+      if (!(s > min_step)) continue;
       std::size_t on = 0;
       for (double x : v) {
         const double k = std::round(x / s);
-        if (std::abs(x - k * s) <= std::max(1e-3 * s, 1e-9)) ++on;
+        if (std::abs(x - k * s) <= 1e-3 * s) ++on;
       }
       const double frac = static_cast<double>(on) / static_cast<double>(v.size());
       if (frac >= 0.99 && (!best || s > best->step)) {

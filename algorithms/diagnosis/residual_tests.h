@@ -39,8 +39,9 @@ ResidualTest heteroscedasticity_test(std::span<const double> r, std::span<const 
 ResidualTest autocorrelation_test(std::span<const double> r, const std::string& residual);
 
 // A lattice in real values: the largest step s such that at least 99% of the values lie within
-// 1e-3·s (or 1e-9 absolute) of a multiple of s; candidates are the smallest gaps between
-// distinct values. nullopt when there is none (or fewer than 20 values).
+// 1e-3·s of a multiple of s; candidates are the smallest gaps between distinct values and their
+// halves, thirds and quarters. nullopt when there is none, when fewer than 20 values, or when
+// the values hardly repeat (more than 90% distinct: continuous data).
 struct Lattice {
   double step = 0.0;
   double on_lattice_fraction = 0.0;

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "algorithms/core/angle.h"
 #include "algorithms/core/errors.h"
@@ -182,6 +184,35 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
                    t.pose.theta + noise.normal(0.0, o.reference_noise_theta));
   }
   log.laser.clear();
+  if (o.reference == GeneratedReference::kRelations) {
+    // Relations between odometry instants about 1 s apart, from the (noisy) truth.
+    std::vector<double> times;
+    for (const auto& e : log.encoders) times.push_back(e.t);
+    for (const auto& e : log.odometry) times.push_back(e.t);
+    std::optional<double> t1;
+    auto pose_at = [&](double t) -> std::optional<Pose2> {
+      auto it = std::lower_bound(log.truth.begin(), log.truth.end(), t, [](const TruePose& p, double v) { return p.t < v; });
+      if (it == log.truth.begin() || it == log.truth.end()) return std::nullopt;
+      const auto& b = *it;
+      const auto& a = *(it - 1);
+      const double f = (t - a.t) / (b.t - a.t);
+      return Pose2(a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
+                   a.pose.theta + f * angle_diff(b.pose.theta, a.pose.theta));
+    };
+    for (double t : times) {
+      if (!t1) {
+        t1 = t;
+        continue;
+      }
+      if (t - *t1 < 1.0) continue;
+      const auto a = pose_at(*t1), b = pose_at(t);
+      if (a && b) log.relations.push_back({*t1, t, between(*a, *b)});
+      t1 = t;
+    }
+    log.truth.clear();
+  } else if (o.reference == GeneratedReference::kCompass) {
+    log.truth.clear();
+  }
   return g;
 }
 

@@ -18,7 +18,15 @@ struct HiddenEffect {
   double magnitude;  // see hidden_effect_ids(): the deviation from the nominal model
 };
 
+// What the log carries as the reference the diagnosis takes residuals against.
+enum class GeneratedReference {
+  kTruePose,   // TRUEPOS (noisy, see reference_noise_*)
+  kRelations,  // Freiburg-style relations between odometry instants 1 s apart, no TRUEPOS
+  kCompass,    // no TRUEPOS: the compass is the only reference (headings, no distance)
+};
+
 struct GeneratorOptions {
+  GeneratedReference reference = GeneratedReference::kTruePose;
   int waypoints = 16;             // random waypoints in a square of side `area`
   double area = 8.0;              // [m]
   double reference_noise_xy = 1e-3;     // TRUEPOS white noise [m] (a motion-capture system)

@@ -148,3 +148,50 @@ TEST(DiagnoseHiddenEffects, EncoderQuantizationIsFoundAsALatticeInTheCounts) {
 
 }  // namespace
 }  // namespace locbench::diagnosis
+
+namespace locbench::diagnosis {
+namespace {
+
+TEST(DiagnoseReferences, OnAHeadingOnlyReferenceWheelbaseAndMeanDiameterAreOneConfoundedGroup) {
+  sim::GeneratorOptions o;
+  o.reference = sim::GeneratedReference::kCompass;
+  const GeneratedLog g = sim::generate_log({{"wheelbase_scale", 0.02}}, 31, o);
+  const Diagnosis d = diagnose_log(g.log);
+  ASSERT_FALSE(d.detected.empty()) << summary(d);
+  const std::string first = d.detected.front();
+  EXPECT_TRUE(first == "wheelbase_scale" || first == "mean_diameter_scale") << summary(d);
+  ASSERT_EQ(d.confounded.size(), 1u) << summary(d);
+  const auto& ids = d.confounded.front().ids;
+  EXPECT_NE(std::find(ids.begin(), ids.end(), "wheelbase_scale"), ids.end());
+  EXPECT_NE(std::find(ids.begin(), ids.end(), "mean_diameter_scale"), ids.end());
+  EXPECT_FALSE(find_cause(d, first)->identifiable);
+  // The combination the data determine is E_b/E_o = 1.02 (or its inverse).
+  const auto& p = find_cause(d, first)->parameters.front();
+  const double ratio = first == "wheelbase_scale" ? 1.02 : 1.0 / 1.02;
+  EXPECT_LT(p.lo, ratio) << d.confounded.front().combination;
+  EXPECT_GT(p.hi, ratio) << d.confounded.front().combination;
+}
+
+TEST(DiagnoseReferences, RelationsAsTheReferenceFindAWheelDiameterRatio) {
+  sim::GeneratorOptions o;
+  o.reference = sim::GeneratedReference::kRelations;
+  const GeneratedLog g = sim::generate_log({{"wheel_diameter_ratio", 0.005}}, 32, o);
+  ASSERT_FALSE(g.log.relations.empty());
+  const Diagnosis d = diagnose_log(g.log);
+  ASSERT_FALSE(d.detected.empty()) << summary(d);
+  EXPECT_EQ(d.detected.front(), "wheel_diameter_ratio") << summary(d);
+  expect_covers(d, g, "wheel_diameter_ratio.E_d", 0.0);
+}
+
+TEST(DiagnoseReferences, NullLogsWithRelationsOrACompassDetectNothing) {
+  for (auto ref : {sim::GeneratedReference::kRelations, sim::GeneratedReference::kCompass}) {
+    sim::GeneratorOptions o;
+    o.reference = ref;
+    const Diagnosis d = diagnose_log(sim::generate_log({}, 33, o).log);
+    EXPECT_TRUE(d.detected.empty()) << summary(d);
+    EXPECT_TRUE(d.unexplained.empty()) << summary(d);
+  }
+}
+
+}  // namespace
+}  // namespace locbench::diagnosis
