@@ -134,8 +134,17 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
     for (std::size_t i = 1; i < log.odometry.size(); ++i) {
       m.steps.push_back(pose_step(log.odometry[i - 1], log.odometry[i]));
     }
+  } else if (log.laser.size() >= 2 && !(log.laser[1].odom_pose.x == 0.0 && log.laser[1].odom_pose.y == 0.0 &&
+                                         log.laser[1].odom_pose.theta == 0.0)) {
+    // No ODOM records: the odometry poses logged with the scans (FLASER odom_x, odom_y, odom_θ).
+    m.odometry = OdometryKind::kPose;
+    for (std::size_t i = 1; i < log.laser.size(); ++i) {
+      const auto& a = log.laser[i - 1];
+      const auto& b = log.laser[i];
+      m.steps.push_back(pose_step({a.scan.timestamp, a.odom_pose, 0.0, 0.0}, {b.scan.timestamp, b.odom_pose, 0.0, 0.0}));
+    }
   } else {
-    throw InputError(file, 0, "no odometry: expected ENCODER records or at least two ODOM records");
+    throw InputError(file, 0, "no odometry: expected ENCODER records, at least two ODOM records or FLASER odometry poses");
   }
   for (const auto& s : m.steps) {
     if (!(s.t1 >= s.t0)) {
