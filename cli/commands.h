@@ -21,6 +21,7 @@ Action add_calibrate_command(CLI::App& app, const std::string& command_line);
 Action add_merge_command(CLI::App& app, const std::string& command_line);
 Action add_report_command(CLI::App& app);
 Action add_match_command(CLI::App& app, const std::string& command_line);
+Action add_localize_command(CLI::App& app, const std::string& command_line);
 Action add_diagnose_command(CLI::App& app, const std::string& command_line);
 
 }  // namespace locbench::cli

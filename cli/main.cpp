@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   add(add_merge_command(app, command_line));
   add(add_report_command(app));
   add(add_match_command(app, command_line));
+  add(add_localize_command(app, command_line));
   add(add_diagnose_command(app, command_line));
 
   try {
