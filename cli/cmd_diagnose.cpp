@@ -63,7 +63,7 @@ void print(const diagnosis::Diagnosis& d) {
     std::cout << fmt::format("unexplained: {} of {} against {} (statistic {:.4g}, p = {:.3g})\n", u.test,
                              u.residual, u.variable.empty() ? "-" : u.variable, u.statistic, u.p_value);
   }
-  std::cout << "verdict: " << d.verdict << "\n";
+  std::cout << "verdict: " << d.verdict << std::endl;
 }
 
 int diagnose(const DiagnoseArgs& a, const std::string& command_line) {

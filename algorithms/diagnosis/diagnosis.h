@@ -9,7 +9,8 @@
 //     largest likelihood-ratio statistic enters while LR ≥ χ²_k(1 − α/m), α the false-alarm
 //     level per log and m the number of causes tried on the channel;
 //  4. measures each kept cause's gain on held-out windows (every third block of 10 windows is
-//     held out; the fit uses the rest): predictive log-likelihood and relative-pose error;
+//     held out; the fits use the rest): the kept model against the kept model without the
+//     cause, in predictive log-likelihood and relative-pose error;
 //  5. reports residual structure no kept cause explains, confounded causes with the
 //     combination the data determine, and a one-sentence verdict.
 #include <nlohmann/json.hpp>
@@ -50,6 +51,7 @@ struct Cause {
   bool detected = false;
   std::string statistic = "likelihood_ratio";
   double value = 0.0, threshold = 0.0;
+  std::optional<bool> validated;  // LR causes that passed: did they also gain on held-out data?
   std::vector<Estimate> parameters;
   nlohmann::json extra = nlohmann::json::object();  // e.g. region, sensor
   bool identifiable = true;

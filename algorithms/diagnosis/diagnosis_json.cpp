@@ -38,6 +38,7 @@ nlohmann::json to_json(const Diagnosis& d) {
                       {"parameters", nlohmann::json::object()},
                       {"identifiable", c.identifiable},
                       {"explanation", c.explanation}};
+    if (c.validated) cj["evidence"]["heldout_validated"] = *c.validated;
     for (const auto& p : c.parameters) {
       cj["parameters"][p.name] = {{"value", number(p.value)}, {"ci95", {number(p.lo), number(p.hi)}}};
     }

@@ -146,6 +146,23 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
   } else {
     throw InputError(file, 0, "no odometry: expected ENCODER records, at least two ODOM records or FLASER odometry poses");
   }
+  // Merge consecutive samples into sub-steps of at least `min_step` seconds: the model is linear
+  // in each step's ΔN (or ΔD, Δθ), so only the arc integration within a sub-step is coarser.
+  if (options.min_step > 0.0 && m.steps.size() > 1) {
+    std::vector<OdometryStep> merged{m.steps.front()};
+    for (std::size_t i = 1; i < m.steps.size(); ++i) {
+      OdometryStep& last = merged.back();
+      const OdometryStep& st = m.steps[i];
+      if (last.t1 - last.t0 < options.min_step && st.t0 == last.t1 && st.t1 - st.t0 <= options.max_gap) {
+        last.t1 = st.t1;
+        last.a += st.a;
+        last.b += st.b;
+      } else {
+        merged.push_back(st);
+      }
+    }
+    m.steps = std::move(merged);
+  }
   for (const auto& s : m.steps) {
     if (!(s.t1 >= s.t0)) {
       throw InputError(file, 0, fmt::format("odometry timestamps go backwards at t = {}", s.t1));
@@ -167,27 +184,27 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
   }
 
   if (m.reference == ReferenceKind::kRelations) {
-    // One window per relation: the steps from the odometry sample nearest t1 to the one nearest t2.
-    std::vector<double> times;
-    times.reserve(m.steps.size() + 1);
-    for (const auto& s : m.steps) times.push_back(s.t0);
-    times.push_back(m.steps.back().t1);
-    auto nearest = [&](double t) {
-      auto it = std::lower_bound(times.begin(), times.end(), t);
-      std::size_t i = static_cast<std::size_t>(it - times.begin());
-      if (i == times.size()) --i;
-      if (i > 0 && std::abs(times[i - 1] - t) < std::abs(times[i] - t)) --i;
-      return i;
-    };
+    // One window per relation: the odometry between t1 and t2, the first and last samples cut at
+    // the relation's stamps (a step's ΔN or ΔD, Δθ split in proportion to time).
+    const std::vector<OdometryStep> all = std::move(m.steps);
+    m.steps.clear();
     for (const auto& r : log.relations) {
-      const std::size_t i = nearest(r.t1), j = nearest(r.t2);
-      if (j <= i || std::abs(times[i] - r.t1) > 0.05 || std::abs(times[j] - r.t2) > 0.05) continue;
-      if (r.t2 - r.t1 > 10.0) continue;  // local relations only (loop closures span minutes)
+      if (r.t2 - r.t1 > 10.0 || !(r.t2 > r.t1)) continue;  // local relations (loop closures span minutes)
+      if (r.t1 < all.front().t0 || r.t2 > all.back().t1) continue;
+      auto it = std::upper_bound(all.begin(), all.end(), r.t1, [](double v, const OdometryStep& st) { return v < st.t1; });
       MotionWindow w;
-      w.first = i;
-      w.last = j;
-      w.t0 = times[i];
-      w.t1 = times[j];
+      w.first = m.steps.size();
+      for (; it != all.end() && it->t0 < r.t2; ++it) {
+        const double a = std::max(it->t0, r.t1), b = std::min(it->t1, r.t2);
+        const double span = it->t1 - it->t0;
+        const double f = span > 0.0 ? (b - a) / span : 1.0;
+        if (f <= 0.0) continue;
+        m.steps.push_back({a, b, f * it->a, f * it->b});
+      }
+      w.last = m.steps.size();
+      if (w.last == w.first) continue;
+      w.t0 = r.t1;
+      w.t1 = r.t2;
       w.reference = r.delta;
       fill_covariates(m, w);
       m.windows.push_back(w);

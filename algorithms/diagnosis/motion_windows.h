@@ -47,6 +47,7 @@ struct MotionWindow {
 struct WindowOptions {
   double duration = 1.0;       // target window length [s]
   double max_gap = 1.0;        // a longer gap between odometry samples ends a window [s]
+  double min_step = 0.08;      // consecutive samples are merged into sub-steps this long [s]
   std::size_t min_windows = 40;  // fewer is "too short a log"
 };
 
