@@ -59,6 +59,9 @@ void print(const diagnosis::Diagnosis& d) {
     }
   }
   for (const auto& g : d.confounded) std::cout << "confounded: " << g.combination << "\n";
+  for (const auto& id : d.unconfirmed) {
+    std::cout << "unconfirmed: " << id << " (likelihood ratio passed on training windows, no held-out gain)\n";
+  }
   for (const auto& u : d.unexplained) {
     std::cout << fmt::format("unexplained: {} of {} against {} (statistic {:.4g}, p = {:.3g})\n", u.test,
                              u.residual, u.variable.empty() ? "-" : u.variable, u.statistic, u.p_value);

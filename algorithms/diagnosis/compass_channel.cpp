@@ -69,6 +69,7 @@ CompassZone best_compass_zone(const CompassData& d, const CompassModel& m,
   }
   CompassZone best;
   double best_gain = 0.0;
+  std::size_t searched = 0;
   const double var = m.sigma * m.sigma + m.step * m.step / 12.0;
   const std::size_t stride = std::max<std::size_t>(1, use.size() / 150);
   for (std::size_t c = 0; c < use.size(); c += stride) {
@@ -82,13 +83,15 @@ CompassZone best_compass_zone(const CompassData& d, const CompassModel& m,
         }
       }
       if (inside < 10 || use.size() - inside < 10) continue;
+      ++searched;
       const double gain = sum * sum / (2.0 * var * static_cast<double>(inside));  // Gaussian ΔNLL
       if (gain > best_gain) {
         best_gain = gain;
-        best = {true, use[c]->x, use[c]->y, radius, sum / static_cast<double>(inside)};
+        best = {true, use[c]->x, use[c]->y, radius, sum / static_cast<double>(inside), 0};
       }
     }
   }
+  best.candidates = searched;
   return best;
 }
 

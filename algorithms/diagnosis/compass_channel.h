@@ -20,6 +20,7 @@ struct CompassZone {
   bool enabled = false;
   double x = 0.0, y = 0.0, radius = 0.0;  // [m]
   double bias = 0.0;                      // [rad]
+  std::size_t candidates = 0;             // discs searched (for the scan's multiple-testing threshold)
 };
 
 struct CompassModel {

@@ -9,8 +9,8 @@
 //     largest likelihood-ratio statistic enters while LR ≥ χ²_k(1 − α/m), α the false-alarm
 //     level per log and m the number of causes tried on the channel;
 //  4. measures each kept cause's gain on held-out windows (every third block of 10 windows is
-//     held out; the fits use the rest): the kept model against the kept model without the
-//     cause, in predictive log-likelihood and relative-pose error;
+//     held out; the fits use the rest): the nominal model extended by the cause alone against
+//     the nominal model, in predictive log-likelihood and relative-pose error;
 //  5. reports residual structure no kept cause explains, confounded causes with the
 //     combination the data determine, and a one-sentence verdict.
 #include <nlohmann/json.hpp>
@@ -79,6 +79,9 @@ struct Diagnosis {
   std::vector<Cause> causes;  // detected first, by evidence; then the rest
   std::vector<std::string> detected;
   std::vector<Unexplained> unexplained;
+  // Causes whose likelihood ratio passed on the training windows but that did not improve the
+  // held-out windows in their primary metric: not detected, listed for the reader.
+  std::vector<std::string> unconfirmed;
   std::vector<ConfoundedGroup> confounded;
   std::vector<std::string> not_testable;  // catalog ids this input cannot show, with why
   std::vector<Gain> overall_gain;          // all kept causes together

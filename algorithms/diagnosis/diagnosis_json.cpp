@@ -58,6 +58,7 @@ nlohmann::json to_json(const Diagnosis& d) {
                                 {"statistic", number(u.statistic)}, {"p_value", number(u.p_value)},
                                 {"strength", number(u.strength)}});
   }
+  j["unconfirmed"] = d.unconfirmed;
   j["confounded"] = nlohmann::json::array();
   for (const auto& g : d.confounded) {
     j["confounded"].push_back({{"ids", g.ids}, {"combination", g.combination}, {"explanation", g.explanation}});

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace locbench::diagnosis {
 namespace {
@@ -65,7 +66,13 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
   Eigen::VectorXd g;
   Eigen::MatrixXd h;
   double lambda = 1e-3;
-  for (r.iterations = 0; r.iterations < max_iterations && n > 0; ++r.iterations) {
+  // Restarted (damping reset) until a restart gains nothing: a damped step that stalls far from
+  // the optimum would otherwise inflate the likelihood-ratio statistics computed against it.
+  for (int restart = 0; restart < 4 && n > 0; ++restart) {
+  const double before_restart = fx;
+  lambda = 1e-3;
+  r.converged = false;
+  for (int it = 0; it < max_iterations; ++it, ++r.iterations) {
     gradient_hessian(z, fx, g, h);
     // Levenberg damping on the scaled diagonal until the step lowers the NLL.
     bool improved = false;
@@ -84,9 +91,10 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
         const double gain = fx - fn;
         z = zn;
         fx = fn;
+        // Converged when an (almost) undamped Newton step gains next to nothing (relative 1e-9).
+        if (gain < 1e-9 * (1.0 + std::abs(fx)) && lambda <= 1e-2) r.converged = true;
         lambda = std::max(lambda / 10.0, 1e-9);
         improved = true;
-        if (gain < 1e-9 * (1.0 + std::abs(fx))) r.converged = true;
       } else {
         lambda *= 10.0;
       }
@@ -96,6 +104,8 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
       break;
     }
     if (r.converged) break;
+  }
+  if (before_restart - fx < 1e-9 * (1.0 + std::abs(fx))) break;
   }
   r.nll = fx;
   r.values = coords.values(z);
@@ -130,5 +140,34 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
   if (!r.hessian_ok) r.max_abs_correlation = 1.0;
   return r;
 }
+
+OffsetProfile profile_offset(const std::function<double(double)>& nll, double dt) {
+  OffsetProfile p;
+  const double step = std::max(dt, 1e-4);
+  std::map<long, double> at;
+  auto eval = [&](long k) {
+    auto it = at.find(k);
+    if (it != at.end()) return it->second;
+    return at[k] = nll(static_cast<double>(k) * step);
+  };
+  const long coarse = 5, range = static_cast<long>(std::ceil(0.5 / step));
+  long best = 0;
+  for (long k = -range; k <= range; k += coarse) {
+    if (eval(k) < eval(best)) best = k;
+  }
+  for (long k = best - coarse; k <= best + coarse; ++k) {
+    if (eval(k) < eval(best)) best = k;
+  }
+  p.value = static_cast<double>(best) * step;
+  p.nll = eval(best);
+  long lo = best, hi = best;
+  while (lo - 1 >= -range && 2.0 * (eval(lo - 1) - p.nll) <= 3.841458820694124) --lo;
+  while (hi + 1 <= range && 2.0 * (eval(hi + 1) - p.nll) <= 3.841458820694124) ++hi;
+  // Widened by a whole interval each side: the reference cannot place an offset more finely.
+  p.lo = (static_cast<double>(lo) - 1.0) * step;
+  p.hi = (static_cast<double>(hi) + 1.0) * step;
+  return p;
+}
+
 
 }  // namespace locbench::diagnosis

@@ -247,6 +247,15 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
       i = j;
     }
   }
+  auto median_dt = [](const auto& r) {
+    std::vector<double> dt;
+    for (std::size_t i = 1; i < r.size(); ++i) dt.push_back(r[i].t - r[i - 1].t);
+    if (dt.empty()) return 0.0;
+    std::nth_element(dt.begin(), dt.begin() + static_cast<long>(dt.size() / 2), dt.end());
+    return dt[dt.size() / 2];
+  };
+  if (m.reference == ReferenceKind::kTruePose) m.reference_interval = median_dt(m.truth);
+  if (m.reference == ReferenceKind::kCompass) m.reference_interval = median_dt(m.compass);
   if (m.windows.size() < options.min_windows) {
     throw InputError(file, 0,
                      fmt::format("too short a log: {} windows of {} s where the odometry and the "

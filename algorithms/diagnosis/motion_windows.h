@@ -59,6 +59,7 @@ struct MotionData {
   std::vector<MotionWindow> windows;
   std::vector<TruePose> truth;           // kTruePose
   std::vector<CompassReading> compass;   // kCompass
+  double reference_interval = 0.0;       // median sampling interval of truth or compass [s]
   std::string describe() const;          // e.g. "TRUEPOS ground truth (4812 poses)"
 };
 

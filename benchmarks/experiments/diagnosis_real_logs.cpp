@@ -6,10 +6,12 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 #include "algorithms/core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/parallel_tasks.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "reports/checksum.h"
 
@@ -44,7 +46,6 @@ class DiagnosisRealLogs final : public Experiment {
     opt.false_alarm = config.at("false_alarm").get<double>();
     opt.windows.duration = config.at("window_s").get<double>();
     const auto names = config.at("datasets").get<std::vector<std::string>>();
-    std::size_t done = 0;
     auto record = [&](const diagnosis::Diagnosis& d, const std::string& ds, std::size_t n) {
       out.results.push_back(reports::make_estimate("diagnose", ds, "causes_detected", "",
                                                    static_cast<double>(d.detected.size()), 0.0, n));
@@ -77,20 +78,44 @@ class DiagnosisRealLogs final : public Experiment {
                                       found.empty() ? "" : "\n  Causes:" + found,
                                       unexplained.empty() ? "" : "\n  Unexplained: " + unexplained));
     };
+    // Every log on its own thread (results are recorded in the configured order afterwards).
+    struct Outcome {
+      std::optional<diagnosis::Diagnosis> diagnosis;
+      std::optional<reports::DatasetRef> dataset;
+      std::optional<reports::CaseNote> note;
+      std::size_t samples = 0;
+    };
+    std::vector<Outcome> outcomes(names.size());
     for (const auto& n : names) {
-      const DatasetEntry* e = find_dataset(n);
-      if (!e) throw UsageError("diagnosis/real_logs: unknown dataset '" + n + "' (see `locbench list`)");
+      if (!find_dataset(n)) throw UsageError("diagnosis/real_logs: unknown dataset '" + n + "' (see `locbench list`)");
+    }
+    parallel_tasks(options.threads, names.size(), [&](std::size_t i) {
+      const DatasetEntry* e = find_dataset(names[i]);
+      Outcome& o = outcomes[i];
+      const std::string path = (options.data_root / e->path).string();
+      const std::string file = path.substr(0, path.find('#'));
+      if (!std::filesystem::exists(file)) {
+        o.note = reports::CaseNote{"diagnosis/" + names[i], "skipped", "dataset not found at " + file + " (set LOCBENCH_DATA)"};
+        return;
+      }
       try {
         Log log = load_catalog_dataset(*e, options.data_root);
-        const auto d = diagnosis::diagnose_log(log, opt);
-        out.datasets.push_back({n, e->path, reports::file_checksum(options.data_root / e->path), log.record_count(),
-                                log.time_span().second - log.time_span().first});
-        record(d, n, log.odometry.size() + log.encoders.size());
+        o.diagnosis = diagnosis::diagnose_log(log, opt);
+        o.dataset = reports::DatasetRef{names[i], path, reports::file_checksum(file), log.record_count(),
+                                        log.time_span().second - log.time_span().first};
+        o.samples = log.odometry.size() + log.encoders.size();
       } catch (const InputError& err) {
-        out.cases.push_back({n, std::filesystem::exists(options.data_root / e->path) ? "failed" : "skipped", err.what()});
+        o.note = reports::CaseNote{"diagnosis/" + names[i], "failed", err.what()};
       }
-      options.report_progress(static_cast<double>(++done) / static_cast<double>(names.size() + 1));
+    });
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (outcomes[i].note) out.cases.push_back(*outcomes[i].note);
+      if (outcomes[i].diagnosis) {
+        out.datasets.push_back(*outcomes[i].dataset);
+        record(*outcomes[i].diagnosis, names[i], outcomes[i].samples);
+      }
     }
+    options.report_progress(0.9);
     const auto h = diagnosis::read_histogram(config.at("table_3_1"), "table_3_1");
     const auto d = diagnosis::diagnose_histogram(h, "thesis Table 3.1", opt);
     out.datasets.push_back({"thesis_table_3_1", "thesis Table 3.1 (transcribed)",
