@@ -32,7 +32,8 @@ const std::vector<DatasetEntry>& dataset_catalog() {
     e.push_back({"stachniss_ls_calib", "calibration/stachniss_ls_calib", "",
                  "odometry vs scan-matched relative motions", calib});
     e.push_back({"breezyslam_mines", "wheel_ticks_lidar/breezyslam_mines", "",
-                 "wheel ticks + Hokuyo URG-04LX, no ground truth", "the diagnosis issue (#6)"});
+                 "wheel ticks + Hokuyo URG-04LX, no ground truth",
+                 "a scan-matching reference (not written: the log has no ground truth or compass to diagnose against)"});
     e.push_back({"kam3k_queens", "laser_scans/kam3k_queens", "",
                  "single 541-beam SICK scans of a hallway", "the laser issue (#5)"});
     return e;
