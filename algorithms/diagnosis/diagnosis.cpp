@@ -500,6 +500,12 @@ void diagnose_odometry(const MotionData& d, const DiagnosisOptions& opt, Diagnos
       return t.name == "heavy_tails" || t.name == "normality_skewness";
     });
   }
+  // Lead/lag is the signature of a time offset; when the best offset is within the resolution
+  // (kMinOffset, the reference interval) it is not reportable as a cause and not as structure.
+  const auto off = alone.find("sensor_time_offset");
+  if (off != alone.end() && std::abs(off->second.model.time_offset) <= std::max(reference_dt, kMinOffset) + 1e-12) {
+    std::erase_if(final_tests, [](const ResidualTest& t) { return t.name == "lead_lag"; });
+  }
 }
 
 // ---------------------------------------------------------------- the compass channel
@@ -728,7 +734,11 @@ void diagnose_compass(const Log& log, const DiagnosisOptions& opt, Diagnosis& ou
   final_tests.push_back(bias_test(rr, "compass"));
   final_tests.push_back(dependence_test(rr, fx, "position_dependence", "compass", "x"));
   final_tests.push_back(dependence_test(rr, fy, "position_dependence", "compass", "y"));
-  final_tests.push_back(dependence_test(rr, fw, "lead_lag", "compass", "turn rate"));
+  // Lead/lag only when the best offset is beyond the resolution (see the odometry channel).
+  if (!fits.count("sensor_time_offset") ||
+      std::abs(fits["sensor_time_offset"].first.time_offset) > std::max(truth_dt, kMinOffset) + 1e-12) {
+    final_tests.push_back(dependence_test(rr, fw, "lead_lag", "compass", "turn rate"));
+  }
 }
 
 std::string verdict_of(const Diagnosis& d) {
