@@ -509,7 +509,7 @@ void diagnose_odometry(const MotionData& d, const DiagnosisOptions& opt, Diagnos
 }
 
 // ---------------------------------------------------------------- the compass channel
-void diagnose_compass(const Log& log, const DiagnosisOptions& opt, Diagnosis& out,
+void diagnose_compass(const Log& log, double truth_dt, const DiagnosisOptions& opt, Diagnosis& out,
                       std::vector<ResidualTest>& final_tests) {
   CompassData d;
   d.readings = log.compass;
@@ -542,11 +542,7 @@ void diagnose_compass(const Log& log, const DiagnosisOptions& opt, Diagnosis& ou
   CompassModel nominal;
   nominal.step = d.declared_step;
   nominal.sigma = std::max(sample_stddev(r), 1e-4);
-  const double truth_dt = [&] {
-    std::vector<double> dt;
-    for (std::size_t i = 1; i < d.truth.size(); ++i) dt.push_back(d.truth[i].t - d.truth[i - 1].t);
-    return dt.empty() ? 0.0 : quantile(dt, 0.5);
-  }();
+
   // Newton on σ, bias and zone bias; the time offset (when free) by its profile over whole truth
   // intervals (ml_fit.h, profile_offset), alternating twice.
   auto fit_newton = [&](CompassModel m, const std::vector<std::string>& free, const std::vector<std::size_t>& idx) {
@@ -796,7 +792,7 @@ Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options) {
       out.nominal_model["compass_resolution_rad"] = it->second;
     }
     out.reference += "; compass against TRUEPOS";
-    diagnose_compass(log, options, out, remaining);
+    diagnose_compass(log, data.reference_interval, options, out, remaining);  // TRUEPOS is the reference here
   } else {
     out.not_testable.push_back("compass_bias, compass_quantization, compass_disturbance: need COMPASS and TRUEPOS");
   }
