@@ -337,6 +337,10 @@ void diagnose_odometry(const MotionData& d, const DiagnosisOptions& opt, Diagnos
   OdoFit base = fit_odometry(d, {}, start, train);
   const OdometryModel nominal_fit = base.model;
   const double nominal_nll = base.fit.nll;
+  out.noise_window_s = opt.windows.duration;
+  out.noise_sigma_x = nominal_fit.sigma_x;
+  out.noise_sigma_y = nominal_fit.sigma_y;
+  out.noise_sigma_theta = nominal_fit.sigma_theta;
   const double reference_dt = d.reference_interval;
 
   // Residual battery on the nominal model.

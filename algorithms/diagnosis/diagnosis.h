@@ -85,6 +85,11 @@ struct Diagnosis {
   std::vector<ConfoundedGroup> confounded;
   std::vector<std::string> not_testable;  // catalog ids this input cannot show, with why
   std::vector<Gain> overall_gain;          // all kept causes together
+  // The white noise floor of the nominal model fitted on the training windows (1σ per window of
+  // `noise_window_s` seconds; x along and y left of the window's start heading, θ): what a
+  // simulated twin of the log adds to every window besides the kept causes.
+  double noise_window_s = 1.0;
+  double noise_sigma_x = 0.0, noise_sigma_y = 0.0, noise_sigma_theta = 0.0;
   std::string verdict;
 };
 

@@ -66,6 +66,8 @@ nlohmann::json to_json(const Diagnosis& d) {
   j["not_testable"] = d.not_testable;
   j["gain"] = nlohmann::json::array();
   for (const auto& g : d.overall_gain) j["gain"].push_back(gain_json(g));
+  j["noise_floor"] = {{"window_s", d.noise_window_s}, {"sigma_x_m", number(d.noise_sigma_x)},
+                      {"sigma_y_m", number(d.noise_sigma_y)}, {"sigma_theta_rad", number(d.noise_sigma_theta)}};
   j["verdict"] = d.verdict;
   return j;
 }
