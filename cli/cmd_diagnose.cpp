@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 
 #include "algorithms/core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
@@ -17,6 +18,7 @@
 #include "datasets/log/data_root.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
+#include "reports/schema_validation.h"
 
 namespace locbench::cli {
 namespace {
@@ -105,6 +107,9 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
     diagnosis::to_json(options, opt);
     j["configuration"] = options;
     j["provenance"] = reports::provenance_to_json(reports::current_provenance(command_line));
+    if (const auto errors = reports::validate_diagnosis_json(j); !errors.empty()) {
+      throw std::logic_error("the diagnosis report violates reports/diagnosis.schema.json: " + errors.front());
+    }
     std::ofstream out(a.report);
     if (!out) throw InputError(a.report, 0, "cannot write the report");
     out << j.dump(2) << '\n';

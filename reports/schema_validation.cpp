@@ -5,7 +5,8 @@
 #include <valijson/schema_parser.hpp>
 #include <valijson/validator.hpp>
 
-#include "report_schema.h"  // generated
+#include "diagnosis_schema.h"  // generated
+#include "report_schema.h"     // generated
 #include "shard_schema.h"   // generated
 
 namespace locbench::reports {
@@ -37,6 +38,7 @@ std::vector<std::string> validate(const nlohmann::json& schema_doc, const nlohma
 
 const char* report_schema_text() { return kReportSchemaJson; }
 const char* shard_schema_text() { return kShardSchemaJson; }
+const char* diagnosis_schema_text() { return kDiagnosisSchemaJson; }
 
 std::vector<std::string> validate_report_json(const nlohmann::json& document) {
   static const nlohmann::json schema_doc = nlohmann::json::parse(kReportSchemaJson);
@@ -45,6 +47,11 @@ std::vector<std::string> validate_report_json(const nlohmann::json& document) {
 
 std::vector<std::string> validate_shard_json(const nlohmann::json& document) {
   static const nlohmann::json schema_doc = nlohmann::json::parse(kShardSchemaJson);
+  return validate(schema_doc, document);
+}
+
+std::vector<std::string> validate_diagnosis_json(const nlohmann::json& document) {
+  static const nlohmann::json schema_doc = nlohmann::json::parse(kDiagnosisSchemaJson);
   return validate(schema_doc, document);
 }
 

@@ -13,5 +13,8 @@ std::vector<std::string> validate_report_json(const nlohmann::json& document);
 // The same for shard reports against reports/shard.schema.json.
 const char* shard_schema_text();
 std::vector<std::string> validate_shard_json(const nlohmann::json& document);
+// The same for diagnosis reports (locbench.diagnosis/1) against reports/diagnosis.schema.json.
+const char* diagnosis_schema_text();
+std::vector<std::string> validate_diagnosis_json(const nlohmann::json& document);
 
 }  // namespace locbench::reports

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "algorithms/core/sensor_data.h"
+#include "algorithms/diagnosis/odometry_channel.h"
 
 namespace locbench::diagnosis {
 
@@ -45,5 +46,12 @@ double compass_nll(const CompassData& d, const CompassModel& m, const std::vecto
 // centres on the path and radii 0.25–4 m (at least 10 readings inside and 10 outside).
 CompassZone best_compass_zone(const CompassData& d, const CompassModel& m,
                               const std::vector<std::size_t>& index);
+
+// The compass channel: the readings' lattice (quantization coarser than declared, found from
+// the printed values), then forward selection of compass_bias, sensor_time_offset (profiled, as
+// the odometry's) and compass_disturbance (the best disc, judged over all discs searched), with
+// held-out gains in predictive likelihood. Needs COMPASS readings and TRUEPOS in `d`; returns an
+// empty result (no tests, no causes) when fewer than 40 readings overlap the truth.
+ChannelResult diagnose_compass(const MotionData& d, const DiagnosisOptions& options);
 
 }  // namespace locbench::diagnosis

@@ -56,7 +56,7 @@ nlohmann::json to_json(const Diagnosis& d) {
   for (const auto& u : d.unexplained) {
     j["unexplained"].push_back({{"test", u.test}, {"residual", u.residual}, {"variable", u.variable},
                                 {"statistic", number(u.statistic)}, {"p_value", number(u.p_value)},
-                                {"strength", number(u.strength)}});
+                                {"strength", number(u.strength)}, {"reason", u.reason}});
   }
   j["unconfirmed"] = d.unconfirmed;
   j["confounded"] = nlohmann::json::array();

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 
 namespace locbench::diagnosis {
 namespace {
@@ -139,34 +138,6 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
   }
   if (!r.hessian_ok) r.max_abs_correlation = 1.0;
   return r;
-}
-
-OffsetProfile profile_offset(const std::function<double(double)>& nll, double dt) {
-  OffsetProfile p;
-  const double step = std::max(dt, 1e-4);
-  std::map<long, double> at;
-  auto eval = [&](long k) {
-    auto it = at.find(k);
-    if (it != at.end()) return it->second;
-    return at[k] = nll(static_cast<double>(k) * step);
-  };
-  const long coarse = 5, range = static_cast<long>(std::ceil(0.5 / step));
-  long best = 0;
-  for (long k = -range; k <= range; k += coarse) {
-    if (eval(k) < eval(best)) best = k;
-  }
-  for (long k = best - coarse; k <= best + coarse; ++k) {
-    if (eval(k) < eval(best)) best = k;
-  }
-  p.value = static_cast<double>(best) * step;
-  p.nll = eval(best);
-  long lo = best, hi = best;
-  while (lo - 1 >= -range && 2.0 * (eval(lo - 1) - p.nll) <= 3.841458820694124) --lo;
-  while (hi + 1 <= range && 2.0 * (eval(hi + 1) - p.nll) <= 3.841458820694124) ++hi;
-  // Widened by a whole interval each side: the reference cannot place an offset more finely.
-  p.lo = (static_cast<double>(lo) - 1.0) * step;
-  p.hi = (static_cast<double>(hi) + 1.0) * step;
-  return p;
 }
 
 

@@ -18,6 +18,7 @@ struct FitParameter {
 };
 
 struct FitResult {
+  std::vector<std::string> names;  // filled by callers that need to find a coordinate by name
   std::vector<double> values;
   std::vector<double> ci_low, ci_high;  // Wald 95% (on the log scale for positive parameters)
   std::vector<double> standard_errors;  // of the fitted coordinate (log for positive ones)
@@ -36,15 +37,5 @@ using NegLogLikelihood = std::function<double(const std::vector<double>& values)
 FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params,
                              int max_iterations = 100);
 
-// A time offset is profiled over whole reference sampling intervals Δ, not fitted by Newton
-// steps: between the reference's samples the likelihood is bumpy (interpolating a noisy
-// reference averages its noise; corners of the motion are cut), with local optima at fractions
-// of Δ. Grid: 5Δ steps over ±0.5 s, then Δ steps around the best. Interval: the offsets whose
-// profile deviance is within χ²₁(0.95) = 3.84 of the minimum, widened by Δ each side.
-struct OffsetProfile {
-  double value = 0.0, lo = 0.0, hi = 0.0;  // [s]
-  double nll = 0.0;                         // at `value`
-};
-OffsetProfile profile_offset(const std::function<double(double)>& nll, double dt);
 
 }  // namespace locbench::diagnosis

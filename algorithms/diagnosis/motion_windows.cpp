@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "algorithms/core/angle.h"
 #include "algorithms/core/errors.h"
@@ -169,6 +170,18 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
     }
   }
 
+  m.compass = log.compass;
+  if (auto it = log.params.find("compass_resolution"); it != log.params.end()) {
+    char* end = nullptr;
+    m.compass_step = std::strtod(it->second.c_str(), &end);
+    if (end == it->second.c_str() || *end != '\0' || !std::isfinite(m.compass_step) || m.compass_step < 0.0) {
+      throw InputError(file, 0, "PARAM compass_resolution: expected a non-negative number of radians, found '" + it->second + "'");
+    }
+    if (m.compass_step > 0.5) {
+      throw InputError(file, 0, fmt::format("PARAM compass_resolution = {} is implausible: expected radians "
+                                            "(degrees by mistake?)", m.compass_step));
+    }
+  }
   if (log.truth.size() >= 2) {
     m.reference = ReferenceKind::kTruePose;
     m.truth = log.truth;
@@ -176,7 +189,6 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
     m.reference = ReferenceKind::kRelations;
   } else if (log.compass.size() >= 2) {
     m.reference = ReferenceKind::kCompass;
-    m.compass = log.compass;
   } else {
     throw InputError(file, 0,
                      "no reference to take residuals against: expected TRUEPOS ground truth, "

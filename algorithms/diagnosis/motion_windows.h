@@ -58,13 +58,15 @@ struct MotionData {
   std::vector<OdometryStep> steps;
   std::vector<MotionWindow> windows;
   std::vector<TruePose> truth;           // kTruePose
-  std::vector<CompassReading> compass;   // kCompass
+  std::vector<CompassReading> compass;   // every COMPASS reading (the reference when kCompass)
+  double compass_step = 0.0;             // PARAM compass_resolution [rad]; 0 when not declared
   double reference_interval = 0.0;       // median sampling interval of truth or compass [s]
   std::string describe() const;          // e.g. "TRUEPOS ground truth (4812 poses)"
 };
 
 // Throws InputError (naming the log) when the log has no usable odometry, no reference, too few
-// windows, or a nominal model that is missing or not in SI units (a wheelbase above 5 m, metres
+// windows, a PARAM compass_resolution that is not a number of radians, or a nominal model that is
+// missing or not in SI units (a wheelbase above 5 m, metres
 // per tick above 0.01 m — millimetres by mistake).
 MotionData build_motion_data(const Log& log, const WindowOptions& options = {});
 

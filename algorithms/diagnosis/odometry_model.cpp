@@ -18,6 +18,15 @@ Pose2 advance(const Pose2& p, double dd, double dth) {
 
 double wheelbase_or_default(const MotionData& d) { return d.nominal.wheelbase > 0.0 ? d.nominal.wheelbase : 0.5; }
 
+// First-order drive response over one step of constant logged rate `v` (v̇ = 0 within the step),
+// `decay` = e^(−Δt/τ): returns the true increment and advances the state u (the true rate at the
+// step's end).
+double respond(double& u, double v, double dt, double tau, double decay) {
+  const double increment = v * dt + (u - v) * tau * (1.0 - decay);
+  u = v + (u - v) * decay;
+  return increment;
+}
+
 }  // namespace
 
 Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
@@ -31,9 +40,33 @@ Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryM
       p = advance(p, 0.5 * (ul + ur), (ur - ul) / b);
     }
   } else {
-    for (std::size_t i = w.first; i < w.last; ++i) {
+    // The drive's state at the window's start: the response run from 4τ before it (e^−4 = 2%).
+    std::size_t start = w.first;
+    double u = 0.0, omega = 0.0;
+    if (m.drive_tau > 0.0) {
+      double span = 0.0;
+      while (start > 0 && span < 4.0 * m.drive_tau && d.steps[start - 1].t1 == d.steps[start].t0) {
+        --start;
+        span += d.steps[start].t1 - d.steps[start].t0;
+      }
+      const auto& s0 = d.steps[start];
+      const double dt0 = s0.t1 - s0.t0;
+      u = dt0 > 0.0 ? s0.a / dt0 : 0.0;
+      omega = dt0 > 0.0 ? s0.b / dt0 : 0.0;
+    }
+    for (std::size_t i = start; i < w.last; ++i) {
       const auto& s = d.steps[i];
-      p = advance(p, m.velocity_scale * s.a, m.turn_rate_scale * s.b + m.turn_rate_bias * (s.t1 - s.t0));
+      const double dt = s.t1 - s.t0;
+      const double v = dt > 0.0 ? s.a / dt : 0.0, rate = dt > 0.0 ? s.b / dt : 0.0;
+      double dd = s.a, dth = s.b;
+      if (m.drive_tau > 0.0 && dt > 0.0) {
+        const double decay = std::exp(-dt / m.drive_tau);
+        dd = respond(u, v, dt, m.drive_tau, decay);
+        dth = respond(omega, rate, dt, m.drive_tau, decay);
+      }
+      if (i < w.first) continue;
+      const double scale = m.velocity_scale + m.speed_slope * std::abs(v);
+      p = advance(p, scale * dd, m.turn_rate_scale * dth + m.turn_rate_bias * dt);
     }
   }
   return p;
@@ -78,15 +111,19 @@ WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const
 
 namespace {
 
-double log_normal(const Eigen::Vector3d& r, const Eigen::Vector3d& v, bool heading_only) {
+double log_density(const Eigen::Vector3d& r, const Eigen::Vector3d& v, bool heading_only, double dof) {
   double s = 0.0;
-  for (int c = heading_only ? 2 : 0; c < 3; ++c) {
-    s += -0.5 * (r[c] * r[c] / v[c] + std::log(2.0 * kPi * v[c]));
-  }
+  for (int c = heading_only ? 2 : 0; c < 3; ++c) s += component_log_density(r[c], v[c], dof);
   return s;
 }
 
 }  // namespace
+
+double component_log_density(double r, double v, double dof) {
+  if (!(dof > 0.0)) return -0.5 * (r * r / v + std::log(2.0 * kPi * v));
+  return std::lgamma(0.5 * (dof + 1.0)) - std::lgamma(0.5 * dof) - 0.5 * std::log(dof * kPi * v) -
+         0.5 * (dof + 1.0) * std::log1p(r * r / (dof * v));
+}
 
 double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
                                const std::vector<std::size_t>& index) {
@@ -97,10 +134,10 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
     const MotionWindow& w = d.windows[index.empty() ? k : index[k]];
     const WindowResidual res = window_residual(d, w, m);
     if (!res.valid) {
-      nll -= log_normal(Eigen::Vector3d::Zero(), res.variance, d.reference == ReferenceKind::kCompass);
+      nll -= log_density(Eigen::Vector3d::Zero(), res.variance, d.reference == ReferenceKind::kCompass, m.dof);
       continue;
     }
-    double ll = log_normal(res.r, res.variance, res.heading_only);
+    double ll = log_density(res.r, res.variance, res.heading_only, m.dof);
     if (m.slip_rate > 0.0 && m.slip_loss != 0.0 && d.odometry == OdometryKind::kEncoder &&
         w.last > w.first) {
       const double p = 1.0 - std::exp(-m.slip_rate * 0.5 * w.wheel_travel);
@@ -116,8 +153,8 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
         const Eigen::Vector3d shift_left{-m.slip_loss * ul / 2.0, 0.0, m.slip_loss * ul / b};
         const Eigen::Vector3d shift_right{-m.slip_loss * ur / 2.0, 0.0, -m.slip_loss * ur / b};
         const double l0 = std::log1p(-p) + ll;
-        const double l1 = std::log(0.5 * p) + log_normal(res.r - shift_left, res.variance, res.heading_only);
-        const double l2 = std::log(0.5 * p) + log_normal(res.r - shift_right, res.variance, res.heading_only);
+        const double l1 = std::log(0.5 * p) + log_density(res.r - shift_left, res.variance, res.heading_only, m.dof);
+        const double l2 = std::log(0.5 * p) + log_density(res.r - shift_right, res.variance, res.heading_only, m.dof);
         const double mx = std::max({l0, l1, l2});
         ll = mx + std::log(std::exp(l0 - mx) + std::exp(l1 - mx) + std::exp(l2 - mx));
       }

@@ -5,7 +5,12 @@
 // Encoder odometry (eq. 1.1–1.3, with the error factors of eq. 2.1, 2.2, 2.15):
 //   c_L' = c_L·E_o·2/(1 + E_d),  c_R' = c_R·E_o·2E_d/(1 + E_d),  B' = E_b·B,
 //   U = c'·ΔN,  ΔD = (U_L + U_R)/2,  Δθ = (U_R − U_L)/B'.
-// Pose odometry (velocity logs): ΔD' = scale·ΔD, Δθ' = turn_scale·Δθ + turn_bias·Δt.
+// Pose odometry (velocity logs, e.g. a logged velocity command): the robot's velocity follows the
+// logged one through a first-order drive response with time constant τ (`drive_tau`, 0 = none):
+//   u̇ = (v − u)/τ, so over a step of constant v: ΔD_true = v·Δt + (u₀ − v)·τ·(1 − e^(−Δt/τ)),
+// and the same for the turn rate; then
+//   ΔD' = (scale + speed_slope·|v|)·ΔD_true,  Δθ' = turn_scale·Δθ_true + turn_bias·Δt
+// with v = ΔD/Δt the step's logged speed [m/s] (`speed_slope` [s/m]: a speed-dependent scale).
 // Both: the odometry's logged time minus the reference's is `time_offset` (the reference is read
 // at t − time_offset).
 // Noise of a window's residual r = reference − prediction (x, y along/left of the window's start
@@ -13,6 +18,9 @@
 //   v_x = σ_x² + k²W/4,  v_y = σ_y² + k²W/4,  v_θ = σ_θ² + k²W/B²      (eq. 4.36–4.37 summed)
 // where W = Σ(|U_L| + |U_R|) is the window's wheel travel and k² (`k2`) the wheel-travel variance
 // per metre (eq. 4.16); σ are the nominal model's white noise floor (always fitted).
+// Heavy tails (`dof` > 0): each component is Student-t with `dof` degrees of freedom and squared
+// scale v instead of normal with variance v (real logs: collisions, reference glitches); dof = 0
+// is the normal model.
 // Wheel slip (§3.2): with probability p = 1 − exp(−rate·W/2) one wheel (either, equally likely)
 // loses the fraction `slip_loss` of one sample's travel, which shifts the residual by
 // (−loss·ū/2, 0, ±loss·ū/B) with ū that wheel's mean travel per sample.
@@ -26,7 +34,10 @@ namespace locbench::diagnosis {
 struct OdometryModel {
   double E_d = 1.0, E_b = 1.0, E_o = 1.0;
   double velocity_scale = 1.0, turn_rate_scale = 1.0, turn_rate_bias = 0.0;
+  double speed_slope = 0.0;  // [s/m]
+  double drive_tau = 0.0;    // [s]
   double time_offset = 0.0;
+  double dof = 0.0;          // Student-t degrees of freedom; 0 = normal
   double sigma_x = 1e-3, sigma_y = 1e-3, sigma_theta = 1e-3;
   double k2 = 0.0;
   double slip_rate = 0.0, slip_loss = 0.0;
@@ -51,6 +62,9 @@ WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const
 // comparable across offsets.
 double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
                                const std::vector<std::size_t>& index);
+
+// Log-density of one residual component r with (squared) scale v: normal (dof = 0) or Student-t.
+double component_log_density(double r, double v, double dof);
 
 // Relative-pose error of the windows `index`, chained into segments of `chain` consecutive
 // windows (relations: each window alone): RMS translation error [m] and RMS heading error [rad].

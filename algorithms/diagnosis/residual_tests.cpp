@@ -108,37 +108,83 @@ ResidualTest autocorrelation_test(std::span<const double> r, const std::string& 
   return t;
 }
 
+namespace {
+
+// The resolution values were printed at: 10^−d for the fewest decimals d ≤ 9 that reproduce
+// every value; 0 when they need more (full precision).
+double print_quantum(const std::vector<double>& v) {
+  for (int d = 0; d <= 9; ++d) {
+    const double scale = std::pow(10.0, d);
+    const bool all = std::all_of(v.begin(), v.end(), [&](double x) {
+      const double y = x * scale;
+      return std::abs(y - std::round(y)) <= 64.0 * 2.220446049250313e-16 * std::max(1.0, std::abs(y));
+    });
+    if (all) return 1.0 / scale;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
 std::optional<Lattice> find_lattice(std::span<const double> values) {
   if (values.size() < 20) return std::nullopt;
   std::vector<double> v(values.begin(), values.end());
   std::sort(v.begin(), v.end());
+  const double quantum = print_quantum(v);
   std::vector<double> distinct;
   for (double x : v) {
-    if (distinct.empty() || x - distinct.back() > 1e-9) distinct.push_back(x);
+    if (distinct.empty() || x - distinct.back() > std::max(1e-9, 0.5 * quantum)) distinct.push_back(x);
   }
   // Quantized values repeat; continuous ones (almost) never do.
   if (distinct.size() < 2 || static_cast<double>(distinct.size()) > 0.9 * static_cast<double>(v.size())) {
     return std::nullopt;
   }
-  const double min_step = 1e-6 * (v.back() - v.front());
+  const double min_step = std::max(1e-6 * (v.back() - v.front()), 4.0 * quantum);
   std::vector<double> gaps;
   for (std::size_t i = 1; i < distinct.size(); ++i) gaps.push_back(distinct[i] - distinct[i - 1]);
   std::sort(gaps.begin(), gaps.end());
   std::optional<Lattice> best;
+  const double n = static_cast<double>(v.size());
   // Candidates: the smallest gaps and their integer fractions (a lattice whose every other
   // value is missing still shows its step as the smallest gap's divisor).
   for (std::size_t g = 0; g < std::min<std::size_t>(gaps.size(), 5); ++g) {
     for (int div = 1; div <= 4; ++div) {
-      const double s = gaps[g] / div;
+      double s = gaps[g] / div;
       if (!(s > min_step)) continue;
+      double o = distinct.front();
+      double se = 0.0;
+      // Least squares x = o + s·k over all values, k from the current lattice (twice).
+      for (int round = 0; round < 2; ++round) {
+        double sk = 0.0, sx = 0.0, skk = 0.0, skx = 0.0;
+        for (double x : v) {
+          const double k = std::round((x - o) / s);
+          sk += k, sx += x, skk += k * k, skx += k * x;
+        }
+        const double det = n * skk - sk * sk;
+        if (!(det > 0.0)) break;
+        const double s_new = (n * skx - sk * sx) / det;
+        if (!(s_new > 0.5 * s && s_new < 1.5 * s)) break;
+        o = (sx - s_new * sk) / n;
+        s = s_new;
+        double ss = 0.0;
+        for (double x : v) {
+          const double e = x - o - s * std::round((x - o) / s);
+          ss += e * e;
+        }
+        se = std::sqrt(ss / std::max(n - 2.0, 1.0) * n / det);
+      }
+      const double tol = std::max(1e-3 * s, 0.75 * quantum);
+      if (tol > 0.25 * s) continue;
       std::size_t on = 0;
       for (double x : v) {
-        const double k = std::round(x / s);
-        if (std::abs(x - k * s) <= 1e-3 * s) ++on;
+        if (std::abs(x - o - s * std::round((x - o) / s)) <= tol) ++on;
       }
-      const double frac = static_cast<double>(on) / static_cast<double>(v.size());
-      if (frac >= 0.99 && (!best || s > best->step)) {
-        best = Lattice{s, frac, distinct.size(), v.size()};
+      const double frac = static_cast<double>(on) / n;
+      if (frac >= 0.99 && (!best || s > best->step * (1.0 + 1e-6))) {
+        double off = o - s * std::round(o / s);
+        if (off >= 0.5 * s) off -= s;
+        // An exact lattice has se = 0: the interval is floored at the arithmetic's resolution.
+        best = Lattice{s, frac, distinct.size(), v.size(), off, std::max(1.959963984540054 * se, 1e-9 * s), quantum};
       }
     }
   }

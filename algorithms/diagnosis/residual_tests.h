@@ -38,15 +38,22 @@ ResidualTest heteroscedasticity_test(std::span<const double> r, std::span<const 
 // Positive lag-1 autocorrelation (Ljung–Box with one lag, χ²₁, one-sided).
 ResidualTest autocorrelation_test(std::span<const double> r, const std::string& residual);
 
-// A lattice in real values: the largest step s such that at least 99% of the values lie within
-// 1e-3·s of a multiple of s; candidates are the smallest gaps between distinct values and their
-// halves, thirds and quarters. nullopt when there is none, when fewer than 20 values, or when
-// the values hardly repeat (more than 90% distinct: continuous data).
+// A lattice in real values: values = offset + k·step. The largest step such that at least 99%
+// of the values lie within the tolerance of the lattice; candidates are the smallest gaps between
+// distinct values and their halves, thirds and quarters, each refined by least squares over all
+// values (printed values carry round-off: a step read off one gap of "%.6f" values is 1e-6 off,
+// which ±90 steps magnify beyond any tolerance). The tolerance is the larger of 1e-3·step and
+// the printing's round-off (half the last printed decimal, found from the values). nullopt when
+// there is none, when fewer than 20 values, or when the values hardly repeat (more than 90%
+// distinct: continuous data).
 struct Lattice {
   double step = 0.0;
   double on_lattice_fraction = 0.0;
   std::size_t distinct = 0;
   std::size_t n = 0;
+  double offset = 0.0;            // in [−step/2, step/2)
+  double step_uncertainty = 0.0;  // 95% half-width of the least-squares step
+  double print_quantum = 0.0;     // the printing's resolution found (0: full precision)
 };
 std::optional<Lattice> find_lattice(std::span<const double> values);
 // A common divisor > 1 of integer increments: the largest g ≤ 1000 dividing at least 99% of

@@ -10,6 +10,7 @@
 
 #include "algorithms/core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
+#include "algorithms/diagnosis/scale_checks.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/parallel_tasks.h"
 #include "datasets/catalog/dataset_catalog.h"
@@ -71,8 +72,8 @@ class DiagnosisRealLogs final : public Experiment {
       }
       std::string unexplained;
       for (const auto& u : d.unexplained) {
-        unexplained += fmt::format("{}{} of {} against {} (p = {:.2g}, strength {:.3g})", unexplained.empty() ? "" : "; ",
-                                   u.test, u.residual, u.variable.empty() ? "-" : u.variable, u.p_value, u.strength);
+        unexplained += fmt::format("{}{} of {} against {} (p = {:.2g}, strength {:.3g}: {})", unexplained.empty() ? "" : "; ",
+                                   u.test, u.residual, u.variable.empty() ? "-" : u.variable, u.p_value, u.strength, u.reason);
       }
       out.notes.push_back(fmt::format("{} — reference: {}. {}{}{}", ds, d.reference, d.verdict,
                                       found.empty() ? "" : "\n  Causes:" + found,
@@ -83,6 +84,7 @@ class DiagnosisRealLogs final : public Experiment {
       std::optional<diagnosis::Diagnosis> diagnosis;
       std::optional<reports::DatasetRef> dataset;
       std::optional<reports::CaseNote> note;
+      std::optional<diagnosis::ScaleChecks> checks;
       std::size_t samples = 0;
     };
     std::vector<Outcome> outcomes(names.size());
@@ -101,6 +103,12 @@ class DiagnosisRealLogs final : public Experiment {
       try {
         Log log = load_catalog_dataset(*e, options.data_root);
         o.diagnosis = diagnosis::diagnose_log(log, opt);
+        // The independent checks, at the time offset the diagnosis kept (0 when none).
+        double offset = 0.0;
+        for (const auto& c : o.diagnosis->causes) {
+          if (c.id == "sensor_time_offset" && c.detected && !c.parameters.empty()) offset = c.parameters[0].value;
+        }
+        o.checks = diagnosis::scale_checks(diagnosis::build_motion_data(log, opt.windows), offset);
         o.dataset = reports::DatasetRef{names[i], path, reports::file_checksum(file), log.record_count(),
                                         log.time_span().second - log.time_span().first};
         o.samples = log.odometry.size() + log.encoders.size();
@@ -113,6 +121,16 @@ class DiagnosisRealLogs final : public Experiment {
       if (outcomes[i].diagnosis) {
         out.datasets.push_back(*outcomes[i].dataset);
         record(*outcomes[i].diagnosis, names[i], outcomes[i].samples);
+        if (const auto& c = outcomes[i].checks; c && outcomes[i].diagnosis->reference.find("compass heading") == std::string::npos) {
+          const std::size_t n = outcomes[i].samples;
+          out.results.push_back(reports::make_estimate("check", names[i], "path_length_ratio", "", c->path_length_ratio, 0.0, n));
+          out.results.push_back(reports::make_estimate("check", names[i], "ls_velocity_scale", "", c->ls_velocity_scale, 0.0, n));
+          out.results.push_back(reports::make_estimate("check", names[i], "ls_turn_rate_scale", "", c->ls_turn_scale, 0.0, n));
+          out.notes.push_back(fmt::format("{} — independent checks over the same {} windows (algorithms/diagnosis/scale_checks.h): "
+                                          "path-length ratio {:.3f}, least-squares velocity scale {:.3f}, least-squares "
+                                          "turn-rate scale {:.3f}",
+                                          names[i], c->windows, c->path_length_ratio, c->ls_velocity_scale, c->ls_turn_scale));
+        }
       }
     }
     options.report_progress(0.9);

@@ -27,6 +27,7 @@ std::unique_ptr<Experiment> make_noise_tables();
 std::unique_ptr<Experiment> make_noise_resolution_sweep();
 std::unique_ptr<Experiment> make_noise_quantization_sigma();
 std::unique_ptr<Experiment> make_noise_real_logs();
+std::unique_ptr<Experiment> make_diagnosis_false_alarms();
 std::unique_ptr<Experiment> make_diagnosis_power();
 std::unique_ptr<Experiment> make_diagnosis_real_logs();
 std::unique_ptr<Experiment> make_global_topological_example();

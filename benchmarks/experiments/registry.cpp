@@ -29,6 +29,7 @@ const std::vector<std::unique_ptr<Experiment>>& all_experiments() {
     v.push_back(make_noise_resolution_sweep());
     v.push_back(make_noise_quantization_sigma());
     v.push_back(make_noise_real_logs());
+    v.push_back(make_diagnosis_false_alarms());
     v.push_back(make_diagnosis_power());
     v.push_back(make_diagnosis_real_logs());
     v.push_back(make_global_topological_example());

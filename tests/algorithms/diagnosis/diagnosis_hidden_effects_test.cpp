@@ -10,34 +10,16 @@
 #include "algorithms/core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "datasets/diagnosis/hidden_effects.h"
+#include "tests/algorithms/diagnosis/diagnosis_test_helpers.h"
 
 namespace locbench::diagnosis {
 namespace {
 
 using sim::GeneratedLog;
+using test_support::detected;
+using test_support::find_cause;
+using test_support::summary;
 using sim::HiddenEffect;
-
-const Cause* find_cause(const Diagnosis& d, const std::string& id) {
-  for (const auto& c : d.causes) {
-    if (c.id == id) return &c;
-  }
-  return nullptr;
-}
-
-bool detected(const Diagnosis& d, const std::string& id) {
-  return std::find(d.detected.begin(), d.detected.end(), id) != d.detected.end();
-}
-
-std::string summary(const Diagnosis& d) {
-  std::string s = "detected:";
-  for (const auto& id : d.detected) s += " " + id;
-  for (const auto& c : d.causes) {
-    s += "\n  " + c.id + (c.detected ? " [D]" : "") + " LR=" + std::to_string(c.value) + " thr=" + std::to_string(c.threshold);
-    for (const auto& p : c.parameters) s += " " + p.name + "=" + std::to_string(p.value) + "[" + std::to_string(p.lo) + "," + std::to_string(p.hi) + "]";
-  }
-  for (const auto& u : d.unexplained) s += "\n  unexplained " + u.test + " " + u.residual + " " + u.variable;
-  return s + "\n  verdict: " + d.verdict;
-}
 
 // The true value is in the interval, or within `tolerance` (relative to the value's size) of it.
 void expect_covers(const Diagnosis& d, const GeneratedLog& g, const std::string& key, double tolerance) {

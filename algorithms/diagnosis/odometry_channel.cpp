@@ -1,0 +1,472 @@
+#include "algorithms/diagnosis/odometry_channel.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "algorithms/core/statistics.h"
+#include "algorithms/diagnosis/cause_catalog.h"
+#include "algorithms/diagnosis/ml_fit.h"
+#include "algorithms/diagnosis/selection.h"
+
+namespace locbench::diagnosis {
+
+void split_windows(std::size_t n, std::size_t block, std::vector<std::size_t>& train,
+                   std::vector<std::size_t>& test) {
+  for (std::size_t i = 0; i < n; ++i) ((i / block) % 3 == 2 ? test : train).push_back(i);
+}
+
+namespace {
+
+using Field = double OdometryModel::*;
+
+// One fit of the odometry model: the noise floor σ plus the parameters of the active causes by
+// maximum likelihood; a time offset among them profiled (selection.h) over the others.
+struct OdoFit {
+  OdometryModel model;
+  FitResult fit;
+  std::vector<std::pair<std::string, Field>> coords;  // the fitted coordinates, in fit order
+  bool has_offset = false;
+  OffsetProfile offset;
+  double nll = 0.0;
+
+  std::optional<Estimate> estimate(const CauseParameter& p) const {
+    if (p.field == &OdometryModel::time_offset) {
+      if (!has_offset) return std::nullopt;
+      return Estimate{p.name, offset.value, offset.lo, offset.hi};
+    }
+    for (std::size_t i = 0; i < coords.size(); ++i) {
+      if (coords[i].second == p.field) return Estimate{p.name, fit.values[i], fit.ci_low[i], fit.ci_high[i]};
+    }
+    return std::nullopt;
+  }
+};
+
+bool plausible(const OdometryModel& m) {
+  return m.slip_loss >= -1.0 && m.slip_loss <= 1.0 && m.E_b > 0.1 && m.E_o > 0.1 && m.velocity_scale > 0.05 &&
+         m.turn_rate_scale > 0.05 && m.drive_tau <= 2.0 && m.dof <= 1e4;
+}
+
+class Fitter {
+ public:
+  Fitter(const MotionData& d, std::vector<std::size_t> index) : d_(d), index_(std::move(index)) {}
+
+  double nll(const OdometryModel& m) const { return negative_log_likelihood(d_, m, index_); }
+
+  // `interval`: profile the offset's 95% interval (costly: a fit per profile point); selection
+  // needs only the likelihood, the report the interval.
+  OdoFit fit(const std::vector<const CauseSpec*>& active, const OdometryModel& start, bool interval,
+             int max_iterations = 100) const {
+    const bool offset = std::any_of(active.begin(), active.end(), [](const CauseSpec* c) { return c->id == cause::kTimeOffset; });
+    if (!offset) return fit_held_offset(active, start, max_iterations);
+    // Alternate: the others at a held offset, the offset profiled with the others held, until the
+    // offset moves less than half a fine step; then the interval with the others re-fitted.
+    OdometryModel m = start;
+    OdoFit f;
+    OffsetProfile prof;
+    for (int round = 0; round < 4; ++round) {
+      f = fit_held_offset(active, m, max_iterations);
+      const OdometryModel held = f.model;
+      prof = profile_offset([&](double o) { return with_offset(held, o); }, {}, d_.reference_interval);
+      const double moved = std::abs(prof.value - m.time_offset);
+      m = f.model;
+      m.time_offset = prof.value;
+      if (round > 0 && moved < 0.5 * prof.step) break;
+    }
+    f = fit_held_offset(active, m, max_iterations);
+    const OdometryModel best = f.model;
+    std::function<double(double)> profiled;
+    if (interval) {
+      profiled = [&](double o) {
+        OdometryModel x = best;
+        x.time_offset = o;
+        return fit_held_offset(active, x, 15).nll;
+      };
+    }
+    f.offset = profile_offset([&](double o) { return with_offset(best, o); }, profiled, d_.reference_interval);
+    f.model.time_offset = f.offset.value;
+    f.has_offset = true;
+    f.nll = nll(f.model);
+    return f;
+  }
+
+ private:
+  double with_offset(OdometryModel m, double o) const {
+    m.time_offset = o;
+    return nll(m);
+  }
+
+  OdoFit fit_held_offset(const std::vector<const CauseSpec*>& active, const OdometryModel& start,
+                         int max_iterations) const {
+    OdoFit out;
+    std::vector<FitParameter> fp;
+    auto add = [&](const std::string& name, Field field, double initial, double scale, bool positive) {
+      for (const auto& c : out.coords) {
+        if (c.second == field) return;
+      }
+      out.coords.emplace_back(name, field);
+      fp.push_back({name, initial, scale, positive});
+    };
+    if (d_.reference != ReferenceKind::kCompass) {
+      add("sigma_x", &OdometryModel::sigma_x, start.sigma_x, 0.0, true);
+      add("sigma_y", &OdometryModel::sigma_y, start.sigma_y, 0.0, true);
+    }
+    add("sigma_theta", &OdometryModel::sigma_theta, start.sigma_theta, 0.0, true);
+    const OdometryModel defaults;
+    for (const CauseSpec* c : active) {
+      for (const auto& p : c->params) {
+        if (p.field == nullptr || p.field == &OdometryModel::time_offset) continue;
+        const double initial = start.*(p.field) != defaults.*(p.field) ? start.*(p.field) : p.initial;
+        add(p.name, p.field, initial, p.scale, p.positive);
+      }
+    }
+    auto apply = [&](const std::vector<double>& v) {
+      OdometryModel m;
+      m.time_offset = start.time_offset;
+      for (std::size_t i = 0; i < v.size(); ++i) m.*(out.coords[i].second) = v[i];
+      return m;
+    };
+    out.fit = fit_max_likelihood(
+        [&](const std::vector<double>& v) {
+          const OdometryModel m = apply(v);
+          return plausible(m) ? nll(m) : std::numeric_limits<double>::infinity();
+        },
+        fp, max_iterations);
+    out.model = apply(out.fit.values);
+    out.nll = out.fit.nll;
+    return out;
+  }
+
+  const MotionData& d_;
+  std::vector<std::size_t> index_;
+};
+
+OdometryModel initial_noise(const MotionData& d, const std::vector<std::size_t>& index) {
+  OdometryModel m;
+  std::vector<double> rx, ry, rt;
+  for (std::size_t k : index) {
+    const auto r = window_residual(d, d.windows[k], m);
+    if (!r.valid) continue;
+    rx.push_back(r.r[0]);
+    ry.push_back(r.r[1]);
+    rt.push_back(r.r[2]);
+  }
+  auto sd = [](const std::vector<double>& v) { return v.size() > 1 ? std::max(rms(v), 1e-6) : 1e-3; };
+  m.sigma_x = sd(rx);
+  m.sigma_y = sd(ry);
+  m.sigma_theta = sd(rt);
+  return m;
+}
+
+// ---------------------------------------------------------------- residual battery
+struct OdoResiduals {
+  std::vector<double> along, heading, distance, turn, speed, travel, cos_h, sin_h, x, y, dturn;
+};
+
+OdoResiduals odometry_residuals(const MotionData& d, const OdometryModel& m, const std::vector<std::size_t>& index) {
+  OdoResiduals o;
+  auto rate = [](const MotionWindow& v) { return v.t1 > v.t0 ? v.turn / (v.t1 - v.t0) : 0.0; };
+  for (std::size_t k : index) {
+    const auto& w = d.windows[k];
+    const auto r = window_residual(d, w, m);
+    if (!r.valid) continue;
+    o.along.push_back(r.r[0] / std::sqrt(r.variance[0]));
+    o.heading.push_back(r.r[2] / std::sqrt(r.variance[2]));
+    o.distance.push_back(w.signed_distance);
+    o.turn.push_back(w.turn);
+    o.speed.push_back(w.t1 > w.t0 ? w.distance / (w.t1 - w.t0) : 0.0);
+    o.travel.push_back(w.wheel_travel);
+    o.cos_h.push_back(std::cos(w.heading));
+    o.sin_h.push_back(std::sin(w.heading));
+    o.x.push_back(w.x);
+    o.y.push_back(w.y);
+    const auto& prev = d.windows[k > 0 ? k - 1 : k];
+    const auto& next = d.windows[k + 1 < d.windows.size() ? k + 1 : k];
+    o.dturn.push_back(0.5 * (rate(next) - rate(prev)));
+  }
+  return o;
+}
+
+std::vector<ResidualTest> odometry_battery(const MotionData& d, const OdoResiduals& o) {
+  std::vector<ResidualTest> t;
+  const bool pos = d.reference != ReferenceKind::kCompass;
+  t.push_back(bias_test(o.heading, "heading"));
+  if (pos) t.push_back(bias_test(o.along, "along_track"));
+  t.push_back(dependence_test(o.heading, o.distance, "drift_with_distance", "heading", "distance"));
+  if (pos) t.push_back(dependence_test(o.along, o.distance, "drift_with_distance", "along_track", "distance"));
+  t.push_back(dependence_test(o.heading, o.turn, "drift_with_turning", "heading", "turn"));
+  if (pos) t.push_back(dependence_test(o.along, o.speed, "speed_dependence", "along_track", "speed"));
+  t.push_back(dependence_test(o.heading, o.speed, "speed_dependence", "heading", "speed"));
+  t.push_back(dependence_test(o.heading, o.cos_h, "heading_dependence", "heading", "cos(heading)"));
+  t.push_back(dependence_test(o.heading, o.sin_h, "heading_dependence", "heading", "sin(heading)"));
+  if (d.reference == ReferenceKind::kTruePose) {
+    t.push_back(dependence_test(o.heading, o.x, "position_dependence", "heading", "x"));
+    t.push_back(dependence_test(o.heading, o.y, "position_dependence", "heading", "y"));
+  }
+  t.push_back(skewness_test(o.heading, "heading"));
+  t.push_back(heavy_tail_test(o.heading, "heading"));
+  if (pos) t.push_back(heavy_tail_test(o.along, "along_track"));
+  t.push_back(heteroscedasticity_test(o.heading, o.travel, "heading", "wheel_travel"));
+  if (pos) t.push_back(heteroscedasticity_test(o.along, o.travel, "along_track", "wheel_travel"));
+  t.push_back(autocorrelation_test(o.heading, "heading"));
+  if (d.reference != ReferenceKind::kRelations) {
+    t.push_back(dependence_test(o.heading, o.dturn, "lead_lag", "heading", "turn-rate change"));
+  }
+  return t;
+}
+
+// ---------------------------------------------------------------- held-out gains
+struct HeldOut {
+  Gain translation, heading, likelihood;
+};
+
+HeldOut heldout(const MotionData& d, const OdometryModel& before, const OdometryModel& after,
+                const std::vector<std::size_t>& test, std::size_t chain) {
+  const double n = static_cast<double>(std::max<std::size_t>(test.size(), 1));
+  const auto rb = relative_pose_error(d, before, test, chain), ra = relative_pose_error(d, after, test, chain);
+  return {{"heldout_translation_error_m", rb.translation_rms, ra.translation_rms},
+          {"heldout_heading_error_rad", rb.heading_rms, ra.heading_rms},
+          {"heldout_nll_per_window", negative_log_likelihood(d, before, test) / n,
+           negative_log_likelihood(d, after, test) / n}};
+}
+
+// The cause's primary metric first (cause_catalog.h), then the others.
+std::vector<Gain> ordered_gains(const HeldOut& h, PrimaryMetric metric, bool heading_only) {
+  PrimaryMetric m = metric;
+  if (heading_only && (m == PrimaryMetric::kTranslation || m == PrimaryMetric::kTranslationOrHeading)) {
+    m = PrimaryMetric::kHeading;
+  }
+  if (m == PrimaryMetric::kTranslationOrHeading) {
+    m = h.translation.relative() >= h.heading.relative() ? PrimaryMetric::kTranslation : PrimaryMetric::kHeading;
+  }
+  switch (m) {
+    case PrimaryMetric::kTranslation: return {h.translation, h.heading, h.likelihood};
+    case PrimaryMetric::kHeading:
+      return heading_only ? std::vector<Gain>{h.heading, h.likelihood} : std::vector<Gain>{h.heading, h.translation, h.likelihood};
+    default:
+      return heading_only ? std::vector<Gain>{h.likelihood, h.heading} : std::vector<Gain>{h.likelihood, h.translation, h.heading};
+  }
+}
+
+std::string format_estimate(const Estimate& e) { return fmt::format("{:.4g} [{:.4g}, {:.4g}]", e.value, e.lo, e.hi); }
+
+void encoder_lattice(const MotionData& d, const OdometryModel& nominal_fit, const std::vector<std::size_t>& test,
+                     std::size_t chain, OdometryChannelResult& out) {
+  std::vector<std::int64_t> inc;
+  for (const auto& s : d.steps) {
+    inc.push_back(static_cast<std::int64_t>(s.a));
+    inc.push_back(static_cast<std::int64_t>(s.b));
+  }
+  const auto lat = find_integer_lattice(inc);
+  ResidualTest lt{"quantization_lattice", "encoder_increments", "", "lattice_fraction"};
+  lt.value = lat ? lat->on_lattice_fraction : 0.0;
+  lt.strength = lat ? lat->step : 1.0;
+  lt.p_value = lat ? std::pow(1.0 / lat->step, static_cast<double>(lat->n) * lat->on_lattice_fraction) : 1.0;
+  out.tests.push_back(lt);
+  Cause cause{std::string(cause::kEncoderQuantization), "odometry", lat.has_value()};
+  cause.statistic = "lattice_fraction";
+  cause.value = lt.value;
+  cause.threshold = 0.99;
+  if (lat) {
+    const double c = 0.5 * (d.nominal.meters_per_tick_left + d.nominal.meters_per_tick_right);
+    const double s = lat->step * c;
+    cause.parameters.push_back({"step_m", s, s, s});
+    cause.extra["step_ticks"] = lat->step;
+    // Gain: the residual floor the lattice implies (step²/6 per wheel per window) against the
+    // declared tick's, as predictive likelihood on held-out windows.
+    OdometryModel with = nominal_fit;
+    with.sigma_x = std::max(with.sigma_x, std::sqrt(s * s / 12.0));
+    with.sigma_theta = std::max(with.sigma_theta, std::sqrt(s * s / 3.0) / d.nominal.wheelbase);
+    cause.gains = ordered_gains(heldout(d, nominal_fit, with, test, chain), PrimaryMetric::kLikelihood, false);
+    cause.explanation = explain(cause);
+  }
+  out.causes.push_back(cause);
+}
+
+}  // namespace
+
+OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOptions& opt) {
+  OdometryChannelResult out;
+  std::vector<std::size_t> train, test;
+  split_windows(d.windows.size(), opt.block, train, test);
+  const bool heading_only = d.reference == ReferenceKind::kCompass;
+  const auto candidates = odometry_causes(d);
+  const Fitter fitter(d, train);
+  const OdoFit nominal = fitter.fit({}, initial_noise(d, train), false);
+  out.nominal_fit = nominal.model;
+  out.tests = odometry_battery(d, odometry_residuals(d, nominal.model, train));
+
+  // Fits by active set (sorted indices), each started from the fit of the set without its last
+  // member when there is one.
+  std::map<std::vector<std::size_t>, OdoFit> fits;
+  std::function<const OdoFit&(std::vector<std::size_t>)> fit_set = [&](std::vector<std::size_t> active) -> const OdoFit& {
+    if (active.empty()) return nominal;
+    std::vector<std::size_t> key = active;
+    std::sort(key.begin(), key.end());
+    if (auto it = fits.find(key); it != fits.end()) return it->second;
+    std::vector<std::size_t> without(active.begin(), active.end() - 1);
+    const OdometryModel start = fit_set(without).model;
+    std::vector<const CauseSpec*> specs;
+    for (std::size_t i : key) specs.push_back(candidates[i]);
+    return fits[key] = fitter.fit(specs, start, false);
+  };
+  // The same with the offset's interval profiled, for the fits the report shows.
+  std::map<std::vector<std::size_t>, OdoFit> reported;
+  auto report_fit = [&](std::vector<std::size_t> active) -> const OdoFit& {
+    std::sort(active.begin(), active.end());
+    const bool offset = std::any_of(active.begin(), active.end(), [&](std::size_t i) { return candidates[i]->id == cause::kTimeOffset; });
+    if (!offset) return fit_set(active);
+    if (auto it = reported.find(active); it != reported.end()) return it->second;
+    std::vector<const CauseSpec*> specs;
+    for (std::size_t i : active) specs.push_back(candidates[i]);
+    return reported[active] = fitter.fit(specs, fit_set(active).model, true);
+  };
+  // Forward selection of the specific causes, then of the generic ones given those (a specific
+  // cause that explains a symptom is named before a generic model of the symptom).
+  const double m = static_cast<double>(candidates.size());
+  auto threshold = [&](std::size_t i) {
+    return chi2_quantile(1.0 - opt.false_alarm / m, static_cast<double>(candidates[i]->params.size()));
+  };
+  Selection sel;
+  sel.evidence.resize(candidates.size());
+  for (const bool generic : {false, true}) {
+    std::vector<std::size_t> pool;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (candidates[i]->generic == generic) pool.push_back(i);
+    }
+    const std::vector<std::size_t> before = sel.entered;
+    const Selection phase = forward_select(
+        pool.size(), fit_set(before).nll, [&](std::size_t k) { return threshold(pool[k]); },
+        [&](const std::vector<std::size_t>& active) {
+          std::vector<std::size_t> all = before;
+          for (std::size_t k : active) all.push_back(pool[k]);
+          const OdoFit& f = fit_set(all);
+          const bool offset = candidates[all.back()]->id == cause::kTimeOffset;
+          return SelectionFit{f.nll, !offset || offset_resolved(f.model.time_offset)};
+        });
+    for (std::size_t k : phase.entered) sel.entered.push_back(pool[k]);
+    for (std::size_t k = 0; k < pool.size(); ++k) sel.evidence[pool[k]] = phase.evidence[k];
+  }
+
+  // The held-out check, per cause in its own metric: the model with every entered cause against
+  // the same model without this one (drop-one), both fitted on the training windows.
+  std::vector<std::size_t> kept;
+  const OdoFit& full = fit_set(sel.entered);
+  std::map<std::size_t, std::vector<Gain>> gains;
+  for (std::size_t i : sel.entered) {
+    std::vector<std::size_t> others;
+    for (std::size_t j : sel.entered) {
+      if (j != i) others.push_back(j);
+    }
+    const OdoFit& without = fit_set(others);
+    gains[i] = ordered_gains(heldout(d, without.model, full.model, test, opt.rpe_chain), candidates[i]->metric, heading_only);
+    if (gains[i].front().relative() > 0.0) {
+      kept.push_back(i);
+      continue;
+    }
+    // Why not: do the halves of the log agree on the cause's parameter?
+    const auto& p = candidates[i]->params.front();
+    std::vector<std::size_t> first(train.begin(), train.begin() + static_cast<long>(train.size() / 2));
+    std::vector<std::size_t> second(train.begin() + static_cast<long>(train.size() / 2), train.end());
+    std::vector<const CauseSpec*> specs;
+    for (std::size_t j : sel.entered) specs.push_back(candidates[j]);
+    const auto a = Fitter(d, first).fit(specs, full.model, false).estimate(p);
+    const auto b = Fitter(d, second).fit(specs, full.model, false).estimate(p);
+    const Gain& g = gains[i].front();
+    std::string note = fmt::format("{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not reduce the held-out {} "
+                                   "({:.4g} → {:.4g})",
+                                   candidates[i]->id, sel.evidence[i].lr, sel.evidence[i].threshold, g.metric, g.before, g.after);
+    if (a && b && a->lo < a->hi && b->lo < b->hi && (a->hi < b->lo || b->hi < a->lo)) {
+      note += fmt::format(": non-stationary, the halves of the log disagree on {}: {} vs {}", p.name, format_estimate(*a),
+                          format_estimate(*b));
+    }
+    out.heldout_notes.emplace_back(std::string(candidates[i]->id), note);
+  }
+  const OdoFit& final_fit = report_fit(kept);
+  out.final_fit = final_fit.model;
+
+  auto describe = [&](std::size_t i, const OdoFit& f, bool detected) {
+    const CauseSpec& spec = *candidates[i];
+    Cause c{std::string(spec.id), "odometry", detected};
+    c.value = sel.evidence[i].lr;
+    c.threshold = sel.evidence[i].threshold;
+    for (const auto& p : spec.params) {
+      if (auto e = f.estimate(p)) c.parameters.push_back(*e);
+    }
+    if (spec.id == cause::kTimeOffset) c.extra["sensor"] = heading_only ? "odometry_vs_compass" : "odometry";
+    return c;
+  };
+  for (std::size_t i : sel.entered) {
+    const bool keep = std::find(kept.begin(), kept.end(), i) != kept.end();
+    Cause c = describe(i, keep ? final_fit : report_fit(sel.entered), keep);
+    c.validated = keep;
+    c.gains = gains[i];
+    out.causes.push_back(c);
+  }
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (std::find(sel.entered.begin(), sel.entered.end(), i) != sel.entered.end()) continue;
+    out.causes.push_back(describe(i, candidates[i]->id == cause::kTimeOffset ? report_fit({i}) : fit_set({i}), false));
+  }
+
+  // Confounding: a kept cause whose estimate is (almost) perfectly correlated with another
+  // candidate's that also explains the data alone cannot be told apart from it by these data.
+  for (std::size_t a : kept) {
+    const CauseSpec& sa = *candidates[a];
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      const CauseSpec& sc = *candidates[c];
+      if (c == a || sc.noise || sa.noise || sc.params.size() != 1 || sa.params.size() != 1) continue;
+      if (2.0 * (nominal.nll - fit_set({c}).nll) <= chi2_quantile(1.0 - opt.false_alarm / m, 1.0)) continue;
+      const OdoFit& both = fit_set({a, c});
+      if (both.fit.max_abs_correlation < 0.98) continue;
+      const bool seen = std::any_of(out.confounded.begin(), out.confounded.end(), [&](const ConfoundedGroup& g) {
+        return std::find(g.ids.begin(), g.ids.end(), std::string(sc.id)) != g.ids.end();
+      });
+      if (seen) continue;
+      const std::string pa = sa.params[0].name, pc = sc.params[0].name;
+      const auto ea = fit_set({a}).estimate(sa.params[0]);
+      if (!ea) continue;
+      const bool ratio = (pa == "E_b" && pc == "E_o") || (pa == "E_o" && pc == "E_b");
+      ConfoundedGroup g;
+      g.ids = {std::string(sa.id), std::string(sc.id)};
+      g.combination = fmt::format("{} = {:.6g} [{:.6g}, {:.6g}] (correlation {:.4f} when fitted together)",
+                                  ratio ? pa + "/" + pc : pa + " with " + pc + " nominal", ea->value, ea->lo, ea->hi,
+                                  both.fit.max_abs_correlation);
+      g.explanation = fmt::format("{} and {} act on these residuals the same way (the reference has no independent "
+                                  "distance or turn measurement that separates them); only their combination is determined",
+                                  sa.id, sc.id);
+      out.confounded.push_back(g);
+      for (auto& cause : out.causes) {
+        if (cause.id == sa.id || cause.id == sc.id) cause.identifiable = false;
+      }
+    }
+  }
+  for (auto& c : out.causes) c.explanation = explain(c);
+  if (!kept.empty()) {
+    const HeldOut h = heldout(d, nominal.model, final_fit.model, test, opt.rpe_chain);
+    out.overall_gain = heading_only ? std::vector<Gain>{h.heading, h.likelihood}
+                                    : std::vector<Gain>{h.translation, h.heading, h.likelihood};
+  }
+  if (d.odometry == OdometryKind::kEncoder) encoder_lattice(d, nominal.model, test, opt.rpe_chain, out);
+
+  // What remains after the kept causes. A kept noise cause accounts for the shape tests it names
+  // (standardized residuals stay heavy-tailed under a Student-t or slip model by design).
+  out.remaining = odometry_battery(d, odometry_residuals(d, final_fit.model, train));
+  for (std::size_t i : kept) {
+    if (!candidates[i]->noise) continue;
+    std::erase_if(out.remaining, [&](const ResidualTest& t) { return accounts_for(*candidates[i], t); });
+  }
+  // Lead/lag is the signature of a time offset; an offset within the resolution is neither a
+  // cause nor structure.
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (candidates[i]->id != cause::kTimeOffset) continue;
+    if (!offset_resolved(fit_set({i}).model.time_offset)) {
+      std::erase_if(out.remaining, [](const ResidualTest& t) { return t.name == "lead_lag"; });
+    }
+  }
+  return out;
+}
+
+}  // namespace locbench::diagnosis

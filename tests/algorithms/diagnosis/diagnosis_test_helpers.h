@@ -1,0 +1,33 @@
+#pragma once
+// Reading a diagnosis in tests: find a cause, ask whether it was kept, print the whole verdict
+// when an expectation fails.
+#include <algorithm>
+#include <string>
+
+#include "algorithms/diagnosis/diagnosis.h"
+
+namespace locbench::diagnosis::test_support {
+
+inline const Cause* find_cause(const Diagnosis& d, const std::string& id) {
+  for (const auto& c : d.causes) {
+    if (c.id == id) return &c;
+  }
+  return nullptr;
+}
+
+inline bool detected(const Diagnosis& d, const std::string& id) {
+  return std::find(d.detected.begin(), d.detected.end(), id) != d.detected.end();
+}
+
+inline std::string summary(const Diagnosis& d) {
+  std::string s = "detected:";
+  for (const auto& id : d.detected) s += " " + id;
+  for (const auto& c : d.causes) {
+    s += "\n  " + c.id + (c.detected ? " [D]" : "") + " LR=" + std::to_string(c.value) + " thr=" + std::to_string(c.threshold);
+    for (const auto& p : c.parameters) s += " " + p.name + "=" + std::to_string(p.value) + "[" + std::to_string(p.lo) + "," + std::to_string(p.hi) + "]";
+  }
+  for (const auto& u : d.unexplained) s += "\n  unexplained " + u.test + " " + u.residual + " " + u.variable + " (" + u.reason + ")";
+  return s + "\n  verdict: " + d.verdict;
+}
+
+}  // namespace locbench::diagnosis::test_support
