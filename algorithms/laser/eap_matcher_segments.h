@@ -1,0 +1,94 @@
+#pragma once
+// The map segments as the EAP matcher's inner loop reads them: flat arrays, one entry per
+// segment, copied from each segment's EapRegion so that every value — and therefore every
+// membership decision — is bit-for-bit the one EapRegion::contains computes.
+//   band (5.5):      h = n·(p − P1), |h| ≤ d_limit       (n unit normal; same rounding as
+//                    EapRegion, which is why P1 is stored rather than c = n·P1)
+//   end caps:        ω1 = ω2 \ ω3 (5.12–5.17) or the stadium, on squared distances only
+//   nearest segment: squared distance to the closed segment, no square root
+#include <Eigen/Core>
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "algorithms/core/line_map.h"
+#include "algorithms/laser/eap_region.h"
+
+namespace locbench::laser::detail {
+
+class EapSegmentTable {
+ public:
+  // From regions built with one d_limit (at least one region, or an empty table).
+  void assign(std::span<const EapRegion> regions);
+  // Builds the regions of `map` (UsageError "map segment j: …" for a zero-length one).
+  void assign(const LineMap& map, double d_limit);
+  // True when this table was built from exactly these segments and d_limit.
+  bool built_from(const LineMap& map, double d_limit) const;
+
+  std::size_t size() const { return ax_.size(); }
+
+  // The band test alone (5.5): |n·(p − P1)| ≤ d_limit; false for NaN.
+  bool in_band(std::size_t j, double px, double py) const {
+    const double h = nx_[j] * (px - ax_[j]) + ny_[j] * (py - ay_[j]);
+    return std::abs(h) <= d_limit_;
+  }
+  // Bit j − first of the result: the band test of segment j, for j in [first, first + count),
+  // count ≤ 64. Branch-free, so the (mostly failing) tests cost no mispredictions.
+  std::uint64_t band_mask(std::size_t first, std::size_t count, double px, double py) const {
+    std::uint64_t mask = 0;
+    const double* ax = ax_.data() + first;
+    const double* ay = ay_.data() + first;
+    const double* nx = nx_.data() + first;
+    const double* ny = ny_.data() + first;
+    for (std::size_t k = 0; k < count; ++k) {
+      const double h = nx[k] * (px - ax[k]) + ny[k] * (py - ay[k]);
+      mask |= static_cast<std::uint64_t>(std::abs(h) <= d_limit_) << k;
+    }
+    return mask;
+  }
+  // For a point inside segment j's band: is it inside ω1 under `rule` (the rest of
+  // EapRegion::contains)?
+  bool in_caps(std::size_t j, double px, double py, RegionRule rule) const {
+    const double qx = px - ax_[j], qy = py - ay_[j];
+    const double rx = px - bx_[j], ry = py - by_[j];
+    if (rule == RegionRule::kThesis) {
+      const double d1s = qx * qx + qy * qy;  // d1² (5.12)
+      const double d2s = rx * rx + ry * ry;  // d2² (5.13)
+      return !(std::max(d1s, d2s) > d3_squared_[j] && std::min(d1s, d2s) > d_limit_squared_);
+    }
+    const double t = dx_[j] * qx + dy_[j] * qy;
+    if (t < 0.0) return qx * qx + qy * qy <= d_limit_squared_;
+    if (t > length_[j]) return rx * rx + ry * ry <= d_limit_squared_;
+    return true;
+  }
+  bool contains(std::size_t j, double px, double py, RegionRule rule) const {
+    return in_band(j, px, py) && in_caps(j, px, py, rule);
+  }
+  // Squared distance from p to the closed segment j; its square root is bit-equal to
+  // EapRegion::distance_to_segment.
+  double distance_squared(std::size_t j, double px, double py) const {
+    const double qx = px - ax_[j], qy = py - ay_[j];
+    const double t = std::clamp(dx_[j] * qx + dy_[j] * qy, 0.0, length_[j]);
+    const double ex = qx - t * dx_[j], ey = qy - t * dy_[j];
+    return ex * ex + ey * ey;
+  }
+
+  // Unit direction P1 → P2, and the midpoint (the origin of the matcher's moments: points of
+  // ω1 lie within |P1P2|/2 + d_limit of it, which keeps one-pass moments accurate).
+  double dx(std::size_t j) const { return dx_[j]; }
+  double dy(std::size_t j) const { return dy_[j]; }
+  double mid_x(std::size_t j) const { return mx_[j]; }
+  double mid_y(std::size_t j) const { return my_[j]; }
+
+ private:
+  std::vector<double> ax_, ay_, nx_, ny_;  // P1 and the unit normal (band test)
+  std::vector<double> bx_, by_;            // P2
+  std::vector<double> dx_, dy_, length_;   // unit direction and |P1P2|
+  std::vector<double> d3_squared_;         // d3² = d_limit² + |P1P2|² (5.14)
+  std::vector<double> mx_, my_;            // midpoint
+  double d_limit_ = 0.0, d_limit_squared_ = 0.0;
+  std::vector<Segment> source_;            // the segments it was built from (built_from)
+};
+
+}  // namespace locbench::laser::detail
