@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <ranges>
 #include <span>
 #include <vector>
 
@@ -47,7 +48,9 @@ struct Workspace {
   BearingCache trig;
   FlatPoints points;
   EapSegmentTable plain_table;
-  std::vector<std::uint32_t> owner, members, tested, accepted, run;
+  std::vector<std::uint32_t> owner, members, tested, accepted;
+  std::vector<std::uint64_t> masks;  // per point: band-test bits of a block of segments
+  std::vector<double> best2;         // per point: squared distance to its owner
   std::vector<char> deleted;
   std::vector<Hit> hits;
   std::vector<Run> runs;
@@ -99,23 +102,42 @@ class MatchPass {
     }
   }
 
-  // Nearest-segment claims: the owner of each point (kNoSegment for none).
+  // Nearest-segment claims: the owner of each point (kNoSegment for none). Plain: the band
+  // tests of a block of 64 segments against all points first (EapSegmentTable::band_masks),
+  // then the end caps and distances of the few in-band pairs; indexed: the grid cell's list.
   void claim_nearest(const SegmentGridIndex* index, std::vector<std::uint32_t>& owner) {
     const std::size_t n = p_.size();
     owner.assign(n, kNoSegment);
-    for (std::size_t i = 0; i < n; ++i) {
-      std::uint32_t best = kNoSegment;
-      double best2 = 0.0;
-      const double px = p_.x[i], py = p_.y[i];
-      for_each_region(i, index, [&](std::uint32_t j) {
-        const double d2 = t_.distance_squared(j, px, py);
-        if (best == kNoSegment || nearer(d2, best2)) {
-          best = j;
-          best2 = d2;
-        }
-      });
-      owner[i] = best;
+    std::vector<double>& best2 = ws_.best2;
+    best2.assign(n, 0.0);
+    const auto consider = [&](std::size_t i, std::uint32_t j) {
+      const double d2 = t_.distance_squared(j, p_.x[i], p_.y[i]);
+      if (owner[i] == kNoSegment || nearer(d2, best2[i])) {
+        owner[i] = j;
+        best2[i] = d2;
+      }
+    };
+    if (index != nullptr) {
+      for (std::size_t i = 0; i < n; ++i) {
+        for_each_region(i, index, [&](std::uint32_t j) { consider(i, j); });
+      }
+      return;
     }
+    const std::size_t m = t_.size();
+    std::vector<std::uint64_t>& masks = ws_.masks;
+    const RegionRule rule = o_.region;
+    for (std::size_t first = 0; first < m; first += kMaskBits) {
+      masks.assign(n, 0);
+      t_.band_masks(first, std::min(kMaskBits, m - first), p_.x.data(), p_.y.data(), n,
+                    masks.data());
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::uint64_t mask = masks[i]; mask != 0; mask &= mask - 1) {
+          const auto j = static_cast<std::uint32_t>(first + std::countr_zero(mask));
+          if (t_.in_caps(j, p_.x[i], p_.y[i], rule)) consider(i, j);
+        }
+      }
+    }
+    result_.work += n * m;
   }
 
   // Whether point i is in ω1 of segment j, counted as one membership test.
@@ -155,18 +177,16 @@ class MatchPass {
   // accepted ones are reported per segment, segments ascending.
   void accept_owned_runs(std::span<const std::uint32_t> owner) {
     std::vector<Run>& runs = ws_.runs;
-    std::vector<std::uint32_t>& run = ws_.run;
     runs.clear();
     const auto n = static_cast<std::uint32_t>(owner.size());
     std::uint32_t begin = 0;
     while (begin < n) {
       std::uint32_t end = begin + 1;
       while (end < n && owner[end] == owner[begin]) ++end;
-      if (owner[begin] != kNoSegment) {
-        run.clear();
-        for (std::uint32_t i = begin; i < end; ++i) run.push_back(i);
-        Moments m;
-        if (accept_run(owner[begin], run, m)) runs.push_back({owner[begin], begin, end, m});
+      Moments m;
+      if (owner[begin] != kNoSegment &&
+          accept_run(owner[begin], std::views::iota(begin, end), m)) {
+        runs.push_back({owner[begin], begin, end, m});
       }
       begin = end;
     }
@@ -205,7 +225,9 @@ class MatchPass {
   // and last point more than min_extent apart; ours: the run's LS direction within
   // max_direction_error of the segment's. Cheapest test first. `m` gets the run's moments
   // about the segment's midpoint (the fit reuses them).
-  bool accept_run(std::uint32_t segment, std::span<const std::uint32_t> run, Moments& m) const {
+  // `run`: ascending point indices (a span, or an iota range for a contiguous run).
+  template <class Points>
+  bool accept_run(std::uint32_t segment, const Points& run, Moments& m) const {
     const bool count = o_.weighting.kind == HoughWeighting::kCount;
     if (count && !(static_cast<double>(run.size()) >= o_.c_limit)) return false;  // (5.11)
     const std::uint32_t a = run.front(), b = run.back();

@@ -39,7 +39,8 @@ class EapSegmentTable {
   }
   // Bit j − first of the result: the band test of segment j, for j in [first, first + count),
   // count ≤ 64. Branch-free (two segments per SSE2 instruction where available, the same IEEE
-  // operations as in_band), so the mostly failing tests cost no mispredictions.
+  // operations as in_band), so the mostly failing tests cost no mispredictions. Used per point
+  // where the points are visited one by one (no claims); band_masks is the batch form.
   std::uint64_t band_mask(std::size_t first, std::size_t count, double px, double py) const {
     std::uint64_t mask = 0;
     const double* ax = ax_.data() + first;
@@ -64,6 +65,51 @@ class EapSegmentTable {
     }
     return mask;
   }
+  // For every point i < n: bit j − first of masks[i] |= the band test of segment j against
+  // (px[i], py[i]), for j in [first, first + count), count ≤ 64. Segment-major, so the
+  // segments' constants stay in registers while the points stream past (SSE2 where available:
+  // two points per instruction, two segments per pass; the same IEEE operations as in_band).
+  void band_masks(std::size_t first, std::size_t count, const double* px, const double* py,
+                  std::size_t n, std::uint64_t* masks) const {
+    std::size_t k = 0;
+#if defined(__SSE2__)
+    // Two segments per pass over the points: each pair of points is loaded once for both.
+    const __m128d d = _mm_set1_pd(d_limit_), sign = _mm_set1_pd(-0.0);
+    for (; k + 2 <= count; k += 2) {
+      const std::size_t j = first + k;
+      const __m128d ax0 = _mm_set1_pd(ax_[j]), ay0 = _mm_set1_pd(ay_[j]);
+      const __m128d nx0 = _mm_set1_pd(nx_[j]), ny0 = _mm_set1_pd(ny_[j]);
+      const __m128d ax1 = _mm_set1_pd(ax_[j + 1]), ay1 = _mm_set1_pd(ay_[j + 1]);
+      const __m128d nx1 = _mm_set1_pd(nx_[j + 1]), ny1 = _mm_set1_pd(ny_[j + 1]);
+      const __m128i bit0 = _mm_set1_epi64x(static_cast<long long>(std::uint64_t{1} << k));
+      const __m128i bit1 = _mm_set1_epi64x(static_cast<long long>(std::uint64_t{2} << k));
+      std::size_t i = 0;
+      for (; i + 2 <= n; i += 2) {
+        const __m128d x = _mm_loadu_pd(px + i), y = _mm_loadu_pd(py + i);
+        const __m128d h0 = _mm_add_pd(_mm_mul_pd(nx0, _mm_sub_pd(x, ax0)),
+                                      _mm_mul_pd(ny0, _mm_sub_pd(y, ay0)));
+        const __m128d h1 = _mm_add_pd(_mm_mul_pd(nx1, _mm_sub_pd(x, ax1)),
+                                      _mm_mul_pd(ny1, _mm_sub_pd(y, ay1)));
+        const __m128i in0 = _mm_castpd_si128(_mm_cmple_pd(_mm_andnot_pd(sign, h0), d));
+        const __m128i in1 = _mm_castpd_si128(_mm_cmple_pd(_mm_andnot_pd(sign, h1), d));
+        auto* out = reinterpret_cast<__m128i*>(masks + i);
+        _mm_storeu_si128(out, _mm_or_si128(_mm_loadu_si128(out),
+                                           _mm_or_si128(_mm_and_si128(in0, bit0),
+                                                        _mm_and_si128(in1, bit1))));
+      }
+      for (; i < n; ++i) {
+        if (in_band(j, px[i], py[i])) masks[i] |= std::uint64_t{1} << k;
+        if (in_band(j + 1, px[i], py[i])) masks[i] |= std::uint64_t{2} << k;
+      }
+    }
+#endif
+    for (; k < count; ++k) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (in_band(first + k, px[i], py[i])) masks[i] |= std::uint64_t{1} << k;
+      }
+    }
+  }
+
   // For a point inside segment j's band: is it inside ω1 under `rule` (the rest of
   // EapRegion::contains)?
   bool in_caps(std::size_t j, double px, double py, RegionRule rule) const {
