@@ -108,11 +108,17 @@ class MatchPass {
   void claim_nearest(const SegmentGridIndex* index, std::vector<std::uint32_t>& owner) {
     const std::size_t n = p_.size();
     owner.assign(n, kNoSegment);
-    std::vector<double>& best2 = ws_.best2;
-    best2.assign(n, 0.0);
+    std::vector<double>& best2 = ws_.best2;  // < 0: not computed yet (a single candidate)
+    best2.assign(n, -1.0);
     const auto consider = [&](std::size_t i, std::uint32_t j) {
-      const double d2 = t_.distance_squared(j, p_.x[i], p_.y[i]);
-      if (owner[i] == kNoSegment || nearer(d2, best2[i])) {
+      const double x = p_.x[i], y = p_.y[i];
+      if (owner[i] == kNoSegment) {  // most points lie in one ω1: no distance needed
+        owner[i] = j;
+        return;
+      }
+      if (best2[i] < 0.0) best2[i] = t_.distance_squared(owner[i], x, y);
+      const double d2 = t_.distance_squared(j, x, y);
+      if (nearer(d2, best2[i])) {
         owner[i] = j;
         best2[i] = d2;
       }
