@@ -1,19 +1,30 @@
 #include "algorithms/laser/eap_matcher.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
+#include <ranges>
 #include <span>
 #include <vector>
 
 #include "algorithms/core/errors.h"
 #include "algorithms/core/json_options.h"
+#include "algorithms/laser/eap_matcher_moments.h"
+#include "algorithms/laser/eap_matcher_points.h"
+#include "algorithms/laser/eap_matcher_segments.h"
 
 namespace locbench::laser {
 namespace {
 
+using detail::BearingCache;
+using detail::EapSegmentTable;
+using detail::FlatPoints;
+using detail::Moments;
+using detail::PrincipalAxis;
+
 constexpr std::uint32_t kNoSegment = static_cast<std::uint32_t>(-1);
+constexpr std::size_t kMaskBits = 64;  // segments per branch-free band-test block
 
 struct Hit {
   std::uint32_t segment;
@@ -23,120 +34,190 @@ struct Hit {
   }
 };
 
-// One match() call: the scan's points, the regions, the options and the output.
+struct Run {
+  std::uint32_t segment, begin, end;  // points [begin, end)
+  Moments moments;                     // about the segment's midpoint
+  bool operator<(const Run& o) const {
+    return segment != o.segment ? segment < o.segment : begin < o.begin;
+  }
+};
+
+// Buffers reused across calls, one set per thread (so one matcher can still be shared across
+// threads): the bearing cache, the points, the plain matcher's last segment table.
+struct Workspace {
+  BearingCache trig;
+  FlatPoints points;
+  EapSegmentTable plain_table;
+  std::vector<std::uint32_t> owner, members, tested, accepted;
+  std::vector<std::uint64_t> masks;  // per point: band-test bits of a block of segments
+  std::vector<double> best2;         // per point: squared distance to its owner
+  std::vector<char> deleted;
+  std::vector<Hit> hits;
+  std::vector<Run> runs;
+};
+
+Workspace& workspace() {
+  thread_local Workspace ws;
+  return ws;
+}
+
+// sqrt(d2) < sqrt(best2) — the old comparison of distances — decided on the squares: sqrt is
+// monotone, so only near-ties (relative gap < 1e-9, where two squares may round to one root)
+// need the roots.
+bool nearer(double d2, double best2) {
+  if (!(d2 < best2)) return false;
+  return d2 < best2 * (1.0 - 1e-9) || std::sqrt(d2) < std::sqrt(best2);
+}
+
+// One match() call over the flat points and segments.
 class MatchPass {
  public:
-  MatchPass(const EapOptions& o, std::vector<ScanPoint> points, std::span<const EapRegion> regions,
-            const LineMap& map, double sensor_heading)
-      : o_(o), points_(std::move(points)), regions_(regions), map_(map),
-        sensor_heading_(sensor_heading) {
-    world_.reserve(points_.size());
-    accepted_.reserve(points_.size());
+  MatchPass(const EapOptions& o, const EapSegmentTable& table, const Scan& scan,
+            const LineMap& map, double sensor_heading, Workspace& ws)
+      : o_(o), t_(table), scan_(scan), map_(map), p_(ws.points), ws_(ws),
+        sensor_heading_(sensor_heading), sin_max_direction_(std::sin(o.max_direction_error)) {}
+
+  // Calls f(j) for each segment j whose ω1 holds point i, ascending j: the band test first
+  // (branch-free over blocks of 64 segments, plain) or the grid cell's list (indexed).
+  template <class F>
+  void for_each_region(std::size_t i, const SegmentGridIndex* index, F&& f) {
+    const double px = p_.x[i], py = p_.y[i];
+    if (index == nullptr) {
+      const std::size_t m = t_.size();
+      for (std::size_t first = 0; first < m; first += kMaskBits) {
+        std::uint64_t mask = t_.band_mask(first, std::min(kMaskBits, m - first), px, py);
+        while (mask != 0) {
+          const std::size_t j = first + static_cast<std::size_t>(std::countr_zero(mask));
+          mask &= mask - 1;
+          if (t_.in_caps(j, px, py, o_.region)) f(static_cast<std::uint32_t>(j));
+        }
+      }
+      result_.work += m;
+      return;
+    }
+    const auto candidates = index->candidates(Eigen::Vector2d(px, py));
+    result_.work += candidates.size();
+    for (const std::uint32_t j : candidates) {
+      if (t_.contains(j, px, py, o_.region)) f(j);
+    }
   }
 
-  std::size_t size() const { return points_.size(); }
-  const Eigen::Vector2d& world(std::size_t i) const { return points_[i].world; }
-  bool contains(std::uint32_t segment, std::size_t i) {
+  // Nearest-segment claims: the owner of each point (kNoSegment for none). Plain: the band
+  // tests of a block of 64 segments against all points first (EapSegmentTable::band_masks),
+  // then the end caps and distances of the few in-band pairs; indexed: the grid cell's list.
+  void claim_nearest(const SegmentGridIndex* index, std::vector<std::uint32_t>& owner) {
+    const std::size_t n = p_.size();
+    owner.assign(n, kNoSegment);
+    std::vector<double>& best2 = ws_.best2;  // < 0: not computed yet (a single candidate)
+    best2.assign(n, -1.0);
+    const auto consider = [&](std::size_t i, std::uint32_t j) {
+      const double x = p_.x[i], y = p_.y[i];
+      if (owner[i] == kNoSegment) {  // most points lie in one ω1: no distance needed
+        owner[i] = j;
+        return;
+      }
+      if (best2[i] < 0.0) best2[i] = t_.distance_squared(owner[i], x, y);
+      const double d2 = t_.distance_squared(j, x, y);
+      if (nearer(d2, best2[i])) {
+        owner[i] = j;
+        best2[i] = d2;
+      }
+    };
+    if (index != nullptr) {
+      for (std::size_t i = 0; i < n; ++i) {
+        for_each_region(i, index, [&](std::uint32_t j) { consider(i, j); });
+      }
+      return;
+    }
+    const std::size_t m = t_.size();
+    std::vector<std::uint64_t>& masks = ws_.masks;
+    const RegionRule rule = o_.region;
+    for (std::size_t first = 0; first < m; first += kMaskBits) {
+      masks.assign(n, 0);
+      t_.band_masks(first, std::min(kMaskBits, m - first), p_.x.data(), p_.y.data(), n,
+                    masks.data());
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::uint64_t mask = masks[i]; mask != 0; mask &= mask - 1) {
+          const auto j = static_cast<std::uint32_t>(first + std::countr_zero(mask));
+          if (t_.in_caps(j, p_.x[i], p_.y[i], rule)) consider(i, j);
+        }
+      }
+    }
+    result_.work += n * m;
+  }
+
+  // Whether point i is in ω1 of segment j, counted as one membership test.
+  bool contains(std::uint32_t j, std::size_t i) {
     ++result_.work;
-    return regions_[segment].contains(points_[i].world, o_.region);
-  }
-  double distance(std::uint32_t segment, std::size_t i) const {
-    return regions_[segment].distance_to_segment(points_[i].world);
+    return t_.contains(j, p_.x[i], p_.y[i], o_.region);
   }
 
-  // Forms the runs of `members` (ascending point indices, all inside ω1 of `segment`), accepts
-  // them (§5.3 conditions 1–3) and appends one SegmentMatch holding every accepted run. Two
-  // members are consecutive when every valid point between them is deleted (`deleted` may be
-  // null: nothing deleted, so only adjacent points are consecutive). Accepted points are marked
-  // in `deleted` when it is given.
+  // Runs of `members` (ascending point indices, all inside ω1 of `segment`), accepted (§5.3
+  // conditions 1–3 and ours) into one SegmentMatch. Two members are consecutive when every
+  // valid point between them is deleted (`deleted` null: only adjacent points are). Accepted
+  // points are marked in `deleted` when it is given.
   void accept_runs(std::uint32_t segment, std::span<const std::uint32_t> members,
                    std::vector<char>* deleted) {
-    accepted_.clear();
+    std::vector<std::uint32_t>& accepted = ws_.accepted;
+    accepted.clear();
+    Moments sum;
     std::size_t begin = 0;
     while (begin < members.size()) {
       std::size_t end = begin + 1;
       while (end < members.size() && consecutive(members[end - 1], members[end], deleted)) ++end;
       const std::span<const std::uint32_t> run = members.subspan(begin, end - begin);
-      if (accepted(segment, run)) accepted_.insert(accepted_.end(), run.begin(), run.end());
+      Moments m;
+      if (accept_run(segment, run, m)) {
+        accepted.insert(accepted.end(), run.begin(), run.end());
+        sum += m;
+      }
       begin = end;
     }
     if (deleted != nullptr) {
-      for (const std::uint32_t i : accepted_) (*deleted)[i] = 1;
+      for (const std::uint32_t i : accepted) (*deleted)[i] = 1;
     }
-    emit(segment, accepted_);
+    emit(segment, accepted, sum);
   }
 
-  // Nearest-segment claims: `owner[i]` is the segment point i belongs to (or kNoSegment). A run
-  // is a maximal range of adjacent points with the same owner; the accepted ones are reported
-  // per segment, segments ascending.
+  // Nearest-segment claims: a run is a maximal range of adjacent points with one owner; the
+  // accepted ones are reported per segment, segments ascending.
   void accept_owned_runs(std::span<const std::uint32_t> owner) {
-    struct Run {
-      std::uint32_t segment, begin, end;
-      bool operator<(const Run& o) const {
-        return segment != o.segment ? segment < o.segment : begin < o.begin;
-      }
-    };
-    std::vector<Run> runs;
-    std::uint32_t begin = 0;
+    std::vector<Run>& runs = ws_.runs;
+    runs.clear();
     const auto n = static_cast<std::uint32_t>(owner.size());
+    std::uint32_t begin = 0;
     while (begin < n) {
       std::uint32_t end = begin + 1;
       while (end < n && owner[end] == owner[begin]) ++end;
-      if (owner[begin] != kNoSegment) {
-        accepted_.clear();
-        for (std::uint32_t i = begin; i < end; ++i) accepted_.push_back(i);
-        if (accepted(owner[begin], accepted_)) runs.push_back({owner[begin], begin, end});
+      Moments m;
+      if (owner[begin] != kNoSegment &&
+          accept_run(owner[begin], std::views::iota(begin, end), m)) {
+        runs.push_back({owner[begin], begin, end, m});
       }
       begin = end;
     }
     std::sort(runs.begin(), runs.end());
+    std::size_t groups = 0;
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      groups += k == 0 || runs[k].segment != runs[k - 1].segment;
+    }
+    result_.matches.reserve(groups);
+    std::vector<std::uint32_t>& accepted = ws_.accepted;
     for (std::size_t k = 0; k < runs.size();) {
       const std::uint32_t segment = runs[k].segment;
-      accepted_.clear();
+      accepted.clear();
+      Moments sum;
       for (; k < runs.size() && runs[k].segment == segment; ++k) {
-        for (std::uint32_t i = runs[k].begin; i < runs[k].end; ++i) accepted_.push_back(i);
+        for (std::uint32_t i = runs[k].begin; i < runs[k].end; ++i) accepted.push_back(i);
+        sum += runs[k].moments;
       }
-      emit(segment, accepted_);
+      emit(segment, accepted, sum);
     }
   }
 
   MatchResult take_result() { return std::move(result_); }
 
  private:
-  // One SegmentMatch of `segment` with the points `indices` (ascending) and their line.
-  void emit(std::uint32_t segment, std::span<const std::uint32_t> indices) {
-    if (indices.empty()) return;
-    SegmentMatch m;
-    m.map_segment = segment;
-    m.points.reserve(indices.size());
-    world_.clear();
-    for (const std::uint32_t i : indices) {
-      m.points.push_back(points_[i]);
-      world_.push_back(points_[i].world);
-    }
-    m.fit = fit_line(world_);
-    // Ours: trim the farthest point from the fitted line while it is beyond trim_distance
-    // (points of an adjacent wall inside the end-cap band under a pose error), refit each time.
-    while (o_.trim_distance > 0.0 && !world_.empty()) {
-      const Eigen::Vector2d n(std::cos(m.fit.line.beta), std::sin(m.fit.line.beta));
-      std::size_t worst = 0;
-      double worst_r = -1.0;
-      for (std::size_t k = 0; k < world_.size(); ++k) {
-        const double r = std::abs(n.dot(world_[k]) - m.fit.line.rho);
-        if (r > worst_r) {
-          worst_r = r;
-          worst = k;
-        }
-      }
-      if (worst_r <= o_.trim_distance) break;
-      world_.erase(world_.begin() + static_cast<std::ptrdiff_t>(worst));
-      m.points.erase(m.points.begin() + static_cast<std::ptrdiff_t>(worst));
-      if (static_cast<double>(world_.size()) < std::max(2.0, o_.c_limit)) return;  // nothing left
-      m.fit = fit_line(world_);
-    }
-    result_.matches.push_back(std::move(m));
-  }
-
   static bool consecutive(std::uint32_t a, std::uint32_t b, const std::vector<char>* deleted) {
     if (b == a + 1) return true;
     if (deleted == nullptr) return false;
@@ -147,50 +228,95 @@ class MatchPass {
   }
 
   // §5.3: score Σ g ≥ C_limit (5.6, w = 1 inside ω1; with g ≡ 1 the point count) and the first
-  // and last point more than min_extent apart.
-  bool accepted(std::uint32_t segment, std::span<const std::uint32_t> run) const {
-    const Eigen::Vector2d& a = points_[run.front()].world;
-    const Eigen::Vector2d& b = points_[run.back()].world;
-    if (!((b - a).norm() > o_.min_extent)) return false;
-    if (o_.max_direction_error > 0.0) {  // ours: the run's LS line must run along the segment
-      run_world_.clear();
-      for (const std::uint32_t i : run) run_world_.push_back(points_[i].world);
-      const Eigen::Vector2d d = (map_.segments[segment].p2 - map_.segments[segment].p1).normalized();
-      const Eigen::Vector2d f = fit_line(run_world_).direction;
-      if (std::abs(d.x() * f.y() - d.y() * f.x()) > std::sin(o_.max_direction_error)) return false;
+  // and last point more than min_extent apart; ours: the run's LS direction within
+  // max_direction_error of the segment's. Cheapest test first. `m` gets the run's moments
+  // about the segment's midpoint (the fit reuses them).
+  // `run`: ascending point indices (a span, or an iota range for a contiguous run).
+  template <class Points>
+  bool accept_run(std::uint32_t segment, const Points& run, Moments& m) const {
+    const bool count = o_.weighting.kind == HoughWeighting::kCount;
+    if (count && !(static_cast<double>(run.size()) >= o_.c_limit)) return false;  // (5.11)
+    const std::uint32_t a = run.front(), b = run.back();
+    if (!(Eigen::Vector2d(p_.x[b] - p_.x[a], p_.y[b] - p_.y[a]).norm() > o_.min_extent)) {
+      return false;
     }
-    if (o_.weighting.kind == HoughWeighting::kCount) {
-      return static_cast<double>(run.size()) >= o_.c_limit;  // (5.11)
+    const double ox = t_.mid_x(segment), oy = t_.mid_y(segment);
+    m = Moments{};
+    for (const std::uint32_t i : run) m.add(p_.x[i] - ox, p_.y[i] - oy);
+    if (o_.max_direction_error > 0.0) {
+      const PrincipalAxis f = detail::principal_axis(m);
+      const double cross = t_.dx(segment) * f.uy - t_.dy(segment) * f.ux;
+      if (std::abs(cross) > sin_max_direction_) return false;
     }
+    if (count) return true;
     const double beta = map_.segments[segment].line().beta;
     double score = 0.0;
     for (const std::uint32_t i : run) {
-      score += hough_weight(points_[i], sensor_heading_, beta, o_.weighting);
+      score += hough_weight(p_.point(i, scan_), sensor_heading_, beta, o_.weighting);
     }
     return score >= o_.c_limit;
   }
 
+  // One SegmentMatch of `segment` with the points `indices` (ascending; consumed) whose moments
+  // are `m`: the LS line from the moments; ours: while the point farthest from it is beyond
+  // trim_distance, that point is removed from the moments and the line recomputed; a match
+  // left with fewer than max(2, c_limit) points is dropped.
+  void emit(std::uint32_t segment, std::vector<std::uint32_t>& indices, Moments m) {
+    if (indices.empty()) return;
+    const double ox = t_.mid_x(segment), oy = t_.mid_y(segment);
+    PrincipalAxis a = detail::principal_axis(m);
+    double ss = 0.0;
+    for (;;) {
+      const double nx = -a.uy, ny = a.ux;
+      const double cx = ox + a.mean_x, cy = oy + a.mean_y;
+      std::size_t worst = 0;
+      double worst_r = -1.0;
+      ss = 0.0;
+      for (std::size_t k = 0; k < indices.size(); ++k) {
+        const std::uint32_t i = indices[k];
+        const double r = std::abs(nx * (p_.x[i] - cx) + ny * (p_.y[i] - cy));
+        ss += r * r;
+        if (r > worst_r) {
+          worst_r = r;
+          worst = k;
+        }
+      }
+      if (!(o_.trim_distance > 0.0) || worst_r <= o_.trim_distance) break;
+      const std::uint32_t i = indices[worst];
+      m.remove(p_.x[i] - ox, p_.y[i] - oy);
+      indices.erase(indices.begin() + static_cast<std::ptrdiff_t>(worst));
+      if (static_cast<double>(indices.size()) < std::max(2.0, o_.c_limit)) return;
+      a = detail::principal_axis(m);
+    }
+    SegmentMatch match;
+    match.map_segment = segment;
+    match.points.reserve(indices.size());
+    for (const std::uint32_t i : indices) match.points.push_back(p_.point(i, scan_));
+    match.fit = detail::line_fit_from(m, a, ox, oy, ss, match.points.front().world,
+                                      match.points.back().world);
+    result_.matches.push_back(std::move(match));
+  }
+
   const EapOptions& o_;
-  mutable std::vector<Eigen::Vector2d> run_world_;  // scratch of accepted()
-  std::vector<ScanPoint> points_;
-  std::span<const EapRegion> regions_;
+  const EapSegmentTable& t_;
+  const Scan& scan_;
   const LineMap& map_;
+  const FlatPoints& p_;
+  Workspace& ws_;
   double sensor_heading_;
+  double sin_max_direction_;
   MatchResult result_;
-  std::vector<std::uint32_t> accepted_;  // points of the current segment's accepted runs
-  std::vector<Eigen::Vector2d> world_;   // fit_line's input
 };
 
-// Calls f(segment, members) for each segment with members, in ascending segment order; `hits`
-// sorted.
+// Calls f(segment, points) for each segment with hits, ascending; `hits` sorted.
 template <class F>
-void for_each_group(std::span<const Hit> hits, std::vector<std::uint32_t>& members, F&& f) {
+void for_each_group(std::span<const Hit> hits, std::vector<std::uint32_t>& points, F&& f) {
   std::size_t k = 0;
   while (k < hits.size()) {
     const std::uint32_t segment = hits[k].segment;
-    members.clear();
-    for (; k < hits.size() && hits[k].segment == segment; ++k) members.push_back(hits[k].point);
-    f(segment, std::span<const std::uint32_t>(members));
+    points.clear();
+    for (; k < hits.size() && hits[k].segment == segment; ++k) points.push_back(hits[k].point);
+    f(segment, std::span<const std::uint32_t>(points));
   }
 }
 
@@ -291,6 +417,9 @@ EapMatcher::EapMatcher(std::shared_ptr<const SegmentGridIndex> index, EapOptions
                      std::to_string(index_->d_limit()) + " m, the options say " +
                      std::to_string(options_.d_limit) + " m");
   }
+  auto table = std::make_shared<EapSegmentTable>();
+  table->assign(index_->regions());
+  table_ = std::move(table);
 }
 
 MatchResult EapMatcher::match(const Scan& scan, const LineMap& map, const Pose2& estimate) const {
@@ -301,101 +430,78 @@ MatchResult EapMatcher::match(const Scan& scan, const LineMap& map, const Pose2&
     throw UsageError("EapMatcher: the scan has " + std::to_string(scan.ranges.size()) +
                      " ranges but " + std::to_string(scan.bearings.size()) + " bearings");
   }
-  const std::size_t m = map.segments.size();
-  // Regions and each point's candidate segments: all of them (plain) or its grid cell's.
-  std::vector<EapRegion> own_regions;
-  std::vector<std::uint32_t> all_segments;
-  std::span<const EapRegion> regions;
-  if (index_) {
-    if (!same_segments(map, index_->map())) {
+  Workspace& ws = workspace();
+  const EapSegmentTable* table = table_.get();
+  const SegmentGridIndex* index = index_.get();
+  if (index != nullptr) {
+    if (!same_segments(map, index->map())) {
       throw UsageError("EapMatcher: the map is not the one the grid index was built for");
     }
-    regions = index_->regions();
   } else {
-    if (m > kNoSegment) throw UsageError("EapMatcher: more than 2^32 − 1 map segments");
-    own_regions.reserve(m);
-    for (std::size_t j = 0; j < m; ++j) {
+    if (map.segments.size() > kNoSegment) {
+      throw UsageError("EapMatcher: more than 2^32 − 1 map segments");
+    }
+    if (!ws.plain_table.built_from(map, options_.d_limit)) {
       try {
-        own_regions.emplace_back(map.segments[j], options_.d_limit);
+        ws.plain_table.assign(map, options_.d_limit);
       } catch (const UsageError& e) {
-        throw UsageError("EapMatcher: map segment " + std::to_string(j) + ": " + e.what());
+        throw UsageError(std::string("EapMatcher: ") + e.what());
       }
     }
-    regions = own_regions;
-    all_segments.resize(m);
-    std::iota(all_segments.begin(), all_segments.end(), std::uint32_t{0});
+    table = &ws.plain_table;
+  }
+  ws.trig.update(scan.bearings);
+  ws.points.assign(scan, estimate, ws.trig);
+
+  MatchPass pass(options_, *table, scan, map, estimate.theta + scan.sensor_pose.theta, ws);
+  const std::size_t n = ws.points.size();
+  const auto m = static_cast<std::uint32_t>(table->size());
+
+  if (options_.remove_claimed && options_.claim_order == ClaimOrder::kNearestSegment) {
+    // Each point to the nearest segment among those whose ω1 holds it (ties → lower index).
+    pass.claim_nearest(index, ws.owner);
+    pass.accept_owned_runs(ws.owner);
+    return pass.take_result();
   }
 
-  MatchPass pass(options_, scan_points(scan, estimate), regions, map,
-                 estimate.theta + scan.sensor_pose.theta);
-  const std::size_t n = pass.size();
-  const auto candidates = [&](std::size_t i) -> std::span<const std::uint32_t> {
-    if (index_) return index_->candidates(pass.world(i));
-    return all_segments;
-  };
-  std::vector<std::uint32_t> members;
-  members.reserve(n);
-  std::vector<Hit> hits;
-
-  if (options_.remove_claimed && options_.claim_order == ClaimOrder::kMapOrder) {
+  if (options_.remove_claimed) {
     // The thesis's loop: segment by segment in map order, deleting accepted points.
-    std::vector<char> deleted(n, 0);
-    if (!index_) {
+    ws.deleted.assign(n, 0);
+    if (index == nullptr) {
       for (std::uint32_t j = 0; j < m; ++j) {
-        members.clear();
+        ws.members.clear();
         for (std::uint32_t i = 0; i < n; ++i) {
-          if (deleted[i] == 0 && pass.contains(j, i)) members.push_back(i);
+          if (ws.deleted[i] == 0 && pass.contains(j, i)) ws.members.push_back(i);
         }
-        if (!members.empty()) pass.accept_runs(j, members, &deleted);
+        if (!ws.members.empty()) pass.accept_runs(j, ws.members, &ws.deleted);
       }
     } else {
       // Same order and outcome, visiting only the (segment, point) pairs the grid lists.
-      hits.reserve(4 * n);
+      ws.hits.clear();
       for (std::uint32_t i = 0; i < n; ++i) {
-        for (const std::uint32_t j : candidates(i)) hits.push_back({j, i});
-      }
-      std::sort(hits.begin(), hits.end());
-      std::vector<std::uint32_t> tested;
-      tested.reserve(n);
-      for_each_group(hits, tested, [&](std::uint32_t j, std::span<const std::uint32_t> pts) {
-        members.clear();
-        for (const std::uint32_t i : pts) {
-          if (deleted[i] == 0 && pass.contains(j, i)) members.push_back(i);
+        for (const std::uint32_t j : index->candidates({ws.points.x[i], ws.points.y[i]})) {
+          ws.hits.push_back({j, i});
         }
-        if (!members.empty()) pass.accept_runs(j, members, &deleted);
+      }
+      std::sort(ws.hits.begin(), ws.hits.end());
+      for_each_group(ws.hits, ws.tested, [&](std::uint32_t j, std::span<const std::uint32_t> pts) {
+        ws.members.clear();
+        for (const std::uint32_t i : pts) {
+          if (ws.deleted[i] == 0 && pass.contains(j, i)) ws.members.push_back(i);
+        }
+        if (!ws.members.empty()) pass.accept_runs(j, ws.members, &ws.deleted);
       });
     }
     return pass.take_result();
   }
 
-  if (options_.remove_claimed) {
-    // Each point to the nearest segment among those whose ω1 holds it; candidates are
-    // ascending, so a tie keeps the lower index.
-    std::vector<std::uint32_t> owner(n, kNoSegment);
-    for (std::uint32_t i = 0; i < n; ++i) {
-      double best = 0.0;
-      for (const std::uint32_t j : candidates(i)) {
-        if (!pass.contains(j, i)) continue;
-        const double d = pass.distance(j, i);
-        if (owner[i] == kNoSegment || d < best) {
-          owner[i] = j;
-          best = d;
-        }
-      }
-    }
-    pass.accept_owned_runs(owner);
-    return pass.take_result();
-  }
-
   // No claims: every (segment, point) membership, grouped by segment.
-  hits.reserve(2 * n);
+  ws.hits.clear();
   for (std::uint32_t i = 0; i < n; ++i) {
-    for (const std::uint32_t j : candidates(i)) {
-      if (pass.contains(j, i)) hits.push_back({j, i});
-    }
+    pass.for_each_region(i, index, [&](std::uint32_t j) { ws.hits.push_back({j, i}); });
   }
-  std::sort(hits.begin(), hits.end());
-  for_each_group(hits, members, [&](std::uint32_t j, std::span<const std::uint32_t> pts) {
+  std::sort(ws.hits.begin(), ws.hits.end());
+  for_each_group(ws.hits, ws.members, [&](std::uint32_t j, std::span<const std::uint32_t> pts) {
     pass.accept_runs(j, pts, nullptr);
   });
   return pass.take_result();

@@ -35,6 +35,13 @@
 // by segment (O(m)) and rejected with UsageError when it differs.
 //
 // `work` counts ω1 membership tests.
+//
+// Implementation (issue #17; same matches as before, shown by eap_equivalence_test): segments in
+// flat arrays (eap_matcher_segments.h) tested band first, branch-free, with the end caps and
+// the nearest-segment comparison on squared distances only; one pass of moments per run
+// (eap_matcher_moments.h) shared by the direction check, the fit and the trim; cos/sin of the
+// bearings cached per scan geometry and all buffers reused across calls, per thread (so one
+// matcher can still be shared across threads).
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -45,6 +52,9 @@
 #include "algorithms/laser/segment_match.h"
 
 namespace locbench::laser {
+namespace detail {
+class EapSegmentTable;
+}
 
 enum class ClaimOrder { kNearestSegment, kMapOrder };
 const char* to_string(ClaimOrder c);
@@ -95,6 +105,7 @@ class EapMatcher : public SegmentMatcher {
  private:
   EapOptions options_;
   std::shared_ptr<const SegmentGridIndex> index_;
+  std::shared_ptr<const detail::EapSegmentTable> table_;  // index_'s segments, flat (indexed)
 };
 
 }  // namespace locbench::laser

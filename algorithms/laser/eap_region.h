@@ -63,6 +63,9 @@ class EapRegion {
   double length() const { return length_; }
   const Eigen::Vector2d& p1() const { return p1_; }
   const Eigen::Vector2d& p2() const { return p2_; }
+  const Eigen::Vector2d& direction() const { return direction_; }  // unit, P1 → P2
+  const Eigen::Vector2d& normal() const { return normal_; }        // unit, left of direction()
+  double d3_squared() const { return d3_squared_; }                // d3² (5.14)
 
  private:
   Eigen::Vector2d p1_;

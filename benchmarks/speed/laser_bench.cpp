@@ -7,11 +7,16 @@
 //   at m = 14 fits the complexity in n (BM_..._BigO rows); the m sweep at n = 181 shows the
 //   cost against map size. Counters: segments matched, `work` (inner-loop tests), and bytes of
 //   the match result (memory per scan; the grid index's own size is `index_bytes`).
-// Targets (issue #5, 181 beams, 14 segments): EAP ≤ 10 µs per scan; ≥ 20× faster than
-// agglomerative and ≥ 3× faster than split-and-merge; indexed EAP at 10 000 segments within 2×
-// of its 14-segment time. Compare ratios within one run (benchmarks/baselines/rules.json).
+//   BM_Match_band_reference/181/14: the floor of any EAP — the bare band tests |n·p − c| ≤ d_limit
+//   (5.5) of the same points (under the same estimate) against the same segments, nothing else.
+// Targets (issues #5 and #17, 181 beams, 14 segments): EAP within 3× of the band reference;
+// ≥ 20× faster than agglomerative and ≥ 3× faster than split-and-merge, on this scan and on
+// the first 200 scans of ACES and Intel (BM_RealScans below); indexed EAP at 10 000 segments
+// within 1.2× of its 14-segment time. Compare ratios within one run
+// (benchmarks/baselines/speed_rules.json, `make bench-gate`).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <string>
@@ -88,6 +93,39 @@ void BM_Match_eap_indexed(benchmark::State& state) {
   state.counters["index_bytes"] = static_cast<double>(index->entries() * sizeof(std::uint32_t));
   run(state, laser::EapMatcher(index), index->map());
 }
+// The reference kernel: n·m band tests over flat arrays — points precomputed, segments as their
+// unit normal n and c = n·P1 — counting the points inside each band (the count is what EAP's
+// first stage learns). The compiler vectorises it; EAP is reported as a multiple of it.
+void BM_Match_band_reference(benchmark::State& state) {
+  const Scan& s = scan(static_cast<int>(state.range(0)));
+  const LineMap& map = world(static_cast<int>(state.range(1)));
+  const double d_limit = laser::EapOptions{}.d_limit;
+  std::vector<double> px, py, nx, ny, c;
+  for (const laser::ScanPoint& p : laser::scan_points(s, kEstimate)) {
+    px.push_back(p.world.x());
+    py.push_back(p.world.y());
+  }
+  for (const Segment& seg : map.segments) {
+    const Eigen::Vector2d d = (seg.p2 - seg.p1).normalized();
+    nx.push_back(-d.y());
+    ny.push_back(d.x());
+    c.push_back(nx.back() * seg.p1.x() + ny.back() * seg.p1.y());
+  }
+  const std::size_t n = px.size(), m = c.size();
+  std::size_t inside = 0;
+  for (auto _ : state) {
+    inside = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < m; ++j) {
+        inside += std::abs(nx[j] * px[i] + ny[j] * py[i] - c[j]) <= d_limit;
+      }
+    }
+    benchmark::DoNotOptimize(inside);
+  }
+  state.counters["work"] = static_cast<double>(n * m);
+  state.counters["inside_band"] = static_cast<double>(inside);
+  state.counters["map_segments"] = static_cast<double>(m);
+}
 void BM_Match_split_and_merge(benchmark::State& state) {
   run(state, laser::SplitAndMergeMatcher(), world(static_cast<int>(state.range(1))));
 }
@@ -107,6 +145,7 @@ void map_sweep(benchmark::internal::Benchmark* b) {
   for (int m : {98, 994, 9996}) b->Args({181, m});
 }
 
+BENCHMARK(BM_Match_band_reference)->Args({181, 14});
 BENCHMARK(BM_Match_eap)->Apply(beams_sweep);
 BENCHMARK(BM_Match_eap_indexed)->Apply(beams_sweep);
 BENCHMARK(BM_Match_split_and_merge)->Apply(beams_sweep);
