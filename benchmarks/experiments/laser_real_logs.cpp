@@ -86,6 +86,7 @@ void apply_beam_angles(Log& log, const std::string& convention) {
 }
 
 std::string interval(std::span<const double> v, double scale, int digits) {
+  if (v.empty()) return "none";
   const Summary s = summarize(v);
   return fmt::format("{:.{}f} [{:.{}f}, {:.{}f}]", scale * s.mean, digits, scale * s.ci95_low,
                      digits, scale * s.ci95_high, digits);
