@@ -8,6 +8,7 @@
 #include "algorithms/core/rng.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/parallel_tasks.h"
+#include "benchmarks/experiments/real_log_harness.h"
 #include "benchmarks/experiments/shard.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
@@ -31,6 +32,7 @@ struct RunArgs {
   std::string data;
   int threads = experiments::hardware_threads();
   std::string shard;  // "K/N", empty: the whole experiment
+  std::string log, relations, ground_truth;  // a user's real log (real_log_harness.h)
 };
 
 // `--set a.b.c=VALUE` → {"a": {"b": {"c": VALUE}}}; VALUE is read as JSON, else as a string.
@@ -147,6 +149,18 @@ int run(const RunArgs& args, const std::string& command_line) {
       throw InputError(args.config, 0, "configuration for unknown experiment \"" + name + "\"");
     }
   }
+  if (args.log.empty() && (!args.relations.empty() || !args.ground_truth.empty())) {
+    throw UsageError("--relations and --ground-truth need --log");
+  }
+  const auto log_override =
+      experiments::real_log_cli_override(args.log, args.relations, args.ground_truth);
+  if (log_override) {
+    for (const auto* e : chosen) {
+      if (!experiments::takes_real_logs(e->default_config())) {
+        throw UsageError("--log: experiment " + e->name() + " does not take real logs");
+      }
+    }
+  }
   experiments::RunOptions options;
   options.seed = args.seed;
   if (args.runs > 0) options.runs = args.runs;
@@ -167,6 +181,7 @@ int run(const RunArgs& args, const std::string& command_line) {
       const nlohmann::json o = parse_set(set);
       if (config.contains(o.begin().key())) config = experiments::merge_config(config, o);
     }
+    if (log_override) config = experiments::merge_config(config, *log_override);
     if (shard) {
       run_shard(*e, config, options, *shard, args.out, command_line);
       continue;
@@ -228,6 +243,11 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
                   "<out>/<experiment>.shard-K-of-N.json for `locbench merge`")
       ->type_name("K/N");
   cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+  cmd->add_option("--log", args->log,
+                  "Run the real-data experiments on this log instead of the catalog's "
+                  "(CARMEN .clf[.gz], MRCLAM folder[#robotN])");
+  cmd->add_option("--relations", args->relations, "With --log: reference relations (.relations[.gz])");
+  cmd->add_option("--ground-truth", args->ground_truth, "With --log: ground truth (TUM format)");
   return [args, command_line] { return run(*args, command_line); };
 }
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/held_out_evaluation.h"
@@ -15,6 +16,7 @@
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/experiments_list.h"
 #include "datasets/catalog/calibration_catalog.h"
+#include "benchmarks/experiments/real_log_harness.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/censi_results_reader.h"
 #include "reports/checksum.h"
@@ -54,8 +56,8 @@ class CalibrationRealLogs final : public Experiment {
     out.description = description();
     out.configuration = config;
     const auto parts = config.at("censi_parts").get<std::vector<std::string>>();
-    const auto rel_logs = config.at("relations_logs").get<std::vector<std::string>>();
-    const auto vel_logs = config.at("velocity_logs").get<std::vector<std::string>>();
+    const auto rel_logs = real_log_specs(config.at("relations_logs"), name() + ": relations_logs");
+    const auto vel_logs = real_log_specs(config.at("velocity_logs"), name() + ": velocity_logs");
     const double fraction = config.at("training_fraction").get<double>();
     const std::size_t total = parts.size() + rel_logs.size() + vel_logs.size();
     std::size_t done = 0;
@@ -152,37 +154,36 @@ class CalibrationRealLogs final : public Experiment {
           h.calibrated_translation.rmse, -100 * h.translation_rmse_reduction,
           h.nominal_rotation.rmse, h.calibrated_rotation.rmse, -100 * h.rotation_rmse_reduction));
     };
-    for (const std::string& name : rel_logs) {
+    // Loads one real log; a missing catalog log is a skipped case (nullopt).
+    auto load = [&](const RealLogSpec& spec) -> std::optional<LoadedRealLog> {
       progress();
-      const DatasetEntry* e = find_dataset(name);
-      if (!e) throw UsageError(this->name() + ": unknown dataset " + name);
-      const std::string path = (options.data_root / e->path).string();
-      if (!std::filesystem::exists(path)) {
-        out.cases.push_back({"calibration/" + name, "skipped", "dataset not found at " + path});
-        continue;
+      LoadedRealLog loaded = load_real_log(spec, options.data_root);
+      if (loaded.status == "failed") throw InputError(loaded.dataset.path, 0, loaded.reason);
+      if (loaded.status != "ok") {
+        out.cases.push_back({"calibration/" + spec.name, loaded.status,
+                             "dataset not found at " + loaded.dataset.path});
+        return std::nullopt;
       }
+      return loaded;
+    };
+    for (const RealLogSpec& spec : rel_logs) {
+      const auto loaded = load(spec);
+      if (!loaded) continue;
       RelationSampleOptions local;
       local.max_duration = config.at("relation_max_duration_s").get<double>();
       MlCalibrationOptions o;
       o.estimate_rotation_per_distance = true;
-      held_out(name, calibration_data_from_relations(load_catalog_dataset(*e, options.data_root), local),
-               o, path);
+      held_out(spec.name, calibration_data_from_relations(loaded->log, local), o, loaded->dataset.path);
     }
-    for (const std::string& name : vel_logs) {
-      progress();
-      const DatasetEntry* e = find_dataset(name);
-      if (!e) throw UsageError(this->name() + ": unknown dataset " + name);
-      const std::string path = (options.data_root / e->path).string();
-      if (!std::filesystem::exists(path.substr(0, path.find('#')))) {
-        out.cases.push_back({"calibration/" + name, "skipped", "dataset not found at " + path});
-        continue;
-      }
+    for (const RealLogSpec& spec : vel_logs) {
+      const auto loaded = load(spec);
+      if (!loaded) continue;
       SampleIntervalOptions intervals;
       intervals.odometry_time_offset = config.at("velocity_time_offset_s").get<double>();
       MlCalibrationOptions o;
       o.noise.kind = NoiseModelKind::kPerComponent;
-      held_out(name, calibration_data_from_velocities(load_catalog_dataset(*e, options.data_root), intervals),
-               o, path);
+      held_out(spec.name, calibration_data_from_velocities(loaded->log, intervals), o,
+               loaded->dataset.path);
     }
     options.report_progress(1.0);
     return out;

@@ -17,8 +17,7 @@
 #include "benchmarks/experiments/experiments_list.h"
 #include "benchmarks/experiments/global_harness.h"
 #include "benchmarks/experiments/monte_carlo.h"
-#include "datasets/catalog/dataset_catalog.h"
-#include "reports/checksum.h"
+#include "benchmarks/experiments/real_log_harness.h"
 
 namespace locbench::experiments {
 namespace {
@@ -26,7 +25,8 @@ namespace {
 using global::ScanStep;
 
 struct Setup {
-  std::vector<std::string> datasets;
+  std::vector<RealLogSpec> specs;
+  std::vector<std::string> datasets;  // their names
   std::vector<std::string> methods;
   nlohmann::json method_options;
   global::ConvergenceCriterion criterion;
@@ -72,7 +72,8 @@ class GlobalRealLogs final : public MonteCarloExperiment<Setup> {
   }
   Setup setup(const nlohmann::json& config, const McPlan& plan) const override {
     Setup s;
-    s.datasets = config.at("datasets").get<std::vector<std::string>>();
+    s.specs = real_log_specs(config.at("datasets"), name());
+    s.datasets = real_log_names(s.specs);
     s.methods = config.at("methods").get<std::vector<std::string>>();
     s.method_options = config.at("method_options");
     s.criterion = {config.at("convergence_position_m").get<double>(),
@@ -80,9 +81,6 @@ class GlobalRealLogs final : public MonteCarloExperiment<Setup> {
     s.window = config.at("window_s").get<double>();
     s.map_every = config.at("map_every").get<int>();
     if (!(s.window > 10.0) || s.map_every < 1) throw UsageError(name() + ": window_s > 10 and map_every ≥ 1 needed");
-    for (const auto& d : s.datasets) {
-      if (!find_dataset(d)) throw UsageError(name() + ": unknown dataset \"" + d + "\"");
-    }
     s.configuration = config;
     s.configuration["runs"] = plan.runs;
     return s;
@@ -95,25 +93,14 @@ class GlobalRealLogs final : public MonteCarloExperiment<Setup> {
     const int nd = static_cast<int>(s.datasets.size());
     const std::uint64_t seed = plan.run_seed(task / nd);
     Record rec;
-    const DatasetEntry& entry = *find_dataset(s.datasets[static_cast<std::size_t>(task % nd)]);
-    const std::string path = (plan.data_root / entry.path).string();
-    const std::string file = path.substr(0, path.find('#'));
-    rec.path = path;
-    if (!std::filesystem::exists(file)) {
-      rec.status = "skipped";
-      rec.reason = "dataset not found at " + path + " (set LOCBENCH_DATA)";
-      return rec;
-    }
-    Log log;
-    try {
-      log = load_catalog_dataset(entry, plan.data_root);
-    } catch (const InputError& e) {
-      rec.status = "failed";
-      rec.reason = e.what();
-      return rec;
-    }
-    rec.checksum = reports::file_checksum(file);
-    rec.records = log.record_count();
+    const LoadedRealLog loaded = load_real_log(s.specs[static_cast<std::size_t>(task % nd)], plan.data_root);
+    rec.path = loaded.dataset.path;
+    rec.status = loaded.status;
+    rec.reason = loaded.reason;
+    if (loaded.status != "ok") return rec;
+    const Log& log = loaded.log;
+    rec.checksum = loaded.dataset.checksum;
+    rec.records = loaded.dataset.records;
     std::vector<ScanStep> all = global::scan_steps(log);
     if (all.size() < 20) {
       rec.status = "failed";

@@ -1,33 +1,37 @@
-// Experiment laser/real_logs: the matchers and chapter 6's least squares on real SICK scans
-// (Freiburg logs: ACES, Intel, MIT CSAIL) against the hand-checked `.relations`. For every
-// relation (t1, t2) — both stamps are scan stamps — the lines split-and-merge extracts from the
-// scan at t1 (in its robot frame) are the map; the scan at t2 is matched against that map from
-// the odometry's relative motion as the estimate, by each matcher, and corrected with the
-// weighted-LS heading and point-to-point position (eq. 6.13–6.38). The relative-pose error of
-// each corrected motion is reported beside raw odometry's on the same relations.
+// Experiment laser/real_logs: scan-pair correction on real SICK scans (Freiburg logs: ACES,
+// Intel, MIT CSAIL, or any user's log with relations) against the hand-checked `.relations`.
+// For every relation (t1, t2) — both stamps are scan stamps — each corrector (laser_correctors.h)
+// registers the scan at t2 to the scan at t1 from the odometry's relative motion: the thesis's
+// matchers with one pass of chapter 6 (the map being the split-and-merge lines of the first
+// scan), EAP with an iterated joint point-to-line solve, PL-ICP and a plain point-to-point ICP.
+// The relative-pose error of each corrected motion is reported beside raw odometry's on the same
+// relations, with per-relation diagnostics (lines, matched points, position fixed) summarised
+// in the notes: what the one-shot chapter-6 solve does wrong and where.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <optional>
 
 #include "algorithms/core/errors.h"
-#include "algorithms/pose_correction/pose_correction.h"
+#include "algorithms/core/statistics.h"
 #include "baselines/laser/extract_then_match.h"
 #include "benchmarks/experiments/experiments_list.h"
-#include "benchmarks/experiments/laser_matchers.h"
+#include "benchmarks/experiments/laser_correctors.h"
 #include "benchmarks/experiments/monte_carlo.h"
-#include "datasets/catalog/dataset_catalog.h"
+#include "benchmarks/experiments/real_log_harness.h"
 #include "datasets/io/odometry_interpolation.h"
-#include "reports/checksum.h"
 
 namespace locbench::experiments {
 namespace {
 
 struct Setup {
-  std::vector<std::string> datasets;
-  std::vector<std::string> matchers;
-  nlohmann::json matcher_options;
+  std::vector<RealLogSpec> datasets;
+  std::vector<std::string> methods;  // correctors, in order (odometry_raw is added first)
+  nlohmann::json corrector_options;
+  std::string beam_angles;
   double max_dt = 0.0;
   std::size_t max_relations = 0;
   nlohmann::json configuration;
@@ -36,16 +40,18 @@ struct Setup {
 struct Record {
   std::string status;  // "ok", "skipped", "failed"
   std::string reason;
-  std::string path, checksum;
+  std::string path, checksum;  // the dataset read (reports::DatasetRef)
   std::size_t records = 0;
   double duration = 0.0;
   std::size_t relations = 0;
-  // [method][relation]: translation [m] and rotation [rad] errors; method 0 = odometry.
-  std::vector<std::vector<double>> translation, rotation;
-  std::vector<double> position_fixed;  // per matcher: fraction of relations
+  // Per relation: t1, t2 and the number of lines split-and-merge found in the first scan.
+  std::vector<double> t1, t2, lines;
+  // [method][relation]; method 0 = odometry. Translation [m] and rotation [rad] errors, whether
+  // the position was fixed (1/0), matched points.
+  std::vector<std::vector<double>> translation, rotation, position_fixed, matched_points;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, status, reason, path, checksum, records, duration,
-                                   relations, translation, rotation, position_fixed)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, status, reason, path, checksum, records, duration, relations, t1, t2, lines,
+                                   translation, rotation, position_fixed, matched_points)
 
 // A map of the lines extracted from one scan, in its robot frame.
 LineMap lines_as_map(const laser::ExtractionResult& lines) {
@@ -69,33 +75,69 @@ std::optional<std::size_t> scan_near(const std::map<double, std::size_t>& scans,
   return best->second;
 }
 
+// "bag": 180-beam scans get the bearings the ROS bags of aces and intel store (angle_min −90°,
+// angle_increment 180°/179, so the last beam is at +90°); "log": as read (CARMEN's 1° steps,
+// −90°…+89°, or what the log's PARAMs declare).
+void apply_beam_angles(Log& log, const std::string& convention) {
+  if (convention == "log") return;
+  for (auto& r : log.laser) {
+    if (r.scan.ranges.size() == 180) r.scan.bearings = even_bearings(180, -0.5 * kPi, 0.5 * kPi);
+  }
+}
+
+std::string interval(std::span<const double> v, double scale, int digits) {
+  if (v.empty()) return "none";
+  const Summary s = summarize(v);
+  return fmt::format("{:.{}f} [{:.{}f}, {:.{}f}]", scale * s.mean, digits, scale * s.ci95_low,
+                     digits, scale * s.ci95_high, digits);
+}
+
+std::vector<double> subset(const std::vector<double>& v, const std::vector<bool>& keep) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (keep[i]) out.push_back(v[i]);
+  }
+  return out;
+}
+
 class LaserRealLogs final : public MonteCarloExperiment<Setup> {
  public:
   std::string name() const override { return "laser/real_logs"; }
   std::string description() const override {
-    return "Scan-to-previous-scan matching on the Freiburg logs (ACES, Intel, MIT CSAIL): "
-           "relative-pose error of each matcher + chapter-6 least squares against the "
+    return "Scan-to-previous-scan correction on real logs (Freiburg ACES, Intel, MIT CSAIL, or "
+           "--log/--relations): relative-pose error of the thesis's matchers + chapter-6 least "
+           "squares, EAP + iterated point-to-line, PL-ICP and point-to-point ICP against the "
            ".relations, beside raw odometry";
   }
   nlohmann::json default_config() const override {
     return {{"runs", 1},  // not Monte-Carlo: one task per dataset
             {"datasets", {"aces", "intel", "mit_csail"}},
             {"matchers", {"eap", "split_and_merge", "agglomerative", "rwht"}},
-            {"matcher_options", default_matcher_options()},
+            {"correctors", {"eap_ch6_rematched", "eap_ch6_heading_only", "eap_iterated_pl",
+                            "pl_icp", "icp_point_to_point"}},
+            {"corrector_options", default_corrector_options()},
+            {"beam_angles", "log"},
             {"max_relation_dt_s", 30.0},
             {"max_relations", 0}};  // 0 = all
   }
   Setup setup(const nlohmann::json& config, const McPlan& plan) const override {
     Setup s;
-    s.datasets = config.at("datasets").get<std::vector<std::string>>();
-    s.matchers = config.at("matchers").get<std::vector<std::string>>();
-    s.matcher_options = config.at("matcher_options");
-    make_matchers(s.matchers, s.matcher_options, nullptr);
+    s.datasets = real_log_specs(config.at("datasets"), name());
+    for (const auto& m : config.at("matchers").get<std::vector<std::string>>()) {
+      s.methods.push_back(m + "_ch6_ls");
+    }
+    for (const auto& c : config.at("correctors").get<std::vector<std::string>>()) {
+      s.methods.push_back(c);
+    }
+    s.corrector_options = config.at("corrector_options");
+    make_correctors(s.methods, s.corrector_options);  // validates names and options
+    s.beam_angles = config.at("beam_angles").get<std::string>();
+    if (s.beam_angles != "log" && s.beam_angles != "bag") {
+      throw UsageError(name() + ": beam_angles: expected \"log\" or \"bag\", found \"" +
+                       s.beam_angles + "\"");
+    }
     s.max_dt = config.at("max_relation_dt_s").get<double>();
     s.max_relations = config.at("max_relations").get<std::size_t>();
-    for (const auto& d : s.datasets) {
-      if (!find_dataset(d)) throw UsageError(name() + ": unknown dataset \"" + d + "\"");
-    }
     s.configuration = config;
     (void)plan;
     return s;
@@ -106,36 +148,26 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
 
   nlohmann::json run_task(const Setup& s, const McPlan& plan, int task) const override {
     Record rec;
-    const DatasetEntry& entry = *find_dataset(s.datasets[static_cast<std::size_t>(task)]);
-    const std::string path = (plan.data_root / entry.path).string();
-    const std::string file = path.substr(0, path.find('#'));
-    rec.path = path;
-    if (!std::filesystem::exists(file)) {
-      rec.status = "skipped";
-      rec.reason = "dataset not found at " + path + " (set LOCBENCH_DATA)";
-      return rec;
-    }
-    Log log;
-    try {
-      log = load_catalog_dataset(entry, plan.data_root);
-    } catch (const InputError& e) {
-      rec.status = "failed";
-      rec.reason = e.what();
-      return rec;
-    }
-    rec.checksum = reports::file_checksum(file);
-    rec.records = log.record_count();
-    const auto [t0, t1] = log.time_span();
-    rec.duration = t1 - t0;
+    LoadedRealLog loaded = load_real_log(s.datasets[static_cast<std::size_t>(task)], plan.data_root);
+    rec.status = loaded.status;
+    rec.reason = loaded.reason;
+    rec.path = loaded.dataset.path;
+    rec.checksum = loaded.dataset.checksum;
+    rec.records = loaded.dataset.records;
+    rec.duration = loaded.dataset.duration_s;
+    if (loaded.status != "ok") return rec;
+    Log& log = loaded.log;
+    apply_beam_angles(log, s.beam_angles);
     const Trajectory odom = odometry_trajectory(log);
     std::map<double, std::size_t> scan_at;
     for (std::size_t i = 0; i < log.laser.size(); ++i) scan_at[log.laser[i].scan.timestamp] = i;
-    const auto matchers = make_matchers(s.matchers, s.matcher_options, nullptr);
+    const auto correctors = make_correctors(s.methods, s.corrector_options);
     const laser::SplitAndMergeMatcher extractor;
-    const std::size_t methods = 1 + matchers.size();
+    const std::size_t methods = 1 + correctors.size();
     rec.translation.assign(methods, {});
     rec.rotation.assign(methods, {});
-    std::vector<double> fixed(matchers.size(), 0.0);
+    rec.position_fixed.assign(methods, {});
+    rec.matched_points.assign(methods, {});
     for (const Relation& r : log.relations) {
       if (s.max_relations && rec.relations >= s.max_relations) break;
       if (r.t2 - r.t1 > s.max_dt) continue;
@@ -146,28 +178,28 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
       const Scan& second = log.laser[*b].scan;
       const LineMap map = lines_as_map(extractor.extract_lines(first));
       const Pose2 estimate = between(*o1, *o2);
-      const auto record_error = [&](std::size_t method, const Pose2& motion) {
-        const Pose2 e = between(r.delta, motion);
+      const auto record = [&](std::size_t method, const ScanPairCorrection& c) {
+        const Pose2 e = between(r.delta, c.motion);
         rec.translation[method].push_back(std::hypot(e.x, e.y));
         rec.rotation[method].push_back(std::abs(e.theta));
+        rec.position_fixed[method].push_back(c.position_fixed ? 1.0 : 0.0);
+        rec.matched_points[method].push_back(static_cast<double>(c.matched_points));
       };
-      record_error(0, estimate);
-      for (std::size_t m = 0; m < matchers.size(); ++m) {
-        Pose2 motion = estimate;
-        if (!map.segments.empty()) {
-          const laser::MatchResult match = matchers[m]->match(second, map, estimate);
-          const auto c = pose_correction::correct_pose(match.matches, map, estimate, second.sensor_pose);
-          motion = c.corrected;
-          if (c.position_fixed) fixed[m] += 1.0;
-        }
-        record_error(1 + m, motion);
+      ScanPairCorrection odometry;
+      odometry.motion = estimate;
+      record(0, odometry);
+      for (std::size_t m = 0; m < correctors.size(); ++m) {
+        record(1 + m, correctors[m]->correct(first, map, second, estimate));
       }
+      rec.t1.push_back(r.t1);
+      rec.t2.push_back(r.t2);
+      rec.lines.push_back(static_cast<double>(map.segments.size()));
       ++rec.relations;
     }
-    for (double& f : fixed) f = rec.relations ? f / static_cast<double>(rec.relations) : 0.0;
-    rec.position_fixed = fixed;
-    rec.status = rec.relations ? "ok" : "failed";
-    if (!rec.relations) rec.reason = "no relation pairs two scans inside the odometry's span";
+    if (rec.relations == 0) {
+      rec.status = "failed";
+      rec.reason = "no relation pairs two scans inside the odometry's span";
+    }
     return rec;
   }
 
@@ -180,34 +212,86 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
     out.configuration = s.configuration;
     for (std::size_t d = 0; d < records.size(); ++d) {
       const Record r = records[d].get<Record>();
-      const std::string& ds = s.datasets[d];
+      const std::string& ds = s.datasets[d].name;
       if (r.status != "ok") {
         out.cases.push_back({"laser/" + ds, r.status, r.reason});
         continue;
       }
       out.datasets.push_back({ds, r.path, r.checksum, r.records, r.duration});
-      std::string line = fmt::format("{} ({} relations): odometry {:.1f} mm / {:.2f}°", ds,
-                                     r.relations, 1e3 * mean(r.translation[0]),
-                                     to_deg(mean(r.rotation[0])));
-      for (std::size_t m = 0; m <= s.matchers.size(); ++m) {
-        const std::string method = m == 0 ? "odometry_raw" : s.matchers[m - 1] + "_ch6_ls";
+      std::string line = fmt::format("{} ({} relations), mean RPE [95% CI], mm / deg:", ds, r.relations);
+      for (std::size_t m = 0; m <= s.methods.size(); ++m) {
+        const std::string method = m == 0 ? "odometry_raw" : s.methods[m - 1];
         out.results.push_back(reports::make_metric(method, ds, "rpe_translation", "m",
                                                    "freiburg_relations", r.translation[m], false));
         out.results.push_back(reports::make_metric(method, ds, "rpe_rotation", "rad",
                                                    "freiburg_relations", r.rotation[m], false));
+        line += fmt::format(" {} {} / {}", method, interval(r.translation[m], 1e3, 1),
+                            interval(r.rotation[m], to_deg(1.0), 2));
         if (m > 0) {
-          line += fmt::format("; {} {:.1f} mm / {:.2f}° (position fixed in {:.0f}%)",
-                              s.matchers[m - 1], 1e3 * mean(r.translation[m]),
-                              to_deg(mean(r.rotation[m])), 100.0 * r.position_fixed[m - 1]);
+          line += fmt::format(" (position fixed {:.0f}%)", 100.0 * mean(r.position_fixed[m]));
         }
+        line += ";";
       }
-      out.notes.push_back(line + " (mean errors).");
+      out.notes.push_back(line);
+      out.notes.push_back(diagnosis(s, r, ds));
     }
     out.notes.push_back(
-        "The map of each pair is the split-and-merge lines of the first scan (one extractor for "
-        "all matchers, so that only the matching differs); the estimate is the odometry's "
-        "relative motion; corrections are one pass of chapter 6 (weighted-LS heading, "
+        "The map of each pair for the *_ch6_ls and eap_* correctors is the split-and-merge lines "
+        "of the first scan (one extractor for all matchers, so that only the matching differs); "
+        "pl_icp and icp_point_to_point use the first scan's points. Every corrector starts from "
+        "the odometry's relative motion. *_ch6_ls = one pass of chapter 6 (weighted-LS heading, "
         "point-to-point position; heading-only when the matched lines are parallel).");
+    return out;
+  }
+
+ private:
+  // Where the one-shot chapter-6 correction (eap_ch6_ls) goes wrong, from the per-relation data.
+  static std::string diagnosis(const Setup& s, const Record& r, const std::string& ds) {
+    const auto index = [&](const std::string& m) -> std::optional<std::size_t> {
+      const auto it = std::find(s.methods.begin(), s.methods.end(), m);
+      if (it == s.methods.end()) return std::nullopt;
+      return 1 + static_cast<std::size_t>(it - s.methods.begin());
+    };
+    const auto one_shot = index("eap_ch6_ls");
+    if (!one_shot) return ds + ": no eap_ch6_ls to diagnose.";
+    const std::size_t e = *one_shot;
+    std::vector<bool> fixed(r.relations), not_fixed(r.relations);
+    for (std::size_t i = 0; i < r.relations; ++i) {
+      fixed[i] = r.position_fixed[e][i] > 0.5;
+      not_fixed[i] = !fixed[i];
+    }
+    std::string out = fmt::format(
+        "{} diagnosis of eap_ch6_ls: {:.1f} lines in the first scan and {:.0f} matched points per "
+        "relation (means); position fixed in {:.0f}% — there its translation error is {} mm "
+        "(odometry {} mm on the same relations), heading-only elsewhere: {} mm (odometry {} mm).",
+        ds, mean(r.lines), mean(r.matched_points[e]), 100.0 * mean(r.position_fixed[e]),
+        interval(subset(r.translation[e], fixed), 1e3, 1),
+        interval(subset(r.translation[0], fixed), 1e3, 1),
+        interval(subset(r.translation[e], not_fixed), 1e3, 1),
+        interval(subset(r.translation[0], not_fixed), 1e3, 1));
+    // The worst relations of the one-shot solve, with the other correctors on them.
+    std::vector<std::size_t> order(r.relations);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return r.translation[e][a] > r.translation[e][b];
+    });
+    out += " Worst relations (t1 → t2: lines, matched points, error mm / deg of odometry, "
+           "eap_ch6_ls";
+    const auto iterated = index("eap_iterated_pl");
+    const auto pl = index("pl_icp");
+    if (iterated) out += ", eap_iterated_pl";
+    if (pl) out += ", pl_icp";
+    out += "):";
+    for (std::size_t k = 0; k < std::min<std::size_t>(5, order.size()); ++k) {
+      const std::size_t i = order[k];
+      out += fmt::format(" {:.3f} → {:.3f}: {:.0f}, {:.0f}, {:.0f}/{:.2f}, {:.0f}/{:.2f}", r.t1[i],
+                         r.t2[i], r.lines[i], r.matched_points[e][i], 1e3 * r.translation[0][i],
+                         to_deg(r.rotation[0][i]), 1e3 * r.translation[e][i], to_deg(r.rotation[e][i]));
+      for (const auto& m : {iterated, pl}) {
+        if (m) out += fmt::format(", {:.0f}/{:.2f}", 1e3 * r.translation[*m][i], to_deg(r.rotation[*m][i]));
+      }
+      out += ";";
+    }
     return out;
   }
 };

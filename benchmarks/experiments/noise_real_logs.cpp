@@ -17,9 +17,8 @@
 #include "algorithms/filters/odometry_noise_model.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/experiments_list.h"
-#include "datasets/catalog/dataset_catalog.h"
+#include "benchmarks/experiments/real_log_harness.h"
 #include "datasets/io/odometry_interpolation.h"
-#include "reports/checksum.h"
 
 namespace locbench::experiments {
 namespace {
@@ -83,20 +82,13 @@ class NoiseRealLogs final : public Experiment {
     if (q.size() != 3) throw UsageError(name() + ": fixed_q_diag needs 3 numbers");
     const Eigen::Vector3d fixed_q(q[0], q[1], q[2]);
     const double track = config.at("virtual_track_m").get<double>();
-    const auto names = config.at("datasets").get<std::vector<std::string>>();
+    const auto specs = real_log_specs(config.at("datasets"), name());
     const ChiSquareInterval band = average_chi_square_interval(3, 1, 0.95);
-    std::size_t done = 0;
-    for (const std::string& ds : names) {
-      options.report_progress(static_cast<double>(done++) / static_cast<double>(names.size()));
-      const DatasetEntry* e = find_dataset(ds);
-      if (!e) throw UsageError(name() + ": unknown dataset " + ds);
-      const std::string path = (options.data_root / e->path).string();
-      const std::string file = path.substr(0, path.find('#'));
-      if (!std::filesystem::exists(file)) {
-        out.cases.push_back({"noise/" + ds, "skipped", "dataset not found at " + path});
-        continue;
-      }
-      const Log log = load_catalog_dataset(*e, options.data_root);
+    for_each_real_log(specs, options, "noise", out,
+                      [&](const RealLogSpec& spec, const LoadedRealLog& loaded,
+                          reports::ExperimentResults& res) {
+      const std::string& ds = spec.name;
+      const Log& log = loaded.log;
       const Trajectory odom = odometry_trajectory(log);
       std::vector<Relation> rel;
       if (!log.relations.empty()) {
@@ -108,7 +100,6 @@ class NoiseRealLogs final : public Experiment {
         for (const TruePose& p : log.truth) truth.push_back({p.t, p.pose});
         rel = window_relations(truth, config.at("mrclam_window_s").get<double>());
       }
-      out.datasets.push_back({ds, path, reports::file_checksum(file), log.record_count(), 0.0});
       const char* model_names[2] = {"adaptive_noise_model", "fixed_q"};
       for (int m = 0; m < 2; ++m) {
         std::vector<double> nees;
@@ -121,17 +112,16 @@ class NoiseRealLogs final : public Experiment {
           if (band.contains(*v)) ++inside;
         }
         if (nees.empty()) continue;
-        out.results.push_back(reports::make_metric(model_names[m], ds, "relation_nees", "",
+        res.results.push_back(reports::make_metric(model_names[m], ds, "relation_nees", "",
                                                    "reference_relations", nees, false));
-        out.notes.push_back(fmt::format(
+        res.notes.push_back(fmt::format(
             "{} on {}: mean NEES {:.3g} (3 for a consistent model), median {:.3g}; {:.0f}% of {} "
             "relations inside the 95% band [{:.3g}, {:.3g}].",
             model_names[m], ds, mean(nees), quantile(nees, 0.5),
             100.0 * static_cast<double>(inside) / static_cast<double>(nees.size()), nees.size(),
             band.lower, band.upper));
       }
-    }
-    options.report_progress(1.0);
+    });
     out.notes.push_back(
         "Not evaluable on real data: the compass-aided filters (fixed-Q EKF, adaptive model, "
         "Sage–Husa AEKF, VB-AKF) and the slip detector — none of our real logs has a compass; "

@@ -8,9 +8,8 @@
 #include "algorithms/core/trajectory_error.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/experiments_list.h"
-#include "datasets/catalog/dataset_catalog.h"
+#include "benchmarks/experiments/real_log_harness.h"
 #include "datasets/io/odometry_interpolation.h"
-#include "reports/checksum.h"
 
 namespace locbench::experiments {
 namespace {
@@ -41,32 +40,15 @@ class OdometryRealLogs final : public Experiment {
     out.experiment = name();
     out.description = description();
     out.configuration = config;
-    const auto names = config.at("datasets").get<std::vector<std::string>>();
+    const auto specs = real_log_specs(config.at("datasets"), name());
     const double window = config.at("mrclam_window_s").get<double>();
     const double local_dt = config.at("local_relation_max_dt_s").get<double>();
     if (!(window > 0.0)) throw UsageError("odometry/real_logs: mrclam_window_s must be > 0");
-    std::size_t done = 0;
-    for (const std::string& dataset : names) {
-      options.report_progress(static_cast<double>(done++) / static_cast<double>(names.size()));
-      const DatasetEntry* entry = find_dataset(dataset);
-      if (!entry) throw UsageError("odometry/real_logs: unknown dataset \"" + dataset + "\"");
-      const std::string path = (options.data_root / entry->path).string();
-      if (!std::filesystem::exists(path.substr(0, path.find('#')))) {
-        out.cases.push_back({"odometry/" + dataset, "skipped",
-                             "dataset not found at " + path + " (set LOCBENCH_DATA)"});
-        continue;
-      }
-      Log log;
-      try {
-        log = load_catalog_dataset(*entry, options.data_root);
-      } catch (const InputError& e) {
-        out.cases.push_back({"odometry/" + dataset, "failed", e.what()});
-        continue;
-      }
-      const auto [t0, t1] = log.time_span();
-      const std::string file = path.substr(0, path.find('#'));
-      out.datasets.push_back({dataset, path, reports::file_checksum(file), log.record_count(),
-                              t1 - t0});
+    for_each_real_log(specs, options, "odometry", out,
+                      [&](const RealLogSpec& spec, const LoadedRealLog& loaded,
+                          reports::ExperimentResults& res) {
+      const std::string& dataset = spec.name;
+      const Log& log = loaded.log;
       const Trajectory odom = odometry_trajectory(log);
       std::vector<Relation> reference = log.relations;
       std::string method = "odometry_raw", over = "freiburg_relations";
@@ -79,15 +61,15 @@ class OdometryRealLogs final : public Experiment {
       }
       const PoseErrors err = relation_error(odom, reference);
       if (err.translation.empty()) {
-        out.cases.push_back({"odometry/" + dataset, "failed",
+        res.cases.push_back({"odometry/" + dataset, "failed",
                              "no reference relation falls inside the odometry's time span"});
-        continue;
+        return;
       }
-      out.results.push_back(reports::make_metric(method, dataset, "rpe" + suffix + "_translation",
+      res.results.push_back(reports::make_metric(method, dataset, "rpe" + suffix + "_translation",
                                                  "m", over, err.translation, false));
-      out.results.push_back(reports::make_metric(method, dataset, "rpe" + suffix + "_rotation",
+      res.results.push_back(reports::make_metric(method, dataset, "rpe" + suffix + "_rotation",
                                                  "rad", over, err.rotation, false));
-      if (method != "odometry_raw") continue;
+      if (method != "odometry_raw") return;
       // Freiburg relations mix local motions with loop closures minutes apart; the local
       // ones (t2 − t1 ≤ local_relation_max_dt_s) show odometry's short-range quality.
       std::vector<Relation> local;
@@ -95,13 +77,12 @@ class OdometryRealLogs final : public Experiment {
         if (r.t2 - r.t1 <= local_dt) local.push_back(r);
       }
       const PoseErrors local_err = relation_error(odom, local);
-      if (local_err.translation.empty()) continue;
-      out.results.push_back(reports::make_metric(method, dataset, "rpe_local_translation", "m",
+      if (local_err.translation.empty()) return;
+      res.results.push_back(reports::make_metric(method, dataset, "rpe_local_translation", "m",
                                                  over, local_err.translation, false));
-      out.results.push_back(reports::make_metric(method, dataset, "rpe_local_rotation", "rad",
+      res.results.push_back(reports::make_metric(method, dataset, "rpe_local_rotation", "rad",
                                                  over, local_err.rotation, false));
-    }
-    options.report_progress(1.0);
+    });
     return out;
   }
 };

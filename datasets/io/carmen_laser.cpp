@@ -15,9 +15,19 @@ std::vector<double> flaser_bearings(std::size_t n) {
   return even_bearings(n, first, first + kPi * static_cast<double>(n - 1) / static_cast<double>(n));
 }
 
+std::vector<double> carmen_bearings(std::size_t n, const CarmenLaserSetup& setup) {
+  if (n == 0) return {};
+  if (!setup.fov && !setup.resolution) return flaser_bearings(n);
+  const double span = static_cast<double>(n - 1);
+  const double step = setup.resolution ? *setup.resolution : (n > 1 ? *setup.fov / span : 0.0);
+  const double first = setup.fov ? -0.5 * *setup.fov : -0.5 * step * span;
+  return even_bearings(n, first, first + step * span);
+}
+
 bool is_laser_param(std::string_view name) {
   return name == kParamLaserMaxRange || name == kParamRobotLaserMax || name == kParamLaserOffset ||
-         name == kParamLaserSideOffset || name == kParamLaserAngularOffset;
+         name == kParamLaserSideOffset || name == kParamLaserAngularOffset ||
+         name == kParamLaserFov || name == kParamLaserResolution;
 }
 
 std::optional<std::string> laser_param_problem(std::string_view name, std::string_view value) {
@@ -28,6 +38,12 @@ std::optional<std::string> laser_param_problem(std::string_view name, std::strin
   }
   if ((name == kParamLaserMaxRange || name == kParamRobotLaserMax) && !(v > 0.0)) {
     return "expected a positive maximum range [m], found " + quote_token(value);
+  }
+  if (name == kParamLaserFov && !(v > 0.0 && v <= 360.0)) {
+    return "expected a field of view in (0, 360] degrees, found " + quote_token(value);
+  }
+  if (name == kParamLaserResolution && !(v > 0.0 && v <= 180.0)) {
+    return "expected an angular resolution in (0, 180] degrees, found " + quote_token(value);
   }
   return std::nullopt;
 }
@@ -53,6 +69,8 @@ CarmenLaserSetup carmen_laser_setup(const std::map<std::string, std::string>& pa
   const double y = number(kParamLaserSideOffset).value_or(0.0);
   const double th = number(kParamLaserAngularOffset).value_or(0.0);
   s.sensor_pose = Pose2(x, y, th);
+  if (const auto f = number(kParamLaserFov)) s.fov = deg(*f);
+  if (const auto r = number(kParamLaserResolution)) s.resolution = deg(*r);
   return s;
 }
 

@@ -19,6 +19,12 @@ inline constexpr std::string_view kParamRobotLaserMax = "robot_front_laser_max";
 inline constexpr std::string_view kParamLaserOffset = "robot_frontlaser_offset";
 inline constexpr std::string_view kParamLaserSideOffset = "robot_frontlaser_side_offset";
 inline constexpr std::string_view kParamLaserAngularOffset = "robot_frontlaser_angular_offset";
+// Field of view and angular resolution of the front laser [deg in the log, CARMEN's
+// carmen.ini convention]; when present they replace the FLASER convention below: the first beam
+// at −fov/2, steps of `resolution` (or fov/(n−1) when only the field of view is given; centred
+// steps when only the resolution is).
+inline constexpr std::string_view kParamLaserFov = "laser_front_laser_fov";
+inline constexpr std::string_view kParamLaserResolution = "laser_front_laser_resolution";
 // SICK LMS convention when no PARAM gives the maximum range: readings ≥ 81.9 m are no return.
 inline constexpr double kDefaultFlaserMaxRange = 81.9;
 
@@ -30,7 +36,13 @@ std::vector<double> flaser_bearings(std::size_t n);
 struct CarmenLaserSetup {
   double max_range = kDefaultFlaserMaxRange;
   Pose2 sensor_pose;
+  std::optional<double> fov;         // [rad], from kParamLaserFov
+  std::optional<double> resolution;  // [rad], from kParamLaserResolution
 };
+
+// Bearings [rad] of an n-beam FLASER scan under `setup`: flaser_bearings(n) unless the setup
+// declares a field of view or resolution (see kParamLaserFov).
+std::vector<double> carmen_bearings(std::size_t n, const CarmenLaserSetup& setup);
 
 // True for the PARAM names above (their values must be numbers; the max range positive).
 bool is_laser_param(std::string_view name);

@@ -86,6 +86,7 @@ class CarmenParser {
     for (auto& r : log_.laser) {
       r.scan.max_range = setup.max_range;
       r.scan.sensor_pose = setup.sensor_pose;
+      if (setup.fov || setup.resolution) r.scan.bearings = carmen_bearings(r.scan.ranges.size(), setup);
     }
     for (const auto& [type, count] : skipped_) {
       log_.params[std::string(kSkippedRecordsParamPrefix) + type] = std::to_string(count);

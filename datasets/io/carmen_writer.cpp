@@ -63,6 +63,12 @@ void check_log(const Log& log) {
         {r.t, r.pose.x, r.pose.y, r.pose.theta, r.odom_pose.x, r.odom_pose.y, r.odom_pose.theta},
         "TRUEPOS", i);
   }
+  CarmenLaserSetup declared;
+  try {
+    declared = carmen_laser_setup(log.params);
+  } catch (const std::invalid_argument&) {
+    // reported by params_for
+  }
   for (std::size_t i = 0; i < log.laser.size(); ++i) {
     const auto& r = log.laser[i];
     check_finite({r.scan.timestamp, r.pose.x, r.pose.y, r.pose.theta, r.odom_pose.x, r.odom_pose.y,
@@ -74,14 +80,15 @@ void check_log(const Log& log) {
         reject("FLASER " + std::to_string(i) + " has a range that is negative or not finite");
       }
     }
-    const auto expected = flaser_bearings(r.scan.ranges.size());
+    const auto expected = carmen_bearings(r.scan.ranges.size(), declared);
     bool same = r.scan.bearings.size() == expected.size();
     for (std::size_t k = 0; same && k < expected.size(); ++k) {
       same = std::abs(r.scan.bearings[k] - expected[k]) <= kBearingTolerance;
     }
     if (!same) {
       reject("FLASER " + std::to_string(i) +
-             ": bearings must follow the FLASER convention (n beams over 180° from −90°)");
+             ": bearings must follow the FLASER convention (n beams over 180° from −90°) or the "
+             "field of view and resolution the PARAM records declare");
     }
   }
   for (const auto& [name, value] : log.params) {

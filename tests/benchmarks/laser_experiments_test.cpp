@@ -133,10 +133,17 @@ TEST(LaserExperiments, RealLogsImproveOdometryHeadingOnIntel) {
   nlohmann::json c = e->default_config();
   c["datasets"] = {"intel"};
   c["max_relations"] = 200;
+  c["matchers"] = {"split_and_merge"};
+  c["correctors"] = {"pl_icp"};
   const auto m = run(*e, 1, nullptr, c);
   EXPECT_EQ(m.at("odometry_raw/intel/rpe_rotation").summary.n, 200u);
   EXPECT_LT(m.at("split_and_merge_ch6_ls/intel/rpe_rotation").summary.mean,
             m.at("odometry_raw/intel/rpe_rotation").summary.mean);
+  // PL-ICP: heading 95% interval entirely below odometry's, translation mean below too.
+  EXPECT_LT(m.at("pl_icp/intel/rpe_rotation").summary.ci95_high,
+            m.at("odometry_raw/intel/rpe_rotation").summary.ci95_low);
+  EXPECT_LT(m.at("pl_icp/intel/rpe_translation").summary.mean,
+            m.at("odometry_raw/intel/rpe_translation").summary.mean);
 }
 
 TEST(LaserExperiments, RealLogsSkipWithAReasonWhenTheDataAreAbsent) {

@@ -1,0 +1,327 @@
+#include "baselines/laser/pl_icp.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <nanoflann.hpp>
+#include <vector>
+
+#include "algorithms/core/angle.h"
+#include "algorithms/core/errors.h"
+#include "algorithms/core/json_options.h"
+
+namespace locbench::laser {
+namespace {
+
+// The valid beams' end points in the robot frame, in beam order.
+std::vector<Eigen::Vector2d> robot_points(const Scan& scan) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(scan.ranges.size());
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    if (scan.valid(i)) out.push_back(scan.sensor_pose * scan.point(i));
+  }
+  return out;
+}
+
+// nanoflann's dataset adaptor over a vector of 2-D points.
+struct PointCloud {
+  const std::vector<Eigen::Vector2d>& points;
+  std::size_t kdtree_get_point_count() const { return points.size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t dim) const { return points[i][static_cast<Eigen::Index>(dim)]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>,
+                                                   PointCloud, 2, std::size_t>;
+
+struct Correspondence {
+  std::size_t current = 0;  // index into the current points
+  Eigen::Vector2d reference = Eigen::Vector2d::Zero();  // p_j1
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();     // of the line j1–j2 (point-to-line)
+  double error = 0.0;                                   // |e_i| under the current estimate
+};
+
+Eigen::Vector2d rotate(double theta, const Eigen::Vector2d& p) {
+  const double c = std::cos(theta), s = std::sin(theta);
+  return {c * p.x() - s * p.y(), s * p.x() + c * p.y()};
+}
+
+// Correspondences of the current points under `motion`, trimmed (step 2–3 of pl_icp.h).
+std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& ref,
+                                            const KdTree& tree,
+                                            const std::vector<Eigen::Vector2d>& cur,
+                                            const Pose2& motion, const PlIcpOptions& o) {
+  std::vector<Correspondence> out;
+  out.reserve(cur.size());
+  const double max_d2 = o.max_correspondence_distance * o.max_correspondence_distance;
+  for (std::size_t i = 0; i < cur.size(); ++i) {
+    const Eigen::Vector2d q = motion * cur[i];
+    std::size_t j1 = 0;
+    double d2 = 0.0;
+    const double query[2] = {q.x(), q.y()};
+    if (tree.knnSearch(query, 1, &j1, &d2) != 1 || d2 > max_d2) continue;
+    Correspondence c;
+    c.current = i;
+    c.reference = ref[j1];
+    if (o.metric == IcpMetric::kPointToLine) {
+      // j2: the beam-order neighbour of j1 nearer to q, if it is not across a depth jump.
+      double best = std::numeric_limits<double>::infinity();
+      std::size_t j2 = j1;
+      for (const std::size_t n : {j1 - 1, j1 + 1}) {
+        if (n >= ref.size() || (ref[n] - ref[j1]).norm() > o.max_neighbour_gap) continue;
+        const double d = (ref[n] - q).squaredNorm();
+        if (d < best) {
+          best = d;
+          j2 = n;
+        }
+      }
+      if (j2 == j1) continue;
+      Eigen::Vector2d dir = (ref[j2] - ref[j1]).normalized();
+      Eigen::Vector2d origin = ref[j1];
+      if (o.line_points > 2) {
+        // The least-squares line of j1's beam-order neighbourhood (line_points points, none
+        // across a depth jump) instead of the segment j1–j2.
+        const auto half = static_cast<std::size_t>(o.line_points / 2);
+        std::size_t lo = j1, hi = j1;
+        while (j1 - lo < half && lo > 0 && (ref[lo - 1] - ref[lo]).norm() <= o.max_neighbour_gap) --lo;
+        while (hi - j1 < half && hi + 1 < ref.size() &&
+               (ref[hi + 1] - ref[hi]).norm() <= o.max_neighbour_gap) {
+          ++hi;
+        }
+        if (hi - lo + 1 >= 3) {
+          Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+          for (std::size_t k = lo; k <= hi; ++k) mean += ref[k];
+          mean /= static_cast<double>(hi - lo + 1);
+          Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+          for (std::size_t k = lo; k <= hi; ++k) cov += (ref[k] - mean) * (ref[k] - mean).transpose();
+          const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
+          dir = es.eigenvectors().col(1);
+          origin = mean;
+        }
+      }
+      c.normal = {-dir.y(), dir.x()};
+      c.reference = origin;
+      c.error = std::abs(c.normal.dot(q - origin));
+    } else {
+      c.error = std::sqrt(d2);
+    }
+    out.push_back(c);
+  }
+  // Keep the keep_fraction with the smallest errors.
+  const auto keep = static_cast<std::size_t>(
+      std::ceil(o.keep_fraction * static_cast<double>(out.size())));
+  if (keep < out.size()) {
+    std::nth_element(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(keep), out.end(),
+                     [](const Correspondence& a, const Correspondence& b) {
+                       return a.error < b.error;
+                     });
+    out.resize(keep);
+  }
+  return out;
+}
+
+struct NormalEquations {
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();  // JᵀJ
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();  // Jᵀe
+  double ss = 0.0;                              // Σ eᵀe
+  std::size_t rows = 0;
+};
+
+NormalEquations normal_equations(const std::vector<Correspondence>& cs,
+                                 const std::vector<Eigen::Vector2d>& cur, const Pose2& motion,
+                                 IcpMetric metric) {
+  NormalEquations n;
+  for (const Correspondence& c : cs) {
+    const Eigen::Vector2d rq = rotate(motion.theta, cur[c.current]);
+    const Eigen::Vector2d e2 = rq + motion.translation() - c.reference;
+    const Eigen::Vector2d d_theta(-rq.y(), rq.x());  // ∂(R q)/∂θ
+    if (metric == IcpMetric::kPointToLine) {
+      const Eigen::Vector3d j(c.normal.x(), c.normal.y(), c.normal.dot(d_theta));
+      const double e = c.normal.dot(e2);
+      n.h += j * j.transpose();
+      n.g += j * e;
+      n.ss += e * e;
+      n.rows += 1;
+    } else {
+      const Eigen::Vector3d jx(1.0, 0.0, d_theta.x()), jy(0.0, 1.0, d_theta.y());
+      n.h += jx * jx.transpose() + jy * jy.transpose();
+      n.g += jx * e2.x() + jy * e2.y();
+      n.ss += e2.squaredNorm();
+      n.rows += 2;
+    }
+  }
+  return n;
+}
+
+// The eigen-decomposition of H in units where θ is scaled by `length` (so its eigenvalues
+// compare like with like), and which directions are observable.
+struct Observability {
+  Eigen::Matrix3d scale;  // diag(1, 1, 1/length): δ = scale · δ'
+  Eigen::Vector3d values;
+  Eigen::Matrix3d vectors;
+  std::array<bool, 3> observable{true, true, true};
+  bool degenerate = false;
+};
+
+Observability observability(const Eigen::Matrix3d& h, double length, double ratio) {
+  Observability o;
+  o.scale = Eigen::Vector3d(1.0, 1.0, 1.0 / length).asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(o.scale * h * o.scale);
+  o.values = es.eigenvalues();
+  o.vectors = es.eigenvectors();
+  const double largest = o.values.maxCoeff();
+  for (int k = 0; k < 3; ++k) {
+    o.observable[static_cast<std::size_t>(k)] = largest > 0.0 && o.values[k] > ratio * largest;
+    if (!o.observable[static_cast<std::size_t>(k)]) o.degenerate = true;
+  }
+  return o;
+}
+
+const char* const kMetricNames[] = {"point_to_line", "point_to_point"};
+
+}  // namespace
+
+const char* to_string(IcpMetric m) { return kMetricNames[m == IcpMetric::kPointToLine ? 0 : 1]; }
+
+IcpMetric icp_metric_from_string(const std::string& s) {
+  if (s == "point_to_line") return IcpMetric::kPointToLine;
+  if (s == "point_to_point") return IcpMetric::kPointToPoint;
+  throw UsageError("PlIcpOptions.metric: expected \"point_to_line\" or \"point_to_point\", found \"" +
+                   s + "\"");
+}
+
+void validate(const PlIcpOptions& o) {
+  if (o.max_iterations < 1) throw UsageError("PlIcpOptions.max_iterations: must be >= 1");
+  if (!(o.max_correspondence_distance > 0.0) || !std::isfinite(o.max_correspondence_distance)) {
+    throw UsageError("PlIcpOptions.max_correspondence_distance: must be > 0 m");
+  }
+  if (!(o.keep_fraction > 0.0 && o.keep_fraction <= 1.0)) {
+    throw UsageError("PlIcpOptions.keep_fraction: must be in (0, 1]");
+  }
+  if (!(o.max_neighbour_gap > 0.0)) throw UsageError("PlIcpOptions.max_neighbour_gap: must be > 0 m");
+  if (!(o.translation_tolerance > 0.0) || !(o.rotation_tolerance > 0.0)) {
+    throw UsageError("PlIcpOptions.translation_tolerance, rotation_tolerance: must be > 0");
+  }
+  if (!(o.degenerate_ratio >= 0.0 && o.degenerate_ratio < 1.0)) {
+    throw UsageError("PlIcpOptions.degenerate_ratio: must be in [0, 1)");
+  }
+  if (o.line_points < 2) throw UsageError("PlIcpOptions.line_points: must be >= 2");
+  if (o.min_correspondences < 3) throw UsageError("PlIcpOptions.min_correspondences: must be >= 3");
+  if (!(o.min_point_sigma > 0.0) || !std::isfinite(o.min_point_sigma)) {
+    throw UsageError("PlIcpOptions.min_point_sigma: must be > 0 m");
+  }
+}
+
+void to_json(nlohmann::json& j, const PlIcpOptions& o) {
+  j = {{"metric", to_string(o.metric)},
+       {"max_iterations", o.max_iterations},
+       {"max_correspondence_distance", o.max_correspondence_distance},
+       {"keep_fraction", o.keep_fraction},
+       {"max_neighbour_gap", o.max_neighbour_gap},
+       {"line_points", o.line_points},
+       {"translation_tolerance", o.translation_tolerance},
+       {"rotation_tolerance", o.rotation_tolerance},
+       {"degenerate_ratio", o.degenerate_ratio},
+       {"min_correspondences", o.min_correspondences},
+       {"min_point_sigma", o.min_point_sigma}};
+}
+
+void from_json(const nlohmann::json& j, PlIcpOptions& o) {
+  StrictJsonReader r(j, "PlIcpOptions");
+  std::string metric = to_string(o.metric);
+  r.read("metric", metric);
+  o.metric = icp_metric_from_string(metric);
+  r.read("max_iterations", o.max_iterations);
+  r.read("max_correspondence_distance", o.max_correspondence_distance);
+  r.read("keep_fraction", o.keep_fraction);
+  r.read("max_neighbour_gap", o.max_neighbour_gap);
+  r.read("line_points", o.line_points);
+  r.read("translation_tolerance", o.translation_tolerance);
+  r.read("rotation_tolerance", o.rotation_tolerance);
+  r.read("degenerate_ratio", o.degenerate_ratio);
+  r.read("min_correspondences", o.min_correspondences);
+  r.read("min_point_sigma", o.min_point_sigma);
+  r.finish();
+  validate(o);
+}
+
+PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& initial,
+                   const PlIcpOptions& options) {
+  validate(options);
+  if (!std::isfinite(initial.x) || !std::isfinite(initial.y) || !std::isfinite(initial.theta)) {
+    throw UsageError("pl_icp: the initial guess is not finite");
+  }
+  PlIcpResult out;
+  out.motion = initial;
+  const std::vector<Eigen::Vector2d> ref = robot_points(reference);
+  const std::vector<Eigen::Vector2d> cur = robot_points(current);
+  const auto min_n = static_cast<std::size_t>(options.min_correspondences);
+  if (ref.size() < 2 || cur.size() < min_n) return out;
+  // Length that makes θ comparable with x, y: the rms distance of the current points.
+  double ss = 0.0;
+  for (const auto& p : cur) ss += p.squaredNorm();
+  const double length = std::max(std::sqrt(ss / static_cast<double>(cur.size())), 0.1);
+
+  const PointCloud cloud{ref};
+  const KdTree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  Pose2 motion = initial;
+  std::vector<Correspondence> cs;
+  for (int it = 0; it < options.max_iterations; ++it) {
+    cs = correspondences(ref, tree, cur, motion, options);
+    out.iterations = it + 1;
+    if (cs.size() < min_n) return out;  // valid = false, motion = initial
+    const NormalEquations n = normal_equations(cs, cur, motion, options.metric);
+    const Observability obs = observability(n.h, length, options.degenerate_ratio);
+    // Gauss–Newton step in the observable directions only (scaled units).
+    const Eigen::Vector3d g = obs.scale * n.g;
+    Eigen::Vector3d step = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      if (!obs.observable[static_cast<std::size_t>(k)]) continue;
+      step -= obs.vectors.col(k) * (obs.vectors.col(k).dot(g) / obs.values[k]);
+    }
+    step = obs.scale * step;
+    motion = Pose2(motion.x + step.x(), motion.y + step.y(), wrap_angle(motion.theta + step.z()));
+    if (std::hypot(step.x(), step.y()) < options.translation_tolerance &&
+        std::abs(step.z()) < options.rotation_tolerance) {
+      out.converged = true;
+      break;
+    }
+  }
+  // Covariance at the result, on the last correspondences.
+  const NormalEquations n = normal_equations(cs, cur, motion, options.metric);
+  const Observability obs = observability(n.h, length, options.degenerate_ratio);
+  const double dof = static_cast<double>(n.rows) - 3.0;
+  out.residual_rms = std::sqrt(n.ss / static_cast<double>(std::max<std::size_t>(n.rows, 1)));
+  const double s2 = std::max(dof > 0.0 ? n.ss / dof : 0.0,
+                             options.min_point_sigma * options.min_point_sigma);
+  Eigen::Matrix3d inv = Eigen::Matrix3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    if (obs.observable[static_cast<std::size_t>(k)]) {
+      inv += obs.vectors.col(k) * obs.vectors.col(k).transpose() / obs.values[k];
+    }
+  }
+  out.covariance = 2.0 * s2 * obs.scale * inv * obs.scale;  // both scans' noise (pl_icp.h)
+  if (obs.degenerate) {
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      if (obs.observable[static_cast<std::size_t>(k)]) continue;
+      for (int i = 0; i < 3; ++i) {
+        if (std::abs(obs.vectors(i, k)) < 0.1) continue;  // mostly along other axes
+        out.covariance.row(i).setZero();
+        out.covariance.col(i).setZero();
+        out.covariance(i, i) = inf;
+      }
+    }
+  }
+  out.degenerate = obs.degenerate;
+  out.correspondences = cs.size();
+  out.motion = motion;
+  out.valid = true;
+  return out;
+}
+
+}  // namespace locbench::laser

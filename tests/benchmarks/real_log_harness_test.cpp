@@ -1,0 +1,138 @@
+// The real-log harness: dataset specs (catalog names or a user's files), and every real-data
+// experiment run on a small log the test writes itself.
+#include "benchmarks/experiments/real_log_harness.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+
+#include "algorithms/core/errors.h"
+#include "benchmarks/experiments/experiment.h"
+#include "tests/benchmarks/small_real_log.h"
+#include "tests/test_data.h"
+
+namespace locbench::experiments {
+namespace {
+
+using locbench::testing::ScratchDir;
+using locbench::testing::write_small_real_log;
+
+std::map<std::string, reports::MetricResult> by_name(const reports::ExperimentResults& r) {
+  std::map<std::string, reports::MetricResult> m;
+  for (const auto& x : r.results) m.emplace(x.name(), x);
+  return m;
+}
+
+reports::ExperimentResults run_on(const std::string& experiment, nlohmann::json overrides) {
+  const Experiment* e = find_experiment(experiment);
+  EXPECT_NE(e, nullptr) << experiment;
+  const nlohmann::json config = merge_config(e->default_config(), overrides);
+  RunOptions o;
+  o.data_root = "/nonexistent";  // nothing from the catalog is read
+  return e->run(config, o);
+}
+
+TEST(RealLogSpecs, TakeCatalogNamesAndUserFiles) {
+  ScratchDir dir;
+  const auto files = write_small_real_log(dir.path());
+  const auto specs = real_log_specs(
+      nlohmann::json::array({"aces", {{"name", "mine"},
+                                       {"log", files.log.string()},
+                                       {"relations", files.relations.string()}}}),
+      "x");
+  ASSERT_EQ(specs.size(), 2u);
+  EXPECT_TRUE(specs[0].from_catalog);
+  EXPECT_EQ(specs[0].name, "aces");
+  EXPECT_FALSE(specs[1].from_catalog);
+  EXPECT_EQ(specs[1].relations, files.relations.string());
+  EXPECT_EQ(real_log_names(specs), (std::vector<std::string>{"aces", "mine"}));
+}
+
+TEST(RealLogSpecs, RejectUnknownNamesKeysDuplicatesAndMissingFiles) {
+  ScratchDir dir;
+  const auto files = write_small_real_log(dir.path());
+  const std::string log = files.log.string();
+  EXPECT_THROW(real_log_specs({"no_such_dataset"}, "x"), UsageError);
+  EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "a"}, {"log", log}, {"relation", "r"}}}), "x"),
+               UsageError);
+  EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "a"}, {"log", log}},
+                                                     {{"name", "a"}, {"log", log}}}),
+                              "x"),
+               UsageError);
+  EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"log", log}}}), "x"), UsageError);
+  EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "a"}, {"log", (dir.path() / "absent.clf").string()}}}), "x"),
+               InputError);
+  EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "a"}, {"log", log},
+                                                      {"relations", (dir.path() / "absent.relations").string()}}}),
+                              "x"),
+               InputError);
+  EXPECT_THROW(real_log_specs(nlohmann::json::array({42}), "x"), UsageError);
+}
+
+TEST(RealLogSpecs, MissingCatalogDataIsSkippedWithTheReason) {
+  const auto specs = real_log_specs({"intel"}, "x");
+  const LoadedRealLog l = load_real_log(specs[0], "/nonexistent");
+  EXPECT_EQ(l.status, "skipped");
+  EXPECT_NE(l.reason.find("LOCBENCH_DATA"), std::string::npos);
+}
+
+TEST(RealLogSpecs, CliFlagsBecomeOneDatasetNamedAfterTheLog) {
+  const auto o = real_log_cli_override("/a/b/my.clf.gz", "/a/my.relations", "");
+  ASSERT_TRUE(o);
+  EXPECT_EQ((*o)["datasets"][0]["name"], "my");
+  EXPECT_EQ((*o)["datasets"][0]["log"], "/a/b/my.clf.gz");
+  EXPECT_EQ((*o)["datasets"][0]["relations"], "/a/my.relations");
+  EXPECT_FALSE((*o)["datasets"][0].contains("ground_truth"));
+  EXPECT_FALSE(real_log_cli_override("", "", ""));
+}
+
+TEST(RealLogExperiments, LaserRealLogsCorrectsAUsersLog) {
+  ScratchDir dir;
+  const auto files = write_small_real_log(dir.path());
+  const auto r = run_on("laser/real_logs",
+                        {{"datasets", {{{"name", "mine"},
+                                        {"log", files.log.string()},
+                                        {"relations", files.relations.string()}}}},
+                         {"matchers", {"eap"}},
+                         {"correctors", {"pl_icp", "eap_iterated_pl", "icp_point_to_point"}}});
+  ASSERT_TRUE(r.cases.empty()) << r.cases.front().reason;
+  ASSERT_EQ(r.datasets.size(), 1u);
+  EXPECT_EQ(r.datasets[0].name, "mine");
+  const auto m = by_name(r);
+  EXPECT_EQ(m.at("odometry_raw/mine/rpe_translation").summary.n, files.relation_count);
+  // Odometry is 3% long and 1.5° over-turned per step: 3.6 mm and 1.5° per relation.
+  EXPECT_NEAR(m.at("odometry_raw/mine/rpe_rotation").summary.mean, deg(1.5), deg(0.01));
+  for (const char* method : {"pl_icp", "eap_iterated_pl"}) {
+    EXPECT_LT(m.at(std::string(method) + "/mine/rpe_rotation").summary.mean, deg(0.2)) << method;
+    EXPECT_LT(m.at(std::string(method) + "/mine/rpe_translation").summary.mean, 0.01) << method;
+  }
+  // Point-to-point ICP pairs beams, not surface points: biased, but still half odometry's error.
+  EXPECT_LT(m.at("icp_point_to_point/mine/rpe_rotation").summary.mean, deg(0.75));
+}
+
+TEST(RealLogExperiments, OdometryAndNoiseRealLogsReadAUsersLog) {
+  ScratchDir dir;
+  const auto files = write_small_real_log(dir.path());
+  const nlohmann::json datasets = {{"datasets", {{{"name", "mine"},
+                                                  {"log", files.log.string()},
+                                                  {"relations", files.relations.string()}}}}};
+  const auto odo = by_name(run_on("odometry/real_logs", datasets));
+  EXPECT_EQ(odo.at("odometry_raw/mine/rpe_rotation").summary.n, files.relation_count);
+  EXPECT_NEAR(odo.at("odometry_raw/mine/rpe_rotation").summary.mean, deg(1.5), deg(0.01));
+  const auto noise = by_name(run_on("noise/real_logs", datasets));
+  EXPECT_EQ(noise.at("fixed_q/mine/relation_nees").summary.n, files.relation_count);
+}
+
+TEST(RealLogExperiments, AMalformedRelationsFileIsAnInputError) {
+  ScratchDir dir;
+  const auto files = write_small_real_log(dir.path());
+  std::ofstream(files.relations, std::ios::app) << "100.0 100.5 oops\n";
+  EXPECT_THROW(run_on("odometry/real_logs", {{"datasets", {{{"name", "mine"},
+                                                            {"log", files.log.string()},
+                                                            {"relations", files.relations.string()}}}}}),
+               InputError);
+}
+
+}  // namespace
+}  // namespace locbench::experiments

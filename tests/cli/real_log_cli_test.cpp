@@ -1,0 +1,92 @@
+// `locbench run <real-data experiment> --log L --relations R`: any user's log, written here by
+// the test itself, through the same harness as the catalog's; bad files keep exit code 2.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "reports/report_json.h"
+#include "tests/benchmarks/small_real_log.h"
+#include "tests/cli/cli_helpers.h"
+#include "tests/test_data.h"
+
+namespace locbench {
+namespace {
+
+using testing::Outcome;
+using testing::run_locbench;
+using testing::ScratchDir;
+
+const reports::MetricResult* find(const reports::Report& r, const std::string& name) {
+  for (const auto& m : r.body.results) {
+    if (m.name() == name) return &m;
+  }
+  return nullptr;
+}
+
+TEST(RealLogCli, OdometryAndLaserRealLogsRunOnAUsersLogAndRelations) {
+  ScratchDir dir;
+  const auto files = testing::write_small_real_log(dir.path());
+  const std::string args = " --log " + files.log.string() + " --relations " +
+                           files.relations.string() + " -o " + (dir.path() / "out").string();
+  Outcome o = run_locbench("run odometry/real_logs" + args);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto odo = reports::read_report(dir.path() / "out/odometry/real_logs.json");
+  const auto* m = find(odo, "odometry_raw/small/rpe_rotation");
+  ASSERT_NE(m, nullptr);
+  EXPECT_EQ(m->summary.n, files.relation_count);
+
+  o = run_locbench("run laser/real_logs" + args + " --set 'matchers=[\"eap\"]' --set 'correctors=[\"pl_icp\"]'");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto laser = reports::read_report(dir.path() / "out/laser/real_logs.json");
+  const auto* pl = find(laser, "pl_icp/small/rpe_rotation");
+  const auto* raw = find(laser, "odometry_raw/small/rpe_rotation");
+  ASSERT_NE(pl, nullptr);
+  ASSERT_NE(raw, nullptr);
+  EXPECT_LT(pl->summary.mean, 0.2 * raw->summary.mean);
+}
+
+TEST(RealLogCli, AConfigFileNamesTheUsersFiles) {
+  ScratchDir dir;
+  const auto files = testing::write_small_real_log(dir.path());
+  const auto config = dir.path() / "config.json";
+  std::ofstream(config) << R"({"odometry/real_logs": {"datasets": [{"name": "mine", "log": ")"
+                        << files.log.string() << R"(", "relations": ")" << files.relations.string()
+                        << R"("}]}})";
+  const Outcome o = run_locbench("run odometry/real_logs --config " + config.string() + " -o " +
+                                 (dir.path() / "out").string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto r = reports::read_report(dir.path() / "out/odometry/real_logs.json");
+  EXPECT_NE(find(r, "odometry_raw/mine/rpe_translation"), nullptr);
+}
+
+TEST(RealLogCli, MissingOrMalformedFilesExitWith2AndNameTheFile) {
+  ScratchDir dir;
+  const auto files = testing::write_small_real_log(dir.path());
+  const std::string out = " -o " + (dir.path() / "out").string();
+  Outcome o = run_locbench("run odometry/real_logs --log " + (dir.path() / "absent.clf").string() + out);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("absent.clf"), std::string::npos) << o.output;
+
+  o = run_locbench("run odometry/real_logs --log " + files.log.string() + " --relations " +
+                   (dir.path() / "absent.relations").string() + out);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("absent.relations"), std::string::npos) << o.output;
+
+  std::ofstream(files.relations, std::ios::app) << "1 2 three\n";
+  o = run_locbench("run odometry/real_logs --log " + files.log.string() + " --relations " +
+                   files.relations.string() + out);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("small.relations"), std::string::npos) << o.output;
+
+  o = run_locbench("run odometry/real_logs --relations " + files.relations.string() + out);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("--log"), std::string::npos) << o.output;
+
+  o = run_locbench("run odometry/sim_corridor --log " + files.log.string() + out);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("does not take real logs"), std::string::npos) << o.output;
+}
+
+}  // namespace
+}  // namespace locbench
