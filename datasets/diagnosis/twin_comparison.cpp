@@ -10,35 +10,55 @@
 
 namespace locbench::sim {
 
-std::vector<ComponentComparison> compare_twins(const Log& real, const Twin& twin, double window_s, int runs,
-                                               std::uint64_t seed) {
-  const WindowResiduals r = nominal_residuals(real, window_s);
-  const std::string window = r.reference == "relations" ? "relations" : fmt::format("{:g}s", window_s);
-  constexpr std::array<const char*, 3> kNames{"x", "y", "theta"};
-  std::vector<ComponentComparison> out(3);
-  for (int c = 0; c < 3; ++c) {
-    out[static_cast<std::size_t>(c)].window = window;
-    out[static_cast<std::size_t>(c)].component = kNames[static_cast<std::size_t>(c)];
+std::vector<ComponentComparison> compare_twins(const Log& real, const Twin& twin, const std::vector<double>& windows_s,
+                                               int runs, std::uint64_t seed) {
+  std::vector<diagnosis::MotionData> window_sets;
+  for (double w : windows_s) {
+    window_sets.push_back(residual_windows(real, w));
+    if (window_sets.back().reference == diagnosis::ReferenceKind::kRelations) break;  // one window per relation
   }
+  // Each twin is simulated once per run; its truth is read over every window set.
+  const std::size_t sets_n = window_sets.size();
+  std::vector<std::vector<std::vector<std::array<double, 3>>>> nominal(sets_n), extended(sets_n);
   for (int run = 0; run < runs; ++run) {
     const std::uint64_t s = Rng::derive_seed(seed, static_cast<std::uint64_t>(run));
-    const auto rn = nominal_residuals(twin_log(twin.nominal, s, real, twin.time_origin), window_s, twin.time_origin);
-    const auto re = nominal_residuals(twin_log(twin.extended, s, real, twin.time_origin), window_s, twin.time_origin);
-    const auto pn = pair_windows(r, rn), pe = pair_windows(r, re);
-    if (pn.empty() || pe.empty()) {
-      throw InputError(real.source.empty() ? real.name : real.source, 0,
-                       "no window of the twin lines up in time with the log's; cannot compare them");
-    }
-    for (int c = 0; c < 3; ++c) {
-      auto& o = out[static_cast<std::size_t>(c)];
-      if (run == 0) o.real = component(r, c, pn, true);
-      for (double v : component(rn, c, pn, false)) o.nominal_twin.push_back(v);
-      for (double v : component(re, c, pe, false)) o.extended_twin.push_back(v);
+    const Log n = twin_log(twin.nominal, s, real), e = twin_log(twin.extended, s, real);
+    for (std::size_t k = 0; k < sets_n; ++k) {
+      nominal[k].push_back(twin_residuals(window_sets[k], n, twin.time_origin));
+      extended[k].push_back(twin_residuals(window_sets[k], e, twin.time_origin));
     }
   }
-  for (auto& o : out) {
-    o.nominal = ks_two_sample(o.real, o.nominal_twin);
-    o.extended = ks_two_sample(o.real, o.extended_twin);
+  constexpr std::array<const char*, 3> kNames{"x", "y", "theta"};
+  std::vector<ComponentComparison> out;
+  for (std::size_t k = 0; k < sets_n; ++k) {
+    const auto r = nominal_residuals(window_sets[k]);
+    std::vector<const std::vector<std::array<double, 3>>*> sets{&r};
+    for (const auto& v : nominal[k]) sets.push_back(&v);
+    for (const auto& v : extended[k]) sets.push_back(&v);
+    const std::string window = window_sets[k].reference == diagnosis::ReferenceKind::kRelations
+                                   ? "relations"
+                                   : fmt::format("{:g}s", windows_s[k]);
+    for (int c = 0; c < 3; ++c) {
+      const auto v = common_component(sets, c);
+      if (v[0].size() < 5) {
+        throw InputError(real.source.empty() ? real.name : real.source, 0,
+                         fmt::format("only {} {} windows of the log are covered by its twins' reference; cannot compare them",
+                                     v[0].size(), window));
+      }
+      ComponentComparison o;
+      o.window = window;
+      o.component = kNames[static_cast<std::size_t>(c)];
+      o.real = v[0];
+      for (int run = 0; run < runs; ++run) {
+        const auto& vn = v[static_cast<std::size_t>(1 + run)];
+        const auto& ve = v[static_cast<std::size_t>(1 + runs + run)];
+        o.nominal_twin.insert(o.nominal_twin.end(), vn.begin(), vn.end());
+        o.extended_twin.insert(o.extended_twin.end(), ve.begin(), ve.end());
+      }
+      o.nominal = ks_two_sample(o.real, o.nominal_twin);
+      o.extended = ks_two_sample(o.real, o.extended_twin);
+      out.push_back(std::move(o));
+    }
   }
   return out;
 }

@@ -24,8 +24,11 @@ struct ComponentComparison {
   std::vector<double> real, nominal_twin, extended_twin;  // the samples compared
 };
 
-// Throws InputError when no twin window lines up with the log's.
-std::vector<ComponentComparison> compare_twins(const Log& real, const Twin& twin, double window_s, int runs,
-                                               std::uint64_t seed);
+// One comparison per window length in `windows_s` (a relations log: only the first, its
+// relations being the windows) and component, in that order. Each twin is simulated `runs`
+// times (seeds derived from `seed`) and read over every window set. Throws InputError when fewer
+// than 5 windows are covered by the log's and the twins' references.
+std::vector<ComponentComparison> compare_twins(const Log& real, const Twin& twin, const std::vector<double>& windows_s,
+                                               int runs, std::uint64_t seed);
 
 }  // namespace locbench::sim

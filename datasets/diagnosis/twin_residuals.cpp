@@ -2,55 +2,73 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
-#include "algorithms/diagnosis/motion_windows.h"
 #include "algorithms/diagnosis/odometry_model.h"
 
 namespace locbench::sim {
+namespace {
 
-WindowResiduals nominal_residuals(const Log& log, double window_s, double time_shift, std::size_t min_windows) {
-  diagnosis::WindowOptions o;
-  o.duration = window_s;
-  o.max_gap = std::max(o.max_gap, 0.5 * window_s);
-  o.min_windows = min_windows;
-  const diagnosis::MotionData d = diagnosis::build_motion_data(log, o);
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::vector<std::array<double, 3>> residuals(const diagnosis::MotionData& d) {
   const diagnosis::OdometryModel nominal;
-  WindowResiduals out;
-  out.reference = d.reference == diagnosis::ReferenceKind::kRelations ? "relations" : "truepos";
+  std::vector<std::array<double, 3>> out;
+  out.reserve(d.windows.size());
   for (const auto& w : d.windows) {
     const auto r = diagnosis::window_residual(d, w, nominal);
-    if (!r.valid || r.heading_only) continue;
-    out.t0.push_back(w.t0 + time_shift);
-    out.t1.push_back(w.t1 + time_shift);
-    out.r.push_back({r.r[0], r.r[1], r.r[2]});
-  }
-  return out;
-}
-
-std::vector<std::pair<std::size_t, std::size_t>> pair_windows(const WindowResiduals& a, const WindowResiduals& b,
-                                                              double tolerance) {
-  std::vector<std::size_t> order(b.t0.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return b.t0[p] < b.t0[q]; });
-  std::vector<std::pair<std::size_t, std::size_t>> out;
-  for (std::size_t i = 0; i < a.t0.size(); ++i) {
-    auto it = std::lower_bound(order.begin(), order.end(), a.t0[i] - tolerance,
-                               [&](std::size_t k, double v) { return b.t0[k] < v; });
-    for (; it != order.end() && b.t0[*it] <= a.t0[i] + tolerance; ++it) {
-      if (std::abs(b.t1[*it] - a.t1[i]) <= tolerance) {
-        out.emplace_back(i, *it);
-        break;
-      }
+    if (!r.valid || r.heading_only) {
+      out.push_back({kNaN, kNaN, kNaN});
+    } else {
+      out.push_back({r.r[0], r.r[1], r.r[2]});
     }
   }
   return out;
 }
 
-std::vector<double> component(const WindowResiduals& w, int c,
-                              const std::vector<std::pair<std::size_t, std::size_t>>& pairs, bool first) {
-  std::vector<double> out;
-  out.reserve(pairs.size());
-  for (const auto& [i, j] : pairs) out.push_back(w.r[first ? i : j][static_cast<std::size_t>(c)]);
+}  // namespace
+
+diagnosis::MotionData residual_windows(const Log& log, double window_s, std::size_t min_windows) {
+  diagnosis::WindowOptions o;
+  o.duration = window_s;
+  o.max_gap = std::max(o.max_gap, 0.5 * window_s);
+  o.min_windows = min_windows;
+  return diagnosis::build_motion_data(log, o);
+}
+
+std::vector<std::array<double, 3>> nominal_residuals(const diagnosis::MotionData& d) { return residuals(d); }
+
+std::vector<std::array<double, 3>> twin_residuals(const diagnosis::MotionData& d, const Log& twin, double time_origin) {
+  diagnosis::MotionData t = d;
+  std::vector<TruePose> truth = twin.truth;
+  for (auto& p : truth) p.t += time_origin;
+  if (t.reference == diagnosis::ReferenceKind::kRelations) {
+    for (auto& w : t.windows) {
+      const auto a = diagnosis::interpolate_truth(truth, w.t0), b = diagnosis::interpolate_truth(truth, w.t1);
+      w.reference = a && b ? between(*a, *b) : Pose2(kNaN, kNaN, 0.0);
+    }
+    auto out = residuals(t);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      if (!std::isfinite(t.windows[k].reference.x)) out[k] = {kNaN, kNaN, kNaN};
+    }
+    return out;
+  }
+  t.reference = diagnosis::ReferenceKind::kTruePose;
+  t.truth = std::move(truth);
+  return residuals(t);
+}
+
+std::vector<std::vector<double>> common_component(const std::vector<const std::vector<std::array<double, 3>>*>& sets,
+                                                  int c) {
+  std::vector<std::vector<double>> out(sets.size());
+  if (sets.empty()) return out;
+  const std::size_t n = sets.front()->size();
+  for (std::size_t k = 0; k < n; ++k) {
+    bool finite = true;
+    for (const auto* s : sets) finite = finite && k < s->size() && std::isfinite((*s)[k][static_cast<std::size_t>(c)]);
+    if (!finite) continue;
+    for (std::size_t i = 0; i < sets.size(); ++i) out[i].push_back((*sets[i])[k][static_cast<std::size_t>(c)]);
+  }
   return out;
 }
 

@@ -159,60 +159,43 @@ std::pair<double, double> reference_noise(const std::vector<TruePose>& truth) {
   return {xy / std::sqrt(6.0), robust_sigma(dth) / std::sqrt(6.0)};
 }
 
-Log twin_log(const Scenario& twin, std::uint64_t seed, const Log& real, double time_origin) {
+Log twin_log(const Scenario& twin, std::uint64_t seed, const Log& real) {
   Log log = simulate(twin, seed).log;
   log.name = "twin/" + real.name;
   log.source = "simulated twin of " + log_label(real);
-  if (!real.relations.empty()) {
-    std::vector<Relation> rel;
-    for (const auto& r : real.relations) {
-      const auto a = interpolate_truth(log, r.t1 - time_origin);
-      const auto b = interpolate_truth(log, r.t2 - time_origin);
-      if (a && b) rel.push_back({r.t1 - time_origin, r.t2 - time_origin, between(*a, *b)});
-    }
-    log.relations = std::move(rel);
-    log.truth.clear();
-  }
   return log;
 }
 
 namespace {
 
-// Moment-matched floor (σ_x, σ_y, σ_θ per window) of a twin scenario against the real residuals.
-std::array<double, 3> fit_floor(const Scenario& s, const WindowResiduals& real, const Log& real_log, double origin,
-                                double window_s, std::uint64_t seed) {
+// Moment-matched floor (σ_x, σ_y, σ_θ per window) of a twin scenario against the log's windows.
+std::array<double, 3> fit_floor(const Scenario& s, const diagnosis::MotionData& windows, const Log& real_log,
+                                double origin, std::uint64_t seed) {
   Scenario det = s;
   det.motion_noise.sigma_along = det.motion_noise.sigma_left = det.motion_noise.sigma_heading = 0.0;
   Scenario noisy = det;
   det.truth.noise_xy = det.truth.noise_theta = 0.0;
   det.floor.k_left = det.floor.k_right = 0.0;
   det.slip.straight.rate = det.slip.turn.rate = 0.0;
-  const auto rd = nominal_residuals(twin_log(det, seed, real_log, origin), window_s, origin);
-  const auto rn = nominal_residuals(twin_log(noisy, seed, real_log, origin), window_s, origin);
-  const auto real_det = pair_windows(real, rd);
-  const auto det_noisy = pair_windows(rd, rn);
-  std::map<std::size_t, std::size_t> noisy_of;
-  for (const auto& [j, k] : det_noisy) noisy_of[j] = k;
-  std::array<double, 3> real_ms{}, noise_ms{};
-  std::size_t n = 0;
-  for (const auto& [i, j] : real_det) {
-    const auto it = noisy_of.find(j);
-    if (it == noisy_of.end()) continue;
-    for (std::size_t c = 0; c < 3; ++c) {
-      real_ms[c] += std::pow(real.r[i][c] - rd.r[j][c], 2);
-      noise_ms[c] += std::pow(rn.r[it->second][c] - rd.r[j][c], 2);
-    }
-    ++n;
-  }
-  if (n < 5) {
-    throw InputError(log_label(real_log), 0,
-                     fmt::format("only {} windows of the twin line up with the log's in time; cannot fit its noise floor", n));
-  }
+  const auto real = nominal_residuals(windows);
+  const auto rd = twin_residuals(windows, twin_log(det, seed, real_log), origin);
+  const auto rn = twin_residuals(windows, twin_log(noisy, seed, real_log), origin);
+  std::array<double, 3> sigma{};
   const double dof = s.motion_noise.dof;
   const double t_factor = dof > 2.0 ? (dof - 2.0) / dof : 1.0;
-  std::array<double, 3> sigma{};
-  for (std::size_t c = 0; c < 3; ++c) {
-    sigma[c] = std::sqrt(std::max(real_ms[c] - noise_ms[c], 0.0) / static_cast<double>(n) * t_factor);
+  for (int c = 0; c < 3; ++c) {
+    const auto v = common_component({&real, &rd, &rn}, c);
+    const std::size_t n = v[0].size();
+    if (n < 5) {
+      throw InputError(log_label(real_log),
+                       0, fmt::format("only {} windows of the twin line up with the log's reference; cannot fit its noise floor", n));
+    }
+    double real_ms = 0.0, noise_ms = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      real_ms += std::pow(v[0][k] - v[1][k], 2);
+      noise_ms += std::pow(v[2][k] - v[1][k], 2);
+    }
+    sigma[static_cast<std::size_t>(c)] = std::sqrt(std::max(real_ms - noise_ms, 0.0) / static_cast<double>(n) * t_factor);
   }
   return sigma;
 }
@@ -267,7 +250,7 @@ Twin build_twin(const Log& log, const diagnosis::Diagnosis& d, const TwinOptions
     base.truth.noise_xy = xy;
     base.truth.noise_theta = th;
   } else {
-    base.truth.rate = 100.0;  // relations are taken from it (twin_log)
+    base.truth.rate = 100.0;  // the relations windows are read from it (twin_residuals.h)
   }
   base.motion_noise.window = d.noise_window_s;
 
@@ -287,9 +270,9 @@ Twin build_twin(const Log& log, const diagnosis::Diagnosis& d, const TwinOptions
   if (!start && !log.truth.empty()) start = log.truth.front().pose;
   base.start = extended.start = start.value_or(Pose2{});
 
-  const auto real = nominal_residuals(log, d.noise_window_s);
-  set_floor(base, fit_floor(base, real, log, twin.time_origin, d.noise_window_s, options.calibration_seed));
-  set_floor(extended, fit_floor(extended, real, log, twin.time_origin, d.noise_window_s, options.calibration_seed));
+  const auto windows = residual_windows(log, d.noise_window_s);
+  set_floor(base, fit_floor(base, windows, log, twin.time_origin, options.calibration_seed));
+  set_floor(extended, fit_floor(extended, windows, log, twin.time_origin, options.calibration_seed));
 
   const auto describe = [&](Scenario& s, const char* model) {
     s.name = fmt::format("twin/{}/{}", log.name, model);

@@ -20,7 +20,8 @@
 // scenario's `notes` and in `not_simulated`, never dropped silently.
 //
 // Noise floor: the white motion noise of each twin (motion_noise, per window of the
-// diagnosis's noise_window_s) is fitted by moment matching on windows paired in time: with r the
+// diagnosis's noise_window_s) is fitted by moment matching on the log's own windows (the twin
+// replays its odometry, so its reference can be read over exactly those windows): with r the
 // nominal-model window residuals (x along, y left, θ) of a log, r_det those of the twin without
 // any noise and r_0 those of the twin with every noise but the floor,
 //   σ_c² = max(mean((r_real − r_det)_c²) − mean((r_0 − r_det)_c²), 0)       for c = x, y, θ,
@@ -69,10 +70,9 @@ std::vector<CauseMapping> apply_causes(const diagnosis::Diagnosis& d, Scenario& 
 // InputError for logs the twin cannot replay (no odometry) or without a position reference.
 Twin build_twin(const Log& log, const diagnosis::Diagnosis& d, const TwinOptions& options = {});
 
-// The log a twin scenario gives, with the real log's kind of reference: for a log with
-// relations, relations at the same (shifted) instant pairs taken from the simulated truth, and
-// no TRUEPOS; otherwise the simulated TRUEPOS. `time_origin` as in Twin.
-Log twin_log(const Scenario& twin, std::uint64_t seed, const Log& real, double time_origin);
+// The log a twin scenario gives (simulated TRUEPOS as its reference, whatever the real log's;
+// twin_residuals.h reads it at the real log's own windows).
+Log twin_log(const Scenario& twin, std::uint64_t seed, const Log& real);
 
 // White noise of a TRUEPOS reference (σ_xy [m], σ_θ [rad]) from the second differences of
 // evenly spaced poses: 1.4826·MAD/√6. {0, 0} with fewer than 20 usable triples.

@@ -29,7 +29,7 @@ TEST(TwinClosedLoop, ExtendedTwinOfAVelocityScaledLogIsCloserThanTheNominalTwin)
   ASSERT_NE(std::find(d.detected.begin(), d.detected.end(), "velocity_scale"), d.detected.end()) << d.verdict;
   const Twin twin = build_twin(g.log, d);
   EXPECT_NEAR(twin.extended.drive.response.velocity_scale, 1.06, 0.01);
-  const auto cells = compare_twins(g.log, twin, 1.0, 2, 3);
+  const auto cells = compare_twins(g.log, twin, {1.0}, 2, 3);
   const auto& x = find(cells, "x");
   for (const auto& c : cells) {
     std::cout << c.window << " " << c.component << ": D nominal " << c.nominal.d << " (p " << c.nominal.p_value
@@ -47,7 +47,7 @@ TEST(TwinClosedLoop, WithNothingHiddenBothTwinsAreEquallyClose) {
   const diagnosis::Diagnosis d = diagnosis::diagnose_log(g.log);
   ASSERT_TRUE(d.detected.empty()) << d.verdict;
   const Twin twin = build_twin(g.log, d);
-  const auto cells = compare_twins(g.log, twin, 1.0, 2, 3);
+  const auto cells = compare_twins(g.log, twin, {1.0}, 2, 3);
   for (const auto& c : cells) {
     std::cout << c.window << " " << c.component << ": D nominal " << c.nominal.d << ", extended " << c.extended.d << "\n";
     EXPECT_DOUBLE_EQ(c.extended.d, c.nominal.d) << c.component;
