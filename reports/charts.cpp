@@ -145,7 +145,9 @@ std::string plot_script(const Plot& plot) {
       const CdfSteps c = empirical_cdf(plot.series[i].y);
       const std::string block = fmt::format("s{}", i);
       s += datablock(block, c.x, c.y);
-      terms.push_back(fmt::format("${} using 1:2 with steps lw 2 lc rgb '{}' title {}", block, i == 0 ? "#000000" : kColours[i % 8],
+      // The first sample (the reference) in black; later ones dashed in turn, so equal curves stay visible.
+      terms.push_back(fmt::format("${} using 1:2 with steps lw {} dt {} lc rgb '{}' title {}", block, i == 0 ? 2.5 : 2.0,
+                                  i == 0 ? 1 : static_cast<int>(i), i == 0 ? "#000000" : kColours[i % 8],
                                   quote(plot.series[i].name)));
     }
   } else if (plot.kind == "histogram") {

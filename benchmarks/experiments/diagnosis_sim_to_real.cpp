@@ -187,13 +187,15 @@ class DiagnosisSimToReal final : public Experiment {
           "{} — reference: {}; {} paired {} windows. Extended twin's causes:{}{}\n  Noise floor per {:g} s window "
           "(moment-matched): nominal σ = ({:.3g} m, {:.3g} m, {:.3g} rad), extended σ = ({:.3g} m, {:.3g} m, {:.3g} rad); "
           "the diagnosis's own nominal floor ({:.3g} m, {:.3g} m, {:.3g} rad).\n  KS distance of the residual "
-          "distributions, real vs twin:{}\n  Mean ratio {:.2f}: the extended model {} halve the nominal model's distance "
-          "({} of {} distances halved).",
+          "distributions, real vs twin:{}\n  Mean ratio {:.2f}: {} ({} of {} distances halved).",
           ds, o.reference, o.windows, o.cells.empty() ? "" : o.cells.front().window, causes,
           o.twin.not_simulated.empty() ? "" : "\n  NOT simulated: " + fmt::format("{}", fmt::join(o.twin.not_simulated, ", ")),
           nf.window, nf.sigma_along, nf.sigma_left, nf.sigma_heading, ef.sigma_along, ef.sigma_left, ef.sigma_heading,
           o.twin.diagnosis_floor[0], o.twin.diagnosis_floor[1], o.twin.diagnosis_floor[2], table, overall,
-          halved == o.cells.size() ? "does" : "does NOT", halved, o.cells.size()));
+          o.twin.causes.empty()              ? "no cause kept, so nothing to gain: both twins are the same"
+          : halved == o.cells.size()         ? "the extended model halves every distance of the nominal one"
+                                             : "the extended model does NOT halve every distance of the nominal one",
+          halved, o.cells.size()));
       for (const auto& c : o.cells) {
         if (c.window == "10s") continue;  // one chart per component at the short windows (relations on Freiburg)
         reports::Plot p;
