@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <optional>
 
@@ -28,6 +29,17 @@ std::map<std::string, double> kept_parameters(const diagnosis::Diagnosis& d) {
     for (const auto& e : c.parameters) p[c.id + "." + e.name] = e.value;
   }
   return p;
+}
+
+// A positive finite PARAM value; InputError naming the PARAM otherwise.
+double param_number(const Log& log, const std::string& name) {
+  const std::string& text = log.params.at(name);
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || !(v > 0.0)) {
+    throw InputError(log_label(log), 0, "PARAM " + name + " = '" + text + "': expected a positive number");
+  }
+  return v;
 }
 
 double median_interval(const std::vector<double>& t) {
@@ -227,14 +239,14 @@ Twin build_twin(const Log& log, const diagnosis::Diagnosis& d, const TwinOptions
   base.drive.pause = 0.0;
   if (const auto m = log.nominal_model()) {
     const double cpr = log.params.count("robot_encoder_counts_per_rev")
-                           ? std::stod(log.params.at("robot_encoder_counts_per_rev"))
+                           ? param_number(log, "robot_encoder_counts_per_rev")
                            : 2000.0;
     base.robot.encoder = {1.0, cpr};
     base.robot.nominal = {m->meters_per_tick_left * cpr / kPi, m->meters_per_tick_right * cpr / kPi, m->wheelbase};
   } else {
     // Velocity odometry without a declared model: the diagnosis's default wheelbase, 0.1 mm ticks.
     const auto it = log.params.find(kParamWheelbase);
-    base.robot.nominal.wheelbase = it != log.params.end() ? std::stod(it->second) : 0.5;
+    base.robot.nominal.wheelbase = it != log.params.end() ? param_number(log, kParamWheelbase) : 0.5;
   }
   base.robot.actual = base.robot.nominal;
   std::vector<double> times;
