@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -168,6 +169,20 @@ class DiagnosisSimToReal final : public Experiment {
         table += fmt::format("\n  {:<9} {:<5} D nominal {:.3f} (p {:.2g}), extended {:.3f} (p {:.2g}), ratio {:.2f}{}", c.window,
                              c.component, c.nominal.d, c.nominal.p_value, c.extended.d, c.extended.p_value, c.ratio(),
                              c.ratio() <= goal ? "" : "  ← not halved");
+      }
+      // The noise floors: moment-matched per twin, and the diagnosis's own ML fit of the nominal one
+      // (an independent estimate of the same quantity as the nominal twin's).
+      const auto& nfl = o.twin.nominal.motion_noise;
+      const auto& efl = o.twin.extended.motion_noise;
+      const std::array<std::pair<const char*, const char*>, 3> comps{{{"x", "m"}, {"y", "m"}, {"theta", "rad"}}};
+      const std::array<double, 3> nominal_floor{nfl.sigma_along, nfl.sigma_left, nfl.sigma_heading};
+      const std::array<double, 3> extended_floor{efl.sigma_along, efl.sigma_left, efl.sigma_heading};
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::string v = std::string("noise_floor_sigma_") + comps[k].first;
+        out.results.push_back(reports::make_estimate("nominal_twin", ds, v, comps[k].second, nominal_floor[k], 0.0, o.windows));
+        out.results.push_back(reports::make_estimate("extended_twin", ds, v, comps[k].second, extended_floor[k], 0.0, o.windows));
+        out.results.push_back(
+            reports::make_estimate("diagnosis_ml", ds, v, comps[k].second, o.twin.diagnosis_floor[k], 0.0, o.windows));
       }
       const double overall = sum_nom > 0.0 ? sum_ext / sum_nom : 1.0;
       out.results.push_back(reports::make_estimate("extended_vs_nominal", ds, "ks_distance_ratio_mean", "", overall, 0.0,
