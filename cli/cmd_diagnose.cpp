@@ -1,12 +1,15 @@
-// `locbench diagnose LOG [--relations R] [--report out.json]`: what the nominal model a log
+// `locbench diagnose LOG [--relations R] [--report out.json] [--scenario twin.json]`: what the nominal model a log
 // declares gets wrong — residual tests, named causes with fitted parameters and 95% intervals,
 // held-out gain, unexplained structure, verdict (algorithms/diagnosis/diagnosis.h).
 // LOG is a CARMEN log (ENCODER/ODOM with TRUEPOS or COMPASS), an MRCLAM folder (#robotN), a
 // catalog dataset name (`locbench list`: aces, intel, mrclam6_robot1, …), or a histogram JSON.
+// --scenario writes the log's synthetic twin under the extended model (the nominal model plus
+// every kept cause) as a simulator scenario (datasets/diagnosis/twin_scenario.h).
 #include <fmt/format.h>
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <iostream>
 #include <stdexcept>
 
@@ -14,8 +17,10 @@
 #include "algorithms/diagnosis/diagnosis.h"
 #include "cli/commands.h"
 #include "datasets/catalog/dataset_catalog.h"
+#include "datasets/diagnosis/twin_scenario.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/log/data_root.h"
+#include "datasets/sim/scenario_json.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
@@ -27,6 +32,7 @@ struct DiagnoseArgs {
   std::string input;
   std::string relations;
   std::string report;
+  std::string scenario;
   std::string data;
   double false_alarm = 0.01;
   double window = 1.0;
@@ -71,14 +77,71 @@ void print(const diagnosis::Diagnosis& d) {
   std::cout << "verdict: " << d.verdict << std::endl;
 }
 
+// An output path must not name an input: that would overwrite the data it was computed from.
+void refuse_overwriting_input(const std::string& out, const std::string& option, const DiagnoseArgs& a) {
+  if (out.empty()) return;
+  for (const std::string& in : {a.input, a.relations}) {
+    std::error_code ec;
+    if (!in.empty() && std::filesystem::exists(in) && std::filesystem::equivalent(in, out, ec)) {
+      throw UsageError(option + " " + out + " is an input of this command; choose another file");
+    }
+  }
+}
+
+// Writes `text` to a temporary file beside `path`, then renames it over `path`: a reader never
+// sees half a file, and a failed write leaves no file behind.
+void write_whole_file(const std::string& path, const std::string& text, const std::string& what) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(path, 0, "cannot write the " + what + " (the folder is missing or not writable)");
+    out << text;
+    out.flush();
+    if (!out) {
+      std::filesystem::remove(tmp);
+      throw InputError(path, 0, "could not write the whole " + what);
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw InputError(path, 0, "cannot write the " + what + ": " + ec.message());
+  }
+}
+
+void print_twin(const sim::Twin& twin) {
+  for (const auto& m : twin.causes) {
+    std::cout << fmt::format("twin: {:<22} {}\n", m.id, m.how);
+  }
+  if (twin.causes.empty()) std::cout << "twin: no cause kept — the extended twin is the nominal one\n";
+  if (!twin.not_simulated.empty()) {
+    std::string ids;
+    for (const auto& id : twin.not_simulated) ids += (ids.empty() ? "" : ", ") + id;
+    std::cout << "twin: NOT simulated (kept but without a simulator mapping): " << ids << "\n";
+  }
+  const auto& n = twin.extended.motion_noise;
+  std::cout << fmt::format("twin: noise floor per {:g} s window σ_x = {:.4g} m, σ_y = {:.4g} m, σ_θ = {:.4g} rad\n",
+                           n.window, n.sigma_along, n.sigma_left, n.sigma_heading);
+}
+
 int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
   diagnosis::DiagnosisOptions opt;
   opt.false_alarm = a.false_alarm;
   opt.windows.duration = a.window;
   if (!(a.false_alarm > 0.0 && a.false_alarm < 0.5)) throw UsageError("--false-alarm must be in (0, 0.5)");
   if (!(a.window > 0.0)) throw UsageError("--window must be > 0 s");
+  refuse_overwriting_input(a.report, "--report", a);
+  refuse_overwriting_input(a.scenario, "--scenario", a);
+  if (!a.scenario.empty() && !a.report.empty() && a.scenario == a.report) {
+    throw UsageError("--scenario and --report name the same file " + a.scenario);
+  }
   diagnosis::Diagnosis d;
+  std::optional<Log> log_read;
   if (ends_with(a.input, ".json")) {
+    if (!a.scenario.empty()) {
+      throw UsageError("--scenario needs a log: a histogram of residuals has no motion to replay");
+    }
     std::ifstream in(a.input);
     if (!in) throw InputError(a.input, 0, "cannot open the histogram file");
     nlohmann::json j;
@@ -99,8 +162,15 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
     if (!a.relations.empty()) attach_relations(log, a.relations);
     if (log.source.empty()) log.source = a.input;
     d = diagnosis::diagnose_log(log, opt);
+    log_read = std::move(log);
   }
   print(d);
+  if (!a.scenario.empty()) {
+    const sim::Twin twin = sim::build_twin(*log_read, d);
+    print_twin(twin);
+    write_whole_file(a.scenario, sim::to_json(twin.extended).dump(2) + "\n", "scenario");
+    std::cerr << "wrote " << a.scenario << " (simulate it with `locbench simulate " << a.scenario << " -o twin.clf`)\n";
+  }
   if (!a.report.empty()) {
     nlohmann::json j = diagnosis::to_json(d);
     nlohmann::json options;
@@ -110,9 +180,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
     if (const auto errors = reports::validate_diagnosis_json(j); !errors.empty()) {
       throw std::logic_error("the diagnosis report violates reports/diagnosis.schema.json: " + errors.front());
     }
-    std::ofstream out(a.report);
-    if (!out) throw InputError(a.report, 0, "cannot write the report");
-    out << j.dump(2) << '\n';
+    write_whole_file(a.report, j.dump(2) + "\n", "report");
     std::cerr << "wrote " << a.report << '\n';
   }
   return kExitOk;
@@ -130,6 +198,9 @@ Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
       ->required();
   cmd->add_option("--relations", args->relations, "Reference relations for the log's ODOM (.relations[.gz])");
   cmd->add_option("--report", args->report, "Write the diagnosis (locbench.diagnosis/1 JSON) here");
+  cmd->add_option("--scenario", args->scenario,
+                  "Write the log's synthetic twin (its odometry replayed under the nominal model plus every kept "
+                  "cause) as a simulator scenario JSON for `locbench simulate`");
   cmd->add_option("--false-alarm", args->false_alarm, "False-alarm level per log and channel (default 0.01)");
   cmd->add_option("--window", args->window, "Residual window length [s] (default 1)");
   cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");

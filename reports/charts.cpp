@@ -112,6 +112,24 @@ std::vector<Plot> metric_histograms(const ExperimentResults& results, std::size_
   return plots;
 }
 
+CdfSteps empirical_cdf(std::vector<double> samples, std::size_t max_points) {
+  std::erase_if(samples, [](double v) { return !std::isfinite(v); });
+  std::sort(samples.begin(), samples.end());
+  CdfSteps c;
+  const std::size_t n = samples.size();
+  if (n == 0) return c;
+  const std::size_t stride = std::max<std::size_t>(1, (n + max_points - 1) / std::max<std::size_t>(max_points, 1));
+  for (std::size_t i = stride - 1; i < n; i += stride) {
+    c.x.push_back(samples[i]);
+    c.y.push_back(static_cast<double>(i + 1) / static_cast<double>(n));
+  }
+  if (c.y.back() < 1.0) {
+    c.x.push_back(samples.back());
+    c.y.push_back(1.0);
+  }
+  return c;
+}
+
 std::string plot_script(const Plot& plot) {
   std::string s =
       "set terminal svg size 720,420 dynamic noenhanced font 'sans,11' background '#ffffff'\n"
@@ -121,7 +139,18 @@ std::string plot_script(const Plot& plot) {
   s += "set xlabel " + quote(axis_label(plot.x_label, plot.x_unit)) + "\n";
   s += "set ylabel " + quote(axis_label(plot.y_label, plot.y_unit)) + "\n";
   std::vector<std::string> terms;
-  if (plot.kind == "histogram") {
+  if (plot.kind == "cdf") {
+    s += "set yrange [0:1]\nset key inside left top box\n";
+    for (std::size_t i = 0; i < plot.series.size(); ++i) {
+      const CdfSteps c = empirical_cdf(plot.series[i].y);
+      const std::string block = fmt::format("s{}", i);
+      s += datablock(block, c.x, c.y);
+      // The first sample (the reference) in black; later ones dashed in turn, so equal curves stay visible.
+      terms.push_back(fmt::format("${} using 1:2 with steps lw {} dt {} lc rgb '{}' title {}", block, i == 0 ? 2.5 : 2.0,
+                                  i == 0 ? 1 : static_cast<int>(i), i == 0 ? "#000000" : kColours[i % 8],
+                                  quote(plot.series[i].name)));
+    }
+  } else if (plot.kind == "histogram") {
     std::vector<std::vector<double>> samples;
     std::size_t n = 0;
     for (const auto& ps : plot.series) {

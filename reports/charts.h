@@ -28,6 +28,13 @@ Plot histogram_plot(std::string name, std::string title, std::string x_label, st
 std::vector<Plot> metric_histograms(const ExperimentResults& results, std::size_t min_values = 5,
                                     std::size_t max_plots = 6);
 
+// The empirical CDF of a sample as step corners: x sorted, y = i/n after the i-th value (finite
+// values only; at most `max_points` corners, evenly thinned, the last one always kept).
+struct CdfSteps {
+  std::vector<double> x, y;
+};
+CdfSteps empirical_cdf(std::vector<double> samples, std::size_t max_points = 400);
+
 // The gnuplot script drawing `plot` as SVG on stdout (terminal svg, no JavaScript).
 std::string plot_script(const Plot& plot);
 

@@ -78,7 +78,8 @@ struct PlotSeries {
 };
 // A chart a reader wants beside the numbers (drawn by `locbench report`). Kinds:
 // "trajectory" (x, y in the plane, equal axes), "error_vs_distance" (error against distance
-// travelled), "histogram" (series y values are samples; x is unused and empty).
+// travelled), "histogram" (series y values are samples; x is unused and empty), "cdf" (series y
+// values are samples drawn as overlaid empirical CDFs; x is unused and empty).
 struct Plot {
   std::string name;  // stable id within the experiment, e.g. "trajectories_run_0"
   std::string kind;

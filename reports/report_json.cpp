@@ -69,7 +69,7 @@ Plot plot_from_json(const json& j, const std::string& source) {
     ps.name = get<std::string>(s, "name", source, "plot series");
     ps.x = get<std::vector<double>>(s, "x", source, "plot series");
     ps.y = get<std::vector<double>>(s, "y", source, "plot series");
-    if (p.kind != "histogram" && ps.x.size() != ps.y.size()) {
+    if (p.kind != "histogram" && p.kind != "cdf" && ps.x.size() != ps.y.size()) {
       throw InputError(source, 0, "plot " + p.name + ", series " + ps.name +
                                       ": x and y differ in length");
     }

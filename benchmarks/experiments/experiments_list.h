@@ -30,6 +30,7 @@ std::unique_ptr<Experiment> make_noise_real_logs();
 std::unique_ptr<Experiment> make_diagnosis_false_alarms();
 std::unique_ptr<Experiment> make_diagnosis_power();
 std::unique_ptr<Experiment> make_diagnosis_real_logs();
+std::unique_ptr<Experiment> make_diagnosis_sim_to_real();
 std::unique_ptr<Experiment> make_global_topological_example();
 std::unique_ptr<Experiment> make_global_sim();
 std::unique_ptr<Experiment> make_global_real_logs();

@@ -32,6 +32,7 @@ const std::vector<std::unique_ptr<Experiment>>& all_experiments() {
     v.push_back(make_diagnosis_false_alarms());
     v.push_back(make_diagnosis_power());
     v.push_back(make_diagnosis_real_logs());
+    v.push_back(make_diagnosis_sim_to_real());
     v.push_back(make_global_topological_example());
     v.push_back(make_global_sim());
     v.push_back(make_global_real_logs());

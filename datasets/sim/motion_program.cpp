@@ -68,6 +68,8 @@ std::vector<Instruction> build_program(const MotionConfig& motion, const DriveCo
         add_leg(p, go, drive.pause);
       }
       break;
+    case MotionKind::kReplay:
+      break;  // no legs: the simulator follows motion.commands (replay_wheel_speeds)
   }
   return p;
 }
@@ -131,6 +133,21 @@ Leg plan_leg(const Instruction& in, const NominalModel& m, const DriveConfig& dr
       std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(duration / step - 1e-6)));
   leg.wheel_speed = 0.5 * (travel_left + travel_right) / (static_cast<double>(leg.steps) * step);
   return leg;
+}
+
+WheelSpeeds replay_wheel_speeds(const BodyVelocity& b, double wheelbase) {
+  return {b.v - 0.5 * b.omega * wheelbase, b.v + 0.5 * b.omega * wheelbase};
+}
+
+MotionPhase replay_phase(const WheelSpeeds& u) {
+  if (u.left == 0.0 && u.right == 0.0) return MotionPhase::kIdle;
+  return u.left * u.right < 0.0 ? MotionPhase::kTurn : MotionPhase::kStraight;
+}
+
+std::size_t replay_command_index(const std::vector<ReplayCommand>& commands, double t) {
+  const auto it = std::upper_bound(commands.begin(), commands.end(), t,
+                                   [](double v, const ReplayCommand& c) { return v < c.t; });
+  return static_cast<std::size_t>(it - commands.begin());
 }
 
 }  // namespace locbench::sim

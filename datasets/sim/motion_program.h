@@ -67,4 +67,19 @@ struct Leg {
 // kStraight, kTurn or kPause → a leg; steps == 0 means nothing to do.
 Leg plan_leg(const Instruction& in, const NominalModel& m, const DriveConfig& drive, double step);
 
+// Replayed motion (MotionKind::kReplay) has no legs: at every physics step the command in force
+// (after the drive's response, drive_response.h) is turned into nominal wheel speeds, which the
+// servo follows in (nominal) ticks, so the true geometry acts as it does on legs.
+struct WheelSpeeds {
+  double left = 0.0, right = 0.0;  // [m/s]
+};
+// u_L = v − ω·B/2, u_R = v + ω·B/2 (eq. 1.2 inverted).
+WheelSpeeds replay_wheel_speeds(const BodyVelocity& b, double wheelbase);
+// Idle when both wheels stand, a turn when they turn in opposite directions, else straight
+// (which slip profile applies).
+MotionPhase replay_phase(const WheelSpeeds& u);
+// The number of commands with t ≤ time: the command in force is the one before that index
+// (none when 0).
+std::size_t replay_command_index(const std::vector<ReplayCommand>& commands, double time);
+
 }  // namespace locbench::sim

@@ -52,6 +52,28 @@ void check_slip(const SlipProfile& p, SlipRateUnit unit, const std::string& fiel
   require(p.magnitude_min <= p.magnitude_max, field + ".magnitude_min", "<= magnitude_max");
 }
 
+void validate_replay(const Scenario& s) {
+  const auto& c = s.motion.commands;
+  require(c.size() >= 2, "motion.commands", "at least 2 commands");
+  const double latency =
+      s.odometry.timing.enabled ? s.odometry.timing.latency : s.encoders.timing.latency;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const std::string at = "motion.commands[" + std::to_string(i) + "]";
+    finite(c[i].t, at + "[0]");
+    finite(c[i].v, at + "[1]");
+    finite(c[i].omega, at + "[2]");
+    if (i > 0) require(c[i].t > c[i - 1].t, at + "[0]", "greater than the previous command's time");
+  }
+  require(c.front().t - latency >= 0.0, "motion.commands[0][0] − the odometry latency",
+          ">= 0 (the robot cannot execute a command before the simulation starts)");
+  const DriveResponse& r = s.drive.response;
+  non_negative(r.time_constant, "drive.response.time_constant");
+  finite(r.velocity_scale, "drive.response.velocity_scale");
+  finite(r.speed_slope, "drive.response.speed_slope");
+  finite(r.turn_rate_scale, "drive.response.turn_rate_scale");
+  finite(r.turn_rate_bias, "drive.response.turn_rate_bias");
+}
+
 }  // namespace
 
 void validate(const Scenario& s) {
@@ -84,12 +106,21 @@ void validate(const Scenario& s) {
     case MotionKind::kWaypoints:
       require(!s.motion.waypoints.empty(), "motion.waypoints", "non-empty");
       break;
+    case MotionKind::kReplay:
+      validate_replay(s);
+      break;
   }
 
   positive(s.physics.step, "physics.step");
   require(s.physics.step <= 0.1, "physics.step", "<= 0.1 s");
   non_negative(s.physics.trajectory_rate, "physics.trajectory_rate");
 
+  positive(s.motion_noise.window, "motion_noise.window");
+  non_negative(s.motion_noise.sigma_along, "motion_noise.sigma_along");
+  non_negative(s.motion_noise.sigma_left, "motion_noise.sigma_left");
+  non_negative(s.motion_noise.sigma_heading, "motion_noise.sigma_heading");
+  require(std::isfinite(s.motion_noise.dof) && (s.motion_noise.dof == 0.0 || s.motion_noise.dof > 0.0),
+          "motion_noise.dof", "0 (Gaussian) or > 0");
   non_negative(s.floor.k_left, "floor.k_left");
   non_negative(s.floor.k_right, "floor.k_right");
   check_slip(s.slip.straight, s.slip.unit, "slip.straight");
@@ -118,6 +149,8 @@ void validate(const Scenario& s) {
   require(s.laser.dropout + s.laser.spurious <= 1.0, "laser.dropout + laser.spurious", "<= 1");
 
   non_negative(s.truth.rate, "truth.rate");
+  non_negative(s.truth.noise_xy, "truth.noise_xy");
+  non_negative(s.truth.noise_theta, "truth.noise_theta");
 }
 
 }  // namespace locbench::sim

@@ -10,6 +10,8 @@
 #include "algorithms/core/pose2.h"
 #include "algorithms/core/robot_params.h"
 #include "algorithms/core/units.h"
+#include "datasets/sim/drive_response.h"
+#include "datasets/sim/motion_noise.h"
 
 namespace locbench::sim {
 
@@ -51,12 +53,24 @@ struct DriveConfig {
   // Trilobot limitation (§2.4): both wheels always get the same count (the rounded mean of
   // the per-wheel counts), so unequal nominal diameters cannot be compensated.
   bool equal_wheel_ticks = false;
+  // Replayed motion only: how the drive turns the replayed command into true motion.
+  DriveResponse response;
 };
 
 enum class MotionKind {
   kStraight,   // one straight leg of `distance` (a corridor run when the world is a corridor)
   kUmbmark,    // bidirectional square: `runs` clockwise then `runs` counter-clockwise
   kWaypoints,  // for each waypoint: turn on the spot towards it, then drive straight to it
+  kReplay,     // a logged command or odometry velocity sequence (a log's synthetic twin)
+};
+
+// One replayed command: from logged time t on (until the next command) the robot is told to move
+// at (v, ω). The robot executes it from true time t − latency of its odometry sensor (ODOM when
+// enabled, else ENCODER), the convention of SensorTiming::latency.
+struct ReplayCommand {
+  double t = 0.0;      // [s], ≥ 0, increasing
+  double v = 0.0;      // [m/s]
+  double omega = 0.0;  // [rad/s]
 };
 
 struct MotionConfig {
@@ -65,6 +79,7 @@ struct MotionConfig {
   double side = 4.0;                       // kUmbmark square side L [m]
   int runs = 5;                            // kUmbmark runs per direction
   std::vector<Eigen::Vector2d> waypoints;  // kWaypoints, world frame [m]
+  std::vector<ReplayCommand> commands;     // kReplay
 };
 
 struct PhysicsConfig {
@@ -161,6 +176,9 @@ struct LaserConfig {
 // Ground-truth records (TRUEPOS) in the log.
 struct TruthConfig {
   double rate = 10.0;  // [Hz]; 0 = none
+  // White noise of the reference itself (a motion-capture system's jitter), per record.
+  double noise_xy = 0.0;     // [m], each of x and y
+  double noise_theta = 0.0;  // [rad]
 };
 
 struct Scenario {
@@ -173,12 +191,15 @@ struct Scenario {
   MotionConfig motion;
   PhysicsConfig physics;
   FloorNoiseConfig floor;
+  MotionNoiseConfig motion_noise;
   SlipConfig slip;
   EncoderConfig encoders;
   OdometryConfig odometry;
   CompassConfig compass;
   LaserConfig laser;
   TruthConfig truth;
+  // Free text a reader should know (e.g. what a diagnosis twin could not simulate).
+  std::vector<std::string> notes;
 };
 
 // Throws UsageError naming the first invalid field, e.g. "drive.speed must be > 0".

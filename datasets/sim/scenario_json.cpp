@@ -20,10 +20,11 @@ constexpr std::array<std::pair<WorldKind, const char*>, 5> kWorldKinds{{
     {WorldKind::kFile, "file"},
     {WorldKind::kInline, "inline"},
 }};
-constexpr std::array<std::pair<MotionKind, const char*>, 3> kMotionKinds{{
+constexpr std::array<std::pair<MotionKind, const char*>, 4> kMotionKinds{{
     {MotionKind::kStraight, "straight"},
     {MotionKind::kUmbmark, "umbmark"},
     {MotionKind::kWaypoints, "waypoints"},
+    {MotionKind::kReplay, "replay"},
 }};
 constexpr std::array<std::pair<SlipRateUnit, const char*>, 2> kSlipUnits{{
     {SlipRateUnit::kPerSample, "per_sample"},
@@ -158,6 +159,48 @@ void read_motion(JsonObject o, MotionConfig& m) {
       m.waypoints.push_back(p);
     }
   }
+  if (const auto* cmds = o.raw("commands")) {
+    if (!cmds->is_array()) o.fail("commands", "expected an array of [t, v, omega], found " + json_type_name(*cmds));
+    m.commands.clear();
+    m.commands.reserve(cmds->size());
+    for (std::size_t i = 0; i < cmds->size(); ++i) {
+      double c[3];
+      read_numbers((*cmds)[i], c, 3, o.path_of("commands") + "[" + std::to_string(i) + "]", o.source());
+      m.commands.push_back({c[0], c[1], c[2]});
+    }
+  }
+  o.finish();
+}
+
+json response_json(const DriveResponse& r) {
+  return {{"time_constant", r.time_constant},
+          {"velocity_scale", r.velocity_scale},
+          {"speed_slope", r.speed_slope},
+          {"turn_rate_scale", r.turn_rate_scale},
+          {"turn_rate_bias", r.turn_rate_bias}};
+}
+void read_response(JsonObject o, DriveResponse& r) {
+  o.read("time_constant", r.time_constant);
+  o.read("velocity_scale", r.velocity_scale);
+  o.read("speed_slope", r.speed_slope);
+  o.read("turn_rate_scale", r.turn_rate_scale);
+  o.read("turn_rate_bias", r.turn_rate_bias);
+  o.finish();
+}
+
+json motion_noise_json(const MotionNoiseConfig& n) {
+  return {{"window", n.window},
+          {"sigma_along", n.sigma_along},
+          {"sigma_left", n.sigma_left},
+          {"sigma_heading", n.sigma_heading},
+          {"dof", n.dof}};
+}
+void read_motion_noise(JsonObject o, MotionNoiseConfig& n) {
+  o.read("window", n.window);
+  o.read("sigma_along", n.sigma_along);
+  o.read("sigma_left", n.sigma_left);
+  o.read("sigma_heading", n.sigma_heading);
+  o.read("dof", n.dof);
   o.finish();
 }
 
@@ -203,6 +246,8 @@ json to_json(const Scenario& s) {
   for (const auto& seg : s.world.segments) segments.push_back({seg[0], seg[1], seg[2], seg[3]});
   json waypoints = json::array();
   for (const auto& w : s.motion.waypoints) waypoints.push_back(vec(w));
+  json commands = json::array();
+  for (const auto& c : s.motion.commands) commands.push_back({c.t, c.v, c.omega});
   json zones = json::array();
   for (const auto& z : s.compass.zones) zones.push_back(zone_json(z));
 
@@ -243,15 +288,18 @@ json to_json(const Scenario& s) {
        {{"speed", s.drive.speed},
         {"turn_rate", s.drive.turn_rate},
         {"pause", s.drive.pause},
-        {"equal_wheel_ticks", s.drive.equal_wheel_ticks}}},
+        {"equal_wheel_ticks", s.drive.equal_wheel_ticks},
+        {"response", response_json(s.drive.response)}}},
       {"motion",
        {{"kind", to_string(s.motion.kind)},
         {"distance", s.motion.distance},
         {"side", s.motion.side},
         {"runs", s.motion.runs},
-        {"waypoints", waypoints}}},
+        {"waypoints", waypoints},
+        {"commands", commands}}},
       {"physics", {{"step", s.physics.step}, {"trajectory_rate", s.physics.trajectory_rate}}},
       {"floor", {{"k_left", s.floor.k_left}, {"k_right", s.floor.k_right}}},
+      {"motion_noise", motion_noise_json(s.motion_noise)},
       {"slip",
        {{"unit", to_string(s.slip.unit)},
         {"straight", slip_profile_json(s.slip.straight)},
@@ -260,7 +308,8 @@ json to_json(const Scenario& s) {
       {"odometry", timing_json(s.odometry.timing)},
       {"compass", compass},
       {"laser", laser},
-      {"truth", {{"rate", s.truth.rate}}},
+      {"truth", {{"rate", s.truth.rate}, {"noise_xy", s.truth.noise_xy}, {"noise_theta", s.truth.noise_theta}}},
+      {"notes", s.notes},
   };
 }
 
@@ -298,6 +347,7 @@ Scenario scenario_from_json(const json& j, const std::string& source) {
     drive.read("turn_rate", s.drive.turn_rate);
     drive.read("pause", s.drive.pause);
     drive.read("equal_wheel_ticks", s.drive.equal_wheel_ticks);
+    read_response(drive.object("response"), s.drive.response);
     drive.finish();
   }
   read_motion(top.object("motion"), s.motion);
@@ -313,6 +363,7 @@ Scenario scenario_from_json(const json& j, const std::string& source) {
     floor.read("k_right", s.floor.k_right);
     floor.finish();
   }
+  read_motion_noise(top.object("motion_noise"), s.motion_noise);
   {
     JsonObject slip = top.object("slip");
     read_enum(slip, "unit", kSlipUnits, s.slip.unit);
@@ -331,7 +382,19 @@ Scenario scenario_from_json(const json& j, const std::string& source) {
   {
     JsonObject truth = top.object("truth");
     truth.read("rate", s.truth.rate);
+    truth.read("noise_xy", s.truth.noise_xy);
+    truth.read("noise_theta", s.truth.noise_theta);
     truth.finish();
+  }
+  if (const auto* notes = top.raw("notes")) {
+    if (!notes->is_array()) top.fail("notes", "expected an array of strings, found " + json_type_name(*notes));
+    s.notes.clear();
+    for (std::size_t i = 0; i < notes->size(); ++i) {
+      if (!(*notes)[i].is_string()) {
+        top.fail("notes", "[" + std::to_string(i) + "]: expected a string, found " + json_type_name((*notes)[i]));
+      }
+      s.notes.push_back((*notes)[i].get<std::string>());
+    }
   }
   top.finish();
   try {

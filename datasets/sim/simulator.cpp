@@ -58,6 +58,10 @@ class Simulation {
                stream(seed, NoiseStream::kFloorRight)),
         slip_(s.slip, stream(seed, NoiseStream::kSlip)),
         compass_(s.compass, stream(seed, NoiseStream::kCompass)),
+        motion_noise_(s.motion_noise, stream(seed, NoiseStream::kMotionNoise)),
+        truth_noise_(stream(seed, NoiseStream::kTruth)),
+        replay_(s.motion.kind == MotionKind::kReplay),
+        lag_(s.drive.response.time_constant),
         // The encoder clock is also the slip/noise sample grid; without encoders it is 10 Hz.
         grid_(s.encoders.timing.enabled ? s.encoders.timing : every(10.0), dt_,
               stream(seed, NoiseStream::kEncoderClock)),
@@ -80,12 +84,63 @@ class Simulation {
   }
 
   SimulationResult run() {
+    if (replay_) return run_replay();
     emit();
     while (ensure_leg()) {
       if (interval_pending_) start_interval();
       step();
       emit();
       if (leg_i_ == leg_.steps) has_leg_ = false;
+    }
+    if (active_) close_slip_event(now());
+    result_.duration = now();
+    return std::move(result_);
+  }
+
+  // Replayed motion: command i holds from true time t_i − latency; its odometry record (ODOM
+  // with the command's pose, v, ω, and/or ENCODER with the counts reached) is stamped t_i.
+  SimulationResult run_replay() {
+    const auto& cmds = sc_.motion.commands;
+    const bool odom = sc_.odometry.timing.enabled;
+    const double latency = odom ? sc_.odometry.timing.latency : sc_.encoders.timing.latency;
+    // Wheels start half a tick into a count, so that summed fractional increments of a whole
+    // number of ticks never fall just short of it.
+    left_.q = right_.q = 0.5;
+    Pose2 logged = sc_.start;  // the command sequence integrated (midpoint rule), as logged
+    std::size_t next = 0;      // next command whose record is due
+    const auto record_due = [&] {
+      while (next < cmds.size() && cmds[next].t - latency <= now() + 0.5 * dt_) {
+        if (next > 0) {
+          const ReplayCommand& c = cmds[next - 1];
+          const double span = cmds[next].t - c.t;
+          const double dth = c.omega * span, mid = logged.theta + 0.5 * dth;
+          logged = Pose2(logged.x + c.v * span * std::cos(mid), logged.y + c.v * span * std::sin(mid),
+                         logged.theta + dth);
+        }
+        if (odom) result_.log.odometry.push_back({cmds[next].t, logged, cmds[next].v, cmds[next].omega});
+        if (sc_.encoders.timing.enabled) {
+          result_.log.encoders.push_back({cmds[next].t, left_.count(), right_.count()});
+        }
+        ++next;
+      }
+    };
+    record_due();
+    emit();
+    const auto end = static_cast<std::int64_t>(std::llround((cmds.back().t - latency) / dt_));
+    while (n_ < end) {
+      const std::size_t in_force = replay_command_index(cmds, now() + latency + 0.5 * dt_);
+      const BodyVelocity command =
+          in_force == 0 ? BodyVelocity{} : BodyVelocity{cmds[in_force - 1].v, cmds[in_force - 1].omega};
+      const BodyVelocity drive = apply_response(sc_.drive.response, lag_.step(command, dt_));
+      const WheelSpeeds u = replay_wheel_speeds(drive, nominal_.wheelbase);
+      leg_.phase = replay_phase(u);
+      leg_.wheel_speed = 0.5 * (std::abs(u.left) + std::abs(u.right));
+      if (interval_pending_) start_interval();
+      ++n_;
+      advance(left_.q + u.left * dt_ / nominal_.meters_per_tick_left,
+              right_.q + u.right * dt_ / nominal_.meters_per_tick_right);
+      record_due();
+      emit();
     }
     if (active_) close_slip_event(now());
     result_.duration = now();
@@ -209,13 +264,28 @@ class Simulation {
   void step() {
     ++leg_i_;
     ++n_;
-    if (leg_.phase == MotionPhase::kIdle) return;
+    if (leg_.phase == MotionPhase::kIdle) {
+      add_motion_noise();
+      return;
+    }
     const auto at = [&](double q0, std::int64_t ticks) {
       return q0 + static_cast<double>(ticks * leg_i_) / static_cast<double>(leg_.steps);
     };
-    const double gl = move_wheel(left_, at(leg_q0_left_, leg_.ticks.left), Side::kLeft);
-    const double gr = move_wheel(right_, at(leg_q0_right_, leg_.ticks.right), Side::kRight);
+    advance(at(leg_q0_left_, leg_.ticks.left), at(leg_q0_right_, leg_.ticks.right));
+  }
+
+  // The motion noise of the step just taken (motion_noise.h), in the robot frame.
+  void add_motion_noise() {
+    if (sc_.motion_noise.enabled()) truth_ = truth_ * motion_noise_.step(now() - dt_, dt_);
+  }
+
+  // Moves both wheels to their new rim positions [ticks]; moves the true pose; the firmware
+  // integrates the count changes.
+  void advance(double q_left, double q_right) {
+    const double gl = move_wheel(left_, q_left, Side::kLeft);
+    const double gr = move_wheel(right_, q_right, Side::kRight);
     truth_ = arc_step(truth_, gl, gr, robot_.actual.wheelbase);
+    add_motion_noise();
 
     // The robot's firmware integrates every count change with the nominal model (eq. 1.1–1.3).
     const std::int64_t cl = left_.count(), cr = right_.count();
@@ -239,13 +309,13 @@ class Simulation {
       result_.wheel_samples.push_back({t, truth_, left_.count(), right_.count(), left_.rim(),
                                        right_.rim(), left_.ground, right_.ground, left_.slip,
                                        right_.slip});
-      if (sc_.encoders.timing.enabled) {
+      if (sc_.encoders.timing.enabled && !replay_) {
         log.encoders.push_back({t + sc_.encoders.timing.latency, left_.count(), right_.count()});
       }
       grid_.advance();
       interval_pending_ = true;
     }
-    if (odometry_clock_.next_step() == n_) {
+    if (!replay_ && odometry_clock_.next_step() == n_) {
       const double span = t - odo_last_t_;
       const double tv = span > 0.0 ? odo_distance_ / span : 0.0;
       const double rv = span > 0.0 ? odo_rotation_ / span : 0.0;
@@ -269,7 +339,13 @@ class Simulation {
       laser_clock_.advance();
     }
     if (truth_clock_.next_step() == n_) {
-      log.truth.push_back({t, truth_, belief_});
+      Pose2 reference = truth_;
+      if (sc_.truth.noise_xy > 0.0 || sc_.truth.noise_theta > 0.0) {
+        reference = Pose2(truth_.x + truth_noise_.normal(0.0, sc_.truth.noise_xy),
+                          truth_.y + truth_noise_.normal(0.0, sc_.truth.noise_xy),
+                          truth_.theta + truth_noise_.normal(0.0, sc_.truth.noise_theta));
+      }
+      log.truth.push_back({t, reference, belief_});
       truth_clock_.advance();
     }
     if (trajectory_clock_.next_step() == n_) {
@@ -286,6 +362,10 @@ class Simulation {
   FloorNoise floor_;
   SlipModel slip_;
   CompassModel compass_;
+  MotionNoise motion_noise_;
+  Rng truth_noise_;
+  bool replay_;
+  DriveLag lag_;
   SensorClock grid_, odometry_clock_, compass_clock_, laser_clock_, truth_clock_, trajectory_clock_;
   std::optional<LaserModel> laser_;
   SimulationResult result_;

@@ -26,6 +26,8 @@ enum class NoiseStream : std::uint64_t {
   kCompass = 7,
   kLaserClock = 8,
   kLaser = 9,
+  kMotionNoise = 10,
+  kTruth = 11,
 };
 
 }  // namespace locbench::sim

@@ -22,6 +22,31 @@ TEST(Histogram, LeavesOutNonFiniteSamplesAndSurvivesAConstantSample) {
   EXPECT_EQ(total, 2);
 }
 
+TEST(EmpiricalCdf, StepsUpByOneOverNAtEachSortedValue) {
+  const CdfSteps c = empirical_cdf({3.0, 1.0, std::numeric_limits<double>::quiet_NaN(), 2.0, 4.0});
+  EXPECT_EQ(c.x, (std::vector<double>{1.0, 2.0, 3.0, 4.0}));
+  EXPECT_EQ(c.y, (std::vector<double>{0.25, 0.5, 0.75, 1.0}));
+  std::vector<double> many;
+  for (int i = 0; i < 1001; ++i) many.push_back(i);
+  const CdfSteps thin = empirical_cdf(many, 100);
+  EXPECT_LE(thin.x.size(), 101u);
+  EXPECT_DOUBLE_EQ(thin.x.back(), 1000.0);  // the last corner is always kept
+  EXPECT_DOUBLE_EQ(thin.y.back(), 1.0);
+  EXPECT_TRUE(empirical_cdf({}).x.empty());
+}
+
+TEST(PlotScript, DrawsACdfChartAsOneStepLinePerSample) {
+  Plot p;
+  p.kind = "cdf";
+  p.title = "x residual";
+  p.series = {{"real log", {}, {0.1, -0.2, 0.3}}, {"nominal twin", {}, {0.0, 0.5}}, {"extended twin", {}, {0.2}}};
+  const std::string s = plot_script(p);
+  EXPECT_NE(s.find("set yrange [0:1]"), std::string::npos);
+  EXPECT_NE(s.find("with steps"), std::string::npos);
+  EXPECT_NE(s.find("-0.2 0.333333333"), std::string::npos) << s;  // the first corner of the real CDF
+  EXPECT_NE(s.find("title 'extended twin'"), std::string::npos);
+}
+
 TEST(MetricHistograms, DrawsErrorsOverMonteCarloRunsGroupedByDatasetAndVariant) {
   ExperimentResults r;
   const std::vector<double> five{1, 2, 3, 4, 5};
