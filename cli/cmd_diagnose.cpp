@@ -15,6 +15,8 @@
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/log/data_root.h"
+#include "reports/json_file.h"
+#include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 
@@ -73,18 +75,16 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
   diagnosis::DiagnosisOptions opt;
   opt.false_alarm = a.false_alarm;
   opt.windows.duration = a.window;
-  if (!(a.false_alarm > 0.0 && a.false_alarm < 0.5)) throw UsageError("--false-alarm must be in (0, 0.5)");
-  if (!(a.window > 0.0)) throw UsageError("--window must be > 0 s");
+  if (!(a.false_alarm >= 1e-12 && a.false_alarm < 0.5)) {
+    throw UsageError(fmt::format("--false-alarm {}: expected a level in [1e-12, 0.5)", a.false_alarm));
+  }
+  if (!(a.window > 0.0 && a.window <= 3600.0)) {
+    throw UsageError(fmt::format("--window {}: expected a length in (0, 3600] s", a.window));
+  }
+  reports::check_outputs({a.input, a.relations}, {{"--report", a.report}});
   diagnosis::Diagnosis d;
   if (ends_with(a.input, ".json")) {
-    std::ifstream in(a.input);
-    if (!in) throw InputError(a.input, 0, "cannot open the histogram file");
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-      throw InputError(a.input, 0, std::string("expected JSON: ") + e.what());
-    }
+    const nlohmann::json j = reports::read_json_file(a.input, "residual histogram (JSON)");
     d = diagnosis::diagnose_histogram(diagnosis::read_histogram(j, a.input), a.input, opt);
   } else {
     Log log;
@@ -105,9 +105,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
     diagnosis::to_json(options, opt);
     j["configuration"] = options;
     j["provenance"] = reports::provenance_to_json(reports::current_provenance(command_line));
-    std::ofstream out(a.report);
-    if (!out) throw InputError(a.report, 0, "cannot write the report");
-    out << j.dump(2) << '\n';
+    reports::write_file_atomically(a.report, j.dump(2) + "\n");
     std::cerr << "wrote " << a.report << '\n';
   }
   return kExitOk;
@@ -125,8 +123,8 @@ Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
       ->required();
   cmd->add_option("--relations", args->relations, "Reference relations for the log's ODOM (.relations[.gz])");
   cmd->add_option("--report", args->report, "Write the diagnosis (locbench.diagnosis/1 JSON) here");
-  cmd->add_option("--false-alarm", args->false_alarm, "False-alarm level per log and channel (default 0.01)");
-  cmd->add_option("--window", args->window, "Residual window length [s] (default 1)");
+  cmd->add_option("--false-alarm", args->false_alarm, "False-alarm level per log and channel, in [1e-12, 0.5) (default 0.01)");
+  cmd->add_option("--window", args->window, "Residual window length [s], in (0, 3600] (default 1)");
   cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
   return [args, command_line] { return diagnose(*args, command_line); };
 }
