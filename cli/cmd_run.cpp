@@ -184,7 +184,11 @@ int run(const RunArgs& args, const std::string& command_line) {
   for (const experiments::Experiment* e : chosen) {
     nlohmann::json config = e->default_config();
     if (overrides.contains(e->name())) {
-      config = experiments::merge_config(config, overrides.at(e->name()));
+      try {
+        config = experiments::merge_config(config, overrides.at(e->name()));
+      } catch (const UsageError& err) {
+        throw InputError(args.config, 0, err.what());  // name the file the option came from
+      }
     }
     // --set applies to every chosen experiment whose options have the key's first part.
     for (const std::string& set : args.sets) {

@@ -193,6 +193,10 @@ const std::vector<HostileCase>& cases() {
        "calibrate ml {d}/g.clf.gz", 0, "converged"},
       {"map_from_log_nan", kShortLog, "localize --map-from-log nan --log {d}/l.clf", 2, "--map-from-log"},
       // 10. Messages that say what is wrong.
+      {"config_wrong_type_names_the_file", file("c.json", R"({"odometry/sim_corridor": {"runs": "many"}})"),
+       "run odometry/sim_corridor --config {d}/c.json --out {d}/out", 2, "c.json"},
+      {"options_wrong_type_names_the_file", kShortLog + file("o.json", R"({"mcl": {"particles": "many"}})"),
+       "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2, "o.json"},
       {"missing_scenario_file", "", "simulate {d}/x.json -o {d}/o.clf", 2, "no such scenario file"},
       {"world_file_relative_to_the_scenario",
        "mkdir -p '{d}/sub' && cp '{src}/examples/room_map.json' '{d}/sub/room.json' && " +
