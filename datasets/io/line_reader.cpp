@@ -108,7 +108,6 @@ void LineReader::finish() {
 
 bool LineReader::next(std::string_view& line) {
   if (at_end_) return false;
-  std::string_view rest;
   std::size_t eol = std::string_view::npos;
   if (from_file_) {
     std::size_t searched = begin_;
