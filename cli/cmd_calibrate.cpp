@@ -20,6 +20,7 @@
 #include "datasets/io/umbmark_input_reader.h"
 #include "datasets/log/data_root.h"
 #include "reports/checksum.h"
+#include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
@@ -156,7 +157,8 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
     o.noise.kind = NoiseModelKind::kPerComponent;
     return calibration_data_from_velocities(log, intervals);
   }
-  ref = {a.input, a.input, reports::file_checksum(a.input), 0, 0.0};
+  // "folder#robot1" (MRCLAM): the folder's checksum, as diagnose reads the same input.
+  ref = {a.input, a.input, reports::file_checksum(a.input.substr(0, a.input.find('#'))), 0, 0.0};
   if (a.input.find(".tuple") != std::string::npos) {
     o.noise.kind = NoiseModelKind::kPerComponent;
     o.outliers = {4, 0.01};
@@ -203,6 +205,7 @@ reports::ExperimentResults calibrate_ml_cmd(const CalibrateArgs& a) {
 }
 
 int calibrate(const CalibrateArgs& a, const std::string& command_line) {
+  reports::check_outputs({a.input, a.relations}, {{"--report", a.report}});
   reports::Report report;
   if (a.method == "umbmark-classic") {
     report.body = calibrate_umbmark(a, false);

@@ -21,6 +21,8 @@
 #include "datasets/io/log_loader.h"
 #include "datasets/log/data_root.h"
 #include "datasets/sim/scenario_json.h"
+#include "reports/json_file.h"
+#include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
@@ -77,39 +79,6 @@ void print(const diagnosis::Diagnosis& d) {
   std::cout << "verdict: " << d.verdict << std::endl;
 }
 
-// An output path must not name an input: that would overwrite the data it was computed from.
-void refuse_overwriting_input(const std::string& out, const std::string& option, const DiagnoseArgs& a) {
-  if (out.empty()) return;
-  for (const std::string& in : {a.input, a.relations}) {
-    std::error_code ec;
-    if (!in.empty() && std::filesystem::exists(in) && std::filesystem::equivalent(in, out, ec)) {
-      throw UsageError(option + " " + out + " is an input of this command; choose another file");
-    }
-  }
-}
-
-// Writes `text` to a temporary file beside `path`, then renames it over `path`: a reader never
-// sees half a file, and a failed write leaves no file behind.
-void write_whole_file(const std::string& path, const std::string& text, const std::string& what) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path, 0, "cannot write the " + what + " (the folder is missing or not writable)");
-    out << text;
-    out.flush();
-    if (!out) {
-      std::filesystem::remove(tmp);
-      throw InputError(path, 0, "could not write the whole " + what);
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InputError(path, 0, "cannot write the " + what + ": " + ec.message());
-  }
-}
-
 void print_twin(const sim::Twin& twin) {
   for (const auto& m : twin.causes) {
     std::cout << fmt::format("twin: {:<22} {}\n", m.id, m.how);
@@ -129,27 +98,20 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
   diagnosis::DiagnosisOptions opt;
   opt.false_alarm = a.false_alarm;
   opt.windows.duration = a.window;
-  if (!(a.false_alarm > 0.0 && a.false_alarm < 0.5)) throw UsageError("--false-alarm must be in (0, 0.5)");
-  if (!(a.window > 0.0)) throw UsageError("--window must be > 0 s");
-  refuse_overwriting_input(a.report, "--report", a);
-  refuse_overwriting_input(a.scenario, "--scenario", a);
-  if (!a.scenario.empty() && !a.report.empty() && a.scenario == a.report) {
-    throw UsageError("--scenario and --report name the same file " + a.scenario);
+  if (!(a.false_alarm >= 1e-12 && a.false_alarm < 0.5)) {
+    throw UsageError(fmt::format("--false-alarm {}: expected a level in [1e-12, 0.5)", a.false_alarm));
   }
+  if (!(a.window > 0.0 && a.window <= 3600.0)) {
+    throw UsageError(fmt::format("--window {}: expected a length in (0, 3600] s", a.window));
+  }
+  reports::check_outputs({a.input, a.relations}, {{"--report", a.report}, {"--scenario", a.scenario}});
   diagnosis::Diagnosis d;
   std::optional<Log> log_read;
   if (ends_with(a.input, ".json")) {
     if (!a.scenario.empty()) {
       throw UsageError("--scenario needs a log: a histogram of residuals has no motion to replay");
     }
-    std::ifstream in(a.input);
-    if (!in) throw InputError(a.input, 0, "cannot open the histogram file");
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-      throw InputError(a.input, 0, std::string("expected JSON: ") + e.what());
-    }
+    const nlohmann::json j = reports::read_json_file(a.input, "residual histogram (JSON)");
     d = diagnosis::diagnose_histogram(diagnosis::read_histogram(j, a.input), a.input, opt);
   } else {
     Log log;
@@ -168,7 +130,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
   if (!a.scenario.empty()) {
     const sim::Twin twin = sim::build_twin(*log_read, d);
     print_twin(twin);
-    write_whole_file(a.scenario, sim::to_json(twin.extended).dump(2) + "\n", "scenario");
+    reports::write_file_atomically(a.scenario, sim::to_json(twin.extended).dump(2) + "\n");
     std::cerr << "wrote " << a.scenario << " (simulate it with `locbench simulate " << a.scenario << " -o twin.clf`)\n";
   }
   if (!a.report.empty()) {
@@ -180,7 +142,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
     if (const auto errors = reports::validate_diagnosis_json(j); !errors.empty()) {
       throw std::logic_error("the diagnosis report violates reports/diagnosis.schema.json: " + errors.front());
     }
-    write_whole_file(a.report, j.dump(2) + "\n", "report");
+    reports::write_file_atomically(a.report, j.dump(2) + "\n");
     std::cerr << "wrote " << a.report << '\n';
   }
   return kExitOk;
@@ -201,8 +163,8 @@ Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--scenario", args->scenario,
                   "Write the log's synthetic twin (its odometry replayed under the nominal model plus every kept "
                   "cause) as a simulator scenario JSON for `locbench simulate`");
-  cmd->add_option("--false-alarm", args->false_alarm, "False-alarm level per log and channel (default 0.01)");
-  cmd->add_option("--window", args->window, "Residual window length [s] (default 1)");
+  cmd->add_option("--false-alarm", args->false_alarm, "False-alarm level per log and channel, in [1e-12, 0.5) (default 0.01)");
+  cmd->add_option("--window", args->window, "Residual window length [s], in (0, 3600] (default 1)");
   cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
   return [args, command_line] { return diagnose(*args, command_line); };
 }

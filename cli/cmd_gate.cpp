@@ -1,11 +1,11 @@
 // `locbench gate CURRENT… --baseline BASELINE… [--rules RULES.json]`: fail (exit 1) when a
 // result got worse than the rules allow.
-#include <fstream>
 #include <iostream>
 
 #include "algorithms/core/errors.h"
 #include "cli/commands.h"
 #include "reports/gate.h"
+#include "reports/output_file.h"
 
 namespace locbench::cli {
 namespace {
@@ -16,24 +16,32 @@ struct GateArgs {
   std::string rules;
   std::string markdown;
   std::string json;
+  bool allow_mixed = false;
 };
 
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path, 0, "cannot open for writing");
-  out << text;
-}
-
 int gate(const GateArgs& args) {
+  std::vector<std::string> inputs = args.current;
+  inputs.insert(inputs.end(), args.baseline.begin(), args.baseline.end());
+  inputs.push_back(args.rules);
+  reports::check_outputs(inputs, {{"--markdown", args.markdown}, {"--json", args.json}}, ".json");
   const reports::GateInput baseline = reports::load_gate_input(args.baseline);
   const reports::GateInput current = reports::load_gate_input(args.current);
+  // Fail closed: nothing to compare against, or two runs mixed in one set, is an error.
+  if (baseline.series.empty()) {
+    throw InputError(args.baseline.front(), 0, "the baseline holds no results: a gate against nothing cannot pass");
+  }
+  if (!args.allow_mixed) {
+    reports::require_one_run(current, true, "current");
+    // A committed baseline is refreshed experiment by experiment: its revisions may differ.
+    reports::require_one_run(baseline, false, "baseline");
+  }
   const reports::GateRules rules =
       args.rules.empty() ? reports::default_gate_rules() : reports::load_gate_rules(args.rules);
   const reports::GateVerdict verdict = reports::evaluate_gate(baseline, current, rules);
   std::cout << reports::gate_table(verdict);
-  if (!args.markdown.empty()) write_text(args.markdown, reports::gate_markdown(verdict));
+  if (!args.markdown.empty()) reports::write_file_atomically(args.markdown, reports::gate_markdown(verdict));
   if (!args.json.empty()) {
-    write_text(args.json, reports::gate_json(verdict, baseline, current).dump(2) + "\n");
+    reports::write_file_atomically(args.json, reports::gate_json(verdict, baseline, current).dump(2) + "\n");
   }
   return verdict.passed() ? kExitOk : kExitCheckFailed;
 }
@@ -53,6 +61,9 @@ Action add_gate_command(CLI::App& app) {
                   "interval to fail)");
   cmd->add_option("--markdown", args->markdown, "Also write a Markdown summary (for CI logs)");
   cmd->add_option("--json", args->json, "Also write the verdict as JSON");
+  cmd->add_flag("--allow-mixed", args->allow_mixed,
+                "Compare reports of different base seeds (or, among the current ones, git revisions); "
+                "refused by default");
   return [args] { return gate(*args); };
 }
 

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "algorithms/core/errors.h"
+#include "algorithms/core/input_limits.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/global_harness.h"
 #include "cli/commands.h"
@@ -21,6 +22,8 @@
 #include "datasets/io/tum_writer.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
+#include "reports/json_file.h"
+#include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
@@ -61,26 +64,42 @@ Pose2 parse_start(const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
+// Runs `f`; a bad-option error it throws is re-thrown naming `file` (when given).
+template <typename F>
+auto naming_file(const std::string& file, F f) {
+  if (file.empty()) return f();
+  try {
+    return f();
+  } catch (const InputError& e) {
+    throw InputError(file, 0, e.what());
+  } catch (const UsageError& e) {
+    throw InputError(file, 0, e.what());
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, 0, std::string("wrong type of an option: ") + e.what());
+  }
+}
+
 int localize(const LocalizeArgs& a, const std::string& command_line) {
   const std::string method = canonical_method(a.method);
+  if (!std::isfinite(a.map_from_log) || a.map_from_log < 0.0 || a.map_from_log > 1e6) {
+    throw UsageError(fmt::format("--map-from-log {}: expected a duration in (0, 1e6] s", a.map_from_log));
+  }
   if (a.map.empty() == (a.map_from_log <= 0.0)) {
     throw UsageError("give exactly one of --map FILE and --map-from-log SECONDS");
   }
+  reports::check_outputs({a.log, a.map, a.options}, {{"--report", a.report}, {"--tum", a.tum}});
   nlohmann::json options = g::default_method_options();
   if (!a.options.empty()) {
-    std::ifstream in(a.options);
-    if (!in) throw InputError(a.options, 0, "cannot open the options file");
-    nlohmann::json user;
-    try {
-      user = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-      throw InputError(a.options, 0, std::string("not valid JSON: ") + e.what());
-    }
-    options = experiments::merge_config(options, user);
+    const nlohmann::json user = reports::read_json_file(a.options, "--options file (JSON)");
+    options = naming_file(a.options, [&] { return experiments::merge_config(options, user); });
   }
   const Log log = load_log(a.log);
   if (log.laser.empty()) {
     throw InputError(a.log, 0, "laser scans (FLASER/ROBOTLASER records); the log has none");
+  }
+  for (const LaserReading& reading : log.laser) {
+    limits::check(static_cast<double>(reading.scan.ranges.size()), limits::kBeamsPerScan, a.log,
+                  fmt::format("the scan at t = {} (its beams)", reading.scan.timestamp));
   }
   std::vector<g::ScanStep> steps = g::scan_steps(log);
   if (steps.empty()) {
@@ -104,7 +123,8 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
   if (!g::is_global_method(method) && !start) {
     throw UsageError(method + " tracks from a known start: give --start X,Y,THETA (the log has no TRUEPOS)");
   }
-  auto loc = g::make_localizer(method, map, options, start, a.seed);
+  // The options are read here: their errors name the --options file.
+  auto loc = naming_file(a.options, [&] { return g::make_localizer(method, map, options, start, a.seed); });
   const std::vector<Pose2> est = g::run_localizer(*loc, steps, 0, steps.size());
 
   Trajectory traj;

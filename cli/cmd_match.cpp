@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "algorithms/core/errors.h"
+#include "algorithms/core/input_limits.h"
 #include "algorithms/core/statistics.h"
 #include "algorithms/pose_correction/pose_correction.h"
 #include "benchmarks/experiments/laser_matchers.h"
@@ -18,6 +19,7 @@
 #include "datasets/io/tum_writer.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
+#include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
@@ -37,11 +39,16 @@ struct MatchArgs {
 bool is_zero(const Pose2& p) { return p.x == 0.0 && p.y == 0.0 && p.theta == 0.0; }
 
 int match(const MatchArgs& a, const std::string& command_line) {
+  reports::check_outputs({a.map, a.log}, {{"--report", a.report}, {"--tum", a.tum}});
   const LineMap map = sim::load_world(a.map);
   if (map.segments.empty()) throw InputError(a.map, 0, "a map with at least one segment");
   const Log log = load_log(a.log);
   if (log.laser.empty()) {
     throw InputError(a.log, 0, "laser scans (FLASER/ROBOTLASER records); the log has none");
+  }
+  for (const LaserReading& reading : log.laser) {
+    limits::check(static_cast<double>(reading.scan.ranges.size()), limits::kBeamsPerScan, a.log,
+                  fmt::format("the scan at t = {} (its beams)", reading.scan.timestamp));
   }
   const auto matchers = experiments::make_matchers({a.matcher},
                                                    experiments::default_matcher_options(), &map);

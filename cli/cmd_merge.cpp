@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
+#include <optional>
 #include <iostream>
 #include <map>
 
@@ -14,6 +14,8 @@
 #include "benchmarks/experiments/parallel_tasks.h"
 #include "benchmarks/experiments/shard.h"
 #include "cli/commands.h"
+#include "reports/json_file.h"
+#include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
@@ -35,14 +37,7 @@ struct ShardFile {
 };
 
 ShardFile load(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), 0, "cannot open shard report");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path.string(), 0, std::string("not valid JSON: ") + e.what());
-  }
+  const nlohmann::json j = reports::read_json_file(path, "shard report (JSON)");
   if (j.is_object() && j.value("schema", "") == reports::kReportSchema) {
     throw InputError(path.string(), 0,
                      "a full report, not a shard report (made by `locbench run --shard K/N`)");
@@ -155,7 +150,13 @@ reports::Report merge_group(const std::vector<const ShardFile*>& group, int thre
     for (const auto& r : f->shard.records) records[static_cast<std::size_t>(r.task)] = r.record;
   }
   reports::Report report;
-  report.body = e->summarise_records(s.configuration, options, records);
+  try {
+    report.body = e->summarise_records(s.configuration, options, records);
+  } catch (const nlohmann::json::exception& err) {
+    throw InputError(group.front()->path, 0,
+                     s.experiment + ": a record does not have the shape this experiment writes (" + err.what() +
+                         "): expected the shards `locbench run --shard` made");
+  }
   report.provenance = here;
   report.provenance.threads = threads;
   report.provenance.shards = s.count;
@@ -166,6 +167,10 @@ reports::Report merge_group(const std::vector<const ShardFile*>& group, int thre
 }
 
 int merge(const MergeArgs& args, const std::string& command_line) {
+  const bool to_file = args.out.ends_with(".json");
+  reports::check_outputs(args.inputs, {{"-o", to_file ? args.out : ""}}, ".json");
+  std::optional<reports::OutputFolderLock> lock;
+  if (!to_file) lock.emplace(args.out);
   const std::vector<ShardFile> files = load_all(args.inputs);
   std::map<std::string, std::vector<const ShardFile*>> groups;
   for (const ShardFile& f : files) groups[f.shard.experiment].push_back(&f);

@@ -1,7 +1,6 @@
 // `locbench report REPORT.json… -o report.html`: one self-contained HTML page with the tables
 // and charts of the given reports (charts drawn by gnuplot, inlined as SVG).
 #include <algorithm>
-#include <fstream>
 #include <iostream>
 
 #include "algorithms/core/errors.h"
@@ -9,6 +8,8 @@
 #include "cli/commands.h"
 #include "reports/gnuplot_svg.h"
 #include "reports/html_report.h"
+#include "reports/json_file.h"
+#include "reports/output_file.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
 #include "reports/shard_report.h"
@@ -23,13 +24,7 @@ struct ReportArgs {
 };
 
 nlohmann::json parse_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), 0, "cannot open");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path.string(), 0, std::string("not valid JSON: ") + e.what());
-  }
+  return reports::read_json_file(path, "report (JSON)");
 }
 
 reports::Report load(const std::filesystem::path& path, const nlohmann::json& j) {
@@ -84,6 +79,7 @@ std::vector<reports::Report> load_all(const std::vector<std::string>& inputs) {
 }
 
 int report(const ReportArgs& args) {
+  reports::check_outputs(args.inputs, {{"-o", args.out}}, ".json");
   const auto gnuplot = reports::find_gnuplot();
   if (!gnuplot) {
     throw UsageError(
@@ -95,11 +91,7 @@ int report(const ReportArgs& args) {
   options.title = args.title;
   const std::string html = reports::html_report(loaded, reports::gnuplot_renderer(*gnuplot), options);
   const std::filesystem::path out(args.out);
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-  std::ofstream file(out);
-  if (!file) throw InputError(args.out, 0, "cannot open for writing");
-  file << html;
-  if (!file) throw InputError(args.out, 0, "failed writing the page");
+  reports::write_file_atomically(out, html);
   std::cerr << "wrote " << out.string() << " (" << loaded.size() << " reports, " << html.size()
             << " bytes)\n";
   return kExitOk;

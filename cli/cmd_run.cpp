@@ -1,10 +1,11 @@
 // `locbench run [EXPERIMENT…]`: run experiments and write one JSON report each.
 #include <fmt/format.h>
 
-#include <fstream>
+#include <cmath>
 #include <iostream>
 
 #include "algorithms/core/errors.h"
+#include "algorithms/core/input_limits.h"
 #include "algorithms/core/rng.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/parallel_tasks.h"
@@ -13,6 +14,8 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "datasets/log/data_root.h"
+#include "reports/json_file.h"
+#include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
@@ -33,6 +36,7 @@ struct RunArgs {
   int threads = experiments::hardware_threads();
   std::string shard;  // "K/N", empty: the whole experiment
   std::string log, relations, ground_truth;  // a user's real log (real_log_harness.h)
+  std::vector<std::string> skip_missing;  // dataset names whose absence is accepted ("all": any)
 };
 
 // `--set a.b.c=VALUE` → {"a": {"b": {"c": VALUE}}}; VALUE is read as JSON, else as a string.
@@ -46,6 +50,8 @@ nlohmann::json parse_set(const std::string& s) {
     value = nlohmann::json::parse(s.substr(eq + 1));
   } catch (const nlohmann::json::parse_error&) {
     value = s.substr(eq + 1);
+  } catch (const nlohmann::json::exception& e) {
+    throw UsageError("--set " + s + ": " + e.what() + ": expected a finite number (|x| < 1.8e308)");
   }
   const std::string path = s.substr(0, eq);
   nlohmann::json out = value;
@@ -82,23 +88,36 @@ std::vector<const experiments::Experiment*> select(const std::vector<std::string
   return chosen;
 }
 
+// An experiment's "runs" option (from --config or --set) is checked before any work.
+void check_runs_option(const experiments::Experiment& e, const nlohmann::json& config, const std::string& file) {
+  if (!config.is_object() || !config.contains("runs")) return;
+  const nlohmann::json& r = config.at("runs");
+  const std::string where = file.empty() ? "--set" : file;
+  if (!r.is_number() || !(r.get<double>() >= 1.0) || r.get<double>() != std::floor(r.get<double>())) {
+    throw InputError(where, 0, e.name() + ".runs: expected a whole number ≥ 1, found " + r.dump());
+  }
+  limits::check(r.get<double>(), limits::kMonteCarloRuns, where, e.name() + ".runs");
+}
+
+// A skipped case "group/name" is accepted when --skip-missing names "all", the case, or its
+// last part (the dataset).
+bool skip_allowed(const std::vector<std::string>& names, const std::string& case_name) {
+  const std::string dataset = case_name.substr(case_name.rfind('/') + 1);
+  for (const std::string& n : names) {
+    if (n == "all" || n == case_name || n == dataset) return true;
+  }
+  return false;
+}
+
 std::string args_shard_label(const experiments::Shard& s) {
   return fmt::format("shard {}/{}", s.index, s.count);
 }
 
 nlohmann::json load_overrides(const std::string& path) {
   if (path.empty()) return nlohmann::json::object();
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "cannot open configuration file");
-  try {
-    nlohmann::json j = nlohmann::json::parse(in);
-    if (!j.is_object()) {
-      throw InputError(path, 0, "expected a JSON object keyed by experiment name");
-    }
-    return j;
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path, 0, std::string("not valid JSON: ") + e.what());
-  }
+  nlohmann::json j = reports::read_json_file(path, "--config file (JSON)");
+  if (!j.is_object()) throw InputError(path, 0, "expected a JSON object keyed by experiment name");
+  return j;
 }
 
 // Shard K/N of one experiment: its tasks' records → <out>/<experiment>.shard-K-of-N.json.
@@ -165,16 +184,25 @@ int run(const RunArgs& args, const std::string& command_line) {
   options.seed = args.seed;
   if (args.runs > 0) options.runs = args.runs;
   options.data_root = args.data.empty() ? data_root() : std::filesystem::path(args.data);
+  if (!args.data.empty() && !std::filesystem::is_directory(options.data_root)) {
+    throw InputError(args.data, 0, "--data: no such folder (the datasets' folder, see `locbench list`)");
+  }
+  const reports::OutputFolderLock lock(args.out);
   options.threads = args.threads;
   std::optional<experiments::Shard> shard;
   if (!args.shard.empty()) shard = experiments::parse_shard(args.shard);
 
   std::vector<reports::Report> written;
+  std::vector<std::string> missing;  // skipped cases not accepted by --skip-missing
   int exit_code = kExitOk;
   for (const experiments::Experiment* e : chosen) {
     nlohmann::json config = e->default_config();
     if (overrides.contains(e->name())) {
-      config = experiments::merge_config(config, overrides.at(e->name()));
+      try {
+        config = experiments::merge_config(config, overrides.at(e->name()));
+      } catch (const UsageError& err) {
+        throw InputError(args.config, 0, err.what());  // name the file the option came from
+      }
     }
     // --set applies to every chosen experiment whose options have the key's first part.
     for (const std::string& set : args.sets) {
@@ -182,6 +210,7 @@ int run(const RunArgs& args, const std::string& command_line) {
       if (config.contains(o.begin().key())) config = experiments::merge_config(config, o);
     }
     if (log_override) config = experiments::merge_config(config, *log_override);
+    check_runs_option(*e, config, args.config);
     if (shard) {
       run_shard(*e, config, options, *shard, args.out, command_line);
       continue;
@@ -198,6 +227,9 @@ int run(const RunArgs& args, const std::string& command_line) {
         continue;
       }
     }
+    for (const reports::CaseNote& c : report.body.cases) {
+      if (c.status == "skipped" && !skip_allowed(args.skip_missing, c.name)) missing.push_back(c.name + ": " + c.reason);
+    }
     report.provenance = reports::current_provenance(command_line);
     report.provenance.threads = options.threads;
     const nlohmann::json j = reports::to_json(report);
@@ -211,6 +243,13 @@ int run(const RunArgs& args, const std::string& command_line) {
     written.push_back(std::move(report));
   }
   if (!shard) std::cout << reports::summary_table(written);
+  if (!missing.empty()) {
+    // Fail closed: a run whose data went missing must not look like a run that passed.
+    std::cerr << "locbench: error: " << missing.size() << " case(s) skipped for missing data (pass "
+              << "--skip-missing NAME, or --skip-missing all, to accept):\n";
+    for (const std::string& m : missing) std::cerr << "  " << m << '\n';
+    return kExitBadInput;
+  }
   return exit_code;
 }
 
@@ -225,8 +264,8 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--seed", args->seed, "Base seed of every random run (0 … 2^53 − 1)")
       ->check(CLI::Range(std::uint64_t{0}, Rng::kMaxJsonSafeSeed))
       ->capture_default_str();
-  cmd->add_option("--runs", args->runs, "Monte-Carlo runs (default: each experiment's own)")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--runs", args->runs, "Monte-Carlo runs, 1 … 100000 (default: each experiment's own)")
+      ->check(CLI::Range(1, static_cast<int>(limits::kMonteCarloRuns.max)));
   cmd->add_option("-o,--out", args->out, "Folder for reports")->capture_default_str();
   cmd->add_option("--config", args->config,
                   "JSON file {\"experiment/name\": {option: value}} overriding defaults");
@@ -248,6 +287,9 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
                   "(CARMEN .clf[.gz], MRCLAM folder[#robotN])");
   cmd->add_option("--relations", args->relations, "With --log: reference relations (.relations[.gz])");
   cmd->add_option("--ground-truth", args->ground_truth, "With --log: ground truth (TUM format)");
+  cmd->add_option("--skip-missing", args->skip_missing,
+                  "Accept that this dataset (or case, or \"all\") is absent; otherwise a case skipped "
+                  "for missing data fails the run (exit 2); repeatable");
   return [args, command_line] { return run(*args, command_line); };
 }
 

@@ -11,6 +11,7 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
+#include "reports/output_file.h"
 
 namespace locbench::cli {
 namespace {
@@ -26,7 +27,12 @@ struct SimulateArgs {
 // A preset name, or a JSON scenario file (which may start from a preset with "preset": NAME).
 sim::Scenario resolve_scenario(const std::string& spec) {
   if (std::filesystem::exists(spec)) return sim::load_scenario(spec);
-  return sim::preset(spec);
+  if (spec.ends_with(".json") || spec.find('/') != std::string::npos) {
+    throw InputError(spec, 0, "no such scenario file (a preset name has no '/' or .json; see `locbench list`)");
+  }
+  sim::Scenario s = sim::preset(spec);
+  sim::check_scenario_limits(s, spec);
+  return s;
 }
 
 int simulate(const SimulateArgs& args) {
@@ -36,6 +42,7 @@ int simulate(const SimulateArgs& args) {
     return kExitOk;
   }
   if (args.out.empty()) throw UsageError("simulate: give the log to write with -o FILE");
+  reports::check_outputs({args.scenario}, {{"-o", args.out}, {"--truth-tum", args.truth_tum}});
   const sim::SimulationResult result = sim::simulate(scenario, args.seed);
   write_carmen_log(result.log, args.out);
   if (!args.truth_tum.empty()) {

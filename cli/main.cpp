@@ -6,6 +6,7 @@
 #include <map>
 
 #include "algorithms/core/errors.h"
+#include "algorithms/core/input_limits.h"
 #include "cli/commands.h"
 
 int main(int argc, char** argv) {
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   CLI::App app{"locbench — benchmarks and accuracy reports for mobile-robot localization"};
   app.set_version_flag("--version", std::string(LOCBENCH_VERSION));
   app.require_subcommand(1);
+  app.footer(locbench::limits::limits_help());
   std::map<CLI::App*, Action> actions;
   auto add = [&](Action a) { actions[app.get_subcommands({}).back()] = std::move(a); };
   add(add_list_command(app));

@@ -179,6 +179,22 @@ GateVerdict evaluate_gate(const GateInput& baseline, const GateInput& current,
     }
   }
   if (log_n > 0) v.geomean_ratio = std::exp(log_sum / static_cast<double>(log_n));
+  // Fail closed: an accuracy rule that matches no current result checks nothing — its results
+  // went missing (absent data, a typo in --data) — unless the run said it skipped them.
+  for (const AccuracyRule& r : rules.accuracy) {
+    bool matched = false, skipped = false;
+    for (const auto& [key, s] : current.series) matched = matched || fnmatch(r.match.c_str(), key.c_str(), 0) == 0;
+    for (const auto& [key, s] : baseline.series) {
+      const auto sk = current.skipped.find(s.experiment);
+      if (fnmatch(r.match.c_str(), key.c_str(), 0) == 0 && sk != current.skipped.end() && sk->second.count(s.dataset)) {
+        skipped = true;
+      }
+    }
+    if (matched || skipped) continue;
+    v.rows.push_back({"rule " + r.match, "", std::nullopt, std::nullopt, std::nullopt, "missing",
+                      "no current result matches this rule: its results are missing"});
+    ++v.failures;
+  }
   for (const SpeedRatioRule& r : rules.speed_ratios) {
     GateRatioRow row = compare_ratio(r, baseline, current);
     if (row.status == "regressed" || row.status == "missing") ++v.failures;

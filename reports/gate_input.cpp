@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "algorithms/core/errors.h"
+#include "reports/json_file.h"
 #include "reports/report_json.h"
+#include "reports/schema_validation.h"
 
 namespace locbench::reports {
 namespace {
@@ -56,8 +60,26 @@ void add_benchmarks(const json& j, const std::string& file, GateInput& in) {
   }
 }
 
+// The base seed from the command line that made the report: `run --seed N` (default 1).
+std::string base_seed(const Provenance& p) {
+  std::istringstream words(p.command_line);
+  std::vector<std::string> w{std::istream_iterator<std::string>(words), {}};
+  bool is_run = false;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    if (w[i] == "run") is_run = true;
+    if (w[i] == "--seed" && i + 1 < w.size()) return w[i + 1];
+    if (w[i].rfind("--seed=", 0) == 0) return w[i].substr(7);
+  }
+  return is_run ? "1" : "";
+}
+
 void add_report(const json& j, const std::string& file, GateInput& in) {
+  if (const auto errors = validate_report_json(j); !errors.empty()) {
+    throw InputError(file, 0, "not a valid locbench report: " + errors.front());
+  }
   const Report r = report_from_json(j, file);
+  in.revision_of[file] = r.provenance.git_revision;
+  if (!r.body.seeds.empty()) in.seed_of[file] = base_seed(r.provenance);
   for (const CaseNote& c : r.body.cases) {
     if (c.status == "skipped") {
       in.skipped[r.body.experiment].insert(c.name.substr(c.name.rfind('/') + 1));
@@ -81,17 +103,14 @@ void add_report(const json& j, const std::string& file, GateInput& in) {
 }
 
 void add_file(const fs::path& path, GateInput& in) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path.string(), 0, "cannot open");
-  json j;
-  try {
-    j = json::parse(f);
-  } catch (const json::parse_error& e) {
-    throw InputError(path.string(), 0, std::string("not valid JSON: ") + e.what());
-  }
+  const json j = read_json_file(path, "report (JSON)");
   in.sources.push_back(path.string());
   if (j.is_object() && j.contains("benchmarks") && j.at("benchmarks").is_array()) {
-    add_benchmarks(j, path.string(), in);
+    try {
+      add_benchmarks(j, path.string(), in);
+    } catch (const json::exception& e) {
+      throw InputError(path.string(), 0, std::string("Google Benchmark JSON: ") + e.what());
+    }
   } else if (j.is_object() && j.contains("schema") && j.at("schema").is_string() &&
              j.at("schema").get<std::string>().rfind("locbench.gate/", 0) == 0) {
     in.sources.pop_back();  // a gate verdict lying among the reports: not an input
@@ -105,6 +124,25 @@ void add_file(const fs::path& path, GateInput& in) {
 }
 
 }  // namespace
+
+void require_one_run(const GateInput& in, bool revisions, const std::string& role) {
+  const auto one = [&](const std::map<std::string, std::string>& of, const std::string& what) {
+    const std::pair<const std::string, std::string>* first = nullptr;
+    for (const auto& entry : of) {
+      if (entry.second.empty()) continue;
+      if (!first) {
+        first = &entry;
+      } else if (entry.second != first->second) {
+        throw InputError(entry.first, 0,
+                         "the " + role + " reports mix runs: " + what + " " + entry.second + " here, " +
+                             first->second + " in " + first->first +
+                             " (two runs into one folder?); pass --allow-mixed to compare them anyway");
+      }
+    }
+  };
+  one(in.seed_of, "base seed");
+  if (revisions) one(in.revision_of, "git revision");
+}
 
 GateInput load_gate_input(const std::vector<std::string>& paths) {
   GateInput in;

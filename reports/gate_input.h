@@ -25,7 +25,15 @@ struct GateInput {
   std::map<std::string, GateSeries> series;
   // experiment → datasets whose cases were skipped (e.g. absent real data).
   std::map<std::string, std::set<std::string>> skipped;
+  // Per report file: the git revision that made it and the base seed of its run ("" when the
+  // report does not say, e.g. made by `calibrate` or `merge`).
+  std::map<std::string, std::string> revision_of, seed_of;
 };
+
+// InputError unless every report of `in` comes from one base seed and (with `revisions`) one
+// git revision: two runs interleaved in one folder must not pass a gate. `role` names the set
+// ("current", "baseline") in the message.
+void require_one_run(const GateInput& in, bool revisions, const std::string& role);
 
 // Reads report files, Google Benchmark JSON files, or folders of them (every *.json below).
 // InputError naming the file for anything else.

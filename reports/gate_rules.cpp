@@ -5,6 +5,7 @@
 #include <set>
 
 #include "algorithms/core/errors.h"
+#include "reports/json_file.h"
 
 namespace locbench::reports {
 namespace {
@@ -38,14 +39,7 @@ GateRules default_gate_rules() {
 }
 
 GateRules load_gate_rules(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path, 0, "cannot open rules file");
-  json j;
-  try {
-    j = json::parse(f);
-  } catch (const json::parse_error& e) {
-    throw InputError(path, 0, std::string("not valid JSON: ") + e.what());
-  }
+  const json j = read_json_file(path, "rules file (JSON)");
   only_keys(j, {"accuracy", "speed_ratios", "fail_on_missing", "comment"}, path, "rules");
   GateRules r;
   read(j, "fail_on_missing", r.fail_on_missing, path, "rules");
@@ -97,6 +91,11 @@ GateRules load_gate_rules(const std::string& path) {
       }
       r.speed_ratios.push_back(rule);
     }
+  }
+  if (r.accuracy.empty() && r.speed_ratios.empty()) {
+    throw InputError(path, 0,
+                     "rules: \"accuracy\" is empty and there are no \"speed_ratios\": a gate with no rule "
+                     "checks nothing (omit \"accuracy\" for the default rule \"*\")");
   }
   return r;
 }

@@ -2,13 +2,18 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "algorithms/core/errors.h"
+#include "reports/output_file.h"
 
 namespace locbench::reports {
 namespace {
@@ -28,8 +33,19 @@ bool executable(const std::filesystem::path& p) {
 struct TempDir {
   std::filesystem::path path;
   TempDir() {
-    std::string tmpl = (std::filesystem::temp_directory_path() / "locbench-gnuplot-XXXXXX").string();
-    if (!mkdtemp(tmpl.data())) throw std::runtime_error("cannot create a temporary folder");
+    std::error_code ec;
+    const std::filesystem::path base = std::filesystem::temp_directory_path(ec);
+    if (ec) {
+      const char* env = std::getenv("TMPDIR");
+      throw InputError(env ? env : "$TMPDIR", 0,
+                       "cannot use the temporary folder for gnuplot: " + ec.message() +
+                           " (set TMPDIR to a writable folder)");
+    }
+    std::string tmpl = (base / "locbench-gnuplot-XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) {
+      throw InputError(tmpl, 0, std::string("cannot create a temporary folder for gnuplot: ") + std::strerror(errno) +
+                                    " (set TMPDIR to a writable folder)");
+    }
     path = tmpl;
   }
   ~TempDir() {
@@ -61,11 +77,7 @@ std::string run_gnuplot(const std::filesystem::path& gnuplot, const std::string&
   const auto script_path = dir.path / "chart.gp";
   const auto svg_path = dir.path / "chart.svg";
   const auto err_path = dir.path / "stderr.txt";
-  {
-    std::ofstream out(script_path);
-    out << script;
-    if (!out) throw std::runtime_error("cannot write " + script_path.string());
-  }
+  write_file_atomically(script_path, script);  // checked: a full $TMPDIR is an error, exit 2
   // Paths are ours (no quotes in them); gnuplot's path may come from $LOCBENCH_GNUPLOT.
   const std::string quoted = "'" + std::regex_replace(gnuplot.string(), std::regex("'"), "'\\''") + "'";
   const std::string cmd = quoted + " '" + script_path.string() + "' > '" + svg_path.string() +
@@ -73,7 +85,9 @@ std::string run_gnuplot(const std::filesystem::path& gnuplot, const std::string&
   const int status = std::system(cmd.c_str());
   const std::string svg = read_file(svg_path);
   if (status != 0 || svg.find("<svg") == std::string::npos) {
-    throw std::runtime_error("gnuplot failed (" + gnuplot.string() + "): " + read_file(err_path));
+    throw InputError(svg_path.string(), 0,
+                     "gnuplot failed (" + gnuplot.string() + "; is $TMPDIR full or unwritable?): " +
+                         read_file(err_path));
   }
   return svg;
 }

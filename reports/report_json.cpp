@@ -1,5 +1,7 @@
 #include "reports/report_json.h"
 
+#include "reports/output_file.h"
+
 #include <cmath>
 #include <fstream>
 
@@ -237,11 +239,7 @@ Report report_from_json(const json& j, const std::string& source) {
 }
 
 std::filesystem::path write_report(const Report& report, const std::filesystem::path& path) {
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-  std::ofstream out(path);
-  if (!out) throw InputError(path.string(), 0, "cannot open report file for writing");
-  out << to_json(report).dump(2) << '\n';
-  if (!out) throw InputError(path.string(), 0, "failed writing the report");
+  write_file_atomically(path, to_json(report).dump(2) + "\n");
   return path;
 }
 

@@ -1,5 +1,7 @@
 #include "reports/shard_report.h"
 
+#include "reports/output_file.h"
+
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -101,11 +103,7 @@ ShardReport shard_report_from_json(const json& j, const std::string& source) {
 }
 
 std::filesystem::path write_shard_report(const ShardReport& shard, const std::filesystem::path& path) {
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-  std::ofstream out(path);
-  if (!out) throw InputError(path.string(), 0, "cannot open shard report for writing");
-  out << to_json(shard).dump(1) << '\n';
-  if (!out) throw InputError(path.string(), 0, "failed writing the shard report");
+  write_file_atomically(path, to_json(shard).dump(1) + "\n");
   return path;
 }
 

@@ -20,6 +20,7 @@ packages=(
   gnuplot-nox          # `locbench report`: charts as SVG, inlined into the HTML page
   chromium             # tests: render the HTML report headless, check charts and console
   parallel             # docs/gnu_parallel.sh: shards on one or several machines (tested)
+  clang libclang-rt-14-dev   # fuzz/: libFuzzer targets of the readers (-DLOCBENCH_FUZZ=ON)
 )
 
 missing=()

@@ -1,5 +1,7 @@
 #include "algorithms/calibration/calibration_data.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -135,6 +137,19 @@ CalibrationData calibration_data_from_encoders(const Log& log,
                      "no nominal odometry model (PARAM robot_meters_per_tick_left, "
                      "robot_meters_per_tick_right, robot_wheelbase)");
   }
+  // A NaN, zero, negative or denormal geometry is an input error, not a fit.
+  const auto plausible = [&](double v, const char* name, double lo, double hi, const char* unit) {
+    if (!(v >= lo && v <= hi)) {
+      throw InputError(log.source, 0,
+                       fmt::format("PARAM {} = {}: expected {} in [{}, {}]", name, v, unit, lo, hi));
+    }
+  };
+  plausible(nominal->wheelbase, "robot_wheelbase", 0.01, 5.0, "metres");
+  plausible(nominal->meters_per_tick_left, "robot_meters_per_tick_left", 1e-9, 0.1, "metres per tick");
+  plausible(nominal->meters_per_tick_right, "robot_meters_per_tick_right", 1e-9, 0.1, "metres per tick");
+  if (!(log.encoders.back().t > log.encoders.front().t)) {
+    throw InputError(log.source, 0, "ENCODER records all have the same time: expected increasing timestamps");
+  }
   const Reference truth = truth_reference(log);
   std::vector<TimedIncrement> incs;
   for (std::size_t k = 0; k + 1 < log.encoders.size(); ++k) {
@@ -143,8 +158,12 @@ CalibrationData calibration_data_from_encoders(const Log& log,
     TimedIncrement t;
     t.t0 = a.t + intervals.odometry_time_offset;
     t.t1 = b.t + intervals.odometry_time_offset;
-    t.inc = {static_cast<double>(b.left - a.left), static_cast<double>(b.right - a.right),
-             b.t - a.t};
+    std::int64_t dl = 0, dr = 0;
+    if (__builtin_sub_overflow(b.left, a.left, &dl) || __builtin_sub_overflow(b.right, a.right, &dr)) {
+      throw InputError(log.source, 0,
+                       fmt::format("ENCODER at t = {}: the tick counts jump by more than the 64-bit range", b.t));
+    }
+    t.inc = {static_cast<double>(dl), static_cast<double>(dr), b.t - a.t};
     const double ul = nominal->meters_per_tick_left * t.inc.first;
     const double ur = nominal->meters_per_tick_right * t.inc.second;
     t.nominal_distance = 0.5 * (ul + ur);

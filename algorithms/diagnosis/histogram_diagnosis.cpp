@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "algorithms/core/errors.h"
+#include "algorithms/core/input_limits.h"
 #include "algorithms/core/rng.h"
 #include "algorithms/core/statistics.h"
 #include "algorithms/core/units.h"
@@ -39,61 +40,151 @@ ResidualHistogram read_histogram(const nlohmann::json& j, const std::string& fil
   else if (h.unit == "mm") scale = mm(1.0);
   else bad("unit '" + h.unit + "': expected one of deg, rad, mm, m");
   if (!j["edges"].is_array() || !j["counts"].is_array()) bad("'edges' and 'counts' must be arrays of numbers");
+  limits::check(static_cast<double>(j["counts"].size()), limits::kHistogramBins, file, "counts");
+  if (j["edges"].size() != j["counts"].size() + 1) {
+    bad(fmt::format("{} edges for {} counts: expected one edge more than counts", j["edges"].size(), j["counts"].size()));
+  }
   for (std::size_t i = 0; i < j["edges"].size(); ++i) {
     if (!j["edges"][i].is_number()) bad(fmt::format("edges[{}]: expected a number", i));
-    h.edges.push_back(j["edges"][i].get<double>() * scale);
+    const double e = j["edges"][i].get<double>();
+    if (!(std::abs(e) <= 1e9)) bad(fmt::format("edges[{}]: {} is not a finite edge within ±1e9 {}", i, e, h.unit));
+    h.edges.push_back(e * scale);
   }
   for (std::size_t i = 0; i < j["counts"].size(); ++i) {
-    if (!j["counts"][i].is_number() || j["counts"][i].get<double>() < 0.0) bad(fmt::format("counts[{}]: expected a non-negative number", i));
-    h.counts.push_back(j["counts"][i].get<double>());
-  }
-  if (h.edges.size() != h.counts.size() + 1) {
-    bad(fmt::format("{} edges for {} counts: expected one edge more than counts", h.edges.size(), h.counts.size()));
+    const auto& c = j["counts"][i];
+    if (!c.is_number() || !(c.get<double>() >= 0.0) || c.get<double>() != std::floor(c.get<double>())) {
+      bad(fmt::format("counts[{}]: expected a whole number of samples ≥ 0, found {}", i, c.dump()));
+    }
+    h.counts.push_back(c.get<double>());
   }
   if (h.counts.size() < 5) bad("too short: at least 5 bins needed");
   for (std::size_t i = 1; i < h.edges.size(); ++i) {
     if (!(h.edges[i] > h.edges[i - 1])) bad(fmt::format("edges[{}]: edges must increase", i));
   }
   double n = 0.0;
-  for (double c : h.counts) n += c;
+  std::size_t filled = 0;
+  for (double c : h.counts) n += c, filled += c > 0.0 ? 1 : 0;
+  limits::check(n, limits::kHistogramTotalCount, file, "counts (their sum)");
   if (n < 30) bad(fmt::format("too few samples: {} counted, at least 30 needed", n));
+  if (filled < 3) {
+    bad(fmt::format("counts: only {} bin(s) hold samples; a distribution needs samples in at least 3 bins "
+                    "(bins narrower than the residual's spread)", filled));
+  }
   return h;
 }
 
 namespace {
 
-double phi(double z) { return 1.0 - normal_upper_tail(z); }
+// Probability that a standard normal falls in [a, b], without cancellation in either tail.
+double normal_mass(double a, double b) {
+  constexpr double kInvSqrt2 = 0.70710678118654752440;
+  if (a >= 0.0) return 0.5 * (std::erfc(a * kInvSqrt2) - std::erfc(b * kInvSqrt2));
+  if (b <= 0.0) return 0.5 * (std::erfc(-b * kInvSqrt2) - std::erfc(-a * kInvSqrt2));
+  return 1.0 - 0.5 * (std::erfc(-a * kInvSqrt2) + std::erfc(b * kInvSqrt2));
+}
 
-// Bin probabilities of the lattice model (envelope weights over lattice points within range).
-std::vector<double> lattice_probs(const ResidualHistogram& h, double a, double s, double sl, double mu, double tau) {
-  const double lo = h.edges.front() - 4 * sl, hi = h.edges.back() + 4 * sl;
-  std::vector<double> p(h.counts.size(), 0.0);
-  if (!(s > 0.0) || (hi - lo) / s > 2000) return p;
-  const long k0 = static_cast<long>(std::floor((lo - a) / s)), k1 = static_cast<long>(std::ceil((hi - a) / s));
-  for (long k = k0; k <= k1; ++k) {
-    const double c = a + static_cast<double>(k) * s;
-    const double w = std::exp(-0.5 * (c - mu) * (c - mu) / (tau * tau));
-    for (std::size_t j = 0; j < p.size(); ++j) p[j] += w * (phi((h.edges[j + 1] - c) / sl) - phi((h.edges[j] - c) / sl));
+// A lattice point's blur is cut at ±8.5 σ_l (the mass beyond is below 2·10⁻¹⁷) and its envelope
+// weight at ±12 τ (below e⁻⁷²): a lattice point then touches O(1 + σ_l/w) bins of width w, and the
+// NLL costs O(bins + lattice points), not O(bins × lattice points). Bins without counts cost
+// nothing (only the span's total mass is needed), so zero padding is free.
+constexpr double kBlurCut = 8.5, kEnvelopeCut = 12.0;
+// A blur wider than 2 steps leaves no lattice visible (ripple amplitude e^(-2π²·4) ≈ 10⁻³⁴); the
+// fit has nothing to gain beyond it.
+constexpr double kMaxBlurPerStep = 2.0;
+
+// Multinomial NLL of `counts` under bin probabilities `p_of(j)`, normalised by `total` (the
+// model's mass over the histogram's span); only bins with counts are evaluated.
+template <typename BinProbability>
+double multinomial_nll(const std::vector<double>& counts, double total, BinProbability p_of) {
+  if (!(total > 0.0) || !std::isfinite(total)) return std::numeric_limits<double>::infinity();
+  double nll = 0.0;
+  for (std::size_t j = 0; j < counts.size(); ++j) {
+    if (counts[j] > 0.0) nll -= counts[j] * std::log(std::max(p_of(j) / total, 1e-300));
   }
-  return p;
+  return nll;
+}
+
+double normal_nll(const ResidualHistogram& h, const std::vector<double>& counts, double mu, double sigma) {
+  if (!(sigma > 0.0)) return std::numeric_limits<double>::infinity();
+  const double total = normal_mass((h.edges.front() - mu) / sigma, (h.edges.back() - mu) / sigma);
+  return multinomial_nll(counts, total, [&](std::size_t j) {
+    return normal_mass((h.edges[j] - mu) / sigma, (h.edges[j + 1] - mu) / sigma);
+  });
+}
+
+// The lattice model: points a + k·s blurred by N(0, σ_l²), weighted by a normal envelope N(μ, τ²).
+// When both the envelope and the blur are wide against the step, Poisson summation shows the
+// mixture is N(μ, τ² + σ_l²) up to a ripple of relative amplitude e^(-2π² v / s²),
+// v = τ²σ_l²/(τ² + σ_l²); for v ≥ 2 s² that is below 10⁻¹⁷ and the normal is used (O(bins)).
+double lattice_nll(const ResidualHistogram& h, const std::vector<double>& counts, double a, double s, double sl,
+                   double mu, double tau) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  if (!(s > 0.0 && sl > 0.0 && tau > 0.0) || sl > kMaxBlurPerStep * s) return inf;
+  const double v = tau * tau * sl * sl / (tau * tau + sl * sl);
+  if (v >= 2.0 * s * s) return normal_nll(h, counts, mu, std::sqrt(tau * tau + sl * sl));
+  const double front = h.edges.front(), back = h.edges.back();
+  const double lo = std::max(front - kBlurCut * sl, mu - kEnvelopeCut * tau);
+  const double hi = std::min(back + kBlurCut * sl, mu + kEnvelopeCut * tau);
+  const double klo = std::ceil((lo - a) / s), khi = std::floor((hi - a) / s);
+  if (!(std::abs(klo) < 1e15 && std::abs(khi) < 1e15)) return inf;
+  if (khi - klo > 4.0 * static_cast<double>(h.edges.size()) + 1e4) return inf;  // s ≥ w/2 bounds this
+  // Bins that need a probability: those with counts (sorted edges, moving window per point).
+  const std::size_t nb = counts.size();
+  std::vector<double> mass(nb, 0.0);
+  double total = 0.0;
+  constexpr double kInvSqrt2 = 0.70710678118654752440;
+  std::size_t first = 0;  // first edge ≥ c − cut, moves forward as c grows
+  // Envelope weights by recurrence: w(k+1)/w(k) = r(k), r(k+1) = r(k)·q (two exp per call).
+  const double c0 = a + klo * s;
+  double w = std::exp(-0.5 * (c0 - mu) * (c0 - mu) / (tau * tau));
+  double r = std::exp(-(c0 - mu) * s / (tau * tau) - 0.5 * s * s / (tau * tau));
+  const double q = std::exp(-s * s / (tau * tau));
+  for (double k = klo; k <= khi; k += 1.0, w *= r, r *= q) {
+    const double c = a + k * s;
+    // The point's mass inside the span: 1 unless it is within the blur cut of an end.
+    const bool near_end = c - kBlurCut * sl < front || c + kBlurCut * sl > back;
+    total += near_end ? w * normal_mass((front - c) / sl, (back - c) / sl) : w;
+    while (first < h.edges.size() && h.edges[first] < c - kBlurCut * sl) ++first;
+    // Tail probabilities at the edges within the cut; a bin's mass from two neighbouring edges.
+    double z_prev = 0.0, t_prev = 0.0;
+    bool have_prev = false;
+    if (first > 0 && counts[first - 1] > 0.0) {  // the bin straddling the lower cut
+      z_prev = -kBlurCut;
+      t_prev = 0.0;
+      have_prev = true;
+    }
+    std::size_t e = first;
+    for (; e < h.edges.size() && h.edges[e] <= c + kBlurCut * sl; ++e) {
+      const bool left = e > 0 && counts[e - 1] > 0.0, right = e < nb && counts[e] > 0.0;
+      if (!left && !right) {
+        have_prev = false;
+        continue;
+      }
+      const double z = (h.edges[e] - c) / sl;
+      const double t = 0.5 * std::erfc(std::abs(z) * kInvSqrt2);  // the tail beyond |z|
+      if (left && have_prev) {
+        // mass in [z_prev, z] from the tails: same side → difference, else 1 − both.
+        const double m = z_prev >= 0.0 ? t_prev - t : (z <= 0.0 ? t - t_prev : 1.0 - t_prev - t);
+        mass[e - 1] += w * m;
+      }
+      z_prev = z;
+      t_prev = t;
+      have_prev = true;
+    }
+    if (have_prev && e - 1 < nb && counts[e - 1] > 0.0 && e < h.edges.size()) {
+      // The bin straddling the upper cut: everything above its lower edge.
+      mass[e - 1] += w * (z_prev >= 0.0 ? t_prev : 1.0 - t_prev);
+    }
+  }
+  return multinomial_nll(counts, total, [&](std::size_t j) { return mass[j]; });
 }
 
 std::vector<double> normal_probs(const ResidualHistogram& h, double mu, double sigma) {
   std::vector<double> p(h.counts.size());
-  for (std::size_t j = 0; j < p.size(); ++j) p[j] = phi((h.edges[j + 1] - mu) / sigma) - phi((h.edges[j] - mu) / sigma);
+  for (std::size_t j = 0; j < p.size(); ++j) p[j] = normal_mass((h.edges[j] - mu) / sigma, (h.edges[j + 1] - mu) / sigma);
   return p;
 }
 
-double multinomial_nll(const std::vector<double>& counts, std::vector<double> p) {
-  double total = 0.0;
-  for (double v : p) total += v;
-  if (!(total > 0.0)) return std::numeric_limits<double>::infinity();
-  double nll = 0.0;
-  for (std::size_t j = 0; j < p.size(); ++j) {
-    if (counts[j] > 0.0) nll -= counts[j] * std::log(std::max(p[j] / total, 1e-300));
-  }
-  return nll;
-}
 
 struct HistFits {
   FitResult normal0, normal, lattice;
@@ -109,9 +200,9 @@ HistFits fit_all(const ResidualHistogram& h, const std::vector<double>& counts) 
   const double sd = std::sqrt(v / n);
   const double width = h.edges[1] - h.edges[0];
   HistFits f;
-  f.normal0 = fit_max_likelihood([&](const std::vector<double>& x) { return multinomial_nll(counts, normal_probs(h, 0.0, x[0])); },
+  f.normal0 = fit_max_likelihood([&](const std::vector<double>& x) { return normal_nll(h, counts, 0.0, x[0]); },
                                  {{"sigma", sd, 0.0, true}});
-  f.normal = fit_max_likelihood([&](const std::vector<double>& x) { return multinomial_nll(counts, normal_probs(h, x[0], x[1])); },
+  f.normal = fit_max_likelihood([&](const std::vector<double>& x) { return normal_nll(h, counts, x[0], x[1]); },
                                 {{"mu", m, width * 0.01, false}, {"sigma", sd, 0.0, true}});
   // Lattice start: the step from the strongest period of the counts (2–4 bins), the offset at
   // the fullest bin.
@@ -122,14 +213,14 @@ HistFits fit_all(const ResidualHistogram& h, const std::vector<double>& counts) 
     FitResult r = fit_max_likelihood(
         [&](const std::vector<double>& x) {
           if (x[1] < 0.5 * width) return std::numeric_limits<double>::infinity();
-          return multinomial_nll(counts, lattice_probs(h, x[0], x[1], x[2], x[3], x[4]));
+          return lattice_nll(h, counts, x[0], x[1], x[2], x[3], x[4]);
         },
         {{"offset", mids[jmax], width * 0.01, false},
          {"step", period * width, width * 0.01, false},
          {"sigma_lattice", 0.3 * width, 0.0, true},
          {"mu", m, width * 0.01, false},
          {"tau", sd, 0.0, true}});
-    if (r.nll < best.nll) best = r;
+    if (r.nll < best.nll || best.values.empty()) best = r;
   }
   f.lattice = best;
   return f;
@@ -180,9 +271,9 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
   const HistFits fa = fit_all(h, a);
   double nb = 0.0;
   for (double v : b) nb += v;
-  auto heldout_normal = multinomial_nll(b, normal_probs(h, fa.normal.values[0], fa.normal.values[1])) / nb;
-  auto heldout_lattice = multinomial_nll(b, lattice_probs(h, fa.lattice.values[0], fa.lattice.values[1], fa.lattice.values[2],
-                                                          fa.lattice.values[3], fa.lattice.values[4])) / nb;
+  auto heldout_normal = normal_nll(h, b, fa.normal.values[0], fa.normal.values[1]) / nb;
+  auto heldout_lattice = lattice_nll(h, b, fa.lattice.values[0], fa.lattice.values[1], fa.lattice.values[2],
+                                     fa.lattice.values[3], fa.lattice.values[4]) / nb;
 
   const double thr = chi2_quantile(1.0 - options.false_alarm, 3.0);
   Cause q{"compass_quantization", "histogram", lr_lat >= thr};

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <tuple>
 
 #include "algorithms/core/angle.h"
 #include "algorithms/core/errors.h"
@@ -69,10 +70,17 @@ void check_nominal(const Log& log, const NominalModel& m) {
   if (m.wheelbase > 5.0) {
     bad(fmt::format("PARAM robot_wheelbase = {} m is implausible: expected metres (not mm)", m.wheelbase));
   }
-  if (m.meters_per_tick_left > 0.01 || m.meters_per_tick_right > 0.01) {
+  if (m.wheelbase < 0.01) {
+    bad(fmt::format("PARAM robot_wheelbase = {} m is implausible: expected at least 0.01 m", m.wheelbase));
+  }
+  // Real encoders give 1 µm to ~20 mm per tick (the Trilobot: 12.64 mm); 0.1 m and more is a
+  // millimetre value written as metres, below 1e-9 m (or a denormal) is no encoder.
+  const double mpt_max = 0.1, mpt_min = 1e-9;
+  if (m.meters_per_tick_left > mpt_max || m.meters_per_tick_right > mpt_max ||
+      m.meters_per_tick_left < mpt_min || m.meters_per_tick_right < mpt_min) {
     bad(fmt::format("PARAM robot_meters_per_tick_left/right = {}/{} are implausible: expected metres "
-                    "per tick (below 0.01; millimetres by mistake?)",
-                    m.meters_per_tick_left, m.meters_per_tick_right));
+                    "per tick in [{}, {}) (millimetres by mistake?)",
+                    m.meters_per_tick_left, m.meters_per_tick_right, mpt_min, mpt_max));
   }
 }
 
@@ -126,8 +134,12 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
     for (std::size_t i = 1; i < log.encoders.size(); ++i) {
       const auto& a = log.encoders[i - 1];
       const auto& b = log.encoders[i];
-      m.steps.push_back({a.t, b.t, static_cast<double>(b.left - a.left),
-                         static_cast<double>(b.right - a.right)});
+      std::int64_t dl = 0, dr = 0;
+      if (__builtin_sub_overflow(b.left, a.left, &dl) || __builtin_sub_overflow(b.right, a.right, &dr)) {
+        throw InputError(file, 0, fmt::format("ENCODER at t = {}: the tick counts jump by more than the "
+                                              "64-bit range from the previous record", b.t));
+      }
+      m.steps.push_back({a.t, b.t, static_cast<double>(dl), static_cast<double>(dr)});
     }
   } else if (log.odometry.size() >= 2) {
     m.odometry = OdometryKind::kPose;
@@ -200,7 +212,13 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
     // the relation's stamps (a step's ΔN or ΔD, Δθ split in proportion to time).
     const std::vector<OdometryStep> all = std::move(m.steps);
     m.steps.clear();
-    for (const auto& r : log.relations) {
+    // In time order, whatever the file's line order (the held-out split depends on it).
+    std::vector<Relation> relations = log.relations;
+    std::sort(relations.begin(), relations.end(), [](const Relation& x, const Relation& y) {
+      return std::tie(x.t1, x.t2, x.delta.x, x.delta.y, x.delta.theta) <
+             std::tie(y.t1, y.t2, y.delta.x, y.delta.y, y.delta.theta);
+    });
+    for (const auto& r : relations) {
       if (r.t2 - r.t1 > 10.0 || !(r.t2 > r.t1)) continue;  // local relations (loop closures span minutes)
       if (r.t1 < all.front().t0 || r.t2 > all.back().t1) continue;
       auto it = std::upper_bound(all.begin(), all.end(), r.t1, [](double v, const OdometryStep& st) { return v < st.t1; });

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "algorithms/core/errors.h"
+#include "datasets/io/gzip_trailer.h"
 
 namespace locbench {
 namespace {
@@ -73,8 +74,19 @@ bool LineReader::fill() {
     throw InputError(source_, line_number_ + 1, "read error");
   }
   buffer_.resize(old + static_cast<std::size_t>(n));
+  if (n > 0) {
+    crc_ = crc32(crc_, reinterpret_cast<const Bytef*>(buffer_.data() + old), static_cast<uInt>(n));
+    length_ += static_cast<std::uint64_t>(n);
+  }
   if (n == 0) {
     check_stream();
+    if (gzdirect(file_) == 0) {
+      if (const auto at = gzip_trailing_garbage(source_, static_cast<std::uint32_t>(crc_), length_)) {
+        throw InputError(source_, 0,
+                         "trailing garbage after the gzip data (from byte " + std::to_string(*at) +
+                             "): expected the file to end with its last gzip member");
+      }
+    }
     const int rc = gzclose_r(file_);
     file_ = nullptr;
     if (rc == Z_BUF_ERROR) {
@@ -96,7 +108,6 @@ void LineReader::finish() {
 
 bool LineReader::next(std::string_view& line) {
   if (at_end_) return false;
-  std::string_view rest;
   std::size_t eol = std::string_view::npos;
   if (from_file_) {
     std::size_t searched = begin_;

@@ -2,6 +2,7 @@
 // Reads text line by line from a file (plain or gzip-compressed, detected from the content) or
 // from memory, counting 1-based line numbers for error messages.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -44,6 +45,8 @@ class LineReader {
   bool at_end_ = false;
   bool has_content_ = false;  // a non-whitespace character was seen
   std::size_t line_number_ = 0;
+  unsigned long crc_ = 0;     // CRC-32 of the decompressed bytes (gzip_trailer.h)
+  std::uint64_t length_ = 0;  // decompressed bytes read
 };
 
 }  // namespace locbench

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "algorithms/core/errors.h"
+#include "reports/output_file.h"
 
 namespace locbench {
 
@@ -17,10 +18,12 @@ bool has_gz_suffix(const std::filesystem::path& path) {
          (ext[2] == 'z' || ext[2] == 'Z');
 }
 
-TextWriter::TextWriter(const std::filesystem::path& path) : path_(path.string()) {
+TextWriter::TextWriter(const std::filesystem::path& path)
+    : path_(path.string()), output_(std::make_unique<reports::AtomicOutput>(path)) {
   errno = 0;
-  // "T": transparent (uncompressed) writing through the same zlib interface.
-  file_ = gzopen(path_.c_str(), has_gz_suffix(path) ? "wb6" : "wbT");
+  // "T": transparent (uncompressed) writing through the same zlib interface. The text goes to a
+  // temporary file beside `path`, renamed over it by close() (reports/output_file.h).
+  file_ = gzopen(output_->temp_path().c_str(), has_gz_suffix(path) ? "wb6" : "wbT");
   if (file_ == nullptr) {
     const int err = errno;
     throw InputError(path_, 0,
@@ -57,6 +60,7 @@ void TextWriter::close() {
                      rc == Z_ERRNO ? std::string("write error: ") + std::strerror(errno)
                                    : std::string("write error on close"));
   }
+  output_->commit();
 }
 
 }  // namespace locbench

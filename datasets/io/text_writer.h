@@ -1,10 +1,17 @@
 #pragma once
-// Writes a text file, gzip-compressed when the path ends in ".gz", plain otherwise.
+// Writes a text file, gzip-compressed when the path ends in ".gz", plain otherwise. Atomic: the
+// file appears (replacing any previous one) only when close() succeeds; a writer destroyed
+// without close() (an exception, a kill) leaves the previous file untouched.
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 
 struct gzFile_s;
+
+namespace locbench::reports {
+class AtomicOutput;
+}
 
 namespace locbench {
 
@@ -12,7 +19,7 @@ class TextWriter {
  public:
   // Creates (or truncates) `path`. Throws InputError if it cannot be opened for writing.
   explicit TextWriter(const std::filesystem::path& path);
-  ~TextWriter();  // closes without error checks; call close() to see errors
+  ~TextWriter();  // discards the text unless close() succeeded
   TextWriter(const TextWriter&) = delete;
   TextWriter& operator=(const TextWriter&) = delete;
 
@@ -21,6 +28,7 @@ class TextWriter {
 
  private:
   std::string path_;
+  std::unique_ptr<reports::AtomicOutput> output_;
   gzFile_s* file_ = nullptr;
 };
 

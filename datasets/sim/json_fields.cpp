@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "algorithms/core/errors.h"
+#include "reports/json_file.h"
 
 namespace locbench::sim {
 
@@ -112,22 +113,9 @@ void JsonObject::finish() const {
 }
 
 nlohmann::json parse_json_text(const std::string& text, const std::string& source) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    const auto end = std::min<std::size_t>(e.byte, text.size());
-    const auto line = 1 + static_cast<std::size_t>(std::count(
-                              text.begin(), text.begin() + static_cast<long>(end), '\n'));
-    throw InputError(source, line, std::string("invalid JSON: ") + e.what());
-  }
+  return reports::parse_json_text(text, source);
 }
 
-nlohmann::json read_json_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_json_text(text.str(), path);
-}
+nlohmann::json read_json_file(const std::string& path) { return reports::read_json_file(path, "JSON file"); }
 
 }  // namespace locbench::sim

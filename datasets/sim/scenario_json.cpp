@@ -1,9 +1,14 @@
 #include "datasets/sim/scenario_json.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <utility>
 
+#include "algorithms/core/angle.h"
 #include "algorithms/core/errors.h"
+#include "algorithms/core/input_limits.h"
+#include "datasets/sim/motion_program.h"
 #include "datasets/sim/json_fields.h"
 #include "datasets/sim/presets.h"
 
@@ -313,6 +318,57 @@ json to_json(const Scenario& s) {
   };
 }
 
+void check_scenario_limits(const Scenario& s, const std::string& source) {
+  using limits::check;
+  check(s.laser.beams, limits::kSimLaserBeams, source, "laser.beams");
+  check(std::max(std::abs(s.start.x), std::abs(s.start.y)), limits::kSimCoordinate, source, "start");
+  for (std::size_t i = 0; i < s.motion.waypoints.size(); ++i) {
+    check(s.motion.waypoints[i].cwiseAbs().maxCoeff(), limits::kSimCoordinate, source,
+          "motion.waypoints[" + std::to_string(i) + "]");
+  }
+  for (std::size_t i = 0; i < s.world.segments.size(); ++i) {
+    check(s.world.segments[i].cwiseAbs().maxCoeff(), limits::kSimCoordinate, source,
+          "world.segments[" + std::to_string(i) + "]");
+  }
+  check(std::abs(s.motion.distance), limits::kSimDistance, source, "motion.distance");
+  check(std::abs(s.motion.side), limits::kSimDistance, source, "motion.side");
+  check(s.motion.runs, limits::kSimRuns, source, "motion.runs");
+  // Robot time the motion program takes (legs at the nominal speeds, pauses), then the work and
+  // records it implies — all before a single step is simulated.
+  double duration = 0.0;
+  Eigen::Vector2d at(s.start.x, s.start.y);
+  for (const Instruction& in : build_program(s.motion, s.drive, s.start)) {
+    switch (in.kind) {
+      case Instruction::Kind::kStraight: duration += std::abs(in.value) / s.drive.speed + s.drive.pause; break;
+      case Instruction::Kind::kTurn: duration += std::abs(in.value) / s.drive.turn_rate; break;
+      case Instruction::Kind::kPause: duration += in.value; break;
+      case Instruction::Kind::kTurnToward: duration += kPi / s.drive.turn_rate; break;
+      case Instruction::Kind::kDriveTo:
+        duration += (in.target - at).norm() / s.drive.speed;
+        at = in.target;
+        break;
+      case Instruction::Kind::kReset: at = Eigen::Vector2d(in.pose.x, in.pose.y); break;
+      default: break;
+    }
+  }
+  check(duration, limits::kSimDuration, source, "the motion's duration (legs / drive.speed, turns / drive.turn_rate, pauses)");
+  check(duration / s.physics.step, limits::kSimPhysicsSteps, source, "duration / physics.step");
+  const std::pair<const char*, const SensorTiming*> sensors[] = {
+      {"encoders.rate", &s.encoders.timing}, {"odometry.rate", &s.odometry.timing},
+      {"compass.rate", &s.compass.timing}, {"laser.rate", &s.laser.timing}};
+  for (const auto& [key, t] : sensors) {
+    if (t->enabled) check(duration * t->rate, limits::kSimRecords, source, std::string("duration x ") + key);
+  }
+  check(duration * s.truth.rate, limits::kSimRecords, source, "duration x truth.rate");
+  if (s.physics.trajectory_rate > 0.0) {
+    check(duration * s.physics.trajectory_rate, limits::kSimRecords, source, "duration x physics.trajectory_rate");
+  }
+  if (s.laser.timing.enabled) {
+    check(duration * s.laser.timing.rate * s.laser.beams, limits::kSimLaserValues, source,
+          "duration x laser.rate x laser.beams");
+  }
+}
+
 Scenario scenario_from_json(const json& j, const std::string& source) {
   JsonObject top(j, "", source);
   Scenario s;
@@ -402,11 +458,18 @@ Scenario scenario_from_json(const json& j, const std::string& source) {
   } catch (const UsageError& e) {
     throw InputError(source, 0, e.what());
   }
+  check_scenario_limits(s, source);
   return s;
 }
 
 Scenario load_scenario(const std::filesystem::path& path) {
-  return scenario_from_json(read_json_file(path.string()), path.string());
+  Scenario s = scenario_from_json(read_json_file(path.string()), path.string());
+  // A relative world.file is relative to the scenario file's folder, not the working directory.
+  if (s.world.kind == WorldKind::kFile && std::filesystem::path(s.world.file).is_relative() &&
+      path.has_parent_path()) {
+    s.world.file = (path.parent_path() / s.world.file).lexically_normal().string();
+  }
+  return s;
 }
 
 }  // namespace locbench::sim

@@ -15,7 +15,14 @@ nlohmann::json to_json(const Scenario& s);
 
 // `source` names the origin in error messages (a file path, or "<scenario>").
 Scenario scenario_from_json(const nlohmann::json& j, const std::string& source = "<scenario>");
+// A relative world.file is taken relative to the scenario file's folder.
 Scenario load_scenario(const std::filesystem::path& path);
+
+// InputError naming the key and the limit (algorithms/core/input_limits.h) when the scenario
+// would take more time or memory than the limits allow: beams, coordinates, runs, and the
+// duration, physics steps and records estimated from its motion program before simulating.
+// scenario_from_json calls it.
+void check_scenario_limits(const Scenario& s, const std::string& source);
 
 // Enum spellings used in JSON and PARAM records.
 const char* to_string(WorldKind k);

@@ -1,0 +1,7 @@
+// TUM trajectory reader.
+#include "datasets/io/tum_reader.h"
+#include "fuzz/fuzz_input.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return locbench::fuzz::accept_or_reject([&] { locbench::parse_tum(locbench::fuzz::text(data, size), "fuzz.tum"); });
+}

@@ -1,0 +1,109 @@
+// The output layer: atomic replacement, checked writes, outputs that would overwrite inputs,
+// and the --out folder lock.
+#include "reports/output_file.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "algorithms/core/errors.h"
+#include "tests/test_data.h"
+
+namespace locbench::reports {
+namespace {
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(OutputFile, ReplacesTheTargetAndLeavesNoTemporaryFile) {
+  testing::ScratchDir dir;
+  write_file_atomically(dir.file("a/r.json"), "old");
+  write_file_atomically(dir.file("a/r.json"), "new");
+  EXPECT_EQ(slurp(dir.file("a/r.json")), "new");
+  std::size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir.file("a"))) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);
+}
+
+TEST(OutputFile, AnUncommittedOutputLeavesThePreviousFileIntact) {
+  testing::ScratchDir dir;
+  write_file_atomically(dir.file("r.json"), "previous report");
+  {
+    AtomicOutput out(dir.file("r.json"));
+    std::ofstream(out.temp_path()) << "half a rep";  // killed before commit()
+  }
+  EXPECT_EQ(slurp(dir.file("r.json")), "previous report");
+  std::size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path())) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);  // the temporary file went with its owner
+}
+
+TEST(OutputFile, AFullDiskIsAnInputErrorNamingThePath) {
+  const std::string e = error_of([] { write_file_atomically("/dev/full", "text"); });
+  EXPECT_NE(e.find("/dev/full"), std::string::npos) << e;
+  EXPECT_NE(e.find("No space left"), std::string::npos) << e;
+}
+
+TEST(OutputFile, AFolderIsNotAFileToWrite) {
+  testing::ScratchDir dir;
+  EXPECT_NE(error_of([&] { write_file_atomically(dir.path(), "x"); }).find("is a folder"), std::string::npos);
+}
+
+TEST(OutputFile, AnOutputThatIsAnInputIsRefused) {
+  testing::ScratchDir dir;
+  std::ofstream(dir.file("in.clf")) << "x";
+  std::filesystem::create_symlink(dir.file("in.clf"), dir.file("link.clf"));
+  const std::string in = dir.file("in.clf").string();
+  EXPECT_NE(error_of([&] { check_outputs({in}, {{"--report", in}}); }).find("would overwrite the input"), std::string::npos);
+  EXPECT_NE(error_of([&] { check_outputs({in}, {{"--report", dir.file("link.clf").string()}}); }).find("would overwrite"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { check_outputs({in}, {{"--report", dir.path().string() + "/./sub/../in.clf"}}); })
+                .find("would overwrite"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] {
+              check_outputs({}, {{"-o", dir.file("a").string()}, {"--truth-tum", dir.file("a").string()}});
+            }).find("name the same file"),
+            std::string::npos);
+  EXPECT_EQ(error_of([&] { check_outputs({in}, {{"--report", dir.file("out.json").string()}}); }), "");
+}
+
+TEST(OutputFile, AnOutputInsideAnInputFolderIsRefusedOnlyForTheFilesItReads) {
+  testing::ScratchDir dir;
+  const std::string folder = dir.path().string();
+  EXPECT_NE(error_of([&] { check_outputs({folder}, {{"--json", dir.file("gate.json").string()}}, ".json"); })
+                .find("lies in the input folder"),
+            std::string::npos);
+  EXPECT_EQ(error_of([&] { check_outputs({folder}, {{"-o", dir.file("report.html").string()}}, ".json"); }), "");
+}
+
+TEST(OutputFile, ASecondLockOnAnOutputFolderIsRefused) {
+  testing::ScratchDir dir;
+  const OutputFolderLock first(dir.file("out"));
+  EXPECT_NE(error_of([&] { OutputFolderLock second(dir.file("out")); }).find("in use"), std::string::npos);
+  std::ofstream(dir.file("file")) << "x";
+  EXPECT_NE(error_of([&] { OutputFolderLock f(dir.file("file")); }).find("not a folder"), std::string::npos);
+}
+
+TEST(OutputFile, TheLockIsReleasedWithItsOwner) {
+  testing::ScratchDir dir;
+  { const OutputFolderLock first(dir.file("out")); }
+  EXPECT_EQ(error_of([&] { OutputFolderLock again(dir.file("out")); }), "");
+}
+
+}  // namespace
+}  // namespace locbench::reports
