@@ -295,7 +295,9 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
     out.overall_gain = q.gains;
   }
   if (lr_bias >= chi2_quantile(1.0 - options.false_alarm, 1.0)) {
-    out.unexplained.push_back({"bias", h.residual, "", lr_bias, chi2_upper_p(lr_bias, 1.0), all.normal.values[0] * to_unit});
+    out.unexplained.push_back({"bias", h.residual, "", lr_bias, chi2_upper_p(lr_bias, 1.0), all.normal.values[0] * to_unit,
+                               "a histogram of one residual cannot tell its causes apart: wheel_diameter_ratio, "
+                               "turn_rate_bias and compass_bias all shift it (confounded)"});
     out.confounded.push_back(
         {{"wheel_diameter_ratio", "turn_rate_bias", "compass_bias"},
          fmt::format("mean residual {:.4g} {} per sample", all.normal.values[0] * to_unit, h.unit),

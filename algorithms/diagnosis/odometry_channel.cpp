@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
+#include <string>
 
 #include "algorithms/core/statistics.h"
 #include "algorithms/diagnosis/cause_catalog.h"
@@ -48,6 +50,21 @@ struct OdoFit {
 bool plausible(const OdometryModel& m) {
   return m.slip_loss >= -1.0 && m.slip_loss <= 1.0 && m.E_b > 0.1 && m.E_o > 0.1 && m.velocity_scale > 0.05 &&
          m.turn_rate_scale > 0.05 && m.drive_tau <= 2.0 && m.dof <= 1e4;
+}
+
+// A fit that puts a cause's parameter outside its plausible range (cause_catalog.h) is not
+// evidence for the cause: on real logs a two-parameter cause can trade its parameters against
+// each other (a speed-dependent scale of 1.9 at rest, −14 s/m) to absorb a different effect.
+std::optional<std::string> implausible(const CauseSpec& spec, const OdometryModel& m) {
+  for (const auto& p : spec.params) {
+    if (p.field == nullptr || !(p.plausible_lo < p.plausible_hi)) continue;
+    const double v = m.*(p.field);
+    if (v < p.plausible_lo || v > p.plausible_hi) {
+      return fmt::format("{} fits {} = {:.4g} {}, outside its plausible range [{:.4g}, {:.4g}]: not evidence for it",
+                         spec.id, p.name, v, p.unit, p.plausible_lo, p.plausible_hi);
+    }
+  }
+  return std::nullopt;
 }
 
 class Fitter {
@@ -332,6 +349,7 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
   };
   Selection sel;
   sel.evidence.resize(candidates.size());
+  std::map<std::size_t, std::string> implausible_notes;  // the last implausible fit of a candidate
   for (const bool generic : {false, true}) {
     std::vector<std::size_t> pool;
     for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -344,11 +362,24 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
           std::vector<std::size_t> all = before;
           for (std::size_t k : active) all.push_back(pool[k]);
           const OdoFit& f = fit_set(all);
-          const bool offset = candidates[all.back()]->id == cause::kTimeOffset;
+          const CauseSpec& last = *candidates[all.back()];
+          const bool offset = last.id == cause::kTimeOffset;
+          if (const auto why = implausible(last, f.model)) {
+            implausible_notes[all.back()] = *why;
+            return SelectionFit{f.nll, false};
+          }
           return SelectionFit{f.nll, !offset || offset_resolved(f.model.time_offset)};
         });
     for (std::size_t k : phase.entered) sel.entered.push_back(pool[k]);
     for (std::size_t k = 0; k < pool.size(); ++k) sel.evidence[pool[k]] = phase.evidence[k];
+  }
+
+  // A candidate that never entered because its fit left the plausible range says so: the
+  // structure it would explain is then reported with that reason, not as "unexplained" alone.
+  for (const auto& [i, why] : implausible_notes) {
+    if (std::find(sel.entered.begin(), sel.entered.end(), i) == sel.entered.end()) {
+      out.heldout_notes.emplace_back(std::string(candidates[i]->id), why);
+    }
   }
 
   // The held-out check, per cause in its own metric: the model with every entered cause against

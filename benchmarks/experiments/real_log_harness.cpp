@@ -127,7 +127,7 @@ LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path
     }
   }
   out.dataset.name = spec.name;
-  out.dataset.checksum = std::filesystem::is_regular_file(file) ? reports::file_checksum(file) : "";
+  out.dataset.checksum = reports::file_checksum(file);  // a file, or an MRCLAM folder
   out.dataset.records = out.log.record_count();
   const auto [t0, t1] = out.log.time_span();
   out.dataset.duration_s = t1 - t0;

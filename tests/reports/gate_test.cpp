@@ -154,6 +154,25 @@ TEST(Gate, ARatioAboveItsCeilingFailsEvenWithoutABaseline) {
   EXPECT_EQ(v.ratios[0].status, "regressed");  // 0.9 > ceiling 0.8
 }
 
+TEST(Gate, ARatioWhoseBenchmarkSkippedForMissingDataFails) {
+  testing::ScratchDir dir;
+  write_bench(dir.file("base.json"), {50, 51}, {100, 100});
+  // BM_Fast skipped (SkipWithError, as the real-scan kernels do without LOCBENCH_DATA): Google
+  // Benchmark still writes a row, with error_occurred and a zero time.
+  nlohmann::json j = {{"benchmarks", nlohmann::json::array()}};
+  j["benchmarks"].push_back({{"name", "BM_Fast"}, {"run_name", "BM_Fast"}, {"run_type", "iteration"},
+                             {"error_occurred", true}, {"error_message", "intel log not found"},
+                             {"real_time", 0.0}, {"cpu_time", 0.0}, {"time_unit", "us"}});
+  j["benchmarks"].push_back({{"name", "BM_Slow"}, {"run_name", "BM_Slow"}, {"run_type", "iteration"},
+                             {"real_time", 100.0}, {"cpu_time", 100.0}, {"time_unit", "us"}});
+  std::ofstream(dir.file("now.json")) << j.dump();
+  const GateVerdict v = evaluate_gate(load_gate_input({dir.file("base.json").string()}),
+                                      load_gate_input({dir.file("now.json").string()}), ratio_rules());
+  ASSERT_EQ(v.ratios.size(), 1u);
+  EXPECT_EQ(v.ratios[0].status, "missing") << v.ratios[0].detail;
+  EXPECT_FALSE(v.passed());
+}
+
 TEST(GateRules, RejectAnUnknownKeyByItsPath) {
   testing::ScratchDir dir;
   std::ofstream(dir.file("r.json")) << R"({"accuracy": [{"match": "*", "max_relativ": 0.1}]})";

@@ -35,6 +35,16 @@ TEST(DiagnosisJson, AReportOfAnOffsetLogIsValidAndCarriesTheOffsetWithItsInterva
   EXPECT_GT(j["noise_floor"]["sigma_x_m"].get<double>(), 0.0);
 }
 
+TEST(DiagnosisJson, AHistogramDiagnosisIsValidWithItsOwnNominalModel) {
+  ResidualHistogram h{"r", "deg", {}, {}};
+  for (int i = -5; i <= 5; ++i) h.edges.push_back(0.017453292519943295 * i);
+  for (double c : {3, 15, 51, 117, 176, 176, 117, 51, 15, 3}) h.counts.push_back(c);
+  const nlohmann::json j = to_json(diagnose_histogram(h, "normal"));
+  EXPECT_TRUE(reports::validate_diagnosis_json(j).empty()) << joined(reports::validate_diagnosis_json(j));
+  EXPECT_EQ(j["nominal_model"]["residual"], "r");
+  EXPECT_FALSE(j["nominal_model"].contains("odometry"));
+}
+
 TEST(DiagnosisJson, NonFiniteNumbersBecomeNullAndUnexplainedStructureCarriesItsReason) {
   Diagnosis d;
   d.log = "x";

@@ -1,0 +1,93 @@
+// build_motion_data and the reference interpolation, on a log whose motion is known exactly:
+// a 60 s arc at 0.5 m/s and 0.2 rad/s, ODOM and TRUEPOS at 10 Hz.
+#include "algorithms/diagnosis/motion_windows.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "algorithms/core/errors.h"
+
+namespace locbench::diagnosis {
+namespace {
+
+constexpr double kV = 0.5, kW = 0.2;  // [m/s], [rad/s]
+
+Pose2 arc(double t) {
+  const double th = kW * t;
+  return {kV / kW * std::sin(th), kV / kW * (1.0 - std::cos(th)), th};
+}
+
+Log arc_log(double seconds = 60.0) {
+  Log log;
+  log.name = "arc";
+  log.params["robot_wheelbase"] = "0.4";
+  for (int k = 0; k <= static_cast<int>(seconds * 10.0); ++k) {
+    const double t = 0.1 * k;
+    log.odometry.push_back({t, arc(t), kV, kW});
+    log.truth.push_back({t, arc(t), arc(t)});
+  }
+  return log;
+}
+
+TEST(MotionWindows, AnOdomAndTrueposLogIsCutIntoOneSecondWindowsOfTheArc) {
+  const MotionData d = build_motion_data(arc_log());
+  EXPECT_EQ(d.odometry, OdometryKind::kPose);
+  EXPECT_EQ(d.reference, ReferenceKind::kTruePose);
+  EXPECT_NEAR(d.reference_interval, 0.1, 1e-9);
+  ASSERT_GE(d.windows.size(), 55u);
+  ASSERT_LE(d.windows.size(), 61u);
+  for (const auto& w : d.windows) {
+    const double dt = w.t1 - w.t0;
+    EXPECT_NEAR(dt, 1.0, 0.11);
+    EXPECT_NEAR(w.distance, kV * dt, 1e-3) << "window at " << w.t0;
+    EXPECT_NEAR(w.turn, kW * dt, 1e-9);
+    EXPECT_NEAR(w.heading, kW * w.t0 - 2.0 * std::numbers::pi * std::round(kW * w.t0 / (2.0 * std::numbers::pi)), 1e-9);
+  }
+}
+
+TEST(MotionWindows, TruthIsInterpolatedLinearlyAndOnlyInsideItsSpan) {
+  const std::vector<TruePose> truth = {{0.0, {0.0, 0.0, 3.0}, {}}, {1.0, {2.0, -1.0, -3.0}, {}}};
+  const auto mid = interpolate_truth(truth, 0.5);
+  ASSERT_TRUE(mid.has_value());
+  EXPECT_NEAR(mid->x, 1.0, 1e-12);
+  EXPECT_NEAR(mid->y, -0.5, 1e-12);
+  // 3 rad → −3 rad is 0.283 rad the short way, through π.
+  EXPECT_NEAR(std::abs(mid->theta), std::numbers::pi, 1e-9);
+  EXPECT_FALSE(interpolate_truth(truth, -0.01).has_value());
+  EXPECT_FALSE(interpolate_truth(truth, 1.01).has_value());
+}
+
+TEST(MotionWindows, CompassIsInterpolatedAlongTheShorterArc) {
+  const std::vector<CompassReading> compass = {{0.0, 3.1}, {1.0, -3.1}, {2.0, -2.9}};
+  const auto a = interpolate_compass(compass, 0.5);
+  ASSERT_TRUE(a.has_value());
+  EXPECT_NEAR(std::abs(*a), std::numbers::pi, 1e-9);
+  const auto b = interpolate_compass(compass, 1.5);
+  ASSERT_TRUE(b.has_value());
+  EXPECT_NEAR(*b, -3.0, 1e-12);
+  EXPECT_FALSE(interpolate_compass(compass, 2.5).has_value());
+}
+
+TEST(MotionWindows, TooShortALogNamesTheLogAndTheWindowsNeeded) {
+  try {
+    build_motion_data(arc_log(10.0));
+    FAIL() << "a 10 s log made windows";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("arc"), std::string::npos) << e.what();
+  }
+}
+
+TEST(MotionWindows, AGapLongerThanMaxGapEndsAWindow) {
+  Log log = arc_log();
+  // Remove 3 s of odometry in the middle: no window may span the hole.
+  std::erase_if(log.odometry, [](const OdometryReading& o) { return o.t > 30.05 && o.t < 32.95; });
+  const MotionData d = build_motion_data(log);
+  for (const auto& w : d.windows) {
+    EXPECT_FALSE(w.t0 < 30.05 && w.t1 > 32.95) << "window " << w.t0 << "–" << w.t1 << " spans the gap";
+  }
+}
+
+}  // namespace
+}  // namespace locbench::diagnosis
