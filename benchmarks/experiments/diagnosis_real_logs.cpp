@@ -126,10 +126,19 @@ class DiagnosisRealLogs final : public Experiment {
           out.results.push_back(reports::make_estimate("check", names[i], "path_length_ratio", "", c->path_length_ratio, 0.0, n));
           out.results.push_back(reports::make_estimate("check", names[i], "ls_velocity_scale", "", c->ls_velocity_scale, 0.0, n));
           out.results.push_back(reports::make_estimate("check", names[i], "ls_turn_rate_scale", "", c->ls_turn_scale, 0.0, n));
+          out.results.push_back(reports::make_estimate("check", names[i], "median_window_ratio", "", c->median_window_ratio, 0.0, n));
           out.notes.push_back(fmt::format("{} — independent checks over the same {} windows (algorithms/diagnosis/scale_checks.h): "
                                           "path-length ratio {:.3f}, least-squares velocity scale {:.3f}, least-squares "
-                                          "turn-rate scale {:.3f}",
-                                          names[i], c->windows, c->path_length_ratio, c->ls_velocity_scale, c->ls_turn_scale));
+                                          "turn-rate scale {:.3f}, median window ratio {:.3f}",
+                                          names[i], c->windows, c->path_length_ratio, c->ls_velocity_scale, c->ls_turn_scale,
+                                          c->median_window_ratio));
+          for (const auto& cause : outcomes[i].diagnosis->causes) {
+            if (cause.id != "velocity_scale" || !cause.detected || cause.parameters.empty()) continue;
+            const auto& p = cause.parameters.front();
+            if (auto why = diagnosis::scale_disagreement(names[i], p.value, p.lo, p.hi, *c); !why.empty()) {
+              out.notes.push_back(why);
+            }
+          }
         }
       }
     }
