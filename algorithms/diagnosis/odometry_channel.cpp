@@ -60,8 +60,8 @@ std::optional<std::string> implausible(const CauseSpec& spec, const OdometryMode
     if (p.field == nullptr || !(p.plausible_lo < p.plausible_hi)) continue;
     const double v = m.*(p.field);
     if (v < p.plausible_lo || v > p.plausible_hi) {
-      return fmt::format("{} fits {} = {:.4g} {}, outside its plausible range [{:.4g}, {:.4g}]: not evidence for it",
-                         spec.id, p.name, v, p.unit, p.plausible_lo, p.plausible_hi);
+      return fmt::format("{} fits {} = {:.4g}{}, outside its plausible range [{:.4g}, {:.4g}]: not evidence for it",
+                         spec.id, p.name, v, p.unit == "1" ? "" : " " + p.unit, p.plausible_lo, p.plausible_hi);
     }
   }
   return std::nullopt;
