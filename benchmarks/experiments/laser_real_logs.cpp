@@ -55,6 +55,8 @@ struct Record {
   // [method][relation]: |motion translation| − |reference translation| [m] (scale along the
   // path), and how far the corrector moved the odometry's translation [m].
   std::vector<std::vector<double>> length_error, moved;
+  // [method][relation]: chapter-6 diagnostics (ScanPairCorrection; −1 = not applicable).
+  std::vector<std::vector<double>> information_ratio, heading_spread;
   std::vector<double> reference_length;  // per relation [m]
   // The draw_worst relations with the largest eap_ch6_ls translation error (indices), drawn.
   std::vector<std::size_t> drawn_index;
@@ -62,7 +64,7 @@ struct Record {
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, status, reason, path, checksum, records, duration, relations, t1, t2, lines,
                                    translation, rotation, position_fixed, matched_points, length_error,
-                                   moved, reference_length, drawn_index, drawn)
+                                   moved, information_ratio, heading_spread, reference_length, drawn_index, drawn)
 
 // A map of the lines extracted from one scan, in its robot frame.
 LineMap lines_as_map(const laser::ExtractionResult& lines) {
@@ -111,6 +113,10 @@ std::vector<double> subset(const std::vector<double>& v, const std::vector<bool>
   return out;
 }
 
+// Diagnosis thresholds (reported, not used by any corrector).
+constexpr double kWeakPosition = 0.02;
+constexpr double kHeadingSpread = 0.0349066;  // 2°
+
 class LaserRealLogs final : public MonteCarloExperiment<Setup> {
  public:
   std::string name() const override { return "laser/real_logs"; }
@@ -124,7 +130,8 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
     return {{"runs", 1},  // not Monte-Carlo: one task per dataset
             {"datasets", {"aces", "intel", "mit_csail"}},
             {"matchers", {"eap", "split_and_merge", "agglomerative", "rwht"}},
-            {"correctors", {"eap_ch6_rematched", "eap_ch6_heading_only", "eap_iterated_pl",
+            {"correctors", {"eap_ch6_rematched", "eap_ch6_heading_only", "eap_ch6_inverse_variance",
+                            "eap_iterated_pl",
                             "pl_icp", "icp_point_to_point"}},
             {"corrector_options", default_corrector_options()},
             {"beam_angles", "log"},
@@ -192,6 +199,8 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
     rec.matched_points.assign(methods, {});
     rec.length_error.assign(methods, {});
     rec.moved.assign(methods, {});
+    rec.information_ratio.assign(methods, {});
+    rec.heading_spread.assign(methods, {});
     struct Pair {
       std::size_t first, second;
       Pose2 odometry, reference;
@@ -216,6 +225,8 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
         rec.length_error[method].push_back(c.motion.translation().norm() - r.delta.translation().norm());
         const Pose2 moved = between(estimate, c.motion);
         rec.moved[method].push_back(std::hypot(moved.x, moved.y));
+        rec.information_ratio[method].push_back(c.position_information_ratio);
+        rec.heading_spread[method].push_back(c.heading_spread);
       };
       ScanPairCorrection odometry;
       odometry.motion = estimate;
@@ -419,6 +430,40 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
         interval(subset(r.translation[0], fixed), 1e3, 1),
         interval(subset(r.translation[e], not_fixed), 1e3, 1),
         interval(subset(r.translation[0], not_fixed), 1e3, 1));
+    // Why: the position fixes whose normal matrix is nearly singular, and the headings whose
+    // segments disagree.
+    std::vector<bool> weak(r.relations), strong(r.relations), spread(r.relations), agree(r.relations);
+    for (std::size_t i = 0; i < r.relations; ++i) {
+      const double q = r.information_ratio[e][i];
+      weak[i] = q >= 0.0 && q < kWeakPosition;
+      strong[i] = q >= kWeakPosition;
+      const double h = r.heading_spread[e][i];
+      spread[i] = h > kHeadingSpread;
+      agree[i] = h >= 0.0 && h <= kHeadingSpread;
+    }
+    const auto count = [](const std::vector<bool>& v) { return std::count(v.begin(), v.end(), true); };
+    out += fmt::format(
+        " Position fixes with a nearly singular normal matrix (eigenvalue ratio < {}, the "
+        "threshold below which eap_iterated_pl keeps a direction): {} of {} — translation error "
+        "{} mm (odometry {} mm); the other {}: {} mm (odometry {} mm). Headings whose matched "
+        "segments disagree (weighted spread of Δθ_i > {:.0f}°): {} — heading error {}° (odometry "
+        "{}°); the other {}: {}° (odometry {}°).",
+        kWeakPosition, count(weak), count(weak) + count(strong),
+        interval(subset(r.translation[e], weak), 1e3, 1), interval(subset(r.translation[0], weak), 1e3, 1),
+        count(strong), interval(subset(r.translation[e], strong), 1e3, 1),
+        interval(subset(r.translation[0], strong), 1e3, 1), to_deg(kHeadingSpread), count(spread),
+        interval(subset(r.rotation[e], spread), to_deg(1.0), 2),
+        interval(subset(r.rotation[0], spread), to_deg(1.0), 2), count(agree),
+        interval(subset(r.rotation[e], agree), to_deg(1.0), 2),
+        interval(subset(r.rotation[0], agree), to_deg(1.0), 2));
+    if (const auto ivw = index("eap_ch6_inverse_variance")) {
+      out += fmt::format(
+          " The same EAP matches and one pass with the segments' headings weighted by their "
+          "inverse variance instead of eq. 6.18 (eap_ch6_inverse_variance): {} mm / {}° against "
+          "eap_ch6_ls's {} mm / {}°.",
+          interval(r.translation[*ivw], 1e3, 1), interval(r.rotation[*ivw], to_deg(1.0), 2),
+          interval(r.translation[e], 1e3, 1), interval(r.rotation[e], to_deg(1.0), 2));
+    }
     // The worst relations of the one-shot solve, with the other correctors on them.
     std::vector<std::size_t> order(r.relations);
     std::iota(order.begin(), order.end(), 0);
