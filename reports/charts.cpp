@@ -35,10 +35,29 @@ std::string datablock(const std::string& name, const std::vector<double>& x,
   return out + "EOD\n";
 }
 
+// Segments as consecutive (x, y) pairs, one blank line after each so that gnuplot does not join
+// them; a pair with a non-finite coordinate is left out.
+std::string segment_datablock(const std::string& name, const std::vector<double>& x,
+                              const std::vector<double>& y) {
+  std::string out = "$" + name + " << EOD\n";
+  for (std::size_t i = 0; i + 1 < std::min(x.size(), y.size()); i += 2) {
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(x[i + 1]) ||
+        !std::isfinite(y[i + 1])) {
+      continue;
+    }
+    out += fmt::format("{:.9g} {:.9g}\n{:.9g} {:.9g}\n\n", x[i], y[i], x[i + 1], y[i + 1]);
+  }
+  return out + "EOD\n";
+}
+
 constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
                                     "#9467bd", "#8c564b", "#e377c2", "#17becf"};
 
 }  // namespace
+
+bool is_segment_series(const std::string& name) {
+  return name.ends_with("lines") || name.ends_with("matches");
+}
 
 Histogram histogram(const std::vector<std::vector<double>>& samples, int bins) {
   Histogram h;
@@ -172,6 +191,22 @@ std::string plot_script(const Plot& plot) {
       s += datablock(block, x, y);
       terms.push_back(fmt::format("${} using 1:2 with boxes lc rgb '{}' title {}", block,
                                   kColours[i % 8], quote(plot.series[i].name)));
+    }
+  } else if (plot.kind == "scan_pair") {
+    s += "set size ratio -1\n";
+    for (std::size_t i = 0; i < plot.series.size(); ++i) {
+      const PlotSeries& ps = plot.series[i];
+      const std::string block = fmt::format("s{}", i);
+      const std::string colour = kColours[i % 8];
+      if (is_segment_series(ps.name)) {
+        s += segment_datablock(block, ps.x, ps.y);
+        terms.push_back(fmt::format("${} using 1:2 with lines lw {} lc rgb '{}' title {}", block,
+                                    ps.name.ends_with("lines") ? 2.0 : 0.6, colour, quote(ps.name)));
+      } else {
+        s += datablock(block, ps.x, ps.y);
+        terms.push_back(fmt::format("${} using 1:2 with points pt 7 ps 0.35 lc rgb '{}' title {}",
+                                    block, colour, quote(ps.name)));
+      }
     }
   } else {
     double xlo = std::numeric_limits<double>::infinity(), xhi = -xlo, ylo = xlo, yhi = -xlo;

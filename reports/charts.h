@@ -35,6 +35,9 @@ struct CdfSteps {
 };
 CdfSteps empirical_cdf(std::vector<double> samples, std::size_t max_points = 400);
 
+// In a "scan_pair" plot: whether the series holds segments (name ends in "lines" or "matches").
+bool is_segment_series(const std::string& name);
+
 // The gnuplot script drawing `plot` as SVG on stdout (terminal svg, no JavaScript).
 std::string plot_script(const Plot& plot);
 

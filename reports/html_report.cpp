@@ -176,16 +176,22 @@ std::string html_report(const std::vector<Report>& reports, const ChartRenderer&
     summary_table(h, b);
     estimates_table(h, b);
     published_tables(h, b);
-    std::vector<Plot> plots = b.plots;
+    // Charts, then the scan pairs drawn (laser/real_logs' worst relations) under their own heading.
+    std::vector<Plot> plots, scan_pairs;
+    for (const Plot& each : b.plots) (each.kind == "scan_pair" ? scan_pairs : plots).push_back(each);
     for (Plot& hp : metric_histograms(b)) plots.push_back(std::move(hp));
-    if (!plots.empty()) h += "<h3>Charts</h3>\n";
-    for (const Plot& plot : plots) {
-      const std::string id = fmt::format("chart{}", ++chart);
-      h += fmt::format("<figure class=chart id=\"{}\" data-kind=\"{}\">\n", id, html_escape(plot.kind));
-      h += render(plot, id);
-      h += fmt::format("\n<figcaption>{}{}</figcaption>\n</figure>\n", html_escape(plot.title),
-                       plot.note.empty() ? "" : " — " + html_escape(plot.note));
-    }
+    const auto figures = [&](const std::vector<Plot>& ps, const char* heading) {
+      if (!ps.empty()) h += fmt::format("<h3>{}</h3>\n", heading);
+      for (const Plot& plot : ps) {
+        const std::string id = fmt::format("chart{}", ++chart);
+        h += fmt::format("<figure class=chart id=\"{}\" data-kind=\"{}\">\n", id, html_escape(plot.kind));
+        h += render(plot, id);
+        h += fmt::format("\n<figcaption>{}{}</figcaption>\n</figure>\n", html_escape(plot.title),
+                         plot.note.empty() ? "" : " — " + html_escape(plot.note));
+      }
+    };
+    figures(plots, "Charts");
+    figures(scan_pairs, "Scan pairs drawn: both scans, lines and matches, before and after");
     if (!b.notes.empty()) {
       h += "<h3>Findings</h3>\n<ul class=findings>\n";
       for (const std::string& n : b.notes) h += "<li>" + html_escape(n) + "</li>\n";

@@ -79,7 +79,9 @@ struct PlotSeries {
 // A chart a reader wants beside the numbers (drawn by `locbench report`). Kinds:
 // "trajectory" (x, y in the plane, equal axes), "error_vs_distance" (error against distance
 // travelled), "histogram" (series y values are samples; x is unused and empty), "cdf" (series y
-// values are samples drawn as overlaid empirical CDFs; x is unused and empty).
+// values are samples drawn as overlaid empirical CDFs; x is unused and empty), "scan_pair"
+// (laser scans in one robot frame, equal axes: a series whose name ends in "lines" or "matches"
+// holds segments as consecutive point pairs, drawn as lines; any other series is points).
 struct Plot {
   std::string name;  // stable id within the experiment, e.g. "trajectories_run_0"
   std::string kind;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "algorithms/core/angle.h"
@@ -32,17 +33,20 @@ std::vector<PointOnLine> points_on_lines(std::span<const laser::SegmentMatch> ma
                        std::to_string(map.segments.size()));
     }
     const LineParams line = map.segments[m.map_segment].line();
-    for (const auto& p : m.points) {
-      out.push_back({p.robot, {std::cos(line.beta), std::sin(line.beta)}, line.rho,
-                     m.map_segment, 0.0});
-    }
+    const Eigen::Vector2d normal(std::cos(line.beta), std::sin(line.beta));
+    for (const auto& p : m.points) out.push_back({p.robot, normal, line.rho, m.map_segment, 0.0});
   }
   return out;
 }
 
 // Residuals under `pose`, then keep the keep_fraction with the smallest |r|.
 void trim(std::vector<PointOnLine>& pts, const Pose2& pose, double keep_fraction) {
-  for (auto& p : pts) p.residual = p.normal.dot(pose * p.robot) - p.rho;
+  const double c = std::cos(pose.theta), s = std::sin(pose.theta);  // once, not per point
+  for (auto& p : pts) {
+    const Eigen::Vector2d q(pose.x + c * p.robot.x() - s * p.robot.y(),
+                            pose.y + s * p.robot.x() + c * p.robot.y());  // = pose * p.robot
+    p.residual = p.normal.dot(q) - p.rho;
+  }
   const auto keep =
       static_cast<std::size_t>(std::ceil(keep_fraction * static_cast<double>(pts.size())));
   if (keep >= pts.size()) return;
@@ -59,17 +63,31 @@ struct Normal {
   double ss = 0.0;
 };
 
+// JᵀJ, Jᵀr and Σr² with J_i = (n_x, n_y, nᵀ ∂(R p)/∂θ): the six distinct entries of the
+// symmetric JᵀJ summed as scalars (the same sums, in the same order, as j jᵀ).
 Normal normal_equations(const std::vector<PointOnLine>& pts, const Pose2& pose) {
   Normal n;
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  double h00 = 0, h01 = 0, h02 = 0, h11 = 0, h12 = 0, h22 = 0, g0 = 0, g1 = 0, g2 = 0, ss = 0;
   for (const auto& p : pts) {
-    const Eigen::Vector2d rp(c * p.robot.x() - s * p.robot.y(), s * p.robot.x() + c * p.robot.y());
-    const double r = p.normal.dot(rp + pose.translation()) - p.rho;
-    const Eigen::Vector3d j(p.normal.x(), p.normal.y(), p.normal.dot(Eigen::Vector2d(-rp.y(), rp.x())));
-    n.h += j * j.transpose();
-    n.g += j * r;
-    n.ss += r * r;
+    const double rx = c * p.robot.x() - s * p.robot.y(), ry = s * p.robot.x() + c * p.robot.y();
+    const double nx = p.normal.x(), ny = p.normal.y();
+    const double r = nx * (rx + pose.x) + ny * (ry + pose.y) - p.rho;
+    const double jt = nx * -ry + ny * rx;
+    h00 += nx * nx;
+    h01 += nx * ny;
+    h02 += nx * jt;
+    h11 += ny * ny;
+    h12 += ny * jt;
+    h22 += jt * jt;
+    g0 += nx * r;
+    g1 += ny * r;
+    g2 += jt * r;
+    ss += r * r;
   }
+  n.h << h00, h01, h02, h01, h11, h12, h02, h12, h22;
+  n.g << g0, g1, g2;
+  n.ss = ss;
   return n;
 }
 
@@ -146,14 +164,19 @@ void from_json(const nlohmann::json& j, IteratedCorrectionOptions& o) {
   validate(o);
 }
 
-IteratedCorrection solve_point_to_line(std::span<const laser::SegmentMatch> matches,
-                                       const LineMap& map, const Pose2& pose,
-                                       const IteratedCorrectionOptions& options) {
-  validate(options);
-  IteratedCorrection out;
-  out.corrected = pose;
+namespace {
+
+// The Gauss–Newton steps of solve_point_to_line on the points of one set of matches; nullopt
+// when there are fewer than min_points.
+struct Steps {
+  Pose2 pose;
+  std::vector<PointOnLine> all;
+  double length = 0.0;
+};
+std::optional<Steps> gauss_newton(std::span<const laser::SegmentMatch> matches, const LineMap& map,
+                                  const Pose2& pose, const IteratedCorrectionOptions& options) {
   std::vector<PointOnLine> all = points_on_lines(matches, map);
-  if (all.size() < static_cast<std::size_t>(options.min_points)) return out;
+  if (all.size() < static_cast<std::size_t>(options.min_points)) return std::nullopt;
   const double length = rms_range(all);
   Pose2 x = pose;
   std::vector<PointOnLine> kept;
@@ -176,7 +199,15 @@ IteratedCorrection solve_point_to_line(std::span<const laser::SegmentMatch> matc
       break;
     }
   }
-  kept = all;
+  return Steps{x, std::move(all), length};
+}
+
+// The result at the pose the steps reached: trimmed residuals, covariance, observability.
+IteratedCorrection finish(Steps st, const IteratedCorrectionOptions& options) {
+  IteratedCorrection out;
+  const Pose2 x = st.pose;
+  const double length = st.length;
+  std::vector<PointOnLine> kept = std::move(st.all);
   trim(kept, x, options.keep_fraction);
   const Normal n = normal_equations(kept, x);
   const Eigen3 e = decompose(n.h, length, options.degenerate_ratio);
@@ -215,6 +246,21 @@ IteratedCorrection solve_point_to_line(std::span<const laser::SegmentMatch> matc
   return out;
 }
 
+}  // namespace
+
+IteratedCorrection solve_point_to_line(std::span<const laser::SegmentMatch> matches,
+                                       const LineMap& map, const Pose2& pose,
+                                       const IteratedCorrectionOptions& options) {
+  validate(options);
+  std::optional<Steps> st = gauss_newton(matches, map, pose, options);
+  if (!st) {
+    IteratedCorrection out;
+    out.corrected = pose;
+    return out;
+  }
+  return finish(std::move(*st), options);
+}
+
 IteratedCorrection iterated_point_to_line(const laser::SegmentMatcher& matcher, const Scan& scan,
                                           const LineMap& map, const Pose2& estimate,
                                           const IteratedCorrectionOptions& options) {
@@ -226,24 +272,40 @@ IteratedCorrection iterated_point_to_line(const laser::SegmentMatcher& matcher, 
   IteratedCorrection out;
   out.corrected = estimate;
   Pose2 pose = estimate;
+  // Only the last iteration's covariance and trimmed statistics are returned: they are computed
+  // once, after the loop (finish), from that iteration's steps.
+  std::optional<Steps> last;
+  laser::MatchResult last_matches;
+  int iterations = 0;
+  bool converged = false;
   for (int it = 0; it < options.max_iterations; ++it) {
     laser::MatchResult m = matcher.match(scan, map, pose);
-    IteratedCorrection step = solve_point_to_line(m.matches, map, pose, options);
-    if (!step.valid) {
-      out.iterations = it + 1;
-      return out;  // not valid: corrected = estimate
+    iterations = it + 1;
+    std::optional<Steps> st = gauss_newton(m.matches, map, pose, options);
+    if (!st) {
+      // Too few points here: the previous iteration's result stands (none: corrected = estimate,
+      // not valid).
+      if (last) {
+        out = finish(std::move(*last), options);
+        out.matches = std::move(last_matches.matches);
+      }
+      out.iterations = iterations;
+      return out;
     }
-    const double dt = std::hypot(step.corrected.x - pose.x, step.corrected.y - pose.y);
-    const double dth = std::abs(angle_diff(step.corrected.theta, pose.theta));
-    pose = step.corrected;
-    step.matches = std::move(m.matches);
-    step.iterations = it + 1;
-    out = std::move(step);
+    const double dt = std::hypot(st->pose.x - pose.x, st->pose.y - pose.y);
+    const double dth = std::abs(angle_diff(st->pose.theta, pose.theta));
+    pose = st->pose;
+    last = std::move(st);
+    last_matches = std::move(m);
     if (dt < options.translation_tolerance && dth < options.rotation_tolerance) {
-      out.converged = true;
+      converged = true;
       break;
     }
   }
+  out = finish(std::move(*last), options);
+  out.matches = std::move(last_matches.matches);
+  out.iterations = iterations;
+  out.converged = converged;
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "benchmarks/experiments/laser_correctors.h"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "algorithms/core/angle.h"
@@ -18,6 +19,23 @@ std::size_t points_of(const std::vector<laser::SegmentMatch>& matches) {
   std::size_t n = 0;
   for (const auto& m : matches) n += m.points.size();
   return n;
+}
+
+// The diagnostics of a chapter-6 correction (laser_correctors.h).
+void diagnose(const pose_correction::PoseCorrection& c, ScanPairCorrection& out) {
+  out.heading_spread = -1.0;
+  out.position_information_ratio = -1.0;
+  if (c.heading_fixed) {
+    double ss = 0.0;
+    for (const auto& s : c.orientation.segments) ss += s.weight * std::pow(s.delta - c.orientation.delta, 2);
+    out.heading_spread = std::sqrt(ss);
+  }
+  if (c.position_fixed) {
+    // The covariance is s² A⁻¹: its eigenvalues are in the inverse ratio of A's.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(c.position.covariance);
+    const double hi = es.eigenvalues().maxCoeff();
+    out.position_information_ratio = hi > 0.0 ? es.eigenvalues().minCoeff() / hi : 0.0;
+  }
 }
 
 // matcher + one pass of chapter 6 (or heading only, or re-matched until it stops moving).
@@ -43,6 +61,7 @@ class Chapter6 final : public ScanPairCorrector {
       out.matched_points = points_of(m.matches);
       out.matched_segments = c.segments_used;
       out.heading_fixed = c.heading_fixed;
+      diagnose(c, out);
       if (mode_ == Mode::kHeadingOnly) {
         out.motion = Pose2(pose.x, pose.y, c.corrected.theta);
         return out;
@@ -157,6 +176,10 @@ std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vecto
       out.push_back(std::make_unique<Chapter6>(name, matcher("eap"), ch6, Chapter6::Mode::kRematched, rematch));
     } else if (name == "eap_ch6_heading_only") {
       out.push_back(std::make_unique<Chapter6>(name, matcher("eap"), ch6, Chapter6::Mode::kHeadingOnly, 1));
+    } else if (name == "eap_ch6_inverse_variance") {
+      PoseCorrectionOptions o6 = ch6;
+      o6.orientation.weighting = pose_correction::OrientationWeighting::kInverseVariance;
+      out.push_back(std::make_unique<Chapter6>(name, matcher("eap"), o6, Chapter6::Mode::kOneShot, 1));
     } else if (name == "eap_iterated_pl") {
       out.push_back(std::make_unique<IteratedPointToLine>(
           name, matcher("eap"), read_options<pose_correction::IteratedCorrectionOptions>(o, "iterated")));
@@ -170,7 +193,7 @@ std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vecto
     } else {
       throw UsageError("unknown corrector '" + name +
                        "' (known: <matcher>_ch6_ls, eap_ch6_rematched, eap_ch6_heading_only, "
-                       "eap_iterated_pl, pl_icp, icp_point_to_point)");
+                       "eap_ch6_inverse_variance, eap_iterated_pl, pl_icp, icp_point_to_point)");
     }
   }
   return out;

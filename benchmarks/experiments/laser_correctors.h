@@ -9,6 +9,9 @@
 //   "eap_ch6_rematched"     EAP + chapter 6, re-matched from each corrected pose until it stops
 //                           moving (diagnosis: is the one-shot solve the weak link?);
 //   "eap_ch6_heading_only"  EAP + chapter 6's heading only, position = odometry (diagnosis);
+//   "eap_ch6_inverse_variance"  EAP + one pass of chapter 6 with the segments' headings weighted
+//                           by their inverse variance instead of eq. 6.18 (diagnosis: is the
+//                           thesis's weight the weak link?);
 //   "eap_iterated_pl"       EAP matches + iterated joint point-to-line Gauss–Newton
 //                           (algorithms/pose_correction/iterated_correction.h);
 //   "pl_icp"                PL-ICP (Censi 2008), baselines/laser/pl_icp.h;
@@ -32,6 +35,12 @@ struct ScanPairCorrection {
   std::size_t matched_points = 0;
   std::size_t matched_segments = 0;  // map lines used (0 for the ICPs)
   int iterations = 0;
+  // Chapter-6 correctors only (−1 otherwise), for the diagnosis of laser/real_logs:
+  // smallest / largest eigenvalue of the position normal matrix [k3 k4; k4 k5] (eq. 6.37) —
+  // how well the matched lines fix the position in its worst direction —, and the weighted
+  // spread √Σ w_i (Δθ_i − Δθ̂)² of the per-segment headings (eq. 6.17–6.20) [rad].
+  double position_information_ratio = -1.0;
+  double heading_spread = -1.0;
 };
 
 class ScanPairCorrector {

@@ -22,6 +22,7 @@
 #include "benchmarks/experiments/laser_correctors.h"
 #include "benchmarks/experiments/monte_carlo.h"
 #include "benchmarks/experiments/real_log_harness.h"
+#include "benchmarks/experiments/relation_drawing.h"
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments {
@@ -32,8 +33,11 @@ struct Setup {
   std::vector<std::string> methods;  // correctors, in order (odometry_raw is added first)
   nlohmann::json corrector_options;
   std::string beam_angles;
+  std::optional<Pose2> laser_mount;  // overrides every scan's sensor_pose when set
   double max_dt = 0.0;
   std::size_t max_relations = 0;
+  std::size_t draw_worst = 0;
+  bool per_relation_values = true;
   nlohmann::json configuration;
 };
 
@@ -49,9 +53,19 @@ struct Record {
   // [method][relation]; method 0 = odometry. Translation [m] and rotation [rad] errors, whether
   // the position was fixed (1/0), matched points.
   std::vector<std::vector<double>> translation, rotation, position_fixed, matched_points;
+  // [method][relation]: |motion translation| − |reference translation| [m] (scale along the
+  // path), and how far the corrector moved the odometry's translation [m].
+  std::vector<std::vector<double>> length_error, moved;
+  // [method][relation]: chapter-6 diagnostics (ScanPairCorrection; −1 = not applicable).
+  std::vector<std::vector<double>> information_ratio, heading_spread;
+  std::vector<double> reference_length;  // per relation [m]
+  // The draw_worst relations with the largest eap_ch6_ls translation error (indices), drawn.
+  std::vector<std::size_t> drawn_index;
+  std::vector<DrawnRelation> drawn;
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, status, reason, path, checksum, records, duration, relations, t1, t2, lines,
-                                   translation, rotation, position_fixed, matched_points)
+                                   translation, rotation, position_fixed, matched_points, length_error,
+                                   moved, information_ratio, heading_spread, reference_length, drawn_index, drawn)
 
 // A map of the lines extracted from one scan, in its robot frame.
 LineMap lines_as_map(const laser::ExtractionResult& lines) {
@@ -100,6 +114,10 @@ std::vector<double> subset(const std::vector<double>& v, const std::vector<bool>
   return out;
 }
 
+// Diagnosis thresholds (reported, not used by any corrector).
+constexpr double kWeakPosition = 0.02;
+constexpr double kHeadingSpread = 0.0349066;  // 2°
+
 class LaserRealLogs final : public MonteCarloExperiment<Setup> {
  public:
   std::string name() const override { return "laser/real_logs"; }
@@ -113,12 +131,17 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
     return {{"runs", 1},  // not Monte-Carlo: one task per dataset
             {"datasets", {"aces", "intel", "mit_csail"}},
             {"matchers", {"eap", "split_and_merge", "agglomerative", "rwht"}},
-            {"correctors", {"eap_ch6_rematched", "eap_ch6_heading_only", "eap_iterated_pl",
+            {"correctors", {"eap_ch6_rematched", "eap_ch6_heading_only", "eap_ch6_inverse_variance",
+                            "eap_iterated_pl",
                             "pl_icp", "icp_point_to_point"}},
             {"corrector_options", default_corrector_options()},
             {"beam_angles", "log"},
+            {"laser_mount", nullptr},  // [x m, y m, θ rad] of the laser in the robot frame; null = the log's
             {"max_relation_dt_s", 30.0},
-            {"max_relations", 0}};  // 0 = all
+            {"max_relations", 0},  // 0 = all
+            {"draw_worst", 3},     // relations drawn in the report, per log
+            // Each relation's error in the report (the rpe metrics' values), for checks by others.
+            {"per_relation_values", true}};
   }
   Setup setup(const nlohmann::json& config, const McPlan& plan) const override {
     Setup s;
@@ -136,8 +159,15 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
       throw UsageError(name() + ": beam_angles: expected \"log\" or \"bag\", found \"" +
                        s.beam_angles + "\"");
     }
+    if (const auto& m = config.at("laser_mount"); !m.is_null()) {
+      const auto v = m.get<std::vector<double>>();
+      if (v.size() != 3) throw UsageError(name() + ": laser_mount: expected [x, y, theta] or null");
+      s.laser_mount = Pose2(v[0], v[1], v[2]);
+    }
     s.max_dt = config.at("max_relation_dt_s").get<double>();
     s.max_relations = config.at("max_relations").get<std::size_t>();
+    s.draw_worst = config.at("draw_worst").get<std::size_t>();
+    s.per_relation_values = config.at("per_relation_values").get<bool>();
     s.configuration = config;
     (void)plan;
     return s;
@@ -158,6 +188,9 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
     if (loaded.status != "ok") return rec;
     Log& log = loaded.log;
     apply_beam_angles(log, s.beam_angles);
+    if (s.laser_mount) {
+      for (auto& l : log.laser) l.scan.sensor_pose = *s.laser_mount;
+    }
     const Trajectory odom = odometry_trajectory(log);
     std::map<double, std::size_t> scan_at;
     for (std::size_t i = 0; i < log.laser.size(); ++i) scan_at[log.laser[i].scan.timestamp] = i;
@@ -168,6 +201,15 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
     rec.rotation.assign(methods, {});
     rec.position_fixed.assign(methods, {});
     rec.matched_points.assign(methods, {});
+    rec.length_error.assign(methods, {});
+    rec.moved.assign(methods, {});
+    rec.information_ratio.assign(methods, {});
+    rec.heading_spread.assign(methods, {});
+    struct Pair {
+      std::size_t first, second;
+      Pose2 odometry, reference;
+    };
+    std::vector<Pair> pairs;  // per recorded relation, to draw the worst ones afterwards
     for (const Relation& r : log.relations) {
       if (s.max_relations && rec.relations >= s.max_relations) break;
       if (r.t2 - r.t1 > s.max_dt) continue;
@@ -184,6 +226,11 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
         rec.rotation[method].push_back(std::abs(e.theta));
         rec.position_fixed[method].push_back(c.position_fixed ? 1.0 : 0.0);
         rec.matched_points[method].push_back(static_cast<double>(c.matched_points));
+        rec.length_error[method].push_back(c.motion.translation().norm() - r.delta.translation().norm());
+        const Pose2 moved = between(estimate, c.motion);
+        rec.moved[method].push_back(std::hypot(moved.x, moved.y));
+        rec.information_ratio[method].push_back(c.position_information_ratio);
+        rec.heading_spread[method].push_back(c.heading_spread);
       };
       ScanPairCorrection odometry;
       odometry.motion = estimate;
@@ -194,11 +241,33 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
       rec.t1.push_back(r.t1);
       rec.t2.push_back(r.t2);
       rec.lines.push_back(static_cast<double>(map.segments.size()));
+      rec.reference_length.push_back(r.delta.translation().norm());
+      pairs.push_back({*a, *b, estimate, r.delta});
       ++rec.relations;
     }
     if (rec.relations == 0) {
       rec.status = "failed";
       rec.reason = "no relation pairs two scans inside the odometry's span";
+      return rec;
+    }
+    // The worst relations of the one-shot solve (eap_ch6_ls), or of odometry without it.
+    const auto one_shot = std::find(s.methods.begin(), s.methods.end(), "eap_ch6_ls");
+    const std::size_t worst_of =
+        one_shot == s.methods.end() ? 0 : 1 + static_cast<std::size_t>(one_shot - s.methods.begin());
+    std::vector<std::size_t> order(rec.relations);
+    std::iota(order.begin(), order.end(), 0);
+    const std::size_t k = std::min(s.draw_worst, order.size());
+    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(k), order.end(),
+                      [&](std::size_t x, std::size_t y) {
+                        return rec.translation[worst_of][x] > rec.translation[worst_of][y];
+                      });
+    for (std::size_t i = 0; i < k; ++i) {
+      const Pair& p = pairs[order[i]];
+      const Scan& first = log.laser[p.first].scan;
+      rec.drawn_index.push_back(order[i]);
+      rec.drawn.push_back(draw_relation(first, lines_as_map(extractor.extract_lines(first)),
+                                        log.laser[p.second].scan, p.odometry, p.reference,
+                                        s.corrector_options));
     }
     return rec;
   }
@@ -222,9 +291,11 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
       for (std::size_t m = 0; m <= s.methods.size(); ++m) {
         const std::string method = m == 0 ? "odometry_raw" : s.methods[m - 1];
         out.results.push_back(reports::make_metric(method, ds, "rpe_translation", "m",
-                                                   "freiburg_relations", r.translation[m], false));
+                                                   "freiburg_relations", r.translation[m],
+                                                   s.per_relation_values));
         out.results.push_back(reports::make_metric(method, ds, "rpe_rotation", "rad",
-                                                   "freiburg_relations", r.rotation[m], false));
+                                                   "freiburg_relations", r.rotation[m],
+                                                   s.per_relation_values));
         line += fmt::format(" {} {} / {}", method, interval(r.translation[m], 1e3, 1),
                             interval(r.rotation[m], to_deg(1.0), 2));
         if (m > 0) {
@@ -233,7 +304,12 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
         line += ";";
       }
       out.notes.push_back(line);
+      out.notes.push_back(verdict(s, r, ds, out));
       out.notes.push_back(diagnosis(s, r, ds));
+      out.notes.push_back(scale_check(s, r, ds));
+      for (std::size_t k = 0; k < r.drawn.size(); ++k) {
+        for (reports::Plot& p : relation_plots(ds, r, k)) out.plots.push_back(std::move(p));
+      }
     }
     out.notes.push_back(
         "The map of each pair for the *_ch6_ls and eap_* correctors is the split-and-merge lines "
@@ -245,6 +321,97 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
   }
 
  private:
+  // The reference against the two sensors: mean |translation| − |reference translation| (a
+  // scale disagreement along the path) and how far each corrector moved the odometry. When wheels
+  // and laser agree with each other better than either agrees with the reference, the
+  // translation error is the reference's.
+  static std::string scale_check(const Setup& s, const Record& r, const std::string& ds) {
+    std::string text = fmt::format(
+        "{} scale check (reference relations {} mm long on average): mean |motion| − |reference| "
+        "[95% CI], mm, and mean translation moved from odometry, mm:",
+        ds, interval(r.reference_length, 1e3, 0));
+    for (std::size_t m = 0; m <= s.methods.size(); ++m) {
+      const std::string method = m == 0 ? "odometry_raw" : s.methods[m - 1];
+      text += fmt::format(" {} {} / {:.1f};", method, interval(r.length_error[m], 1e3, 1),
+                          1e3 * mean(r.moved[m]));
+    }
+    return text;
+  }
+
+  // Against raw odometry on the same relations, per corrector: paired differences (corrector −
+  // odometry) as metrics, and whether the corrector beats odometry in heading (the 95% intervals
+  // of the two means separated) and is no worse in translation (the paired difference's 95%
+  // interval reaches 0 or below).
+  static std::string verdict(const Setup& s, const Record& r, const std::string& ds,
+                             reports::ExperimentResults& out) {
+    std::string text = fmt::format(
+        "{} against odometry (paired differences over {} relations, mean [95% CI], mm / deg; "
+        "heading beaten = the 95% intervals of the means separated; translation better / WORSE = "
+        "separated either way, no worse = overlapping and the paired interval reaching ≤ 0):",
+        ds, r.relations);
+    const Summary ot = summarize(r.translation[0]), orot = summarize(r.rotation[0]);
+    for (std::size_t m = 1; m <= s.methods.size(); ++m) {
+      std::vector<double> dt(r.relations), dr(r.relations);
+      for (std::size_t i = 0; i < r.relations; ++i) {
+        dt[i] = r.translation[m][i] - r.translation[0][i];
+        dr[i] = r.rotation[m][i] - r.rotation[0][i];
+      }
+      const std::string& method = s.methods[m - 1];
+      out.results.push_back(reports::make_metric(method, ds, "rpe_translation_minus_odometry", "m",
+                                                 "freiburg_relations", dt, false));
+      out.results.push_back(reports::make_metric(method, ds, "rpe_rotation_minus_odometry", "rad",
+                                                 "freiburg_relations", dr, false));
+      const Summary t = summarize(r.translation[m]), rot = summarize(r.rotation[m]);
+      const Summary pt = summarize(dt);
+      const bool heading = rot.ci95_high < orot.ci95_low;
+      std::string translation = "no worse";
+      if (t.ci95_high < ot.ci95_low) {
+        translation = "better";
+      } else if (t.ci95_low > ot.ci95_high) {
+        translation = "WORSE";
+      } else if (pt.ci95_low > 0.0) {
+        translation = "worse by the paired interval only (the intervals of the means overlap)";
+      }
+      text += fmt::format(" {}: Δ {} / {} — heading {}, translation {};", method,
+                          interval(dt, 1e3, 1), interval(dr, to_deg(1.0), 2),
+                          heading ? "beaten" : "NOT beaten", translation);
+    }
+    return text;
+  }
+
+  // The k-th drawn relation as two "scan_pair" plots: before (odometry + the EAP matches the
+  // one-shot solve uses) and after (one-shot, iterated and reference placements).
+  static std::vector<reports::Plot> relation_plots(const std::string& ds, const Record& r,
+                                                   std::size_t k) {
+    const DrawnRelation& d = r.drawn[k];
+    const std::size_t i = r.drawn_index[k];
+    const auto plot = [&](const char* stage, std::string title, const std::vector<DrawnSeries>& ss) {
+      reports::Plot p;
+      p.name = fmt::format("worst_relation_{}_{}_{}", ds, k + 1, stage);
+      p.kind = "scan_pair";
+      p.title = std::move(title);
+      p.x_label = "x (first robot frame)";
+      p.x_unit = "m";
+      p.y_label = "y";
+      p.y_unit = "m";
+      for (const DrawnSeries& s : ss) p.series.push_back({s.name, s.x, s.y});
+      p.note = fmt::format("{}: relation {:.3f} → {:.3f} s, {:.0f} lines in the first scan, worst "
+                           "{} of eap_ch6_ls by translation error",
+                           ds, r.t1[i], r.t2[i], r.lines[i], k + 1);
+      return p;
+    };
+    return {plot("before", fmt::format("{} #{} before: odometry {:.0f} mm / {:.2f}°, {} EAP-matched points",
+                                       ds, k + 1, 1e3 * d.odometry_translation,
+                                       to_deg(d.odometry_rotation), d.one_shot_points),
+                 d.before),
+            plot("after", fmt::format("{} #{} after: eap_ch6_ls {:.0f} mm / {:.2f}°, eap_iterated_pl "
+                                      "{:.0f} mm / {:.2f}°",
+                                      ds, k + 1, 1e3 * d.one_shot_translation,
+                                      to_deg(d.one_shot_rotation), 1e3 * d.iterated_translation,
+                                      to_deg(d.iterated_rotation)),
+                 d.after)};
+  }
+
   // Where the one-shot chapter-6 correction (eap_ch6_ls) goes wrong, from the per-relation data.
   static std::string diagnosis(const Setup& s, const Record& r, const std::string& ds) {
     const auto index = [&](const std::string& m) -> std::optional<std::size_t> {
@@ -269,6 +436,40 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
         interval(subset(r.translation[0], fixed), 1e3, 1),
         interval(subset(r.translation[e], not_fixed), 1e3, 1),
         interval(subset(r.translation[0], not_fixed), 1e3, 1));
+    // Why: the position fixes whose normal matrix is nearly singular, and the headings whose
+    // segments disagree.
+    std::vector<bool> weak(r.relations), strong(r.relations), spread(r.relations), agree(r.relations);
+    for (std::size_t i = 0; i < r.relations; ++i) {
+      const double q = r.information_ratio[e][i];
+      weak[i] = q >= 0.0 && q < kWeakPosition;
+      strong[i] = q >= kWeakPosition;
+      const double h = r.heading_spread[e][i];
+      spread[i] = h > kHeadingSpread;
+      agree[i] = h >= 0.0 && h <= kHeadingSpread;
+    }
+    const auto count = [](const std::vector<bool>& v) { return std::count(v.begin(), v.end(), true); };
+    out += fmt::format(
+        " Position fixes with a nearly singular normal matrix (eigenvalue ratio < {}, the "
+        "threshold below which eap_iterated_pl keeps a direction): {} of {} — translation error "
+        "{} mm (odometry {} mm); the other {}: {} mm (odometry {} mm). Headings whose matched "
+        "segments disagree (weighted spread of Δθ_i > {:.0f}°): {} — heading error {}° (odometry "
+        "{}°); the other {}: {}° (odometry {}°).",
+        kWeakPosition, count(weak), count(weak) + count(strong),
+        interval(subset(r.translation[e], weak), 1e3, 1), interval(subset(r.translation[0], weak), 1e3, 1),
+        count(strong), interval(subset(r.translation[e], strong), 1e3, 1),
+        interval(subset(r.translation[0], strong), 1e3, 1), to_deg(kHeadingSpread), count(spread),
+        interval(subset(r.rotation[e], spread), to_deg(1.0), 2),
+        interval(subset(r.rotation[0], spread), to_deg(1.0), 2), count(agree),
+        interval(subset(r.rotation[e], agree), to_deg(1.0), 2),
+        interval(subset(r.rotation[0], agree), to_deg(1.0), 2));
+    if (const auto ivw = index("eap_ch6_inverse_variance")) {
+      out += fmt::format(
+          " The same EAP matches and one pass with the segments' headings weighted by their "
+          "inverse variance instead of eq. 6.18 (eap_ch6_inverse_variance): {} mm / {}° against "
+          "eap_ch6_ls's {} mm / {}°.",
+          interval(r.translation[*ivw], 1e3, 1), interval(r.rotation[*ivw], to_deg(1.0), 2),
+          interval(r.translation[e], 1e3, 1), interval(r.rotation[e], to_deg(1.0), 2));
+    }
     // The worst relations of the one-shot solve, with the other correctors on them.
     std::vector<std::size_t> order(r.relations);
     std::iota(order.begin(), order.end(), 0);

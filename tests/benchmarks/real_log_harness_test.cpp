@@ -95,7 +95,8 @@ TEST(RealLogExperiments, LaserRealLogsCorrectsAUsersLog) {
                                         {"log", files.log.string()},
                                         {"relations", files.relations.string()}}}},
                          {"matchers", {"eap"}},
-                         {"correctors", {"pl_icp", "eap_iterated_pl", "icp_point_to_point"}}});
+                         {"correctors", {"pl_icp", "eap_iterated_pl", "icp_point_to_point",
+                                         "eap_ch6_inverse_variance"}}});
   ASSERT_TRUE(r.cases.empty()) << r.cases.front().reason;
   ASSERT_EQ(r.datasets.size(), 1u);
   EXPECT_EQ(r.datasets[0].name, "mine");
@@ -109,6 +110,53 @@ TEST(RealLogExperiments, LaserRealLogsCorrectsAUsersLog) {
   }
   // Point-to-point ICP pairs beams, not surface points: biased, but still half odometry's error.
   EXPECT_LT(m.at("icp_point_to_point/mine/rpe_rotation").summary.mean, deg(0.75));
+  // One chapter-6 pass with inverse-variance heading weights fixes most of the 1.5°.
+  EXPECT_LT(m.at("eap_ch6_inverse_variance/mine/rpe_rotation").summary.mean, deg(0.5));
+  // Paired differences against odometry, relation by relation: their mean is the difference
+  // of the means.
+  const auto& d = m.at("pl_icp/mine/rpe_rotation_minus_odometry");
+  EXPECT_EQ(d.summary.n, files.relation_count);
+  EXPECT_NEAR(d.summary.mean,
+              m.at("pl_icp/mine/rpe_rotation").summary.mean - m.at("odometry_raw/mine/rpe_rotation").summary.mean,
+              1e-12);
+  EXPECT_LT(d.summary.ci95_high, 0.0);
+  // The 3 worst relations of eap_ch6_ls drawn before and after, in the first robot frame.
+  ASSERT_EQ(r.plots.size(), 6u);
+  for (const auto& p : r.plots) {
+    EXPECT_EQ(p.kind, "scan_pair");
+    ASSERT_GE(p.series.size(), 4u);
+    EXPECT_EQ(p.series[0].name, "first scan");
+    EXPECT_EQ(p.series[0].x.size(), 181u);  // every beam of the room hits a wall
+    EXPECT_EQ(p.series[1].x.size() % 2, 0u);  // lines as point pairs
+  }
+  EXPECT_NE(r.plots[0].title.find("before"), std::string::npos);
+  EXPECT_NE(r.plots[1].title.find("after"), std::string::npos);
+}
+
+// global/real_logs places its map on the scan-matched path: on the small log, whose odometry
+// over-turns 1.5° per step (34° over the 23 steps), that path ends far from the odometry; with
+// map_poses = "odometry" the map and the reference are the odometry's, as before.
+TEST(RealLogExperiments, GlobalRealLogsBuildsItsMapOnTheScanMatchedPath) {
+  ScratchDir dir;
+  const auto files = write_small_real_log(dir.path());
+  nlohmann::json o = {{"datasets", {{{"name", "mine"}, {"log", files.log.string()}}}},
+                      {"methods", {"ekf_eap"}},
+                      {"window_s", 11.0},
+                      {"map_every", 1}};
+  const auto matched = run_on("global/real_logs", o);
+  ASSERT_TRUE(matched.cases.empty()) << matched.cases.front().reason;
+  const std::string& note = matched.notes.front();
+  EXPECT_NE(note.find("placed by scan_matched"), std::string::npos) << note;
+  // Truth after 23 steps of (0.12 m, 4°) vs odometry's (0.1236 m, 5.5°): 0.71 m apart.
+  const auto at = note.find("(ends ");
+  ASSERT_NE(at, std::string::npos) << note;
+  EXPECT_GT(std::stod(note.substr(at + 6)), 0.3) << note;
+  o["map_poses"] = "odometry";
+  const auto plain = run_on("global/real_logs", o);
+  EXPECT_NE(plain.notes.front().find("placed by odometry"), std::string::npos) << plain.notes.front();
+  EXPECT_EQ(plain.notes.front().find("(ends "), std::string::npos);
+  o["map_poses"] = "truth";
+  EXPECT_THROW(run_on("global/real_logs", o), UsageError);
 }
 
 TEST(RealLogExperiments, OdometryAndNoiseRealLogsReadAUsersLog) {

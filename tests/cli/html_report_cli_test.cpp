@@ -9,6 +9,7 @@
 #include <regex>
 #include <sstream>
 
+#include "tests/benchmarks/small_real_log.h"
 #include "tests/cli/cli_helpers.h"
 #include "tests/test_data.h"
 
@@ -141,6 +142,53 @@ TEST_F(HtmlReport, RendersInChromiumWithItsChartsTablesAndNoConsoleErrors) {
   ASSERT_EQ(s.exit_code, 0) << s.log;
   ASSERT_TRUE(std::filesystem::exists(shot));
   EXPECT_GT(std::filesystem::file_size(shot), 50'000u);  // a page of tables and charts, not blank
+}
+
+// Separate sub-paths ("M" moves) in the longest run of `d` attributes of `svg`.
+std::size_t most_moves(const std::string& svg) {
+  std::size_t best = 0;
+  for (std::size_t at = svg.find(" d="); at != std::string::npos; at = svg.find(" d=", at + 1)) {
+    const char quote = svg[at + 3];
+    const std::size_t end = svg.find(quote, at + 4);
+    const std::string d = svg.substr(at + 4, end - at - 4);
+    best = std::max<std::size_t>(best, static_cast<std::size_t>(std::count(d.begin(), d.end(), 'M')));
+  }
+  return best;
+}
+
+// laser/real_logs on a user's log (written here): its worst relations drawn as scan pairs —
+// both scans as points, the first scan's lines and the matches as separate segments — before
+// (odometry) and after (corrections), under their own heading.
+TEST_F(HtmlReport, DrawsTheWorstRelationsOfAUsersLogAsScanPairs) {
+  const auto files = testing::write_small_real_log(dir.path());
+  const std::string reports = (dir.path() / "reports").string();
+  const Outcome run = run_locbench("run laser/real_logs --log " + files.log.string() + " --relations " +
+                                   files.relations.string() + " --set 'matchers=[\"eap\"]' --set draw_worst=2 --out " +
+                                   reports);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto html = dir.file("relations.html");
+  const Outcome o = run_locbench("report " + reports + " -o " + html.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const Rendered r = render(html, dir.path() / "profile");
+  ASSERT_EQ(r.exit_code, 0) << r.log;
+  EXPECT_NE(r.dom.find("Scan pairs drawn: both scans, lines and matches, before and after"), std::string::npos);
+  int pairs = 0;
+  for (std::size_t at = r.dom.find("data-kind=\"scan_pair\""); at != std::string::npos;
+       at = r.dom.find("data-kind=\"scan_pair\"", at + 1)) {
+    ++pairs;
+    const std::string f = r.dom.substr(at, r.dom.find("</figure>", at) - at);
+    // Two scans of 181 beams each, drawn as point markers (gnuplot's pt 7, gpPt6).
+    EXPECT_GE(count_of(f, "gpPt6"), 200u) << f.substr(0, 300);
+    // The room's walls and pillar as lines of the first scan, and the matches: many separate
+    // segments, not one polyline.
+    EXPECT_GE(most_moves(f), 5u) << f.substr(0, 300);
+    EXPECT_NE(f.find("first-scan lines"), std::string::npos);
+  }
+  EXPECT_EQ(pairs, 4);  // 2 relations × (before, after)
+  EXPECT_NE(r.dom.find("before: odometry"), std::string::npos);
+  EXPECT_NE(r.dom.find("after: eap_ch6_ls"), std::string::npos);
+  const auto found = problems(r.log);
+  EXPECT_TRUE(found.empty()) << found.front();
 }
 
 // The check above can fail: a page that logs to the console is caught.

@@ -47,6 +47,24 @@ TEST(PlotScript, DrawsACdfChartAsOneStepLinePerSample) {
   EXPECT_NE(s.find("title 'extended twin'"), std::string::npos);
 }
 
+TEST(PlotScript, DrawsAScanPairToScaleWithPointsAndSeparateSegments) {
+  Plot p;
+  p.kind = "scan_pair";
+  p.title = "relation";
+  p.series = {{"first scan", {1.0, 2.0}, {0.5, 0.5}},
+              {"first-scan lines", {0.0, 3.0, 3.0, 3.0}, {0.0, 0.0, 0.0, 2.0}},
+              {"EAP matches", {1.0, 1.0}, {0.52, 0.5}}};
+  const std::string s = plot_script(p);
+  EXPECT_NE(s.find("set size ratio -1"), std::string::npos);  // metres to scale
+  EXPECT_NE(s.find("$s0 using 1:2 with points"), std::string::npos) << s;
+  EXPECT_NE(s.find("$s1 using 1:2 with lines"), std::string::npos) << s;
+  EXPECT_NE(s.find("$s2 using 1:2 with lines"), std::string::npos) << s;
+  // Two wall segments: a blank line after each pair, so gnuplot does not join (3, 0) to (3, 0).
+  EXPECT_NE(s.find("0 0\n3 0\n\n3 0\n3 2\n\n"), std::string::npos) << s;
+  EXPECT_TRUE(is_segment_series("eap_iterated_pl matches"));
+  EXPECT_FALSE(is_segment_series("second scan at odometry"));
+}
+
 TEST(MetricHistograms, DrawsErrorsOverMonteCarloRunsGroupedByDatasetAndVariant) {
   ExperimentResults r;
   const std::vector<double> five{1, 2, 3, 4, 5};
