@@ -118,7 +118,8 @@ LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path
     if (!spec.relations.empty()) attach_relations(out.log, spec.relations);
     if (!spec.ground_truth.empty()) {
       out.log.truth.clear();
-      for (const StampedPose& p : read_tum(spec.ground_truth).poses()) {
+      const Trajectory reference = read_tum(spec.ground_truth);  // outlives the loop
+      for (const StampedPose& p : reference.poses()) {
         TruePose truth;
         truth.t = p.t;
         truth.pose = p.pose;
