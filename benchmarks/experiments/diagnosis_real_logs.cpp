@@ -2,18 +2,19 @@
 // reference — the Freiburg logs (ODOM against their .relations) and the MRCLAM robots (velocity
 // odometry against Vicon ground truth) — and on the thesis's Table 3.1 histogram. For each: the
 // causes found with their parameters and 95% intervals, the held-out gain, what is left
-// unexplained, and the verdict. Logs that are absent are recorded as skipped.
+// unexplained, and the verdict. Logs that are absent are recorded as skipped. Any user's log
+// (`--log L [--relations R] [--ground-truth G]`, or objects in "datasets") goes through the same
+// real-log harness as the other real-data experiments.
 #include <fmt/format.h>
 
 #include <cmath>
 #include <optional>
 
-#include "algorithms/core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "algorithms/diagnosis/scale_checks.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/parallel_tasks.h"
-#include "datasets/catalog/dataset_catalog.h"
+#include "benchmarks/experiments/real_log_harness.h"
 #include "reports/checksum.h"
 
 namespace locbench::experiments {
@@ -46,7 +47,8 @@ class DiagnosisRealLogs final : public Experiment {
     diagnosis::DiagnosisOptions opt;
     opt.false_alarm = config.at("false_alarm").get<double>();
     opt.windows.duration = config.at("window_s").get<double>();
-    const auto names = config.at("datasets").get<std::vector<std::string>>();
+    const auto specs = real_log_specs(config.at("datasets"), name());
+    const auto names = real_log_names(specs);
     auto record = [&](const diagnosis::Diagnosis& d, const std::string& ds, std::size_t n) {
       out.results.push_back(reports::make_estimate("diagnose", ds, "causes_detected", "",
                                                    static_cast<double>(d.detected.size()), 0.0, n));
@@ -88,33 +90,24 @@ class DiagnosisRealLogs final : public Experiment {
       std::size_t samples = 0;
     };
     std::vector<Outcome> outcomes(names.size());
-    for (const auto& n : names) {
-      if (!find_dataset(n)) throw UsageError("diagnosis/real_logs: unknown dataset '" + n + "' (see `locbench list`)");
-    }
-    parallel_tasks(options.threads, names.size(), [&](std::size_t i) {
-      const DatasetEntry* e = find_dataset(names[i]);
+    parallel_tasks(options.threads, specs.size(), [&](std::size_t i) {
       Outcome& o = outcomes[i];
-      const std::string path = (options.data_root / e->path).string();
-      const std::string file = path.substr(0, path.find('#'));
-      if (!std::filesystem::exists(file)) {
-        o.note = reports::CaseNote{"diagnosis/" + names[i], "skipped", "dataset not found at " + file + " (set LOCBENCH_DATA)"};
+      // A user's missing or malformed file is an InputError (exit 2) from here; catalog data
+      // that is absent or unreadable becomes a skipped or failed case.
+      LoadedRealLog loaded = load_real_log(specs[i], options.data_root);
+      if (loaded.status != "ok") {
+        o.note = reports::CaseNote{"diagnosis/" + names[i], loaded.status, loaded.reason};
         return;
       }
-      try {
-        Log log = load_catalog_dataset(*e, options.data_root);
-        o.diagnosis = diagnosis::diagnose_log(log, opt);
-        // The independent checks, at the time offset the diagnosis kept (0 when none).
-        double offset = 0.0;
-        for (const auto& c : o.diagnosis->causes) {
-          if (c.id == "sensor_time_offset" && c.detected && !c.parameters.empty()) offset = c.parameters[0].value;
-        }
-        o.checks = diagnosis::scale_checks(diagnosis::build_motion_data(log, opt.windows), offset);
-        o.dataset = reports::DatasetRef{names[i], path, reports::file_checksum(file), log.record_count(),
-                                        log.time_span().second - log.time_span().first};
-        o.samples = log.odometry.size() + log.encoders.size();
-      } catch (const InputError& err) {
-        o.note = reports::CaseNote{"diagnosis/" + names[i], "failed", err.what()};
+      o.diagnosis = diagnosis::diagnose_log(loaded.log, opt);
+      // The independent checks, at the time offset the diagnosis kept (0 when none).
+      double offset = 0.0;
+      for (const auto& c : o.diagnosis->causes) {
+        if (c.id == "sensor_time_offset" && c.detected && !c.parameters.empty()) offset = c.parameters[0].value;
       }
+      o.checks = diagnosis::scale_checks(diagnosis::build_motion_data(loaded.log, opt.windows), offset);
+      o.dataset = loaded.dataset;
+      o.samples = loaded.log.odometry.size() + loaded.log.encoders.size();
     });
     for (std::size_t i = 0; i < names.size(); ++i) {
       if (outcomes[i].note) out.cases.push_back(*outcomes[i].note);

@@ -46,6 +46,29 @@ TEST(RealLogCli, OdometryAndLaserRealLogsRunOnAUsersLogAndRelations) {
   EXPECT_LT(pl->summary.mean, 0.2 * raw->summary.mean);
 }
 
+TEST(RealLogCli, DiagnosisRealLogsDiagnosesAUsersLogAgainstItsGroundTruth) {
+  // A simulated corridor run whose PARAMs are the true model: the checks beside the diagnosis
+  // see a path-length ratio of about 1, and the ground truth comes from the TUM file.
+  ScratchDir dir;
+  const std::string log = (dir.path() / "corridor.clf").string();
+  const std::string truth = (dir.path() / "truth.tum").string();
+  Outcome o = run_locbench("simulate corridor --seed 7 -o " + log + " --truth-tum " + truth);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  o = run_locbench("run diagnosis/real_logs --log " + log + " --ground-truth " + truth + " -o " +
+                   (dir.path() / "out").string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto r = reports::read_report(dir.path() / "out/diagnosis/real_logs.json");
+  ASSERT_NE(find(r, "diagnose/corridor/causes_detected"), nullptr);
+  const auto* ratio = find(r, "check/corridor/path_length_ratio");
+  ASSERT_NE(ratio, nullptr);
+  EXPECT_NEAR(ratio->summary.mean, 1.0, 0.05);
+
+  o = run_locbench("run diagnosis/real_logs --log " + (dir.path() / "absent.clf").string() + " -o " +
+                   (dir.path() / "out2").string());
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("absent.clf"), std::string::npos) << o.output;
+}
+
 TEST(RealLogCli, AConfigFileNamesTheUsersFiles) {
   ScratchDir dir;
   const auto files = testing::write_small_real_log(dir.path());
