@@ -25,7 +25,7 @@
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/experiment.h"
 #include "benchmarks/experiments/parallel_tasks.h"
-#include "datasets/catalog/dataset_catalog.h"
+#include "benchmarks/experiments/real_log_harness.h"
 #include "datasets/diagnosis/twin_comparison.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "reports/checksum.h"
@@ -105,23 +105,20 @@ class DiagnosisSimToReal final : public Experiment {
     const double goal = config.at("goal_ratio").get<double>();
     if (runs < 1) throw UsageError("diagnosis/sim_to_real: twin_runs must be >= 1");
     if (!(span_s >= 0.0) || !(start_s >= 0.0)) throw UsageError("diagnosis/sim_to_real: start_s and span_s must be >= 0");
-    const auto names = config.at("datasets").get<std::vector<std::string>>();
-    for (const auto& n : names) {
-      if (!find_dataset(n)) throw UsageError("diagnosis/sim_to_real: unknown dataset '" + n + "' (see `locbench list`)");
-    }
+    const auto specs = real_log_specs(config.at("datasets"), name());
+    const auto names = real_log_names(specs);
     std::vector<Outcome> outcomes(names.size());
     parallel_tasks(options.threads, names.size(), [&](std::size_t i) {
-      const DatasetEntry* e = find_dataset(names[i]);
       Outcome& o = outcomes[i];
-      const std::string path = (options.data_root / e->path).string();
-      const std::string file = path.substr(0, path.find('#'));
-      if (!std::filesystem::exists(file)) {
-        o.note = reports::CaseNote{"sim_to_real/" + names[i], "skipped",
-                                   "dataset not found at " + file + " (set LOCBENCH_DATA)"};
+      // A user's missing or malformed file is an InputError (exit 2) from here; catalog data
+      // that is absent or unreadable becomes a skipped or failed case.
+      const LoadedRealLog loaded = load_real_log(specs[i], options.data_root);
+      if (loaded.status != "ok") {
+        o.note = reports::CaseNote{"sim_to_real/" + names[i], loaded.status, loaded.reason};
         return;
       }
       try {
-        const Log full = load_catalog_dataset(*e, options.data_root);
+        const Log& full = loaded.log;
         const Trajectory odo = odometry_trajectory(full);
         double t0 = !full.encoders.empty() ? full.encoders.front().t : odo.empty() ? 0.0 : odo.start_time();
         if (!full.truth.empty()) t0 = std::max(t0, full.truth.front().t);
@@ -136,9 +133,11 @@ class DiagnosisSimToReal final : public Experiment {
         o.cells = sim::compare_twins(log, o.twin, {opt.windows.duration, long_window}, runs, options.seed);
         o.windows = o.cells.empty() ? 0 : o.cells.front().real.size();
         const auto span = log.time_span();
-        o.dataset = reports::DatasetRef{names[i], path, reports::file_checksum(file), log.record_count(),
-                                        span.second - span.first};
+        o.dataset = loaded.dataset;  // the restricted stretch's records and duration
+        o.dataset->records = log.record_count();
+        o.dataset->duration_s = span.second - span.first;
       } catch (const InputError& err) {
+        if (!specs[i].from_catalog) throw;  // a user's log: exit 2
         o.note = reports::CaseNote{"sim_to_real/" + names[i], "failed", err.what()};
       }
     });

@@ -69,6 +69,33 @@ TEST(RealLogCli, DiagnosisRealLogsDiagnosesAUsersLogAgainstItsGroundTruth) {
   EXPECT_NE(o.output.find("absent.clf"), std::string::npos) << o.output;
 }
 
+TEST(RealLogCli, SimToRealComparesAUsersLogWithItsTwins) {
+  ScratchDir dir;
+  const auto scenario = dir.path() / "long.json";
+  std::ofstream(scenario) << R"({"preset": "corridor", "world": {"corridor_length": 70.0},
+                                 "motion": {"kind": "straight", "distance": 60.0}})";
+  const std::string log = (dir.path() / "long.clf").string();
+  const std::string truth = (dir.path() / "long.tum").string();
+  Outcome o = run_locbench("simulate " + scenario.string() + " --seed 7 -o " + log + " --truth-tum " + truth);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  o = run_locbench("run diagnosis/sim_to_real --log " + log + " --ground-truth " + truth + " -o " +
+                   (dir.path() / "out").string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto r = reports::read_report(dir.path() / "out/diagnosis/sim_to_real.json");
+  const auto* d = find(r, "nominal_twin/long/ks_distance_1s_x");
+  ASSERT_NE(d, nullptr);
+  EXPECT_GE(d->summary.mean, 0.0);
+  EXPECT_LE(d->summary.mean, 1.0);
+  EXPECT_NE(find(r, "extended_vs_nominal/long/ks_distance_ratio_mean"), nullptr);
+
+  // The corridor preset's 40 s run has too few 10 s windows to compare: exit 2, saying so.
+  const std::string short_log = (dir.path() / "short.clf").string();
+  ASSERT_EQ(run_locbench("simulate corridor --seed 7 -o " + short_log).exit_code, 0);
+  o = run_locbench("run diagnosis/sim_to_real --log " + short_log + " -o " + (dir.path() / "out2").string());
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("cannot compare"), std::string::npos) << o.output;
+}
+
 TEST(RealLogCli, AConfigFileNamesTheUsersFiles) {
   ScratchDir dir;
   const auto files = testing::write_small_real_log(dir.path());
