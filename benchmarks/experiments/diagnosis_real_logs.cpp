@@ -10,6 +10,7 @@
 #include <cmath>
 #include <optional>
 
+#include "algorithms/core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "algorithms/diagnosis/scale_checks.h"
 #include "benchmarks/experiments/experiment.h"
@@ -99,7 +100,13 @@ class DiagnosisRealLogs final : public Experiment {
         o.note = reports::CaseNote{"diagnosis/" + names[i], loaded.status, loaded.reason};
         return;
       }
-      o.diagnosis = diagnosis::diagnose_log(loaded.log, opt);
+      try {
+        o.diagnosis = diagnosis::diagnose_log(loaded.log, opt);
+      } catch (const InputError& err) {
+        if (!specs[i].from_catalog) throw;  // a user's log: exit 2
+        o.note = reports::CaseNote{"diagnosis/" + names[i], "failed", err.what()};
+        return;
+      }
       // The independent checks, at the time offset the diagnosis kept (0 when none).
       double offset = 0.0;
       for (const auto& c : o.diagnosis->causes) {
