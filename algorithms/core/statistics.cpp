@@ -4,6 +4,7 @@
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace locbench {
@@ -66,6 +67,33 @@ double normal_quantile(double p) {
 
 double normal_upper_tail(double z) {
   return boost::math::cdf(boost::math::complement(boost::math::normal_distribution<double>(), z));
+}
+
+double skewness_z(double g1, double n) {
+  if (!(n >= 8.0)) throw std::invalid_argument("skewness_z: needs n >= 8");
+  const double u1 = g1 * std::sqrt((n + 1.0) * (n + 3.0) / (6.0 * (n - 2.0)));
+  const double beta2 = 3.0 * (n * n + 27.0 * n - 70.0) * (n + 1.0) * (n + 3.0) /
+                       ((n - 2.0) * (n + 5.0) * (n + 7.0) * (n + 9.0));
+  const double w2 = -1.0 + std::sqrt(2.0 * (beta2 - 1.0));
+  const double delta = 1.0 / std::sqrt(0.5 * std::log(w2));
+  const double alpha = std::sqrt(2.0 / (w2 - 1.0));
+  return delta * std::asinh(u1 / alpha);
+}
+
+double kurtosis_z(double b2, double n) {
+  if (!(n >= 20.0)) throw std::invalid_argument("kurtosis_z: needs n >= 20");
+  const double mean_b2 = 3.0 * (n - 1.0) / (n + 1.0);
+  const double var_b2 = 24.0 * n * (n - 2.0) * (n - 3.0) / ((n + 1.0) * (n + 1.0) * (n + 3.0) * (n + 5.0));
+  const double x = (b2 - mean_b2) / std::sqrt(var_b2);
+  // √β1 of b2's distribution, then Anscombe & Glynn's A.
+  const double sqrt_beta1 = 6.0 * (n * n - 5.0 * n + 2.0) / ((n + 7.0) * (n + 9.0)) *
+                            std::sqrt(6.0 * (n + 3.0) * (n + 5.0) / (n * (n - 2.0) * (n - 3.0)));
+  const double a = 6.0 + 8.0 / sqrt_beta1 * (2.0 / sqrt_beta1 + std::sqrt(1.0 + 4.0 / (sqrt_beta1 * sqrt_beta1)));
+  const double denom = 1.0 + x * std::sqrt(2.0 / (a - 4.0));
+  // denom ≤ 0 is a b2 far below its mean (platykurtic beyond the transform's range).
+  if (!(denom > 0.0)) return -std::numeric_limits<double>::infinity();
+  const double term2 = std::cbrt((1.0 - 2.0 / a) / denom);
+  return (1.0 - 2.0 / (9.0 * a) - term2) / std::sqrt(2.0 / (9.0 * a));
 }
 
 Summary summarize(std::span<const double> v) {

@@ -33,6 +33,17 @@ double student_t_critical(double confidence, double dof);
 double normal_quantile(double p);
 double normal_upper_tail(double z);
 
+// Normalising transforms of the moment tests of normality, for n independent samples from a
+// normal law. The plain standardisations u1 = g1/σ(g1) and u2 = (b2 − E b2)/σ(b2) (thesis eqs.
+// 3.7–3.8) are far from normal in the tails for n in the hundreds — b2 is right-skewed, so
+// reading u2 as N(0, 1) rejects a normal sample several times more often than the stated level
+// at small α. These return an approximately N(0, 1) z instead:
+//   skewness_z   D'Agostino (1970): z = δ·asinh(u1/α)  (n ≥ 8);
+//   kurtosis_z   Anscombe & Glynn (1983): z from the cube-root transform of u2  (n ≥ 20).
+// g1 = m3/m2^{3/2} (sample skewness), b2 = m4/m2² (Pearson kurtosis, 3 for a normal law).
+double skewness_z(double g1, double n);
+double kurtosis_z(double b2, double n);
+
 }  // namespace locbench
 
 namespace locbench {
