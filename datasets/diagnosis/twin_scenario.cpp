@@ -194,7 +194,6 @@ std::array<double, 3> fit_floor(const Scenario& s, const diagnosis::MotionData& 
   const auto rn = twin_residuals(windows, twin_log(noisy, seed, real_log), origin);
   std::array<double, 3> sigma{};
   const double dof = s.motion_noise.dof;
-  const double t_factor = dof > 2.0 ? (dof - 2.0) / dof : 1.0;
   for (int c = 0; c < 3; ++c) {
     const auto v = common_component({&real, &rd, &rn}, c);
     const std::size_t n = v[0].size();
@@ -202,12 +201,27 @@ std::array<double, 3> fit_floor(const Scenario& s, const diagnosis::MotionData& 
       throw InputError(log_label(real_log),
                        0, fmt::format("only {} windows of the twin line up with the log's reference; cannot fit its noise floor", n));
     }
-    double real_ms = 0.0, noise_ms = 0.0;
+    std::vector<double> real_noise(n), other_noise(n);  // the log's and the other sources'
     for (std::size_t k = 0; k < n; ++k) {
-      real_ms += std::pow(v[0][k] - v[1][k], 2);
-      noise_ms += std::pow(v[2][k] - v[1][k], 2);
+      real_noise[k] = v[0][k] - v[1][k];
+      other_noise[k] = v[2][k] - v[1][k];
     }
-    sigma[static_cast<std::size_t>(c)] = std::sqrt(std::max(real_ms - noise_ms, 0.0) / static_cast<double>(n) * t_factor);
+    double floor = 0.0;
+    if (dof > 0.0) {
+      // Student-t windows: their variance is infinite for dof ≤ 2 and, above, decided by a few
+      // windows, so the spread is matched robustly — the 1.4826·MAD scale of the log's noise
+      // less the other sources' (in quadrature), turned into the t scale with the same MAD.
+      const double spread = std::sqrt(std::max(std::pow(robust_sigma(real_noise), 2) - std::pow(robust_sigma(other_noise), 2), 0.0));
+      floor = spread * normal_quantile(0.75) / student_t_critical(0.5, dof);  // t_{0.75, dof}
+    } else {
+      double real_ms = 0.0, noise_ms = 0.0;
+      for (std::size_t k = 0; k < n; ++k) {
+        real_ms += real_noise[k] * real_noise[k];
+        noise_ms += other_noise[k] * other_noise[k];
+      }
+      floor = std::sqrt(std::max(real_ms - noise_ms, 0.0) / static_cast<double>(n));
+    }
+    sigma[static_cast<std::size_t>(c)] = floor;
   }
   return sigma;
 }
