@@ -38,12 +38,19 @@ run: build
 	$(RELEASE)/cli/locbench report $(OUT) -o $(OUT)/report.html
 
 # Debug + AddressSanitizer + UndefinedBehaviorSanitizer, warnings as errors, every test via CTest,
-# then the default suite gated against the committed baseline.
+# then the default suite gated against the committed baseline. -g1 (line tables: sanitizer reports
+# keep file:line) instead of -g: measured on two heavy units, compile 6.3 → 5.7 s and 12.3 → 10.0 s,
+# objects 27% smaller (faster links). Precompiled headers were measured too and not adopted: on 46
+# units of this build, 781 s of CPU without and 777 s with (the cost is code generation under
+# ASan, not parsing).
 test: setup
-	@cmake -S . -B $(TESTBUILD) -DCMAKE_BUILD_TYPE=Debug -DLOCBENCH_SANITIZE=ON -DLOCBENCH_WERROR=ON >/dev/null
-	@cmake --build $(TESTBUILD) -j$(JOBS)
-	cd $(TESTBUILD) && ctest --output-on-failure -j$(JOBS)
-	@$(MAKE) --no-print-directory gate LOCBENCH=$(TESTBUILD)/cli/locbench
+	@cmake -S . -B $(TESTBUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DLOCBENCH_SANITIZE=ON \
+	  -DLOCBENCH_WERROR=ON >/dev/null
+	@s=$$(date +%s); cmake --build $(TESTBUILD) -j$(JOBS) && echo "make test: build took $$(( $$(date +%s) - s )) s"
+	@s=$$(date +%s); cd $(TESTBUILD) && ctest --output-on-failure -j$(JOBS); rc=$$?; \
+	  echo "make test: ctest took $$(( $$(date +%s) - s )) s"; exit $$rc
+	@s=$$(date +%s); $(MAKE) --no-print-directory gate LOCBENCH=$(TESTBUILD)/cli/locbench; rc=$$?; \
+	  echo "make test: gate took $$(( $$(date +%s) - s )) s"; exit $$rc
 
 # Run the default suite and compare it with the baseline (exit 1 on a regression).
 LOCBENCH ?= $(RELEASE)/cli/locbench
