@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "algorithms/core/angle.h"
+#include "algorithms/core/chi_square.h"
 #include "algorithms/core/statistics.h"
 #include "algorithms/core/units.h"
 #include "algorithms/diagnosis/motion_windows.h"
@@ -292,7 +293,7 @@ ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt
       [&](std::size_t i) {
         // The disc is the best of those searched: its bias is judged at the level divided over them.
         const double scan = ids[i] == cause::kCompassDisturbance && discs.count(i) ? static_cast<double>(discs[i]) : 1.0;
-        return chi2_quantile(1.0 - opt.false_alarm / (static_cast<double>(ids.size()) * scan), 1.0);
+        return chi_square_upper_quantile(ChiSquareDof(1.0), opt.false_alarm / (static_cast<double>(ids.size()) * scan));
       },
       [&](const std::vector<std::size_t>& active) {
         const CompassFit& f = fit_set(active);

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "algorithms/core/errors.h"
+#include "algorithms/core/chi_square.h"
 #include "algorithms/core/input_limits.h"
 #include "algorithms/core/rng.h"
 #include "algorithms/core/statistics.h"
@@ -244,7 +245,7 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
   out.residual_tests.push_back({"normality_skewness", h.residual, "", "u1", nt.u1, nt.p1, nt.g1});
   out.residual_tests.push_back({"normality_kurtosis", h.residual, "", "u2", nt.u2, nt.p2, nt.g2 - 3.0});
   const double lr_bias = 2.0 * (all.normal0.nll - all.normal.nll);
-  out.residual_tests.push_back({"bias", h.residual, "", "likelihood_ratio", lr_bias, chi2_upper_p(lr_bias, 1.0),
+  out.residual_tests.push_back({"bias", h.residual, "", "likelihood_ratio", lr_bias, chi_square_upper_tail(ChiSquareDof(1.0), lr_bias),
                                 all.normal.values[0] / all.normal.values[1]});
   double pearson = 0.0;
   const auto p = normal_probs(h, all.normal.values[0], all.normal.values[1]);
@@ -255,9 +256,9 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
     pearson += (h.counts[j] - e) * (h.counts[j] - e) / std::max(e, 1e-9);
   }
   const double dof = static_cast<double>(h.counts.size()) - 3.0;
-  out.residual_tests.push_back({"goodness_of_fit_normal", h.residual, "", "pearson_chi2", pearson, chi2_upper_p(pearson, dof), pearson / n});
+  out.residual_tests.push_back({"goodness_of_fit_normal", h.residual, "", "pearson_chi2", pearson, dof > 0.0 ? chi_square_upper_tail(ChiSquareDof(dof), pearson) : 1.0, pearson / n});
   const double lr_lat = 2.0 * (all.normal.nll - all.lattice.nll);
-  out.residual_tests.push_back({"quantization_lattice", h.residual, "", "likelihood_ratio", lr_lat, chi2_upper_p(lr_lat, 3.0),
+  out.residual_tests.push_back({"quantization_lattice", h.residual, "", "likelihood_ratio", lr_lat, chi_square_upper_tail(ChiSquareDof(3.0), lr_lat),
                                 all.lattice.values[1]});
   const double level = options.false_alarm / static_cast<double>(out.residual_tests.size());
   for (auto& t : out.residual_tests) t.passed = t.p_value > level;
@@ -275,7 +276,7 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
   auto heldout_lattice = lattice_nll(h, b, fa.lattice.values[0], fa.lattice.values[1], fa.lattice.values[2],
                                      fa.lattice.values[3], fa.lattice.values[4]) / nb;
 
-  const double thr = chi2_quantile(1.0 - options.false_alarm, 3.0);
+  const double thr = chi_square_upper_quantile(ChiSquareDof(3.0), options.false_alarm);
   Cause q{"compass_quantization", "histogram", lr_lat >= thr};
   q.value = lr_lat;
   q.threshold = thr;
@@ -294,8 +295,8 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
     out.detected.push_back(q.id);
     out.overall_gain = q.gains;
   }
-  if (lr_bias >= chi2_quantile(1.0 - options.false_alarm, 1.0)) {
-    out.unexplained.push_back({"bias", h.residual, "", lr_bias, chi2_upper_p(lr_bias, 1.0), all.normal.values[0] * to_unit,
+  if (lr_bias >= chi_square_upper_quantile(ChiSquareDof(1.0), options.false_alarm)) {
+    out.unexplained.push_back({"bias", h.residual, "", lr_bias, chi_square_upper_tail(ChiSquareDof(1.0), lr_bias), all.normal.values[0] * to_unit,
                                "a histogram of one residual cannot tell its causes apart: wheel_diameter_ratio, "
                                "turn_rate_bias and compass_bias all shift it (confounded)"});
     out.confounded.push_back(

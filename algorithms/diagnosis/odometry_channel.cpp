@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "algorithms/core/chi_square.h"
 #include "algorithms/core/statistics.h"
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/ml_fit.h"
@@ -345,7 +346,7 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
   // cause that explains a symptom is named before a generic model of the symptom).
   const double m = static_cast<double>(candidates.size());
   auto threshold = [&](std::size_t i) {
-    return chi2_quantile(1.0 - opt.false_alarm / m, static_cast<double>(candidates[i]->params.size()));
+    return chi_square_upper_quantile(ChiSquareDof(static_cast<double>(candidates[i]->params.size())), opt.false_alarm / m);
   };
   Selection sel;
   sel.evidence.resize(candidates.size());
@@ -449,7 +450,7 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
     for (std::size_t c = 0; c < candidates.size(); ++c) {
       const CauseSpec& sc = *candidates[c];
       if (c == a || sc.noise || sa.noise || sc.params.size() != 1 || sa.params.size() != 1) continue;
-      if (2.0 * (nominal.nll - fit_set({c}).nll) <= chi2_quantile(1.0 - opt.false_alarm / m, 1.0)) continue;
+      if (2.0 * (nominal.nll - fit_set({c}).nll) <= chi_square_upper_quantile(ChiSquareDof(1.0), opt.false_alarm / m)) continue;
       const OdoFit& both = fit_set({a, c});
       if (both.fit.max_abs_correlation < 0.98) continue;
       const bool seen = std::any_of(out.confounded.begin(), out.confounded.end(), [&](const ConfoundedGroup& g) {

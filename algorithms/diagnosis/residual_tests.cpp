@@ -1,22 +1,15 @@
 #include "algorithms/diagnosis/residual_tests.h"
 
 #include <algorithm>
-#include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <numeric>
 
+#include "algorithms/core/chi_square.h"
 #include "algorithms/core/statistics.h"
 
 namespace locbench::diagnosis {
 
 double two_sided_normal_p(double z) { return std::min(1.0, 2.0 * normal_upper_tail(std::abs(z))); }
-double chi2_upper_p(double x, double dof) {
-  if (!(x > 0.0)) return 1.0;
-  return boost::math::cdf(boost::math::complement(boost::math::chi_squared(dof), x));
-}
-double chi2_quantile(double p, double dof) {
-  return boost::math::quantile(boost::math::chi_squared(dof), p);
-}
 
 namespace {
 
@@ -103,7 +96,7 @@ ResidualTest autocorrelation_test(std::span<const double> r, const std::string& 
   // One-sided: a slowly varying unmodelled effect makes neighbours alike (ρ > 0). Noise at the
   // window ends — quantization remainders, reference noise — is shared by adjacent windows with
   // opposite signs and gives ρ ≈ −0.5 under a correct model, so ρ < 0 is not a finding.
-  t.p_value = rho > 0.0 ? 0.5 * chi2_upper_p(t.value, 1.0) : 1.0;
+  t.p_value = rho > 0.0 ? 0.5 * chi_square_upper_tail(ChiSquareDof(1.0), t.value) : 1.0;
   return t;
 }
 

@@ -62,7 +62,5 @@ std::optional<Lattice> find_integer_lattice(std::span<const std::int64_t> increm
 
 // p-value helpers.
 double two_sided_normal_p(double z);
-double chi2_upper_p(double x, double dof);
-double chi2_quantile(double p, double dof);
 
 }  // namespace locbench::diagnosis

@@ -1,12 +1,12 @@
 #include "algorithms/filters/consistency.h"
 
 #include <Eigen/Cholesky>
-#include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "algorithms/core/angle.h"
+#include "algorithms/core/chi_square.h"
 
 namespace locbench {
 
@@ -36,10 +36,8 @@ ChiSquareInterval average_chi_square_interval(int dof, int runs, double confiden
     throw std::invalid_argument("average_chi_square_interval: need dof, runs >= 1, 0 < c < 1");
   }
   const double n = static_cast<double>(dof) * runs;
-  const boost::math::chi_squared_distribution<double> chi2(n);
   const double tail = 0.5 * (1.0 - confidence);
-  return {boost::math::quantile(chi2, tail) / runs,
-          boost::math::quantile(boost::math::complement(chi2, tail)) / runs};
+  return {chi_square_quantile(ChiSquareDof(n), tail) / runs, chi_square_upper_quantile(ChiSquareDof(n), tail) / runs};
 }
 
 ConsistencySummary summarize_consistency(const std::vector<std::vector<double>>& per_run, int dof,

@@ -1,19 +1,16 @@
 #include "algorithms/pose_correction/ekf_tracker.h"
 
 #include <Eigen/LU>
-#include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 
 #include "algorithms/core/angle.h"
+#include "algorithms/core/chi_square.h"
 #include "algorithms/core/errors.h"
 #include "algorithms/core/json_options.h"
 
 namespace locbench::pose_correction {
 namespace {
 
-double chi_square_quantile(int dof, double p) {
-  return boost::math::quantile(boost::math::chi_squared(static_cast<double>(dof)), p);
-}
 
 }  // namespace
 
@@ -81,7 +78,7 @@ TrackerUpdate EkfTracker::update(const PoseCorrection& correction) {
     out.nis = nu.dot(s_inv * nu);
     out.dof = 3;
     if (options_.gate_probability > 0.0 &&
-        out.nis > chi_square_quantile(3, options_.gate_probability)) {
+        out.nis > chi_square_quantile(ChiSquareDof(3.0), options_.gate_probability)) {
       out.gated_out = true;
       return out;
     }
@@ -101,7 +98,7 @@ TrackerUpdate EkfTracker::update(const PoseCorrection& correction) {
     out.nis = nu * nu / s;
     out.dof = 1;
     if (options_.gate_probability > 0.0 &&
-        out.nis > chi_square_quantile(1, options_.gate_probability)) {
+        out.nis > chi_square_quantile(ChiSquareDof(1.0), options_.gate_probability)) {
       out.gated_out = true;
       return out;
     }

@@ -1,12 +1,12 @@
 #include "baselines/laser/agglomerative_lines.h"
 
 #include <algorithm>
-#include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <limits>
 #include <utility>
 
 #include "algorithms/core/angle.h"
+#include "algorithms/core/chi_square.h"
 #include "baselines/laser/extraction_steps.h"
 
 namespace locbench::laser {
@@ -16,9 +16,6 @@ using detail::IndexRange;
 constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double chi2_quantile(double dof, double p) {
-  return boost::math::quantile(boost::math::chi_squared_distribution<double>(dof), p);
-}
 
 // A line in model space: (α, r) in the sensor frame with its covariance.
 struct ModelLine {
@@ -234,14 +231,14 @@ ExtractionResult agglomerative_lines(std::span<const ScanPoint> points, LineFram
   for (const IndexRange& run : runs) {
     if (run.size() < min_run) continue;
     const std::size_t w = std::min(window, run.size());
-    const double limit = chi2_quantile(static_cast<double>(w - 2), options.window_confidence);
+    const double limit = chi_square_quantile(ChiSquareDof(static_cast<double>(w - 2)), options.window_confidence);
     for (std::size_t i = run.begin; i < run.end; ++i) {
       const std::size_t lo = std::clamp(i, run.begin + w / 2, run.end - (w - w / 2)) - w / 2;
       clustering.seed(i, lo, lo + w, limit);
     }
   }
   // 3. clustering
-  clustering.run(chi2_quantile(2.0, options.merge_confidence));
+  clustering.run(chi_square_quantile(ChiSquareDof(2.0), options.merge_confidence));
   std::vector<std::size_t> label = clustering.labels();
 
   // 4. left-out points join an adjacent point's cluster (labels as clustering left them)

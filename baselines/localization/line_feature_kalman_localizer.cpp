@@ -2,11 +2,11 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
-#include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <limits>
 
 #include "algorithms/core/angle.h"
+#include "algorithms/core/chi_square.h"
 #include "algorithms/core/errors.h"
 #include "algorithms/core/json_options.h"
 
@@ -46,7 +46,7 @@ double validation_gate(double probability) {
   if (!(probability > 0.0 && probability < 1.0)) {
     throw UsageError("validation_gate: probability must be in (0, 1)");
   }
-  return boost::math::quantile(boost::math::chi_squared(2.0), probability);
+  return chi_square_quantile(ChiSquareDof(2.0), probability);
 }
 
 LineFeatureKalmanLocalizer::LineFeatureKalmanLocalizer(const LineFeatureKalmanOptions& options,
