@@ -28,7 +28,6 @@
 #include "benchmarks/experiments/real_log_harness.h"
 #include "datasets/diagnosis/twin_comparison.h"
 #include "datasets/io/odometry_interpolation.h"
-#include "reports/checksum.h"
 
 namespace locbench::experiments {
 namespace {
