@@ -79,6 +79,24 @@ std::vector<CauseSpec> build() {
                  return "the distance scale changes with speed: " + ci(x, 0) + " at rest, changing by " + ci(x, 1) +
                         " per m/s of logged speed";
                }});
+  // A skewed along-track residual (windows that lose much of their distance, the rest at the
+  // command) is not a scale: a symmetric noise model reads the slow windows as outliers and the
+  // scale as the typical window's, while the path-length ratio is the mean's.
+  c.push_back({cause::kDriveStall, "odometry",
+               {{"rate_per_s", "1/s", &M::stall_rate, 0.1, 0.01, true, 0.0, 2.0},
+                {"duration_s", "s", &M::stall_duration, 0.4, 0.01, true, 0.0, 5.0}},
+               PrimaryMetric::kTranslation, false, false,
+               {"bias:along_track", "drift_with_distance:along_track", "speed_dependence:along_track"},
+               velocity_with_distance,
+               [](const Cause& x) {
+                 std::string s = "the drive stalls now and then: " + ci(x, 0) + " episodes per second, each stopping the "
+                                 "robot for " + ci(x, 1) + " s while the log keeps its velocity";
+                 if (x.extra.contains("mean_distance_scale")) {
+                   s += fmt::format(" — the robot covers {:.4g} of the logged distance on average",
+                                    x.extra["mean_distance_scale"].get<double>());
+                 }
+                 return s;
+               }});
   c.push_back({cause::kTurnRateScale, "odometry",
                {{"scale", "1", &M::turn_rate_scale, 1.0, 1e-3, false, 0.5, 1.5}},
                PrimaryMetric::kHeading, false, false, {"drift_with_turning:heading"}, velocity,

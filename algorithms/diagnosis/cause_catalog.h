@@ -21,6 +21,7 @@ inline constexpr std::string_view kMeanDiameterScale = "mean_diameter_scale";
 inline constexpr std::string_view kWheelSlip = "wheel_slip";
 inline constexpr std::string_view kVelocityScale = "velocity_scale";
 inline constexpr std::string_view kSpeedDependentScale = "speed_dependent_scale";
+inline constexpr std::string_view kDriveStall = "drive_stall";
 inline constexpr std::string_view kTurnRateScale = "turn_rate_scale";
 inline constexpr std::string_view kTurnRateBias = "turn_rate_bias";
 inline constexpr std::string_view kDriveResponse = "drive_response";

@@ -429,6 +429,7 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
       if (auto e = f.estimate(p)) c.parameters.push_back(*e);
     }
     if (spec.id == cause::kTimeOffset) c.extra["sensor"] = heading_only ? "odometry_vs_compass" : "odometry";
+    if (spec.id == cause::kDriveStall) c.extra["mean_distance_scale"] = mean_distance_scale(d, f.model);
     return c;
   };
   for (std::size_t i : sel.entered) {

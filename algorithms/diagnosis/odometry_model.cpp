@@ -27,7 +27,26 @@ double respond(double& u, double v, double dt, double tau, double decay) {
   return increment;
 }
 
+bool has_stalls(const MotionData& d, const OdometryModel& m) {
+  return d.odometry == OdometryKind::kPose && m.stall_rate > 0.0 && m.stall_duration > 0.0;
+}
+
+struct StallOdds {
+  double p = 0.0;         // probability that the window holds a stall
+  double fraction = 0.0;  // the fraction of its translation a stall takes
+};
+StallOdds stall_odds(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+  const double span = w.t1 - w.t0;
+  if (!has_stalls(d, m) || !(span > 0.0)) return {};
+  return {-std::expm1(-m.stall_rate * span), std::min(m.stall_duration / span, 1.0)};
+}
+
 }  // namespace
+
+double expected_stall_loss(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+  const StallOdds s = stall_odds(d, w, m);
+  return s.p * s.fraction;
+}
 
 Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
   Pose2 p;
@@ -54,6 +73,7 @@ Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryM
       u = dt0 > 0.0 ? s0.a / dt0 : 0.0;
       omega = dt0 > 0.0 ? s0.b / dt0 : 0.0;
     }
+    const double kept = 1.0 - expected_stall_loss(d, w, m);
     for (std::size_t i = start; i < w.last; ++i) {
       const auto& s = d.steps[i];
       const double dt = s.t1 - s.t0;
@@ -65,7 +85,7 @@ Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryM
         dth = respond(omega, rate, dt, m.drive_tau, decay);
       }
       if (i < w.first) continue;
-      const double scale = m.velocity_scale + m.speed_slope * std::abs(v);
+      const double scale = (m.velocity_scale + m.speed_slope * std::abs(v)) * kept;
       p = advance(p, scale * dd, m.turn_rate_scale * dth + m.turn_rate_bias * dt);
     }
   }
@@ -130,9 +150,14 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
   double nll = 0.0;
   const std::size_t n = index.empty() ? d.windows.size() : index.size();
   const double b = wheelbase_or_default(d) * m.E_b;
+  // Drive stalls: the residuals of the mixture's components are taken from the prediction
+  // without stalls (m_moving), not from the mean prediction.
+  const bool stalls = has_stalls(d, m) && d.reference != ReferenceKind::kCompass;
+  OdometryModel m_moving = m;
+  m_moving.stall_rate = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     const MotionWindow& w = d.windows[index.empty() ? k : index[k]];
-    const WindowResidual res = window_residual(d, w, m);
+    const WindowResidual res = window_residual(d, w, stalls ? m_moving : m);
     if (!res.valid) {
       nll -= log_density(Eigen::Vector3d::Zero(), res.variance, d.reference == ReferenceKind::kCompass, m.dof);
       continue;
@@ -159,9 +184,30 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
         ll = mx + std::log(std::exp(l0 - mx) + std::exp(l1 - mx) + std::exp(l2 - mx));
       }
     }
+    if (stalls && !res.heading_only) {
+      const StallOdds s = stall_odds(d, w, m);
+      if (s.p > 0.0) {
+        const Pose2 moving = predict_window(d, w, m_moving);
+        const Eigen::Vector3d shift{-s.fraction * moving.x, -s.fraction * moving.y, 0.0};
+        const double l0 = std::log1p(-s.p) + ll;
+        const double l1 = std::log(s.p) + log_density(res.r - shift, res.variance, false, m.dof);
+        const double mx = std::max(l0, l1);
+        ll = mx + std::log(std::exp(l0 - mx) + std::exp(l1 - mx));
+      }
+    }
     nll -= ll;
   }
   return nll;
+}
+
+double mean_distance_scale(const MotionData& d, const OdometryModel& m) {
+  double model = 0.0, logged = 0.0;
+  for (const auto& w : d.windows) {
+    const Pose2 a = predict_window(d, w, m), b = predict_window(d, w, OdometryModel{});
+    model += std::hypot(a.x, a.y);
+    logged += std::hypot(b.x, b.y);
+  }
+  return logged > 0.0 ? model / logged : 1.0;
 }
 
 RelativePoseError relative_pose_error(const MotionData& d, const OdometryModel& m,

@@ -24,6 +24,12 @@
 // Wheel slip (§3.2): with probability p = 1 − exp(−rate·W/2) one wheel (either, equally likely)
 // loses the fraction `slip_loss` of one sample's travel, which shifts the residual by
 // (−loss·ū/2, 0, ±loss·ū/B) with ū that wheel's mean travel per sample.
+// Drive stalls (pose odometry): stall episodes arrive at `stall_rate` per second and stop the
+// robot's translation for `stall_duration` seconds; a window of length T holds one with
+// probability p = 1 − exp(−rate·T), which then covers only the fraction 1 − f of the predicted
+// translation, f = min(duration/T, 1). The residual is the mixture (1 − p)·g(r) + p·g(r + f·t̂)
+// with t̂ the predicted translation (x, y); the mean prediction (predict_window, the held-out
+// errors) is the translation scaled by 1 − p·f.
 #include <Eigen/Core>
 #include <vector>
 
@@ -41,7 +47,13 @@ struct OdometryModel {
   double sigma_x = 1e-3, sigma_y = 1e-3, sigma_theta = 1e-3;
   double k2 = 0.0;
   double slip_rate = 0.0, slip_loss = 0.0;
+  double stall_rate = 0.0;      // [1/s]
+  double stall_duration = 0.0;  // [s]
 };
+
+// The expected fraction of a window's translation lost to drive stalls, p·f above (0 when the
+// model has none or the odometry is encoder counts).
+double expected_stall_loss(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
 
 struct WindowResidual {
   Eigen::Vector3d r = Eigen::Vector3d::Zero();         // reference − prediction
@@ -65,6 +77,10 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
 
 // Log-density of one residual component r with (squared) scale v: normal (dof = 0) or Student-t.
 double component_log_density(double r, double v, double dof);
+
+// Σ|predicted translation| / Σ|logged translation| over all windows: the distance scale a
+// path-length ratio measures, with every speed cause and the stalls' expected loss in it.
+double mean_distance_scale(const MotionData& d, const OdometryModel& m);
 
 // Relative-pose error of the windows `index`, chained into segments of `chain` consecutive
 // windows (relations: each window alone): RMS translation error [m] and RMS heading error [rad].

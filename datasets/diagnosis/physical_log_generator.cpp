@@ -37,11 +37,14 @@ Pose2 integrate(const Pose2& p, double v, double w, double dt) {
 Log generate_physical_log(const PhysicalEffects& e, std::uint64_t seed, const PhysicalOptions& o) {
   if (!(o.duration > 1.0) || !(o.odom_rate_hz > 0.0) || !(o.truth_rate_hz > 0.0) || !(o.compass_rate_hz > 0.0) ||
       !(e.velocity_scale > 0.0) || !(e.turn_rate_scale > 0.0) || e.drive_tau < 0.0 || e.heavy_tail_dof < 0.0 ||
+      e.stall_rate < 0.0 || e.stall_duration < 0.0 ||
       e.compass_step < 0.0 || e.compass_decimals < 0 || e.compass_decimals > 12) {
     throw UsageError("physical log generator: duration > 1 s, positive rates and scales, τ ≥ 0, dof ≥ 0, "
                      "compass step ≥ 0 and 0–12 decimals expected");
   }
   Rng command_rng = Rng::stream(seed, 1), noise_rng = Rng::stream(seed, 2), sensor_rng = Rng::stream(seed, 3);
+  Rng stall_rng = Rng::stream(seed, 4);
+  double stall_until = -1.0;
   Log log;
   log.name = "sim/physical";
   log.source = fmt::format("physical generator (seed {})", seed);
@@ -104,7 +107,11 @@ Log generate_physical_log(const PhysicalEffects& e, std::uint64_t seed, const Ph
       block_v = o.process_noise_xy * std::sqrt(block_s) * unit_noise(noise_rng, e.heavy_tail_dof) / block_s;
       block_w = o.process_noise_theta * std::sqrt(block_s) * unit_noise(noise_rng, e.heavy_tail_dof) / block_s;
     }
-    const double v_true = (e.velocity_scale + e.speed_slope * std::abs(v_cmd)) * v_drive + block_v;
+    if (e.stall_rate > 0.0 && t >= stall_until && stall_rng.bernoulli(-std::expm1(-e.stall_rate * kDt))) {
+      stall_until = t + e.stall_duration * stall_rng.uniform(0.5, 1.5);
+    }
+    const double moving = t < stall_until ? 0.0 : 1.0;
+    const double v_true = moving * (e.velocity_scale + e.speed_slope * std::abs(v_cmd)) * v_drive + block_v;
     const double w_true = e.turn_rate_scale * w_drive + block_w;
     truth = integrate(truth, v_true, w_true, kDt);
     odom = integrate(odom, v_cmd, w_cmd, kDt);

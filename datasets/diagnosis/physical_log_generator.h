@@ -3,7 +3,8 @@
 // not model: where hidden_effects.h perturbs a log through the diagnosis's own window model, this
 // one simulates the physics. A unicycle robot receives a random velocity command (steps between
 // speeds and turn rates, slew-limited); its drive follows the command through a first-order
-// response (τ), scales it (velocity scale, a speed-dependent scale, turn-rate scale) and adds
+// response (τ), scales it (velocity scale, a speed-dependent scale, turn-rate scale), stalls now
+// and then (translation held at 0 for a random time while the command goes on) and adds
 // process noise (normal per 100 ms block, or Student-t per 1 s block for heavy tails); everything is integrated
 // at 1 kHz. The log records, as MRCLAM's and many ROS logs do:
 //  - ODOM: the dead-reckoned command at `odom_rate_hz`, stamped on a clock offset from the
@@ -26,6 +27,10 @@ struct PhysicalEffects {
   double drive_tau = 0.0;             // first-order drive response [s]; 0 = instantaneous
   double odometry_time_offset = 0.0;  // ODOM logged time − true time [s]
   double heavy_tail_dof = 0.0;        // process noise Student-t per 1 s block; 0 = normal
+  // Drive stalls: episodes start at `stall_rate` per second and stop the robot's translation for
+  // a duration drawn uniformly in [½, 3⁄2]·`stall_duration` (the diagnosis models a fixed one).
+  double stall_rate = 0.0;            // [1/s]
+  double stall_duration = 0.0;        // [s], mean
   double compass_step = 0.0;          // compass lattice [rad]; 0 = continuous
   double compass_lattice_offset = 0.0;  // [rad]
   int compass_decimals = 6;

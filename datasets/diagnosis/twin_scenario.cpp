@@ -89,6 +89,15 @@ std::vector<CauseMapping> apply_causes(const diagnosis::Diagnosis& d, Scenario& 
         r.speed_slope = *slope;
         m.how = fmt::format("drive.response.velocity_scale = {:.6g}, speed_slope = {:.6g} s/m", *s0, *slope);
       }
+    } else if (c.id == "drive_stall") {
+      const auto rate = need("rate_per_s");
+      const auto duration = need("duration_s");
+      if (rate && duration) {
+        r.stall_rate = std::max(*rate, 0.0);
+        r.stall_duration = std::max(*duration, 0.0);
+        m.how = fmt::format("drive.response.stall_rate = {:.6g} /s, stall_duration = {:.6g} s", r.stall_rate,
+                            r.stall_duration);
+      }
     } else if (c.id == "turn_rate_scale") {
       if (const auto v = need("scale")) {
         r.turn_rate_scale = *v;

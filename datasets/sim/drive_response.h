@@ -4,8 +4,10 @@
 // v and ω, then a speed-dependent velocity scale and a turn-rate scale and bias:
 //   τ·dv_l/dt = v_cmd − v_l,   τ·dω_l/dt = ω_cmd − ω_l         (τ = 0: v_l = v_cmd, ω_l = ω_cmd)
 //   v = (velocity_scale + speed_slope·|v_l|)·v_l,   ω = turn_rate_scale·ω_l + turn_rate_bias.
+// Stalls: episodes start at `stall_rate` per second (a Poisson process) and hold the forward
+// velocity at 0 for `stall_duration` seconds while the log keeps the command.
 // These are the diagnosis causes drive_response, velocity_scale, speed_dependent_scale,
-// turn_rate_scale and turn_rate_bias (algorithms/diagnosis/diagnosis.h) run forwards.
+// drive_stall, turn_rate_scale and turn_rate_bias (algorithms/diagnosis/) run forwards.
 #include <cmath>
 
 namespace locbench::sim {
@@ -16,10 +18,12 @@ struct DriveResponse {
   double speed_slope = 0.0;      // change of that scale per m/s of commanded speed [s/m]
   double turn_rate_scale = 1.0;  // true ω / commanded ω
   double turn_rate_bias = 0.0;   // [rad/s], added whether or not the robot moves
+  double stall_rate = 0.0;       // stall episodes per second
+  double stall_duration = 0.0;   // [s] each
 
   bool is_identity() const {
     return time_constant == 0.0 && velocity_scale == 1.0 && speed_slope == 0.0 &&
-           turn_rate_scale == 1.0 && turn_rate_bias == 0.0;
+           turn_rate_scale == 1.0 && turn_rate_bias == 0.0 && stall_rate == 0.0;
   }
 };
 

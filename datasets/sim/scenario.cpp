@@ -72,6 +72,8 @@ void validate_replay(const Scenario& s) {
   finite(r.speed_slope, "drive.response.speed_slope");
   finite(r.turn_rate_scale, "drive.response.turn_rate_scale");
   finite(r.turn_rate_bias, "drive.response.turn_rate_bias");
+  non_negative(r.stall_rate, "drive.response.stall_rate");
+  non_negative(r.stall_duration, "drive.response.stall_duration");
 }
 
 }  // namespace

@@ -182,7 +182,9 @@ json response_json(const DriveResponse& r) {
           {"velocity_scale", r.velocity_scale},
           {"speed_slope", r.speed_slope},
           {"turn_rate_scale", r.turn_rate_scale},
-          {"turn_rate_bias", r.turn_rate_bias}};
+          {"turn_rate_bias", r.turn_rate_bias},
+          {"stall_rate", r.stall_rate},
+          {"stall_duration", r.stall_duration}};
 }
 void read_response(JsonObject o, DriveResponse& r) {
   o.read("time_constant", r.time_constant);
@@ -190,6 +192,8 @@ void read_response(JsonObject o, DriveResponse& r) {
   o.read("speed_slope", r.speed_slope);
   o.read("turn_rate_scale", r.turn_rate_scale);
   o.read("turn_rate_bias", r.turn_rate_bias);
+  o.read("stall_rate", r.stall_rate);
+  o.read("stall_duration", r.stall_duration);
   o.finish();
 }
 

@@ -60,6 +60,7 @@ class Simulation {
         compass_(s.compass, stream(seed, NoiseStream::kCompass)),
         motion_noise_(s.motion_noise, stream(seed, NoiseStream::kMotionNoise)),
         truth_noise_(stream(seed, NoiseStream::kTruth)),
+        stall_(stream(seed, NoiseStream::kStall)),
         replay_(s.motion.kind == MotionKind::kReplay),
         lag_(s.drive.response.time_constant),
         // The encoder clock is also the slip/noise sample grid; without encoders it is 10 Hz.
@@ -131,7 +132,13 @@ class Simulation {
       const std::size_t in_force = replay_command_index(cmds, now() + latency + 0.5 * dt_);
       const BodyVelocity command =
           in_force == 0 ? BodyVelocity{} : BodyVelocity{cmds[in_force - 1].v, cmds[in_force - 1].omega};
-      const BodyVelocity drive = apply_response(sc_.drive.response, lag_.step(command, dt_));
+      BodyVelocity drive = apply_response(sc_.drive.response, lag_.step(command, dt_));
+      const DriveResponse& response = sc_.drive.response;
+      if (response.stall_rate > 0.0 && now() >= stall_until_ &&
+          stall_.bernoulli(-std::expm1(-response.stall_rate * dt_))) {
+        stall_until_ = now() + response.stall_duration;
+      }
+      if (now() < stall_until_) drive.v = 0.0;
       const WheelSpeeds u = replay_wheel_speeds(drive, nominal_.wheelbase);
       leg_.phase = replay_phase(u);
       leg_.wheel_speed = 0.5 * (std::abs(u.left) + std::abs(u.right));
@@ -364,6 +371,8 @@ class Simulation {
   CompassModel compass_;
   MotionNoise motion_noise_;
   Rng truth_noise_;
+  Rng stall_;
+  double stall_until_ = -1.0;  // the current stall episode's end [s]
   bool replay_;
   DriveLag lag_;
   SensorClock grid_, odometry_clock_, compass_clock_, laser_clock_, truth_clock_, trajectory_clock_;

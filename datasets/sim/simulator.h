@@ -28,6 +28,7 @@ enum class NoiseStream : std::uint64_t {
   kLaser = 9,
   kMotionNoise = 10,
   kTruth = 11,
+  kStall = 12,
 };
 
 }  // namespace locbench::sim

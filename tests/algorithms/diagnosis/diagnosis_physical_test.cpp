@@ -9,6 +9,7 @@
 
 #include "algorithms/core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
+#include "algorithms/diagnosis/scale_checks.h"
 #include "datasets/diagnosis/physical_log_generator.h"
 #include "tests/algorithms/diagnosis/diagnosis_test_helpers.h"
 
@@ -98,6 +99,27 @@ TEST(DiagnosePhysicalLogs, HeavyTailedProcessNoiseIsNamedAndBiasesNoScale) {
   for (const char* mean : {"velocity_scale", "turn_rate_scale", "turn_rate_bias", "sensor_time_offset", "drive_response"}) {
     EXPECT_FALSE(detected(d, mean)) << mean << "\n" << summary(d);
   }
+  EXPECT_TRUE(d.unexplained.empty()) << summary(d);
+}
+
+// MRCLAM's signature: most windows at the command, some far slower. The generator's stalls have
+// random lengths (the diagnosis's model: a fixed one), so the parameters are checked loosely and
+// the implied mean distance scale against the path-length ratio computed from the log directly.
+TEST(DiagnosePhysicalLogs, StallsAreNamedDriveStallWithTheMeanDistanceScaleOfThePathLengths) {
+  PhysicalEffects e;
+  e.stall_rate = 0.15;     // per second
+  e.stall_duration = 0.4;  // s: ~6% of the time stopped
+  const Log log = sim::generate_physical_log(e, 17);
+  const Diagnosis d = diagnose_log(log);
+  ASSERT_TRUE(detected(d, "drive_stall")) << summary(d);
+  EXPECT_NEAR(parameter(d, "drive_stall", "rate_per_s").value, 0.15, 0.06) << summary(d);
+  EXPECT_NEAR(parameter(d, "drive_stall", "duration_s").value, 0.4, 0.15) << summary(d);
+  const Cause* c = find_cause(d, "drive_stall");
+  double offset = 0.0;
+  if (const Cause* o = find_cause(d, "sensor_time_offset"); o != nullptr && o->detected) offset = o->parameters[0].value;
+  const ScaleChecks checks = scale_checks(build_motion_data(log, {}), offset);
+  EXPECT_NEAR(c->extra.at("mean_distance_scale").get<double>(), checks.path_length_ratio, 0.02) << summary(d);
+  EXPECT_FALSE(detected(d, "velocity_scale")) << summary(d);
   EXPECT_TRUE(d.unexplained.empty()) << summary(d);
 }
 

@@ -86,6 +86,17 @@ TEST(TwinScenario, SpeedDependentScaleComposesWithAVelocityScale) {
   EXPECT_NEAR(s.drive.response.speed_slope, -0.09, 1e-12);
 }
 
+TEST(TwinScenario, DriveStallsBecomeTheDrivesStallRateAndDuration) {
+  diagnosis::Diagnosis d;
+  d.causes = {cause("drive_stall", {{"rate_per_s", 0.14}, {"duration_s", 0.37}})};
+  Scenario s;
+  const auto mapping = apply_causes(d, s);
+  ASSERT_EQ(mapping.size(), 1u);
+  EXPECT_TRUE(mapping[0].simulated) << mapping[0].how;
+  EXPECT_EQ(s.drive.response.stall_rate, 0.14);
+  EXPECT_EQ(s.drive.response.stall_duration, 0.37);
+}
+
 TEST(TwinScenario, TheWrittenScenarioReplaysTheLogAndListsWhatItCannotSimulate) {
   GeneratorOptions o;
   o.velocity_odometry = true;

@@ -67,6 +67,20 @@ TEST(SimulatorReplay, DriveResponseScalesLagsAndBiasesTheTrueMotion) {
   EXPECT_NEAR(truth_at(simulate(turn, 1), 11.0).theta, 1.1 + 0.11, 1e-6);
 }
 
+TEST(SimulatorReplay, StallsStopTheRobotForTheirDurationAtTheirRate) {
+  // 0.2 m/s for 1000 s; stalls at 0.1/s of 0.5 s: the robot stands still for about 1 − e^{−0.05}
+  // ≈ 4.9% of the time (a new stall starts only after the last one ends), so it covers ≈ 190 m.
+  Scenario s = replay({{1.0, 0.2, 0.0}, {1001.0, 0.0, 0.0}});
+  s.truth.rate = 10.0;
+  s.drive.response.stall_rate = 0.1;
+  s.drive.response.stall_duration = 0.5;
+  const double x = truth_at(simulate(s, 3), 1001.0).x;
+  const double stopped = 1.0 - x / 200.0;
+  EXPECT_NEAR(stopped, 0.05 / 1.05, 0.015);  // ±3σ of ~95 episodes
+  EXPECT_EQ(truth_at(simulate(s, 3), 1001.0).x, x) << "same seed, same stalls";
+  EXPECT_NE(truth_at(simulate(s, 4), 501.0).x, truth_at(simulate(s, 3), 501.0).x) << "another seed, other stalls";
+}
+
 TEST(SimulatorReplay, OdometryLatencyMovesTheTruthEarlierThanTheLoggedStamps) {
   Scenario s = replay({{1.0, 0.2, 0.0}, {11.0, 0.0, 0.0}});
   s.odometry.timing.latency = 0.3;  // logged = true + 0.3 s: the command stamped 1.0 runs from 0.7
