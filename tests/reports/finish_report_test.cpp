@@ -20,13 +20,6 @@
 namespace locbench::reports {
 namespace {
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::size_t files_in(const std::filesystem::path& folder) {
   std::size_t n = 0;
   for (const auto& e : std::filesystem::directory_iterator(folder)) n += e.is_regular_file();
@@ -71,7 +64,7 @@ TEST(FinishReport, StampsTheProvenanceAndWritesAValidReportAtomically) {
   finish_report(report, tail, out, log);
   EXPECT_EQ(log.str(), "wrote " + path.string() + "\n");
   EXPECT_EQ(out.str(), "");  // no summary unless asked
-  EXPECT_EQ(slurp(path), to_json(report).dump(2) + "\n");
+  EXPECT_EQ(testing::file_contents(path), to_json(report).dump(2) + "\n");
   const Report back = read_report(path);
   EXPECT_EQ(back.provenance.command_line, "locbench run odometry");
   EXPECT_EQ(back.provenance.threads, 3);
@@ -117,7 +110,7 @@ TEST(FinishReport, AReportViolatingTheSchemaIsABugNamingTheProducerAndReplacesNo
   tail.print_summary = true;
   const std::string e = logic_error_of([&] { finish_report(report, tail, out, log); });
   EXPECT_EQ(e.rfind("calibrate produced a report that violates reports/report.schema.json: ", 0), 0u) << e;
-  EXPECT_EQ(slurp(path), "previous report");
+  EXPECT_EQ(testing::file_contents(path), "previous report");
   EXPECT_EQ(out.str(), "");  // nothing printed for a report that is not written
   EXPECT_EQ(log.str(), "");
 }
@@ -165,7 +158,7 @@ TEST(FinishReport, WritesADiagnosisWithItsProvenance) {
   std::ostringstream log;
   finish_report(d, ReportTail("diagnose", "locbench diagnose residuals.json", dir.file("d.json")), log);
   EXPECT_EQ(log.str(), "wrote " + dir.file("d.json").string() + "\n");
-  const nlohmann::json back = nlohmann::json::parse(slurp(dir.file("d.json")));
+  const nlohmann::json back = nlohmann::json::parse(testing::file_contents(dir.file("d.json")));
   EXPECT_EQ(back.at("provenance").at("command_line"), "locbench diagnose residuals.json");
   EXPECT_EQ(back.at("verdict"), "consistent with the nominal model");
   EXPECT_TRUE(validate_diagnosis_json(back).empty());
