@@ -4,7 +4,6 @@
 //       file, or a catalog dataset name (`locbench list`), e.g. censi_khepera:l90, aces.
 #include <fmt/format.h>
 
-#include <iostream>
 
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/ml_calibration.h"
