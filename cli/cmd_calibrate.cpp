@@ -4,7 +4,6 @@
 //       file, or a catalog dataset name (`locbench list`), e.g. censi_khepera:l90, aces.
 #include <fmt/format.h>
 
-#include <iostream>
 
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/ml_calibration.h"
@@ -20,11 +19,8 @@
 #include "datasets/io/umbmark_input_reader.h"
 #include "datasets/log/data_root.h"
 #include "reports/checksum.h"
+#include "reports/finish_report.h"
 #include "reports/output_file.h"
-#include "reports/provenance.h"
-#include "reports/report_json.h"
-#include "reports/schema_validation.h"
-#include "reports/summary_table.h"
 
 namespace locbench::cli {
 namespace {
@@ -217,20 +213,9 @@ int calibrate(const CalibrateArgs& a, const std::string& command_line) {
     throw UsageError("calibrate: METHOD must be umbmark-classic, umbmark-improved or ml, not \"" +
                      a.method + "\"");
   }
-  report.provenance = reports::current_provenance(command_line);
-  const nlohmann::json j = reports::to_json(report);
-  if (const auto errors = reports::validate_report_json(j); !errors.empty()) {
-    throw std::logic_error("calibrate produced a report that violates the schema: " + errors.front());
-  }
-  std::cout << reports::summary_table({report});
-  for (const auto& r : report.body.results) {
-    if (!r.note.empty()) std::cout << r.name() << ": " << r.note << '\n';
-  }
-  for (const auto& n : report.body.notes) std::cout << n << '\n';
-  if (!a.report.empty()) {
-    reports::write_report(report, a.report);
-    std::cerr << "wrote " << a.report << '\n';
-  }
+  reports::ReportTail tail("calibrate", command_line, a.report);
+  tail.print_summary = true;
+  reports::finish_report(report, tail);
   return kExitOk;
 }
 

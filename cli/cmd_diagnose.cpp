@@ -21,11 +21,9 @@
 #include "datasets/io/log_loader.h"
 #include "datasets/log/data_root.h"
 #include "datasets/sim/scenario_json.h"
+#include "reports/finish_report.h"
 #include "reports/json_file.h"
 #include "reports/output_file.h"
-#include "reports/provenance.h"
-#include "reports/report_json.h"
-#include "reports/schema_validation.h"
 
 namespace locbench::cli {
 namespace {
@@ -138,12 +136,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
     nlohmann::json options;
     diagnosis::to_json(options, opt);
     j["configuration"] = options;
-    j["provenance"] = reports::provenance_to_json(reports::current_provenance(command_line));
-    if (const auto errors = reports::validate_diagnosis_json(j); !errors.empty()) {
-      throw std::logic_error("the diagnosis report violates reports/diagnosis.schema.json: " + errors.front());
-    }
-    reports::write_file_atomically(a.report, j.dump(2) + "\n");
-    std::cerr << "wrote " << a.report << '\n';
+    reports::finish_report(j, reports::ReportTail("diagnose", command_line, a.report));
   }
   return kExitOk;
 }

@@ -23,11 +23,8 @@
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
 #include "reports/json_file.h"
+#include "reports/finish_report.h"
 #include "reports/output_file.h"
-#include "reports/provenance.h"
-#include "reports/report_json.h"
-#include "reports/schema_validation.h"
-#include "reports/summary_table.h"
 
 namespace locbench::cli {
 namespace {
@@ -161,16 +158,9 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
           : fmt::format("Never settled within 0.5 m and 0.35 rad of the {}; final error {:.3f} m.",
                         reference, pos.back()));
   }
-  report.provenance = reports::current_provenance(command_line);
-  if (const auto errors = reports::validate_report_json(reports::to_json(report)); !errors.empty()) {
-    throw std::logic_error("localize produced a report that violates the schema: " + errors.front());
-  }
-  std::cout << reports::summary_table({report});
-  for (const auto& n : out.notes) std::cout << n << '\n';
-  if (!a.report.empty()) {
-    reports::write_report(report, a.report);
-    std::cerr << "wrote " << a.report << '\n';
-  }
+  reports::ReportTail tail("localize", command_line, a.report);
+  tail.print_summary = true;
+  reports::finish_report(report, tail);
   if (!a.tum.empty()) {
     write_tum(traj, a.tum);
     std::cerr << "wrote " << a.tum << '\n';

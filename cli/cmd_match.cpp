@@ -19,11 +19,8 @@
 #include "datasets/io/tum_writer.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
+#include "reports/finish_report.h"
 #include "reports/output_file.h"
-#include "reports/provenance.h"
-#include "reports/report_json.h"
-#include "reports/schema_validation.h"
-#include "reports/summary_table.h"
 
 namespace locbench::cli {
 namespace {
@@ -111,16 +108,9 @@ int match(const MatchArgs& a, const std::string& command_line) {
     out.notes.push_back(fmt::format("{} scans had no pose (no FLASER pose and no odometry at their "
                                     "stamp) and were skipped.", skipped));
   }
-  report.provenance = reports::current_provenance(command_line);
-  if (const auto errors = reports::validate_report_json(reports::to_json(report)); !errors.empty()) {
-    throw std::logic_error("match produced a report that violates the schema: " + errors.front());
-  }
-  std::cout << reports::summary_table({report});
-  for (const auto& n : out.notes) std::cout << n << '\n';
-  if (!a.report.empty()) {
-    reports::write_report(report, a.report);
-    std::cerr << "wrote " << a.report << '\n';
-  }
+  reports::ReportTail tail("match", command_line, a.report);
+  tail.print_summary = true;
+  reports::finish_report(report, tail);
   if (!a.tum.empty()) {
     write_tum(corrected, a.tum);
     std::cerr << "wrote " << a.tum << '\n';

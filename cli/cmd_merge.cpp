@@ -14,10 +14,10 @@
 #include "benchmarks/experiments/parallel_tasks.h"
 #include "benchmarks/experiments/shard.h"
 #include "cli/commands.h"
+#include "reports/finish_report.h"
 #include "reports/json_file.h"
 #include "reports/output_file.h"
 #include "reports/provenance.h"
-#include "reports/report_json.h"
 #include "reports/schema_validation.h"
 #include "reports/shard_report.h"
 #include "reports/summary_table.h"
@@ -157,12 +157,6 @@ reports::Report merge_group(const std::vector<const ShardFile*>& group, int thre
                      s.experiment + ": a record does not have the shape this experiment writes (" + err.what() +
                          "): expected the shards `locbench run --shard` made");
   }
-  report.provenance = here;
-  report.provenance.threads = threads;
-  report.provenance.shards = s.count;
-  if (const auto errors = reports::validate_report_json(reports::to_json(report)); !errors.empty()) {
-    throw std::logic_error(s.experiment + ": merged report violates the schema: " + errors.front());
-  }
   return report;
 }
 
@@ -182,10 +176,13 @@ int merge(const MergeArgs& args, const std::string& command_line) {
   std::vector<reports::Report> written;
   for (const auto& [name, group] : groups) {
     reports::Report report = merge_group(group, args.threads, command_line);
-    const auto path = single_file ? std::filesystem::path(args.out)
-                                  : std::filesystem::path(args.out) / (name + ".json");
-    reports::write_report(report, path);
-    std::cerr << "wrote " << path.string() << " (" << group.size() << " shards)\n";
+    reports::ReportTail tail("merge of " + name, command_line,
+                             single_file ? std::filesystem::path(args.out)
+                                         : std::filesystem::path(args.out) / (name + ".json"));
+    tail.threads = args.threads;
+    tail.shards = group.front()->shard.count;
+    tail.wrote_detail = fmt::format("{} shards", group.size());
+    reports::finish_report(report, tail);
     written.push_back(std::move(report));
   }
   std::cout << reports::summary_table(written);

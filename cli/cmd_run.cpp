@@ -14,11 +14,9 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "datasets/log/data_root.h"
+#include "reports/finish_report.h"
 #include "reports/json_file.h"
 #include "reports/output_file.h"
-#include "reports/provenance.h"
-#include "reports/report_json.h"
-#include "reports/schema_validation.h"
 #include "reports/shard_report.h"
 #include "reports/summary_table.h"
 
@@ -141,17 +139,12 @@ void run_shard(const experiments::Experiment& e, const nlohmann::json& config,
         tasks.empty() ? std::vector<nlohmann::json>{} : e.run_tasks(config, options, tasks);
     for (std::size_t i = 0; i < tasks.size(); ++i) r.records.push_back({tasks[i], records[i]});
   }
-  r.provenance = reports::current_provenance(command_line);
-  r.provenance.threads = options.threads;
-  if (const auto errors = reports::validate_shard_json(reports::to_json(r)); !errors.empty()) {
-    throw std::logic_error(e.name() + " produced a shard that violates the schema: " +
-                           errors.front());
-  }
   const auto path = std::filesystem::path(out) /
                     fmt::format("{}.shard-{}-of-{}.json", e.name(), shard.index, shard.count);
-  reports::write_shard_report(r, path);
-  std::cerr << "wrote " << path.string() << " (" << tasks.size() << " of " << r.tasks
-            << " tasks)\n";
+  reports::ReportTail tail(e.name(), command_line, path);
+  tail.threads = options.threads;
+  tail.wrote_detail = fmt::format("{} of {} tasks", tasks.size(), r.tasks);
+  reports::finish_report(r, tail);
 }
 
 int run(const RunArgs& args, const std::string& command_line) {
@@ -230,16 +223,9 @@ int run(const RunArgs& args, const std::string& command_line) {
     for (const reports::CaseNote& c : report.body.cases) {
       if (c.status == "skipped" && !skip_allowed(args.skip_missing, c.name)) missing.push_back(c.name + ": " + c.reason);
     }
-    report.provenance = reports::current_provenance(command_line);
-    report.provenance.threads = options.threads;
-    const nlohmann::json j = reports::to_json(report);
-    if (const auto errors = reports::validate_report_json(j); !errors.empty()) {
-      throw std::logic_error(e->name() + " produced a report that violates the schema: " +
-                             errors.front());
-    }
-    const auto path = std::filesystem::path(args.out) / (e->name() + ".json");
-    reports::write_report(report, path);
-    std::cerr << "wrote " << path.string() << '\n';
+    reports::ReportTail tail(e->name(), command_line, std::filesystem::path(args.out) / (e->name() + ".json"));
+    tail.threads = options.threads;
+    reports::finish_report(report, tail);
     written.push_back(std::move(report));
   }
   if (!shard) std::cout << reports::summary_table(written);

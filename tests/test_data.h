@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 
@@ -18,6 +20,14 @@ namespace locbench::testing {
                    << " (set LOCBENCH_DATA to the folder holding ../shared/datasets)";        \
     }                                                                                         \
   } while (0)
+
+// The whole content of a file as written (binary); empty when it cannot be opened.
+inline std::string file_contents(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
 
 // A fresh scratch directory for one test, removed at the end of the test.
 class ScratchDir {

@@ -20,13 +20,6 @@ using testing::Outcome;
 using testing::run_locbench;
 using testing::run_shell;
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 struct Rendered {
   int exit_code = -1;
   std::string dom;
@@ -50,8 +43,8 @@ Rendered render(const std::filesystem::path& html, const std::filesystem::path& 
   r.exit_code = run_shell("chromium " + flags + " " + what + " file://" +
                           std::filesystem::absolute(html).string() + " > " + dom + " 2> " + log)
                     .exit_code;
-  r.dom = slurp(dom);
-  r.log = slurp(log);
+  r.dom = testing::file_contents(dom);
+  r.log = testing::file_contents(log);
   return r;
 }
 
@@ -105,7 +98,7 @@ TEST_F(HtmlReport, RendersInChromiumWithItsChartsTablesAndNoConsoleErrors) {
   const auto html = artifacts / "report.html";
   const Outcome o = run_locbench("report " + reports + " -o " + html.string());
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  const std::string page = slurp(html);
+  const std::string page = testing::file_contents(html);
   EXPECT_EQ(page.find("<script"), std::string::npos);
   EXPECT_EQ(std::regex_search(page, std::regex(R"((src|href)="?https?:)")), false);
 

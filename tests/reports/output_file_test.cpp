@@ -14,13 +14,6 @@
 namespace locbench::reports {
 namespace {
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string error_of(const std::function<void()>& f) {
   try {
     f();
@@ -34,7 +27,7 @@ TEST(OutputFile, ReplacesTheTargetAndLeavesNoTemporaryFile) {
   testing::ScratchDir dir;
   write_file_atomically(dir.file("a/r.json"), "old");
   write_file_atomically(dir.file("a/r.json"), "new");
-  EXPECT_EQ(slurp(dir.file("a/r.json")), "new");
+  EXPECT_EQ(testing::file_contents(dir.file("a/r.json")), "new");
   std::size_t files = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir.file("a"))) files += e.is_regular_file();
   EXPECT_EQ(files, 1u);
@@ -47,7 +40,7 @@ TEST(OutputFile, AnUncommittedOutputLeavesThePreviousFileIntact) {
     AtomicOutput out(dir.file("r.json"));
     std::ofstream(out.temp_path()) << "half a rep";  // killed before commit()
   }
-  EXPECT_EQ(slurp(dir.file("r.json")), "previous report");
+  EXPECT_EQ(testing::file_contents(dir.file("r.json")), "previous report");
   std::size_t files = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir.path())) files += e.is_regular_file();
   EXPECT_EQ(files, 1u);  // the temporary file went with its owner

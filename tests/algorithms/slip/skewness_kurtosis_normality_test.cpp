@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "algorithms/core/rng.h"
-#include "algorithms/slip/normality_test.h"
+#include "algorithms/slip/skewness_kurtosis_normality.h"
 
 namespace locbench {
 namespace {

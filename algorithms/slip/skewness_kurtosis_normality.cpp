@@ -1,4 +1,4 @@
-#include "algorithms/slip/normality_test.h"
+#include "algorithms/slip/skewness_kurtosis_normality.h"
 
 #include <cmath>
 #include <stdexcept>
