@@ -18,7 +18,7 @@
 #include "algorithms/core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "algorithms/diagnosis/ml_fit.h"
-#include "algorithms/slip/normality_test.h"
+#include "algorithms/slip/skewness_kurtosis_normality.h"
 
 namespace locbench::diagnosis {
 
