@@ -13,6 +13,7 @@
 #include "algorithms/core/statistics.h"
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/ml_fit.h"
+#include "algorithms/diagnosis/odometry_battery.h"
 #include "algorithms/diagnosis/selection.h"
 
 namespace locbench::diagnosis {
@@ -70,9 +71,9 @@ std::optional<std::string> implausible(const CauseSpec& spec, const OdometryMode
 
 class Fitter {
  public:
-  Fitter(const MotionData& d, std::vector<std::size_t> index) : d_(d), index_(std::move(index)) {}
+  Fitter(const MotionData& d, std::vector<std::size_t> index) : d_(d), index_(std::move(index)), cache_(d) {}
 
-  double nll(const OdometryModel& m) const { return negative_log_likelihood(d_, m, index_); }
+  double nll(const OdometryModel& m) const { return negative_log_likelihood(d_, m, index_, &cache_); }
 
   // `interval`: profile the offset's 95% interval (costly: a fit per profile point); selection
   // needs only the likelihood, the report the interval.
@@ -160,6 +161,7 @@ class Fitter {
 
   const MotionData& d_;
   std::vector<std::size_t> index_;
+  mutable WindowCache cache_;
 };
 
 OdometryModel initial_noise(const MotionData& d, const std::vector<std::size_t>& index) {
@@ -177,63 +179,6 @@ OdometryModel initial_noise(const MotionData& d, const std::vector<std::size_t>&
   m.sigma_y = sd(ry);
   m.sigma_theta = sd(rt);
   return m;
-}
-
-// ---------------------------------------------------------------- residual battery
-struct OdoResiduals {
-  std::vector<double> along, heading, distance, turn, speed, travel, cos_h, sin_h, x, y, dturn;
-};
-
-OdoResiduals odometry_residuals(const MotionData& d, const OdometryModel& m, const std::vector<std::size_t>& index) {
-  OdoResiduals o;
-  auto rate = [](const MotionWindow& v) { return v.t1 > v.t0 ? v.turn / (v.t1 - v.t0) : 0.0; };
-  for (std::size_t k : index) {
-    const auto& w = d.windows[k];
-    const auto r = window_residual(d, w, m);
-    if (!r.valid) continue;
-    o.along.push_back(r.r[0] / std::sqrt(r.variance[0]));
-    o.heading.push_back(r.r[2] / std::sqrt(r.variance[2]));
-    o.distance.push_back(w.signed_distance);
-    o.turn.push_back(w.turn);
-    o.speed.push_back(w.t1 > w.t0 ? w.distance / (w.t1 - w.t0) : 0.0);
-    o.travel.push_back(w.wheel_travel);
-    o.cos_h.push_back(std::cos(w.heading));
-    o.sin_h.push_back(std::sin(w.heading));
-    o.x.push_back(w.x);
-    o.y.push_back(w.y);
-    const auto& prev = d.windows[k > 0 ? k - 1 : k];
-    const auto& next = d.windows[k + 1 < d.windows.size() ? k + 1 : k];
-    o.dturn.push_back(0.5 * (rate(next) - rate(prev)));
-  }
-  return o;
-}
-
-std::vector<ResidualTest> odometry_battery(const MotionData& d, const OdoResiduals& o) {
-  std::vector<ResidualTest> t;
-  const bool pos = d.reference != ReferenceKind::kCompass;
-  t.push_back(bias_test(o.heading, "heading"));
-  if (pos) t.push_back(bias_test(o.along, "along_track"));
-  t.push_back(dependence_test(o.heading, o.distance, "drift_with_distance", "heading", "distance"));
-  if (pos) t.push_back(dependence_test(o.along, o.distance, "drift_with_distance", "along_track", "distance"));
-  t.push_back(dependence_test(o.heading, o.turn, "drift_with_turning", "heading", "turn"));
-  if (pos) t.push_back(dependence_test(o.along, o.speed, "speed_dependence", "along_track", "speed"));
-  t.push_back(dependence_test(o.heading, o.speed, "speed_dependence", "heading", "speed"));
-  t.push_back(dependence_test(o.heading, o.cos_h, "heading_dependence", "heading", "cos(heading)"));
-  t.push_back(dependence_test(o.heading, o.sin_h, "heading_dependence", "heading", "sin(heading)"));
-  if (d.reference == ReferenceKind::kTruePose) {
-    t.push_back(dependence_test(o.heading, o.x, "position_dependence", "heading", "x"));
-    t.push_back(dependence_test(o.heading, o.y, "position_dependence", "heading", "y"));
-  }
-  t.push_back(skewness_test(o.heading, "heading"));
-  t.push_back(heavy_tail_test(o.heading, "heading"));
-  if (pos) t.push_back(heavy_tail_test(o.along, "along_track"));
-  t.push_back(heteroscedasticity_test(o.heading, o.travel, "heading", "wheel_travel"));
-  if (pos) t.push_back(heteroscedasticity_test(o.along, o.travel, "along_track", "wheel_travel"));
-  t.push_back(autocorrelation_test(o.heading, "heading"));
-  if (d.reference != ReferenceKind::kRelations) {
-    t.push_back(dependence_test(o.heading, o.dturn, "lead_lag", "heading", "turn-rate change"));
-  }
-  return t;
 }
 
 // ---------------------------------------------------------------- held-out gains
@@ -383,28 +328,40 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
     }
   }
 
-  // The held-out check, per cause in its own metric: the model with every entered cause against
-  // the same model without this one (drop-one), both fitted on the training windows.
-  std::vector<std::size_t> kept;
-  const OdoFit& full = fit_set(sel.entered);
+  // The held-out check, per cause in its own metric: the model with the other causes against the
+  // same model without this one (drop-one), both fitted on the training windows. Backward
+  // elimination: two causes that act alike (a velocity scale and drive stalls both shorten the
+  // mean distance) each look useless beside the other, so the worst cause without a gain is
+  // dropped and the rest are judged again, until every remaining cause earns its place.
+  std::vector<std::size_t> kept = sel.entered;
   std::map<std::size_t, std::vector<Gain>> gains;
-  for (std::size_t i : sel.entered) {
-    std::vector<std::size_t> others;
-    for (std::size_t j : sel.entered) {
-      if (j != i) others.push_back(j);
+  std::vector<std::pair<std::size_t, std::vector<std::size_t>>> dropped;  // cause, the set it was judged in
+  while (!kept.empty()) {
+    const OdoFit& full = fit_set(kept);
+    std::optional<std::size_t> worst;
+    for (std::size_t i : kept) {
+      std::vector<std::size_t> others;
+      for (std::size_t j : kept) {
+        if (j != i) others.push_back(j);
+      }
+      gains[i] = ordered_gains(heldout(d, fit_set(others).model, full.model, test, opt.rpe_chain), candidates[i]->metric,
+                               heading_only);
+      if (gains[i].front().relative() <= 0.0 && (!worst || gains[i].front().relative() < gains[*worst].front().relative())) {
+        worst = i;
+      }
     }
-    const OdoFit& without = fit_set(others);
-    gains[i] = ordered_gains(heldout(d, without.model, full.model, test, opt.rpe_chain), candidates[i]->metric, heading_only);
-    if (gains[i].front().relative() > 0.0) {
-      kept.push_back(i);
-      continue;
-    }
+    if (!worst) break;
+    dropped.emplace_back(*worst, kept);
+    std::erase(kept, *worst);
+  }
+  for (const auto& [i, judged_in] : dropped) {
     // Why not: do the halves of the log agree on the cause's parameter?
+    const OdoFit& full = fit_set(judged_in);
     const auto& p = candidates[i]->params.front();
     std::vector<std::size_t> first(train.begin(), train.begin() + static_cast<long>(train.size() / 2));
     std::vector<std::size_t> second(train.begin() + static_cast<long>(train.size() / 2), train.end());
     std::vector<const CauseSpec*> specs;
-    for (std::size_t j : sel.entered) specs.push_back(candidates[j]);
+    for (std::size_t j : judged_in) specs.push_back(candidates[j]);
     const auto a = Fitter(d, first).fit(specs, full.model, false).estimate(p);
     const auto b = Fitter(d, second).fit(specs, full.model, false).estimate(p);
     const Gain& g = gains[i].front();

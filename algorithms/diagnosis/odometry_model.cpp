@@ -1,5 +1,6 @@
 #include "algorithms/diagnosis/odometry_model.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "algorithms/core/angle.h"
@@ -113,40 +114,89 @@ std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w
   return std::nullopt;
 }
 
-WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+namespace {
+
+WindowResidual residual_of(const MotionData& d, const MotionWindow& w, const OdometryModel& m,
+                           const std::optional<Pose2>& ref, const Pose2& pred) {
   WindowResidual out;
-  const auto ref = reference_window(d, w, m);
   if (!ref) return out;
-  const Pose2 pred = predict_window(d, w, m);
-  out.valid = true;
-  out.heading_only = d.reference == ReferenceKind::kCompass;
-  out.r = {ref->x - pred.x, ref->y - pred.y, angle_diff(ref->theta, pred.theta)};
-  if (out.heading_only) out.r.head<2>().setZero();
   const double b = wheelbase_or_default(d);
   const double growth = m.k2 * w.wheel_travel;
   out.variance = {m.sigma_x * m.sigma_x + growth / 4.0, m.sigma_y * m.sigma_y + growth / 4.0,
                   m.sigma_theta * m.sigma_theta + growth / (b * b)};
+  out.prediction = pred;
+  out.valid = true;
+  out.heading_only = d.reference == ReferenceKind::kCompass;
+  out.r = {ref->x - pred.x, ref->y - pred.y, angle_diff(ref->theta, pred.theta)};
+  if (out.heading_only) out.r.head<2>().setZero();
   return out;
+}
+
+std::vector<double> mean_key(const OdometryModel& m) {
+  return {m.E_d, m.E_b, m.E_o, m.velocity_scale, m.turn_rate_scale, m.turn_rate_bias, m.speed_slope, m.drive_tau,
+          m.stall_rate, m.stall_duration};
+}
+
+}  // namespace
+
+WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+  const auto ref = reference_window(d, w, m);
+  return residual_of(d, w, m, ref, ref ? predict_window(d, w, m) : Pose2());
+}
+
+template <typename T>
+std::vector<std::optional<T>>& WindowCache::table(std::vector<Entry<T>>& entries, const std::vector<double>& key) {
+  ++clock_;
+  Entry<T>* e = nullptr;
+  for (auto& x : entries) {
+    if (x.key == key) e = &x;
+  }
+  if (e == nullptr) {
+    if (entries.size() < kEntries) {
+      e = &entries.emplace_back();
+    } else {
+      e = &*std::min_element(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.used < b.used; });
+    }
+    e->key = key;
+    e->values.assign(d_.windows.size(), std::nullopt);
+  }
+  e->used = clock_;
+  return e->values;
+}
+
+std::vector<std::optional<Pose2>>& WindowCache::predictions(const OdometryModel& m) {
+  return table(predictions_, mean_key(m));
+}
+
+std::vector<std::optional<std::optional<Pose2>>>& WindowCache::references(const OdometryModel& m) {
+  return table(references_, {m.time_offset});
 }
 
 namespace {
 
-double log_density(const Eigen::Vector3d& r, const Eigen::Vector3d& v, bool heading_only, double dof) {
+// The Student-t density's constant lgamma((ν+1)/2) − lgamma(ν/2) − ½·log(νπ), once per model.
+struct Density {
+  explicit Density(double nu)
+      : dof(nu), constant(nu > 0.0 ? std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu) - 0.5 * std::log(nu * kPi) : 0.0) {}
+  double operator()(double r, double v) const {
+    if (!(dof > 0.0)) return -0.5 * (r * r / v + std::log(2.0 * kPi * v));
+    return constant - 0.5 * std::log(v) - 0.5 * (dof + 1.0) * std::log1p(r * r / (dof * v));
+  }
+  double dof, constant;
+};
+
+double log_density(const Eigen::Vector3d& r, const Eigen::Vector3d& v, bool heading_only, const Density& density) {
   double s = 0.0;
-  for (int c = heading_only ? 2 : 0; c < 3; ++c) s += component_log_density(r[c], v[c], dof);
+  for (int c = heading_only ? 2 : 0; c < 3; ++c) s += density(r[c], v[c]);
   return s;
 }
 
 }  // namespace
 
-double component_log_density(double r, double v, double dof) {
-  if (!(dof > 0.0)) return -0.5 * (r * r / v + std::log(2.0 * kPi * v));
-  return std::lgamma(0.5 * (dof + 1.0)) - std::lgamma(0.5 * dof) - 0.5 * std::log(dof * kPi * v) -
-         0.5 * (dof + 1.0) * std::log1p(r * r / (dof * v));
-}
+double component_log_density(double r, double v, double dof) { return Density(dof)(r, v); }
 
 double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
-                               const std::vector<std::size_t>& index) {
+                               const std::vector<std::size_t>& index, WindowCache* cache) {
   double nll = 0.0;
   const std::size_t n = index.empty() ? d.windows.size() : index.size();
   const double b = wheelbase_or_default(d) * m.E_b;
@@ -155,14 +205,28 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
   const bool stalls = has_stalls(d, m) && d.reference != ReferenceKind::kCompass;
   OdometryModel m_moving = m;
   m_moving.stall_rate = 0.0;
+  const OdometryModel& mean_model = stalls ? m_moving : m;
+  const Density density(m.dof);
+  auto* predictions = cache != nullptr ? &cache->predictions(mean_model) : nullptr;
+  auto* references = cache != nullptr ? &cache->references(mean_model) : nullptr;
   for (std::size_t k = 0; k < n; ++k) {
-    const MotionWindow& w = d.windows[index.empty() ? k : index[k]];
-    const WindowResidual res = window_residual(d, w, stalls ? m_moving : m);
+    const std::size_t wi = index.empty() ? k : index[k];
+    const MotionWindow& w = d.windows[wi];
+    WindowResidual res;
+    if (cache != nullptr) {
+      auto& ref = (*references)[wi];
+      if (!ref) ref = reference_window(d, w, mean_model);
+      auto& pred = (*predictions)[wi];
+      if (*ref && !pred) pred = predict_window(d, w, mean_model);
+      res = residual_of(d, w, mean_model, *ref, *ref ? *pred : Pose2());
+    } else {
+      res = window_residual(d, w, mean_model);
+    }
     if (!res.valid) {
-      nll -= log_density(Eigen::Vector3d::Zero(), res.variance, d.reference == ReferenceKind::kCompass, m.dof);
+      nll -= log_density(Eigen::Vector3d::Zero(), res.variance, d.reference == ReferenceKind::kCompass, density);
       continue;
     }
-    double ll = log_density(res.r, res.variance, res.heading_only, m.dof);
+    double ll = log_density(res.r, res.variance, res.heading_only, density);
     if (m.slip_rate > 0.0 && m.slip_loss != 0.0 && d.odometry == OdometryKind::kEncoder &&
         w.last > w.first) {
       const double p = 1.0 - std::exp(-m.slip_rate * 0.5 * w.wheel_travel);
@@ -178,8 +242,8 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
         const Eigen::Vector3d shift_left{-m.slip_loss * ul / 2.0, 0.0, m.slip_loss * ul / b};
         const Eigen::Vector3d shift_right{-m.slip_loss * ur / 2.0, 0.0, -m.slip_loss * ur / b};
         const double l0 = std::log1p(-p) + ll;
-        const double l1 = std::log(0.5 * p) + log_density(res.r - shift_left, res.variance, res.heading_only, m.dof);
-        const double l2 = std::log(0.5 * p) + log_density(res.r - shift_right, res.variance, res.heading_only, m.dof);
+        const double l1 = std::log(0.5 * p) + log_density(res.r - shift_left, res.variance, res.heading_only, density);
+        const double l2 = std::log(0.5 * p) + log_density(res.r - shift_right, res.variance, res.heading_only, density);
         const double mx = std::max({l0, l1, l2});
         ll = mx + std::log(std::exp(l0 - mx) + std::exp(l1 - mx) + std::exp(l2 - mx));
       }
@@ -187,10 +251,9 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
     if (stalls && !res.heading_only) {
       const StallOdds s = stall_odds(d, w, m);
       if (s.p > 0.0) {
-        const Pose2 moving = predict_window(d, w, m_moving);
-        const Eigen::Vector3d shift{-s.fraction * moving.x, -s.fraction * moving.y, 0.0};
+        const Eigen::Vector3d shift{-s.fraction * res.prediction.x, -s.fraction * res.prediction.y, 0.0};
         const double l0 = std::log1p(-s.p) + ll;
-        const double l1 = std::log(s.p) + log_density(res.r - shift, res.variance, false, m.dof);
+        const double l1 = std::log(s.p) + log_density(res.r - shift, res.variance, false, density);
         const double mx = std::max(l0, l1);
         ll = mx + std::log(std::exp(l0 - mx) + std::exp(l1 - mx));
       }

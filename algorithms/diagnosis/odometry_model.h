@@ -31,6 +31,8 @@
 // with t̂ the predicted translation (x, y); the mean prediction (predict_window, the held-out
 // errors) is the translation scaled by 1 − p·f.
 #include <Eigen/Core>
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "algorithms/diagnosis/motion_windows.h"
@@ -58,6 +60,7 @@ double expected_stall_loss(const MotionData& d, const MotionWindow& w, const Odo
 struct WindowResidual {
   Eigen::Vector3d r = Eigen::Vector3d::Zero();         // reference − prediction
   Eigen::Vector3d variance = Eigen::Vector3d::Ones();  // without slip
+  Pose2 prediction;         // the model's prediction of the window
   bool valid = false;       // the reference covers the (shifted) window
   bool heading_only = false;
 };
@@ -69,11 +72,41 @@ std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w
                                       const OdometryModel& m);
 WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
 
+// Window predictions and reference motions memoized by the parameters they depend on (the
+// mean-motion parameters; the time offset): a fit's finite differences over the noise parameters
+// and many of its steps reuse them. Tied to one MotionData, which must outlive it and not change.
+class WindowCache {
+ public:
+  explicit WindowCache(const MotionData& d) : d_(d) {
+    predictions_.reserve(kEntries);
+    references_.reserve(kEntries);
+  }
+  // Per window, empty until computed; valid until the next call for another model.
+  std::vector<std::optional<Pose2>>& predictions(const OdometryModel& m);
+  std::vector<std::optional<std::optional<Pose2>>>& references(const OdometryModel& m);
+
+ private:
+  static constexpr std::size_t kEntries = 8;
+  template <typename T>
+  struct Entry {
+    std::vector<double> key;
+    std::vector<std::optional<T>> values;
+    std::uint64_t used = 0;
+  };
+  template <typename T>
+  std::vector<std::optional<T>>& table(std::vector<Entry<T>>& entries, const std::vector<double>& key);
+
+  const MotionData& d_;
+  std::vector<Entry<Pose2>> predictions_;
+  std::vector<Entry<std::optional<Pose2>>> references_;
+  std::uint64_t clock_ = 0;
+};
+
 // Negative log-likelihood of the windows `index` (all when empty) under m; windows the shifted
 // reference does not cover count with the constant of a perfect fit so that likelihoods stay
-// comparable across offsets.
+// comparable across offsets. `cache` (optional) must belong to d.
 double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
-                               const std::vector<std::size_t>& index);
+                               const std::vector<std::size_t>& index, WindowCache* cache = nullptr);
 
 // Log-density of one residual component r with (squared) scale v: normal (dof = 0) or Student-t.
 double component_log_density(double r, double v, double dof);

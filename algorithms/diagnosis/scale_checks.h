@@ -30,7 +30,8 @@ ScaleChecks scale_checks(const MotionData& d, double time_offset);
 // speed is not comparable and gives none) set beside the checks: empty when the scale's 95%
 // interval meets the checks' range widened by `tolerance`, else one sentence that says how they
 // disagree and, when the per-window ratio is skewed, why.
+// `what` names the scale ("velocity scale", or drive_stall's implied mean distance scale).
 std::string scale_disagreement(const std::string& log, double value, double lo, double hi, const ScaleChecks& c,
-                               double tolerance = 0.02);
+                               double tolerance = 0.02, const std::string& what = "velocity scale");
 
 }  // namespace locbench::diagnosis

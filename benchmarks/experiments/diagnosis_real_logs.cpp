@@ -7,6 +7,7 @@
 // real-log harness as the other real-data experiments.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -132,11 +133,22 @@ class DiagnosisRealLogs final : public Experiment {
                                           "turn-rate scale {:.3f}, median window ratio {:.3f}",
                                           names[i], c->windows, c->path_length_ratio, c->ls_velocity_scale, c->ls_turn_scale,
                                           c->median_window_ratio));
+          // The distance scale the checks measure: velocity_scale's, or with drive stalls kept the
+          // mean distance scale they imply (the speed when moving is not what a path length sees).
+          const auto& kept = outcomes[i].diagnosis->detected;
+          const bool stalls = std::find(kept.begin(), kept.end(), "drive_stall") != kept.end();
           for (const auto& cause : outcomes[i].diagnosis->causes) {
-            if (cause.id != "velocity_scale" || !cause.detected || cause.parameters.empty()) continue;
-            const auto& p = cause.parameters.front();
-            if (auto why = diagnosis::scale_disagreement(names[i], p.value, p.lo, p.hi, *c); !why.empty()) {
-              out.notes.push_back(why);
+            if (!cause.detected || cause.parameters.empty()) continue;
+            if (cause.id == "drive_stall" && cause.extra.contains("mean_distance_scale")) {
+              const double m = cause.extra["mean_distance_scale"].get<double>();
+              out.results.push_back(reports::make_estimate("diagnose", names[i], "drive_stall.mean_distance_scale", "", m, 0.0, n));
+              if (auto why = diagnosis::scale_disagreement(names[i], m, m, m, *c, 0.02, "mean distance scale of drive_stall");
+                  !why.empty()) out.notes.push_back(why);
+            } else if (cause.id == "velocity_scale" && !stalls) {
+              const auto& p = cause.parameters.front();
+              if (auto why = diagnosis::scale_disagreement(names[i], p.value, p.lo, p.hi, *c); !why.empty()) {
+                out.notes.push_back(why);
+              }
             }
           }
         }

@@ -52,6 +52,42 @@ TEST(OdometryModel, ScalesActOnTheLoggedMotionAndTheSpeedSlopeOnItsSpeed) {
   EXPECT_NEAR(predict_window(d, w, m).x, (0.95 - 0.04) * 0.4, 1e-12);
 }
 
+TEST(OdometryModel, StallsShortenTheMeanPredictionByTheirExpectedLoss) {
+  // 1 s at 0.4 m/s; stalls at 0.2/s of 0.5 s: p = 1 − e^(−0.2) = 0.1813, f = 0.5, mean 0.4·(1 − p·f).
+  const MotionData d = straight_steps(10, [](std::size_t) { return 0.4; });
+  MotionWindow w;
+  w.last = 10;
+  w.t1 = 1.0;
+  OdometryModel m;
+  m.stall_rate = 0.2;
+  m.stall_duration = 0.5;
+  const double p = 1.0 - std::exp(-0.2);
+  EXPECT_NEAR(expected_stall_loss(d, w, m), 0.5 * p, 1e-12);
+  EXPECT_NEAR(predict_window(d, w, m).x, 0.4 * (1.0 - 0.5 * p), 1e-12);
+  m.stall_duration = 3.0;  // longer than the window: the whole window is lost
+  EXPECT_NEAR(expected_stall_loss(d, w, m), p, 1e-12);
+}
+
+TEST(OdometryModel, TheStallLikelihoodIsTheTwoComponentMixtureOfTheMovingPrediction) {
+  MotionData d = straight_steps(10, [](std::size_t) { return 0.4; });
+  MotionWindow w;
+  w.last = 10;
+  w.t1 = 1.0;
+  w.reference = Pose2(0.25, 0.01, 0.02);  // a window that lost 0.15 m of 0.4
+  d.windows = {w};
+  OdometryModel m;
+  m.sigma_x = m.sigma_y = 0.02;
+  m.sigma_theta = 0.03;
+  m.stall_rate = 0.2;
+  m.stall_duration = 0.5;
+  const double p = 1.0 - std::exp(-0.2), v = 0.02 * 0.02;
+  auto normal = [](double r, double var) { return std::exp(-0.5 * r * r / var) / std::sqrt(2.0 * M_PI * var); };
+  // Moving: residual x = 0.25 − 0.4; stalled (half the window): x = 0.25 − 0.2.
+  const double along = (1.0 - p) * normal(0.25 - 0.4, v) + p * normal(0.25 - 0.2, v);
+  const double expected = -std::log(along * normal(0.01, v) * normal(0.02, 0.03 * 0.03));
+  EXPECT_NEAR(negative_log_likelihood(d, m, {}), expected, 1e-9);
+}
+
 TEST(OdometryModel, TheStudentTDensityIsNormalisedAndTendsToTheNormal) {
   for (double dof : {1.5, 3.0, 10.0}) {
     double mass = 0.0;
