@@ -327,4 +327,14 @@ CalibrationData subset(const CalibrationData& data, std::size_t begin, std::size
   return d;
 }
 
+bool is_finite(const CalibrationSample& s) {
+  if (!std::isfinite(s.reference.x) || !std::isfinite(s.reference.y) ||
+      !std::isfinite(s.reference.theta)) {
+    return false;
+  }
+  return std::all_of(s.increments.begin(), s.increments.end(), [](const OdometryIncrement& i) {
+    return std::isfinite(i.first) && std::isfinite(i.second) && std::isfinite(i.dt);
+  });
+}
+
 }  // namespace locbench

@@ -54,6 +54,9 @@ struct CalibrationSample {
   double t_end = std::numeric_limits<double>::quiet_NaN();
 };
 
+// Every number of the reference and of the increments is finite (the times may be NaN).
+bool is_finite(const CalibrationSample& s);
+
 struct CalibrationData {
   std::string source;  // what the samples were built from, for reports
   OdometryInputKind kind = OdometryInputKind::kWheelTicks;

@@ -373,16 +373,6 @@ std::vector<std::size_t> drop_outliers(const Problem& pb, const Vector6& v, doub
   return keep;
 }
 
-bool sample_is_finite(const CalibrationSample& s) {
-  if (!std::isfinite(s.reference.x) || !std::isfinite(s.reference.y) ||
-      !std::isfinite(s.reference.theta)) {
-    return false;
-  }
-  return std::all_of(s.increments.begin(), s.increments.end(), [](const OdometryIncrement& i) {
-    return std::isfinite(i.first) && std::isfinite(i.second) && std::isfinite(i.dt);
-  });
-}
-
 }  // namespace
 
 const CalibratedParameter& MlCalibrationResult::parameter(const std::string& name) const {
@@ -395,7 +385,7 @@ const CalibratedParameter& MlCalibrationResult::parameter(const std::string& nam
 MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibrationOptions& opt) {
   if (data.samples.empty()) throw std::invalid_argument("calibrate_ml: no samples");
   for (const CalibrationSample& s : data.samples) {
-    if (!sample_is_finite(s)) throw std::invalid_argument("calibrate_ml: non-finite sample");
+    if (!is_finite(s)) throw std::invalid_argument("calibrate_ml: non-finite sample");
   }
   if (opt.outliers.iterations < 0 || !(opt.outliers.fraction > 0.0) ||
       !(opt.outliers.fraction <= 0.5)) {
