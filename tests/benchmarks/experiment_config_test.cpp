@@ -3,7 +3,7 @@
 #include <set>
 
 #include "algorithms/core/errors.h"
-#include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/framework/experiment.h"
 
 namespace locbench::experiments {
 namespace {

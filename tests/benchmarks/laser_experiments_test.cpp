@@ -5,8 +5,8 @@
 #include <cmath>
 #include <map>
 
-#include "benchmarks/experiments/experiment.h"
-#include "benchmarks/experiments/experiments_list.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/experiments_list.h"
 #include "datasets/log/data_root.h"
 #include "reports/report_json.h"
 #include "tests/test_data.h"

@@ -5,8 +5,8 @@
 #include <iostream>
 #include <set>
 
-#include "benchmarks/experiments/experiment.h"
-#include "benchmarks/experiments/experiments_list.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/experiments_list.h"
 
 namespace locbench::experiments {
 namespace {

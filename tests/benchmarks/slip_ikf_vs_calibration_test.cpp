@@ -4,8 +4,8 @@
 #include <cmath>
 #include <map>
 
-#include "benchmarks/experiments/experiment.h"
-#include "benchmarks/experiments/experiments_list.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/experiments_list.h"
 #include "reports/report_json.h"
 
 namespace locbench::experiments {
