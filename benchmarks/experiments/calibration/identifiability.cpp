@@ -12,7 +12,7 @@
 #include "algorithms/core/statistics.h"
 #include "baselines/calibration/umbmark_classic.h"
 #include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
@@ -95,10 +95,7 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Identifiabi
 
   reports::ExperimentResults summarise(const IdentifiabilitySetup& u, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = u.configuration;
+    reports::ExperimentResults out = start_results(u.configuration);
     out.datasets.push_back({"sim/" + u.base.name, "simulated",
                             reports::text_checksum(out.configuration["scenario"].dump()), 0, 0.0});
     UmbmarkIdentifiabilityOptions idopt;
@@ -156,10 +153,7 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Identifiabi
   }
 };
 
+const Registration<CalibrationIdentifiability> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_calibration_identifiability() {
-  return std::make_unique<CalibrationIdentifiability>();
-}
-
 }  // namespace locbench::experiments

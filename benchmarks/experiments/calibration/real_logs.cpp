@@ -14,7 +14,7 @@
 #include "algorithms/calibration/ml_calibration.h"
 #include "algorithms/core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "datasets/catalog/dataset_catalog.h"
@@ -51,10 +51,7 @@ class CalibrationRealLogs final : public Experiment {
 
   reports::ExperimentResults run(const nlohmann::json& config,
                                  const RunOptions& options) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = config;
+    reports::ExperimentResults out = start_results(config);
     const auto parts = config.at("censi_parts").get<std::vector<std::string>>();
     const auto rel_logs = real_log_specs(config.at("relations_logs"), name() + ": relations_logs");
     const auto vel_logs = real_log_specs(config.at("velocity_logs"), name() + ": velocity_logs");
@@ -190,10 +187,7 @@ class CalibrationRealLogs final : public Experiment {
   }
 };
 
+const Registration<CalibrationRealLogs> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_calibration_real_logs() {
-  return std::make_unique<CalibrationRealLogs>();
-}
-
 }  // namespace locbench::experiments

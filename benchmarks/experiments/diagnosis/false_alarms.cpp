@@ -10,6 +10,7 @@
 
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "datasets/diagnosis/physical_log_generator.h"
 
@@ -66,10 +67,7 @@ class DiagnosisFalseAlarms final : public MonteCarloExperiment<FalseAlarmSetup> 
 
   reports::ExperimentResults summarise(const FalseAlarmSetup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = s.config;
+    reports::ExperimentResults out = start_results(s.config);
     for (int k = 0; k < static_cast<int>(records.size()); ++k) out.seeds.push_back(plan.run_seed(k));
     for (const char* generator : {"window_model", "physical"}) {
       std::vector<double> alarm;
@@ -96,8 +94,7 @@ class DiagnosisFalseAlarms final : public MonteCarloExperiment<FalseAlarmSetup> 
   }
 };
 
+const Registration<DiagnosisFalseAlarms> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_diagnosis_false_alarms() { return std::make_unique<DiagnosisFalseAlarms>(); }
-
 }  // namespace locbench::experiments

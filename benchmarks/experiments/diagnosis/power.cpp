@@ -13,6 +13,7 @@
 #include "algorithms/core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "datasets/diagnosis/hidden_effects.h"
 
 namespace locbench::experiments {
@@ -125,10 +126,7 @@ class DiagnosisPower final : public MonteCarloExperiment<PowerSetup> {
 
   reports::ExperimentResults summarise(const PowerSetup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = s.config;
+    reports::ExperimentResults out = start_results(s.config);
     for (int k = 0; k < static_cast<int>(records.size()); ++k) out.seeds.push_back(plan.run_seed(k));
     std::vector<double> fa, fa_detect;
     for (int k = 0; k < s.null_runs; ++k) {
@@ -204,8 +202,7 @@ class DiagnosisPower final : public MonteCarloExperiment<PowerSetup> {
   }
 };
 
+const Registration<DiagnosisPower> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_diagnosis_power() { return std::make_unique<DiagnosisPower>(); }
-
 }  // namespace locbench::experiments

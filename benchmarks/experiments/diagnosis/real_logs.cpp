@@ -15,6 +15,7 @@
 #include "algorithms/diagnosis/scale_checks.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "reports/checksum.h"
 
@@ -41,10 +42,7 @@ class DiagnosisRealLogs final : public Experiment {
   }
 
   reports::ExperimentResults run(const nlohmann::json& config, const RunOptions& options) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = config;
+    reports::ExperimentResults out = start_results(config);
     diagnosis::DiagnosisOptions opt;
     opt.false_alarm = config.at("false_alarm").get<double>();
     opt.windows.duration = config.at("window_s").get<double>();
@@ -155,8 +153,7 @@ class DiagnosisRealLogs final : public Experiment {
   }
 };
 
+const Registration<DiagnosisRealLogs> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_diagnosis_real_logs() { return std::make_unique<DiagnosisRealLogs>(); }
-
 }  // namespace locbench::experiments

@@ -25,6 +25,7 @@
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "datasets/diagnosis/twin_comparison.h"
 #include "datasets/io/odometry_interpolation.h"
@@ -89,10 +90,7 @@ class DiagnosisSimToReal final : public Experiment {
   }
 
   reports::ExperimentResults run(const nlohmann::json& config, const RunOptions& options) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = config;
+    reports::ExperimentResults out = start_results(config);
     out.seeds = {options.seed};
     diagnosis::DiagnosisOptions opt;
     opt.false_alarm = config.at("false_alarm").get<double>();
@@ -240,8 +238,7 @@ class DiagnosisSimToReal final : public Experiment {
   }
 };
 
+const Registration<DiagnosisSimToReal> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_diagnosis_sim_to_real() { return std::make_unique<DiagnosisSimToReal>(); }
-
 }  // namespace locbench::experiments

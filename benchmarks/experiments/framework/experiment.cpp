@@ -13,6 +13,14 @@ const Experiment* find_experiment(const std::string& name) {
   return nullptr;
 }
 
+reports::ExperimentResults Experiment::start_results(const nlohmann::json& configuration) const {
+  reports::ExperimentResults out;
+  out.experiment = name();
+  out.description = description();
+  out.configuration = configuration;
+  return out;
+}
+
 int Experiment::task_count(const nlohmann::json&, const RunOptions&) const { return 1; }
 
 std::vector<nlohmann::json> Experiment::run_tasks(const nlohmann::json& config,

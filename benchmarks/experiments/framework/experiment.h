@@ -38,6 +38,10 @@ class Experiment {
   virtual reports::ExperimentResults run(const nlohmann::json& config,
                                          const RunOptions& options) const = 0;
 
+  // The results' head: this experiment's name and description and the configuration it ran
+  // with; the caller adds what it measured.
+  reports::ExperimentResults start_results(const nlohmann::json& configuration) const;
+
   // Tasks for shards and merge (`locbench run --shard K/N`, `locbench merge`). An experiment is
   // split into tasks 0 … task_count − 1, each returning a JSON record, and a summary of all
   // records in task order that equals run(). Monte-Carlo experiments derive from
@@ -59,7 +63,7 @@ class Experiment {
 // Monte-Carlo runs: --runs when given, else the configuration's "runs"; UsageError if < 1.
 int monte_carlo_runs(const Experiment& e, const nlohmann::json& config, const RunOptions& options);
 
-// All experiments, in a fixed order.
+// All registered experiments (registry.h), sorted by name.
 const std::vector<std::unique_ptr<Experiment>>& all_experiments();
 // nullptr when no experiment has that name.
 const Experiment* find_experiment(const std::string& name);

@@ -1,43 +1,36 @@
-// The list of experiments. To add one: write benchmarks/experiments/<name>.cpp with a factory,
-// declare it in experiments_list.h, and append it here (see README, "Adding an experiment").
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+// The registry behind Registration (registry.h) and all_experiments() (experiment.h).
+#include "benchmarks/experiments/framework/registry.h"
+
+#include <algorithm>
+#include <stdexcept>
 
 namespace locbench::experiments {
+namespace {
+
+// A function-local static: registrars in other files may run before any global here is built.
+std::vector<ExperimentFactory>& factories() {
+  static std::vector<ExperimentFactory> list;
+  return list;
+}
+
+}  // namespace
+
+void register_experiment(ExperimentFactory make) { factories().push_back(std::move(make)); }
+
+std::vector<std::unique_ptr<Experiment>> make_sorted(const std::vector<ExperimentFactory>& makers) {
+  std::vector<std::unique_ptr<Experiment>> v;
+  for (const ExperimentFactory& make : makers) v.push_back(make());
+  std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a->name() < b->name(); });
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    if (v[i]->name() == v[i - 1]->name()) {
+      throw std::logic_error("two experiments are registered as \"" + v[i]->name() + "\"");
+    }
+  }
+  return v;
+}
 
 const std::vector<std::unique_ptr<Experiment>>& all_experiments() {
-  static const std::vector<std::unique_ptr<Experiment>> list = [] {
-    std::vector<std::unique_ptr<Experiment>> v;
-    v.push_back(make_odometry_sim_corridor());
-    v.push_back(make_odometry_real_logs());
-    v.push_back(make_calibration_umbmark_trilobot());
-    v.push_back(make_calibration_umbmark_borenstein());
-    v.push_back(make_calibration_identifiability());
-    v.push_back(make_calibration_real_logs());
-    v.push_back(make_slip_normality_table_3_1());
-    v.push_back(make_slip_compass_ekf_table_3_2());
-    v.push_back(make_slip_indirect_kf_tables_3_3_3_4());
-    v.push_back(make_slip_ikf_vs_calibration());
-    v.push_back(make_laser_matcher_accuracy());
-    v.push_back(make_laser_table_6_1());
-    v.push_back(make_laser_table_6_2());
-    v.push_back(make_laser_tables_6_3_6_4());
-    v.push_back(make_laser_tracking_table_6_5());
-    v.push_back(make_laser_real_logs());
-    v.push_back(make_laser_rwht_bins());
-    v.push_back(make_noise_tables());
-    v.push_back(make_noise_resolution_sweep());
-    v.push_back(make_noise_quantization_sigma());
-    v.push_back(make_noise_real_logs());
-    v.push_back(make_diagnosis_false_alarms());
-    v.push_back(make_diagnosis_power());
-    v.push_back(make_diagnosis_real_logs());
-    v.push_back(make_diagnosis_sim_to_real());
-    v.push_back(make_global_topological_example());
-    v.push_back(make_global_sim());
-    v.push_back(make_global_real_logs());
-    return v;
-  }();
+  static const std::vector<std::unique_ptr<Experiment>> list = make_sorted(factories());
   return list;
 }
 

@@ -15,7 +15,7 @@
 
 #include "algorithms/core/errors.h"
 #include "algorithms/core/statistics.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/global_harness.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
@@ -218,10 +218,7 @@ class GlobalRealLogs final : public MonteCarloExperiment<Setup> {
 
   reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = s.configuration;
+    reports::ExperimentResults out = start_results(s.configuration);
     for (int k = 0; k < plan.runs; ++k) out.seeds.push_back(plan.run_seed(k));
     const std::size_t nd = s.datasets.size();
     for (std::size_t d = 0; d < nd; ++d) {
@@ -295,8 +292,7 @@ class GlobalRealLogs final : public MonteCarloExperiment<Setup> {
   }
 };
 
+const Registration<GlobalRealLogs> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_global_real_logs() { return std::make_unique<GlobalRealLogs>(); }
-
 }  // namespace locbench::experiments

@@ -18,7 +18,7 @@
 #include "algorithms/core/errors.h"
 #include "algorithms/core/statistics.h"
 #include "algorithms/core/units.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/global_harness.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "datasets/sim/presets.h"
@@ -228,10 +228,7 @@ class GlobalSim final : public MonteCarloExperiment<Setup> {
 
   reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = s.configuration;
+    reports::ExperimentResults out = start_results(s.configuration);
     for (int k = 0; k < plan.runs; ++k) out.seeds.push_back(plan.run_seed(k));
     std::vector<Record> recs;
     for (const auto& j : records) recs.push_back(decode(j));
@@ -321,8 +318,7 @@ class GlobalSim final : public MonteCarloExperiment<Setup> {
   }
 };
 
+const Registration<GlobalSim> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_global_sim() { return std::make_unique<GlobalSim>(); }
-
 }  // namespace locbench::experiments

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "baselines/global/topological_markov.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "reports/checksum.h"
 
 namespace locbench::experiments {
@@ -44,10 +44,7 @@ class GlobalTopological final : public Experiment {
     m.perception_update(obs);
     const double b2 = m.belief()[1], b4 = m.belief()[5];
 
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = config;
+    reports::ExperimentResults out = start_results(config);
     out.datasets.push_back({"slides/dervish_topological", "slides (transcribed)",
                             reports::text_checksum(config.dump()), 6, 0.0});
     const auto add = [&](const char* variant, double v) {
@@ -75,10 +72,7 @@ class GlobalTopological final : public Experiment {
   }
 };
 
+const Registration<GlobalTopological> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_global_topological_example() {
-  return std::make_unique<GlobalTopological>();
-}
-
 }  // namespace locbench::experiments

@@ -1,6 +1,10 @@
 #include "benchmarks/experiments/harness/noise_filters.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "algorithms/core/dead_reckoning.h"
@@ -10,6 +14,7 @@
 #include "baselines/filters/fixed_q_ekf.h"
 #include "baselines/filters/sage_husa_aekf.h"
 #include "baselines/filters/vb_akf.h"
+#include "datasets/sim/scenario_json.h"
 
 namespace locbench::experiments {
 
@@ -73,6 +78,61 @@ FilterRun run_noise_filters(const sim::SimulationResult& result,
     run.final_heading_error[f] = std::abs(e.theta);
   }
   return run;
+}
+
+FilterRecord record_of(const FilterRun& r, const sim::SimulationResult& sim) {
+  FilterRecord x;
+  x.final_error = r.final_position_error;
+  x.heading_error = r.final_heading_error;
+  x.nees = r.nees;
+  x.nis = r.nis;
+  x.records = sim.log.record_count();
+  x.duration = sim.duration;
+  return x;
+}
+
+void collect(const FilterRecord& r, FilterSamples& s) {
+  for (int f = 0; f < kNoiseFilters; ++f) {
+    s.final_error[f].push_back(r.final_error[f]);
+    s.heading_error[f].push_back(r.heading_error[f]);
+    s.nees[f].push_back(r.nees[f]);
+    s.nis[f].push_back(r.nis[f]);
+  }
+}
+
+std::vector<std::vector<double>> common_length(std::vector<std::vector<double>> v) {
+  std::size_t n = std::numeric_limits<std::size_t>::max();
+  for (const auto& x : v) n = std::min(n, x.size());
+  for (auto& x : v) x.resize(n);
+  return v;
+}
+
+void add_filter_results(reports::ExperimentResults& out, const std::string& dataset,
+                        const FilterSamples& s) {
+  for (int f = 0; f < kNoiseFilters; ++f) {
+    const std::string& m = kNoiseFilterNames[f];
+    out.results.push_back(reports::make_metric(m, dataset, "final_position_error", "m",
+                                               "monte_carlo_runs", s.final_error[f]));
+    out.results.push_back(reports::make_metric(m, dataset, "final_heading_error", "rad",
+                                               "monte_carlo_runs", s.heading_error[f]));
+    const ConsistencySummary nees = summarize_consistency(common_length(s.nees[f]), 3);
+    const ConsistencySummary nis = summarize_consistency(common_length(s.nis[f]), 1);
+    out.results.push_back(reports::make_metric(m, dataset, "nees_time_average", "", "time_steps",
+                                               nees.average, false));
+    out.results.push_back(reports::make_metric(m, dataset, "nis_time_average", "", "time_steps",
+                                               nis.average, false));
+    out.notes.push_back(fmt::format(
+        "{} on {}: average NEES inside its 95% χ² band [{:.2f}, {:.2f}] (3 dof, {} runs) at "
+        "{:.0f}% of steps ({:.0f}% above: over-confident, {:.0f}% below: conservative); NIS "
+        "inside [{:.2f}, {:.2f}] at {:.0f}% of updates.",
+        m, dataset, nees.bounds.lower, nees.bounds.upper, nees.runs, 100 * nees.fraction_inside,
+        100 * nees.fraction_above, 100 * nees.fraction_below, nis.bounds.lower, nis.bounds.upper,
+        100 * nis.fraction_inside));
+  }
+}
+
+sim::Scenario corridor_from(const nlohmann::json& config) {
+  return sim::scenario_from_json(config.at("scenario"), "<configuration>");
 }
 
 }  // namespace locbench::experiments

@@ -13,7 +13,7 @@
 #include "algorithms/core/errors.h"
 #include "algorithms/core/statistics.h"
 #include "algorithms/core/units.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/laser_matchers.h"
 #include "benchmarks/experiments/harness/laser_scan_truth.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
@@ -185,10 +185,7 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Setup> {
 
   reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = s.configuration;
+    reports::ExperimentResults out = start_results(s.configuration);
     const std::size_t nm = s.matchers.size(), nc = s.conditions.size();
     std::vector<Record> recs;
     for (std::size_t k = 0; k < records.size(); ++k) {
@@ -245,10 +242,7 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Setup> {
   }
 };
 
+const Registration<LaserMatcherAccuracy> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_laser_matcher_accuracy() {
-  return std::make_unique<LaserMatcherAccuracy>();
-}
-
 }  // namespace locbench::experiments

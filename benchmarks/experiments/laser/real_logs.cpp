@@ -18,7 +18,7 @@
 #include "algorithms/core/errors.h"
 #include "algorithms/core/statistics.h"
 #include "baselines/laser/extract_then_match.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/laser_correctors.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
@@ -275,10 +275,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
   reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
     (void)plan;
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = s.configuration;
+    reports::ExperimentResults out = start_results(s.configuration);
     for (std::size_t d = 0; d < records.size(); ++d) {
       const Record r = records[d].get<Record>();
       const std::string& ds = s.datasets[d].name;
@@ -497,8 +494,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
   }
 };
 
+const Registration<LaserRealLogs> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_laser_real_logs() { return std::make_unique<LaserRealLogs>(); }
-
 }  // namespace locbench::experiments

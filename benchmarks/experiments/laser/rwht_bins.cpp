@@ -14,7 +14,7 @@
 #include "algorithms/core/statistics.h"
 #include "algorithms/core/units.h"
 #include "baselines/laser/rwht.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/laser_scan_truth.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "datasets/sim/laser_model.h"
@@ -133,10 +133,7 @@ class LaserRwhtBins final : public MonteCarloExperiment<Setup> {
 
   reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = s.configuration;
+    reports::ExperimentResults out = start_results(s.configuration);
     std::vector<Record> recs;
     for (std::size_t k = 0; k < records.size(); ++k) {
       out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
@@ -177,8 +174,7 @@ class LaserRwhtBins final : public MonteCarloExperiment<Setup> {
   }
 };
 
+const Registration<LaserRwhtBins> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_laser_rwht_bins() { return std::make_unique<LaserRwhtBins>(); }
-
 }  // namespace locbench::experiments

@@ -21,7 +21,7 @@
 #include "baselines/laser/options_json.h"
 #include "baselines/localization/line_feature_kalman_localizer.h"
 #include "baselines/localization/line_observation.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
@@ -163,10 +163,7 @@ class LaserTracking final : public MonteCarloExperiment<Setup> {
 
   reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = s.configuration;
+    reports::ExperimentResults out = start_results(s.configuration);
     std::vector<double> fin[kMethods], head[kMethods], rms[kMethods], full, heading;
     Record first;
     for (std::size_t k = 0; k < records.size(); ++k) {
@@ -237,10 +234,7 @@ class LaserTracking final : public MonteCarloExperiment<Setup> {
   }
 };
 
+const Registration<LaserTracking> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_laser_tracking_table_6_5() {
-  return std::make_unique<LaserTracking>();
-}
-
 }  // namespace locbench::experiments

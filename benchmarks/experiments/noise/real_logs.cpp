@@ -16,7 +16,7 @@
 #include "algorithms/filters/consistency.h"
 #include "algorithms/filters/odometry_noise_model.h"
 #include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "datasets/io/odometry_interpolation.h"
 
@@ -71,10 +71,7 @@ class NoiseRealLogs final : public Experiment {
   }
   reports::ExperimentResults run(const nlohmann::json& config,
                                  const RunOptions& options) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = config;
+    reports::ExperimentResults out = start_results(config);
     OdometryNoiseOptions adaptive;
     adaptive.k_left = adaptive.k_right = config.at("adaptive").at("k").get<double>();
     adaptive.sigma_left = adaptive.sigma_right = config.at("adaptive").at("sigma_m").get<double>();
@@ -135,8 +132,7 @@ class NoiseRealLogs final : public Experiment {
   }
 };
 
+const Registration<NoiseRealLogs> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_noise_real_logs() { return std::make_unique<NoiseRealLogs>(); }
-
 }  // namespace locbench::experiments

@@ -1,26 +1,19 @@
-// Chapter-4 experiments (odometry noise models):
-// - noise/tables_4_1_4_2: the fixed-Q EKF, the thesis's adaptive noise model, the Sage–Husa AEKF
-//   (Deng's forgetting, Zhang's fix) and the VB-AKF (Särkkä & Nummenmaa 2009) on the same
-//   simulated Trilobot corridor runs: final error beside Tables 4.1/4.2, its spread across runs,
-//   and NEES/NIS consistency against their χ² bounds.
-// - noise/encoder_resolution_sweep: the same from Pioneer-like (0.0152 mm per tick) to
-//   Trilobot-like (12.64 mm per tick) encoders.
-// - noise/quantization_sigma: the Gaussian stand-in of the quantization error (eq. 4.27–4.35).
+// Experiment noise/tables_4_1_4_2: the fixed-Q EKF, the thesis's adaptive noise model, the
+// Sage–Husa AEKF (Deng's forgetting, Zhang's fix) and the VB-AKF (Särkkä & Nummenmaa 2009) on
+// the same simulated Trilobot corridor runs: final error beside Tables 4.1/4.2, its spread across
+// runs, and NEES/NIS consistency against their χ² bounds. The filters: harness/noise_filters.h.
 #include <fmt/format.h>
 
-#include <array>
-#include <cmath>
+#include <algorithm>
+#include <string>
+#include <vector>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
 #include "algorithms/core/statistics.h"
 #include "algorithms/filters/consistency.h"
-#include "algorithms/filters/quantization_noise.h"
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/harness/noise_filters.h"
 #include "benchmarks/experiments/framework/plot_series.h"
+#include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/noise_filters.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
@@ -29,49 +22,6 @@
 namespace locbench::experiments {
 namespace {
 
-// P(0) = diag(1 mm², 1 mm², 0.3°²): the thesis starts from P(0) = 0, which makes the NEES of
-// the first samples undefined; the effect on the final error is below a millimetre.
-const Eigen::Vector3d kInitialCovariance{1e-6, 1e-6, deg(0.3) * deg(0.3)};
-
-struct FilterSamples {
-  std::vector<double> final_error[kNoiseFilters];
-  std::vector<double> heading_error[kNoiseFilters];
-  std::vector<std::vector<double>> nees[kNoiseFilters];
-  std::vector<std::vector<double>> nis[kNoiseFilters];
-};
-
-// One Monte-Carlo run of the four filters, as a task record (see monte_carlo.h).
-struct FilterRecord {
-  std::array<double, kNoiseFilters> final_error{};
-  std::array<double, kNoiseFilters> heading_error{};
-  std::array<std::vector<double>, kNoiseFilters> nees;
-  std::array<std::vector<double>, kNoiseFilters> nis;
-  std::size_t records = 0;
-  double duration = 0.0;
-};
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FilterRecord, final_error, heading_error, nees, nis, records,
-                                   duration)
-
-FilterRecord record_of(const FilterRun& r, const sim::SimulationResult& sim) {
-  FilterRecord x;
-  x.final_error = r.final_position_error;
-  x.heading_error = r.final_heading_error;
-  x.nees = r.nees;
-  x.nis = r.nis;
-  x.records = sim.log.record_count();
-  x.duration = sim.duration;
-  return x;
-}
-
-void collect(const FilterRecord& r, FilterSamples& s) {
-  for (int f = 0; f < kNoiseFilters; ++f) {
-    s.final_error[f].push_back(r.final_error[f]);
-    s.heading_error[f].push_back(r.heading_error[f]);
-    s.nees[f].push_back(r.nees[f]);
-    s.nis[f].push_back(r.nis[f]);
-  }
-}
-
 // Error against distance travelled is sampled every kDistanceStep metres of the true path.
 constexpr double kDistanceStep = 0.25;  // [m]
 
@@ -79,42 +29,6 @@ struct NoiseSetup {
   sim::Scenario scenario;
   nlohmann::json configuration;
 };
-
-// Truncates series to a common length so they can be averaged per step.
-std::vector<std::vector<double>> common_length(std::vector<std::vector<double>> v) {
-  std::size_t n = std::numeric_limits<std::size_t>::max();
-  for (const auto& x : v) n = std::min(n, x.size());
-  for (auto& x : v) x.resize(n);
-  return v;
-}
-
-void add_filter_results(reports::ExperimentResults& out, const std::string& dataset,
-                        const FilterSamples& s) {
-  for (int f = 0; f < kNoiseFilters; ++f) {
-    const std::string& m = kNoiseFilterNames[f];
-    out.results.push_back(reports::make_metric(m, dataset, "final_position_error", "m",
-                                               "monte_carlo_runs", s.final_error[f]));
-    out.results.push_back(reports::make_metric(m, dataset, "final_heading_error", "rad",
-                                               "monte_carlo_runs", s.heading_error[f]));
-    const ConsistencySummary nees = summarize_consistency(common_length(s.nees[f]), 3);
-    const ConsistencySummary nis = summarize_consistency(common_length(s.nis[f]), 1);
-    out.results.push_back(reports::make_metric(m, dataset, "nees_time_average", "", "time_steps",
-                                               nees.average, false));
-    out.results.push_back(reports::make_metric(m, dataset, "nis_time_average", "", "time_steps",
-                                               nis.average, false));
-    out.notes.push_back(fmt::format(
-        "{} on {}: average NEES inside its 95% χ² band [{:.2f}, {:.2f}] (3 dof, {} runs) at "
-        "{:.0f}% of steps ({:.0f}% above: over-confident, {:.0f}% below: conservative); NIS "
-        "inside [{:.2f}, {:.2f}] at {:.0f}% of updates.",
-        m, dataset, nees.bounds.lower, nees.bounds.upper, nees.runs, 100 * nees.fraction_inside,
-        100 * nees.fraction_above, 100 * nees.fraction_below, nis.bounds.lower, nis.bounds.upper,
-        100 * nis.fraction_inside));
-  }
-}
-
-sim::Scenario corridor_from(const nlohmann::json& config) {
-  return sim::scenario_from_json(config.at("scenario"), "<configuration>");
-}
 
 // Trajectories of run 0 and the mean error against distance travelled, for the report's charts.
 void add_plots(reports::ExperimentResults& out, const McPlan& plan,
@@ -157,7 +71,7 @@ class NoiseTables final : public MonteCarloExperiment<NoiseSetup> {
   nlohmann::json default_config() const override {
     return {{"runs", 10},
             {"scenario", sim::to_json(sim::preset("corridor"))},
-            {"filters", default_filter_options(kInitialCovariance)}};
+            {"filters", default_filter_options(kFilterInitialCovariance)}};
   }
   NoiseSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
     NoiseSetup u{corridor_from(config), config};
@@ -190,10 +104,7 @@ class NoiseTables final : public MonteCarloExperiment<NoiseSetup> {
 
   reports::ExperimentResults summarise(const NoiseSetup& u, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = u.configuration;
+    reports::ExperimentResults out = start_results(u.configuration);
     const sim::Scenario& scenario = u.scenario;
     const int runs = plan.runs;
     FilterSamples s;
@@ -270,141 +181,7 @@ class NoiseTables final : public MonteCarloExperiment<NoiseSetup> {
   }
 };
 
-struct SweepSetup {
-  std::vector<double> resolutions;      // [m per tick]
-  std::vector<sim::Scenario> scenarios;  // one per resolution
-  nlohmann::json configuration;
-};
-
-class EncoderResolutionSweep final : public MonteCarloExperiment<SweepSetup> {
- public:
-  std::string name() const override { return "noise/encoder_resolution_sweep"; }
-  std::string description() const override {
-    return "The four compass-aided filters from Pioneer-like (0.0152 mm/tick) to Trilobot-like "
-           "(12.64 mm/tick) encoders: final error and NEES consistency";
-  }
-  nlohmann::json default_config() const override {
-    return {{"runs", 5},
-            {"scenario", sim::to_json(sim::preset("corridor"))},
-            {"filters", default_filter_options(kInitialCovariance)},
-            {"meters_per_tick", {0.0000152, 0.0001, 0.001, 0.005, 0.01264}}};
-  }
-  SweepSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
-    SweepSetup u;
-    const sim::Scenario base = corridor_from(config);
-    u.configuration = config;
-    u.configuration["runs"] = plan.runs;
-    for (double c : config.at("meters_per_tick").get<std::vector<double>>()) {
-      if (!(c > 0.0)) throw UsageError(name() + ": meters_per_tick must be > 0");
-      sim::Scenario s = base;
-      // Counts per wheel revolution giving c metres per tick on the nominal left wheel.
-      s.robot.encoder.gear_ratio = 1.0;
-      s.robot.encoder.counts_per_rev = kPi * s.robot.nominal.diameter_left / c;
-      u.resolutions.push_back(c);
-      u.scenarios.push_back(s);
-    }
-    return u;
-  }
-
-  // Task t is run t % runs at resolution t / runs (every resolution sees the same seeds).
-  int tasks(const SweepSetup& u, const McPlan& plan) const override {
-    return static_cast<int>(u.scenarios.size()) * plan.runs;
-  }
-
-  nlohmann::json run_task(const SweepSetup& u, const McPlan& plan, int task) const override {
-    const sim::Scenario& s = u.scenarios[static_cast<std::size_t>(task / plan.runs)];
-    const sim::SimulationResult r = sim::simulate(s, plan.run_seed(task % plan.runs));
-    return record_of(run_noise_filters(r, u.configuration.at("filters")), r);
-  }
-
-  reports::ExperimentResults summarise(const SweepSetup& u, const McPlan& plan,
-                                       const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = u.configuration;
-    for (std::size_t i = 0; i < u.scenarios.size(); ++i) {
-      FilterSamples fs;
-      for (int k = 0; k < plan.runs; ++k) {
-        out.seeds.push_back(plan.run_seed(k));
-        collect(records[i * static_cast<std::size_t>(plan.runs) + static_cast<std::size_t>(k)]
-                    .get<FilterRecord>(),
-                fs);
-      }
-      const std::string key =
-          reports::key_part(fmt::format("sim_corridor_{:.4g}mm_per_tick", u.resolutions[i] * 1e3));
-      out.datasets.push_back({key, "simulated",
-                              reports::text_checksum(sim::to_json(u.scenarios[i]).dump()), 0, 0.0});
-      add_filter_results(out, key, fs);
-    }
-    return out;
-  }
-};
-
-class QuantizationSigma final : public Experiment {
- public:
-  std::string name() const override { return "noise/quantization_sigma"; }
-  std::string description() const override {
-    return "Gaussian stand-in of the encoder quantization error (eq. 4.27–4.35): exact L2-optimal "
-           "σ and moment-matched σ = C/√6 beside the published σ = 5.00 mm";
-  }
-  nlohmann::json default_config() const override {
-    return {{"resolutions_mm", {12.64, 12.70}}, {"published_sigma_mm", {5.00, 5.00}},
-            {"published_G2", {0.0021, 0.0020}}};
-  }
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions&) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = config;
-    const auto cs = config.at("resolutions_mm").get<std::vector<double>>();
-    const auto ps = config.at("published_sigma_mm").get<std::vector<double>>();
-    const auto pg = config.at("published_G2").get<std::vector<double>>();
-    if (cs.size() != ps.size() || cs.size() != pg.size()) {
-      throw UsageError(name() + ": resolutions_mm, published_sigma_mm, published_G2 differ in length");
-    }
-    reports::PublishedComparison t{"thesis §4.3 (eq. 4.27–4.35)", "σ of the Gaussian stand-in", "mm", {}, ""};
-    for (std::size_t i = 0; i < cs.size(); ++i) {
-      // Computed in millimetres (the functions are unit-agnostic), as the thesis does.
-      const QuantizationSigmaComparison q = compare_quantization_sigma(cs[i], ps[i], pg[i]);
-      const std::string key = reports::key_part(fmt::format("c_{:.2f}mm", cs[i]));
-      auto one = [&](const std::string& v, const std::string& unit, double x) {
-        out.results.push_back(reports::make_metric("quantization_model", key, v, unit, "closed_form",
-                                                   std::vector<double>{x}));
-      };
-      one("l2_optimal_sigma", "mm", q.l2_optimal_sigma);
-      one("moment_matched_sigma", "mm", q.moment_matched_sigma);
-      one("thesis_formula_optimal_sigma", "mm", q.thesis_optimal_sigma);
-      one("l1_optimal_sigma", "mm", q.l1_optimal_sigma);
-      one("l2_distance_at_optimum", "1/mm", q.l2_at_optimum);
-      one("l2_distance_at_published_sigma", "1/mm", q.l2_at_published);
-      one("thesis_G2_at_published_sigma", "1/mm", q.thesis_l2_at_published);
-      t.rows.push_back({fmt::format("σ, C = {:.2f} mm (exact L2 optimum)", cs[i]), ps[i], q.l2_optimal_sigma});
-      t.rows.push_back({fmt::format("σ, C = {:.2f} mm (thesis's formula 4.35)", cs[i]), ps[i], q.thesis_optimal_sigma});
-      t.rows.push_back({fmt::format("G2, C = {:.2f} mm (thesis's formula at σ = 5.00)", cs[i]), pg[i], q.thesis_l2_at_published});
-    }
-    t.note =
-        "The exact L2 optimum is σ* = 0.43659·C (5.518 mm for C = 12.64 mm), not 5.00 mm: the thesis "
-        "integrates the Gaussian over a quarter disc of radius C instead of the square [0, C]² "
-        "(eq. 4.31–4.33), replacing erf(C/√2σ) by √(1 − e^{−C²/2σ²}); its own formula gives 5.02 "
-        "and 5.04 mm, printed as 5.00. The published G2 = 0.0021 is that approximate formula at "
-        "σ = 5.00 (0.002102); the exact L2 distance there is 6.4e-4 /mm. The moment-matched "
-        "σ = C/√6 = 5.160 mm has the triangle's variance C²/6.";
-    out.published.push_back(std::move(t));
-    out.notes.push_back(out.published.back().note);
-    return out;
-  }
-};
+const Registration<NoiseTables> registration;
 
 }  // namespace
-
-std::unique_ptr<Experiment> make_noise_tables() { return std::make_unique<NoiseTables>(); }
-std::unique_ptr<Experiment> make_noise_resolution_sweep() {
-  return std::make_unique<EncoderResolutionSweep>();
-}
-std::unique_ptr<Experiment> make_noise_quantization_sigma() {
-  return std::make_unique<QuantizationSigma>();
-}
-
 }  // namespace locbench::experiments

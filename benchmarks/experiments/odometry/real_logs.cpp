@@ -7,7 +7,7 @@
 #include "algorithms/core/errors.h"
 #include "algorithms/core/trajectory_error.h"
 #include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "datasets/io/odometry_interpolation.h"
 
@@ -36,10 +36,7 @@ class OdometryRealLogs final : public Experiment {
 
   reports::ExperimentResults run(const nlohmann::json& config,
                                  const RunOptions& options) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = config;
+    reports::ExperimentResults out = start_results(config);
     const auto specs = real_log_specs(config.at("datasets"), name());
     const double window = config.at("mrclam_window_s").get<double>();
     const double local_dt = config.at("local_relation_max_dt_s").get<double>();
@@ -87,10 +84,7 @@ class OdometryRealLogs final : public Experiment {
   }
 };
 
+const Registration<OdometryRealLogs> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_odometry_real_logs() {
-  return std::make_unique<OdometryRealLogs>();
-}
-
 }  // namespace locbench::experiments

@@ -14,7 +14,7 @@
 #include "algorithms/core/rng.h"
 #include "algorithms/core/trajectory_error.h"
 #include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/plot_series.h"
 #include "datasets/sim/presets.h"
@@ -122,10 +122,7 @@ class OdometrySimCorridor final : public MonteCarloExperiment<CorridorSetup> {
 
   reports::ExperimentResults summarise(const CorridorSetup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = s.configuration;
+    reports::ExperimentResults out = start_results(s.configuration);
     std::vector<double> pos[2], head[2], ape[2];
     std::vector<std::vector<double>> at_distance[2];
     std::size_t longest = 0;
@@ -173,10 +170,7 @@ class OdometrySimCorridor final : public MonteCarloExperiment<CorridorSetup> {
   }
 };
 
+const Registration<OdometrySimCorridor> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_odometry_sim_corridor() {
-  return std::make_unique<OdometrySimCorridor>();
-}
-
 }  // namespace locbench::experiments

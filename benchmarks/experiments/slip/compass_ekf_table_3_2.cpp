@@ -16,6 +16,7 @@
 #include "algorithms/slip/slip_compass_ekf.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/slip_sim.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
@@ -135,10 +136,7 @@ class SlipCompassEkf final : public MonteCarloExperiment<CompassSetup> {
 
   reports::ExperimentResults summarise(const CompassSetup& u, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = u.configuration;
+    reports::ExperimentResults out = start_results(u.configuration);
     const sim::Scenario& scenario = u.scenario;
     const SlipEkfOptions& ekf_opt = u.ekf_opt;
     const double large = u.large;
@@ -266,10 +264,7 @@ class SlipCompassEkf final : public MonteCarloExperiment<CompassSetup> {
   }
 };
 
+const Registration<SlipCompassEkf> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_slip_compass_ekf_table_3_2() {
-  return std::make_unique<SlipCompassEkf>();
-}
-
 }  // namespace locbench::experiments

@@ -19,7 +19,7 @@
 #include "algorithms/core/errors.h"
 #include "algorithms/slip/indirect_kalman_filter.h"
 #include "baselines/calibration/umbmark_classic.h"
-#include "benchmarks/experiments/framework/experiments_list.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/harness/slip_sim.h"
 #include "datasets/sim/presets.h"
@@ -194,10 +194,7 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Setup> {
 
   reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = s.configuration;
+    reports::ExperimentResults out = start_results(s.configuration);
     const UmbmarkErrorParams truth = error_params(s.squares.robot.nominal, s.squares.robot.actual);
     const double true_values[3] = {truth.E_d, truth.E_b, truth.E_o};
     std::vector<double> est[kMethods][3], val[kMethods];
@@ -269,10 +266,7 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Setup> {
   }
 };
 
+const Registration<SlipIkfVsCalibration> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_slip_ikf_vs_calibration() {
-  return std::make_unique<SlipIkfVsCalibration>();
-}
-
 }  // namespace locbench::experiments

@@ -18,6 +18,7 @@
 #include "algorithms/slip/slip_compass_ekf.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/slip_sim.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
@@ -140,10 +141,7 @@ class SlipIndirectKf final : public MonteCarloExperiment<IkfSetup> {
 
   reports::ExperimentResults summarise(const IkfSetup& u, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = u.configuration;
+    reports::ExperimentResults out = start_results(u.configuration);
     const sim::Scenario& scenario = u.scenario;
     const IndirectKfOptions& ikf_opt = u.ikf_opt;
     const double end_var = u.end_var;
@@ -332,10 +330,7 @@ class SlipIndirectKf final : public MonteCarloExperiment<IkfSetup> {
   }
 };
 
+const Registration<SlipIndirectKf> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_slip_indirect_kf_tables_3_3_3_4() {
-  return std::make_unique<SlipIndirectKf>();
-}
-
 }  // namespace locbench::experiments

@@ -8,6 +8,7 @@
 
 #include "algorithms/slip/normality_test.h"
 #include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "reports/checksum.h"
 
 namespace locbench::experiments {
@@ -27,10 +28,7 @@ class SlipNormality final : public Experiment {
 
   reports::ExperimentResults run(const nlohmann::json& config,
                                  const RunOptions& options) const override {
-    reports::ExperimentResults out;
-    out.experiment = name();
-    out.description = description();
-    out.configuration = config;
+    reports::ExperimentResults out = start_results(config);
     const auto mid = config.at("midpoints_deg").get<std::vector<double>>();
     const auto counts = config.at("counts").get<std::vector<double>>();
     const double alpha = config.at("alpha").get<double>();
@@ -83,10 +81,7 @@ class SlipNormality final : public Experiment {
   }
 };
 
+const Registration<SlipNormality> registration;
+
 }  // namespace
-
-std::unique_ptr<Experiment> make_slip_normality_table_3_1() {
-  return std::make_unique<SlipNormality>();
-}
-
 }  // namespace locbench::experiments
