@@ -5,7 +5,7 @@
 #include <iostream>
 
 #include "algorithms/core/errors.h"
-#include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/framework/experiment.h"
 #include "cli/commands.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"

@@ -15,8 +15,8 @@
 
 #include "algorithms/core/errors.h"
 #include "algorithms/core/input_limits.h"
-#include "benchmarks/experiments/experiment.h"
-#include "benchmarks/experiments/global_harness.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/harness/global_harness.h"
 #include "cli/commands.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/tum_writer.h"

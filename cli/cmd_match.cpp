@@ -12,7 +12,7 @@
 #include "algorithms/core/input_limits.h"
 #include "algorithms/core/statistics.h"
 #include "algorithms/pose_correction/pose_correction.h"
-#include "benchmarks/experiments/laser_matchers.h"
+#include "benchmarks/experiments/harness/laser_matchers.h"
 #include "cli/commands.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/odometry_interpolation.h"

@@ -10,9 +10,9 @@
 #include <map>
 
 #include "algorithms/core/errors.h"
-#include "benchmarks/experiments/experiment.h"
-#include "benchmarks/experiments/parallel_tasks.h"
-#include "benchmarks/experiments/shard.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/parallel_tasks.h"
+#include "benchmarks/experiments/framework/shard.h"
 #include "cli/commands.h"
 #include "reports/finish_report.h"
 #include "reports/json_file.h"

@@ -4,7 +4,7 @@
 #include <iostream>
 
 #include "algorithms/core/errors.h"
-#include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/framework/experiment.h"
 #include "cli/commands.h"
 #include "reports/gnuplot_svg.h"
 #include "reports/html_report.h"

@@ -1,7 +1,7 @@
 // The JSON-option layer: user options merged over the defaults (--options, --config, --set) and
 // read into every laser matcher's option structs.
-#include "benchmarks/experiments/experiment.h"
-#include "benchmarks/experiments/laser_matchers.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/harness/laser_matchers.h"
 #include "datasets/sim/worlds.h"
 #include "fuzz/fuzz_input.h"
 #include "reports/json_file.h"

@@ -20,7 +20,7 @@
 #include "algorithms/core/rng.h"
 #include "algorithms/core/units.h"
 #include "baselines/laser/extract_then_match.h"
-#include "benchmarks/experiments/laser_correctors.h"
+#include "benchmarks/experiments/harness/laser_correctors.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/log/data_root.h"

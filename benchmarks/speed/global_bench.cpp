@@ -18,7 +18,7 @@
 #include "algorithms/core/units.h"
 #include "baselines/global/grid_markov.h"
 #include "baselines/global/monte_carlo_localization.h"
-#include "benchmarks/experiments/global_harness.h"
+#include "benchmarks/experiments/harness/global_harness.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"

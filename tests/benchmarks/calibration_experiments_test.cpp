@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/framework/experiment.h"
 
 namespace locbench::experiments {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/framework/experiment.h"
 
 namespace locbench::experiments {
 namespace {

@@ -1,9 +1,7 @@
 #include <gtest/gtest.h>
 
-#include <set>
-
 #include "algorithms/core/errors.h"
-#include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/framework/experiment.h"
 
 namespace locbench::experiments {
 namespace {
@@ -29,16 +27,6 @@ TEST(MergeConfig, RejectsAnUnknownKeyByItsPath) {
 TEST(MergeConfig, RejectsAValueOfTheWrongType) {
   EXPECT_THROW(merge_config({{"runs", 20}}, {{"runs", "many"}}), UsageError);
   EXPECT_NO_THROW(merge_config({{"speed", 0.25}}, {{"speed", 1}}));  // int where a double is
-}
-
-TEST(Registry, EveryExperimentHasAUniqueNameAndAValidDefaultConfig) {
-  std::set<std::string> names;
-  for (const auto& e : all_experiments()) {
-    EXPECT_TRUE(names.insert(e->name()).second) << e->name();
-    EXPECT_TRUE(e->default_config().is_object()) << e->name();
-    EXPECT_EQ(find_experiment(e->name()), e.get());
-  }
-  EXPECT_EQ(find_experiment("no/such"), nullptr);
 }
 
 }  // namespace

@@ -5,8 +5,7 @@
 #include <cmath>
 #include <map>
 
-#include "benchmarks/experiments/experiment.h"
-#include "benchmarks/experiments/experiments_list.h"
+#include "benchmarks/experiments/framework/experiment.h"
 #include "datasets/log/data_root.h"
 #include "reports/report_json.h"
 #include "tests/test_data.h"
@@ -29,7 +28,8 @@ std::map<std::string, reports::MetricResult> run(const Experiment& e, int runs,
 }
 
 TEST(LaserExperiments, MatcherAccuracyScoresEveryMatcherInEveryWorldAndCondition) {
-  const auto e = make_laser_matcher_accuracy();
+  const Experiment* e = find_experiment("laser/matcher_accuracy");
+  ASSERT_NE(e, nullptr);
   const auto m = run(*e, 3);
   for (const char* matcher : {"eap", "split_and_merge", "agglomerative", "rwht"}) {
     for (const char* world : {"room", "random_room"}) {
@@ -53,7 +53,8 @@ TEST(LaserExperiments, MatcherAccuracyScoresEveryMatcherInEveryWorldAndCondition
 
 TEST(LaserExperiments, Table61PointToPointBeatsPointToLineInMostRows) {
   reports::ExperimentResults r;
-  const auto e = make_laser_table_6_1();
+  const Experiment* e = find_experiment("laser/table_6_1");
+  ASSERT_NE(e, nullptr);
   run(*e, 2, &r);
   ASSERT_EQ(r.published.size(), 2u);
   ASSERT_EQ(r.published[1].rows.size(), 11u);
@@ -67,7 +68,8 @@ TEST(LaserExperiments, Table61PointToPointBeatsPointToLineInMostRows) {
 }
 
 TEST(LaserExperiments, Table62HeadingIsFixedAtEveryDLimitWithOurChecksButNotWithTheThesisRules) {
-  const auto e = make_laser_table_6_2();
+  const Experiment* e = find_experiment("laser/table_6_2");
+  ASSERT_NE(e, nullptr);
   const auto m = run(*e, 2);
   double worst_ours = 0.0, worst_thesis = 0.0;
   for (int d = 50; d <= 400; d += 25) {
@@ -84,7 +86,8 @@ TEST(LaserExperiments, Table62HeadingIsFixedAtEveryDLimitWithOurChecksButNotWith
 }
 
 TEST(LaserExperiments, Tables6364CorrectionShrinksBothErrors) {
-  const auto e = make_laser_tables_6_3_6_4();
+  const Experiment* e = find_experiment("laser/tables_6_3_6_4");
+  ASSERT_NE(e, nullptr);
   const auto m = run(*e, 2);
   for (int i = 1; i <= 10; ++i) {
     const std::string ds = "room_estimate_" + std::to_string(i);
@@ -94,7 +97,8 @@ TEST(LaserExperiments, Tables6364CorrectionShrinksBothErrors) {
 }
 
 TEST(LaserExperiments, CorridorTrackingKeepsTheEkfWithinCentimetres) {
-  const auto e = make_laser_tracking_table_6_5();
+  const Experiment* e = find_experiment("laser/tracking_table_6_5");
+  ASSERT_NE(e, nullptr);
   const auto m = run(*e, 2);
   const std::string ds = "sim_corridor_laser";
   EXPECT_LT(m.at("ekf_eap/" + ds + "/final_position_error").summary.mean, 0.05);
@@ -104,7 +108,8 @@ TEST(LaserExperiments, CorridorTrackingKeepsTheEkfWithinCentimetres) {
 }
 
 TEST(LaserExperiments, RwhtPeakErrorGrowsWithTheBinsButTheRefitDoesNot) {
-  const auto e = make_laser_rwht_bins();
+  const Experiment* e = find_experiment("laser/rwht_bins");
+  ASSERT_NE(e, nullptr);
   nlohmann::json c = e->default_config();
   c["angle_bins_deg"] = {0.25, 4.0};
   c["range_bins_cm"] = {1.25, 20.0};
@@ -119,7 +124,8 @@ TEST(LaserExperiments, RwhtPeakErrorGrowsWithTheBinsButTheRefitDoesNot) {
 }
 
 TEST(LaserExperiments, LaserResultsDoNotDependOnTheThreadCount) {
-  const auto e = make_laser_matcher_accuracy();
+  const Experiment* e = find_experiment("laser/matcher_accuracy");
+  ASSERT_NE(e, nullptr);
   RunOptions one, two;
   one.runs = two.runs = 2;
   two.threads = 2;
@@ -129,7 +135,8 @@ TEST(LaserExperiments, LaserResultsDoNotDependOnTheThreadCount) {
 
 TEST(LaserExperiments, RealLogsImproveOdometryHeadingOnIntel) {
   LOCBENCH_REQUIRE_DATA("slam_benchmark/clf/intel.from_bag.clf.gz");
-  const auto e = make_laser_real_logs();
+  const Experiment* e = find_experiment("laser/real_logs");
+  ASSERT_NE(e, nullptr);
   nlohmann::json c = e->default_config();
   c["datasets"] = {"intel"};
   c["max_relations"] = 200;
@@ -147,7 +154,8 @@ TEST(LaserExperiments, RealLogsImproveOdometryHeadingOnIntel) {
 }
 
 TEST(LaserExperiments, RealLogsSkipWithAReasonWhenTheDataAreAbsent) {
-  const auto e = make_laser_real_logs();
+  const Experiment* e = find_experiment("laser/real_logs");
+  ASSERT_NE(e, nullptr);
   RunOptions o;
   o.data_root = "/nonexistent";
   const auto r = e->run(e->default_config(), o);

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/framework/experiment.h"
 
 namespace locbench::experiments {
 namespace {

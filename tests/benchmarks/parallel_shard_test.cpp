@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "algorithms/core/errors.h"
-#include "benchmarks/experiments/experiment.h"
-#include "benchmarks/experiments/shard.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/shard.h"
 #include "reports/report_json.h"
 #include "reports/shard_report.h"
 

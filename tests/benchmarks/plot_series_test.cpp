@@ -1,10 +1,10 @@
-#include "benchmarks/experiments/plot_series.h"
+#include "benchmarks/experiments/framework/plot_series.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/framework/experiment.h"
 
 namespace locbench::experiments {
 namespace {

@@ -1,6 +1,6 @@
 // The real-log harness: dataset specs (catalog names or a user's files), and every real-data
 // experiment run on a small log the test writes itself.
-#include "benchmarks/experiments/real_log_harness.h"
+#include "benchmarks/experiments/harness/real_log_harness.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <map>
 
 #include "algorithms/core/errors.h"
-#include "benchmarks/experiments/experiment.h"
+#include "benchmarks/experiments/framework/experiment.h"
 #include "tests/benchmarks/small_real_log.h"
 #include "tests/test_data.h"
 

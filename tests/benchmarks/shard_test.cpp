@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/shard.h"
+#include "benchmarks/experiments/framework/shard.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "algorithms/core/errors.h"
-#include "benchmarks/experiments/parallel_tasks.h"
+#include "benchmarks/experiments/framework/parallel_tasks.h"
 
 namespace locbench::experiments {
 namespace {

@@ -5,8 +5,7 @@
 #include <iostream>
 #include <set>
 
-#include "benchmarks/experiments/experiment.h"
-#include "benchmarks/experiments/experiments_list.h"
+#include "benchmarks/experiments/framework/experiment.h"
 
 namespace locbench::experiments {
 namespace {
@@ -42,7 +41,8 @@ void dump(const reports::ExperimentResults& r) {
 }
 
 TEST(SlipExperiments, NormalityTable31) {
-  const auto e = make_slip_normality_table_3_1();
+  const Experiment* e = find_experiment("slip/normality_table_3_1");
+  ASSERT_NE(e, nullptr);
   EXPECT_EQ(e->name(), "slip/normality_table_3_1");
   const auto r = run_two(*e);
   dump(r);
@@ -58,7 +58,8 @@ TEST(SlipExperiments, NormalityTable31) {
 }
 
 TEST(SlipExperiments, CompassEkfTable32) {
-  const auto e = make_slip_compass_ekf_table_3_2();
+  const Experiment* e = find_experiment("slip/compass_ekf_table_3_2");
+  ASSERT_NE(e, nullptr);
   EXPECT_EQ(e->name(), "slip/compass_ekf_table_3_2");
   EXPECT_EQ(e->default_config().at("runs"), 10);
   const auto r = run_two(*e);
@@ -80,7 +81,8 @@ TEST(SlipExperiments, CompassEkfTable32) {
 }
 
 TEST(SlipExperiments, IndirectKfTables3334) {
-  const auto e = make_slip_indirect_kf_tables_3_3_3_4();
+  const Experiment* e = find_experiment("slip/indirect_kf_tables_3_3_3_4");
+  ASSERT_NE(e, nullptr);
   EXPECT_EQ(e->name(), "slip/indirect_kf_tables_3_3_3_4");
   const auto r = run_two(*e);
   dump(r);
@@ -103,7 +105,9 @@ TEST(SlipExperiments, IndirectKfTables3334) {
 // README figures): LOCBENCH_SLIP_FULL=1 LOCBENCH_SLIP_VERBOSE=1 slip_experiments_test.
 TEST(SlipExperiments, FullDefaultsWhenRequested) {
   if (!std::getenv("LOCBENCH_SLIP_FULL")) GTEST_SKIP() << "set LOCBENCH_SLIP_FULL to run";
-  for (const auto& e : {make_slip_compass_ekf_table_3_2(), make_slip_indirect_kf_tables_3_3_3_4()}) {
+  for (const char* name : {"slip/compass_ekf_table_3_2", "slip/indirect_kf_tables_3_3_3_4"}) {
+    const Experiment* e = find_experiment(name);
+    ASSERT_NE(e, nullptr);
     RunOptions o;
     o.seed = 1;
     dump(e->run(e->default_config(), o));

@@ -4,8 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "benchmarks/experiments/experiment.h"
-#include "benchmarks/experiments/experiments_list.h"
+#include "benchmarks/experiments/framework/experiment.h"
 #include "reports/report_json.h"
 
 namespace locbench::experiments {
@@ -18,7 +17,8 @@ std::map<std::string, reports::MetricResult> by_name(const reports::ExperimentRe
 }
 
 TEST(IkfVsCalibration, EveryMethodIsJudgedOnTheSameRobotAndWhatStraightRunsCannotFixStaysPut) {
-  const auto e = make_slip_ikf_vs_calibration();
+  const Experiment* e = find_experiment("slip/ikf_vs_calibration");
+  ASSERT_NE(e, nullptr);
   RunOptions o;
   o.seed = 5;
   o.runs = 2;
@@ -47,7 +47,8 @@ TEST(IkfVsCalibration, EveryMethodIsJudgedOnTheSameRobotAndWhatStraightRunsCanno
 }
 
 TEST(IkfVsCalibration, ResultsDoNotDependOnTheThreadCount) {
-  const auto e = make_slip_ikf_vs_calibration();
+  const Experiment* e = find_experiment("slip/ikf_vs_calibration");
+  ASSERT_NE(e, nullptr);
   RunOptions one, two;
   one.runs = two.runs = 2;
   one.threads = 1;

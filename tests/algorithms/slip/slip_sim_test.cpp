@@ -5,7 +5,7 @@
 
 #include "algorithms/core/statistics.h"
 #include "algorithms/slip/indirect_kalman_filter.h"
-#include "benchmarks/experiments/slip_sim.h"
+#include "benchmarks/experiments/harness/slip_sim.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 

@@ -1,0 +1,193 @@
+// Experiment calibration/real_logs: the ML calibration on real data.
+// - censi_khepera (lstraight, l90 and their subsets): odometry and laser pose jointly, beside the
+//   published solutions of Censi et al. (IEEE T-RO 2013) with their uncertainty.
+// - Freiburg logs (odometry against the local .relations) and MRCLAM 6 (velocities against
+//   Vicon; the parameters are velocity scales): calibrate on the first half of each log, and
+//   measure the relative-motion error of calibrated vs uncalibrated odometry on the second.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <optional>
+
+#include "algorithms/calibration/calibration_data.h"
+#include "algorithms/calibration/held_out_evaluation.h"
+#include "algorithms/calibration/ml_calibration.h"
+#include "algorithms/core/errors.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/registry.h"
+#include "datasets/catalog/calibration_catalog.h"
+#include "benchmarks/experiments/harness/real_log_harness.h"
+#include "datasets/catalog/dataset_catalog.h"
+#include "datasets/io/censi_results_reader.h"
+#include "reports/checksum.h"
+
+namespace locbench::experiments {
+namespace {
+
+reports::MetricResult one_value(const std::string& method, const std::string& dataset,
+                                const std::string& variant, const std::string& unit,
+                                double value) {
+  return reports::make_metric(method, dataset, variant, unit, "held_out_rmse",
+                              std::vector<double>{value});
+}
+
+class CalibrationRealLogs final : public Experiment {
+ public:
+  std::string name() const override { return "calibration/real_logs"; }
+  std::string description() const override {
+    return "ML odometry calibration on real data: Censi's Khepera sets beside the published "
+           "solutions; Freiburg and MRCLAM calibrated on one half, evaluated on the other";
+  }
+  nlohmann::json default_config() const override {
+    return {{"censi_parts", {"lstraight", "lstraight_0", "lstraight_1", "lstraight_2", "l90",
+                             "l90_0", "l90_1", "l90_2"}},
+            {"relations_logs", {"aces", "intel", "mit_csail"}},
+            {"relation_max_duration_s", 10.0},
+            {"velocity_logs", {"mrclam6_robot1", "mrclam6_robot2", "mrclam6_robot3",
+                               "mrclam6_robot4", "mrclam6_robot5"}},
+            {"velocity_time_offset_s", 0.25},
+            {"training_fraction", 0.5}};
+  }
+
+  reports::ExperimentResults run(const nlohmann::json& config,
+                                 const RunOptions& options) const override {
+    reports::ExperimentResults out = start_results(config);
+    const auto parts = config.at("censi_parts").get<std::vector<std::string>>();
+    const auto rel_logs = real_log_specs(config.at("relations_logs"), name() + ": relations_logs");
+    const auto vel_logs = real_log_specs(config.at("velocity_logs"), name() + ": velocity_logs");
+    const double fraction = config.at("training_fraction").get<double>();
+    const std::size_t total = parts.size() + rel_logs.size() + vel_logs.size();
+    std::size_t done = 0;
+    auto progress = [&] { options.report_progress(static_cast<double>(done++) / total); };
+
+    // Censi et al.'s data: their noise model (per-component) and outlier rejection (4 × 1%).
+    const DatasetEntry* censi = find_dataset("censi_khepera");
+    int agree = 0, compared = 0;
+    for (const std::string& part : parts) {
+      progress();
+      const std::filesystem::path results =
+          options.data_root / censi->path / (part + "_results.json");
+      if (!std::filesystem::exists(results)) {
+        // The case name ends in the results' dataset key, so gates know these were skipped.
+        out.cases.push_back({"calibration/censi_" + reports::key_part(part), "skipped",
+                             "dataset not found at " + results.string() + " (set LOCBENCH_DATA)"});
+        continue;
+      }
+      const CalibrationData data = load_catalog_calibration_data(*censi, options.data_root, part);
+      const CensiPublishedResult pub = read_censi_results(results);
+      MlCalibrationOptions o;
+      o.noise.kind = NoiseModelKind::kPerComponent;
+      o.outliers = {4, 0.01};
+      const MlCalibrationResult r = calibrate_ml(data, o);
+      const std::string ds = "censi_" + reports::key_part(part);
+      out.datasets.push_back({ds, (options.data_root / censi->path / (part + ".tuple.gz")).string(),
+                              reports::file_checksum(options.data_root / censi->path / (part + ".tuple.gz")),
+                              data.samples.size(), 0.0});
+      const double published[6] = {pub.left_radius(), pub.right_radius(), pub.axle,
+                                   pub.sensor_x,      pub.sensor_y,       pub.sensor_theta};
+      const char* names[6] = {"r_L", "r_R", "b", "sensor_x", "sensor_y", "sensor_theta"};
+      const char* units[6] = {"m", "m", "m", "m", "m", "rad"};
+      reports::PublishedComparison t{"Censi et al. 2013, " + part + "_results.json",
+                                     "calibrated parameters", "m, rad", {}, ""};
+      std::string worst;
+      double worst_ratio = 0.0;
+      for (int i = 0; i < 6; ++i) {
+        const CalibratedParameter& p = r.parameter(names[i]);
+        reports::MetricResult m = reports::make_estimate("ml", ds, names[i], units[i], p.value,
+                                                         p.standard_error, r.samples_used);
+        m.identifiable = p.identifiable;
+        if (!p.identifiable) m.note = p.reason;
+        out.results.push_back(std::move(m));
+        t.rows.push_back({names[i], published[i], p.value});
+        const double bound = 2.0 * std::hypot(pub.standard_error(i), p.standard_error);
+        const double ratio = std::abs(p.value - published[i]) / bound;
+        ++compared;
+        if (ratio <= 1.0) ++agree;
+        if (ratio > worst_ratio) {
+          worst_ratio = ratio;
+          worst = names[i];
+        }
+      }
+      t.note = fmt::format(
+          "Agreement criterion per parameter: |ours − published| ≤ 2·√(σ_pub² + σ_ours²). "
+          "Largest ratio to that bound: {:.2f} ({}); {} of {} samples used after 4 × 1% outlier "
+          "rejection.",
+          worst_ratio, worst, r.samples_used, r.samples_used + r.samples_rejected);
+      out.published.push_back(std::move(t));
+    }
+    if (compared > 0) {
+      out.notes.push_back(fmt::format(
+          "Censi's Khepera data: {} of {} parameter estimates agree with the published solutions "
+          "within 2·√(σ_pub² + σ_ours²).",
+          agree, compared));
+    }
+
+    auto held_out = [&](const std::string& name, const CalibrationData& d,
+                        const MlCalibrationOptions& o, const std::string& path) {
+      const HeldOutEvaluation h = evaluate_held_out(d, o, fraction);
+      const std::string ds = reports::key_part(name);
+      out.datasets.push_back({ds, path, reports::file_checksum(path.substr(0, path.find('#'))),
+                              d.samples.size(), 0.0});
+      for (const CalibratedParameter& p : h.calibration.parameters) {
+        reports::MetricResult m = reports::make_estimate("ml_first_half", ds, p.name, "", p.value,
+                                                         p.standard_error,
+                                                         h.calibration.samples_used);
+        m.identifiable = p.identifiable;
+        if (!p.identifiable) m.note = p.reason;
+        out.results.push_back(std::move(m));
+      }
+      out.results.push_back(one_value("odometry_nominal", ds, "held_out_rpe_translation_rmse", "m",
+                                      h.nominal_translation.rmse));
+      out.results.push_back(one_value("odometry_calibrated", ds, "held_out_rpe_translation_rmse",
+                                      "m", h.calibrated_translation.rmse));
+      out.results.push_back(one_value("odometry_nominal", ds, "held_out_rpe_rotation_rmse", "rad",
+                                      h.nominal_rotation.rmse));
+      out.results.push_back(one_value("odometry_calibrated", ds, "held_out_rpe_rotation_rmse",
+                                      "rad", h.calibrated_rotation.rmse));
+      out.notes.push_back(fmt::format(
+          "{}: calibrated on {} samples, evaluated on {}: translation RMSE {:.4g} → {:.4g} m "
+          "({:+.1f}%), rotation RMSE {:.4g} → {:.4g} rad ({:+.1f}%).",
+          name, h.training_samples, h.evaluation_samples, h.nominal_translation.rmse,
+          h.calibrated_translation.rmse, -100 * h.translation_rmse_reduction,
+          h.nominal_rotation.rmse, h.calibrated_rotation.rmse, -100 * h.rotation_rmse_reduction));
+    };
+    // Loads one real log; a missing catalog log is a skipped case (nullopt).
+    auto load = [&](const RealLogSpec& spec) -> std::optional<LoadedRealLog> {
+      progress();
+      LoadedRealLog loaded = load_real_log(spec, options.data_root);
+      if (loaded.status == "failed") throw InputError(loaded.dataset.path, 0, loaded.reason);
+      if (loaded.status != "ok") {
+        out.cases.push_back({"calibration/" + spec.name, loaded.status,
+                             "dataset not found at " + loaded.dataset.path});
+        return std::nullopt;
+      }
+      return loaded;
+    };
+    for (const RealLogSpec& spec : rel_logs) {
+      const auto loaded = load(spec);
+      if (!loaded) continue;
+      RelationSampleOptions local;
+      local.max_duration = config.at("relation_max_duration_s").get<double>();
+      MlCalibrationOptions o;
+      o.estimate_rotation_per_distance = true;
+      held_out(spec.name, calibration_data_from_relations(loaded->log, local), o, loaded->dataset.path);
+    }
+    for (const RealLogSpec& spec : vel_logs) {
+      const auto loaded = load(spec);
+      if (!loaded) continue;
+      SampleIntervalOptions intervals;
+      intervals.odometry_time_offset = config.at("velocity_time_offset_s").get<double>();
+      MlCalibrationOptions o;
+      o.noise.kind = NoiseModelKind::kPerComponent;
+      held_out(spec.name, calibration_data_from_velocities(loaded->log, intervals), o,
+               loaded->dataset.path);
+    }
+    options.report_progress(1.0);
+    return out;
+  }
+};
+
+const Registration<CalibrationRealLogs> registration;
+
+}  // namespace
+}  // namespace locbench::experiments

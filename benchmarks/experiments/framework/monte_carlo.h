@@ -1,0 +1,124 @@
+#pragma once
+// Monte-Carlo experiments that run on all cores and in shards on several machines, with results
+// independent of both. An experiment is split into
+//   setup(config, plan)               once per process: options, shared pre-computation;
+//   run_task(setup, plan, k)          task k (normally Monte-Carlo run k) → a JSON record; called
+//                                     concurrently, possibly in another process than summarise;
+//   summarise(setup, plan, records)   records[k] of every task, in task order → the results.
+// run() and the shard/merge entry points of Experiment are implemented here from these three.
+// How to write one: docs/sharding.md.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <mutex>
+#include <vector>
+
+#include "algorithms/core/errors.h"
+#include "algorithms/core/rng.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/parallel_tasks.h"
+#include "reports/shard_report.h"
+
+namespace locbench::experiments {
+
+// What every step of a Monte-Carlo experiment may depend on besides the configuration.
+struct McPlan {
+  std::uint64_t seed = 1;  // base seed
+  int runs = 1;            // Monte-Carlo runs: --runs, else the configuration's "runs" (≥ 1)
+  std::filesystem::path data_root;
+  int threads = 1;         // for parallel_tasks inside summarise; never changes a result
+  // The seed of Monte-Carlo run k (recorded in the report's seeds).
+  std::uint64_t run_seed(int k) const {
+    return Rng::derive_seed(seed, static_cast<std::uint64_t>(k));
+  }
+};
+
+template <typename Setup>
+class MonteCarloExperiment : public Experiment {
+ public:
+  // Deterministic from (config, plan); must not depend on plan.threads.
+  virtual Setup setup(const nlohmann::json& config, const McPlan& plan) const = 0;
+  // Number of tasks; a sweep may use runs × cases.
+  virtual int tasks(const Setup&, const McPlan& plan) const { return plan.runs; }
+  // Thread-safe and pure: depends only on (setup, plan.seed, plan.runs, task).
+  virtual nlohmann::json run_task(const Setup& setup, const McPlan& plan, int task) const = 0;
+  // records.size() == task_count; must not depend on plan.threads.
+  virtual reports::ExperimentResults summarise(const Setup& setup, const McPlan& plan,
+                                               const std::vector<nlohmann::json>& records) const = 0;
+
+  McPlan plan(const nlohmann::json& config, const RunOptions& options) const {
+    McPlan p;
+    p.seed = options.seed;
+    p.runs = monte_carlo_runs(*this, config, options);
+    p.data_root = options.data_root;
+    p.threads = options.threads;
+    return p;
+  }
+
+  reports::ExperimentResults run(const nlohmann::json& config,
+                                 const RunOptions& options) const final {
+    const McPlan p = plan(config, options);
+    const Setup s = setup(config, p);
+    std::vector<int> all(static_cast<std::size_t>(tasks(s, p)));
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+    const std::vector<nlohmann::json> records = records_of(s, p, options, all);
+    reports::ExperimentResults out = summarise(s, p, records);
+    options.report_progress(1.0);
+    return out;
+  }
+
+  int task_count(const nlohmann::json& config, const RunOptions& options) const final {
+    const McPlan p = plan(config, options);
+    return tasks(setup(config, p), p);
+  }
+
+  std::vector<nlohmann::json> run_tasks(const nlohmann::json& config, const RunOptions& options,
+                                        const std::vector<int>& which) const final {
+    const McPlan p = plan(config, options);
+    const Setup s = setup(config, p);
+    const int n = tasks(s, p);
+    for (int t : which) {
+      if (t < 0 || t >= n) {
+        throw UsageError(name() + ": task " + std::to_string(t) + " outside 0…" +
+                         std::to_string(n - 1));
+      }
+    }
+    std::vector<nlohmann::json> records = records_of(s, p, options, which);
+    options.report_progress(1.0);
+    return records;
+  }
+
+  reports::ExperimentResults summarise_records(
+      const nlohmann::json& config, const RunOptions& options,
+      const std::vector<nlohmann::json>& records) const final {
+    const McPlan p = plan(config, options);
+    const Setup s = setup(config, p);
+    if (static_cast<int>(records.size()) != tasks(s, p)) {
+      throw UsageError(name() + ": " + std::to_string(records.size()) + " records for " +
+                       std::to_string(tasks(s, p)) + " tasks");
+    }
+    return summarise(s, p, records);
+  }
+
+ private:
+  // Runs `tasks` on options.threads threads; records by position, canonical.
+  std::vector<nlohmann::json> records_of(const Setup& s, const McPlan& p,
+                                         const RunOptions& options,
+                                         const std::vector<int>& which) const {
+    std::vector<nlohmann::json> records(which.size());
+    std::atomic<std::size_t> done{0};
+    std::mutex progress_mutex;
+    options.report_progress(0.0);
+    parallel_tasks(options.threads, which.size(), [&](std::size_t i) {
+      records[i] = reports::canonical_record(run_task(s, p, which[i]));
+      const std::size_t d = ++done;
+      if (options.progress) {
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        options.report_progress(static_cast<double>(d) / static_cast<double>(which.size()));
+      }
+    });
+    return records;
+  }
+};
+
+}  // namespace locbench::experiments

@@ -1,0 +1,74 @@
+#include "benchmarks/experiments/framework/plot_series.h"
+
+#include <cmath>
+#include <limits>
+
+namespace locbench::experiments {
+
+reports::PlotSeries trajectory_series(const std::string& name, const Trajectory& t,
+                                      std::size_t max_points) {
+  reports::PlotSeries s;
+  s.name = name;
+  const auto& poses = t.poses();
+  if (poses.empty()) return s;
+  const std::size_t stride = std::max<std::size_t>(1, (poses.size() + max_points - 1) / max_points);
+  for (std::size_t i = 0; i < poses.size(); i += stride) {
+    s.x.push_back(poses[i].pose.x);
+    s.y.push_back(poses[i].pose.y);
+  }
+  if ((poses.size() - 1) % stride != 0) {
+    s.x.push_back(poses.back().pose.x);
+    s.y.push_back(poses.back().pose.y);
+  }
+  return s;
+}
+
+std::vector<double> distance_grid(double total, double step) {
+  std::vector<double> g;
+  if (!(step > 0.0)) return g;
+  for (int i = 0; i * step <= total + 1e-9; ++i) g.push_back(i * step);
+  return g;
+}
+
+std::vector<double> error_at_distances(const Trajectory& truth, const Trajectory& estimate,
+                                       const std::vector<double>& distances) {
+  std::vector<double> out(distances.size(), std::numeric_limits<double>::quiet_NaN());
+  const auto& poses = truth.poses();
+  double travelled = 0.0;
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < poses.size() && next < distances.size(); ++i) {
+    if (i > 0) {
+      travelled += std::hypot(poses[i].pose.x - poses[i - 1].pose.x,
+                              poses[i].pose.y - poses[i - 1].pose.y);
+    }
+    while (next < distances.size() && travelled >= distances[next]) {
+      if (const auto e = estimate.pose_at(poses[i].t)) {
+        out[next] = std::hypot(e->x - poses[i].pose.x, e->y - poses[i].pose.y);
+      }
+      ++next;
+    }
+  }
+  return out;
+}
+
+reports::PlotSeries mean_over_runs(const std::string& name, const std::vector<double>& distances,
+                                   const std::vector<std::vector<double>>& runs) {
+  reports::PlotSeries s;
+  s.name = name;
+  for (std::size_t i = 0; i < distances.size(); ++i) {
+    double sum = 0.0;
+    int n = 0;
+    for (const auto& r : runs) {
+      if (i < r.size() && std::isfinite(r[i])) {
+        sum += r[i];
+        ++n;
+      }
+    }
+    if (n == 0) continue;
+    s.x.push_back(distances[i]);
+    s.y.push_back(sum / n);
+  }
+  return s;
+}
+
+}  // namespace locbench::experiments

@@ -1,0 +1,42 @@
+#pragma once
+// Registration of an experiment: one line in the experiment's own file, beside its class, the way
+// Google Benchmark's BENCHMARK() works:
+//
+//   namespace {
+//   class OdometrySimCorridor final : public MonteCarloExperiment<CorridorSetup> { … };
+//   const Registration<OdometrySimCorridor> registration;   // or registration("constructor arg")
+//   }  // namespace
+//
+// The registrar runs while the program loads and stores a factory; no experiment is constructed
+// then. all_experiments() (experiment.h) makes each one once, on first use, sorted by name, so the
+// order never depends on the link order. The experiments are compiled into an OBJECT library
+// (../CMakeLists.txt), which puts every registrar into the program: from a static library the
+// linker would drop the files nothing refers to.
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "benchmarks/experiments/framework/experiment.h"
+
+namespace locbench::experiments {
+
+using ExperimentFactory = std::function<std::unique_ptr<Experiment>()>;
+
+// Adds a factory to the registry; called by Registration while the program loads.
+void register_experiment(ExperimentFactory make);
+
+// One experiment from each factory, sorted by name (what all_experiments() holds);
+// std::logic_error naming the experiment when two have the same name.
+std::vector<std::unique_ptr<Experiment>> make_sorted(const std::vector<ExperimentFactory>& factories);
+
+template <typename E>
+class Registration {
+ public:
+  // The arguments are copied into the factory and given to E's constructor.
+  template <typename... Args>
+  explicit Registration(Args... args) {
+    register_experiment([args...] { return std::make_unique<E>(args...); });
+  }
+};
+
+}  // namespace locbench::experiments

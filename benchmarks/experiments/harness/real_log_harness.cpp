@@ -1,0 +1,173 @@
+#include "benchmarks/experiments/harness/real_log_harness.h"
+
+#include <set>
+
+#include "algorithms/core/errors.h"
+#include "datasets/catalog/dataset_catalog.h"
+#include "datasets/io/log_loader.h"
+#include "datasets/io/tum_reader.h"
+#include "reports/checksum.h"
+
+namespace locbench::experiments {
+namespace {
+
+std::string string_field(const nlohmann::json& item, const char* key, const std::string& where) {
+  if (!item.contains(key)) return {};
+  const nlohmann::json& v = item.at(key);
+  if (!v.is_string() || v.get<std::string>().empty()) {
+    throw UsageError(where + "." + key + ": expected a non-empty string (a file path)");
+  }
+  return v.get<std::string>();
+}
+
+void require_file(const std::string& path, const char* what) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw InputError(path, 0, std::string("cannot open the ") + what +
+                                  (std::filesystem::exists(path) ? " (not a regular file)"
+                                                                 : " (no such file)"));
+  }
+}
+
+// The file part of a load_log spec ("folder#robot2" → "folder").
+std::string file_of(const std::string& spec) { return spec.substr(0, spec.find('#')); }
+
+}  // namespace
+
+std::vector<RealLogSpec> real_log_specs(const nlohmann::json& datasets,
+                                        const std::string& experiment) {
+  if (!datasets.is_array()) {
+    throw UsageError(experiment + ": datasets: expected an array of catalog names or "
+                                  "{\"name\", \"log\", \"relations\", \"ground_truth\"} objects");
+  }
+  std::vector<RealLogSpec> out;
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < datasets.size(); ++i) {
+    const nlohmann::json& item = datasets[i];
+    const std::string where = experiment + ": datasets[" + std::to_string(i) + "]";
+    RealLogSpec s;
+    if (item.is_string()) {
+      s.name = item.get<std::string>();
+    } else if (item.is_object()) {
+      for (const auto& [key, value] : item.items()) {
+        (void)value;
+        if (key != "name" && key != "log" && key != "relations" && key != "ground_truth") {
+          throw UsageError(where + ": unknown key \"" + key +
+                           "\" (expected name, log, relations, ground_truth)");
+        }
+      }
+      s.name = string_field(item, "name", where);
+      s.log = string_field(item, "log", where);
+      s.relations = string_field(item, "relations", where);
+      s.ground_truth = string_field(item, "ground_truth", where);
+      s.from_catalog = s.log.empty();
+      if (s.from_catalog && (!s.relations.empty() || !s.ground_truth.empty())) {
+        throw UsageError(where + ": relations or ground_truth given without a \"log\"");
+      }
+    } else {
+      throw UsageError(where + ": expected a catalog name or an object, found a " +
+                       std::string(item.type_name()));
+    }
+    if (s.name.empty()) throw UsageError(where + ": needs a \"name\" (the key of its results)");
+    if (s.from_catalog && !find_dataset(s.name)) {
+      throw UsageError(where + ": unknown dataset \"" + s.name +
+                       "\" (see `locbench list`, or give a \"log\" file)");
+    }
+    if (!s.from_catalog) {
+      require_file(file_of(s.log), "log");
+      if (!s.relations.empty()) require_file(s.relations, "relations file");
+      if (!s.ground_truth.empty()) require_file(s.ground_truth, "ground-truth file");
+    }
+    if (!names.insert(s.name).second) {
+      throw UsageError(where + ": dataset name \"" + s.name + "\" is used twice");
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::vector<std::string> real_log_names(const std::vector<RealLogSpec>& specs) {
+  std::vector<std::string> out;
+  for (const auto& s : specs) out.push_back(s.name);
+  return out;
+}
+
+LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path& data_root) {
+  LoadedRealLog out;
+  std::string file;
+  if (spec.from_catalog) {
+    const DatasetEntry& entry = *find_dataset(spec.name);
+    const std::string path = (data_root / entry.path).string();
+    file = file_of(path);
+    out.dataset.path = path;
+    if (!std::filesystem::exists(file)) {
+      out.status = "skipped";
+      out.reason = "dataset not found at " + path + " (set LOCBENCH_DATA)";
+      return out;
+    }
+    try {
+      out.log = load_catalog_dataset(entry, data_root);
+    } catch (const InputError& e) {
+      out.status = "failed";
+      out.reason = e.what();
+      return out;
+    }
+  } else {
+    file = file_of(spec.log);
+    out.dataset.path = spec.log;
+    out.log = load_log(spec.log);
+    if (!spec.relations.empty()) attach_relations(out.log, spec.relations);
+    if (!spec.ground_truth.empty()) {
+      out.log.truth.clear();
+      const Trajectory reference = read_tum(spec.ground_truth);  // outlives the loop
+      for (const StampedPose& p : reference.poses()) {
+        TruePose truth;
+        truth.t = p.t;
+        truth.pose = p.pose;
+        out.log.truth.push_back(truth);
+      }
+    }
+  }
+  out.dataset.name = spec.name;
+  out.dataset.checksum = reports::file_checksum(file);  // a file, or an MRCLAM folder
+  out.dataset.records = out.log.record_count();
+  const auto [t0, t1] = out.log.time_span();
+  out.dataset.duration_s = t1 - t0;
+  return out;
+}
+
+void for_each_real_log(const std::vector<RealLogSpec>& specs, const RunOptions& options,
+                       const std::string& case_prefix, reports::ExperimentResults& out,
+                       const std::function<void(const RealLogSpec&, const LoadedRealLog&,
+                                                reports::ExperimentResults&)>& run) {
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    options.report_progress(static_cast<double>(i) / static_cast<double>(specs.size()));
+    const LoadedRealLog loaded = load_real_log(specs[i], options.data_root);
+    if (loaded.status != "ok") {
+      out.cases.push_back({case_prefix + "/" + specs[i].name, loaded.status, loaded.reason});
+      continue;
+    }
+    out.datasets.push_back(loaded.dataset);
+    run(specs[i], loaded, out);
+  }
+  options.report_progress(1.0);
+}
+
+std::optional<nlohmann::json> real_log_cli_override(const std::string& log,
+                                                    const std::string& relations,
+                                                    const std::string& ground_truth) {
+  if (log.empty()) return std::nullopt;
+  std::string name = std::filesystem::path(file_of(log)).filename().string();
+  name = name.substr(0, name.find('.'));
+  if (name.empty()) name = "log";
+  nlohmann::json item = {{"name", name}, {"log", log}};
+  if (!relations.empty()) item["relations"] = relations;
+  if (!ground_truth.empty()) item["ground_truth"] = ground_truth;
+  return nlohmann::json{{"datasets", nlohmann::json::array({item})}};
+}
+
+bool takes_real_logs(const nlohmann::json& default_config) {
+  return default_config.is_object() && default_config.contains("datasets") &&
+         default_config.at("datasets").is_array();
+}
+
+}  // namespace locbench::experiments

@@ -1,0 +1,187 @@
+// Experiment noise/tables_4_1_4_2: the fixed-Q EKF, the thesis's adaptive noise model, the
+// Sage–Husa AEKF (Deng's forgetting, Zhang's fix) and the VB-AKF (Särkkä & Nummenmaa 2009) on
+// the same simulated Trilobot corridor runs: final error beside Tables 4.1/4.2, its spread across
+// runs, and NEES/NIS consistency against their χ² bounds. The filters: harness/noise_filters.h.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "algorithms/core/statistics.h"
+#include "algorithms/filters/consistency.h"
+#include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/plot_series.h"
+#include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/noise_filters.h"
+#include "datasets/sim/presets.h"
+#include "datasets/sim/scenario_json.h"
+#include "datasets/sim/simulator.h"
+#include "reports/checksum.h"
+
+namespace locbench::experiments {
+namespace {
+
+// Error against distance travelled is sampled every kDistanceStep metres of the true path.
+constexpr double kDistanceStep = 0.25;  // [m]
+
+struct NoiseSetup {
+  sim::Scenario scenario;
+  nlohmann::json configuration;
+};
+
+// Trajectories of run 0 and the mean error against distance travelled, for the report's charts.
+void add_plots(reports::ExperimentResults& out, const McPlan& plan,
+               const std::vector<nlohmann::json>& records) {
+  reports::Plot traj{"trajectories_run_0", "trajectory",
+                     "Trajectories of run 0: truth, odometry and the four filters", "x", "m", "y",
+                     "m", {}, "Monte-Carlo run 0 (seed " + std::to_string(plan.run_seed(0)) + ")"};
+  for (const auto& j : records.front().at("trajectories")) {
+    traj.series.push_back({j.at("name").get<std::string>(), j.at("x").get<std::vector<double>>(),
+                           j.at("y").get<std::vector<double>>()});
+  }
+  out.plots.push_back(std::move(traj));
+  reports::Plot dist{"error_vs_distance", "error_vs_distance",
+                     "Position error against distance travelled (mean over runs)",
+                     "distance travelled", "m", "position error", "m", {},
+                     fmt::format("mean over {} Monte-Carlo runs, every {:g} m of the true path",
+                                 records.size(), kDistanceStep)};
+  std::vector<std::string> names(kNoiseFilterNames.begin(), kNoiseFilterNames.end());
+  names.push_back("odometry_nominal");
+  for (std::size_t f = 0; f < names.size(); ++f) {
+    std::vector<std::vector<double>> runs;
+    std::size_t longest = 0;
+    for (const auto& r : records) {
+      runs.push_back(r.at("error_at_distance").at(f).get<std::vector<double>>());
+      longest = std::max(longest, runs.back().size());
+    }
+    dist.series.push_back(mean_over_runs(
+        names[f], distance_grid(kDistanceStep * static_cast<double>(longest), kDistanceStep), runs));
+  }
+  out.plots.push_back(std::move(dist));
+}
+
+class NoiseTables final : public MonteCarloExperiment<NoiseSetup> {
+ public:
+  std::string name() const override { return "noise/tables_4_1_4_2"; }
+  std::string description() const override {
+    return "Fixed-Q EKF vs adaptive noise model vs Sage–Husa AEKF vs VB-AKF on simulated Trilobot "
+           "corridor runs: final error (Tables 4.1/4.2), spread, NEES/NIS consistency";
+  }
+  nlohmann::json default_config() const override {
+    return {{"runs", 10},
+            {"scenario", sim::to_json(sim::preset("corridor"))},
+            {"filters", default_filter_options(kFilterInitialCovariance)}};
+  }
+  NoiseSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+    NoiseSetup u{corridor_from(config), config};
+    u.configuration["runs"] = plan.runs;
+    return u;
+  }
+
+  nlohmann::json run_task(const NoiseSetup& u, const McPlan& plan, int k) const override {
+    const sim::SimulationResult r = sim::simulate(u.scenario, plan.run_seed(k));
+    const FilterRun run = run_noise_filters(r, u.configuration.at("filters"));
+    nlohmann::json rec = record_of(run, r);
+    // Chart data: each filter's and the odometry's error at every kDistanceStep of travel.
+    const std::vector<double> grid = distance_grid(run.truth.path_length(), kDistanceStep);
+    for (int f = 0; f < kNoiseFilters; ++f) {
+      rec["error_at_distance"].push_back(error_at_distances(run.truth, run.estimates[f], grid));
+    }
+    rec["error_at_distance"].push_back(error_at_distances(run.truth, run.odometry, grid));
+    if (k == 0) {
+      const auto series = [](const reports::PlotSeries& p) {
+        return nlohmann::json{{"name", p.name}, {"x", p.x}, {"y", p.y}};
+      };
+      rec["trajectories"].push_back(series(trajectory_series("truth", run.truth)));
+      rec["trajectories"].push_back(series(trajectory_series("odometry_nominal", run.odometry)));
+      for (int f = 0; f < kNoiseFilters; ++f) {
+        rec["trajectories"].push_back(series(trajectory_series(kNoiseFilterNames[f], run.estimates[f])));
+      }
+    }
+    return rec;
+  }
+
+  reports::ExperimentResults summarise(const NoiseSetup& u, const McPlan& plan,
+                                       const std::vector<nlohmann::json>& records) const override {
+    reports::ExperimentResults out = start_results(u.configuration);
+    const sim::Scenario& scenario = u.scenario;
+    const int runs = plan.runs;
+    FilterSamples s;
+    std::size_t records_count = 0;
+    double duration = 0.0;
+    for (int k = 0; k < runs; ++k) {
+      out.seeds.push_back(plan.run_seed(k));
+      const auto r = records[static_cast<std::size_t>(k)].get<FilterRecord>();
+      records_count = r.records;
+      duration = r.duration;
+      collect(r, s);
+    }
+    const std::string dataset = "sim_" + scenario.name;
+    out.datasets.push_back({"sim/" + scenario.name, "simulated",
+                            reports::text_checksum(sim::to_json(scenario).dump()), records_count,
+                            duration});
+    add_filter_results(out, dataset, s);
+    add_plots(out, plan, records);
+    // Tables 4.1/4.2: final error [mm], AEKF / fixed Q / adaptive, 10 runs.
+    const double published[10][3] = {{64, 100, 91}, {236, 81, 74}, {306, 101, 94}, {106, 57, 45},
+                                      {25, 60, 47},  {145, 50, 38}, {256, 90, 83}, {284, 89, 73},
+                                      {77, 70, 58},  {82, 64, 43}};
+    const int ours_index[3] = {2, 0, 1};  // sage_husa, fixed_q, adaptive
+    const char* columns[3] = {"Sage–Husa AEKF", "fixed-Q EKF", "adaptive model"};
+    double pub_mean[3] = {0, 0, 0};
+    for (const auto& row : published) {
+      for (int c = 0; c < 3; ++c) pub_mean[c] += row[c] / 10.0;
+    }
+    const double ours_mean[3] = {mean(s.final_error[2]) * 1e3, mean(s.final_error[0]) * 1e3,
+                                 mean(s.final_error[1]) * 1e3};
+    const double ours_sd[3] = {sample_stddev(s.final_error[2]) * 1e3,
+                               sample_stddev(s.final_error[0]) * 1e3,
+                               sample_stddev(s.final_error[1]) * 1e3};
+    double pub_sd[3];
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> col;
+      for (const auto& row : published) col.push_back(row[c]);
+      pub_sd[c] = sample_stddev(col);
+    }
+    const ConsistencySummary adaptive_nees = summarize_consistency(common_length(s.nees[1]), 3);
+    const std::string note = fmt::format(
+        "Published means (sd) over 10 runs: AEKF {:.0f} ({:.0f}) mm, fixed Q {:.0f} ({:.0f}) mm, "
+        "adaptive {:.0f} ({:.0f}) mm — adaptive {:.0f}% below fixed Q. Simulated over {} runs: "
+        "AEKF {:.0f} ({:.0f}) mm, fixed Q {:.0f} ({:.0f}) mm, adaptive {:.0f} ({:.0f}) mm — adaptive "
+        "{:+.0f}% against fixed Q. The AEKF's spread is {:.1f}× fixed Q's here ({:.1f}× in the "
+        "thesis){}. The adaptive model's time-averaged NEES is {:.2f} against the band [{:.2f}, "
+        "{:.2f}]{}. The true robot and floor of the thesis are unknown, so the rows are not "
+        "comparable one by one.",
+        pub_mean[0], pub_sd[0], pub_mean[1], pub_sd[1], pub_mean[2], pub_sd[2],
+        100 * (1 - pub_mean[2] / pub_mean[1]), runs, ours_mean[0], ours_sd[0], ours_mean[1],
+        ours_sd[1], ours_mean[2], ours_sd[2], 100 * (ours_mean[2] / ours_mean[1] - 1),
+        ours_sd[0] / ours_sd[1], pub_sd[0] / pub_sd[1],
+        ours_sd[0] > 2 * ours_sd[1] ? ": the AEKF's instability reproduces" : "",
+        adaptive_nees.time_average, adaptive_nees.bounds.lower, adaptive_nees.bounds.upper,
+        adaptive_nees.time_average < adaptive_nees.bounds.lower
+            ? ": its Q is conservative here (encoder quantization errors are anti-correlated "
+              "sample to sample, which a white-noise model over-counts)"
+            : "");
+    for (int c = 0; c < 3; ++c) {
+      reports::PublishedComparison t;
+      t.source = "thesis Tables 4.1/4.2";
+      t.quantity = std::string("final position error, ") + columns[c];
+      t.unit = "mm";
+      for (int i = 0; i < 10; ++i) {
+        reports::PublishedRow row{fmt::format("run {}", i + 1), published[i][c], std::nullopt};
+        if (i < runs) row.ours = s.final_error[ours_index[c]][static_cast<std::size_t>(i)] * 1e3;
+        t.rows.push_back(row);
+      }
+      t.note = note;
+      out.published.push_back(std::move(t));
+    }
+    out.notes.push_back(note);
+    return out;
+  }
+};
+
+const Registration<NoiseTables> registration;
+
+}  // namespace
+}  // namespace locbench::experiments

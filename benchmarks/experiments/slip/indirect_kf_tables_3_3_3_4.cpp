@@ -1,0 +1,336 @@
+// Experiment slip/indirect_kf_tables_3_3_3_4: the indirect Kalman filter of §3.5 (eq. 3.18–3.26)
+// on simulated Trilobot corridor runs (Monte-Carlo, preset "corridor", whose true wheels are
+// the thesis's IKF refinement D' = D(1 + S̄), so the true S_L = 0.003607, S_R = 0.003591,
+// δB = 0). Per run: slip-corrected wheel travel from the second EKF's detector, the IKF with the
+// compass heading as reference (the thesis), and the same with one measured end position
+// (ours). The estimates are averaged over runs (Table 3.3), the nominal model corrected with
+// D' = D(1 + S̄), B' = B + δB̄, and the second EKF re-run on the same logs (Table 3.4).
+// What the runs can determine is taken from the stacked measurement Jacobian of the IKF.
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+
+#include "algorithms/core/errors.h"
+#include "algorithms/core/rng.h"
+#include "algorithms/core/statistics.h"
+#include "algorithms/slip/indirect_kalman_filter.h"
+#include "algorithms/slip/slip_compass_ekf.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/slip_sim.h"
+#include "datasets/sim/presets.h"
+#include "datasets/sim/scenario_json.h"
+#include "datasets/sim/simulator.h"
+#include "reports/checksum.h"
+
+namespace locbench::experiments {
+namespace {
+
+constexpr double kPublishedImprovement[10] = {16.34, 43.15, 24.80, 16.74, 46.67,
+                                              25.55, 22.51, 65.75, 53.27, 21.12};
+constexpr int kVariants = 2;
+const char* const kVariantNames[kVariants] = {"ikf_heading_only", "ikf_heading_end_position"};
+const char* const kParamNames[3] = {"S_R", "S_L", "dB"};
+
+// The commanded path as IKF samples (no noise): straight legs of `leg` metres at `step` metres
+// per sample, and (if turns > 0) on-the-spot 90° left turns between them at `turn_step` rad per
+// sample. The reference heading is measured at every sample.
+std::vector<IkfSample> ideal_path(double leg, int legs, double step, double turn_step, double b) {
+  std::vector<IkfSample> out;
+  for (int l = 0; l < legs; ++l) {
+    const int n = static_cast<int>(std::round(leg / step));
+    for (int i = 0; i < n; ++i) out.push_back({{step, step}, 0.0});
+    if (l + 1 < legs) {
+      const int m = static_cast<int>(std::round((kPi / 2.0) / turn_step));
+      const double w = turn_step * b / 2.0;
+      for (int i = 0; i < m; ++i) out.push_back({{-w, w}, 0.0});
+    }
+  }
+  return out;
+}
+
+std::string describe(const IdentifiabilityReport& r) {
+  std::string s = fmt::format("rank {} of {}", r.rank, r.parameter_count);
+  for (const auto& c : r.undetermined_combinations) s += "; undetermined: " + c;
+  return s;
+}
+
+struct IkfSetup {
+  sim::Scenario scenario;
+  SlipEkfOptions ekf_opt;
+  IndirectKfOptions ikf_opt;
+  bool corrected_travel = false;
+  double end_var = 0.0;  // [m²] variance of the measured end position
+  SlipModel model;       // μ, σ of Δθ' from the calibration runs
+  nlohmann::json configuration;
+};
+
+class SlipIndirectKf final : public MonteCarloExperiment<IkfSetup> {
+ public:
+  std::string name() const override { return "slip/indirect_kf_tables_3_3_3_4"; }
+  std::string description() const override {
+    return "Indirect Kalman filter for S_L, S_R, δB on simulated straight corridor runs "
+           "(Tables 3.3/3.4): estimates, identifiability, error after correcting the diameters";
+  }
+  nlohmann::json default_config() const override {
+    nlohmann::json det, ikf;
+    to_json(det, SlipDetectorOptions{});
+    to_json(ikf, IndirectKfOptions{});
+    return {{"runs", 10},
+            {"calibration_runs", 4},
+            {"scenario", sim::to_json(sim::preset("corridor"))},
+            {"detector", det},
+            {"ikf", ikf},
+            {"end_position_sigma_mm", 5.0},
+            // The thesis feeds the IKF the slip-corrected travel (note to eq. 3.25). On this
+            // preset the detector's false alarms break the telescoping of the quantization
+            // errors (see the notes), so the default is the raw encoder travel.
+            {"slip_corrected_travel", false}};
+  }
+
+  IkfSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+    IkfSetup u;
+    const int cal_runs = config.at("calibration_runs").get<int>();
+    if (cal_runs < 1) throw UsageError(name() + ": calibration_runs must be ≥ 1");
+    u.scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
+    from_json(config.at("detector"), u.ekf_opt.detector);
+    from_json(config.at("ikf"), u.ikf_opt);
+    u.corrected_travel = config.at("slip_corrected_travel").get<bool>();
+    u.end_var = std::pow(mm(config.at("end_position_sigma_mm").get<double>()), 2);
+    u.configuration = config;
+    u.configuration["runs"] = plan.runs;
+    u.configuration["scenario"] = sim::to_json(u.scenario);
+    u.model = slip_sim::calibrate(u.scenario, plan.seed, cal_runs, {}).compass;
+    return u;
+  }
+
+  // Run k: the IKF's estimates [variant][S_R, S_L, δB] from the slip-corrected EKF's log.
+  nlohmann::json run_task(const IkfSetup& u, const McPlan& plan, int k) const override {
+    const NominalModel nominal = u.scenario.robot.params().nominal_model();
+    const double b = nominal.wheelbase;
+    const sim::SimulationResult sim = sim::simulate(u.scenario, plan.run_seed(k));
+    const slip_sim::RunData d = slip_sim::run_data(sim, nominal, {}, nullptr);
+    const SlipEkfRun ekf = run_slip_ekf(d.samples, d.initial_compass, u.model, {}, u.ekf_opt, b,
+                                        d.truth.front());
+    // IKF input: slip-corrected travel (eq. 3.25 note), compass heading where trusted.
+    std::vector<IkfSample> s;
+    Pose2 odo = d.truth.front();
+    for (std::size_t i = 0; i < d.samples.size(); ++i) {
+      const SlipEkfStep& st = ekf.steps[i];
+      IkfSample x{u.corrected_travel ? st.decision.wheels : d.samples[i].u, {}};
+      if (st.source == HeadingSource::kCompass) x.reference_heading = d.samples[i].compass;
+      s.push_back(x);
+      odo = odometry_step(odo, x.u, b);
+    }
+    const Eigen::Vector2d end_err(d.truth.back().x - odo.x, d.truth.back().y - odo.y);
+    // Ours: δB, undetermined on straight runs, is held at 0 (prior variance 0) when the end
+    // position is used; the thesis's variant estimates all three.
+    IndirectKfOptions frozen = u.ikf_opt;
+    frozen.initial_covariance(5) = 0.0;
+    const IkfRunResult r[kVariants] = {
+        run_indirect_kf(s, d.truth.front().theta, u.ikf_opt, b),
+        run_indirect_kf(s, d.truth.front().theta, frozen, b, end_err, u.end_var)};
+    nlohmann::json rec = {{"records", sim.log.record_count()}, {"duration", sim.duration}};
+    for (int v = 0; v < kVariants; ++v) {
+      rec["estimates"].push_back({r[v].s_right, r[v].s_left, r[v].delta_b});
+    }
+    return rec;
+  }
+
+  reports::ExperimentResults summarise(const IkfSetup& u, const McPlan& plan,
+                                       const std::vector<nlohmann::json>& records) const override {
+    reports::ExperimentResults out = start_results(u.configuration);
+    const sim::Scenario& scenario = u.scenario;
+    const IndirectKfOptions& ikf_opt = u.ikf_opt;
+    const double end_var = u.end_var;
+    const int runs = plan.runs;
+    const RobotParams robot = scenario.robot.params();
+    const NominalModel nominal = robot.nominal_model();
+    const double b = nominal.wheelbase;
+    // The true S and δB relative to the nominal model (D_true = D_nominal (1 + S)).
+    const double true_values[3] = {robot.actual.diameter_right / robot.nominal.diameter_right - 1.0,
+                                   robot.actual.diameter_left / robot.nominal.diameter_left - 1.0,
+                                   robot.actual.wheelbase - robot.nominal.wheelbase};
+    std::vector<double> est[kVariants][3];
+    for (int k = 0; k < runs; ++k) {
+      out.seeds.push_back(plan.run_seed(k));
+      const nlohmann::json& rec = records[static_cast<std::size_t>(k)];
+      for (int v = 0; v < kVariants; ++v) {
+        for (int p = 0; p < 3; ++p) est[v][p].push_back(rec.at("estimates").at(v).at(p).get<double>());
+      }
+    }
+
+    // Corrected models and the re-run of the second EKF on the same logs (Table 3.4): the
+    // models need every run's estimates, so the runs are simulated again here (same seeds, so
+    // the same logs), in parallel, each writing only its own slot.
+    const auto corrected = [&](int v) {
+      NominalModel m = nominal;
+      m.meters_per_tick_right *= 1.0 + mean(est[v][0]);
+      m.meters_per_tick_left *= 1.0 + mean(est[v][1]);
+      m.wheelbase += mean(est[v][2]);
+      return m;
+    };
+    const NominalModel models[4] = {nominal, corrected(0), corrected(1), robot.actual_model()};
+    const char* model_names[4] = {"ekf_nominal_model", "ekf_ikf_heading_only_model",
+                                  "ekf_ikf_heading_end_position_model", "ekf_true_geometry"};
+    std::vector<std::array<double, 4>> per_run(static_cast<std::size_t>(runs));
+    parallel_tasks(plan.threads, per_run.size(), [&](std::size_t k) {
+      const sim::SimulationResult sim = sim::simulate(scenario, plan.run_seed(static_cast<int>(k)));
+      for (int m = 0; m < 4; ++m) {
+        const slip_sim::RunData d = slip_sim::run_data(sim, models[m], {}, nullptr);
+        const SlipEkfRun r = run_slip_ekf(d.samples, d.initial_compass, u.model, {}, u.ekf_opt,
+                                          models[m].wheelbase, d.truth.front());
+        per_run[k][static_cast<std::size_t>(m)] = slip_sim::final_position_error(r, d);
+      }
+    });
+    std::vector<double> err[4], improvement[4];
+    for (const auto& e : per_run) {
+      for (int m = 0; m < 4; ++m) {
+        err[m].push_back(e[static_cast<std::size_t>(m)]);
+        improvement[m].push_back(100.0 * (1.0 - err[m].back() / err[0].back()));
+      }
+    }
+
+    // What the paths determine (commanded paths, exact null directions).
+    const double step = scenario.drive.speed / scenario.encoders.timing.rate;
+    const double turn_step = scenario.drive.turn_rate / scenario.encoders.timing.rate;
+    const Eigen::Vector3d at_truth(true_values[0], true_values[1], true_values[2]);
+    const auto straight = ideal_path(scenario.motion.distance, 1, step, turn_step, b);
+    const auto square = ideal_path(2.0, 2, step, turn_step, b);  // L: 2 m, 90° left, 2 m (open)
+    const IdentifiabilityReport id_straight[kVariants] = {
+        ikf_identifiability(straight, 0.0, b, ikf_opt.heading_variance, at_truth, {}, 1e-10),
+        ikf_identifiability(straight, 0.0, b, ikf_opt.heading_variance, at_truth, end_var, 1e-10)};
+    const IdentifiabilityReport id_square[kVariants] = {
+        ikf_identifiability(square, 0.0, b, ikf_opt.heading_variance, at_truth, {}, 1e-10),
+        ikf_identifiability(square, 0.0, b, ikf_opt.heading_variance, at_truth, end_var, 1e-10)};
+
+    out.configuration["scenario"] = sim::to_json(scenario);
+    out.datasets.push_back({"sim/" + scenario.name, "simulated",
+                            reports::text_checksum(out.configuration["scenario"].dump()),
+                            records.front().at("records").get<std::size_t>(),
+                            records.front().at("duration").get<double>()});
+    const std::string ds = "sim_" + scenario.name;
+    const char* remedy[3] = {
+        "a straight run's headings fix only S_R − S_L; the common scale needs a distance "
+        "reference (a measured end position, as ikf_heading_end_position)",
+        "a straight run's headings fix only S_R − S_L; the common scale needs a distance "
+        "reference (a measured end position, as ikf_heading_end_position)",
+        "δB only acts through U_R − U_L, which is ~0 on a straight run; it needs turns (or "
+        "curves) AND a distance reference: headings alone never separate δB from the common "
+        "diameter scale (scaling D_L, D_R, B together leaves every heading unchanged)"};
+    for (int v = 0; v < kVariants; ++v) {
+      for (int p = 0; p < 3; ++p) {
+        reports::MetricResult m = reports::make_metric(kVariantNames[v], ds, kParamNames[p],
+                                                       p == 2 ? "m" : "", "monte_carlo_runs",
+                                                       est[v][p]);
+        m.better = "stable";  // estimates: any change is a change of method
+        const ParameterFinding& f = id_straight[v].parameters[static_cast<std::size_t>(p)];
+        m.identifiable = f.identifiable;
+        if (!f.identifiable) {
+          m.note = f.reason + "; " + remedy[p];
+        } else {
+          m.note = fmt::format("true value {:.6g}", true_values[p]);
+        }
+        out.results.push_back(std::move(m));
+      }
+    }
+    for (int m = 0; m < 4; ++m) {
+      out.results.push_back(reports::make_metric(model_names[m], ds, "final_position_error", "m",
+                                                 "monte_carlo_runs", err[m]));
+      if (m > 0) {
+        reports::MetricResult r = reports::make_metric(model_names[m], ds, "error_reduction",
+                                                       "%", "monte_carlo_runs", improvement[m]);
+        r.better = "higher";
+        out.results.push_back(std::move(r));
+      }
+    }
+
+    // Table 3.3 (means) and Table 3.4 (per-run improvement).
+    reports::PublishedComparison t33;
+    t33.source = "thesis Table 3.3";
+    t33.quantity = "mean IKF estimates over the runs (δB in mm, as the thesis: B' = 197.929964 mm)";
+    t33.unit = "1 / mm";
+    t33.rows = {{"S_L (heading only)", 0.003607, mean(est[0][1])},
+                {"S_R (heading only)", 0.003591, mean(est[0][0])},
+                {"dB [mm] (heading only)", -0.000036, to_mm(mean(est[0][2]))},
+                {"S_L (heading + end position)", std::nullopt, mean(est[1][1])},
+                {"S_R (heading + end position)", std::nullopt, mean(est[1][0])},
+                {"dB [mm] (heading + end position)", std::nullopt, to_mm(mean(est[1][2]))},
+                {"true S_L", 0.003607, true_values[1]},
+                {"true S_R", 0.003591, true_values[0]},
+                {"true dB [mm]", std::nullopt, to_mm(true_values[2])}};
+    t33.note = fmt::format(
+        "The simulated robot's true wheels are the thesis's refined ones, so the true S equal the "
+        "published means. With the compass heading as the only reference the IKF can determine "
+        "S_R − S_L alone (true {:.2e}; straight path: {}), so its S_L, S_R stay near the prior "
+        "(0) plus half the difference, and δB stays at its prior. One measured end position "
+        "(σ = {} mm) adds the common scale ({}); δB stays undetermined on straight runs. The "
+        "thesis's equal S_L ≈ S_R ≈ 0.0036 cannot come from headings on straight runs; how its "
+        "filter reached them is not recoverable from the text. Its δB = −0.000036 is in mm "
+        "(B' = 197.929964 mm), i.e. no correction.",
+        true_values[0] - true_values[1], describe(id_straight[0]),
+        u.configuration.at("end_position_sigma_mm").get<double>(), describe(id_straight[1]));
+    out.published.push_back(std::move(t33));
+
+    reports::PublishedComparison t34;
+    t34.source = "thesis Table 3.4";
+    t34.quantity = "final-error reduction of the slip-corrected EKF after correcting D_L, D_R, B";
+    t34.unit = "%";
+    for (std::size_t i = 0; i < 10; ++i) {
+      reports::PublishedRow row{fmt::format("run {} (heading + end position)", i + 1),
+                                kPublishedImprovement[i], std::nullopt};
+      if (i < improvement[2].size()) row.ours = improvement[2][i];
+      t34.rows.push_back(row);
+    }
+    double pub_mean = 0.0;
+    for (double x : kPublishedImprovement) pub_mean += x / 10.0;
+    t34.rows.push_back({"mean (heading + end position)", pub_mean, mean(improvement[2])});
+    t34.rows.push_back({"mean (heading only)", pub_mean, mean(improvement[1])});
+    t34.rows.push_back({"mean (true geometry, oracle)", std::nullopt, mean(improvement[3])});
+    t34.note =
+        "Same logs re-processed with the corrected model (common random numbers); runs are not "
+        "paired with the thesis's. Heading-only estimates barely change the diameters, so they "
+        "cannot reproduce the 16–66% reduction; the end-position variant recovers the common "
+        "scale (the ~0.36% along-track error, ≈ 36 mm over 10 m) and shows the kind of "
+        "reduction the thesis reports.";
+    out.published.push_back(std::move(t34));
+
+    out.notes.push_back(fmt::format(
+        "Identifiability of [S_R, S_L, δB] from the IKF's stacked measurement Jacobian "
+        "(analyze_identifiability), commanded paths: straight {} m, headings only: {}; straight + "
+        "end position: {}; L-shaped path (2 m, 90° turn, 2 m), headings only: {}; L + end position: "
+        "{}. So straight runs determine S_R − S_L (and, with a distance reference, S_L and S_R) "
+        "but never δB; a path with turns plus a distance reference determines all three.",
+        scenario.motion.distance, describe(id_straight[0]), describe(id_straight[1]),
+        describe(id_square[0]), describe(id_square[1])));
+    out.notes.push_back(
+        "Finding (ours): with 12.64 mm ticks the per-sample odometry heading swings by ±1 tick "
+        "(±3.7°) while the true heading does not; Z = compass − odometry contains that swing, and "
+        "the δB regressor Σ(U_L − U_R)/B² is exactly −θ_odometry/B (the S_R + S_L regressor is "
+        "θ_odometry/2), so the heading-only IKF fits the quantization swing with a large δB and a "
+        "negative common scale. Its 'corrected' model is worse than the nominal one; the "
+        "end-position variant holds δB at 0 and is not affected.");
+    out.notes.push_back(fmt::format(
+        "IKF input: {}. With 12.64 mm ticks a sample's θ_E swings by one tick (3.7°) and the next "
+        "sample swings back (the counts are cumulative, so the errors telescope). The slip rule "
+        "picks exactly the extreme swings (at 95% about 5% of slip-free samples, and on this "
+        "preset most detections are such false alarms) and replaces θ_E by θ_C, leaving the "
+        "returning swing uncorrected: the 'corrected' dead reckoning drifts by metres over 10 m. "
+        "Harmless inside the compass EKF (the compass heading is absolute), fatal for the IKF's "
+        "odometry heading; set slip_corrected_travel = true to see it.",
+        u.corrected_travel ? "slip-corrected travel (as the thesis)" : "raw encoder travel (default)"));
+    out.notes.push_back(
+        "The δθ row of F uses the nominal B and the odometry heading; the transition is the 6×6 "
+        "of eq. 3.20–3.23 (the printed eq. 3.25 repeats the S_L row). Measurement sign: "
+        "Z = compass heading − odometry heading, which with D' = D(1 + S) makes S > 0 for a wheel "
+        "larger than nominal (see algorithms/slip/indirect_kalman_filter.h).");
+    return out;
+  }
+};
+
+const Registration<SlipIndirectKf> registration;
+
+}  // namespace
+}  // namespace locbench::experiments
