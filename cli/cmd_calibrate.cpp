@@ -9,7 +9,7 @@
 #include "algorithms/calibration/ml_calibration.h"
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "baselines/calibration/umbmark_classic.h"
 #include "cli/commands.h"
 #include "datasets/catalog/calibration_catalog.h"

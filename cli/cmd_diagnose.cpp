@@ -13,7 +13,7 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "cli/commands.h"
 #include "datasets/catalog/dataset_catalog.h"

@@ -2,7 +2,7 @@
 // result got worse than the rules allow.
 #include <iostream>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "cli/commands.h"
 #include "reports/gate.h"
 #include "reports/output_file.h"

@@ -4,7 +4,7 @@
 
 #include <iostream>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "cli/commands.h"
 #include "datasets/catalog/calibration_catalog.h"

@@ -13,8 +13,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/input_limits.h"
+#include "core/errors.h"
+#include "core/input_limits.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/harness/global_harness.h"
 #include "cli/commands.h"

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <iostream>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/input_limits.h"
-#include "algorithms/core/statistics.h"
+#include "core/errors.h"
+#include "core/input_limits.h"
+#include "core/statistics.h"
 #include "algorithms/pose_correction/pose_correction.h"
 #include "benchmarks/experiments/harness/laser_matchers.h"
 #include "cli/commands.h"

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <iostream>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "cli/commands.h"
 #include "reports/gnuplot_svg.h"

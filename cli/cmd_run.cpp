@@ -4,9 +4,9 @@
 #include <cmath>
 #include <iostream>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/input_limits.h"
-#include "algorithms/core/rng.h"
+#include "core/errors.h"
+#include "core/input_limits.h"
+#include "core/rng.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"

@@ -3,8 +3,8 @@
 
 #include <iostream>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/trajectory.h"
+#include "core/errors.h"
+#include "core/trajectory.h"
 #include "cli/commands.h"
 #include "datasets/io/carmen_writer.h"
 #include "datasets/io/tum_writer.h"

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <map>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/input_limits.h"
+#include "core/errors.h"
+#include "core/input_limits.h"
 #include "cli/commands.h"
 
 int main(int argc, char** argv) {

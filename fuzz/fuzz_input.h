@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::fuzz {
 

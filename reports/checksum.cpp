@@ -6,7 +6,7 @@
 #include <fstream>
 #include <vector>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::reports {
 namespace {

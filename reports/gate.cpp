@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/statistics.h"
+#include "core/statistics.h"
 
 namespace locbench::reports {
 namespace {

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <nlohmann/json.hpp>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "reports/json_file.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"

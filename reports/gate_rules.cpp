@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "reports/json_file.h"
 
 namespace locbench::reports {

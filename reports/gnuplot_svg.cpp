@@ -12,7 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "reports/output_file.h"
 
 namespace locbench::reports {

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <optional>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::reports {
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/statistics.h"
+#include "core/statistics.h"
 
 namespace locbench::reports {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::reports {
 namespace {

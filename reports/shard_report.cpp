@@ -6,7 +6,7 @@
 #include <fstream>
 #include <limits>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "reports/report_json.h"
 
 namespace locbench::reports {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/trajectory.h"
+#include "core/errors.h"
+#include "core/trajectory.h"
 
 namespace locbench {
 namespace {

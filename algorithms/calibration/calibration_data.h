@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/calibration/calibration_records.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/robot_params.h"
-#include "datasets/log/log.h"
+#include "core/calibration_records.h"
+#include "core/pose2.h"
+#include "core/robot_params.h"
+#include "core/log.h"
 
 namespace locbench {
 

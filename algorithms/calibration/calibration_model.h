@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "algorithms/calibration/calibration_data.h"
-#include "algorithms/core/pose2.h"
+#include "core/pose2.h"
 
 namespace locbench {
 

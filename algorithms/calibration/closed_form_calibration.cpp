@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "algorithms/core/angle.h"
+#include "core/angle.h"
 
 namespace locbench {
 namespace {

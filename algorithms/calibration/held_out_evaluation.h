@@ -8,7 +8,7 @@
 
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/ml_calibration.h"
-#include "algorithms/core/trajectory_error.h"
+#include "core/trajectory_error.h"
 
 namespace locbench {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/units.h"
+#include "core/pose2.h"
+#include "core/units.h"
 
 namespace locbench {
 

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "algorithms/calibration/identifiability.h"
-#include "algorithms/core/robot_params.h"
+#include "core/robot_params.h"
 
 namespace locbench {
 

@@ -29,8 +29,8 @@
 //  * 2.17 adds the two turn errors, a first-order approximation: the true turn is
 //    τ_n·E_o/E_b, so α = τ_n(1 − E_o/E_b) while Δα₁ + Δα₂ = τ_n(2 − E_o − 1/E_b); they differ by
 //    τ_n(1 − E_o)(1 − 1/E_b).
-#include "algorithms/core/robot_params.h"
-#include "algorithms/core/umbmark_measurements.h"
+#include "core/robot_params.h"
+#include "core/umbmark_measurements.h"
 
 namespace locbench {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 
 namespace locbench::diagnosis {
 namespace {

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/chi_square.h"
-#include "algorithms/core/statistics.h"
-#include "algorithms/core/units.h"
+#include "core/angle.h"
+#include "core/chi_square.h"
+#include "core/statistics.h"
+#include "core/units.h"
 #include "algorithms/diagnosis/motion_windows.h"
 
 #include <fmt/format.h>

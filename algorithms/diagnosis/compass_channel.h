@@ -6,7 +6,7 @@
 // N(0, σ²) (s = 0). The zone is a disc (centre, radius) in which readings carry an extra bias.
 #include <vector>
 
-#include "algorithms/core/sensor_data.h"
+#include "core/sensor_data.h"
 #include "algorithms/diagnosis/odometry_channel.h"
 
 namespace locbench::diagnosis {

@@ -7,7 +7,7 @@
 #include <functional>
 #include <map>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/compass_channel.h"
 #include "algorithms/diagnosis/odometry_channel.h"

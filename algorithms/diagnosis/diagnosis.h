@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "algorithms/diagnosis/diagnosis_types.h"
-#include "datasets/log/log.h"
+#include "core/log.h"
 
 namespace locbench::diagnosis {
 

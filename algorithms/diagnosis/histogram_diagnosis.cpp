@@ -10,15 +10,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/chi_square.h"
-#include "algorithms/core/input_limits.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/statistics.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/chi_square.h"
+#include "core/input_limits.h"
+#include "core/rng.h"
+#include "core/statistics.h"
+#include "core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "algorithms/diagnosis/ml_fit.h"
-#include "algorithms/slip/skewness_kurtosis_normality.h"
+#include "core/skewness_kurtosis_normality.h"
 
 namespace locbench::diagnosis {
 

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <tuple>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
+#include "core/angle.h"
+#include "core/errors.h"
 
 namespace locbench::diagnosis {
 

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/robot_params.h"
-#include "algorithms/core/sensor_data.h"
-#include "datasets/log/log.h"
+#include "core/pose2.h"
+#include "core/robot_params.h"
+#include "core/sensor_data.h"
+#include "core/log.h"
 
 namespace locbench::diagnosis {
 

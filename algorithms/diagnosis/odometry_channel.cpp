@@ -9,8 +9,8 @@
 #include <optional>
 #include <string>
 
-#include "algorithms/core/chi_square.h"
-#include "algorithms/core/statistics.h"
+#include "core/chi_square.h"
+#include "core/statistics.h"
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/ml_fit.h"
 #include "algorithms/diagnosis/odometry_battery.h"

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/units.h"
+#include "core/angle.h"
+#include "core/units.h"
 
 namespace locbench::diagnosis {
 namespace {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "algorithms/core/chi_square.h"
-#include "algorithms/core/statistics.h"
+#include "core/chi_square.h"
+#include "core/statistics.h"
 
 namespace locbench::diagnosis {
 

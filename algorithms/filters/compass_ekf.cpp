@@ -3,8 +3,8 @@
 #include <cmath>
 #include <utility>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/json_options.h"
+#include "core/errors.h"
+#include "core/json_options.h"
 
 namespace locbench {
 namespace {

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "algorithms/core/compass_ekf_model.h"
+#include "core/compass_ekf_model.h"
 #include "algorithms/filters/odometry_noise_model.h"
 
 namespace locbench {

@@ -6,9 +6,9 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/robot_params.h"
-#include "algorithms/core/sensor_data.h"
+#include "core/diff_drive_odometry.h"
+#include "core/robot_params.h"
+#include "core/sensor_data.h"
 
 namespace locbench {
 

@@ -5,8 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/chi_square.h"
+#include "core/angle.h"
+#include "core/chi_square.h"
 
 namespace locbench {
 

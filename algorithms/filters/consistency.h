@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "algorithms/core/pose2.h"
+#include "core/pose2.h"
 
 namespace locbench {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/json_options.h"
+#include "core/json_options.h"
 
 namespace locbench {
 

@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/units.h"
+#include "core/diff_drive_odometry.h"
+#include "core/units.h"
 
 namespace locbench {
 

@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/laser/eap_matcher_moments.h"
 #include "algorithms/laser/eap_matcher_points.h"
 #include "algorithms/laser/eap_matcher_segments.h"

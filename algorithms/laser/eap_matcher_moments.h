@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "algorithms/core/angle.h"
+#include "core/angle.h"
 #include "algorithms/laser/line_fit.h"
 
 namespace locbench::laser::detail {

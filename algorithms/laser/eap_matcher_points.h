@@ -8,8 +8,8 @@
 #include <cstring>
 #include <vector>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/scan.h"
+#include "core/pose2.h"
+#include "core/scan.h"
 #include "algorithms/laser/scan_points.h"
 
 namespace locbench::laser::detail {

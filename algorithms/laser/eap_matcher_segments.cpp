@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::laser::detail {
 

@@ -16,7 +16,7 @@
 #include <emmintrin.h>
 #endif
 
-#include "algorithms/core/line_map.h"
+#include "core/line_map.h"
 #include "algorithms/laser/eap_region.h"
 
 namespace locbench::laser::detail {

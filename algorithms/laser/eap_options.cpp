@@ -2,9 +2,9 @@
 #include <cmath>
 #include <string>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/json_options.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/json_options.h"
+#include "core/units.h"
 #include "algorithms/laser/eap_matcher.h"
 
 namespace locbench::laser {

@@ -1,6 +1,6 @@
 #include "algorithms/laser/eap_region.h"
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::laser {
 

@@ -15,7 +15,7 @@
 #include <cmath>
 #include <string>
 
-#include "algorithms/core/segment.h"
+#include "core/segment.h"
 
 namespace locbench::laser {
 

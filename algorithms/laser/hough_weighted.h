@@ -17,7 +17,7 @@
 #include <span>
 #include <string>
 
-#include "algorithms/core/segment.h"
+#include "core/segment.h"
 #include "algorithms/laser/scan_points.h"
 
 namespace locbench::laser {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/angle.h"
+#include "core/angle.h"
 
 namespace locbench::laser {
 

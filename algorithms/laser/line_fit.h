@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <span>
 
-#include "algorithms/core/segment.h"
+#include "core/segment.h"
 
 namespace locbench::laser {
 

@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/scan.h"
+#include "core/pose2.h"
+#include "core/scan.h"
 
 namespace locbench::laser {
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::laser {
 namespace {

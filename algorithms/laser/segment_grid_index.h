@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
+#include "core/line_map.h"
 #include "algorithms/laser/eap_region.h"
 
 namespace locbench::laser {

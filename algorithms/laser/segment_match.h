@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/scan.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/scan.h"
 #include "algorithms/laser/line_fit.h"
 #include "algorithms/laser/scan_points.h"
 

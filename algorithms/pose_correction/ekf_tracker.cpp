@@ -3,10 +3,10 @@
 #include <Eigen/LU>
 #include <cmath>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/chi_square.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/json_options.h"
+#include "core/angle.h"
+#include "core/chi_square.h"
+#include "core/errors.h"
+#include "core/json_options.h"
 
 namespace locbench::pose_correction {
 namespace {

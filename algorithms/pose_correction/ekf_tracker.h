@@ -11,11 +11,11 @@
 #include <nlohmann/json.hpp>
 #include <span>
 
-#include "algorithms/core/compass_ekf_model.h"
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/scan.h"
+#include "core/compass_ekf_model.h"
+#include "core/diff_drive_odometry.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/scan.h"
 #include "algorithms/laser/segment_match.h"
 #include "algorithms/pose_correction/pose_correction.h"
 

@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <span>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
 #include "algorithms/laser/segment_match.h"
 #include "algorithms/pose_correction/orientation_correction.h"
 #include "algorithms/pose_correction/position_correction.h"

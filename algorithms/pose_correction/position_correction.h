@@ -22,9 +22,9 @@
 #include <nlohmann/json.hpp>
 #include <span>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/units.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/units.h"
 #include "algorithms/laser/segment_match.h"
 
 namespace locbench::pose_correction {

@@ -30,8 +30,8 @@
 #include <vector>
 
 #include "algorithms/calibration/identifiability.h"
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/units.h"
+#include "core/diff_drive_odometry.h"
+#include "core/units.h"
 
 namespace locbench {
 

@@ -17,7 +17,7 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/core/compass_ekf_model.h"
+#include "core/compass_ekf_model.h"
 #include "algorithms/slip/slip_detector.h"
 
 namespace locbench {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/json_options.h"
-#include "algorithms/core/statistics.h"
+#include "core/errors.h"
+#include "core/json_options.h"
+#include "core/statistics.h"
 
 namespace locbench {
 namespace {

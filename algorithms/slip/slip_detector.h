@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <span>
 
-#include "algorithms/core/diff_drive_odometry.h"
+#include "core/diff_drive_odometry.h"
 
 namespace locbench {
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 
 namespace locbench {
 

@@ -4,8 +4,8 @@
 // radius of the curved legs and E_d = D_R/D_L, the Type A angle α gives E_b = B_actual/B_nominal,
 // and the tape-measured scale E_s fixes the mean diameter D_a = E_s·D_n. SI units: m, rad.
 // An independent implementation: it uses the core measurement types only.
-#include "algorithms/core/robot_params.h"
-#include "algorithms/core/umbmark_measurements.h"
+#include "core/robot_params.h"
+#include "core/umbmark_measurements.h"
 
 namespace locbench {
 

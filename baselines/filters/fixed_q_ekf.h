@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "algorithms/core/compass_ekf_model.h"
-#include "algorithms/core/units.h"
+#include "core/compass_ekf_model.h"
+#include "core/units.h"
 
 namespace locbench {
 

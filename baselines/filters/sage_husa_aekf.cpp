@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/json_options.h"
+#include "core/errors.h"
+#include "core/json_options.h"
 
 namespace locbench {
 namespace {

@@ -18,7 +18,7 @@
 #include <optional>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
+#include "core/line_map.h"
 #include "baselines/global/likelihood_field.h"
 #include "baselines/global/odometry_motion_model.h"
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/units.h"
 
 namespace locbench::global {
 

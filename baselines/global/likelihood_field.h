@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/scan.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/scan.h"
 
 namespace locbench::global {
 

@@ -5,8 +5,8 @@
 #include <limits>
 #include <unordered_map>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/units.h"
 
 namespace locbench::global {
 

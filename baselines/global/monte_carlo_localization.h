@@ -23,8 +23,8 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/rng.h"
+#include "core/line_map.h"
+#include "core/rng.h"
 #include "baselines/global/likelihood_field.h"
 #include "baselines/global/odometry_motion_model.h"
 

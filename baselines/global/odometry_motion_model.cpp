@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
+#include "core/angle.h"
+#include "core/errors.h"
 
 namespace locbench::global {
 

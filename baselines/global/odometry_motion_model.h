@@ -8,8 +8,8 @@
 // plus a small floor so a standing robot's belief still diffuses a little.
 #include <nlohmann/json.hpp>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/rng.h"
+#include "core/pose2.h"
+#include "core/rng.h"
 
 namespace locbench::global {
 

@@ -1,6 +1,6 @@
 // JSON to/from of the global-localization options (strict: unknown keys and wrong types throw
 // UsageError naming the key; values in SI units, angles in radians).
-#include "algorithms/core/json_options.h"
+#include "core/json_options.h"
 #include "baselines/global/grid_markov.h"
 #include "baselines/global/likelihood_field.h"
 #include "baselines/global/monte_carlo_localization.h"

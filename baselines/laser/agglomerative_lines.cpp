@@ -5,8 +5,8 @@
 #include <limits>
 #include <utility>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/chi_square.h"
+#include "core/angle.h"
+#include "core/chi_square.h"
 #include "baselines/laser/extraction_steps.h"
 
 namespace locbench::laser {

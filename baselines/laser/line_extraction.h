@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "algorithms/laser/line_fit.h"
 #include "algorithms/laser/scan_points.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "algorithms/core/angle.h"
+#include "core/angle.h"
 #include "baselines/laser/extraction_steps.h"
 
 namespace locbench::laser {

@@ -20,8 +20,8 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/units.h"
+#include "core/line_map.h"
+#include "core/units.h"
 #include "algorithms/laser/segment_match.h"
 #include "baselines/laser/line_extraction.h"
 

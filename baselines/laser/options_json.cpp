@@ -1,6 +1,6 @@
 #include "baselines/laser/options_json.h"
 
-#include "algorithms/core/json_options.h"
+#include "core/json_options.h"
 #include "baselines/laser/extraction_steps.h"
 
 namespace locbench::laser {

@@ -8,9 +8,9 @@
 #include <nanoflann.hpp>
 #include <vector>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/json_options.h"
+#include "core/angle.h"
+#include "core/errors.h"
+#include "core/json_options.h"
 
 namespace locbench::laser {
 namespace {

@@ -31,9 +31,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/scan.h"
-#include "algorithms/core/units.h"
+#include "core/pose2.h"
+#include "core/scan.h"
+#include "core/units.h"
 
 namespace locbench::laser {
 

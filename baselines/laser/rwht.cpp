@@ -7,7 +7,7 @@
 #include <utility>
 #include <string>
 
-#include "algorithms/core/angle.h"
+#include "core/angle.h"
 #include "baselines/laser/extraction_steps.h"
 
 namespace locbench::laser {

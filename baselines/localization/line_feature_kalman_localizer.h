@@ -19,10 +19,10 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/core/compass_ekf_model.h"
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
+#include "core/compass_ekf_model.h"
+#include "core/diff_drive_odometry.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
 #include "baselines/localization/line_observation.h"
 
 namespace locbench::localization {

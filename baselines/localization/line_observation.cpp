@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
+#include "core/angle.h"
+#include "core/errors.h"
 #include "algorithms/laser/line_fit.h"
 
 namespace locbench::localization {

@@ -10,9 +10,9 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/segment.h"
-#include "algorithms/core/units.h"
+#include "core/pose2.h"
+#include "core/segment.h"
+#include "core/units.h"
 #include "algorithms/laser/segment_match.h"
 
 namespace locbench::localization {

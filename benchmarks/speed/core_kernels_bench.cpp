@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/rng.h"
+#include "core/diff_drive_odometry.h"
+#include "core/line_map.h"
+#include "core/rng.h"
 
 namespace locbench {
 namespace {

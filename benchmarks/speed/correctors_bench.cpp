@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/rng.h"
-#include "algorithms/core/units.h"
+#include "core/rng.h"
+#include "core/units.h"
 #include "baselines/laser/extract_then_match.h"
 #include "benchmarks/experiments/harness/laser_correctors.h"
 #include "datasets/catalog/dataset_catalog.h"

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "algorithms/core/rng.h"
+#include "core/rng.h"
 #include "algorithms/filters/compass_ekf.h"
 #include "algorithms/filters/quantization_noise.h"
 #include "baselines/filters/fixed_q_ekf.h"

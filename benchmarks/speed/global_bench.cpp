@@ -15,7 +15,7 @@
 
 #include <memory>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "baselines/global/grid_markov.h"
 #include "baselines/global/monte_carlo_localization.h"
 #include "benchmarks/experiments/harness/global_harness.h"

@@ -22,8 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/rng.h"
-#include "algorithms/core/units.h"
+#include "core/rng.h"
+#include "core/units.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/laser/segment_grid_index.h"
 #include "baselines/laser/extract_then_match.h"

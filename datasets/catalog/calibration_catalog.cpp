@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/io/censi_tuple_reader.h"
 #include "datasets/io/relative_motion_reader.h"
 

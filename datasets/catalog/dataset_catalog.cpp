@@ -1,6 +1,6 @@
 #include "datasets/catalog/dataset_catalog.h"
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/io/log_loader.h"
 
 namespace locbench {

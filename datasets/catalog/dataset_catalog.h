@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "datasets/log/log.h"
+#include "core/log.h"
 
 namespace locbench {
 

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <optional>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/units.h"
+#include "core/angle.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/units.h"
 #include "datasets/sim/simulator.h"
 
 namespace locbench::sim {

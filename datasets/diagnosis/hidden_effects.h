@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "datasets/log/log.h"
+#include "core/log.h"
 
 namespace locbench::sim {
 

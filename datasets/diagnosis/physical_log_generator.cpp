@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
+#include "core/angle.h"
+#include "core/errors.h"
+#include "core/rng.h"
 
 namespace locbench::sim {
 namespace {

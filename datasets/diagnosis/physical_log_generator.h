@@ -16,7 +16,7 @@
 // hidden; the tests compare the diagnosis with `PhysicalEffects`.
 #include <cstdint>
 
-#include "datasets/log/log.h"
+#include "core/log.h"
 
 namespace locbench::sim {
 

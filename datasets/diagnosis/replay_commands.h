@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "datasets/log/log.h"
+#include "core/log.h"
 #include "datasets/sim/scenario.h"
 
 namespace locbench::sim {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
+#include "core/errors.h"
+#include "core/rng.h"
 #include "datasets/diagnosis/twin_residuals.h"
 
 namespace locbench::sim {

@@ -2,7 +2,7 @@
 // How close a log's twins are to it: the nominal-model window residuals of the log against those
 // of its nominal and its extended twin (twin_scenario.h), per component (x along, y left, θ),
 // compared by the two-sample Kolmogorov–Smirnov distance D with its p-value
-// (algorithms/core/two_sample_ks.h). Windows are paired in time, so all three samples cover the
+// (core/two_sample_ks.h). Windows are paired in time, so all three samples cover the
 // same stretches of the log; each twin is simulated with `runs` seeds and pooled. The gain of
 // the extended model is the reduction of D: ratio = D_extended / D_nominal (< 1 is closer).
 #include <array>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/two_sample_ks.h"
+#include "core/two_sample_ks.h"
 #include "datasets/diagnosis/twin_scenario.h"
 
 namespace locbench::sim {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "algorithms/diagnosis/motion_windows.h"
-#include "datasets/log/log.h"
+#include "core/log.h"
 
 namespace locbench::sim {
 

@@ -8,9 +8,9 @@
 #include <map>
 #include <optional>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/statistics.h"
+#include "core/angle.h"
+#include "core/errors.h"
+#include "core/statistics.h"
 #include "datasets/diagnosis/replay_commands.h"
 #include "datasets/diagnosis/twin_residuals.h"
 #include "datasets/io/odometry_interpolation.h"

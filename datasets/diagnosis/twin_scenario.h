@@ -37,7 +37,7 @@
 #include <vector>
 
 #include "algorithms/diagnosis/diagnosis.h"
-#include "datasets/log/log.h"
+#include "core/log.h"
 #include "datasets/sim/scenario.h"
 
 namespace locbench::sim {

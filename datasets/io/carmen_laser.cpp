@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
-#include "algorithms/core/scan.h"
-#include "algorithms/core/units.h"
+#include "core/scan.h"
+#include "core/units.h"
 #include "datasets/io/tokenizer.h"
 
 namespace locbench {

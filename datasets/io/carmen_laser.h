@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "algorithms/core/pose2.h"
+#include "core/pose2.h"
 
 namespace locbench {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "datasets/log/log.h"
+#include "core/log.h"
 
 namespace locbench {
 

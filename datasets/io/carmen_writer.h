@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "datasets/log/log.h"
+#include "core/log.h"
 
 namespace locbench {
 

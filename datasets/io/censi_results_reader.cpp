@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/io/json_line.h"
 #include "datasets/io/line_reader.h"
 

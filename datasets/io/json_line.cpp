@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench {
 namespace {

@@ -5,7 +5,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/io/gzip_trailer.h"
 
 namespace locbench {

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string_view>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/io/carmen_reader.h"
 #include "datasets/io/dataset_name.h"
 #include "datasets/io/mrclam_reader.h"

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <string>
 
-#include "datasets/log/log.h"
+#include "core/log.h"
 
 namespace locbench {
 

@@ -5,8 +5,8 @@
 #include <optional>
 #include <vector>
 
-#include "algorithms/core/dead_reckoning.h"
-#include "algorithms/core/errors.h"
+#include "core/dead_reckoning.h"
+#include "core/errors.h"
 #include "datasets/io/line_reader.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/io/tokenizer.h"

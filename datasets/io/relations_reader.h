@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "algorithms/core/sensor_data.h"
+#include "core/sensor_data.h"
 
 namespace locbench {
 

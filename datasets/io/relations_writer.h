@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/sensor_data.h"
+#include "core/sensor_data.h"
 
 namespace locbench {
 

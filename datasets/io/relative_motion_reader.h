@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "algorithms/calibration/calibration_records.h"
+#include "core/calibration_records.h"
 
 namespace locbench {
 

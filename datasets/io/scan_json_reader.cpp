@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/io/line_reader.h"
 
 namespace locbench {

@@ -5,7 +5,7 @@
 // "angle_increment" (ROS LaserScan style); "range_max" is optional (default: no limit).
 #include <filesystem>
 
-#include "algorithms/core/scan.h"
+#include "core/scan.h"
 
 namespace locbench {
 

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <limits>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "reports/output_file.h"
 
 namespace locbench {

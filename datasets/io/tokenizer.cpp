@@ -4,7 +4,7 @@
 #include <cmath>
 #include <system_error>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench {
 namespace {

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "algorithms/core/trajectory.h"
+#include "core/trajectory.h"
 
 namespace locbench {
 

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <string>
 
-#include "algorithms/core/trajectory.h"
+#include "core/trajectory.h"
 
 namespace locbench {
 

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <vector>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/units.h"
 
 namespace locbench {
 

@@ -20,7 +20,7 @@
 // semantic errors have line 0.
 #include <string>
 
-#include "algorithms/core/umbmark_measurements.h"
+#include "core/umbmark_measurements.h"
 
 namespace locbench {
 

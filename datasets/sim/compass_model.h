@@ -4,8 +4,8 @@
 // The thesis's Trilobot compass had a 2° resolution, so its readings are multiples of 2°.
 #include <Eigen/Core>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/rng.h"
+#include "core/pose2.h"
+#include "core/rng.h"
 #include "datasets/sim/scenario.h"
 
 namespace locbench::sim {

@@ -4,7 +4,7 @@
 // encoder sample the variances add up to k²|U| for any step size.
 #include <cmath>
 
-#include "algorithms/core/rng.h"
+#include "core/rng.h"
 #include "datasets/sim/scenario.h"
 
 namespace locbench::sim {

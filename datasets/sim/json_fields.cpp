@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "reports/json_file.h"
 
 namespace locbench::sim {

@@ -6,7 +6,7 @@
 #include <set>
 #include <string>
 
-#include "algorithms/core/pose2.h"
+#include "core/pose2.h"
 
 namespace locbench::sim {
 

@@ -7,10 +7,10 @@
 // scale · range + offset + N(0, σ²), clipped to [0, max_range]. No hit → max_range.
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/scan.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/rng.h"
+#include "core/scan.h"
 #include "datasets/sim/scenario.h"
 
 namespace locbench::sim {

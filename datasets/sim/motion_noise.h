@@ -7,8 +7,8 @@
 // `dof` degrees of freedom and scale σ (a Gaussian scale mixture; heavy_tailed_noise.dof).
 #include <cmath>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/rng.h"
+#include "core/pose2.h"
+#include "core/rng.h"
 
 namespace locbench::sim {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/angle.h"
+#include "core/angle.h"
 
 namespace locbench::sim {
 namespace {

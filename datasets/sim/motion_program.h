@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/robot_params.h"
+#include "core/pose2.h"
+#include "core/robot_params.h"
 #include "datasets/sim/scenario.h"
 
 namespace locbench::sim {

@@ -1,7 +1,7 @@
 #include "datasets/sim/presets.h"
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/units.h"
 
 namespace locbench::sim {
 namespace {

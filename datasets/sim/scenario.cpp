@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::sim {
 

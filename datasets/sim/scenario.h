@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/robot_params.h"
-#include "algorithms/core/units.h"
+#include "core/pose2.h"
+#include "core/robot_params.h"
+#include "core/units.h"
 #include "datasets/sim/drive_response.h"
 #include "datasets/sim/motion_noise.h"
 

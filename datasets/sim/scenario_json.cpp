@@ -5,9 +5,9 @@
 #include <cmath>
 #include <utility>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/input_limits.h"
+#include "core/angle.h"
+#include "core/errors.h"
+#include "core/input_limits.h"
 #include "datasets/sim/motion_program.h"
 #include "datasets/sim/json_fields.h"
 #include "datasets/sim/presets.h"

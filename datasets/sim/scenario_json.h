@@ -18,7 +18,7 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::string& source =
 // A relative world.file is taken relative to the scenario file's folder.
 Scenario load_scenario(const std::filesystem::path& path);
 
-// InputError naming the key and the limit (algorithms/core/input_limits.h) when the scenario
+// InputError naming the key and the limit (core/input_limits.h) when the scenario
 // would take more time or memory than the limits allow: beams, coordinates, runs, and the
 // duration, physics steps and records estimated from its motion program before simulating.
 // scenario_from_json calls it.

@@ -3,7 +3,7 @@
 // increasing. Generated one at a time so runs of any length need no precomputation.
 #include <cstdint>
 
-#include "algorithms/core/rng.h"
+#include "core/rng.h"
 #include "datasets/sim/scenario.h"
 
 namespace locbench::sim {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "algorithms/core/dead_reckoning.h"
+#include "core/dead_reckoning.h"
 #include "datasets/sim/umbmark_input.h"
 
 namespace locbench::sim {

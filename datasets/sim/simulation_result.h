@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/robot_params.h"
-#include "algorithms/core/trajectory.h"
-#include "datasets/log/log.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/robot_params.h"
+#include "core/trajectory.h"
+#include "core/log.h"
 #include "datasets/sim/motion_program.h"
 #include "datasets/sim/scenario.h"
 #include "datasets/sim/slip_model.h"

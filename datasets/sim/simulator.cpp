@@ -6,8 +6,8 @@
 #include <cmath>
 #include <optional>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/diff_drive_odometry.h"
+#include "core/angle.h"
+#include "core/diff_drive_odometry.h"
 #include "datasets/sim/compass_model.h"
 #include "datasets/sim/floor_noise.h"
 #include "datasets/sim/laser_model.h"

@@ -7,7 +7,7 @@
 // d the commanded mean wheel speed × the interval's length.
 #include <optional>
 
-#include "algorithms/core/rng.h"
+#include "core/rng.h"
 #include "datasets/sim/motion_program.h"
 #include "datasets/sim/scenario.h"
 

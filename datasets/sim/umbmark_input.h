@@ -3,7 +3,7 @@
 // calibration methods can be run on simulated experiments exactly as on real ones.
 #include <vector>
 
-#include "algorithms/core/umbmark_measurements.h"
+#include "core/umbmark_measurements.h"
 #include "datasets/sim/scenario.h"
 #include "datasets/sim/simulation_result.h"
 

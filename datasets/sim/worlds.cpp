@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/sim/json_fields.h"
 
 namespace locbench::sim {

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/rng.h"
+#include "core/line_map.h"
+#include "core/rng.h"
 #include "datasets/sim/scenario.h"
 
 namespace locbench::sim {

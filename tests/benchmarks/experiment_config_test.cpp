@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 
 namespace locbench::experiments {

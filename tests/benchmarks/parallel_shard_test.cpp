@@ -2,7 +2,7 @@
 // merged (the records pass through the shard file's JSON text, as on a batch system).
 #include <gtest/gtest.h>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/shard.h"
 #include "reports/report_json.h"

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <map>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "tests/benchmarks/small_real_log.h"
 #include "tests/test_data.h"

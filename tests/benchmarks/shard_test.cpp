@@ -5,7 +5,7 @@
 #include <atomic>
 #include <stdexcept>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 
 namespace locbench::experiments {

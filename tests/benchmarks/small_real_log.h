@@ -8,13 +8,13 @@
 #include <random>
 #include <string>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/scan.h"
-#include "algorithms/core/units.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/scan.h"
+#include "core/units.h"
 #include "datasets/io/carmen_writer.h"
 #include "datasets/io/relations_writer.h"
-#include "datasets/log/log.h"
+#include "core/log.h"
 
 namespace locbench::testing {
 

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"

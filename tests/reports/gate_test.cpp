@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "reports/report_json.h"
 #include "tests/reports/sample_report.h"
 #include "tests/test_data.h"

@@ -8,7 +8,7 @@
 #include <functional>
 #include <sstream>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "tests/test_data.h"
 
 namespace locbench::reports {

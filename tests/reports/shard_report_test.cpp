@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
 #include "tests/reports/sample_report.h"

@@ -7,9 +7,9 @@
 
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/statistics.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/statistics.h"
 #include "baselines/calibration/umbmark_classic.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/registry.h"

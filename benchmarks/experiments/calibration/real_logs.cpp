@@ -12,7 +12,7 @@
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/held_out_evaluation.h"
 #include "algorithms/calibration/ml_calibration.h"
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "datasets/catalog/calibration_catalog.h"

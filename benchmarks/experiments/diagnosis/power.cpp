@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <optional>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "algorithms/diagnosis/scale_checks.h"
 #include "benchmarks/experiments/framework/experiment.h"

@@ -21,7 +21,7 @@
 #include <limits>
 #include <optional>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"

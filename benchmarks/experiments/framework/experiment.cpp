@@ -1,6 +1,6 @@
 #include "benchmarks/experiments/framework/experiment.h"
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "reports/report_json.h"
 #include "reports/shard_report.h"
 

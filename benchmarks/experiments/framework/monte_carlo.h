@@ -13,8 +13,8 @@
 #include <mutex>
 #include <vector>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
+#include "core/errors.h"
+#include "core/rng.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "reports/shard_report.h"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/trajectory.h"
+#include "core/trajectory.h"
 #include "reports/report.h"
 
 namespace locbench::experiments {

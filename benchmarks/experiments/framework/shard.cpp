@@ -2,7 +2,7 @@
 
 #include <charconv>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::experiments {
 namespace {

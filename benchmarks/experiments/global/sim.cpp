@@ -15,9 +15,9 @@
 #include <cmath>
 #include <limits>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/statistics.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/statistics.h"
+#include "core/units.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/global_harness.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"

@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "algorithms/calibration/umbmark_design_model.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/statistics.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/errors.h"
+#include "core/diff_drive_odometry.h"
+#include "core/errors.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/pose_correction/ekf_tracker.h"
 #include "baselines/global/grid_markov.h"

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/scan.h"
-#include "datasets/log/log.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/scan.h"
+#include "core/log.h"
 
 namespace locbench::experiments::global {
 

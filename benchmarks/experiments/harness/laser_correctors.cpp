@@ -3,8 +3,8 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
+#include "core/angle.h"
+#include "core/errors.h"
 #include "algorithms/pose_correction/iterated_correction.h"
 #include "algorithms/pose_correction/pose_correction.h"
 #include "baselines/laser/pl_icp.h"

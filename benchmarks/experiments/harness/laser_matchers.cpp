@@ -1,6 +1,6 @@
 #include "benchmarks/experiments/harness/laser_matchers.h"
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/laser/segment_grid_index.h"
 #include "baselines/laser/extract_then_match.h"

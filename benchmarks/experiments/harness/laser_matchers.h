@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
+#include "core/line_map.h"
 #include "algorithms/laser/segment_match.h"
 
 namespace locbench::experiments {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/angle.h"
+#include "core/angle.h"
 #include "algorithms/laser/line_fit.h"
 
 namespace locbench::experiments {

@@ -5,8 +5,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
 #include "algorithms/laser/segment_match.h"
 #include "datasets/sim/laser_model.h"
 

@@ -7,7 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "algorithms/core/dead_reckoning.h"
+#include "core/dead_reckoning.h"
 #include "algorithms/filters/compass_ekf.h"
 #include "algorithms/filters/compass_odometry_input.h"
 #include "algorithms/filters/consistency.h"

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "algorithms/core/trajectory.h"
-#include "algorithms/core/units.h"
+#include "core/trajectory.h"
+#include "core/units.h"
 #include "datasets/sim/scenario.h"
 #include "datasets/sim/simulation_result.h"
 #include "reports/report.h"

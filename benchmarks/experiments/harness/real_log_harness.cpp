@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/tum_reader.h"

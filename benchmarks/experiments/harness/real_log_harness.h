@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "benchmarks/experiments/framework/experiment.h"
-#include "datasets/log/log.h"
+#include "core/log.h"
 #include "reports/report.h"
 
 namespace locbench::experiments {

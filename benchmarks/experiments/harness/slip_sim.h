@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/rng.h"
+#include "core/angle.h"
+#include "core/rng.h"
 #include "algorithms/slip/slip_compass_ekf.h"
 #include "datasets/sim/simulation_result.h"
 #include "datasets/sim/simulator.h"

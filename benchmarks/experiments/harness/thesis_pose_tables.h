@@ -15,10 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/scan.h"
-#include "algorithms/core/units.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/scan.h"
+#include "core/units.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/pose_correction/pose_correction.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"

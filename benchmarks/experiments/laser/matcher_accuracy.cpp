@@ -10,9 +10,9 @@
 
 #include <cmath>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/statistics.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/statistics.h"
+#include "core/units.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/laser_matchers.h"
 #include "benchmarks/experiments/harness/laser_scan_truth.h"

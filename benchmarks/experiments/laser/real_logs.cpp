@@ -15,8 +15,8 @@
 #include <numeric>
 #include <optional>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/statistics.h"
+#include "core/errors.h"
+#include "core/statistics.h"
 #include "baselines/laser/extract_then_match.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/laser_correctors.h"

@@ -11,8 +11,8 @@
 #include <cmath>
 #include <map>
 
-#include "algorithms/core/statistics.h"
-#include "algorithms/core/units.h"
+#include "core/statistics.h"
+#include "core/units.h"
 #include "baselines/laser/rwht.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/laser_scan_truth.h"

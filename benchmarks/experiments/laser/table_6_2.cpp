@@ -8,7 +8,7 @@
 #include <cmath>
 #include <optional>
 
-#include "algorithms/core/statistics.h"
+#include "core/statistics.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/thesis_pose_tables.h"
 #include "datasets/sim/worlds.h"

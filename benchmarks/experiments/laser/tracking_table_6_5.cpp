@@ -13,8 +13,8 @@
 
 #include <cmath>
 
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/statistics.h"
+#include "core/diff_drive_odometry.h"
+#include "core/statistics.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/pose_correction/ekf_tracker.h"
 #include "baselines/laser/extract_then_match.h"

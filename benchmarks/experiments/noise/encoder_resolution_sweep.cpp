@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/noise_filters.h"

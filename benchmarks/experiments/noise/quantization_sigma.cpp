@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/filters/quantization_noise.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/registry.h"

@@ -8,11 +8,11 @@
 
 #include <cmath>
 
-#include "algorithms/core/dead_reckoning.h"
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/statistics.h"
-#include "algorithms/core/trajectory_error.h"
+#include "core/dead_reckoning.h"
+#include "core/diff_drive_odometry.h"
+#include "core/errors.h"
+#include "core/statistics.h"
+#include "core/trajectory_error.h"
 #include "algorithms/filters/consistency.h"
 #include "algorithms/filters/odometry_noise_model.h"
 #include "benchmarks/experiments/framework/experiment.h"

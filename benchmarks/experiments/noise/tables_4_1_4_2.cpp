@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "algorithms/core/statistics.h"
+#include "core/statistics.h"
 #include "algorithms/filters/consistency.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/plot_series.h"

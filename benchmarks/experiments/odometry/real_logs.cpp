@@ -4,8 +4,8 @@
 // - MRCLAM 6 robots: velocity dead reckoning against Vicon ground truth over fixed windows.
 #include <cmath>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/trajectory_error.h"
+#include "core/errors.h"
+#include "core/trajectory_error.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"

@@ -9,10 +9,10 @@
 #include <array>
 #include <cmath>
 
-#include "algorithms/core/dead_reckoning.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/trajectory_error.h"
+#include "core/dead_reckoning.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/trajectory_error.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"

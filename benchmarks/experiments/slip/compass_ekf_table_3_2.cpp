@@ -10,9 +10,9 @@
 
 #include <cmath>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/statistics.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/statistics.h"
 #include "algorithms/slip/slip_compass_ekf.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"

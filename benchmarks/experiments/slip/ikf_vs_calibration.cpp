@@ -15,8 +15,8 @@
 
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/errors.h"
+#include "core/diff_drive_odometry.h"
+#include "core/errors.h"
 #include "algorithms/slip/indirect_kalman_filter.h"
 #include "baselines/calibration/umbmark_classic.h"
 #include "benchmarks/experiments/framework/registry.h"

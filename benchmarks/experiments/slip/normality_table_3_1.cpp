@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "algorithms/slip/skewness_kurtosis_normality.h"
+#include "core/skewness_kurtosis_normality.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "reports/checksum.h"

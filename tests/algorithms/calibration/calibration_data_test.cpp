@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "algorithms/calibration/calibration_model.h"
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 

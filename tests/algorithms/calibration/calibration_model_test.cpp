@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 
 namespace locbench {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "algorithms/calibration/ml_calibration.h"
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 

@@ -10,7 +10,7 @@
 
 #include "algorithms/calibration/held_out_evaluation.h"
 #include "algorithms/calibration/ml_calibration.h"
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "datasets/log/data_root.h"
 #include "tests/test_data.h"

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "algorithms/calibration/ml_calibration.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/statistics.h"
-#include "algorithms/core/units.h"
+#include "core/rng.h"
+#include "core/statistics.h"
+#include "core/units.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 

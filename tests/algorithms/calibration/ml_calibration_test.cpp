@@ -10,7 +10,7 @@
 
 #include "algorithms/calibration/closed_form_calibration.h"
 #include "algorithms/calibration/held_out_evaluation.h"
-#include "algorithms/core/rng.h"
+#include "core/rng.h"
 
 namespace locbench {
 namespace {

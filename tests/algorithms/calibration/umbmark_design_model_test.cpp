@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 
 namespace locbench {
 namespace {

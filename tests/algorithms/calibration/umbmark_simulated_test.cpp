@@ -15,8 +15,8 @@
 
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
-#include "algorithms/core/statistics.h"
-#include "algorithms/core/units.h"
+#include "core/statistics.h"
+#include "core/units.h"
 #include "baselines/calibration/umbmark_classic.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "tests/algorithms/diagnosis/diagnosis_test_helpers.h"

@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "datasets/diagnosis/hidden_effects.h"
 

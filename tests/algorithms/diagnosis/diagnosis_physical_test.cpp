@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "algorithms/diagnosis/scale_checks.h"
 #include "datasets/diagnosis/physical_log_generator.h"

@@ -5,8 +5,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 
 namespace locbench::diagnosis {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::diagnosis {
 namespace {

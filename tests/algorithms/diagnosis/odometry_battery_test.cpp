@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "algorithms/core/rng.h"
+#include "core/rng.h"
 #include "algorithms/diagnosis/odometry_battery.h"
 
 namespace locbench::diagnosis {

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/rng.h"
+#include "core/rng.h"
 #include "algorithms/diagnosis/ml_fit.h"
 #include "algorithms/diagnosis/residual_tests.h"
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "algorithms/core/rng.h"
-#include "algorithms/core/units.h"
+#include "core/rng.h"
+#include "core/units.h"
 
 namespace locbench {
 namespace {

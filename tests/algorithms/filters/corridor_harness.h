@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "algorithms/core/compass_ekf_model.h"
+#include "core/compass_ekf_model.h"
 #include "algorithms/filters/compass_odometry_input.h"
 #include "algorithms/filters/consistency.h"
 #include "algorithms/filters/quantization_noise.h"

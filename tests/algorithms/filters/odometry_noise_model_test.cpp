@@ -4,7 +4,7 @@
 
 #include <Eigen/LU>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/filters/quantization_noise.h"
 
 namespace locbench {

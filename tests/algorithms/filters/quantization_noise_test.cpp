@@ -5,7 +5,7 @@
 #include <cmath>
 #include <functional>
 
-#include "algorithms/core/rng.h"
+#include "core/rng.h"
 
 namespace locbench {
 namespace {

@@ -13,9 +13,9 @@
 #include <memory>
 #include <string>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/angle.h"
+#include "core/errors.h"
+#include "core/units.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "baselines/laser/extract_then_match.h"
 #include "datasets/catalog/dataset_catalog.h"

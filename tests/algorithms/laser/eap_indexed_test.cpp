@@ -4,8 +4,8 @@
 #include <iostream>
 #include <memory>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/units.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "eap_test_helpers.h"
 

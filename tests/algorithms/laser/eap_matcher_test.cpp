@@ -8,8 +8,8 @@
 #include <set>
 #include <vector>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/units.h"
 #include "eap_test_helpers.h"
 
 namespace locbench::laser {

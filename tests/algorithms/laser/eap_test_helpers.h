@@ -6,11 +6,11 @@
 #include <set>
 #include <vector>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/scan.h"
-#include "algorithms/core/units.h"
+#include "core/angle.h"
+#include "core/line_map.h"
+#include "core/rng.h"
+#include "core/scan.h"
+#include "core/units.h"
 #include "algorithms/laser/segment_match.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"

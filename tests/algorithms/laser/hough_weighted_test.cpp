@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/units.h"
 
 namespace locbench::laser {
 namespace {

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::laser::legacy {
 namespace {

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <vector>
 
-#include "algorithms/core/scan.h"
+#include "core/scan.h"
 #include "algorithms/laser/scan_points.h"
 
 namespace locbench::laser {

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
+#include "core/errors.h"
+#include "core/rng.h"
 #include "eap_test_helpers.h"
 
 namespace locbench::laser {

@@ -6,10 +6,10 @@
 
 #include <cmath>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/units.h"
+#include "core/angle.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/units.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/pose_correction/pose_correction.h"
 #include "datasets/sim/worlds.h"

@@ -6,9 +6,9 @@
 #include <limits>
 #include <vector>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/units.h"
 #include "datasets/sim/worlds.h"
 #include "tests/algorithms/pose_correction/ray_cast_matches.h"
 

@@ -8,11 +8,11 @@
 #include <optional>
 #include <vector>
 
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/pose2.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/scan.h"
-#include "algorithms/core/units.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/rng.h"
+#include "core/scan.h"
+#include "core/units.h"
 #include "algorithms/laser/line_fit.h"
 #include "algorithms/laser/scan_points.h"
 #include "algorithms/laser/segment_match.h"

@@ -6,8 +6,8 @@
 #include <numbers>
 #include <vector>
 
-#include "algorithms/core/diff_drive_odometry.h"
-#include "algorithms/core/errors.h"
+#include "core/diff_drive_odometry.h"
+#include "core/errors.h"
 #include "algorithms/slip/indirect_kalman_filter.h"
 
 namespace locbench {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/slip/slip_detector.h"
 
 namespace locbench {

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/statistics.h"
+#include "core/statistics.h"
 #include "algorithms/slip/indirect_kalman_filter.h"
 #include "benchmarks/experiments/harness/slip_sim.h"
 #include "datasets/sim/presets.h"

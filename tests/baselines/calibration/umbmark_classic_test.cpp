@@ -7,7 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 
 namespace locbench {
 namespace {

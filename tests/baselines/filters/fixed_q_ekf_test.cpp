@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/filters/compass_ekf.h"
 #include "tests/algorithms/filters/corridor_harness.h"
 

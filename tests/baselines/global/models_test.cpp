@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/units.h"
 #include "baselines/global/likelihood_field.h"
 #include "baselines/global/monte_carlo_localization.h"
 #include "baselines/global/odometry_motion_model.h"

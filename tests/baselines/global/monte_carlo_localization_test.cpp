@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/sim/worlds.h"
 #include "tests/baselines/global/sim_drive.h"
 

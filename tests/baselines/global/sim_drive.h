@@ -4,7 +4,7 @@
 // the second log's start).
 #include <vector>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 
 namespace locbench::global {
 namespace {

@@ -10,10 +10,10 @@
 #include <set>
 #include <vector>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/line_map.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/scan.h"
+#include "core/angle.h"
+#include "core/line_map.h"
+#include "core/rng.h"
+#include "core/scan.h"
 #include "algorithms/laser/scan_points.h"
 #include "datasets/sim/laser_model.h"
 

@@ -4,7 +4,7 @@
 
 #include <functional>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "tests/baselines/laser/laser_scenes.h"
 
 namespace locbench::laser {

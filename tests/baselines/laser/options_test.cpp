@@ -3,7 +3,7 @@
 
 #include <functional>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "baselines/laser/options_json.h"
 
 namespace locbench::laser {

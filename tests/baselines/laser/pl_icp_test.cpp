@@ -7,8 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
+#include "core/angle.h"
+#include "core/errors.h"
 #include "laser_scenes.h"
 
 namespace locbench::laser {

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <vector>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/rng.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/units.h"
 
 namespace locbench::localization {
 namespace {

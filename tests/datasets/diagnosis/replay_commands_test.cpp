@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "algorithms/core/angle.h"
-#include "algorithms/core/errors.h"
+#include "core/angle.h"
+#include "core/errors.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/sim/simulator.h"

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/units.h"
+#include "core/errors.h"
+#include "core/units.h"
 #include "datasets/io/carmen_reader.h"
 #include "datasets/io/carmen_writer.h"
 

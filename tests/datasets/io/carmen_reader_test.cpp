@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "datasets/io/carmen_laser.h"
 #include "io_test_support.h"
 #include "tests/test_data.h"

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
-#include "algorithms/core/errors.h"
-#include "datasets/log/log.h"
+#include "core/errors.h"
+#include "core/log.h"
 
 namespace locbench::testing {
 

@@ -11,7 +11,7 @@
 
 #include "datasets/io/carmen_laser.h"
 #include "datasets/io/number_format.h"
-#include "datasets/log/log.h"
+#include "core/log.h"
 
 namespace locbench::testing {
 

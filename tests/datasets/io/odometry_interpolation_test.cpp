@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 
 namespace locbench {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <chrono>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "datasets/io/carmen_reader.h"
 #include "datasets/io/carmen_writer.h"
 #include "datasets/io/log_loader.h"

@@ -7,7 +7,7 @@
 
 #include <fstream>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "tests/test_data.h"
 
 namespace locbench {

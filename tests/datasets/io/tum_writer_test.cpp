@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/units.h"
+#include "core/units.h"
 #include "datasets/io/tum_reader.h"
 #include "io_test_support.h"
 #include "log_generators.h"

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/statistics.h"
+#include "core/statistics.h"
 #include "sim_test_helpers.h"
 
 namespace locbench::sim {

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "algorithms/core/statistics.h"
+#include "core/statistics.h"
 #include "sim_test_helpers.h"
 
 namespace locbench::sim {

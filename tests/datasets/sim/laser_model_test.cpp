@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/statistics.h"
+#include "core/statistics.h"
 #include "datasets/sim/worlds.h"
 #include "sim_test_helpers.h"
 

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/sim/scenario_json.h"
 
 namespace locbench::sim {

@@ -5,7 +5,7 @@
 
 #include <fstream>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/sim/presets.h"
 #include "tests/test_data.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "algorithms/core/diff_drive_odometry.h"
+#include "core/diff_drive_odometry.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "algorithms/core/errors.h"
-#include "algorithms/core/statistics.h"
+#include "core/errors.h"
+#include "core/statistics.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/sim/scenario_json.h"
 #include "sim_test_helpers.h"
 

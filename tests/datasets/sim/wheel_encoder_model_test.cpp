@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-#include "algorithms/core/statistics.h"
+#include "core/statistics.h"
 #include "sim_test_helpers.h"
 
 namespace locbench::sim {

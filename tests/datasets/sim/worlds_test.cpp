@@ -6,7 +6,7 @@
 #include <fstream>
 #include <set>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "datasets/sim/presets.h"
 #include "tests/test_data.h"
 

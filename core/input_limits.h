@@ -1,0 +1,72 @@
+#pragma once
+// Input limits: every input size that sets memory or time is checked against one of these
+// before work starts, and a value beyond it is an InputError naming the key and the limit
+// (exit 2). The same table is printed by `locbench --help` and listed in the README, so a user
+// sees the limits before hitting them. Each limit is far above any real input the suite knows
+// (noted beside it) and low enough that the work it allows stays under ~10 s and ~1 GB.
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+#include "core/errors.h"
+
+namespace locbench::limits {
+
+struct Limit {
+  std::string_view key;    // where it applies, as a user names it
+  double max;              // inclusive
+  std::string_view why;    // what it bounds
+};
+
+// Residual histograms (`diagnose H.json`): bins and total count (the held-out split draws one
+// coin per sample). Table 3.1 has 10 bins and 809 samples.
+inline constexpr Limit kHistogramBins{"histogram bins (len(counts))", 100'000, "time of the fits"};
+inline constexpr Limit kHistogramTotalCount{"histogram total count (sum of counts)", 1e7, "time of the held-out split"};
+// Simulation (`simulate`, scenario JSON). The presets run minutes of robot time with 181 beams.
+inline constexpr Limit kSimLaserBeams{"laser.beams", 10'000, "memory per scan (Hokuyo UTM: 1,081)"};
+inline constexpr Limit kSimCoordinate{"|coordinates| of start, waypoints, world segments [m]", 1e4, "path length"};
+inline constexpr Limit kSimDistance{"motion.distance, motion.side [m]", 1e4, "path length"};
+inline constexpr Limit kSimRuns{"motion.runs", 1'000, "UMBmark runs per direction"};
+inline constexpr Limit kSimDuration{"estimated simulated time [s]", 1e4, "physics steps and records"};
+inline constexpr Limit kSimPhysicsSteps{"estimated simulated time / physics.step", 2e7, "time of the simulation"};
+inline constexpr Limit kSimRecords{"estimated records of one sensor (time x rate)", 1e7, "memory of the log"};
+inline constexpr Limit kSimLaserValues{"estimated laser ranges (scans x beams)", 2e7, "memory of the log (8 bytes each)"};
+// Scan matching (`match`, `localize`): beams of one scan (the clustering baselines are
+// quadratic in them). SICK LMS: 181 or 361.
+inline constexpr Limit kBeamsPerScan{"beams of one laser scan", 10'000, "time of the matchers"};
+// Monte-Carlo runs (`run --runs`, "runs" options).
+inline constexpr Limit kMonteCarloRuns{"--runs / runs", 100'000, "time and memory of the runs"};
+
+inline constexpr Limit kAll[] = {kHistogramBins, kHistogramTotalCount, kSimLaserBeams, kSimCoordinate,
+                                 kSimDistance,   kSimRuns,             kSimDuration,   kSimPhysicsSteps,
+                                 kSimRecords,    kSimLaserValues,      kBeamsPerScan,  kMonteCarloRuns};
+
+// "limit: 1e+04" style text for messages and --help.
+inline std::string limit_text(double max) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", max);
+  return buf;
+}
+
+// Throws InputError(file, 0, "<key>: <value> exceeds the limit <max> (<why>)") unless
+// value ≤ limit (NaN fails too). `key` names the exact key in the input.
+inline void check(double value, const Limit& limit, const std::string& file, const std::string& key) {
+  if (value <= limit.max) return;
+  char v[32];
+  std::snprintf(v, sizeof v, "%.6g", value);
+  throw InputError(file, 0,
+                   key + ": " + v + " exceeds the limit " + limit_text(limit.max) + " (" +
+                       std::string(limit.why) + "; see `locbench --help`, \"Input limits\")");
+}
+
+// The table for --help and the README.
+inline std::string limits_help() {
+  std::string s = "Input limits (checked before any work; exit 2 naming the key):\n";
+  for (const Limit& l : kAll) {
+    s += "  " + std::string(l.key) + " <= " + limit_text(l.max) + "  (" + std::string(l.why) + ")\n";
+  }
+  return s;
+}
+
+}  // namespace locbench::limits
