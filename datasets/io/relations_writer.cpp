@@ -33,10 +33,7 @@ std::string format_relations(const std::vector<Relation>& relations) {
 }
 
 void write_relations(const std::vector<Relation>& relations, const std::filesystem::path& path) {
-  const std::string text = format_relations(relations);
-  TextWriter writer(path);
-  writer.write(text);
-  writer.close();
+  write_text_file(path, format_relations(relations));
 }
 
 }  // namespace locbench

@@ -33,10 +33,7 @@ std::string format_tum(const Trajectory& trajectory) {
 }
 
 void write_tum(const Trajectory& trajectory, const std::filesystem::path& path) {
-  const std::string text = format_tum(trajectory);
-  TextWriter writer(path);
-  writer.write(text);
-  writer.close();
+  write_text_file(path, format_tum(trajectory));
 }
 
 }  // namespace locbench
