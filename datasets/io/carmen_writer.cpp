@@ -164,6 +164,18 @@ class Formatter {
     number(p.y);
     number(p.theta);
   }
+  // A record's fields after its tag: numbers, integers, text, poses (x y θ) and lists of numbers.
+  void field(double v) { number(v); }
+  void field(std::int64_t v) { integer(v); }
+  void field(std::string_view s) { text(s); }
+  void field(const Pose2& p) { pose(p); }
+  void field(const std::vector<double>& values) {
+    for (const double v : values) number(v);
+  }
+  template <typename... Fields>
+  void fields(const Fields&... f) {
+    (field(f), ...);
+  }
   // timestamp host logger_timestamp, end of line.
   void end_record(double t) {
     number(t);
@@ -186,42 +198,22 @@ class Formatter {
   std::string buf_;
 };
 
-// One record type as written: its line in CARMEN's field order.
-void write_record(const EncoderReading& r, Formatter& out) {
-  out.text("ENCODER");
-  out.integer(r.left);
-  out.integer(r.right);
-}
+// One record type as written: its tag and fields in CARMEN's order (ODOM's accel is not kept).
+void write_record(const EncoderReading& r, Formatter& out) { out.fields("ENCODER", r.left, r.right); }
 void write_record(const OdometryReading& r, Formatter& out) {
-  out.text("ODOM");
-  out.pose(r.pose);
-  out.number(r.tv);
-  out.number(r.rv);
-  out.number(0.0);  // accel is not kept
+  out.fields("ODOM", r.pose, r.tv, r.rv, 0.0);
 }
-void write_record(const CompassReading& r, Formatter& out) {
-  out.text("COMPASS");
-  out.number(r.heading);
-}
-void write_record(const TruePose& r, Formatter& out) {
-  out.text("TRUEPOS");
-  out.pose(r.pose);
-  out.pose(r.odom_pose);
-}
+void write_record(const CompassReading& r, Formatter& out) { out.fields("COMPASS", r.heading); }
+void write_record(const TruePose& r, Formatter& out) { out.fields("TRUEPOS", r.pose, r.odom_pose); }
 void write_record(const LaserReading& r, Formatter& out) {
-  out.text("FLASER");
-  out.integer(static_cast<std::int64_t>(r.scan.ranges.size()));
-  for (const double v : r.scan.ranges) out.number(v);
-  out.pose(r.pose);
-  out.pose(r.odom_pose);
+  const auto n = static_cast<std::int64_t>(r.scan.ranges.size());
+  out.fields("FLASER", n, r.scan.ranges, r.pose, r.odom_pose);
 }
 
 void format(const Log& log, const std::map<std::string, std::string>& params, Formatter& out) {
   out.line("# CARMEN log written by locbench; see datasets/FORMAT.md");
   for (const auto& [name, value] : params) {
-    out.text("PARAM");
-    out.text(name);
-    out.text(value);
+    out.fields("PARAM", name, value);
     out.end_record(0.0);
   }
   // Records merged by time; ties keep this type order and the order within each type.
