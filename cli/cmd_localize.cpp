@@ -10,7 +10,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <iostream>
 #include <sstream>
 
 #include "core/errors.h"
@@ -18,12 +17,11 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/harness/global_harness.h"
 #include "cli/commands.h"
+#include "cli/pose_report.h"
 #include "datasets/io/log_loader.h"
-#include "datasets/io/tum_writer.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
 #include "reports/json_file.h"
-#include "reports/finish_report.h"
 #include "reports/output_file.h"
 
 namespace locbench::cli {
@@ -158,14 +156,7 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
           : fmt::format("Never settled within 0.5 m and 0.35 rad of the {}; final error {:.3f} m.",
                         reference, pos.back()));
   }
-  reports::ReportTail tail("localize", command_line, a.report);
-  tail.print_summary = true;
-  reports::finish_report(report, tail);
-  if (!a.tum.empty()) {
-    write_tum(traj, a.tum);
-    std::cerr << "wrote " << a.tum << '\n';
-  }
-  return kExitOk;
+  return finish_pose_report(report, "localize", command_line, a.report, traj, a.tum);
 }
 
 }  // namespace

@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <iostream>
 
 #include "core/errors.h"
 #include "core/input_limits.h"
@@ -14,12 +13,11 @@
 #include "algorithms/pose_correction/pose_correction.h"
 #include "benchmarks/experiments/harness/laser_matchers.h"
 #include "cli/commands.h"
+#include "cli/pose_report.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/odometry_interpolation.h"
-#include "datasets/io/tum_writer.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
-#include "reports/finish_report.h"
 #include "reports/output_file.h"
 
 namespace locbench::cli {
@@ -108,14 +106,7 @@ int match(const MatchArgs& a, const std::string& command_line) {
     out.notes.push_back(fmt::format("{} scans had no pose (no FLASER pose and no odometry at their "
                                     "stamp) and were skipped.", skipped));
   }
-  reports::ReportTail tail("match", command_line, a.report);
-  tail.print_summary = true;
-  reports::finish_report(report, tail);
-  if (!a.tum.empty()) {
-    write_tum(corrected, a.tum);
-    std::cerr << "wrote " << a.tum << '\n';
-  }
-  return kExitOk;
+  return finish_pose_report(report, "match", command_line, a.report, corrected, a.tum);
 }
 
 }  // namespace

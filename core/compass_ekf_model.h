@@ -5,6 +5,7 @@
 // 3-state step stays inlinable; SI units (m, rad).
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <optional>
 
 #include "core/angle.h"
 #include "core/diff_drive_odometry.h"
@@ -72,6 +73,36 @@ struct CompassFilterStep {
   double innovation_variance = 0.0;  // S [rad²]
 
   Pose2 pose() const { return to_pose(mean); }
+
+  // The state after the step, and the innovation `c` when a compass reading updated it.
+  void record(const Vector3& x, const Matrix3& p, const CompassInnovation* c) {
+    mean = x;
+    covariance = p;
+    if (c) {
+      updated = true;
+      innovation = c->innovation;
+      innovation_variance = c->variance;
+    }
+  }
 };
+
+// One step of the plain compass EKF with process noise Q and compass variance R: the prediction
+// X̂(k/k−1) = F(X̂(k−1)), P(k/k−1) = ∇F P ∇Fᵀ + Q (eq. 4.1–4.2), then, when a heading came, the
+// compass update (eq. 4.45). Updates x and p in place.
+inline CompassFilterStep compass_ekf_step(Vector3& x, Matrix3& p, const WheelDisplacement& u,
+                                          double wheelbase, const Matrix3& q,
+                                          std::optional<double> heading, double r_variance) {
+  const MotionPrediction pred = predict_motion(x, u, wheelbase);
+  x = pred.mean;
+  p = symmetrize(pred.jacobian * p * pred.jacobian.transpose() + q);
+  std::optional<CompassInnovation> c;
+  if (heading) {
+    c = compass_innovation(x, p, *heading, r_variance);
+    apply_compass_update(x, p, *c);
+  }
+  CompassFilterStep out;
+  out.record(x, p, c ? &*c : nullptr);
+  return out;
+}
 
 }  // namespace locbench

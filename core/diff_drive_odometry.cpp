@@ -14,6 +14,15 @@ Pose2 odometry_step(const Pose2& p, const WheelDisplacement& u, double wheelbase
           p.theta + d.rotation};
 }
 
+Pose2 exact_arc_step(const Pose2& p, const WheelDisplacement& u, double wheelbase) {
+  const BodyIncrement d = body_increment(u, wheelbase);
+  const double half = 0.5 * d.rotation;
+  const double chord = std::abs(half) < 1e-4 ? d.distance * (1.0 - half * half / 6.0)
+                                             : d.distance * std::sin(half) / half;
+  const double mid = p.theta + half;
+  return {p.x + chord * std::cos(mid), p.y + chord * std::sin(mid), p.theta + d.rotation};
+}
+
 Matrix3 odometry_jacobian_pose(const Pose2& p, const WheelDisplacement& u, double wheelbase) {
   const BodyIncrement d = body_increment(u, wheelbase);
   const double mid = p.theta + 0.5 * d.rotation;

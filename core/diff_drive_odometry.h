@@ -35,6 +35,11 @@ inline BodyIncrement body_increment(const WheelDisplacement& u, double wheelbase
 // x' = x + ΔD cos(θ + Δθ/2), y' = y + ΔD sin(θ + Δθ/2), θ' = θ + Δθ.
 Pose2 odometry_step(const Pose2& p, const WheelDisplacement& u, double wheelbase);
 
+// The same motion integrated exactly along the circular arc the wheel travels describe (the
+// truth of a simulator, not limited by the midpoint approximation of eq. 1.3):
+// chord = ΔD·sin(Δθ/2)/(Δθ/2) at heading θ + Δθ/2.
+Pose2 exact_arc_step(const Pose2& p, const WheelDisplacement& u, double wheelbase);
+
 // Throws UsageError "<who>: wheelbase must be > 0" unless the wheelbase is positive and finite
 // (every filter and detector built on the odometry model checks its wheelbase this way).
 void require_positive_wheelbase(double wheelbase, const char* who);

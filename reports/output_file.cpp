@@ -30,6 +30,16 @@ void write_all(int fd, std::string_view text, const fs::path& shown) {
   }
 }
 
+// write_all, closing `fd` before the error goes on when it fails.
+void write_all_or_close(int fd, std::string_view text, const fs::path& shown) {
+  try {
+    write_all(fd, text, shown);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+}
+
 // An existing target that is not a regular file (/dev/stdout, /dev/full, a FIFO) cannot be
 // replaced by a rename: it is written in place, every write checked.
 bool is_special(const fs::path& path) {
@@ -119,12 +129,7 @@ void write_file_atomically(const fs::path& path, std::string_view text) {
   if (is_special(path)) {
     const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC);
     if (fd < 0) fail(path, "cannot open for writing", errno);
-    try {
-      write_all(fd, text, path);
-    } catch (...) {
-      ::close(fd);
-      throw;
-    }
+    write_all_or_close(fd, text, path);
     if (::close(fd) != 0) fail(path, "cannot write (on close)", errno);
     return;
   }
@@ -132,12 +137,7 @@ void write_file_atomically(const fs::path& path, std::string_view text) {
   AtomicOutput out(path);
   const int fd = ::open(out.temp_path().c_str(), O_WRONLY | O_TRUNC);
   if (fd < 0) fail(path, "cannot open the temporary file for writing", errno);
-  try {
-    write_all(fd, text, path);
-  } catch (...) {
-    ::close(fd);
-    throw;
-  }
+  write_all_or_close(fd, text, path);
   if (::fsync(fd) != 0) {
     const int err = errno;
     ::close(fd);

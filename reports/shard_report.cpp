@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 
 #include "core/errors.h"
 #include "reports/report_json.h"
@@ -28,32 +29,38 @@ T get(const json& j, const char* key, const std::string& source) {
 
 }  // namespace
 
-json encode_nonfinite(const json& j) {
-  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
-    const double v = j.get<double>();
-    return {{"nonfinite", std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf")}};
-  }
+// j with every value for which replace() returns a replacement replaced, the others (arrays and
+// objects recursively) kept.
+template <typename Replace>
+json map_values(const json& j, const Replace& replace) {
+  if (std::optional<json> r = replace(j)) return *r;
   if (j.is_array() || j.is_object()) {
     json out = j;
-    for (auto it = out.begin(); it != out.end(); ++it) *it = encode_nonfinite(*it);
+    for (auto it = out.begin(); it != out.end(); ++it) *it = map_values(*it, replace);
     return out;
   }
   return j;
 }
 
+json encode_nonfinite(const json& j) {
+  return map_values(j, [](const json& v) -> std::optional<json> {
+    if (!v.is_number_float() || std::isfinite(v.get<double>())) return std::nullopt;
+    const double x = v.get<double>();
+    return json{{"nonfinite", std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf")}};
+  });
+}
+
 json decode_nonfinite(const json& j) {
-  if (j.is_object() && j.size() == 1 && j.contains("nonfinite") && j["nonfinite"].is_string()) {
-    const std::string& s = j["nonfinite"].get_ref<const std::string&>();
+  return map_values(j, [](const json& v) -> std::optional<json> {
+    if (!(v.is_object() && v.size() == 1 && v.contains("nonfinite") && v["nonfinite"].is_string())) {
+      return std::nullopt;
+    }
+    const std::string& s = v["nonfinite"].get_ref<const std::string&>();
     if (s == "nan") return std::numeric_limits<double>::quiet_NaN();
     if (s == "inf") return std::numeric_limits<double>::infinity();
     if (s == "-inf") return -std::numeric_limits<double>::infinity();
-  }
-  if (j.is_array() || j.is_object()) {
-    json out = j;
-    for (auto it = out.begin(); it != out.end(); ++it) *it = decode_nonfinite(*it);
-    return out;
-  }
-  return j;
+    return std::nullopt;
+  });
 }
 
 json canonical_record(const json& record) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/diff_drive_odometry.h"
 #include "core/pose2.h"
 #include "core/units.h"
 
@@ -22,16 +23,9 @@ UmbmarkErrorParams error_params(const WheelGeometry& nominal, const WheelGeometr
 
 namespace {
 
-// Exact motion along the circular arc that wheel travels (left, right) describe over
-// `wheelbase`: chord = ΔD·sin(Δθ/2)/(Δθ/2) at heading θ + Δθ/2.
+// Exact motion along the circular arc that wheel travels (left, right) describe.
 Pose2 arc(const Pose2& p, double left, double right, double wheelbase) {
-  const double d = 0.5 * (left + right);
-  const double dtheta = (right - left) / wheelbase;
-  const double half = 0.5 * dtheta;
-  const double chord =
-      std::abs(half) < 1e-4 ? d * (1.0 - half * half / 6.0) : d * std::sin(half) / half;
-  const double mid = p.theta + half;
-  return {p.x + chord * std::cos(mid), p.y + chord * std::sin(mid), p.theta + dtheta};
+  return exact_arc_step(p, {left, right}, wheelbase);
 }
 
 struct Ticks {

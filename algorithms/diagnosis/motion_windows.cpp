@@ -35,29 +35,38 @@ std::string MotionData::describe() const {
   return "";
 }
 
-std::optional<Pose2> interpolate_truth(const std::vector<TruePose>& truth, double t) {
-  if (truth.empty() || t < truth.front().t || t > truth.back().t) return std::nullopt;
-  auto it = std::lower_bound(truth.begin(), truth.end(), t,
-                             [](const TruePose& p, double v) { return p.t < v; });
-  if (it == truth.begin()) return it->pose;
-  const TruePose& b = *it;
-  const TruePose& a = *(it - 1);
+namespace {
+
+// The value of time-sorted `records` at time t: value(record) at a record's own time, else
+// blend(value(a), value(b), s) between the two records around t, s the fraction of the way from
+// a to b; nullopt outside the records' span.
+template <typename Record, typename Value, typename Blend>
+auto interpolate_records(const std::vector<Record>& records, double t, Value value, Blend blend)
+    -> std::optional<decltype(value(records.front()))> {
+  if (records.empty() || t < records.front().t || t > records.back().t) return std::nullopt;
+  auto it = std::lower_bound(records.begin(), records.end(), t,
+                             [](const Record& p, double v) { return p.t < v; });
+  if (it == records.begin()) return value(*it);
+  const Record& b = *it;
+  const Record& a = *(it - 1);
   const double dt = b.t - a.t;
-  const double s = dt > 0.0 ? (t - a.t) / dt : 0.0;
-  return Pose2(a.pose.x + s * (b.pose.x - a.pose.x), a.pose.y + s * (b.pose.y - a.pose.y),
-               a.pose.theta + s * angle_diff(b.pose.theta, a.pose.theta));
+  return blend(value(a), value(b), dt > 0.0 ? (t - a.t) / dt : 0.0);
+}
+
+}  // namespace
+
+std::optional<Pose2> interpolate_truth(const std::vector<TruePose>& truth, double t) {
+  return interpolate_records(
+      truth, t, [](const TruePose& p) { return p.pose; },
+      [](const Pose2& a, const Pose2& b, double s) {
+        return Pose2(a.x + s * (b.x - a.x), a.y + s * (b.y - a.y), a.theta + s * angle_diff(b.theta, a.theta));
+      });
 }
 
 std::optional<double> interpolate_compass(const std::vector<CompassReading>& compass, double t) {
-  if (compass.empty() || t < compass.front().t || t > compass.back().t) return std::nullopt;
-  auto it = std::lower_bound(compass.begin(), compass.end(), t,
-                             [](const CompassReading& p, double v) { return p.t < v; });
-  if (it == compass.begin()) return it->heading;
-  const auto& b = *it;
-  const auto& a = *(it - 1);
-  const double dt = b.t - a.t;
-  const double s = dt > 0.0 ? (t - a.t) / dt : 0.0;
-  return wrap_angle(a.heading + s * angle_diff(b.heading, a.heading));
+  return interpolate_records(
+      compass, t, [](const CompassReading& c) { return c.heading; },
+      [](double a, double b, double s) { return wrap_angle(a + s * angle_diff(b, a)); });
 }
 
 namespace {

@@ -69,21 +69,7 @@ Matrix3 CompassEkf::process_noise(const WheelDisplacement& u) const {
 CompassFilterStep CompassEkf::step(const WheelDisplacement& u,
                                    std::optional<double> compass_heading) {
   const Matrix3 q = process_noise(u);  // Q(k−1) at X̂(k−1) (eq. 4.43)
-  const MotionPrediction pred = predict_motion(x_, u, wheelbase_);
-  x_ = pred.mean;
-  p_ = symmetrize(pred.jacobian * p_ * pred.jacobian.transpose() + q);
-  CompassFilterStep out;
-  if (compass_heading) {
-    const CompassInnovation c =
-        compass_innovation(x_, p_, *compass_heading, options_.compass_variance);
-    apply_compass_update(x_, p_, c);
-    out.updated = true;
-    out.innovation = c.innovation;
-    out.innovation_variance = c.variance;
-  }
-  out.mean = x_;
-  out.covariance = p_;
-  return out;
+  return compass_ekf_step(x_, p_, u, wheelbase_, q, compass_heading, options_.compass_variance);
 }
 
 }  // namespace locbench

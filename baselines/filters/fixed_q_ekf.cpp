@@ -48,20 +48,7 @@ FixedQEkf::FixedQEkf(const FixedQEkfOptions& options, double wheelbase, const Po
 
 CompassFilterStep FixedQEkf::step(const WheelDisplacement& u,
                                   std::optional<double> compass_heading) {
-  const MotionPrediction pred = predict_motion(x_, u, wheelbase_);
-  x_ = pred.mean;
-  p_ = symmetrize(pred.jacobian * p_ * pred.jacobian.transpose() + q_);
-  CompassFilterStep out;
-  if (compass_heading) {
-    const CompassInnovation c = compass_innovation(x_, p_, *compass_heading, r_);
-    apply_compass_update(x_, p_, c);
-    out.updated = true;
-    out.innovation = c.innovation;
-    out.innovation_variance = c.variance;
-  }
-  out.mean = x_;
-  out.covariance = p_;
-  return out;
+  return compass_ekf_step(x_, p_, u, wheelbase_, q_, compass_heading, r_);
 }
 
 }  // namespace locbench

@@ -77,6 +77,7 @@ SageHusaStep SageHusaAekf::step(const WheelDisplacement& u, std::optional<double
   if (!compass_heading) {
     x_ = x_pred;
     p_ = p_pred;
+    out.filter.record(x_, p_, nullptr);
   } else {
     const CompassInnovation c =
         compass_innovation(x_pred, p_pred, *compass_heading, r_var_, r_mean_);
@@ -106,12 +107,8 @@ SageHusaStep SageHusaAekf::step(const WheelDisplacement& u, std::optional<double
         out.measurement_fix_applied = true;
       }
     }
-    out.filter.updated = true;
-    out.filter.innovation = c.innovation;
-    out.filter.innovation_variance = c.variance;
+    out.filter.record(x_, p_, &c);
   }
-  out.filter.mean = x_;
-  out.filter.covariance = p_;
   out.process_mean = q_mean_;
   out.process_cov = q_cov_;
   out.measurement_mean = r_mean_;

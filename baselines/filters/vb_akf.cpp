@@ -83,12 +83,10 @@ VbAkfStep VbAkf::step(const WheelDisplacement& u, std::optional<double> compass_
       const double residual = angle_diff(*compass_heading, x_(2));  // Z − H X̂
       beta_ = beta_pred + 0.5 * residual * residual + 0.5 * p_(2, 2);
     }
-    out.filter.updated = true;
-    out.filter.innovation = c.innovation;
-    out.filter.innovation_variance = c.variance;
+    out.filter.record(x_, p_, &c);
+  } else {
+    out.filter.record(x_, p_, nullptr);
   }
-  out.filter.mean = x_;
-  out.filter.covariance = p_;
   out.shape = alpha_;
   out.scale = beta_;
   out.measurement_variance = beta_ / alpha_;

@@ -66,8 +66,7 @@ Pose2 GridMarkov::cell_pose(std::size_t i) const {
 bool GridMarkov::update(const Pose2& odometry, const Scan& scan) {
   if (last_odometry_) {
     const OdometryDelta d = odometry_delta(*last_odometry_, odometry);
-    if (std::abs(d.trans) < options_.update_min_distance &&
-        std::abs(angle_diff(odometry.theta, last_odometry_->theta)) < options_.update_min_angle) {
+    if (moved_less_than(d, *last_odometry_, odometry, options_.update_min_distance, options_.update_min_angle)) {
       return false;
     }
     action_update(d);

@@ -92,8 +92,7 @@ void MonteCarloLocalization::init_pose(const Pose2& pose, double sigma_xy, doubl
 bool MonteCarloLocalization::update(const Pose2& odometry, const Scan& scan) {
   if (last_odometry_) {
     const OdometryDelta d = odometry_delta(*last_odometry_, odometry);
-    if (std::abs(d.trans) < options_.update_min_distance &&
-        std::abs(angle_diff(odometry.theta, last_odometry_->theta)) < options_.update_min_angle) {
+    if (moved_less_than(d, *last_odometry_, odometry, options_.update_min_distance, options_.update_min_angle)) {
       return false;
     }
     for (Particle& p : particles_) p.pose = sample_motion(p.pose, d, options_.motion, rng_);

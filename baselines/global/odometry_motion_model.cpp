@@ -34,6 +34,11 @@ OdometryDelta odometry_delta(const Pose2& from, const Pose2& to) {
   return d;
 }
 
+bool moved_less_than(const OdometryDelta& d, const Pose2& from, const Pose2& to, double min_distance,
+                     double min_angle) {
+  return std::abs(d.trans) < min_distance && std::abs(angle_diff(to.theta, from.theta)) < min_angle;
+}
+
 Pose2 apply_delta(const Pose2& p, const OdometryDelta& d) {
   const double h = p.theta + d.rot1;
   return {p.x + d.trans * std::cos(h), p.y + d.trans * std::sin(h), h + d.rot2};

@@ -33,6 +33,10 @@ struct OdometryDelta {
 // δ from odometry pose `from` to `to` (both in the odometry frame). A backwards move is a
 // negative translation (no ±π first rotation).
 OdometryDelta odometry_delta(const Pose2& from, const Pose2& to);
+// Whether the odometry moved from `from` to `to` (δ = odometry_delta(from, to)) by less than
+// `min_distance` [m] and turned by less than `min_angle` [rad]: the filters skip such updates.
+bool moved_less_than(const OdometryDelta& d, const Pose2& from, const Pose2& to, double min_distance,
+                     double min_angle);
 // The pose reached from p by δ.
 Pose2 apply_delta(const Pose2& p, const OdometryDelta& d);
 // Standard deviations of (rot1, trans, rot2) for δ.

@@ -24,7 +24,7 @@
 // σ̂² alone the spread over 40 noisy room scans was up to 4.7× the reported variance; Censi 2007
 // shows the Hessian is optimistic). Degenerate directions get an infinite variance along them.
 //
-// Only algorithms/core is used (Scan, Pose2), so this baseline shares no code with the thesis's
+// Only core/ is used (Scan, Pose2), so this baseline shares no code with the thesis's
 // matcher.
 #include <Eigen/Core>
 #include <cstddef>

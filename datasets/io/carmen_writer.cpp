@@ -26,8 +26,15 @@ bool has_space(const std::string& s) {
   });
 }
 
-template <typename Records, typename Time>
-void check_order(const Records& records, const char* type, Time time_of) {
+// A record's time.
+double time_of(const EncoderReading& r) { return r.t; }
+double time_of(const OdometryReading& r) { return r.t; }
+double time_of(const CompassReading& r) { return r.t; }
+double time_of(const TruePose& r) { return r.t; }
+double time_of(const LaserReading& r) { return r.scan.timestamp; }
+
+template <typename Records>
+void check_order(const Records& records, const char* type) {
   for (std::size_t i = 1; i < records.size(); ++i) {
     if (time_of(records[i]) < time_of(records[i - 1])) {
       reject(std::string(type) + " " + std::to_string(i) + " goes back in time");
@@ -43,11 +50,11 @@ void check_finite(std::initializer_list<double> values, const char* type, std::s
 }
 
 void check_log(const Log& log) {
-  check_order(log.encoders, "ENCODER", [](const auto& r) { return r.t; });
-  check_order(log.odometry, "ODOM", [](const auto& r) { return r.t; });
-  check_order(log.compass, "COMPASS", [](const auto& r) { return r.t; });
-  check_order(log.truth, "TRUEPOS", [](const auto& r) { return r.t; });
-  check_order(log.laser, "FLASER", [](const auto& r) { return r.scan.timestamp; });
+  check_order(log.encoders, "ENCODER");
+  check_order(log.odometry, "ODOM");
+  check_order(log.compass, "COMPASS");
+  check_order(log.truth, "TRUEPOS");
+  check_order(log.laser, "FLASER");
   for (std::size_t i = 0; i < log.encoders.size(); ++i)
     check_finite({log.encoders[i].t}, "ENCODER", i);
   for (std::size_t i = 0; i < log.odometry.size(); ++i) {
@@ -157,6 +164,18 @@ class Formatter {
     number(p.y);
     number(p.theta);
   }
+  // A record's fields after its tag: numbers, integers, text, poses (x y θ) and lists of numbers.
+  void field(double v) { number(v); }
+  void field(std::int64_t v) { integer(v); }
+  void field(std::string_view s) { text(s); }
+  void field(const Pose2& p) { pose(p); }
+  void field(const std::vector<double>& values) {
+    for (const double v : values) number(v);
+  }
+  template <typename... Fields>
+  void fields(const Fields&... f) {
+    (field(f), ...);
+  }
   // timestamp host logger_timestamp, end of line.
   void end_record(double t) {
     number(t);
@@ -179,83 +198,48 @@ class Formatter {
   std::string buf_;
 };
 
+// One record type as written: its tag and fields in CARMEN's order (ODOM's accel is not kept).
+void write_record(const EncoderReading& r, Formatter& out) { out.fields("ENCODER", r.left, r.right); }
+void write_record(const OdometryReading& r, Formatter& out) {
+  out.fields("ODOM", r.pose, r.tv, r.rv, 0.0);
+}
+void write_record(const CompassReading& r, Formatter& out) { out.fields("COMPASS", r.heading); }
+void write_record(const TruePose& r, Formatter& out) { out.fields("TRUEPOS", r.pose, r.odom_pose); }
+void write_record(const LaserReading& r, Formatter& out) {
+  const auto n = static_cast<std::int64_t>(r.scan.ranges.size());
+  out.fields("FLASER", n, r.scan.ranges, r.pose, r.odom_pose);
+}
+
 void format(const Log& log, const std::map<std::string, std::string>& params, Formatter& out) {
   out.line("# CARMEN log written by locbench; see datasets/FORMAT.md");
   for (const auto& [name, value] : params) {
-    out.text("PARAM");
-    out.text(name);
-    out.text(value);
+    out.fields("PARAM", name, value);
     out.end_record(0.0);
   }
   // Records merged by time; ties keep this type order and the order within each type.
-  enum Type : unsigned char { kEncoder, kOdom, kCompass, kTruth, kLaser };
   struct Entry {
     double t;
-    Type type;
-    std::size_t index;
+    std::function<void()> write;
   };
   std::vector<Entry> entries;
   entries.reserve(log.encoders.size() + log.odometry.size() + log.compass.size() +
                   log.truth.size() + log.laser.size());
-  for (std::size_t i = 0; i < log.encoders.size(); ++i)
-    entries.push_back({log.encoders[i].t, kEncoder, i});
-  for (std::size_t i = 0; i < log.odometry.size(); ++i)
-    entries.push_back({log.odometry[i].t, kOdom, i});
-  for (std::size_t i = 0; i < log.compass.size(); ++i)
-    entries.push_back({log.compass[i].t, kCompass, i});
-  for (std::size_t i = 0; i < log.truth.size(); ++i) entries.push_back({log.truth[i].t, kTruth, i});
-  for (std::size_t i = 0; i < log.laser.size(); ++i) {
-    entries.push_back({log.laser[i].scan.timestamp, kLaser, i});
-  }
+  const auto add = [&](const auto& records) {
+    for (const auto& r : records) {
+      entries.push_back({time_of(r), [&r, &out] {
+                           write_record(r, out);
+                           out.end_record(time_of(r));
+                         }});
+    }
+  };
+  add(log.encoders);
+  add(log.odometry);
+  add(log.compass);
+  add(log.truth);
+  add(log.laser);
   std::stable_sort(entries.begin(), entries.end(),
                    [](const Entry& a, const Entry& b) { return a.t < b.t; });
-  for (const Entry& e : entries) {
-    switch (e.type) {
-      case kEncoder: {
-        const auto& r = log.encoders[e.index];
-        out.text("ENCODER");
-        out.integer(r.left);
-        out.integer(r.right);
-        out.end_record(r.t);
-        break;
-      }
-      case kOdom: {
-        const auto& r = log.odometry[e.index];
-        out.text("ODOM");
-        out.pose(r.pose);
-        out.number(r.tv);
-        out.number(r.rv);
-        out.number(0.0);  // accel is not kept
-        out.end_record(r.t);
-        break;
-      }
-      case kCompass: {
-        const auto& r = log.compass[e.index];
-        out.text("COMPASS");
-        out.number(r.heading);
-        out.end_record(r.t);
-        break;
-      }
-      case kTruth: {
-        const auto& r = log.truth[e.index];
-        out.text("TRUEPOS");
-        out.pose(r.pose);
-        out.pose(r.odom_pose);
-        out.end_record(r.t);
-        break;
-      }
-      case kLaser: {
-        const auto& r = log.laser[e.index];
-        out.text("FLASER");
-        out.integer(static_cast<std::int64_t>(r.scan.ranges.size()));
-        for (const double v : r.scan.ranges) out.number(v);
-        out.pose(r.pose);
-        out.pose(r.odom_pose);
-        out.end_record(r.scan.timestamp);
-        break;
-      }
-    }
-  }
+  for (const Entry& e : entries) e.write();
   out.flush();
 }
 

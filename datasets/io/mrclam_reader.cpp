@@ -7,7 +7,7 @@
 
 #include "core/dead_reckoning.h"
 #include "core/errors.h"
-#include "datasets/io/line_reader.h"
+#include "datasets/io/data_lines.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/io/tokenizer.h"
 
@@ -37,15 +37,10 @@ template <typename OnRow>
 void for_each_row(const std::filesystem::path& path, std::size_t field_count, bool timed,
                   OnRow on_row) {
   LineReader reader(path);
-  std::vector<std::string_view> tokens;
-  std::string_view line;
   double last_t = 0.0;
   std::size_t last_line = 0;
-  while (reader.next(line)) {
-    split_fields(line, tokens);
-    if (tokens.empty() || tokens[0][0] == '#') continue;
-    const FieldContext ctx{reader.source(), reader.line_number(), {}};
-    expect_field_count(tokens, field_count, ctx);
+  for_each_data_line(reader, field_count, [&](const std::vector<std::string_view>& tokens,
+                                              const FieldContext& ctx) {
     if (timed) {
       const double t = parse_finite(tokens[0], "time", ctx);
       if (last_line != 0 && t < last_t) {
@@ -56,7 +51,7 @@ void for_each_row(const std::filesystem::path& path, std::size_t field_count, bo
       last_line = ctx.line;
     }
     on_row(tokens, ctx);
-  }
+  });
 }
 
 int parse_id(std::string_view token, std::string_view field, const FieldContext& ctx) {

@@ -16,4 +16,14 @@ void append_number(std::string& out, std::int64_t v) {
   out.append(buf, res.ptr);
 }
 
+void append_row(std::string& out, std::initializer_list<double> values) {
+  const char* separator = "";
+  for (const double v : values) {
+    out += separator;
+    append_number(out, v);
+    separator = " ";
+  }
+  out.push_back('\n');
+}
+
 }  // namespace locbench

@@ -18,25 +18,13 @@ std::string format_relations(const std::vector<Relation>& relations) {
                                     " has a non-finite value");
       }
     }
-    append_number(out, r.t1);
-    out.push_back(' ');
-    append_number(out, r.t2);
-    out.push_back(' ');
-    append_number(out, r.delta.x);
-    out.push_back(' ');
-    append_number(out, r.delta.y);
-    out += " 0 0 0 ";
-    append_number(out, r.delta.theta);
-    out.push_back('\n');
+    append_row(out, {r.t1, r.t2, r.delta.x, r.delta.y, 0.0, 0.0, 0.0, r.delta.theta});
   }
   return out;
 }
 
 void write_relations(const std::vector<Relation>& relations, const std::filesystem::path& path) {
-  const std::string text = format_relations(relations);
-  TextWriter writer(path);
-  writer.write(text);
-  writer.close();
+  write_text_file(path, format_relations(relations));
 }
 
 }  // namespace locbench

@@ -3,7 +3,7 @@
 #include <array>
 
 #include "core/errors.h"
-#include "datasets/io/line_reader.h"
+#include "datasets/io/data_lines.h"
 #include "datasets/io/tokenizer.h"
 
 namespace locbench {
@@ -14,17 +14,8 @@ template <std::size_t N>
 std::vector<std::array<double, N>> read_rows(LineReader& reader,
                                              const std::array<const char*, N>& names) {
   std::vector<std::array<double, N>> rows;
-  std::vector<std::string_view> tokens;
-  std::string_view line;
-  while (reader.next(line)) {
-    split_fields(line, tokens);
-    if (tokens.empty() || tokens[0][0] == '#') continue;
-    const FieldContext ctx{reader.source(), reader.line_number(), {}};
-    expect_field_count(tokens, N, ctx);
-    std::array<double, N> v{};
-    for (std::size_t i = 0; i < N; ++i) v[i] = parse_finite(tokens[i], names[i], ctx);
-    rows.push_back(v);
-  }
+  for_each_numeric_row(reader, names,
+                       [&](const std::array<double, N>& v, const FieldContext&) { rows.push_back(v); });
   return rows;
 }
 

@@ -63,4 +63,10 @@ void TextWriter::close() {
   output_->commit();
 }
 
+void write_text_file(const std::filesystem::path& path, std::string_view text) {
+  TextWriter writer(path);
+  writer.write(text);
+  writer.close();
+}
+
 }  // namespace locbench

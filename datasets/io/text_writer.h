@@ -32,6 +32,9 @@ class TextWriter {
   gzFile_s* file_ = nullptr;
 };
 
+// Writes `text` to `path` through a TextWriter (atomic; gzip for ".gz").
+void write_text_file(const std::filesystem::path& path, std::string_view text);
+
 // True if the file name ends in ".gz" (case-insensitive).
 bool has_gz_suffix(const std::filesystem::path& path);
 

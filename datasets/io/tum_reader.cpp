@@ -3,9 +3,8 @@
 #include <array>
 #include <cmath>
 
-#include "datasets/io/line_reader.h"
+#include "datasets/io/data_lines.h"
 #include "datasets/io/number_format.h"
-#include "datasets/io/tokenizer.h"
 
 namespace locbench {
 namespace {
@@ -16,15 +15,7 @@ Trajectory read_lines(LineReader& reader) {
   static constexpr std::array<const char*, 8> kNames = {"timestamp", "x",  "y",  "z",
                                                         "qx",        "qy", "qz", "qw"};
   std::vector<StampedPose> poses;
-  std::vector<std::string_view> tokens;
-  std::string_view line;
-  while (reader.next(line)) {
-    split_fields(line, tokens);
-    if (tokens.empty() || tokens[0][0] == '#') continue;
-    const FieldContext ctx{reader.source(), reader.line_number(), {}};
-    expect_field_count(tokens, kNames.size(), ctx);
-    std::array<double, 8> v{};
-    for (std::size_t i = 0; i < v.size(); ++i) v[i] = parse_finite(tokens[i], kNames[i], ctx);
+  for_each_numeric_row(reader, kNames, [&](const std::array<double, 8>& v, const FieldContext& ctx) {
     const double qx = v[4], qy = v[5], qz = v[6], qw = v[7];
     const double norm = std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw);
     if (!(std::abs(norm - 1.0) <= kNormTolerance)) {
@@ -37,7 +28,7 @@ Trajectory read_lines(LineReader& reader) {
     }
     const double yaw = std::atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz));
     poses.push_back({v[0], Pose2(v[1], v[2], yaw)});
-  }
+  });
   return Trajectory(std::move(poses));
 }
 

@@ -18,25 +18,15 @@ std::string format_tum(const Trajectory& trajectory) {
       throw std::invalid_argument("write_tum: pose " + std::to_string(i) +
                                   " has a non-finite value");
     }
-    append_number(out, p.t);
-    out.push_back(' ');
-    append_number(out, p.pose.x);
-    out.push_back(' ');
-    append_number(out, p.pose.y);
-    out += " 0 0 0 ";
-    append_number(out, std::sin(0.5 * p.pose.theta));
-    out.push_back(' ');
-    append_number(out, std::cos(0.5 * p.pose.theta));
-    out.push_back('\n');
+    // Planar pose: z = 0 and the quaternion of a rotation about z, (0, 0, sin θ/2, cos θ/2).
+    append_row(out, {p.t, p.pose.x, p.pose.y, 0.0, 0.0, 0.0, std::sin(0.5 * p.pose.theta),
+                     std::cos(0.5 * p.pose.theta)});
   }
   return out;
 }
 
 void write_tum(const Trajectory& trajectory, const std::filesystem::path& path) {
-  const std::string text = format_tum(trajectory);
-  TextWriter writer(path);
-  writer.write(text);
-  writer.close();
+  write_text_file(path, format_tum(trajectory));
 }
 
 }  // namespace locbench

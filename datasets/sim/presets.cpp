@@ -51,6 +51,22 @@ Scenario pioneer_with_laser() {
   return s;
 }
 
+// The Trilobot with its compass, as the thesis ran it: floor noise k_l = k_r = 0.005 √m (§4.5),
+// heavy slip in on-the-spot turns (§2.4), encoders and a 2° compass polled over a serial line
+// every 0.25 s (the instants jitter by ~30 ms).
+Scenario trilobot_with_compass(const WheelGeometry& nominal) {
+  Scenario s;
+  s.robot = trilobot(nominal);
+  s.floor = {0.005, 0.005};
+  s.slip.turn = {0.5, 0.1, 0.4};
+  s.encoders.timing = at(4.0, 0.03);
+  s.compass.timing = at(4.0, 0.03);
+  s.compass.resolution = deg(2.0);
+  s.compass.noise = deg(0.5);
+  s.truth.rate = 4.0;
+  return s;
+}
+
 Scenario ideal() {
   Scenario s;
   s.name = "ideal";
@@ -61,7 +77,7 @@ Scenario ideal() {
 }
 
 Scenario corridor() {
-  Scenario s;
+  Scenario s = trilobot_with_compass({mm(88.50), mm(88.93), mm(197.93)});  // the ch. 2 calibration
   s.name = "corridor";
   s.description =
       "Trilobot, 10 m straight at 0.25 m/s in a 1.8 m corridor, 4 Hz encoders + 2° compass (ch. "
@@ -70,41 +86,25 @@ Scenario corridor() {
   s.world.corridor_length = 12.0;
   s.world.corridor_width = 1.8;
   s.start = Pose2(1.0, 0.0, 0.0);
-  s.robot = trilobot({mm(88.50), mm(88.93), mm(197.93)});  // the ch. 2 calibration
   s.drive.speed = 0.25;
   s.motion.kind = MotionKind::kStraight;
   s.motion.distance = 10.0;
-  s.floor = {0.005, 0.005};  // k_l = k_r = 0.005 √m (§4.5)
   s.slip.straight = {0.03, 0.05, 0.25};
-  s.slip.turn = {0.5, 0.1, 0.4};
-  // Polled over a serial line every 0.25 s: the instants jitter by ~30 ms.
-  s.encoders.timing = at(4.0, 0.03);
-  s.compass.timing = at(4.0, 0.03);
-  s.compass.resolution = deg(2.0);
-  s.compass.noise = deg(0.5);
-  s.truth.rate = 4.0;
   return s;
 }
 
 Scenario umbmark_trilobot() {
-  Scenario s;
+  // Uncalibrated: equal nominal wheels.
+  Scenario s = trilobot_with_compass({mm(88.5), mm(88.5), mm(198.0)});
   s.name = "umbmark_trilobot";
   s.description =
       "Trilobot UMBmark: 1.6 m square at 120 mm/s, 5 CW + 5 CCW, uncalibrated, turn slip (ch. 2)";
-  s.robot = trilobot({mm(88.5), mm(88.5), mm(198.0)});  // uncalibrated: equal nominal wheels
   s.drive.speed = 0.12;
   s.drive.turn_rate = deg(30.0);
   s.motion.kind = MotionKind::kUmbmark;
   s.motion.side = 1.6;
   s.motion.runs = 5;
-  s.floor = {0.005, 0.005};
   s.slip.straight = {0.02, 0.05, 0.15};  // on A0 paper: little slip on straight legs
-  s.slip.turn = {0.5, 0.1, 0.4};         // heavy slip in on-the-spot turns (§2.4)
-  s.encoders.timing = at(4.0, 0.03);
-  s.compass.timing = at(4.0, 0.03);
-  s.compass.resolution = deg(2.0);
-  s.compass.noise = deg(0.5);
-  s.truth.rate = 4.0;
   return s;
 }
 

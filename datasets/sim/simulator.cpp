@@ -24,18 +24,6 @@ Rng stream(std::uint64_t seed, NoiseStream s) {
 
 SensorTiming every(double rate) { return SensorTiming{true, rate, 0.0, 0.0}; }
 
-// Exact motion along a circular arc for ground travels (left, right) (the truth is not limited
-// by the midpoint approximation of eq. 1.3): chord = ΔD·sin(Δθ/2)/(Δθ/2) at heading θ + Δθ/2.
-Pose2 arc_step(const Pose2& p, double left, double right, double wheelbase) {
-  const double d = 0.5 * (left + right);
-  const double dtheta = (right - left) / wheelbase;
-  const double half = 0.5 * dtheta;
-  const double chord =
-      std::abs(half) < 1e-4 ? d * (1.0 - half * half / 6.0) : d * std::sin(half) / half;
-  const double mid = p.theta + half;
-  return {p.x + chord * std::cos(mid), p.y + chord * std::sin(mid), p.theta + dtheta};
-}
-
 std::string number(double v) { return fmt::format("{}", v); }
 
 // PARAM values are single words in CARMEN logs: whitespace becomes '_', empty becomes '-'.
@@ -291,7 +279,7 @@ class Simulation {
   void advance(double q_left, double q_right) {
     const double gl = move_wheel(left_, q_left, Side::kLeft);
     const double gr = move_wheel(right_, q_right, Side::kRight);
-    truth_ = arc_step(truth_, gl, gr, robot_.actual.wheelbase);
+    truth_ = exact_arc_step(truth_, {gl, gr}, robot_.actual.wheelbase);
     add_motion_noise();
 
     // The robot's firmware integrates every count change with the nominal model (eq. 1.1–1.3).

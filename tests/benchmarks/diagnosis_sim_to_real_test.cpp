@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "benchmarks/experiments/framework/experiment.h"
+#include "tests/benchmarks/experiment_test_support.h"
 
 namespace locbench::experiments {
 namespace {
@@ -22,9 +23,7 @@ TEST(DiagnosisSimToReal, SaysPlainlyWhenNoRealLogIsThere) {
   const Experiment* e = find_experiment("diagnosis/sim_to_real");
   ASSERT_NE(e, nullptr);
   EXPECT_TRUE(e->in_default_suite());
-  RunOptions o;
-  o.data_root = "/nonexistent";
-  const auto r = e->run(e->default_config(), o);
+  const auto r = test_support::run_without_data(*e);
   EXPECT_TRUE(r.results.empty());
   EXPECT_EQ(r.cases.size(), 8u);
   for (const auto& c : r.cases) EXPECT_EQ(c.status, "skipped") << c.name;

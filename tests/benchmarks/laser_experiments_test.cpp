@@ -9,6 +9,7 @@
 #include "datasets/log/data_root.h"
 #include "reports/report_json.h"
 #include "tests/test_data.h"
+#include "tests/benchmarks/experiment_test_support.h"
 
 namespace locbench::experiments {
 namespace {
@@ -126,11 +127,7 @@ TEST(LaserExperiments, RwhtPeakErrorGrowsWithTheBinsButTheRefitDoesNot) {
 TEST(LaserExperiments, LaserResultsDoNotDependOnTheThreadCount) {
   const Experiment* e = find_experiment("laser/matcher_accuracy");
   ASSERT_NE(e, nullptr);
-  RunOptions one, two;
-  one.runs = two.runs = 2;
-  two.threads = 2;
-  EXPECT_EQ(reports::results_to_json(e->run(e->default_config(), one)),
-            reports::results_to_json(e->run(e->default_config(), two)));
+  EXPECT_EQ(test_support::results_on_threads(*e, 1), test_support::results_on_threads(*e, 2));
 }
 
 TEST(LaserExperiments, RealLogsImproveOdometryHeadingOnIntel) {
@@ -156,9 +153,7 @@ TEST(LaserExperiments, RealLogsImproveOdometryHeadingOnIntel) {
 TEST(LaserExperiments, RealLogsSkipWithAReasonWhenTheDataAreAbsent) {
   const Experiment* e = find_experiment("laser/real_logs");
   ASSERT_NE(e, nullptr);
-  RunOptions o;
-  o.data_root = "/nonexistent";
-  const auto r = e->run(e->default_config(), o);
+  const auto r = test_support::run_without_data(*e);
   ASSERT_EQ(r.cases.size(), 3u);
   EXPECT_EQ(r.cases[0].status, "skipped");
   EXPECT_NE(r.cases[0].reason.find("LOCBENCH_DATA"), std::string::npos);

@@ -1,16 +1,12 @@
 #include <gtest/gtest.h>
 
 #include "benchmarks/experiments/framework/experiment.h"
+#include "tests/benchmarks/experiment_test_support.h"
 
 namespace locbench::experiments {
 namespace {
 
-const reports::MetricResult& find(const reports::ExperimentResults& r, const std::string& name) {
-  for (const auto& m : r.results) {
-    if (m.name() == name) return m;
-  }
-  throw std::runtime_error("no result " + name);
-}
+using test_support::find_result;
 
 reports::ExperimentResults run_corridor(const nlohmann::json& overrides, int runs,
                                         std::uint64_t seed) {
@@ -24,7 +20,7 @@ reports::ExperimentResults run_corridor(const nlohmann::json& overrides, int run
 TEST(OdometrySimCorridor, ReportsEveryRunWithItsSeed) {
   const auto r = run_corridor(nlohmann::json::object(), 3, 1);
   EXPECT_EQ(r.seeds.size(), 3u);
-  const auto& m = find(r, "odometry_nominal/sim_corridor/final_position_error");
+  const auto& m = find_result(r, "odometry_nominal/sim_corridor/final_position_error");
   EXPECT_EQ(m.summary.n, 3u);
   EXPECT_EQ(m.values.size(), 3u);
   EXPECT_LE(m.summary.ci95_low, m.summary.mean);
@@ -45,8 +41,8 @@ TEST(OdometrySimCorridor, NoiseFreeRobotWithExactModelHasNoDeadReckoningError) {
                                {"wheelbase", 0.19793}}}}}}}};
   const auto r = run_corridor(quiet, 2, 4);
   // One tick is 12.6 mm; the end pose is off by less than a tick and a hair of heading.
-  EXPECT_LT(find(r, "odometry_nominal/sim_corridor/final_position_error").summary.max, 0.0127);
-  EXPECT_LT(find(r, "odometry_nominal/sim_corridor/final_heading_error").summary.max, 0.0127 / 0.19793);
+  EXPECT_LT(find_result(r, "odometry_nominal/sim_corridor/final_position_error").summary.max, 0.0127);
+  EXPECT_LT(find_result(r, "odometry_nominal/sim_corridor/final_heading_error").summary.max, 0.0127 / 0.19793);
 }
 
 TEST(OdometrySimCorridor, AWrongNominalWheelDiameterShowsAsSystematicError) {
@@ -57,8 +53,8 @@ TEST(OdometrySimCorridor, AWrongNominalWheelDiameterShowsAsSystematicError) {
         {"slip", {{"straight", {{"rate", 0.0}}}, {"turn", {{"rate", 0.0}}}}},
         {"robot", {{"nominal", {{"diameter_right", 0.0885 * 0.98}}}}}}}};
   const auto r = run_corridor(wrong, 2, 4);
-  const double nominal = find(r, "odometry_nominal/sim_corridor/final_position_error").summary.mean;
-  const double truth = find(r, "odometry_true_geometry/sim_corridor/final_position_error").summary.mean;
+  const double nominal = find_result(r, "odometry_nominal/sim_corridor/final_position_error").summary.mean;
+  const double truth = find_result(r, "odometry_true_geometry/sim_corridor/final_position_error").summary.mean;
   EXPECT_GT(nominal, 1.0);          // metres off after 10 m
   EXPECT_LT(truth, 0.05);
 }

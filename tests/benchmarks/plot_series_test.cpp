@@ -46,6 +46,14 @@ TEST(TrajectorySeries, ThinsLongPathsButKeepsTheEnds) {
   EXPECT_EQ(s.x.back(), 999.0);
 }
 
+// The experiment's results with its default configuration and `runs` Monte-Carlo runs.
+reports::ExperimentResults run_with_defaults(const std::string& name, int runs) {
+  const Experiment* e = find_experiment(name);
+  RunOptions o;
+  o.runs = runs;
+  return e->run(e->default_config(), o);
+}
+
 const reports::Plot& plot(const reports::ExperimentResults& r, const std::string& name) {
   for (const auto& p : r.plots) {
     if (p.name == name) return p;
@@ -54,10 +62,7 @@ const reports::Plot& plot(const reports::ExperimentResults& r, const std::string
 }
 
 TEST(ExperimentPlots, CorridorDrawsRunZerosTrajectoriesAndErrorAgainstDistance) {
-  const Experiment* e = find_experiment("odometry/sim_corridor");
-  RunOptions o;
-  o.runs = 2;
-  const auto r = e->run(e->default_config(), o);
+  const auto r = run_with_defaults("odometry/sim_corridor", 2);
   const auto& traj = plot(r, "trajectories_run_0");
   ASSERT_EQ(traj.series.size(), 3u);
   EXPECT_EQ(traj.series[0].name, "truth");
@@ -77,10 +82,7 @@ TEST(ExperimentPlots, CorridorDrawsRunZerosTrajectoriesAndErrorAgainstDistance) 
 }
 
 TEST(ExperimentPlots, NoiseTablesDrawTruthOdometryAndTheFourFilters) {
-  const Experiment* e = find_experiment("noise/tables_4_1_4_2");
-  RunOptions o;
-  o.runs = 1;
-  const auto r = e->run(e->default_config(), o);
+  const auto r = run_with_defaults("noise/tables_4_1_4_2", 1);
   const auto& traj = plot(r, "trajectories_run_0");
   ASSERT_EQ(traj.series.size(), 6u);
   EXPECT_EQ(traj.series[0].name, "truth");

@@ -6,6 +6,7 @@
 
 #include "benchmarks/experiments/framework/experiment.h"
 #include "reports/report_json.h"
+#include "tests/benchmarks/experiment_test_support.h"
 
 namespace locbench::experiments {
 namespace {
@@ -49,12 +50,7 @@ TEST(IkfVsCalibration, EveryMethodIsJudgedOnTheSameRobotAndWhatStraightRunsCanno
 TEST(IkfVsCalibration, ResultsDoNotDependOnTheThreadCount) {
   const Experiment* e = find_experiment("slip/ikf_vs_calibration");
   ASSERT_NE(e, nullptr);
-  RunOptions one, two;
-  one.runs = two.runs = 2;
-  one.threads = 1;
-  two.threads = 2;
-  EXPECT_EQ(reports::results_to_json(e->run(e->default_config(), one)),
-            reports::results_to_json(e->run(e->default_config(), two)));
+  EXPECT_EQ(test_support::results_on_threads(*e, 1), test_support::results_on_threads(*e, 2));
 }
 
 }  // namespace

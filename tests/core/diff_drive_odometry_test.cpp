@@ -30,6 +30,20 @@ TEST(OdometryStep, UsesTheMidpointHeadingOfEquation1_3) {
   EXPECT_NEAR(p.theta, dth, 1e-15);
 }
 
+TEST(ExactArcStep, AQuarterCircleOfRadiusOneEndsOnTheCircle) {
+  // Centre of the wheelbase on a circle of radius 1 m: U_L = (1 − B/2)·π/2, U_R = (1 + B/2)·π/2.
+  const double q = kPi / 2.0;
+  const Pose2 p = exact_arc_step(Pose2(), {(1.0 - kB / 2) * q, (1.0 + kB / 2) * q}, kB);
+  EXPECT_THAT(p, IsNearlyPose(Pose2(1.0, 1.0, deg(90)), 1e-12));
+}
+
+TEST(ExactArcStep, AgreesWithTheMidpointStepOnAStraightLineAndTurningOnTheSpot) {
+  EXPECT_THAT(exact_arc_step(Pose2(1.0, 2.0, deg(90)), {0.1, 0.1}, kB),
+              IsNearlyPose(Pose2(1.0, 2.1, deg(90)), 1e-12));
+  const double u = kB * kPi / 4.0;
+  EXPECT_THAT(exact_arc_step(Pose2(), {-u, u}, kB), IsNearlyPose(Pose2(0.0, 0.0, deg(90)), 1e-12));
+}
+
 TEST(DisplacementFromTicks, ScalesEachWheelByItsMetresPerTick) {
   const NominalModel m{0.01264, 0.01270, kB};
   const WheelDisplacement u = displacement_from_ticks(m, 10, -3);

@@ -13,15 +13,17 @@ namespace {
 constexpr auto kCw = UmbmarkDirection::kClockwise;
 constexpr auto kCcw = UmbmarkDirection::kCounterClockwise;
 
+// Two CW and three CCW return errors [m].
+std::vector<UmbmarkReturn> five_runs() {
+  return {{kCw, 0.30, -0.10}, {kCcw, -0.10, 0.20}, {kCw, 0.50, -0.30}, {kCcw, -0.30, 0.40},
+          {kCcw, -0.20, 0.30}};
+}
+
 TEST(UmbmarkCentroids, AreTheMeanReturnErrorPerDirectionAndEMaxSystIsTheLongerOne) {
   // CW: (0.30, −0.10), (0.50, −0.30) → (0.40, −0.20), |c_cw| = √(0.16 + 0.04) = 0.4472.
   // CCW: (−0.10, 0.20), (−0.30, 0.40), (−0.20, 0.30) → (−0.20, 0.30), |c_ccw| = √0.13 = 0.3606.
   // E_max,syst = max(0.4472, 0.3606) = 0.4472.
-  const std::vector<UmbmarkReturn> runs{{kCw, 0.30, -0.10},
-                                        {kCcw, -0.10, 0.20},
-                                        {kCw, 0.50, -0.30},
-                                        {kCcw, -0.30, 0.40},
-                                        {kCcw, -0.20, 0.30}};
+  const std::vector<UmbmarkReturn> runs = five_runs();
   const UmbmarkCentroids c = umbmark_centroids(runs);
   EXPECT_EQ(c.runs_cw, 2);
   EXPECT_EQ(c.runs_ccw, 3);
@@ -35,11 +37,7 @@ TEST(UmbmarkCentroids, AreTheMeanReturnErrorPerDirectionAndEMaxSystIsTheLongerOn
 TEST(UmbmarkCentroids, RunSigmaIsThePooledPerCoordinateScatterAboutTheCentroids) {
   // CW deviations (±0.1, ∓0.1) → Σ = 4·0.01 = 0.04; CCW (0.1, −0.1), (−0.1, 0.1), (0, 0) → 0.04.
   // Degrees of freedom 2·(5 runs − 2 centroids) = 6: σ = √(0.08/6) = 0.11547.
-  const std::vector<UmbmarkReturn> runs{{kCw, 0.30, -0.10},
-                                        {kCcw, -0.10, 0.20},
-                                        {kCw, 0.50, -0.30},
-                                        {kCcw, -0.30, 0.40},
-                                        {kCcw, -0.20, 0.30}};
+  const std::vector<UmbmarkReturn> runs = five_runs();
   EXPECT_NEAR(umbmark_centroids(runs).run_sigma, std::sqrt(0.08 / 6.0), 1e-12);
   // One run per direction: no scatter to pool.
   EXPECT_EQ(umbmark_centroids({{kCw, 0.1, 0.0}, {kCcw, 0.0, 0.1}}).run_sigma, 0.0);

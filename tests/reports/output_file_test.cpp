@@ -5,23 +5,16 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <functional>
 #include <sstream>
 
 #include "core/errors.h"
+#include "tests/input_error_message.h"
 #include "tests/test_data.h"
 
 namespace locbench::reports {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::input_error_message;
 
 TEST(OutputFile, ReplacesTheTargetAndLeavesNoTemporaryFile) {
   testing::ScratchDir dir;
@@ -47,14 +40,14 @@ TEST(OutputFile, AnUncommittedOutputLeavesThePreviousFileIntact) {
 }
 
 TEST(OutputFile, AFullDiskIsAnInputErrorNamingThePath) {
-  const std::string e = error_of([] { write_file_atomically("/dev/full", "text"); });
+  const std::string e = input_error_message([] { write_file_atomically("/dev/full", "text"); });
   EXPECT_NE(e.find("/dev/full"), std::string::npos) << e;
   EXPECT_NE(e.find("No space left"), std::string::npos) << e;
 }
 
 TEST(OutputFile, AFolderIsNotAFileToWrite) {
   testing::ScratchDir dir;
-  EXPECT_NE(error_of([&] { write_file_atomically(dir.path(), "x"); }).find("is a folder"), std::string::npos);
+  EXPECT_NE(input_error_message([&] { write_file_atomically(dir.path(), "x"); }).find("is a folder"), std::string::npos);
 }
 
 TEST(OutputFile, AnOutputThatIsAnInputIsRefused) {
@@ -62,40 +55,40 @@ TEST(OutputFile, AnOutputThatIsAnInputIsRefused) {
   std::ofstream(dir.file("in.clf")) << "x";
   std::filesystem::create_symlink(dir.file("in.clf"), dir.file("link.clf"));
   const std::string in = dir.file("in.clf").string();
-  EXPECT_NE(error_of([&] { check_outputs({in}, {{"--report", in}}); }).find("would overwrite the input"), std::string::npos);
-  EXPECT_NE(error_of([&] { check_outputs({in}, {{"--report", dir.file("link.clf").string()}}); }).find("would overwrite"),
+  EXPECT_NE(input_error_message([&] { check_outputs({in}, {{"--report", in}}); }).find("would overwrite the input"), std::string::npos);
+  EXPECT_NE(input_error_message([&] { check_outputs({in}, {{"--report", dir.file("link.clf").string()}}); }).find("would overwrite"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { check_outputs({in}, {{"--report", dir.path().string() + "/./sub/../in.clf"}}); })
+  EXPECT_NE(input_error_message([&] { check_outputs({in}, {{"--report", dir.path().string() + "/./sub/../in.clf"}}); })
                 .find("would overwrite"),
             std::string::npos);
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(input_error_message([&] {
               check_outputs({}, {{"-o", dir.file("a").string()}, {"--truth-tum", dir.file("a").string()}});
             }).find("name the same file"),
             std::string::npos);
-  EXPECT_EQ(error_of([&] { check_outputs({in}, {{"--report", dir.file("out.json").string()}}); }), "");
+  EXPECT_EQ(input_error_message([&] { check_outputs({in}, {{"--report", dir.file("out.json").string()}}); }), "");
 }
 
 TEST(OutputFile, AnOutputInsideAnInputFolderIsRefusedOnlyForTheFilesItReads) {
   testing::ScratchDir dir;
   const std::string folder = dir.path().string();
-  EXPECT_NE(error_of([&] { check_outputs({folder}, {{"--json", dir.file("gate.json").string()}}, ".json"); })
+  EXPECT_NE(input_error_message([&] { check_outputs({folder}, {{"--json", dir.file("gate.json").string()}}, ".json"); })
                 .find("lies in the input folder"),
             std::string::npos);
-  EXPECT_EQ(error_of([&] { check_outputs({folder}, {{"-o", dir.file("report.html").string()}}, ".json"); }), "");
+  EXPECT_EQ(input_error_message([&] { check_outputs({folder}, {{"-o", dir.file("report.html").string()}}, ".json"); }), "");
 }
 
 TEST(OutputFile, ASecondLockOnAnOutputFolderIsRefused) {
   testing::ScratchDir dir;
   const OutputFolderLock first(dir.file("out"));
-  EXPECT_NE(error_of([&] { OutputFolderLock second(dir.file("out")); }).find("in use"), std::string::npos);
+  EXPECT_NE(input_error_message([&] { OutputFolderLock second(dir.file("out")); }).find("in use"), std::string::npos);
   std::ofstream(dir.file("file")) << "x";
-  EXPECT_NE(error_of([&] { OutputFolderLock f(dir.file("file")); }).find("not a folder"), std::string::npos);
+  EXPECT_NE(input_error_message([&] { OutputFolderLock f(dir.file("file")); }).find("not a folder"), std::string::npos);
 }
 
 TEST(OutputFile, TheLockIsReleasedWithItsOwner) {
   testing::ScratchDir dir;
   { const OutputFolderLock first(dir.file("out")); }
-  EXPECT_EQ(error_of([&] { OutputFolderLock again(dir.file("out")); }), "");
+  EXPECT_EQ(input_error_message([&] { OutputFolderLock again(dir.file("out")); }), "");
 }
 
 }  // namespace

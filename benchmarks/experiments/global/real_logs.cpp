@@ -195,18 +195,10 @@ class GlobalRealLogs final : public MonteCarloExperiment<Setup> {
       rec.converged.push_back(c ? 1.0 : 0.0);
       rec.time.push_back(c ? steps[*c].t - steps[0].t : -1.0);
       rec.distance.push_back(c ? global::path_length(steps, 0, *c) : -1.0);
-      double rp = -1.0, rh = -1.0;
-      if (c && *c <= na / 2) {
-        double sp = 0.0, sh = 0.0;
-        for (std::size_t i = na / 2; i < na; ++i) {
-          sp += std::pow(translation_distance(est[i], *steps[i].reference), 2);
-          sh += std::pow(angle_diff(est[i].theta, steps[i].reference->theta), 2);
-        }
-        rp = std::sqrt(sp / static_cast<double>(na - na / 2));
-        rh = std::sqrt(sh / static_cast<double>(na - na / 2));
-      }
-      rec.rms_position.push_back(rp);
-      rec.rms_heading.push_back(rh);
+      global::TrackingRms rms{-1.0, -1.0};
+      if (c && *c <= na / 2) rms = global::tracking_rms(est, steps, na / 2, na);
+      rec.rms_position.push_back(rms.position);
+      rec.rms_heading.push_back(rms.heading);
       const auto cb = global::converged_from(est, steps, na, n, s.criterion);
       rec.recovered.push_back(cb ? 1.0 : 0.0);
       rec.recovery_time.push_back(cb ? steps[na + *cb].t - steps[na].t : -1.0);
@@ -239,43 +231,30 @@ class GlobalRealLogs final : public MonteCarloExperiment<Setup> {
           f.kidnap_distance);
       for (std::size_t m = 0; m < s.methods.size(); ++m) {
         const std::string& method = s.methods[m];
-        std::vector<double> conv, t, dist, rp, rh, rec, rt, mem, end, within;
+        global::MethodRunSamples x;
+        std::vector<double> end, within;
         for (const Record& r : recs) {
           if (r.status != "ok") continue;
           end.push_back(r.end_error[m]);
           within.push_back(r.within[m]);
-          conv.push_back(r.converged[m]);
-          rec.push_back(r.recovered[m]);
-          mem.push_back(r.memory[m]);
-          if (r.time[m] >= 0) t.push_back(r.time[m]);
-          if (r.distance[m] >= 0) dist.push_back(r.distance[m]);
-          if (r.rms_position[m] >= 0) rp.push_back(r.rms_position[m]);
-          if (r.rms_heading[m] >= 0) rh.push_back(r.rms_heading[m]);
-          if (r.recovery_time[m] >= 0) rt.push_back(r.recovery_time[m]);
+          x.converged.push_back(r.converged[m]);
+          x.recovered.push_back(r.recovered[m]);
+          x.memory.push_back(r.memory[m]);
+          if (r.time[m] >= 0) x.time_to_convergence.push_back(r.time[m]);
+          if (r.distance[m] >= 0) x.distance_to_convergence.push_back(r.distance[m]);
+          if (r.rms_position[m] >= 0) x.rms_position.push_back(r.rms_position[m]);
+          if (r.rms_heading[m] >= 0) x.rms_heading.push_back(r.rms_heading[m]);
+          if (r.recovery_time[m] >= 0) x.recovery_time.push_back(r.recovery_time[m]);
         }
-        const auto metric = [&](const char* variant, const char* unit, const std::vector<double>& v,
-                                const char* better) {
-          if (v.empty()) return;
-          reports::MetricResult r = reports::make_metric(method, ds, variant, unit, "monte_carlo_runs", v);
-          r.better = better;
-          out.results.push_back(std::move(r));
-        };
-        if (global::is_global_method(method)) {
-          metric("global_success_rate", "", conv, "higher");
-          metric("time_to_convergence", "s", t, "lower");
-          metric("distance_to_convergence", "m", dist, "lower");
-        }
-        metric("tracking_rms_position", "m", rp, "lower");
-        metric("tracking_rms_heading", "rad", rh, "lower");
-        metric("kidnap_recovery_rate", "", rec, "higher");
-        metric("kidnap_recovery_time", "s", rt, "lower");
-        metric("memory", "bytes", mem, "lower");
+        global::add_method_metrics(out, method, ds, x);
         line += fmt::format(" {}: success {:.0f}%{}, tracking RMS {}, recovery {:.0f}% (within the "
                             "criterion in {:.0f}% of the first half, {:.2f} m off at its end);",
-                            method, 100.0 * mean(conv),
-                            t.empty() ? "" : fmt::format(" after {:.1f} s", mean(t)),
-                            rp.empty() ? "—" : fmt::format("{:.0f} mm", 1e3 * mean(rp)),
-                            100.0 * mean(rec), 100.0 * mean(within), mean(end));
+                            method, 100.0 * mean(x.converged),
+                            x.time_to_convergence.empty()
+                                ? ""
+                                : fmt::format(" after {:.1f} s", mean(x.time_to_convergence)),
+                            x.rms_position.empty() ? "—" : fmt::format("{:.0f} mm", 1e3 * mean(x.rms_position)),
+                            100.0 * mean(x.recovered), 100.0 * mean(within), mean(end));
       }
       out.notes.push_back(line);
     }

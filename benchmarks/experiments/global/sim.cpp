@@ -205,13 +205,9 @@ class GlobalSim final : public MonteCarloExperiment<Setup> {
         r.time_to_convergence = steps[*c].t - steps[0].t;
         r.distance_to_convergence = global::path_length(steps, 0, *c);
         if (*c <= na / 2) {
-          double sp = 0.0, sh = 0.0;
-          for (std::size_t i = na / 2; i < na; ++i) {
-            sp += std::pow(translation_distance(est[i], *steps[i].reference), 2);
-            sh += std::pow(angle_diff(est[i].theta, steps[i].reference->theta), 2);
-          }
-          r.rms_position = std::sqrt(sp / static_cast<double>(na - na / 2));
-          r.rms_heading = std::sqrt(sh / static_cast<double>(na - na / 2));
+          const global::TrackingRms rms = global::tracking_rms(est, steps, na / 2, na);
+          r.rms_position = rms.position;
+          r.rms_heading = rms.heading;
         }
       }
       if (const auto c = global::converged_from(est, steps, na, n, s.criterion)) {
@@ -246,43 +242,33 @@ class GlobalSim final : public MonteCarloExperiment<Setup> {
       for (std::size_t m = 0; m < s.methods.size(); ++m) {
         const std::string& method = s.methods[m];
         const bool global_method = global::is_global_method(method);
-        std::vector<double> conv, t, d, rp, rh, rec, rt, rd, mem, hyp;
+        global::MethodRunSamples samples;
+        std::vector<double> hyp;
         for (const Record& r : recs) {
           if (r.world != w) continue;
           const MethodRecord& x = r.methods[m];
-          conv.push_back(x.converged);
-          rec.push_back(x.recovered);
-          mem.push_back(x.memory_bytes);
+          samples.converged.push_back(x.converged);
+          samples.recovered.push_back(x.recovered);
+          samples.memory.push_back(x.memory_bytes);
           hyp.push_back(x.hypotheses);
           const auto add = [](std::vector<double>& v, double value) {
             if (std::isfinite(value)) v.push_back(value);
           };
-          add(t, x.time_to_convergence);
-          add(d, x.distance_to_convergence);
-          add(rp, x.rms_position);
-          add(rh, x.rms_heading);
-          add(rt, x.recovery_time);
-          add(rd, x.recovery_distance);
+          add(samples.time_to_convergence, x.time_to_convergence);
+          add(samples.distance_to_convergence, x.distance_to_convergence);
+          add(samples.rms_position, x.rms_position);
+          add(samples.rms_heading, x.rms_heading);
+          add(samples.recovery_time, x.recovery_time);
+          add(samples.recovery_distance, x.recovery_distance);
         }
-        const auto metric = [&](const char* variant, const char* unit, const std::vector<double>& v,
-                                const char* better) {
-          if (v.empty()) return;
-          reports::MetricResult r = reports::make_metric(method, ds, variant, unit, "monte_carlo_runs", v);
-          r.better = better;
-          out.results.push_back(std::move(r));
-        };
-        if (global_method) {
-          metric("global_success_rate", "", conv, "higher");
-          metric("time_to_convergence", "s", t, "lower");
-          metric("distance_to_convergence", "m", d, "lower");
+        global::add_method_metrics(out, method, ds, samples);
+        if (!hyp.empty()) {
+          reports::MetricResult h = reports::make_metric(
+              method, ds, global_method && method == "mcl" ? "particles_at_end" : "hypotheses", "",
+              "monte_carlo_runs", hyp);
+          h.better = "stable";
+          out.results.push_back(std::move(h));
         }
-        metric("tracking_rms_position", "m", rp, "lower");
-        metric("tracking_rms_heading", "rad", rh, "lower");
-        metric("kidnap_recovery_rate", "", rec, "higher");
-        metric("kidnap_recovery_time", "s", rt, "lower");
-        metric("kidnap_recovery_distance", "m", rd, "lower");
-        metric("memory", "bytes", mem, "lower");
-        metric(global_method && method == "mcl" ? "particles_at_end" : "hypotheses", "", hyp, "stable");
       }
     }
     const auto mean_of = [&](const std::string& method, int w, double MethodRecord::*field) {

@@ -206,6 +206,39 @@ std::optional<std::size_t> converged_from(const std::vector<Pose2>& est, const s
   return from;
 }
 
+TrackingRms tracking_rms(const std::vector<Pose2>& est, const std::vector<ScanStep>& steps,
+                         std::size_t begin, std::size_t end) {
+  double sp = 0.0, sh = 0.0;
+  for (std::size_t i = begin; i < end; ++i) {
+    sp += std::pow(translation_distance(est[i], *steps[i].reference), 2);
+    sh += std::pow(angle_diff(est[i].theta, steps[i].reference->theta), 2);
+  }
+  return {std::sqrt(sp / static_cast<double>(end - begin)),
+          std::sqrt(sh / static_cast<double>(end - begin))};
+}
+
+void add_method_metrics(reports::ExperimentResults& out, const std::string& method,
+                        const std::string& dataset, const MethodRunSamples& s) {
+  const auto metric = [&](const char* variant, const char* unit, const std::vector<double>& v,
+                          const char* better) {
+    if (v.empty()) return;
+    reports::MetricResult r = reports::make_metric(method, dataset, variant, unit, "monte_carlo_runs", v);
+    r.better = better;
+    out.results.push_back(std::move(r));
+  };
+  if (is_global_method(method)) {
+    metric("global_success_rate", "", s.converged, "higher");
+    metric("time_to_convergence", "s", s.time_to_convergence, "lower");
+    metric("distance_to_convergence", "m", s.distance_to_convergence, "lower");
+  }
+  metric("tracking_rms_position", "m", s.rms_position, "lower");
+  metric("tracking_rms_heading", "rad", s.rms_heading, "lower");
+  metric("kidnap_recovery_rate", "", s.recovered, "higher");
+  metric("kidnap_recovery_time", "s", s.recovery_time, "lower");
+  metric("kidnap_recovery_distance", "m", s.recovery_distance, "lower");
+  metric("memory", "bytes", s.memory, "lower");
+}
+
 double path_length(const std::vector<ScanStep>& steps, std::size_t a, std::size_t b) {
   double d = 0.0;
   for (std::size_t i = a + 1; i <= b && i < steps.size(); ++i) {

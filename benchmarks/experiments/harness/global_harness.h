@@ -14,6 +14,7 @@
 #include "core/pose2.h"
 #include "core/scan.h"
 #include "core/log.h"
+#include "reports/report.h"
 
 namespace locbench::experiments::global {
 
@@ -72,6 +73,27 @@ std::optional<std::size_t> converged_from(const std::vector<Pose2>& est, const s
                                           std::size_t begin, std::size_t end, const ConvergenceCriterion& c);
 // Distance travelled by the reference between steps a and b.
 double path_length(const std::vector<ScanStep>& steps, std::size_t a, std::size_t b);
+
+// RMS position [m] and heading [rad] error against the reference over steps [begin, end): the
+// tracking accuracy of a localizer that has converged by `begin`.
+struct TrackingRms {
+  double position = 0.0;
+  double heading = 0.0;
+};
+TrackingRms tracking_rms(const std::vector<Pose2>& est, const std::vector<ScanStep>& steps,
+                         std::size_t begin, std::size_t end);
+
+// One method's samples over the runs (a value per run that has it).
+struct MethodRunSamples {
+  std::vector<double> converged, time_to_convergence, distance_to_convergence;  // from the start
+  std::vector<double> rms_position, rms_heading;                                // tracking
+  std::vector<double> recovered, recovery_time, recovery_distance;              // after the kidnap
+  std::vector<double> memory;                                                   // [bytes]
+};
+// Adds the method's results over Monte-Carlo runs to `out` (convergence only for the global
+// methods; a metric without samples is left out).
+void add_method_metrics(reports::ExperimentResults& out, const std::string& method,
+                        const std::string& dataset, const MethodRunSamples& s);
 
 // A line map from the log's own scans: split-and-merge lines of every `every`-th scan in
 // [t0, t1], placed with the odometry pose at the scan (the map's frame is the odometry's).

@@ -11,6 +11,8 @@
 
 #include "core/angle.h"
 #include "core/rng.h"
+#include "core/diff_drive_odometry.h"
+#include "algorithms/slip/indirect_kalman_filter.h"
 #include "algorithms/slip/slip_compass_ekf.h"
 #include "datasets/sim/simulation_result.h"
 #include "datasets/sim/simulator.h"
@@ -73,6 +75,24 @@ inline RunData run_data(const sim::SimulationResult& r, const NominalModel& mode
     d.truth.push_back(w1.pose);
   }
   return d;
+}
+
+// The run as the indirect Kalman filter takes it: each sample's wheel travel with its compass
+// reading, and the end-position error of the odometry dead-reckoned from the true start
+// (true end − odometry end), the IKF's end-position measurement.
+struct IkfRun {
+  std::vector<IkfSample> samples;
+  Eigen::Vector2d end_error = Eigen::Vector2d::Zero();
+};
+inline IkfRun ikf_run(const RunData& d) {
+  IkfRun out;
+  Pose2 odo = d.truth.front();
+  for (const SlipSample& x : d.samples) {
+    out.samples.push_back({x.u, x.compass});
+    odo = odometry_step(odo, x.u, d.wheelbase);
+  }
+  out.end_error = Eigen::Vector2d(d.truth.back().x - odo.x, d.truth.back().y - odo.y);
+  return out;
 }
 
 // Δθ' = θ_E − θ_ref of the samples where the robot moved and a reference increment exists;

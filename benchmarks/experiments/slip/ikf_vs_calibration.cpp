@@ -157,19 +157,13 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Setup> {
 
     const sim::SimulationResult st = sim::simulate(s.straight, Rng::derive_seed(seed, 1));
     const slip_sim::RunData d = slip_sim::run_data(st, model, {}, nullptr);
-    std::vector<IkfSample> samples;
-    Pose2 odo = d.truth.front();
-    for (const SlipSample& x : d.samples) {
-      samples.push_back({x.u, x.compass});
-      odo = odometry_step(odo, x.u, model.wheelbase);
-    }
-    const Eigen::Vector2d end_err(d.truth.back().x - odo.x, d.truth.back().y - odo.y);
+    const slip_sim::IkfRun ikf = slip_sim::ikf_run(d);
     IndirectKfOptions frozen = s.ikf;
     frozen.initial_covariance(5) = 0.0;
     const IkfRunResult heading_only =
-        run_indirect_kf(samples, d.truth.front().theta, s.ikf, model.wheelbase);
+        run_indirect_kf(ikf.samples, d.truth.front().theta, s.ikf, model.wheelbase);
     const IkfRunResult with_end =
-        run_indirect_kf(samples, d.truth.front().theta, frozen, model.wheelbase, end_err,
+        run_indirect_kf(ikf.samples, d.truth.front().theta, frozen, model.wheelbase, ikf.end_error,
                         s.end_variance);
 
     const WheelGeometry geometry[kMethods] = {

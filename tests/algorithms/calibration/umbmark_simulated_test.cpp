@@ -261,6 +261,19 @@ struct TypeAB {
   }
 };
 
+// Classic UMBmark (mean angle formula) on run `seed` of `s`, its return errors added to
+// `before`; then the runs again (seed 1000 + seed) with its one conversion factor
+// {D_a, D_a, B_actual}, added to `after`. Returns the calibration.
+ClassicUmbmarkResult calibrate_with_one_factor(const sim::Scenario& s, std::uint64_t seed,
+                                               TypeAB& before, TypeAB& after) {
+  const auto c = classic_umbmark(experiment(s, seed), {UmbmarkAngleFormula::kMean});
+  before.add(c.centroids, s.motion.side);
+  sim::Scenario a = s;
+  a.robot.nominal = {c.D_a, c.D_a, c.B_actual};
+  after.add(umbmark_centroids(experiment(a, 1000 + seed).runs), s.motion.side);
+  return c;
+}
+
 TEST(UmbmarkSimulated, WithEqualWheelTicksOnlyTypeACanBeCompensated) {
   // drive.equal_wheel_ticks (the Trilobot's limitation, §2.4): both wheels always get the same
   // count, so the calibrated unequal diameters cannot be commanded. Borenstein's fine-tick robot
@@ -276,11 +289,7 @@ TEST(UmbmarkSimulated, WithEqualWheelTicksOnlyTypeACanBeCompensated) {
   independent.drive.equal_wheel_ticks = false;
   TypeAB before, one_factor, odometry, path, independent_path;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-    const auto c = classic_umbmark(experiment(s, seed), {UmbmarkAngleFormula::kMean});
-    before.add(c.centroids, s.motion.side);
-    sim::Scenario a = s;
-    a.robot.nominal = {c.D_a, c.D_a, c.B_actual};
-    one_factor.add(umbmark_centroids(experiment(a, 1000 + seed).runs), s.motion.side);
+    const auto c = calibrate_with_one_factor(s, seed, before, one_factor);
     sim::Scenario full = s;
     full.robot.nominal = c.corrected;
     const auto runs = sim::simulate(full, 1000 + seed).umbmark_runs;
@@ -308,11 +317,7 @@ TEST(UmbmarkSimulated, TrilobotWithEqualWheelTicksKeepsItsTypeBError) {
   s.drive.equal_wheel_ticks = true;
   TypeAB before, after;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
-    const auto c = classic_umbmark(experiment(s, seed), {UmbmarkAngleFormula::kMean});
-    before.add(c.centroids, s.motion.side);
-    sim::Scenario a = s;
-    a.robot.nominal = {c.D_a, c.D_a, c.B_actual};
-    after.add(umbmark_centroids(experiment(a, 1000 + seed).runs), s.motion.side);
+    calibrate_with_one_factor(s, seed, before, after);
   }
   EXPECT_GT(mean(before.beta), deg(1.5));
   const double n = static_cast<double>(before.beta.size());

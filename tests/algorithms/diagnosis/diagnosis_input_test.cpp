@@ -9,26 +9,19 @@
 #include "core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "datasets/diagnosis/hidden_effects.h"
+#include "tests/input_error_message.h"
 
 namespace locbench::diagnosis {
 namespace {
 
-template <class F>
-std::string input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::input_error_message;
 
 TEST(DiagnoseInput, ALogWithoutReferenceIsAnErrorNotAVerdict) {
   sim::GeneratorOptions o;
   o.compass = false;
   Log log = sim::generate_log({}, 1, o).log;
   log.truth.clear();
-  const std::string e = input_error([&] { diagnose_log(log); });
+  const std::string e = input_error_message([&] { diagnose_log(log); });
   EXPECT_NE(e.find("no reference"), std::string::npos) << e;
   EXPECT_NE(e.find("TRUEPOS"), std::string::npos) << e;
 }
@@ -36,20 +29,20 @@ TEST(DiagnoseInput, ALogWithoutReferenceIsAnErrorNotAVerdict) {
 TEST(DiagnoseInput, ALogWithoutOdometryIsAnError) {
   Log log = sim::generate_log({}, 1).log;
   log.encoders.clear();
-  EXPECT_NE(input_error([&] { diagnose_log(log); }).find("no odometry"), std::string::npos);
+  EXPECT_NE(input_error_message([&] { diagnose_log(log); }).find("no odometry"), std::string::npos);
 }
 
 TEST(DiagnoseInput, TooShortALogIsAnError) {
   Log log = sim::generate_log({}, 1).log;
   log.encoders.resize(100);  // 10 s of encoders: 10 windows
-  const std::string e = input_error([&] { diagnose_log(log); });
+  const std::string e = input_error_message([&] { diagnose_log(log); });
   EXPECT_NE(e.find("too short"), std::string::npos) << e;
 }
 
 TEST(DiagnoseInput, AWheelbaseInMillimetresIsAnError) {
   Log log = sim::generate_log({}, 1).log;
   log.params[kParamWheelbase] = "381.97";
-  const std::string e = input_error([&] { diagnose_log(log); });
+  const std::string e = input_error_message([&] { diagnose_log(log); });
   EXPECT_NE(e.find("robot_wheelbase"), std::string::npos) << e;
   EXPECT_NE(e.find("mm"), std::string::npos) << e;
 }
@@ -57,12 +50,12 @@ TEST(DiagnoseInput, AWheelbaseInMillimetresIsAnError) {
 TEST(DiagnoseInput, ACompassResolutionInDegreesIsAnError) {
   Log log = sim::generate_log({}, 1).log;
   log.params["compass_resolution"] = "2";
-  EXPECT_NE(input_error([&] { diagnose_log(log); }).find("compass_resolution"), std::string::npos);
+  EXPECT_NE(input_error_message([&] { diagnose_log(log); }).find("compass_resolution"), std::string::npos);
 }
 
 TEST(DiagnoseInput, MalformedHistogramsNameWhatWasExpected) {
   const auto err = [](const char* text) {
-    return input_error([&] { read_histogram(nlohmann::json::parse(text), "h.json"); });
+    return input_error_message([&] { read_histogram(nlohmann::json::parse(text), "h.json"); });
   };
   EXPECT_NE(err(R"({"residual": "r", "unit": "deg", "edges": [0, 1, 2], "counts": [1, 2, 3]})").find("one edge more"),
             std::string::npos);

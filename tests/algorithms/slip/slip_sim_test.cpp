@@ -112,18 +112,12 @@ TEST(SlipSim, IndirectKfRecoversDiameterErrorsFromStraightRuns) {
   for (std::uint64_t k = 0; k < 4; ++k) {
     const auto r = sim::simulate(s, 300 + k);
     const ss::RunData d = ss::run_data(r, nominal, {}, nullptr);
-    std::vector<IkfSample> samples;
-    Pose2 odo = d.truth.front();
-    for (const auto& x : d.samples) {
-      samples.push_back({x.u, x.compass});
-      odo = odometry_step(odo, x.u, nominal.wheelbase);
-    }
-    const IkfRunResult h = run_indirect_kf(samples, d.truth.front().theta, o, nominal.wheelbase);
+    const ss::IkfRun ikf = ss::ikf_run(d);
+    const IkfRunResult h = run_indirect_kf(ikf.samples, d.truth.front().theta, o, nominal.wheelbase);
     diff.push_back(h.s_right - h.s_left);
     db.push_back(h.delta_b);
-    const Eigen::Vector2d end(d.truth.back().x - odo.x, d.truth.back().y - odo.y);
-    const IkfRunResult p =
-        run_indirect_kf(samples, d.truth.front().theta, frozen, nominal.wheelbase, end, 1e-6);
+    const IkfRunResult p = run_indirect_kf(ikf.samples, d.truth.front().theta, frozen,
+                                           nominal.wheelbase, ikf.end_error, 1e-6);
     sr.push_back(p.s_right);
     sl.push_back(p.s_left);
   }
