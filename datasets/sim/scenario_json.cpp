@@ -9,7 +9,8 @@
 #include "algorithms/core/errors.h"
 #include "algorithms/core/input_limits.h"
 #include "datasets/sim/motion_program.h"
-#include "datasets/sim/json_fields.h"
+#include "algorithms/core/json_file.h"
+#include "algorithms/core/json_options.h"
 #include "datasets/sim/presets.h"
 
 namespace locbench::sim {
@@ -49,7 +50,7 @@ const char* name_of(const std::array<std::pair<E, const char*>, N>& table, E val
 }
 
 template <typename E, std::size_t N>
-void read_enum(JsonObject& o, const char* key,
+void read_enum(StrictJsonReader& o, const char* key,
                const std::array<std::pair<E, const char*>, N>& table, E& out) {
   if (!o.has(key)) {
     o.raw(key);
@@ -76,7 +77,7 @@ json geometry_json(const WheelGeometry& g) {
           {"diameter_right", g.diameter_right},
           {"wheelbase", g.wheelbase}};
 }
-void read_geometry(JsonObject o, WheelGeometry& g) {
+void read_geometry(StrictJsonReader o, WheelGeometry& g) {
   o.read("diameter_left", g.diameter_left);
   o.read("diameter_right", g.diameter_right);
   o.read("wheelbase", g.wheelbase);
@@ -87,7 +88,7 @@ json timing_json(const SensorTiming& t) {
   return {{"enabled", t.enabled}, {"rate", t.rate}, {"latency", t.latency}, {"jitter", t.jitter}};
 }
 // Timing fields sit beside the sensor's own fields in the same object.
-void read_timing(JsonObject& o, SensorTiming& t) {
+void read_timing(StrictJsonReader& o, SensorTiming& t) {
   o.read("enabled", t.enabled);
   o.read("rate", t.rate);
   o.read("latency", t.latency);
@@ -97,7 +98,7 @@ void read_timing(JsonObject& o, SensorTiming& t) {
 json slip_profile_json(const SlipProfile& p) {
   return {{"rate", p.rate}, {"magnitude_min", p.magnitude_min}, {"magnitude_max", p.magnitude_max}};
 }
-void read_slip_profile(JsonObject o, SlipProfile& p) {
+void read_slip_profile(StrictJsonReader o, SlipProfile& p) {
   o.read("rate", p.rate);
   o.read("magnitude_min", p.magnitude_min);
   o.read("magnitude_max", p.magnitude_max);
@@ -116,7 +117,7 @@ json zone_json(const DisturbanceZone& z) {
   return j;
 }
 DisturbanceZone read_zone(const json& v, const std::string& path, const std::string& source) {
-  JsonObject o(v, path, source);
+  StrictJsonReader o(v, path, source);
   DisturbanceZone z;
   read_enum(o, "shape", kZoneShapes, z.shape);
   o.read("bias", z.bias);
@@ -131,7 +132,7 @@ DisturbanceZone read_zone(const json& v, const std::string& path, const std::str
   return z;
 }
 
-void read_world(JsonObject o, WorldConfig& w) {
+void read_world(StrictJsonReader o, WorldConfig& w) {
   read_enum(o, "kind", kWorldKinds, w.kind);
   o.read("corridor_length", w.corridor_length);
   o.read("corridor_width", w.corridor_width);
@@ -149,7 +150,7 @@ void read_world(JsonObject o, WorldConfig& w) {
   o.finish();
 }
 
-void read_motion(JsonObject o, MotionConfig& m) {
+void read_motion(StrictJsonReader o, MotionConfig& m) {
   read_enum(o, "kind", kMotionKinds, m.kind);
   o.read("distance", m.distance);
   o.read("side", m.side);
@@ -186,7 +187,7 @@ json response_json(const DriveResponse& r) {
           {"stall_rate", r.stall_rate},
           {"stall_duration", r.stall_duration}};
 }
-void read_response(JsonObject o, DriveResponse& r) {
+void read_response(StrictJsonReader o, DriveResponse& r) {
   o.read("time_constant", r.time_constant);
   o.read("velocity_scale", r.velocity_scale);
   o.read("speed_slope", r.speed_slope);
@@ -204,7 +205,7 @@ json motion_noise_json(const MotionNoiseConfig& n) {
           {"sigma_heading", n.sigma_heading},
           {"dof", n.dof}};
 }
-void read_motion_noise(JsonObject o, MotionNoiseConfig& n) {
+void read_motion_noise(StrictJsonReader o, MotionNoiseConfig& n) {
   o.read("window", n.window);
   o.read("sigma_along", n.sigma_along);
   o.read("sigma_left", n.sigma_left);
@@ -213,7 +214,7 @@ void read_motion_noise(JsonObject o, MotionNoiseConfig& n) {
   o.finish();
 }
 
-void read_compass(JsonObject o, CompassConfig& c) {
+void read_compass(StrictJsonReader o, CompassConfig& c) {
   read_timing(o, c.timing);
   o.read("resolution", c.resolution);
   o.read("noise", c.noise);
@@ -229,7 +230,7 @@ void read_compass(JsonObject o, CompassConfig& c) {
   o.finish();
 }
 
-void read_laser(JsonObject o, LaserConfig& l) {
+void read_laser(StrictJsonReader o, LaserConfig& l) {
   read_timing(o, l.timing);
   o.read("beams", l.beams);
   o.read("first_bearing", l.first_bearing);
@@ -374,7 +375,7 @@ void check_scenario_limits(const Scenario& s, const std::string& source) {
 }
 
 Scenario scenario_from_json(const json& j, const std::string& source) {
-  JsonObject top(j, "", source);
+  StrictJsonReader top(j, "", source);
   Scenario s;
   if (top.has("preset")) {
     std::string name;
@@ -392,17 +393,17 @@ Scenario scenario_from_json(const json& j, const std::string& source) {
   read_world(top.object("world"), s.world);
   top.read("start", s.start);
   {
-    JsonObject robot = top.object("robot");
+    StrictJsonReader robot = top.object("robot");
     read_geometry(robot.object("nominal"), s.robot.nominal);
     read_geometry(robot.object("actual"), s.robot.actual);
-    JsonObject enc = robot.object("encoder");
+    StrictJsonReader enc = robot.object("encoder");
     enc.read("gear_ratio", s.robot.encoder.gear_ratio);
     enc.read("counts_per_rev", s.robot.encoder.counts_per_rev);
     enc.finish();
     robot.finish();
   }
   {
-    JsonObject drive = top.object("drive");
+    StrictJsonReader drive = top.object("drive");
     drive.read("speed", s.drive.speed);
     drive.read("turn_rate", s.drive.turn_rate);
     drive.read("pause", s.drive.pause);
@@ -412,20 +413,20 @@ Scenario scenario_from_json(const json& j, const std::string& source) {
   }
   read_motion(top.object("motion"), s.motion);
   {
-    JsonObject physics = top.object("physics");
+    StrictJsonReader physics = top.object("physics");
     physics.read("step", s.physics.step);
     physics.read("trajectory_rate", s.physics.trajectory_rate);
     physics.finish();
   }
   {
-    JsonObject floor = top.object("floor");
+    StrictJsonReader floor = top.object("floor");
     floor.read("k_left", s.floor.k_left);
     floor.read("k_right", s.floor.k_right);
     floor.finish();
   }
   read_motion_noise(top.object("motion_noise"), s.motion_noise);
   {
-    JsonObject slip = top.object("slip");
+    StrictJsonReader slip = top.object("slip");
     read_enum(slip, "unit", kSlipUnits, s.slip.unit);
     read_slip_profile(slip.object("straight"), s.slip.straight);
     read_slip_profile(slip.object("turn"), s.slip.turn);
@@ -433,14 +434,14 @@ Scenario scenario_from_json(const json& j, const std::string& source) {
   }
   for (auto [key, timing] :
        {std::pair{"encoders", &s.encoders.timing}, std::pair{"odometry", &s.odometry.timing}}) {
-    JsonObject o = top.object(key);
+    StrictJsonReader o = top.object(key);
     read_timing(o, *timing);
     o.finish();
   }
   read_compass(top.object("compass"), s.compass);
   read_laser(top.object("laser"), s.laser);
   {
-    JsonObject truth = top.object("truth");
+    StrictJsonReader truth = top.object("truth");
     truth.read("rate", s.truth.rate);
     truth.read("noise_xy", s.truth.noise_xy);
     truth.read("noise_theta", s.truth.noise_theta);
