@@ -1,0 +1,248 @@
+#pragma once
+// Options structs state their fields once — name, unit, allowed range, one line of meaning —
+// in a visitor, and get from it both JSON directions, the range validation and their
+// documentation table:
+//
+//   template <class V>                     // in the struct's namespace (found by ADL)
+//   void visit_fields(V& v, EapOptions& o) {
+//     v.field("d_limit", o.d_limit, "m", positive(), "half-width of ω2 (5.5)");
+//     v.flag("remove_claimed", o.remove_claimed, "§5.3: delete matched points");
+//     v.choice("region", o.region, to_string, region_rule_from_string, "ω1 rule");
+//     v.nested("weighting", o.weighting, "g of 5.8/5.10/5.11");
+//   }
+//   void to_json(nlohmann::json& j, const EapOptions& o) { j = fields_to_json(o); }
+//   void from_json(const nlohmann::json& j, EapOptions& o) { fields_from_json(j, o, "EapOptions"); validate(o); }
+//   void validate(const EapOptions& o) { validate_fields(o, "EapOptions"); /* cross-field rules */ }
+//
+// Absent keys keep their defaults; unknown keys, wrong types and out-of-range values throw
+// UsageError naming "Struct.key" and what was expected (the CLI adds the file). Values are in
+// SI units like the structs themselves; `unit` is what the docs print.
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "algorithms/core/errors.h"
+#include "algorithms/core/json_options.h"
+
+namespace locbench {
+
+// The values a number may take: finite and within [lo, hi] with either end open.
+struct Range {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false;
+  bool hi_open = false;
+
+  bool contains(double x) const {
+    return std::isfinite(x) && (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+  }
+  // "any finite number", "> 0", "≥ 1", "in [0, 1)".
+  std::string text() const;
+};
+
+inline Range any_finite() { return {}; }
+inline Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
+inline Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
+inline Range at_least(double lo) { return {lo, std::numeric_limits<double>::infinity(), false, false}; }
+inline Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+inline Range open(double lo, double hi) { return {lo, hi, true, true}; }
+inline Range closed_open(double lo, double hi) { return {lo, hi, false, true}; }
+
+// One row of an options struct's documentation.
+struct FieldDoc {
+  std::string name;
+  std::string unit;          // "m", "rad", "" for a pure number
+  std::string default_json;  // the default as JSON text
+  std::string allowed;       // Range::text(), "true or false", "\"a\" or \"b\"", "object"
+  std::string meaning;
+};
+
+// A Markdown table (| key | default | unit | allowed | meaning |) of the rows.
+std::string fields_markdown(const std::vector<FieldDoc>& rows);
+
+namespace option_fields {
+
+// An enum's names: to_string and its inverse (which throws UsageError for an unknown name).
+template <class E>
+using ToText = const char* (*)(E);
+template <class E>
+using FromText = E (*)(const std::string&);
+
+// Writes every field (nested structs through their own to_json).
+class ToJson {
+ public:
+  template <class T>
+  void field(const char* name, const T& value, const char*, Range, const char*) {
+    if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
+      j_[name] = vector3_json(value);
+    } else {
+      j_[name] = value;
+    }
+  }
+  template <class B>
+  void flag(const char* name, B& value, const char* meaning) {
+    field(name, value, "", Range{}, meaning);
+  }
+  template <class E>
+  void choice(const char* name, const E& value, ToText<E> to_s, FromText<E>, const char*) {
+    j_[name] = to_s(value);
+  }
+  template <class T>
+  void nested(const char* name, const T& value, const char*) {
+    nlohmann::json n;
+    to_json(n, value);
+    j_[name] = std::move(n);
+  }
+  nlohmann::json take() { return std::move(j_); }
+
+ private:
+  nlohmann::json j_ = nlohmann::json::object();
+};
+
+// Reads the present keys with the strict reader; the reader's finish() rejects the others.
+class FromJson {
+ public:
+  explicit FromJson(StrictJsonReader& r) : r_(r) {}
+  template <class T>
+  void field(const char* name, T& value, const char*, Range, const char*) {
+    r_.read(name, value);
+  }
+  template <class B>
+  void flag(const char* name, B& value, const char* meaning) {
+    field(name, value, "", Range{}, meaning);
+  }
+  template <class E>
+  void choice(const char* name, E& value, ToText<E> to_s, FromText<E> from_s, const char*) {
+    std::string text = to_s(value);
+    r_.read(name, text);
+    try {
+      value = from_s(text);
+    } catch (const UsageError& e) {
+      r_.fail(name, e.what());
+    }
+  }
+  template <class T>
+  void nested(const char* name, T& value, const char*) {
+    r_.read_object(name, value);
+  }
+
+ private:
+  StrictJsonReader& r_;
+};
+
+// Checks each number against its range; nested structs through their own validate().
+class Validate {
+ public:
+  explicit Validate(std::string what) : what_(std::move(what)) {}
+  template <class T>
+  void field(const char* name, const T& value, const char* unit, Range range, const char*) {
+    if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+      const auto x = static_cast<double>(value);
+      if (!range.contains(x)) {
+        throw UsageError(what_ + "." + name + ": expected " + range.text() +
+                         (*unit ? std::string(" ") + unit : std::string()) + ", got " +
+                         nlohmann::json(value).dump());
+      }
+    }
+  }
+  template <class B>
+  void flag(const char* name, B& value, const char* meaning) {
+    field(name, value, "", Range{}, meaning);
+  }
+  template <class E>
+  void choice(const char*, const E&, ToText<E>, FromText<E>, const char*) {}
+  template <class T>
+  void nested(const char* name, const T& value, const char*) {
+    try {
+      validate(value);
+    } catch (const UsageError& e) {
+      throw UsageError(what_ + "." + name + ": " + e.what());
+    }
+  }
+
+ private:
+  std::string what_;
+};
+
+// One documentation row per field.
+class Describe {
+ public:
+  template <class T>
+  void field(const char* name, const T& value, const char* unit, Range range, const char* meaning) {
+    std::string allowed;
+    if constexpr (std::is_same_v<T, bool>) {
+      allowed = "true or false";
+    } else if constexpr (std::is_arithmetic_v<T>) {
+      allowed = range.text() + (std::is_integral_v<T> ? ", whole" : "");
+    } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
+      allowed = "3 numbers";
+    } else {
+      allowed = "text";
+    }
+    nlohmann::json d;
+    if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
+      d = vector3_json(value);
+    } else {
+      d = value;
+    }
+    rows_.push_back({name, unit, d.dump(), allowed, meaning});
+  }
+  template <class B>
+  void flag(const char* name, B& value, const char* meaning) {
+    field(name, value, "", Range{}, meaning);
+  }
+  template <class E>
+  void choice(const char* name, const E& value, ToText<E> to_s, FromText<E>, const char* meaning) {
+    rows_.push_back({name, "", nlohmann::json(to_s(value)).dump(), "see meaning", meaning});
+  }
+  template <class T>
+  void nested(const char* name, const T& value, const char* meaning) {
+    nlohmann::json n;
+    to_json(n, value);
+    rows_.push_back({name, "", n.dump(), "object", meaning});
+  }
+  std::vector<FieldDoc> take() { return std::move(rows_); }
+
+ private:
+  std::vector<FieldDoc> rows_;
+};
+
+}  // namespace option_fields
+
+// The writing visitors (ToJson, Validate, Describe) only read the fields: one visit_fields per
+// struct serves both directions, so the const object is visited through a non-const reference.
+template <class O>
+nlohmann::json fields_to_json(const O& o) {
+  option_fields::ToJson v;
+  visit_fields(v, const_cast<O&>(o));
+  return v.take();
+}
+
+// Reads the keys present in `j` into `o` (absent keys keep o's values); `what` names the
+// struct in errors. Does not validate: call validate(o) after, which knows the cross-field rules.
+template <class O>
+void fields_from_json(const nlohmann::json& j, O& o, const char* what) {
+  StrictJsonReader r(j, what);
+  option_fields::FromJson v(r);
+  visit_fields(v, o);
+  r.finish();
+}
+
+template <class O>
+void validate_fields(const O& o, const char* what) {
+  option_fields::Validate v(what);
+  visit_fields(v, const_cast<O&>(o));
+}
+
+template <class O>
+std::vector<FieldDoc> describe_fields(const O& defaults = O{}) {
+  option_fields::Describe v;
+  visit_fields(v, const_cast<O&>(defaults));
+  return v.take();
+}
+
+}  // namespace locbench
