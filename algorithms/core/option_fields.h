@@ -10,8 +10,7 @@
 //     v.choice("region", o.region, to_string, region_rule_from_string, "ω1 rule");
 //     v.nested("weighting", o.weighting, "g of 5.8/5.10/5.11");
 //   }
-//   void to_json(nlohmann::json& j, const EapOptions& o) { j = fields_to_json(o); }
-//   void from_json(const nlohmann::json& j, EapOptions& o) { fields_from_json(j, o, "EapOptions"); validate(o); }
+//   LOCBENCH_OPTIONS_JSON(EapOptions)      // to_json and from_json (strict, then validate())
 //   void validate(const EapOptions& o) { validate_fields(o, "EapOptions"); /* cross-field rules */ }
 //
 // Absent keys keep their defaults; unknown keys, wrong types and out-of-range values throw
@@ -51,6 +50,7 @@ inline Range at_least(double lo) { return {lo, std::numeric_limits<double>::infi
 inline Range closed(double lo, double hi) { return {lo, hi, false, false}; }
 inline Range open(double lo, double hi) { return {lo, hi, true, true}; }
 inline Range closed_open(double lo, double hi) { return {lo, hi, false, true}; }
+inline Range open_closed(double lo, double hi) { return {lo, hi, true, false}; }
 
 // One row of an options struct's documentation.
 struct FieldDoc {
@@ -232,6 +232,14 @@ void fields_from_json(const nlohmann::json& j, O& o, const char* what) {
   r.finish();
 }
 
+// Reads `j` into `o` and, when the struct has a validate(o) (its ranges and cross-field rules),
+// validates the result.
+template <class O>
+void options_from_json(const nlohmann::json& j, O& o, const char* what) {
+  fields_from_json(j, o, what);
+  if constexpr (requires { validate(o); }) validate(o);
+}
+
 template <class O>
 void validate_fields(const O& o, const char* what) {
   option_fields::Validate v(what);
@@ -246,3 +254,9 @@ std::vector<FieldDoc> describe_fields(const O& defaults = O{}) {
 }
 
 }  // namespace locbench
+
+// Defines to_json and from_json (strict, then validate()) of an options struct from its
+// visit_fields; use inside the struct's namespace, in one .cpp.
+#define LOCBENCH_OPTIONS_JSON(Options)                                                           \
+  void to_json(nlohmann::json& j, const Options& o) { j = ::locbench::fields_to_json(o); }     \
+  void from_json(const nlohmann::json& j, Options& o) { ::locbench::options_from_json(j, o, #Options); }

@@ -42,11 +42,6 @@ void visit_fields(V& v, EapOptions& o) {
 
 void validate(const EapOptions& o) { validate_fields(o, "EapOptions"); }
 
-void to_json(nlohmann::json& j, const EapOptions& o) { j = fields_to_json(o); }
-
-void from_json(const nlohmann::json& j, EapOptions& o) {
-  fields_from_json(j, o, "EapOptions");
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(EapOptions)
 
 }  // namespace locbench::laser

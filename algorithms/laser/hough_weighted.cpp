@@ -31,7 +31,7 @@ void visit_fields(V& v, HoughWeight& g) {
   v.choice("kind", g.kind, to_string, hough_weighting_from_string,
            "\"count\" (5.11), \"range\" (5.10) or \"range_incidence\" (5.8)");
   v.field("rho_min", g.rho_min, "m", positive(), "ρ_min of 5.8/5.10");
-  v.field("min_cos_incidence", g.min_cos_incidence, "", Range{0.0, 1.0, true, false},
+  v.field("min_cos_incidence", g.min_cos_incidence, "", open_closed(0.0, 1.0),
           "floor of |cos| in 5.8");
 }
 
@@ -44,12 +44,7 @@ void validate(const HoughOptions& o) {
   validate(o.g);
 }
 
-void to_json(nlohmann::json& j, const HoughWeight& g) { j = fields_to_json(g); }
-
-void from_json(const nlohmann::json& j, HoughWeight& g) {
-  fields_from_json(j, g, "HoughWeight");
-  validate(g);
-}
+LOCBENCH_OPTIONS_JSON(HoughWeight)
 
 double hough_weight(const ScanPoint& p, double sensor_heading, double beta,
                     const HoughWeight& g) {
