@@ -98,18 +98,6 @@ void read_numbers(const nlohmann::json& v, double* out, std::size_t n, const std
   }
 }
 
-void StrictJsonReader::read(const char* key, Eigen::Vector2d& out) {
-  if (const auto* v = raw(key)) read_numbers(*v, out.data(), 2, path_of(key), source_);
-}
-
-void StrictJsonReader::read(const char* key, Eigen::Vector3d& out) {
-  if (const auto* v = raw(key)) read_numbers(*v, out.data(), 3, path_of(key), source_);
-}
-
-void StrictJsonReader::read(const char* key, Eigen::Vector4d& out) {
-  if (const auto* v = raw(key)) read_numbers(*v, out.data(), 4, path_of(key), source_);
-}
-
 void StrictJsonReader::read(const char* key, Pose2& out) {
   if (const auto* v = raw(key)) {
     double p[3];

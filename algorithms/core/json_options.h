@@ -17,6 +17,11 @@
 
 namespace locbench {
 
+// Reads an array of numbers of fixed size n into out[0..n); names `path` in errors, which are
+// InputError(source, …) or, with no source, UsageError.
+void read_numbers(const nlohmann::json& v, double* out, std::size_t n, const std::string& path,
+                  const std::string& source);
+
 class StrictJsonReader {
  public:
   // `path` is the dotted path of this object in messages: the options struct's name
@@ -30,10 +35,12 @@ class StrictJsonReader {
   void read(const char* key, std::size_t& out);
   void read(const char* key, bool& out);
   void read(const char* key, std::string& out);
-  void read(const char* key, Eigen::Vector2d& out);  // [x, y]
-  void read(const char* key, Eigen::Vector3d& out);  // [a, b, c]
-  void read(const char* key, Eigen::Vector4d& out);  // [a, b, c, d]
-  void read(const char* key, Pose2& out);            // [x, y, theta]
+  // A fixed-size vector (Vector2d, Vector3d, …): an array of exactly N numbers.
+  template <int N>
+  void read(const char* key, Eigen::Matrix<double, N, 1>& out) {
+    if (const nlohmann::json* v = raw(key)) read_numbers(*v, out.data(), N, path_of(key), source_);
+  }
+  void read(const char* key, Pose2& out);  // [x, y, theta]
   // A nested options struct with its own from_json (errors get this key's path in front).
   template <class T>
   void read_object(const char* key, T& out) {
@@ -70,16 +77,16 @@ class StrictJsonReader {
   std::vector<std::string> known_;  // in the order asked, for the "expected one of" list
 };
 
-// Reads an array of numbers of fixed size n into out[0..n); names `path` in errors, which are
-// InputError(source, …) or, with no source, UsageError.
-void read_numbers(const nlohmann::json& v, double* out, std::size_t n, const std::string& path,
-                  const std::string& source);
 
 // Name of a JSON value's type for messages: "number", "string", "array"...
 std::string json_type_name(const nlohmann::json& v);
 
-inline nlohmann::json vector3_json(const Eigen::Vector3d& v) {
-  return nlohmann::json::array({v(0), v(1), v(2)});
+template <int N>
+nlohmann::json vector_json(const Eigen::Matrix<double, N, 1>& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (int i = 0; i < N; ++i) a.push_back(v(i));
+  return a;
 }
+inline nlohmann::json vector3_json(const Eigen::Vector3d& v) { return vector_json(v); }
 
 }  // namespace locbench

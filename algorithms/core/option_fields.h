@@ -66,6 +66,21 @@ std::string fields_markdown(const std::vector<FieldDoc>& rows);
 
 namespace option_fields {
 
+// Fixed-size vectors of numbers (Vector3d, …), written as JSON arrays.
+template <class T>
+struct IsVector : std::false_type {};
+template <int N>
+struct IsVector<Eigen::Matrix<double, N, 1>> : std::true_type {};
+
+template <class T>
+nlohmann::json json_of(const T& value) {
+  if constexpr (IsVector<T>::value) {
+    return vector_json(value);
+  } else {
+    return nlohmann::json(value);
+  }
+}
+
 // An enum's names: to_string and its inverse (which throws UsageError for an unknown name).
 template <class E>
 using ToText = const char* (*)(E);
@@ -77,11 +92,7 @@ class ToJson {
  public:
   template <class T>
   void field(const char* name, const T& value, const char*, Range, const char*) {
-    if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
-      j_[name] = vector3_json(value);
-    } else {
-      j_[name] = value;
-    }
+    j_[name] = json_of(value);
   }
   template <class B>
   void flag(const char* name, B& value, const char* meaning) {
@@ -141,11 +152,10 @@ class Validate {
   template <class T>
   void field(const char* name, const T& value, const char* unit, Range range, const char*) {
     if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
-      const auto x = static_cast<double>(value);
-      if (!range.contains(x)) {
-        throw UsageError(what_ + "." + name + ": expected " + range.text() +
-                         (*unit ? std::string(" ") + unit : std::string()) + ", got " +
-                         nlohmann::json(value).dump());
+      if (!range.contains(static_cast<double>(value))) out_of_range(name, unit, range, nlohmann::json(value));
+    } else if constexpr (IsVector<T>::value) {
+      for (Eigen::Index i = 0; i < value.size(); ++i) {
+        if (!range.contains(value(i))) out_of_range(name, unit, range, json_of(value), "each ");
       }
     }
   }
@@ -165,6 +175,12 @@ class Validate {
   }
 
  private:
+  [[noreturn]] void out_of_range(const char* name, const char* unit, Range range,
+                                 const nlohmann::json& value, const char* each = "") const {
+    throw UsageError(what_ + "." + name + ": expected " + each + range.text() +
+                     (*unit ? std::string(" ") + unit : std::string()) + ", got " + value.dump());
+  }
+
   std::string what_;
 };
 
@@ -178,18 +194,12 @@ class Describe {
       allowed = "true or false";
     } else if constexpr (std::is_arithmetic_v<T>) {
       allowed = range.text() + (std::is_integral_v<T> ? ", whole" : "");
-    } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
-      allowed = "3 numbers";
+    } else if constexpr (IsVector<T>::value) {
+      allowed = std::to_string(value.size()) + " numbers, each " + range.text();
     } else {
       allowed = "text";
     }
-    nlohmann::json d;
-    if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
-      d = vector3_json(value);
-    } else {
-      d = value;
-    }
-    rows_.push_back({name, unit, d.dump(), allowed, meaning});
+    rows_.push_back({name, unit, json_of(value).dump(), allowed, meaning});
   }
   template <class B>
   void flag(const char* name, B& value, const char* meaning) {
