@@ -237,9 +237,16 @@ nlohmann::json fields_to_json(const O& o) {
 template <class O>
 void fields_from_json(const nlohmann::json& j, O& o, const char* what) {
   StrictJsonReader r(j, what);
+  read_fields(r, o);
+  r.finish();
+}
+
+// Reads the struct's keys from an open reader (an input file's object, errors naming the file
+// and key path); the caller calls r.finish() once every key of the object is read.
+template <class O>
+void read_fields(StrictJsonReader& r, O& o) {
   option_fields::FromJson v(r);
   visit_fields(v, o);
-  r.finish();
 }
 
 // Reads `j` into `o` and, when the struct has a validate(o) (its ranges and cross-field rules),

@@ -37,11 +37,13 @@ void visit_fields(V& v, EapOptions& o) {
   v.flag("remove_claimed", o.remove_claimed, "§5.3: delete matched points");
   v.choice("claim_order", o.claim_order, to_string, claim_order_from_string,
            "\"nearest_segment\" or \"map_order\"");
-  v.choice("region", o.region, to_string, region_rule_from_string, "ω1 rule (eap_region.h)");
+  v.choice("region", o.region, to_string, region_rule_from_string, "ω1: \"thesis\" or \"stadium\" (eap_region.h)");
 }
 
 void validate(const EapOptions& o) { validate_fields(o, "EapOptions"); }
 
 LOCBENCH_OPTIONS_JSON(EapOptions)
+
+std::string eap_options_table() { return fields_markdown(describe_fields<EapOptions>()); }
 
 }  // namespace locbench::laser
