@@ -1,60 +1,50 @@
 #pragma once
-// Strict JSON reading of option structs for to_json/from_json pairs: absent keys keep their
-// defaults, unknown keys, wrong types and wrong array sizes throw UsageError naming the key.
-// Values are in SI units (m, rad) like the structs themselves.
+// The one strict reader of JSON objects into option structs and input files: absent keys keep
+// their defaults (or, through required(), are an error), unknown keys, wrong types and wrong
+// array sizes throw naming the key's full path and what was expected. Values are in SI units
+// (m, rad) like the structs themselves.
+//
+// Errors: with a `source` (the file), InputError(source, 0, "path.key: …"), exit 2 naming the
+// file; without one (options passed in code or merged from a CLI file that the CLI names),
+// UsageError("path.key: …").
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <string>
+#include <vector>
 
 #include "core/errors.h"
+#include "core/pose2.h"
 
 namespace locbench {
 
+// Reads an array of numbers of fixed size n into out[0..n); names `path` in errors, which are
+// InputError(source, …) or, with no source, UsageError.
+void read_numbers(const nlohmann::json& v, double* out, std::size_t n, const std::string& path,
+                  const std::string& source);
+
 class StrictJsonReader {
  public:
-  // `what` names the options struct in messages ("SageHusaOptions").
-  StrictJsonReader(const nlohmann::json& j, std::string what) : j_(j), what_(std::move(what)) {
-    if (!j_.is_object()) fail("", "expected a JSON object");
-  }
+  // `path` is the dotted path of this object in messages: the options struct's name
+  // ("SageHusaOptions") or the key path from the top of a file ("compass"; "" for the top).
+  // `source` names the file ("" when not read from a file).
+  StrictJsonReader(const nlohmann::json& j, std::string path, std::string source = "");
 
-  void read(const char* key, double& out) {
-    if (const nlohmann::json* v = find(key)) {
-      if (!v->is_number()) fail(key, "expected a number");
-      out = v->get<double>();
-    }
+  bool has(const char* key) const { return j_.contains(key); }
+  void read(const char* key, double& out);
+  void read(const char* key, int& out);
+  void read(const char* key, std::size_t& out);
+  void read(const char* key, bool& out);
+  void read(const char* key, std::string& out);
+  // A fixed-size vector (Vector2d, Vector3d, …): an array of exactly N numbers.
+  template <int N>
+  void read(const char* key, Eigen::Matrix<double, N, 1>& out) {
+    if (const nlohmann::json* v = raw(key)) read_numbers(*v, out.data(), N, path_of(key), source_);
   }
-  void read(const char* key, int& out) {
-    if (const nlohmann::json* v = find(key)) {
-      if (!v->is_number_integer()) fail(key, "expected an integer");
-      out = v->get<int>();
-    }
-  }
-  void read(const char* key, bool& out) {
-    if (const nlohmann::json* v = find(key)) {
-      if (!v->is_boolean()) fail(key, "expected true or false");
-      out = v->get<bool>();
-    }
-  }
-  void read(const char* key, std::string& out) {
-    if (const nlohmann::json* v = find(key)) {
-      if (!v->is_string()) fail(key, "expected a string");
-      out = v->get<std::string>();
-    }
-  }
-  void read(const char* key, Eigen::Vector3d& out) {
-    if (const nlohmann::json* v = find(key)) {
-      if (!v->is_array() || v->size() != 3) fail(key, "expected an array of 3 numbers");
-      for (std::size_t i = 0; i < 3; ++i) {
-        if (!(*v)[i].is_number()) fail(key, "expected an array of 3 numbers");
-        out(static_cast<Eigen::Index>(i)) = (*v)[i].get<double>();
-      }
-    }
-  }
-  // A nested options struct with its own from_json.
+  void read(const char* key, Pose2& out);  // [x, y, theta]
+  // A nested options struct with its own from_json (errors get this key's path in front).
   template <class T>
   void read_object(const char* key, T& out) {
-    if (const nlohmann::json* v = find(key)) {
+    if (const nlohmann::json* v = raw(key)) {
       try {
         from_json(*v, out);
       } catch (const UsageError& e) {
@@ -62,31 +52,41 @@ class StrictJsonReader {
       }
     }
   }
-  // Throws for the first key that was never asked for.
-  void finish() const {
-    for (auto it = j_.begin(); it != j_.end(); ++it) {
-      if (!known_.contains(it.key())) fail(it.key(), "unknown key");
-    }
-  }
+  // A nested object read by its own reader (which must be an object; absent = empty).
+  StrictJsonReader object(const char* key);
+  // The raw value of a present key (marks it known), or nullptr when absent.
+  const nlohmann::json* raw(const char* key);
+  // The raw value of a key that must be present ("missing field" otherwise).
+  const nlohmann::json& required(const char* key);
+  // Throws for the first key that was never asked for, listing the known ones.
+  void finish() const;
+  // Declares the object's keys up front and rejects any other at once (for inputs that check
+  // their keys before their values).
+  void allow_only(std::initializer_list<const char*> keys);
 
-  [[noreturn]] void fail(const std::string& key, const std::string& why) const {
-    throw UsageError(what_ + (key.empty() ? "" : "." + key) + ": " + why);
+  std::string path_of(const std::string& key) const {
+    return path_.empty() ? key : key.empty() ? path_ : path_ + "." + key;
   }
+  [[noreturn]] void fail(const std::string& key, const std::string& why) const;
+  const std::string& source() const { return source_; }
 
  private:
-  const nlohmann::json* find(const char* key) {
-    known_.insert(key);
-    const auto it = j_.find(key);
-    return it == j_.end() ? nullptr : &*it;
-  }
-
   const nlohmann::json& j_;
-  std::string what_;
-  std::set<std::string> known_;
+  std::string path_;
+  std::string source_;
+  std::vector<std::string> known_;  // in the order asked, for the "expected one of" list
 };
 
-inline nlohmann::json vector3_json(const Eigen::Vector3d& v) {
-  return nlohmann::json::array({v(0), v(1), v(2)});
+
+// Name of a JSON value's type for messages: "number", "string", "array"...
+std::string json_type_name(const nlohmann::json& v);
+
+template <int N>
+nlohmann::json vector_json(const Eigen::Matrix<double, N, 1>& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (int i = 0; i < N; ++i) a.push_back(v(i));
+  return a;
 }
+inline nlohmann::json vector3_json(const Eigen::Vector3d& v) { return vector_json(v); }
 
 }  // namespace locbench

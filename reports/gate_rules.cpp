@@ -1,33 +1,28 @@
 #include "reports/gate_rules.h"
 
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "core/errors.h"
+#include "core/json_options.h"
 #include "reports/json_file.h"
 
 namespace locbench::reports {
 namespace {
-using nlohmann::json;
 
-void only_keys(const json& j, const std::set<std::string>& allowed, const std::string& file,
-               const std::string& where) {
-  if (!j.is_object()) throw InputError(file, 0, where + ": expected an object");
-  for (const auto& [k, v] : j.items()) {
-    if (!allowed.count(k)) throw InputError(file, 0, where + ": unknown key \"" + k + "\"");
+// Reads each object of the list at `key` with its own strict reader ("rules.key[i]", the
+// "comment" key allowed); returns false when the key is absent.
+template <class F>
+bool each_rule(StrictJsonReader& top, const char* key, F read_one) {
+  const nlohmann::json* list = top.raw(key);
+  if (!list) return false;
+  if (!list->is_array()) top.fail(key, "expected a list, found " + json_type_name(*list));
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    StrictJsonReader item((*list)[i], top.path_of(key) + "[" + std::to_string(i) + "]", top.source());
+    item.raw("comment");
+    read_one(item);
+    item.finish();
   }
-}
-
-template <typename T>
-void read(const json& j, const char* key, T& out, const std::string& file,
-          const std::string& where) {
-  if (!j.contains(key)) return;
-  try {
-    out = j.at(key).get<T>();
-  } catch (const json::exception&) {
-    throw InputError(file, 0, where + "." + key + ": wrong type");
-  }
+  return true;
 }
 
 }  // namespace
@@ -39,59 +34,42 @@ GateRules default_gate_rules() {
 }
 
 GateRules load_gate_rules(const std::string& path) {
-  const json j = read_json_file(path, "rules file (JSON)");
-  only_keys(j, {"accuracy", "speed_ratios", "fail_on_missing", "comment"}, path, "rules");
+  const nlohmann::json j = read_json_file(path, "rules file (JSON)");
+  StrictJsonReader top(j, "rules", path);
+  top.raw("comment");
   GateRules r;
-  read(j, "fail_on_missing", r.fail_on_missing, path, "rules");
-  if (j.contains("accuracy")) {
-    if (!j["accuracy"].is_array()) throw InputError(path, 0, "rules.accuracy: expected a list");
-    for (std::size_t i = 0; i < j["accuracy"].size(); ++i) {
-      const json& a = j["accuracy"][i];
-      const std::string where = "rules.accuracy[" + std::to_string(i) + "]";
-      only_keys(a, {"match", "max_relative_worsening", "max_absolute_worsening",
-                    "outside_interval", "comment"}, path, where);
-      AccuracyRule rule;
-      read(a, "match", rule.match, path, where);
-      read(a, "max_relative_worsening", rule.max_relative_worsening, path, where);
-      read(a, "max_absolute_worsening", rule.max_absolute_worsening, path, where);
-      read(a, "outside_interval", rule.outside_interval, path, where);
-      if (rule.max_relative_worsening < 0 || rule.max_absolute_worsening < 0) {
-        throw InputError(path, 0, where + ": tolerances must be ≥ 0");
-      }
-      r.accuracy.push_back(rule);
+  top.read("fail_on_missing", r.fail_on_missing);
+  const bool has_accuracy = each_rule(top, "accuracy", [&](StrictJsonReader& a) {
+    AccuracyRule rule;
+    a.read("match", rule.match);
+    a.read("max_relative_worsening", rule.max_relative_worsening);
+    a.read("max_absolute_worsening", rule.max_absolute_worsening);
+    a.read("outside_interval", rule.outside_interval);
+    if (rule.max_relative_worsening < 0 || rule.max_absolute_worsening < 0) {
+      a.fail("", "tolerances must be ≥ 0");
     }
-  } else {
-    r.accuracy.push_back(AccuracyRule{});
-  }
-  if (j.contains("speed_ratios")) {
-    if (!j["speed_ratios"].is_array()) {
-      throw InputError(path, 0, "rules.speed_ratios: expected a list");
-    }
-    for (std::size_t i = 0; i < j["speed_ratios"].size(); ++i) {
-      const json& s = j["speed_ratios"][i];
-      const std::string where = "rules.speed_ratios[" + std::to_string(i) + "]";
-      only_keys(s, {"name", "numerator", "denominator", "max_ratio", "max_relative_increase",
-                    "alpha", "comment"}, path, where);
-      SpeedRatioRule rule;
-      read(s, "name", rule.name, path, where);
-      read(s, "numerator", rule.numerator, path, where);
-      read(s, "denominator", rule.denominator, path, where);
+    r.accuracy.push_back(rule);
+  });
+  if (!has_accuracy) r.accuracy.push_back(AccuracyRule{});
+  each_rule(top, "speed_ratios", [&](StrictJsonReader& s) {
+    SpeedRatioRule rule;
+    s.read("name", rule.name);
+    s.read("numerator", rule.numerator);
+    s.read("denominator", rule.denominator);
+    if (s.has("max_ratio")) {
       double max_ratio = 0.0;
-      if (s.contains("max_ratio")) {
-        read(s, "max_ratio", max_ratio, path, where);
-        rule.max_ratio = max_ratio;
-      }
-      read(s, "max_relative_increase", rule.max_relative_increase, path, where);
-      read(s, "alpha", rule.alpha, path, where);
-      if (rule.name.empty() || rule.numerator.empty() || rule.denominator.empty()) {
-        throw InputError(path, 0, where + ": name, numerator and denominator are required");
-      }
-      if (!(rule.alpha > 0.0 && rule.alpha < 1.0)) {
-        throw InputError(path, 0, where + ".alpha: expected a number in (0, 1)");
-      }
-      r.speed_ratios.push_back(rule);
+      s.read("max_ratio", max_ratio);
+      rule.max_ratio = max_ratio;
     }
-  }
+    s.read("max_relative_increase", rule.max_relative_increase);
+    s.read("alpha", rule.alpha);
+    if (rule.name.empty() || rule.numerator.empty() || rule.denominator.empty()) {
+      s.fail("", "name, numerator and denominator are required");
+    }
+    if (!(rule.alpha > 0.0 && rule.alpha < 1.0)) s.fail("alpha", "expected a number in (0, 1)");
+    r.speed_ratios.push_back(rule);
+  });
+  top.finish();
   if (r.accuracy.empty() && r.speed_ratios.empty()) {
     throw InputError(path, 0,
                      "rules: \"accuracy\" is empty and there are no \"speed_ratios\": a gate with no rule "

@@ -1,17 +1,10 @@
 #pragma once
-// Reading a JSON input file with errors that name it: a folder, an unreadable file, a syntax
-// error (with its line) and a number beyond double range (1e400) are InputErrors (exit 2),
-// never a library exception that surfaces as "internal error".
-#include <filesystem>
-#include <nlohmann/json.hpp>
-#include <string>
+// The reports' name for the one JSON file reader (algorithms/core/json_file.h).
+#include "algorithms/core/json_file.h"
 
 namespace locbench::reports {
 
-// `what` names the file's role in messages ("rules file", "--options file", …).
-nlohmann::json read_json_file(const std::filesystem::path& path, const std::string& what = "JSON file");
-
-// Parses JSON text the same way; `source` names it in errors.
-nlohmann::json parse_json_text(const std::string& text, const std::string& source);
+using locbench::parse_json_text;
+using locbench::read_json_file;
 
 }  // namespace locbench::reports

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/errors.h"
+#include "core/json_file.h"
 
 namespace locbench::reports {
 namespace {
@@ -244,15 +245,7 @@ std::filesystem::path write_report(const Report& report, const std::filesystem::
 }
 
 Report read_report(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), 0, "cannot open report");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path.string(), 0, std::string("not valid JSON: ") + e.what());
-  }
-  return report_from_json(j, path.string());
+  return report_from_json(read_json_file(path, "report (JSON)"), path.string());
 }
 
 }  // namespace locbench::reports

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/errors.h"
+#include "core/json_file.h"
 #include "reports/report_json.h"
 
 namespace locbench::reports {
@@ -115,15 +116,7 @@ std::filesystem::path write_shard_report(const ShardReport& shard, const std::fi
 }
 
 ShardReport read_shard_report(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), 0, "cannot open shard report");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError(path.string(), 0, std::string("not valid JSON: ") + e.what());
-  }
-  return shard_report_from_json(j, path.string());
+  return shard_report_from_json(read_json_file(path, "shard report (JSON)"), path.string());
 }
 
 }  // namespace locbench::reports

@@ -8,33 +8,26 @@
 #include <map>
 
 #include "core/errors.h"
+#include "core/option_fields.h"
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/compass_channel.h"
 #include "algorithms/diagnosis/odometry_channel.h"
 
 namespace locbench::diagnosis {
 
-void to_json(nlohmann::json& j, const DiagnosisOptions& o) {
-  j = {{"false_alarm", o.false_alarm},
-       {"window_s", o.windows.duration},
-       {"min_windows", o.windows.min_windows},
-       {"rpe_chain", o.rpe_chain},
-       {"holdout_block", o.block}};
+// DiagnosisOptions' fields, stated once (diagnosis_types.h explains each).
+template <class V>
+void visit_fields(V& v, DiagnosisOptions& o) {
+  v.field("false_alarm", o.false_alarm, "", open(0.0, 0.5), "per log and channel (Bonferroni over the causes)");
+  v.field("window_s", o.windows.duration, "s", positive(), "window length");
+  v.field("min_windows", o.windows.min_windows, "", non_negative(), "fewest windows to test");
+  v.field("rpe_chain", o.rpe_chain, "", at_least(1), "windows chained into one relative-pose segment");
+  v.field("holdout_block", o.block, "", at_least(1), "hold-out block length in windows");
 }
 
-void from_json(const nlohmann::json& j, DiagnosisOptions& o) {
-  for (const auto& [k, v] : j.items()) {
-    if (k == "false_alarm") o.false_alarm = v.get<double>();
-    else if (k == "window_s") o.windows.duration = v.get<double>();
-    else if (k == "min_windows") o.windows.min_windows = v.get<std::size_t>();
-    else if (k == "rpe_chain") o.rpe_chain = v.get<std::size_t>();
-    else if (k == "holdout_block") o.block = v.get<std::size_t>();
-    else throw UsageError("diagnosis options: unknown key '" + k + "'");
-  }
-  if (!(o.false_alarm > 0.0 && o.false_alarm < 0.5)) throw UsageError("false_alarm must be in (0, 0.5)");
-  if (!(o.windows.duration > 0.0)) throw UsageError("window_s must be > 0");
-  if (o.block < 1 || o.rpe_chain < 1) throw UsageError("holdout_block and rpe_chain must be ≥ 1");
-}
+void validate(const DiagnosisOptions& o) { validate_fields(o, "DiagnosisOptions"); }
+
+LOCBENCH_OPTIONS_JSON(DiagnosisOptions)
 
 namespace {
 

@@ -19,6 +19,8 @@ struct DiagnosisOptions {
 };
 void to_json(nlohmann::json& j, const DiagnosisOptions& o);
 void from_json(const nlohmann::json& j, DiagnosisOptions& o);  // strict: unknown key → UsageError
+// Throws UsageError naming the first field out of its range.
+void validate(const DiagnosisOptions& o);
 
 struct Estimate {
   std::string name;

@@ -13,6 +13,7 @@
 #include "core/errors.h"
 #include "core/chi_square.h"
 #include "core/input_limits.h"
+#include "core/json_options.h"
 #include "core/rng.h"
 #include "core/statistics.h"
 #include "core/units.h"
@@ -24,17 +25,12 @@ namespace locbench::diagnosis {
 
 ResidualHistogram read_histogram(const nlohmann::json& j, const std::string& file) {
   auto bad = [&](const std::string& what) { throw InputError(file, 0, what); };
-  if (!j.is_object()) bad("expected a JSON object {\"residual\", \"unit\", \"edges\", \"counts\"}");
-  for (const char* k : {"residual", "unit", "edges", "counts"}) {
-    if (!j.contains(k)) bad(std::string("missing key '") + k + "'");
-  }
-  for (const auto& [k, v] : j.items()) {
-    if (k != "residual" && k != "unit" && k != "edges" && k != "counts" && k != "source") bad("unknown key '" + k + "'");
-  }
+  StrictJsonReader r(j, "", file);
+  r.allow_only({"residual", "unit", "edges", "counts", "source"});
+  for (const char* k : {"residual", "unit", "edges", "counts"}) r.required(k);
   ResidualHistogram h;
-  if (!j["residual"].is_string() || !j["unit"].is_string()) bad("'residual' and 'unit' must be strings");
-  h.residual = j["residual"].get<std::string>();
-  h.unit = j["unit"].get<std::string>();
+  r.read("residual", h.residual);
+  r.read("unit", h.unit);
   double scale = 0.0;
   if (h.unit == "deg") scale = deg(1.0);
   else if (h.unit == "rad" || h.unit == "m") scale = 1.0;

@@ -4,40 +4,22 @@
 #include <utility>
 
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench {
-namespace {
 
-void validate(const CompassEkfOptions& o) {
-  if (!(o.compass_variance > 0.0))
-    throw UsageError("CompassEkfOptions: compass_variance must be > 0");
-  if (!(o.initial_covariance.array() >= 0.0).all()) {
-    throw UsageError("CompassEkfOptions: initial_covariance must be >= 0");
-  }
-  if (!(o.process_noise_scale >= 0.0)) {
-    throw UsageError("CompassEkfOptions: process_noise_scale must be >= 0");
-  }
+// CompassEkfOptions's fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, CompassEkfOptions& o) {
+  v.nested("noise", o.noise, "OdometryNoiseOptions");
+  v.field("compass_variance", o.compass_variance, "rad²", positive(), "R (§4.5)");
+  v.field("initial_covariance", o.initial_covariance, "m², m², rad²", non_negative(), "diag P(0)");
+  v.field("process_noise_scale", o.process_noise_scale, "", non_negative(), "multiplies Q");
 }
 
-}  // namespace
+void validate(const CompassEkfOptions& o) { validate_fields(o, "CompassEkfOptions"); }
 
-void to_json(nlohmann::json& j, const CompassEkfOptions& o) {
-  j = {{"noise", o.noise},
-       {"compass_variance", o.compass_variance},
-       {"initial_covariance", vector3_json(o.initial_covariance)},
-       {"process_noise_scale", o.process_noise_scale}};
-}
-
-void from_json(const nlohmann::json& j, CompassEkfOptions& o) {
-  StrictJsonReader r(j, "CompassEkfOptions");
-  r.read_object("noise", o.noise);
-  r.read("compass_variance", o.compass_variance);
-  r.read("initial_covariance", o.initial_covariance);
-  r.read("process_noise_scale", o.process_noise_scale);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(CompassEkfOptions)
 
 CompassEkf::CompassEkf(const CompassEkfOptions& options, double wheelbase, const Pose2& start)
     : options_(options),

@@ -27,6 +27,8 @@ struct CompassEkfOptions {
 void to_json(nlohmann::json& j, const CompassEkfOptions& o);
 // Strict: unknown keys, wrong types or invalid values throw UsageError.
 void from_json(const nlohmann::json& j, CompassEkfOptions& o);
+// Throws UsageError naming the first field out of its range.
+void validate(const CompassEkfOptions& o);
 
 // Q(k−1) from the previous estimate X̂(k−1), the sample's wheel travel and the wheelbase.
 using ProcessNoiseModel =

@@ -2,35 +2,34 @@
 
 #include <cmath>
 
-#include "core/json_options.h"
+#include "core/errors.h"
+#include "core/option_fields.h"
 
 namespace locbench {
 
-void to_json(nlohmann::json& j, const OdometryNoiseOptions& o) {
-  j = {{"k_left", o.k_left},
-       {"k_right", o.k_right},
-       {"sigma_left", o.sigma_left},
-       {"sigma_right", o.sigma_right},
-       {"form", o.form == OdometryNoiseForm::kThesis ? "thesis" : "jacobian"}};
+const char* to_string(OdometryNoiseForm f) {
+  return f == OdometryNoiseForm::kThesis ? "thesis" : "jacobian";
 }
 
-void from_json(const nlohmann::json& j, OdometryNoiseOptions& o) {
-  StrictJsonReader r(j, "OdometryNoiseOptions");
-  r.read("k_left", o.k_left);
-  r.read("k_right", o.k_right);
-  r.read("sigma_left", o.sigma_left);
-  r.read("sigma_right", o.sigma_right);
-  std::string form = o.form == OdometryNoiseForm::kThesis ? "thesis" : "jacobian";
-  r.read("form", form);
-  if (form != "thesis" && form != "jacobian") {
-    r.fail("form", "expected \"thesis\" or \"jacobian\"");
-  }
-  o.form = form == "thesis" ? OdometryNoiseForm::kThesis : OdometryNoiseForm::kJacobian;
-  r.finish();
-  if (o.k_left < 0.0 || o.k_right < 0.0 || o.sigma_left < 0.0 || o.sigma_right < 0.0) {
-    r.fail("", "k and sigma must be >= 0");
-  }
+OdometryNoiseForm odometry_noise_form_from_string(const std::string& s) {
+  if (s == "thesis") return OdometryNoiseForm::kThesis;
+  if (s == "jacobian") return OdometryNoiseForm::kJacobian;
+  throw UsageError("expected \"thesis\" or \"jacobian\", got \"" + s + "\"");
 }
+
+// OdometryNoiseOptions' fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, OdometryNoiseOptions& o) {
+  v.field("k_left", o.k_left, "√m", non_negative(), "k_l (§4.5)");
+  v.field("k_right", o.k_right, "√m", non_negative(), "k_r");
+  v.field("sigma_left", o.sigma_left, "m", non_negative(), "σ_l");
+  v.field("sigma_right", o.sigma_right, "m", non_negative(), "σ_r");
+  v.choice("form", o.form, to_string, odometry_noise_form_from_string, "\"thesis\" or \"jacobian\"");
+}
+
+void validate(const OdometryNoiseOptions& o) { validate_fields(o, "OdometryNoiseOptions"); }
+
+LOCBENCH_OPTIONS_JSON(OdometryNoiseOptions)
 
 WheelNoiseVariance wheel_noise_variance(const OdometryNoiseOptions& o, const WheelDisplacement& u) {
   return {o.k_left * o.k_left * std::abs(u.left) + o.sigma_left * o.sigma_left,

@@ -33,6 +33,11 @@ struct OdometryNoiseOptions {
 void to_json(nlohmann::json& j, const OdometryNoiseOptions& o);
 // Strict: unknown keys or wrong types throw UsageError; "form" is "thesis" or "jacobian".
 void from_json(const nlohmann::json& j, OdometryNoiseOptions& o);
+// Throws UsageError naming the first field out of its range.
+void validate(const OdometryNoiseOptions& o);
+const char* to_string(OdometryNoiseForm f);  // "thesis" | "jacobian"
+// The inverse; throws UsageError otherwise.
+OdometryNoiseForm odometry_noise_form_from_string(const std::string& s);
 
 // Variance of each wheel's travel error in one sample: k²|U| + σ² [m²].
 struct WheelNoiseVariance {

@@ -86,6 +86,8 @@ void validate(const EapOptions& o);
 void to_json(nlohmann::json& j, const EapOptions& o);
 // Strict: unknown keys, wrong types or invalid values throw UsageError.
 void from_json(const nlohmann::json& j, EapOptions& o);
+// The Markdown table of the options (key, default, unit, allowed, meaning), as in README.md.
+std::string eap_options_table();
 
 class EapMatcher : public SegmentMatcher {
  public:

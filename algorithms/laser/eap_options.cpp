@@ -3,7 +3,7 @@
 #include <string>
 
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 #include "core/units.h"
 #include "algorithms/laser/eap_matcher.h"
 
@@ -23,63 +23,27 @@ ClaimOrder claim_order_from_string(const std::string& s) {
   throw UsageError("claim_order must be \"nearest_segment\" or \"map_order\", got \"" + s + "\"");
 }
 
-void validate(const EapOptions& o) {
-  if (!(std::isfinite(o.d_limit) && o.d_limit > 0.0)) {
-    throw UsageError("EapOptions.d_limit must be finite and > 0");
-  }
-  if (!(std::isfinite(o.c_limit) && o.c_limit >= 0.0)) {
-    throw UsageError("EapOptions.c_limit must be finite and ≥ 0");
-  }
-  if (!(std::isfinite(o.min_extent) && o.min_extent >= 0.0)) {
-    throw UsageError("EapOptions.min_extent must be finite and ≥ 0");
-  }
-  if (!(std::isfinite(o.trim_distance) && o.trim_distance >= 0.0)) {
-    throw UsageError("EapOptions.trim_distance must be finite and ≥ 0 (0 = off)");
-  }
-  if (!(o.max_direction_error >= 0.0 && o.max_direction_error < kPi / 2)) {
-    throw UsageError("EapOptions.max_direction_error must be in [0, π/2) rad (0 = off)");
-  }
-  try {
-    validate(o.weighting);
-  } catch (const UsageError& e) {
-    throw UsageError(std::string("EapOptions.weighting: ") + e.what());
-  }
+// EapOptions' fields, stated once (eap_matcher.h explains each).
+template <class V>
+void visit_fields(V& v, EapOptions& o) {
+  v.field("d_limit", o.d_limit, "m", positive(), "half-width of ω2 (5.5)");
+  v.field("c_limit", o.c_limit, "", non_negative(), "minimum score Σg of a run (§5.3: 5)");
+  v.field("min_extent", o.min_extent, "m", non_negative(), "a run's first-to-last distance must exceed this");
+  v.field("max_direction_error", o.max_direction_error, "rad", closed_open(0.0, kPi / 2),
+          "ours: chord-to-segment angle limit (0 = off, the thesis)");
+  v.field("trim_distance", o.trim_distance, "m", non_negative(),
+          "ours: drop the farthest point while beyond this, then refit (0 = off, the thesis)");
+  v.nested("weighting", o.weighting, "g of 5.8/5.10/5.11 (HoughWeight)");
+  v.flag("remove_claimed", o.remove_claimed, "§5.3: delete matched points");
+  v.choice("claim_order", o.claim_order, to_string, claim_order_from_string,
+           "\"nearest_segment\" or \"map_order\"");
+  v.choice("region", o.region, to_string, region_rule_from_string, "ω1: \"thesis\" or \"stadium\" (eap_region.h)");
 }
 
-void to_json(nlohmann::json& j, const EapOptions& o) {
-  nlohmann::json g;
-  to_json(g, o.weighting);
-  j = {{"d_limit", o.d_limit},
-       {"c_limit", o.c_limit},
-       {"min_extent", o.min_extent},
-       {"max_direction_error", o.max_direction_error},
-       {"trim_distance", o.trim_distance},
-       {"weighting", g},
-       {"remove_claimed", o.remove_claimed},
-       {"claim_order", to_string(o.claim_order)},
-       {"region", to_string(o.region)}};
-}
+void validate(const EapOptions& o) { validate_fields(o, "EapOptions"); }
 
-void from_json(const nlohmann::json& j, EapOptions& o) {
-  StrictJsonReader r(j, "EapOptions");
-  r.read("d_limit", o.d_limit);
-  r.read("c_limit", o.c_limit);
-  r.read("min_extent", o.min_extent);
-  r.read("max_direction_error", o.max_direction_error);
-  r.read("trim_distance", o.trim_distance);
-  r.read_object("weighting", o.weighting);
-  r.read("remove_claimed", o.remove_claimed);
-  std::string order = to_string(o.claim_order), region = to_string(o.region);
-  r.read("claim_order", order);
-  r.read("region", region);
-  r.finish();
-  try {
-    o.claim_order = claim_order_from_string(order);
-    o.region = region_rule_from_string(region);
-  } catch (const UsageError& e) {
-    r.fail("", e.what());
-  }
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(EapOptions)
+
+std::string eap_options_table() { return fields_markdown(describe_fields<EapOptions>()); }
 
 }  // namespace locbench::laser

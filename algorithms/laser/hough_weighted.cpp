@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench::laser {
 
@@ -25,14 +25,17 @@ HoughWeighting hough_weighting_from_string(const std::string& s) {
                    "\"");
 }
 
-void validate(const HoughWeight& g) {
-  if (!(std::isfinite(g.rho_min) && g.rho_min > 0.0)) {
-    throw UsageError("HoughWeight.rho_min must be finite and > 0");
-  }
-  if (!(g.min_cos_incidence > 0.0 && g.min_cos_incidence <= 1.0)) {
-    throw UsageError("HoughWeight.min_cos_incidence must be in (0, 1]");
-  }
+// HoughWeight's fields, stated once (hough_weighted.h explains each).
+template <class V>
+void visit_fields(V& v, HoughWeight& g) {
+  v.choice("kind", g.kind, to_string, hough_weighting_from_string,
+           "\"count\" (5.11), \"range\" (5.10) or \"range_incidence\" (5.8)");
+  v.field("rho_min", g.rho_min, "m", positive(), "ρ_min of 5.8/5.10");
+  v.field("min_cos_incidence", g.min_cos_incidence, "", open_closed(0.0, 1.0),
+          "floor of |cos| in 5.8");
 }
+
+void validate(const HoughWeight& g) { validate_fields(g, "HoughWeight"); }
 
 void validate(const HoughOptions& o) {
   if (!(std::isfinite(o.d_limit) && o.d_limit > 0.0)) {
@@ -41,22 +44,7 @@ void validate(const HoughOptions& o) {
   validate(o.g);
 }
 
-void to_json(nlohmann::json& j, const HoughWeight& g) {
-  j = {{"kind", to_string(g.kind)},
-       {"rho_min", g.rho_min},
-       {"min_cos_incidence", g.min_cos_incidence}};
-}
-
-void from_json(const nlohmann::json& j, HoughWeight& g) {
-  StrictJsonReader r(j, "HoughWeight");
-  std::string kind = to_string(g.kind);
-  r.read("kind", kind);
-  g.kind = hough_weighting_from_string(kind);
-  r.read("rho_min", g.rho_min);
-  r.read("min_cos_incidence", g.min_cos_incidence);
-  r.finish();
-  validate(g);
-}
+LOCBENCH_OPTIONS_JSON(HoughWeight)
 
 double hough_weight(const ScanPoint& p, double sensor_heading, double beta,
                     const HoughWeight& g) {

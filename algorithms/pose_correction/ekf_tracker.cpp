@@ -6,46 +6,26 @@
 #include "core/angle.h"
 #include "core/chi_square.h"
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench::pose_correction {
 namespace {
 
-
 }  // namespace
 
-void validate(const EkfTrackerOptions& o) {
-  if (!(o.wheel_noise.k_right >= 0.0) || !(o.wheel_noise.k_left >= 0.0) ||
-      !std::isfinite(o.wheel_noise.k_right) || !std::isfinite(o.wheel_noise.k_left)) {
-    throw UsageError("EkfTrackerOptions.wheel_noise: k_right and k_left must be >= 0 m");
-  }
-  if (!(o.initial_covariance.array() >= 0.0).all() || !o.initial_covariance.allFinite()) {
-    throw UsageError("EkfTrackerOptions.initial_covariance: must be >= 0");
-  }
-  if (!(o.gate_probability >= 0.0 && o.gate_probability < 1.0)) {
-    throw UsageError("EkfTrackerOptions.gate_probability: must be in [0, 1)");
-  }
-  validate(o.correction);
+// EkfTrackerOptions' fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, EkfTrackerOptions& o) {
+  v.field("wheel_noise_k_right", o.wheel_noise.k_right, "m", non_negative(), "wheel noise k_R (6.39)");
+  v.field("wheel_noise_k_left", o.wheel_noise.k_left, "m", non_negative(), "wheel noise k_L (6.39)");
+  v.field("initial_covariance", o.initial_covariance, "m², m², rad²", non_negative(), "diag P(0)");
+  v.field("gate_probability", o.gate_probability, "", closed_open(0.0, 1.0), "χ² gate of a correction (0 = off)");
+  v.nested("correction", o.correction, "PoseCorrectionOptions");
 }
 
-void to_json(nlohmann::json& j, const EkfTrackerOptions& o) {
-  j = {{"wheel_noise_k_right", o.wheel_noise.k_right},
-       {"wheel_noise_k_left", o.wheel_noise.k_left},
-       {"initial_covariance", vector3_json(o.initial_covariance)},
-       {"gate_probability", o.gate_probability},
-       {"correction", o.correction}};
-}
+void validate(const EkfTrackerOptions& o) { validate_fields(o, "EkfTrackerOptions"); }
 
-void from_json(const nlohmann::json& j, EkfTrackerOptions& o) {
-  StrictJsonReader r(j, "EkfTrackerOptions");
-  r.read("wheel_noise_k_right", o.wheel_noise.k_right);
-  r.read("wheel_noise_k_left", o.wheel_noise.k_left);
-  r.read("initial_covariance", o.initial_covariance);
-  r.read("gate_probability", o.gate_probability);
-  r.read_object("correction", o.correction);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(EkfTrackerOptions)
 
 EkfTracker::EkfTracker(const EkfTrackerOptions& options, double wheelbase, const Pose2& start)
     : options_(options),

@@ -10,7 +10,7 @@
 
 #include "core/angle.h"
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench::pose_correction {
 namespace {
@@ -121,48 +121,22 @@ double rms_range(const std::vector<PointOnLine>& pts) {
 
 }  // namespace
 
-void validate(const IteratedCorrectionOptions& o) {
-  if (o.max_iterations < 1) throw UsageError("IteratedCorrectionOptions.max_iterations: must be >= 1");
-  if (o.inner_steps < 1) throw UsageError("IteratedCorrectionOptions.inner_steps: must be >= 1");
-  if (!(o.translation_tolerance > 0.0) || !(o.rotation_tolerance > 0.0)) {
-    throw UsageError("IteratedCorrectionOptions.translation_tolerance, rotation_tolerance: must be > 0");
-  }
-  if (!(o.keep_fraction > 0.0 && o.keep_fraction <= 1.0)) {
-    throw UsageError("IteratedCorrectionOptions.keep_fraction: must be in (0, 1]");
-  }
-  if (!(o.degenerate_ratio >= 0.0 && o.degenerate_ratio < 1.0)) {
-    throw UsageError("IteratedCorrectionOptions.degenerate_ratio: must be in [0, 1)");
-  }
-  if (o.min_points < 3) throw UsageError("IteratedCorrectionOptions.min_points: must be >= 3");
-  if (!(o.min_point_sigma > 0.0) || !std::isfinite(o.min_point_sigma)) {
-    throw UsageError("IteratedCorrectionOptions.min_point_sigma: must be > 0 m");
-  }
+// IteratedCorrectionOptions' fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, IteratedCorrectionOptions& o) {
+  v.field("max_iterations", o.max_iterations, "", at_least(1), "outer: match + solve");
+  v.field("inner_steps", o.inner_steps, "", at_least(1), "Gauss–Newton steps per set of matches");
+  v.field("translation_tolerance", o.translation_tolerance, "m", positive(), "converged below this step");
+  v.field("rotation_tolerance", o.rotation_tolerance, "rad", positive(), "converged below this step");
+  v.field("keep_fraction", o.keep_fraction, "", open_closed(0.0, 1.0), "trimmed fraction of residuals kept");
+  v.field("degenerate_ratio", o.degenerate_ratio, "", closed_open(0.0, 1.0), "eigenvalue ratio of a degenerate direction");
+  v.field("min_points", o.min_points, "", at_least(3), "fewer matched points → no correction");
+  v.field("min_point_sigma", o.min_point_sigma, "m", positive(), "σ floor of a point");
 }
 
-void to_json(nlohmann::json& j, const IteratedCorrectionOptions& o) {
-  j = {{"max_iterations", o.max_iterations},
-       {"inner_steps", o.inner_steps},
-       {"translation_tolerance", o.translation_tolerance},
-       {"rotation_tolerance", o.rotation_tolerance},
-       {"keep_fraction", o.keep_fraction},
-       {"degenerate_ratio", o.degenerate_ratio},
-       {"min_points", o.min_points},
-       {"min_point_sigma", o.min_point_sigma}};
-}
+void validate(const IteratedCorrectionOptions& o) { validate_fields(o, "IteratedCorrectionOptions"); }
 
-void from_json(const nlohmann::json& j, IteratedCorrectionOptions& o) {
-  StrictJsonReader r(j, "IteratedCorrectionOptions");
-  r.read("max_iterations", o.max_iterations);
-  r.read("inner_steps", o.inner_steps);
-  r.read("translation_tolerance", o.translation_tolerance);
-  r.read("rotation_tolerance", o.rotation_tolerance);
-  r.read("keep_fraction", o.keep_fraction);
-  r.read("degenerate_ratio", o.degenerate_ratio);
-  r.read("min_points", o.min_points);
-  r.read("min_point_sigma", o.min_point_sigma);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(IteratedCorrectionOptions)
 
 namespace {
 

@@ -6,7 +6,7 @@
 
 #include "core/angle.h"
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench::pose_correction {
 namespace {
@@ -42,34 +42,18 @@ OrientationWeighting weighting_from_name(const std::string& s) {
 
 }  // namespace
 
-void validate(const OrientationOptions& o) {
-  if (!(o.near_vertical_within >= 0.0 && o.near_vertical_within <= deg(90.0))) {
-    throw UsageError("OrientationOptions.near_vertical_within: must be in [0, π/2] rad");
-  }
-  if (o.min_points < 2) throw UsageError("OrientationOptions.min_points: must be >= 2");
-  if (!(o.min_point_sigma > 0.0) || !std::isfinite(o.min_point_sigma)) {
-    throw UsageError("OrientationOptions.min_point_sigma: must be > 0 m");
-  }
+// OrientationOptions' fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, OrientationOptions& o) {
+  v.choice("weighting", o.weighting, weighting_name, weighting_from_name, "weights of the segment headings");
+  v.field("near_vertical_within", o.near_vertical_within, "rad", closed(0.0, deg(90.0)), "near-vertical band");
+  v.field("min_points", o.min_points, "", at_least(2), "segments with fewer points are ignored");
+  v.field("min_point_sigma", o.min_point_sigma, "m", positive(), "σ floor of a point");
 }
 
-void to_json(nlohmann::json& j, const OrientationOptions& o) {
-  j = {{"weighting", weighting_name(o.weighting)},
-       {"near_vertical_within", o.near_vertical_within},
-       {"min_points", o.min_points},
-       {"min_point_sigma", o.min_point_sigma}};
-}
+void validate(const OrientationOptions& o) { validate_fields(o, "OrientationOptions"); }
 
-void from_json(const nlohmann::json& j, OrientationOptions& o) {
-  StrictJsonReader r(j, "OrientationOptions");
-  std::string weighting = weighting_name(o.weighting);
-  r.read("weighting", weighting);
-  o.weighting = weighting_from_name(weighting);
-  r.read("near_vertical_within", o.near_vertical_within);
-  r.read("min_points", o.min_points);
-  r.read("min_point_sigma", o.min_point_sigma);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(OrientationOptions)
 
 SegmentOrientation segment_orientation(std::span<const Eigen::Vector2d> world_points,
                                        const Segment& map_segment,

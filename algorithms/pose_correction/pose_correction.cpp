@@ -5,28 +5,21 @@
 
 #include "core/angle.h"
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench::pose_correction {
 
-void validate(const PoseCorrectionOptions& o) {
-  validate(o.orientation);
-  validate(o.position);
-  if (o.iterations < 1) throw UsageError("PoseCorrectionOptions.iterations: must be >= 1");
+// PoseCorrectionOptions' fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, PoseCorrectionOptions& o) {
+  v.nested("orientation", o.orientation, "OrientationOptions");
+  v.nested("position", o.position, "PositionOptions");
+  v.field("iterations", o.iterations, "", at_least(1), "orientation + position rounds");
 }
 
-void to_json(nlohmann::json& j, const PoseCorrectionOptions& o) {
-  j = {{"orientation", o.orientation}, {"position", o.position}, {"iterations", o.iterations}};
-}
+void validate(const PoseCorrectionOptions& o) { validate_fields(o, "PoseCorrectionOptions"); }
 
-void from_json(const nlohmann::json& j, PoseCorrectionOptions& o) {
-  StrictJsonReader r(j, "PoseCorrectionOptions");
-  r.read_object("orientation", o.orientation);
-  r.read_object("position", o.position);
-  r.read("iterations", o.iterations);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(PoseCorrectionOptions)
 
 PoseCorrection correct_pose(std::span<const laser::SegmentMatch> matches, const LineMap& map,
                             const Pose2& estimate, const Pose2& sensor_mount,

@@ -8,7 +8,7 @@
 
 #include "core/angle.h"
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench::pose_correction {
 namespace {
@@ -31,39 +31,19 @@ double line_angle(double beta_a, double beta_b) {
 
 }  // namespace
 
-void validate(const PositionOptions& o) {
-  if (!(o.min_angle_spread > 0.0 && o.min_angle_spread <= deg(90.0))) {
-    throw UsageError("PositionOptions.min_angle_spread: must be in (0, π/2] rad");
-  }
-  if (!(o.max_incidence > 0.0 && o.max_incidence < deg(90.0))) {
-    throw UsageError("PositionOptions.max_incidence: must be in (0, π/2) rad");
-  }
-  if (o.min_points < 1) throw UsageError("PositionOptions.min_points: must be >= 1");
-  if (!(o.min_point_sigma > 0.0) || !std::isfinite(o.min_point_sigma)) {
-    throw UsageError("PositionOptions.min_point_sigma: must be > 0 m");
-  }
+// PositionOptions' fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, PositionOptions& o) {
+  v.choice("method", o.method, method_name, method_from_name, "point-to-line or point-to-point");
+  v.field("min_angle_spread", o.min_angle_spread, "rad", open_closed(0.0, deg(90.0)), "spread of segment directions needed");
+  v.field("max_incidence", o.max_incidence, "rad", open(0.0, deg(90.0)), "largest incidence of a point");
+  v.field("min_points", o.min_points, "", at_least(1), "segments with fewer points are ignored");
+  v.field("min_point_sigma", o.min_point_sigma, "m", positive(), "σ floor of a point");
 }
 
-void to_json(nlohmann::json& j, const PositionOptions& o) {
-  j = {{"method", method_name(o.method)},
-       {"min_angle_spread", o.min_angle_spread},
-       {"max_incidence", o.max_incidence},
-       {"min_points", o.min_points},
-       {"min_point_sigma", o.min_point_sigma}};
-}
+void validate(const PositionOptions& o) { validate_fields(o, "PositionOptions"); }
 
-void from_json(const nlohmann::json& j, PositionOptions& o) {
-  StrictJsonReader r(j, "PositionOptions");
-  std::string method = method_name(o.method);
-  r.read("method", method);
-  o.method = method_from_name(method);
-  r.read("min_angle_spread", o.min_angle_spread);
-  r.read("max_incidence", o.max_incidence);
-  r.read("min_points", o.min_points);
-  r.read("min_point_sigma", o.min_point_sigma);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(PositionOptions)
 
 PositionNormalEquations position_normal_equations(std::span<const laser::SegmentMatch> matches,
                                                   const LineMap& map, const Pose2& pose,

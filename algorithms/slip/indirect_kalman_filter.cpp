@@ -5,59 +5,22 @@
 
 #include "core/angle.h"
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench {
-namespace {
 
-void validate(const IndirectKfOptions& o) {
-  if (!(o.initial_covariance.array() >= 0.0).all()) {
-    throw UsageError("IndirectKfOptions.initial_covariance: must be >= 0");
-  }
-  if (!(o.process_noise.array() >= 0.0).all()) {
-    throw UsageError("IndirectKfOptions.process_noise: must be >= 0");
-  }
-  if (!(o.heading_variance > 0.0)) throw UsageError("IndirectKfOptions.heading_variance: must be > 0");
+// IndirectKfOptions' fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, IndirectKfOptions& o) {
+  v.field("initial_covariance", o.initial_covariance, "m², m², rad², 1, 1, m²", non_negative(),
+          "diag P(0) for [δx, δy, δθ, S_R, S_L, δB]");
+  v.field("process_noise", o.process_noise, "m², m², rad², 1, 1, m²", non_negative(), "diag Q per sample");
+  v.field("heading_variance", o.heading_variance, "rad²", positive(), "compass variance");
 }
 
-nlohmann::json vec6_json(const Vector6& v) {
-  nlohmann::json a = nlohmann::json::array();
-  for (int i = 0; i < 6; ++i) a.push_back(v(i));
-  return a;
-}
+void validate(const IndirectKfOptions& o) { validate_fields(o, "IndirectKfOptions"); }
 
-void read_vec6(const nlohmann::json& j, const char* key, Vector6& out, StrictJsonReader& r) {
-  // StrictJsonReader has no 6-vector reader: read it through a string-free path here.
-  const auto it = j.find(key);
-  if (it == j.end()) return;
-  if (!it->is_array() || it->size() != 6) r.fail(key, "expected an array of 6 numbers");
-  for (std::size_t i = 0; i < 6; ++i) {
-    if (!(*it)[i].is_number()) r.fail(key, "expected an array of 6 numbers");
-    out(static_cast<Eigen::Index>(i)) = (*it)[i].get<double>();
-  }
-}
-
-}  // namespace
-
-void to_json(nlohmann::json& j, const IndirectKfOptions& o) {
-  j = {{"initial_covariance", vec6_json(o.initial_covariance)},
-       {"process_noise", vec6_json(o.process_noise)},
-       {"heading_variance", o.heading_variance}};
-}
-
-void from_json(const nlohmann::json& j, IndirectKfOptions& o) {
-  StrictJsonReader r(j, "IndirectKfOptions");
-  r.read("heading_variance", o.heading_variance);
-  read_vec6(j, "initial_covariance", o.initial_covariance, r);
-  read_vec6(j, "process_noise", o.process_noise, r);
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    const std::string& k = it.key();
-    if (k != "heading_variance" && k != "initial_covariance" && k != "process_noise") {
-      r.fail(k, "unknown key");
-    }
-  }
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(IndirectKfOptions)
 
 Matrix6 ikf_transition(const WheelDisplacement& u, double theta, double b) {
   const double c = std::cos(theta), s = std::sin(theta);

@@ -51,6 +51,8 @@ struct IndirectKfOptions {
 };
 void to_json(nlohmann::json& j, const IndirectKfOptions& o);
 void from_json(const nlohmann::json& j, IndirectKfOptions& o);
+// Throws UsageError naming the first field out of its range.
+void validate(const IndirectKfOptions& o);
 
 // F(k) of eq. 3.20–3.23 at odometry heading θ.
 Matrix6 ikf_transition(const WheelDisplacement& u, double theta, double wheelbase);

@@ -5,22 +5,10 @@
 #include <stdexcept>
 
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 #include "core/statistics.h"
 
 namespace locbench {
-namespace {
-
-void validate(const SlipDetectorOptions& o) {
-  if (!(o.probability > 0.0 && o.probability < 1.0)) {
-    throw UsageError("SlipDetectorOptions.probability: must be in (0, 1)");
-  }
-  if (!(o.disturbance_margin >= 0.0) || !std::isfinite(o.disturbance_margin)) {
-    throw UsageError("SlipDetectorOptions.disturbance_margin: must be >= 0");
-  }
-}
-
-}  // namespace
 
 SlipModel fit_slip_model(std::span<const double> d) {
   if (d.size() < 2) throw std::invalid_argument("fit_slip_model: need at least 2 samples");
@@ -37,20 +25,17 @@ SlipModel fit_slip_model(std::span<const double> d) {
   return m;
 }
 
-void to_json(nlohmann::json& j, const SlipDetectorOptions& o) {
-  j = {{"probability", o.probability},
-       {"check_disturbance", o.check_disturbance},
-       {"disturbance_margin", o.disturbance_margin}};
+// SlipDetectorOptions's fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, SlipDetectorOptions& o) {
+  v.field("probability", o.probability, "", open(0.0, 1.0), "P{|Δθ' − μ|/σ ≤ z} under no slip (§3.2.3)");
+  v.flag("check_disturbance", o.check_disturbance, "apply the compass-disturbance rule (rule 3)");
+  v.field("disturbance_margin", o.disturbance_margin, "rad", non_negative(), "widens the rule-3 interval on each side");
 }
 
-void from_json(const nlohmann::json& j, SlipDetectorOptions& o) {
-  StrictJsonReader r(j, "SlipDetectorOptions");
-  r.read("probability", o.probability);
-  r.read("check_disturbance", o.check_disturbance);
-  r.read("disturbance_margin", o.disturbance_margin);
-  r.finish();
-  validate(o);
-}
+void validate(const SlipDetectorOptions& o) { validate_fields(o, "SlipDetectorOptions"); }
+
+LOCBENCH_OPTIONS_JSON(SlipDetectorOptions)
 
 double slip_threshold(double probability) {
   if (!(probability > 0.0 && probability < 1.0)) {

@@ -40,6 +40,8 @@ struct SlipDetectorOptions {
 void to_json(nlohmann::json& j, const SlipDetectorOptions& o);
 // Strict: unknown keys, wrong types or invalid values throw UsageError.
 void from_json(const nlohmann::json& j, SlipDetectorOptions& o);
+// Throws UsageError naming the first field out of its range.
+void validate(const SlipDetectorOptions& o);
 
 // z with P{|Z| ≤ z} = probability for a standard normal Z: Φ⁻¹((1 + p)/2).
 double slip_threshold(double probability);

@@ -3,38 +3,21 @@
 #include <cmath>
 
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench {
-namespace {
 
-void validate(const FixedQEkfOptions& o) {
-  if (!(o.process_noise.array() >= 0.0).all()) {
-    throw UsageError("FixedQEkfOptions: process_noise must be >= 0");
-  }
-  if (!(o.compass_variance > 0.0))
-    throw UsageError("FixedQEkfOptions: compass_variance must be > 0");
-  if (!(o.initial_covariance.array() >= 0.0).all()) {
-    throw UsageError("FixedQEkfOptions: initial_covariance must be >= 0");
-  }
+// FixedQEkfOptions's fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, FixedQEkfOptions& o) {
+  v.field("process_noise", o.process_noise, "m², m², rad²", non_negative(), "diag Q per step");
+  v.field("compass_variance", o.compass_variance, "rad²", positive(), "R");
+  v.field("initial_covariance", o.initial_covariance, "m², m², rad²", non_negative(), "diag P(0)");
 }
 
-}  // namespace
+void validate(const FixedQEkfOptions& o) { validate_fields(o, "FixedQEkfOptions"); }
 
-void to_json(nlohmann::json& j, const FixedQEkfOptions& o) {
-  j = {{"process_noise", vector3_json(o.process_noise)},
-       {"compass_variance", o.compass_variance},
-       {"initial_covariance", vector3_json(o.initial_covariance)}};
-}
-
-void from_json(const nlohmann::json& j, FixedQEkfOptions& o) {
-  StrictJsonReader r(j, "FixedQEkfOptions");
-  r.read("process_noise", o.process_noise);
-  r.read("compass_variance", o.compass_variance);
-  r.read("initial_covariance", o.initial_covariance);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(FixedQEkfOptions)
 
 FixedQEkf::FixedQEkf(const FixedQEkfOptions& options, double wheelbase, const Pose2& start)
     : q_(options.process_noise.asDiagonal()),

@@ -21,6 +21,8 @@ struct FixedQEkfOptions {
 void to_json(nlohmann::json& j, const FixedQEkfOptions& o);
 // Strict: unknown keys, wrong types or invalid values throw UsageError.
 void from_json(const nlohmann::json& j, FixedQEkfOptions& o);
+// Throws UsageError naming the first field out of its range.
+void validate(const FixedQEkfOptions& o);
 
 class FixedQEkf {
  public:

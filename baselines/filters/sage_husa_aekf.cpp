@@ -3,50 +3,25 @@
 #include <cmath>
 
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench {
-namespace {
 
-void validate(const SageHusaOptions& o) {
-  if (!(o.forgetting > 0.0 && o.forgetting < 1.0)) {
-    throw UsageError("SageHusaOptions: forgetting must be in (0, 1)");
-  }
-  if (!(o.initial_covariance.array() >= 0.0).all()) {
-    throw UsageError("SageHusaOptions: initial_covariance must be >= 0");
-  }
-  if (!(o.initial_process_noise.array() >= 0.0).all()) {
-    throw UsageError("SageHusaOptions: initial_process_noise must be >= 0");
-  }
-  if (!(o.initial_measurement_noise > 0.0)) {
-    throw UsageError("SageHusaOptions: initial_measurement_noise must be > 0");
-  }
+// SageHusaOptions's fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, SageHusaOptions& o) {
+  v.field("initial_process_noise", o.initial_process_noise, "m², m², rad²", non_negative(), "diag Q̂(0)");
+  v.field("initial_measurement_noise", o.initial_measurement_noise, "rad²", positive(), "R̂(0)");
+  v.field("initial_process_mean", o.initial_process_mean, "m, m, rad", any_finite(), "q̂(0)");
+  v.field("initial_measurement_mean", o.initial_measurement_mean, "rad", any_finite(), "r̂(0)");
+  v.field("forgetting", o.forgetting, "", open(0.0, 1.0), "b (λ), Deng's forgetting");
+  v.field("initial_covariance", o.initial_covariance, "m², m², rad²", non_negative(), "diag P(0)");
+  v.flag("positive_definiteness_fix", o.positive_definiteness_fix, "Zhang's fix");
 }
 
-}  // namespace
+void validate(const SageHusaOptions& o) { validate_fields(o, "SageHusaOptions"); }
 
-void to_json(nlohmann::json& j, const SageHusaOptions& o) {
-  j = {{"initial_process_noise", vector3_json(o.initial_process_noise)},
-       {"initial_measurement_noise", o.initial_measurement_noise},
-       {"initial_process_mean", vector3_json(o.initial_process_mean)},
-       {"initial_measurement_mean", o.initial_measurement_mean},
-       {"forgetting", o.forgetting},
-       {"initial_covariance", vector3_json(o.initial_covariance)},
-       {"positive_definiteness_fix", o.positive_definiteness_fix}};
-}
-
-void from_json(const nlohmann::json& j, SageHusaOptions& o) {
-  StrictJsonReader r(j, "SageHusaOptions");
-  r.read("initial_process_noise", o.initial_process_noise);
-  r.read("initial_measurement_noise", o.initial_measurement_noise);
-  r.read("initial_process_mean", o.initial_process_mean);
-  r.read("initial_measurement_mean", o.initial_measurement_mean);
-  r.read("forgetting", o.forgetting);
-  r.read("initial_covariance", o.initial_covariance);
-  r.read("positive_definiteness_fix", o.positive_definiteness_fix);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(SageHusaOptions)
 
 double deng_forgetting_weight(double b, int k) {
   if (k < 1) throw UsageError("deng_forgetting_weight: k must be >= 1");

@@ -37,6 +37,8 @@ struct SageHusaOptions {
 void to_json(nlohmann::json& j, const SageHusaOptions& o);
 // Strict: unknown keys, wrong types or invalid values throw UsageError.
 void from_json(const nlohmann::json& j, SageHusaOptions& o);
+// Throws UsageError naming the first field out of its range.
+void validate(const SageHusaOptions& o);
 
 // Deng's weight d(k−1) = (1 − b)/(1 − b^k) for the k-th update, k >= 1 (eq. 4.9).
 double deng_forgetting_weight(double b, int k);

@@ -3,50 +3,24 @@
 #include <cmath>
 
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench {
-namespace {
 
-void validate(const VbAkfOptions& o) {
-  if (!(o.process_noise.array() >= 0.0).all()) {
-    throw UsageError("VbAkfOptions: process_noise must be >= 0");
-  }
-  if (!(o.initial_measurement_variance > 0.0)) {
-    throw UsageError("VbAkfOptions: initial_measurement_variance must be > 0");
-  }
-  if (!(o.initial_shape > 0.0)) throw UsageError("VbAkfOptions: initial_shape must be > 0");
-  if (!(o.forgetting > 0.0 && o.forgetting <= 1.0)) {
-    throw UsageError("VbAkfOptions: forgetting must be in (0, 1]");
-  }
-  if (o.iterations < 1) throw UsageError("VbAkfOptions: iterations must be >= 1");
-  if (!(o.initial_covariance.array() >= 0.0).all()) {
-    throw UsageError("VbAkfOptions: initial_covariance must be >= 0");
-  }
+// VbAkfOptions's fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, VbAkfOptions& o) {
+  v.field("process_noise", o.process_noise, "m², m², rad²", non_negative(), "diag Q per step");
+  v.field("initial_measurement_variance", o.initial_measurement_variance, "rad²", positive(), "initial R");
+  v.field("initial_shape", o.initial_shape, "", positive(), "α(0)");
+  v.field("forgetting", o.forgetting, "", open_closed(0.0, 1.0), "ρ");
+  v.field("iterations", o.iterations, "", at_least(1), "fixed-point iterations per update");
+  v.field("initial_covariance", o.initial_covariance, "m², m², rad²", non_negative(), "diag P(0)");
 }
 
-}  // namespace
+void validate(const VbAkfOptions& o) { validate_fields(o, "VbAkfOptions"); }
 
-void to_json(nlohmann::json& j, const VbAkfOptions& o) {
-  j = {{"process_noise", vector3_json(o.process_noise)},
-       {"initial_measurement_variance", o.initial_measurement_variance},
-       {"initial_shape", o.initial_shape},
-       {"forgetting", o.forgetting},
-       {"iterations", o.iterations},
-       {"initial_covariance", vector3_json(o.initial_covariance)}};
-}
-
-void from_json(const nlohmann::json& j, VbAkfOptions& o) {
-  StrictJsonReader r(j, "VbAkfOptions");
-  r.read("process_noise", o.process_noise);
-  r.read("initial_measurement_variance", o.initial_measurement_variance);
-  r.read("initial_shape", o.initial_shape);
-  r.read("forgetting", o.forgetting);
-  r.read("iterations", o.iterations);
-  r.read("initial_covariance", o.initial_covariance);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(VbAkfOptions)
 
 VbAkf::VbAkf(const VbAkfOptions& options, double wheelbase, const Pose2& start)
     : q_(options.process_noise.asDiagonal()),

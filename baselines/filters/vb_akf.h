@@ -35,6 +35,8 @@ struct VbAkfOptions {
 void to_json(nlohmann::json& j, const VbAkfOptions& o);
 // Strict: unknown keys, wrong types or invalid values throw UsageError.
 void from_json(const nlohmann::json& j, VbAkfOptions& o);
+// Throws UsageError naming the first field out of its range.
+void validate(const VbAkfOptions& o);
 
 struct VbAkfStep {
   CompassFilterStep filter;

@@ -6,20 +6,11 @@
 
 #include "core/errors.h"
 #include "core/units.h"
+#include "baselines/global/options_fields.h"
 
 namespace locbench::global {
 
-void validate(const GridMarkovOptions& o) {
-  validate(o.motion);
-  validate(o.field);
-  if (!(o.cell_size > 0.0 && o.angular_cell > 0.0 && o.angular_cell <= kPi)) {
-    throw UsageError("GridMarkovOptions: cell_size must be > 0 and angular_cell in (0, π]");
-  }
-  if (!(o.update_min_distance >= 0.0 && o.update_min_angle >= 0.0 && o.prune_threshold >= 0.0 &&
-        o.uniform_mix >= 0.0 && o.uniform_mix < 1.0 && o.max_cells >= 1.0)) {
-    throw UsageError("GridMarkovOptions: thresholds must be ≥ 0, uniform_mix < 1, max_cells ≥ 1");
-  }
-}
+void validate(const GridMarkovOptions& o) { validate_fields(o, "GridMarkovOptions"); }
 
 GridMarkov::GridMarkov(const LineMap& map, const GridMarkovOptions& options)
     : options_((validate(options), options)), field_(map, options.field) {

@@ -6,20 +6,15 @@
 
 #include "core/errors.h"
 #include "core/units.h"
+#include "baselines/global/options_fields.h"
 
 namespace locbench::global {
 
 void validate(const LikelihoodFieldOptions& o) {
-  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (!positive(o.resolution) || !positive(o.max_distance) || !positive(o.sigma_hit) ||
-      !positive(o.z_max) || !(std::isfinite(o.margin) && o.margin >= 0.0)) {
-    throw UsageError("LikelihoodFieldOptions: resolution, max_distance, sigma_hit, z_max must be > 0 "
-                     "and margin ≥ 0");
+  validate_fields(o, "LikelihoodFieldOptions");
+  if (!(o.z_hit + o.z_random > 0.0)) {
+    throw UsageError("LikelihoodFieldOptions: z_hit and z_random must not both be 0");
   }
-  if (!(o.z_hit >= 0.0 && o.z_random >= 0.0 && o.z_hit + o.z_random > 0.0)) {
-    throw UsageError("LikelihoodFieldOptions: z_hit, z_random must be ≥ 0, not both 0");
-  }
-  if (o.beams < 1) throw UsageError("LikelihoodFieldOptions.beams: must be ≥ 1");
 }
 
 Bounds map_bounds(const LineMap& map) {

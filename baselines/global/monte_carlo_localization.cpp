@@ -7,24 +7,16 @@
 
 #include "core/errors.h"
 #include "core/units.h"
+#include "baselines/global/options_fields.h"
 
 namespace locbench::global {
 
 void validate(const MclOptions& o) {
-  validate(o.motion);
-  validate(o.field);
-  if (o.min_particles < 1 || o.max_particles < o.min_particles || o.initial_particles < 1) {
-    throw UsageError("MclOptions: need 1 ≤ min_particles ≤ max_particles and initial_particles ≥ 1");
+  validate_fields(o, "MclOptions");
+  if (o.max_particles < o.min_particles) {
+    throw UsageError("MclOptions: need min_particles ≤ max_particles");
   }
-  if (!(o.kld_epsilon > 0.0) || !std::isfinite(o.kld_z) || !(o.kld_bin.array() > 0.0).all()) {
-    throw UsageError("MclOptions: kld_epsilon and every kld_bin size must be > 0");
-  }
-  if (!(o.alpha_slow >= 0.0 && o.alpha_fast > o.alpha_slow && o.alpha_fast <= 1.0)) {
-    throw UsageError("MclOptions: need 0 ≤ alpha_slow < alpha_fast ≤ 1");
-  }
-  if (!(o.update_min_distance >= 0.0 && o.update_min_angle >= 0.0)) {
-    throw UsageError("MclOptions: update thresholds must be ≥ 0");
-  }
+  if (!(o.alpha_fast > o.alpha_slow)) throw UsageError("MclOptions: need alpha_slow < alpha_fast");
 }
 
 std::size_t kld_sample_count(std::size_t k, double epsilon, double z) {

@@ -4,17 +4,11 @@
 
 #include "core/angle.h"
 #include "core/errors.h"
+#include "baselines/global/options_fields.h"
 
 namespace locbench::global {
 
-void validate(const OdometryMotionOptions& o) {
-  for (double v : {o.alpha1, o.alpha2, o.alpha3, o.alpha4, o.min_translation_sigma,
-                   o.min_rotation_sigma}) {
-    if (!(std::isfinite(v) && v >= 0.0)) {
-      throw UsageError("OdometryMotionOptions: every α and σ floor must be finite and ≥ 0");
-    }
-  }
-}
+void validate(const OdometryMotionOptions& o) { validate_fields(o, "OdometryMotionOptions"); }
 
 OdometryDelta odometry_delta(const Pose2& from, const Pose2& to) {
   const double dx = to.x - from.x, dy = to.y - from.y;

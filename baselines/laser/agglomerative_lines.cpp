@@ -8,6 +8,7 @@
 #include "core/angle.h"
 #include "core/chi_square.h"
 #include "baselines/laser/extraction_steps.h"
+#include "baselines/laser/options_fields.h"
 
 namespace locbench::laser {
 namespace {
@@ -194,23 +195,9 @@ class Clustering {
 }  // namespace
 
 void validate(const AgglomerativeOptions& o) {
-  const std::string who = "AgglomerativeOptions";
-  detail::validate(o.breakpoints, who);
-  detail::validate(o.acceptance, who);
-  detail::require(o.window >= 3, who + ": window must be >= 3 points");
-  detail::require(o.window_confidence > 0.0 && o.window_confidence < 1.0,
-                  who + ": window_confidence must be in (0, 1)");
-  detail::require(o.merge_confidence > 0.0 && o.merge_confidence < 1.0,
-                  who + ": merge_confidence must be in (0, 1)");
-  detail::require(o.model_sigma_alpha >= 0.0 && std::isfinite(o.model_sigma_alpha),
-                  who + ": model_sigma_alpha must be >= 0 rad");
-  detail::require(o.model_sigma_r >= 0.0 && std::isfinite(o.model_sigma_r),
-                  who + ": model_sigma_r must be >= 0 m");
-  detail::require(o.assign_distance >= 0.0 && std::isfinite(o.assign_distance),
-                  who + ": assign_distance must be >= 0 m");
-  detail::require(o.max_gap_points >= 0, who + ": max_gap_points must be >= 0");
+  validate_fields(o, "AgglomerativeOptions");
   detail::require(o.breakpoints.range_sigma > 0.0 || o.model_sigma_alpha > 0.0,
-                  who + ": breakpoints.range_sigma or model_sigma_alpha must be > 0");
+                  "AgglomerativeOptions: breakpoints.range_sigma or model_sigma_alpha must be > 0");
 }
 
 ExtractionResult agglomerative_lines(std::span<const ScanPoint> points, LineFrame frame,

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "baselines/laser/options_fields.h"
 
 namespace locbench::laser::detail {
 
@@ -107,17 +108,11 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw UsageError(message);
 }
 
-void validate(const BreakpointOptions& o, const std::string& who) {
-  require(o.lambda > 0.0 && o.lambda < 0.5 * kPi,
-          who + ": breakpoints.lambda must be in (0, pi/2) rad");
-  require(o.range_sigma >= 0.0 && std::isfinite(o.range_sigma),
-          who + ": breakpoints.range_sigma must be >= 0 m");
-}
-
-void validate(const LineAcceptance& o, const std::string& who) {
-  require(o.min_points >= 2, who + ": acceptance.min_points must be >= 2");
-  require(o.min_length >= 0.0 && std::isfinite(o.min_length),
-          who + ": acceptance.min_length must be >= 0 m");
-}
-
 }  // namespace locbench::laser::detail
+
+namespace locbench::laser {
+
+void validate(const BreakpointOptions& o) { validate_fields(o, "BreakpointOptions"); }
+void validate(const LineAcceptance& o) { validate_fields(o, "LineAcceptance"); }
+
+}  // namespace locbench::laser

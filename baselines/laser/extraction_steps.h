@@ -66,9 +66,6 @@ bool append_if_accepted(std::span<const ScanPoint> points, std::span<const std::
 // Orders lines by their first beam.
 void sort_by_first_beam(std::vector<ExtractedLine>& lines);
 
-// Option checks shared by the extractors; `who` prefixes the UsageError message.
-void validate(const BreakpointOptions& o, const std::string& who);
-void validate(const LineAcceptance& o, const std::string& who);
 void require(bool ok, const std::string& message);  // throws UsageError(message) when !ok
 
 }  // namespace locbench::laser::detail

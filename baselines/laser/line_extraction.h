@@ -52,4 +52,8 @@ struct LineAcceptance {
   double min_length = 0.2;     // [m] between the first and last point projected on the line
 };
 
+// Throw UsageError naming the first field out of its range (options_fields.h).
+void validate(const BreakpointOptions& o);
+void validate(const LineAcceptance& o);
+
 }  // namespace locbench::laser

@@ -6,6 +6,7 @@
 
 #include "core/angle.h"
 #include "baselines/laser/extraction_steps.h"
+#include "baselines/laser/options_fields.h"
 
 namespace locbench::laser {
 namespace {
@@ -42,17 +43,7 @@ bool overlaps(const LineFit& fit, const Segment& seg, const LineMatchOptions& o)
 
 }  // namespace
 
-void validate(const LineMatchOptions& o) {
-  const std::string who = "LineMatchOptions";
-  detail::require(o.max_delta_rho > 0.0 && std::isfinite(o.max_delta_rho),
-                  who + ": max_delta_rho must be > 0 m");
-  detail::require(o.max_delta_beta > 0.0 && o.max_delta_beta <= kPi,
-                  who + ": max_delta_beta must be in (0, pi] rad");
-  detail::require(o.min_overlap > 0.0 && o.min_overlap <= 1.0,
-                  who + ": min_overlap must be in (0, 1]");
-  detail::require(o.end_tolerance >= 0.0 && std::isfinite(o.end_tolerance),
-                  who + ": end_tolerance must be >= 0 m");
-}
+void validate(const LineMatchOptions& o) { validate_fields(o, "LineMatchOptions"); }
 
 LineToMapMatches match_lines_to_map(std::span<const ExtractedLine> lines, const LineMap& map,
                                     const Eigen::Vector2d& pivot,

@@ -10,7 +10,7 @@
 
 #include "core/angle.h"
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench::laser {
 namespace {
@@ -194,60 +194,25 @@ IcpMetric icp_metric_from_string(const std::string& s) {
                    s + "\"");
 }
 
-void validate(const PlIcpOptions& o) {
-  if (o.max_iterations < 1) throw UsageError("PlIcpOptions.max_iterations: must be >= 1");
-  if (!(o.max_correspondence_distance > 0.0) || !std::isfinite(o.max_correspondence_distance)) {
-    throw UsageError("PlIcpOptions.max_correspondence_distance: must be > 0 m");
-  }
-  if (!(o.keep_fraction > 0.0 && o.keep_fraction <= 1.0)) {
-    throw UsageError("PlIcpOptions.keep_fraction: must be in (0, 1]");
-  }
-  if (!(o.max_neighbour_gap > 0.0)) throw UsageError("PlIcpOptions.max_neighbour_gap: must be > 0 m");
-  if (!(o.translation_tolerance > 0.0) || !(o.rotation_tolerance > 0.0)) {
-    throw UsageError("PlIcpOptions.translation_tolerance, rotation_tolerance: must be > 0");
-  }
-  if (!(o.degenerate_ratio >= 0.0 && o.degenerate_ratio < 1.0)) {
-    throw UsageError("PlIcpOptions.degenerate_ratio: must be in [0, 1)");
-  }
-  if (o.line_points < 2) throw UsageError("PlIcpOptions.line_points: must be >= 2");
-  if (o.min_correspondences < 3) throw UsageError("PlIcpOptions.min_correspondences: must be >= 3");
-  if (!(o.min_point_sigma > 0.0) || !std::isfinite(o.min_point_sigma)) {
-    throw UsageError("PlIcpOptions.min_point_sigma: must be > 0 m");
-  }
+// PlIcpOptions' fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, PlIcpOptions& o) {
+  v.choice("metric", o.metric, to_string, icp_metric_from_string, "point-to-line or point-to-point");
+  v.field("max_iterations", o.max_iterations, "", at_least(1), "ICP iterations");
+  v.field("max_correspondence_distance", o.max_correspondence_distance, "m", positive(), "largest point-to-match distance");
+  v.field("keep_fraction", o.keep_fraction, "", open_closed(0.0, 1.0), "trimmed fraction of correspondences kept");
+  v.field("max_neighbour_gap", o.max_neighbour_gap, "m", positive(), "largest gap between a line's two points");
+  v.field("line_points", o.line_points, "", at_least(2), "points of a reference line");
+  v.field("translation_tolerance", o.translation_tolerance, "m", positive(), "converged below this step");
+  v.field("rotation_tolerance", o.rotation_tolerance, "rad", positive(), "converged below this step");
+  v.field("degenerate_ratio", o.degenerate_ratio, "", closed_open(0.0, 1.0), "eigenvalue ratio of a degenerate direction");
+  v.field("min_correspondences", o.min_correspondences, "", at_least(3), "fewer → no correction");
+  v.field("min_point_sigma", o.min_point_sigma, "m", positive(), "σ floor of a point");
 }
 
-void to_json(nlohmann::json& j, const PlIcpOptions& o) {
-  j = {{"metric", to_string(o.metric)},
-       {"max_iterations", o.max_iterations},
-       {"max_correspondence_distance", o.max_correspondence_distance},
-       {"keep_fraction", o.keep_fraction},
-       {"max_neighbour_gap", o.max_neighbour_gap},
-       {"line_points", o.line_points},
-       {"translation_tolerance", o.translation_tolerance},
-       {"rotation_tolerance", o.rotation_tolerance},
-       {"degenerate_ratio", o.degenerate_ratio},
-       {"min_correspondences", o.min_correspondences},
-       {"min_point_sigma", o.min_point_sigma}};
-}
+void validate(const PlIcpOptions& o) { validate_fields(o, "PlIcpOptions"); }
 
-void from_json(const nlohmann::json& j, PlIcpOptions& o) {
-  StrictJsonReader r(j, "PlIcpOptions");
-  std::string metric = to_string(o.metric);
-  r.read("metric", metric);
-  o.metric = icp_metric_from_string(metric);
-  r.read("max_iterations", o.max_iterations);
-  r.read("max_correspondence_distance", o.max_correspondence_distance);
-  r.read("keep_fraction", o.keep_fraction);
-  r.read("max_neighbour_gap", o.max_neighbour_gap);
-  r.read("line_points", o.line_points);
-  r.read("translation_tolerance", o.translation_tolerance);
-  r.read("rotation_tolerance", o.rotation_tolerance);
-  r.read("degenerate_ratio", o.degenerate_ratio);
-  r.read("min_correspondences", o.min_correspondences);
-  r.read("min_point_sigma", o.min_point_sigma);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(PlIcpOptions)
 
 PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& initial,
                    const PlIcpOptions& options) {

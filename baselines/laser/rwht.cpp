@@ -9,6 +9,7 @@
 
 #include "core/angle.h"
 #include "baselines/laser/extraction_steps.h"
+#include "baselines/laser/options_fields.h"
 
 namespace locbench::laser {
 namespace {
@@ -93,20 +94,7 @@ struct Candidate {
 
 }  // namespace
 
-void validate(const RwhtOptions& o) {
-  const std::string who = "RwhtOptions";
-  detail::validate(o.breakpoints, who);
-  detail::validate(o.acceptance, who);
-  detail::require(o.angle_bin > 0.0 && o.angle_bin <= kPi, who + ": angle_bin must be in (0, pi] rad");
-  detail::require(o.range_bin > 0.0 && std::isfinite(o.range_bin),
-                  who + ": range_bin must be > 0 m");
-  detail::require(o.min_peak_votes >= 0.0 && std::isfinite(o.min_peak_votes),
-                  who + ": min_peak_votes must be >= 0 m");
-  detail::require(o.nms_radius >= 1, who + ": nms_radius must be >= 1 bin");
-  detail::require(o.inlier_distance > 0.0 && std::isfinite(o.inlier_distance),
-                  who + ": inlier_distance must be > 0 m");
-  detail::require(o.max_gap_points >= 0, who + ": max_gap_points must be >= 0");
-}
+void validate(const RwhtOptions& o) { validate_fields(o, "RwhtOptions"); }
 
 RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame,
                           const RwhtOptions& options) {

@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "baselines/laser/extraction_steps.h"
+#include "baselines/laser/options_fields.h"
 
 namespace locbench::laser {
 namespace {
@@ -105,13 +106,7 @@ void refine_boundaries(std::span<const Eigen::Vector2d> s, std::vector<IndexRang
 
 }  // namespace
 
-void validate(const SplitAndMergeOptions& o) {
-  const std::string who = "SplitAndMergeOptions";
-  detail::validate(o.breakpoints, who);
-  detail::validate(o.acceptance, who);
-  detail::require(o.split_distance > 0.0 && std::isfinite(o.split_distance),
-                  who + ": split_distance must be > 0 m");
-}
+void validate(const SplitAndMergeOptions& o) { validate_fields(o, "SplitAndMergeOptions"); }
 
 ExtractionResult split_and_merge(std::span<const ScanPoint> points, LineFrame frame,
                                  const SplitAndMergeOptions& options) {

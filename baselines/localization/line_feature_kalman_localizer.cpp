@@ -8,39 +8,22 @@
 #include "core/angle.h"
 #include "core/chi_square.h"
 #include "core/errors.h"
-#include "core/json_options.h"
+#include "core/option_fields.h"
 
 namespace locbench::localization {
 
-void validate(const LineFeatureKalmanOptions& o) {
-  if (!(o.wheel_noise.k_right >= 0.0) || !(o.wheel_noise.k_left >= 0.0) ||
-      !std::isfinite(o.wheel_noise.k_right) || !std::isfinite(o.wheel_noise.k_left)) {
-    throw UsageError("LineFeatureKalmanOptions.wheel_noise: k_right and k_left must be >= 0 m");
-  }
-  if (!(o.initial_covariance.array() >= 0.0).all() || !o.initial_covariance.allFinite()) {
-    throw UsageError("LineFeatureKalmanOptions.initial_covariance: must be >= 0");
-  }
-  if (!(o.gate_probability > 0.0 && o.gate_probability < 1.0)) {
-    throw UsageError("LineFeatureKalmanOptions.gate_probability: must be in (0, 1)");
-  }
+// LineFeatureKalmanOptions' fields, stated once (the header explains each).
+template <class V>
+void visit_fields(V& v, LineFeatureKalmanOptions& o) {
+  v.field("wheel_noise_k_right", o.wheel_noise.k_right, "m", non_negative(), "wheel noise k_R");
+  v.field("wheel_noise_k_left", o.wheel_noise.k_left, "m", non_negative(), "wheel noise k_L");
+  v.field("initial_covariance", o.initial_covariance, "m², m², rad²", non_negative(), "diag P(0)");
+  v.field("gate_probability", o.gate_probability, "", open(0.0, 1.0), "χ² validation gate");
 }
 
-void to_json(nlohmann::json& j, const LineFeatureKalmanOptions& o) {
-  j = {{"wheel_noise_k_right", o.wheel_noise.k_right},
-       {"wheel_noise_k_left", o.wheel_noise.k_left},
-       {"initial_covariance", vector3_json(o.initial_covariance)},
-       {"gate_probability", o.gate_probability}};
-}
+void validate(const LineFeatureKalmanOptions& o) { validate_fields(o, "LineFeatureKalmanOptions"); }
 
-void from_json(const nlohmann::json& j, LineFeatureKalmanOptions& o) {
-  StrictJsonReader r(j, "LineFeatureKalmanOptions");
-  r.read("wheel_noise_k_right", o.wheel_noise.k_right);
-  r.read("wheel_noise_k_left", o.wheel_noise.k_left);
-  r.read("initial_covariance", o.initial_covariance);
-  r.read("gate_probability", o.gate_probability);
-  r.finish();
-  validate(o);
-}
+LOCBENCH_OPTIONS_JSON(LineFeatureKalmanOptions)
 
 double validation_gate(double probability) {
   if (!(probability > 0.0 && probability < 1.0)) {

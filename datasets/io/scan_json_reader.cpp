@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/json_file.h"
 #include "datasets/io/line_reader.h"
 
 namespace locbench {
@@ -33,12 +34,7 @@ Scan read_scan_json(const std::filesystem::path& path) {
     text.append(line);
     text.push_back('\n');
   }
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(file, 0, std::string("one JSON object (") + e.what() + ")");
-  }
+  const nlohmann::json j = parse_json_text(text, file);
   if (!j.is_object()) throw InputError(file, 0, "a JSON object with \"ranges\"");
   Scan s;
   s.ranges = numbers(j, "ranges", file);

@@ -18,6 +18,7 @@
 // wheelbase over 5 m, a side over 100 m, a return error longer than the side) throw InputError
 // naming the file and the JSON path (`runs[3].x_error_m`). Syntax errors carry their line;
 // semantic errors have line 0.
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/umbmark_measurements.h"
@@ -29,5 +30,7 @@ UmbmarkInput read_umbmark_input(const std::string& path);
 
 // The same for JSON text; `source` names it in errors.
 UmbmarkInput parse_umbmark_input(const std::string& text, const std::string& source);
+// The same from already parsed JSON; `source` names it in errors.
+UmbmarkInput umbmark_input_from_json(const nlohmann::json& j, const std::string& source);
 
 }  // namespace locbench

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "datasets/sim/scenario_fields.h"
 
 namespace locbench::sim {
 
@@ -27,12 +28,6 @@ void probability(double v, const std::string& field) {
   require(std::isfinite(v) && v >= 0.0 && v <= 1.0, field, "in [0, 1]");
 }
 void finite(double v, const std::string& field) { require(std::isfinite(v), field, "finite"); }
-
-void check_geometry(const WheelGeometry& g, const std::string& field) {
-  positive(g.diameter_left, field + ".diameter_left");
-  positive(g.diameter_right, field + ".diameter_right");
-  positive(g.wheelbase, field + ".wheelbase");
-}
 
 void check_timing(const SensorTiming& t, const std::string& field) {
   if (!t.enabled) return;
@@ -66,14 +61,7 @@ void validate_replay(const Scenario& s) {
   }
   require(c.front().t - latency >= 0.0, "motion.commands[0][0] − the odometry latency",
           ">= 0 (the robot cannot execute a command before the simulation starts)");
-  const DriveResponse& r = s.drive.response;
-  non_negative(r.time_constant, "drive.response.time_constant");
-  finite(r.velocity_scale, "drive.response.velocity_scale");
-  finite(r.speed_slope, "drive.response.speed_slope");
-  finite(r.turn_rate_scale, "drive.response.turn_rate_scale");
-  finite(r.turn_rate_bias, "drive.response.turn_rate_bias");
-  non_negative(r.stall_rate, "drive.response.stall_rate");
-  non_negative(r.stall_duration, "drive.response.stall_duration");
+  validate_fields(s.drive.response, "scenario: drive.response");
 }
 
 }  // namespace
@@ -88,8 +76,8 @@ void validate(const Scenario& s) {
   finite(s.start.y, "start[1]");
   finite(s.start.theta, "start[2]");
 
-  check_geometry(s.robot.nominal, "robot.nominal");
-  check_geometry(s.robot.actual, "robot.actual");
+  validate_fields(s.robot.nominal, "scenario: robot.nominal");
+  validate_fields(s.robot.actual, "scenario: robot.actual");
   positive(s.robot.encoder.gear_ratio, "robot.encoder.gear_ratio");
   positive(s.robot.encoder.counts_per_rev, "robot.encoder.counts_per_rev");
 
@@ -117,12 +105,7 @@ void validate(const Scenario& s) {
   require(s.physics.step <= 0.1, "physics.step", "<= 0.1 s");
   non_negative(s.physics.trajectory_rate, "physics.trajectory_rate");
 
-  positive(s.motion_noise.window, "motion_noise.window");
-  non_negative(s.motion_noise.sigma_along, "motion_noise.sigma_along");
-  non_negative(s.motion_noise.sigma_left, "motion_noise.sigma_left");
-  non_negative(s.motion_noise.sigma_heading, "motion_noise.sigma_heading");
-  require(std::isfinite(s.motion_noise.dof) && (s.motion_noise.dof == 0.0 || s.motion_noise.dof > 0.0),
-          "motion_noise.dof", "0 (Gaussian) or > 0");
+  validate_fields(s.motion_noise, "scenario: motion_noise");
   non_negative(s.floor.k_left, "floor.k_left");
   non_negative(s.floor.k_right, "floor.k_right");
   check_slip(s.slip.straight, s.slip.unit, "slip.straight");

@@ -9,7 +9,9 @@
 #include "core/errors.h"
 #include "core/input_limits.h"
 #include "datasets/sim/motion_program.h"
-#include "datasets/sim/json_fields.h"
+#include "algorithms/core/json_file.h"
+#include "algorithms/core/json_options.h"
+#include "datasets/sim/scenario_fields.h"
 #include "datasets/sim/presets.h"
 
 namespace locbench::sim {
@@ -49,7 +51,7 @@ const char* name_of(const std::array<std::pair<E, const char*>, N>& table, E val
 }
 
 template <typename E, std::size_t N>
-void read_enum(JsonObject& o, const char* key,
+void read_enum(StrictJsonReader& o, const char* key,
                const std::array<std::pair<E, const char*>, N>& table, E& out) {
   if (!o.has(key)) {
     o.raw(key);
@@ -71,36 +73,10 @@ void read_enum(JsonObject& o, const char* key,
 json vec(const Eigen::Vector2d& v) { return json::array({v.x(), v.y()}); }
 json pose(const Pose2& p) { return json::array({p.x, p.y, p.theta}); }
 
-json geometry_json(const WheelGeometry& g) {
-  return {{"diameter_left", g.diameter_left},
-          {"diameter_right", g.diameter_right},
-          {"wheelbase", g.wheelbase}};
-}
-void read_geometry(JsonObject o, WheelGeometry& g) {
-  o.read("diameter_left", g.diameter_left);
-  o.read("diameter_right", g.diameter_right);
-  o.read("wheelbase", g.wheelbase);
-  o.finish();
-}
-
-json timing_json(const SensorTiming& t) {
-  return {{"enabled", t.enabled}, {"rate", t.rate}, {"latency", t.latency}, {"jitter", t.jitter}};
-}
-// Timing fields sit beside the sensor's own fields in the same object.
-void read_timing(JsonObject& o, SensorTiming& t) {
-  o.read("enabled", t.enabled);
-  o.read("rate", t.rate);
-  o.read("latency", t.latency);
-  o.read("jitter", t.jitter);
-}
-
-json slip_profile_json(const SlipProfile& p) {
-  return {{"rate", p.rate}, {"magnitude_min", p.magnitude_min}, {"magnitude_max", p.magnitude_max}};
-}
-void read_slip_profile(JsonObject o, SlipProfile& p) {
-  o.read("rate", p.rate);
-  o.read("magnitude_min", p.magnitude_min);
-  o.read("magnitude_max", p.magnitude_max);
+// A group's own object: its fields (scenario_fields.h), and no other key.
+template <class O>
+void read_group(StrictJsonReader o, O& out) {
+  read_fields(o, out);
   o.finish();
 }
 
@@ -116,7 +92,7 @@ json zone_json(const DisturbanceZone& z) {
   return j;
 }
 DisturbanceZone read_zone(const json& v, const std::string& path, const std::string& source) {
-  JsonObject o(v, path, source);
+  StrictJsonReader o(v, path, source);
   DisturbanceZone z;
   read_enum(o, "shape", kZoneShapes, z.shape);
   o.read("bias", z.bias);
@@ -131,7 +107,7 @@ DisturbanceZone read_zone(const json& v, const std::string& path, const std::str
   return z;
 }
 
-void read_world(JsonObject o, WorldConfig& w) {
+void read_world(StrictJsonReader o, WorldConfig& w) {
   read_enum(o, "kind", kWorldKinds, w.kind);
   o.read("corridor_length", w.corridor_length);
   o.read("corridor_width", w.corridor_width);
@@ -149,7 +125,7 @@ void read_world(JsonObject o, WorldConfig& w) {
   o.finish();
 }
 
-void read_motion(JsonObject o, MotionConfig& m) {
+void read_motion(StrictJsonReader o, MotionConfig& m) {
   read_enum(o, "kind", kMotionKinds, m.kind);
   o.read("distance", m.distance);
   o.read("side", m.side);
@@ -177,44 +153,8 @@ void read_motion(JsonObject o, MotionConfig& m) {
   o.finish();
 }
 
-json response_json(const DriveResponse& r) {
-  return {{"time_constant", r.time_constant},
-          {"velocity_scale", r.velocity_scale},
-          {"speed_slope", r.speed_slope},
-          {"turn_rate_scale", r.turn_rate_scale},
-          {"turn_rate_bias", r.turn_rate_bias},
-          {"stall_rate", r.stall_rate},
-          {"stall_duration", r.stall_duration}};
-}
-void read_response(JsonObject o, DriveResponse& r) {
-  o.read("time_constant", r.time_constant);
-  o.read("velocity_scale", r.velocity_scale);
-  o.read("speed_slope", r.speed_slope);
-  o.read("turn_rate_scale", r.turn_rate_scale);
-  o.read("turn_rate_bias", r.turn_rate_bias);
-  o.read("stall_rate", r.stall_rate);
-  o.read("stall_duration", r.stall_duration);
-  o.finish();
-}
-
-json motion_noise_json(const MotionNoiseConfig& n) {
-  return {{"window", n.window},
-          {"sigma_along", n.sigma_along},
-          {"sigma_left", n.sigma_left},
-          {"sigma_heading", n.sigma_heading},
-          {"dof", n.dof}};
-}
-void read_motion_noise(JsonObject o, MotionNoiseConfig& n) {
-  o.read("window", n.window);
-  o.read("sigma_along", n.sigma_along);
-  o.read("sigma_left", n.sigma_left);
-  o.read("sigma_heading", n.sigma_heading);
-  o.read("dof", n.dof);
-  o.finish();
-}
-
-void read_compass(JsonObject o, CompassConfig& c) {
-  read_timing(o, c.timing);
+void read_compass(StrictJsonReader o, CompassConfig& c) {
+  read_fields(o, c.timing);  // timing sits beside the sensor's own fields
   o.read("resolution", c.resolution);
   o.read("noise", c.noise);
   o.read("bias", c.bias);
@@ -229,8 +169,8 @@ void read_compass(JsonObject o, CompassConfig& c) {
   o.finish();
 }
 
-void read_laser(JsonObject o, LaserConfig& l) {
-  read_timing(o, l.timing);
+void read_laser(StrictJsonReader o, LaserConfig& l) {
+  read_fields(o, l.timing);
   o.read("beams", l.beams);
   o.read("first_bearing", l.first_bearing);
   o.read("last_bearing", l.last_bearing);
@@ -260,12 +200,12 @@ json to_json(const Scenario& s) {
   json zones = json::array();
   for (const auto& z : s.compass.zones) zones.push_back(zone_json(z));
 
-  json compass = timing_json(s.compass.timing);
+  json compass = fields_to_json(s.compass.timing);
   compass.update({{"resolution", s.compass.resolution},
                   {"noise", s.compass.noise},
                   {"bias", s.compass.bias},
                   {"zones", zones}});
-  json laser = timing_json(s.laser.timing);
+  json laser = fields_to_json(s.laser.timing);
   laser.update({{"beams", s.laser.beams},
                 {"first_bearing", s.laser.first_bearing},
                 {"last_bearing", s.laser.last_bearing},
@@ -288,8 +228,8 @@ json to_json(const Scenario& s) {
         {"segments", segments}}},
       {"start", pose(s.start)},
       {"robot",
-       {{"nominal", geometry_json(s.robot.nominal)},
-        {"actual", geometry_json(s.robot.actual)},
+       {{"nominal", fields_to_json(s.robot.nominal)},
+        {"actual", fields_to_json(s.robot.actual)},
         {"encoder",
          {{"gear_ratio", s.robot.encoder.gear_ratio},
           {"counts_per_rev", s.robot.encoder.counts_per_rev}}}}},
@@ -298,7 +238,7 @@ json to_json(const Scenario& s) {
         {"turn_rate", s.drive.turn_rate},
         {"pause", s.drive.pause},
         {"equal_wheel_ticks", s.drive.equal_wheel_ticks},
-        {"response", response_json(s.drive.response)}}},
+        {"response", fields_to_json(s.drive.response)}}},
       {"motion",
        {{"kind", to_string(s.motion.kind)},
         {"distance", s.motion.distance},
@@ -308,13 +248,13 @@ json to_json(const Scenario& s) {
         {"commands", commands}}},
       {"physics", {{"step", s.physics.step}, {"trajectory_rate", s.physics.trajectory_rate}}},
       {"floor", {{"k_left", s.floor.k_left}, {"k_right", s.floor.k_right}}},
-      {"motion_noise", motion_noise_json(s.motion_noise)},
+      {"motion_noise", fields_to_json(s.motion_noise)},
       {"slip",
        {{"unit", to_string(s.slip.unit)},
-        {"straight", slip_profile_json(s.slip.straight)},
-        {"turn", slip_profile_json(s.slip.turn)}}},
-      {"encoders", timing_json(s.encoders.timing)},
-      {"odometry", timing_json(s.odometry.timing)},
+        {"straight", fields_to_json(s.slip.straight)},
+        {"turn", fields_to_json(s.slip.turn)}}},
+      {"encoders", fields_to_json(s.encoders.timing)},
+      {"odometry", fields_to_json(s.odometry.timing)},
       {"compass", compass},
       {"laser", laser},
       {"truth", {{"rate", s.truth.rate}, {"noise_xy", s.truth.noise_xy}, {"noise_theta", s.truth.noise_theta}}},
@@ -374,7 +314,7 @@ void check_scenario_limits(const Scenario& s, const std::string& source) {
 }
 
 Scenario scenario_from_json(const json& j, const std::string& source) {
-  JsonObject top(j, "", source);
+  StrictJsonReader top(j, "", source);
   Scenario s;
   if (top.has("preset")) {
     std::string name;
@@ -392,55 +332,55 @@ Scenario scenario_from_json(const json& j, const std::string& source) {
   read_world(top.object("world"), s.world);
   top.read("start", s.start);
   {
-    JsonObject robot = top.object("robot");
-    read_geometry(robot.object("nominal"), s.robot.nominal);
-    read_geometry(robot.object("actual"), s.robot.actual);
-    JsonObject enc = robot.object("encoder");
+    StrictJsonReader robot = top.object("robot");
+    read_group(robot.object("nominal"), s.robot.nominal);
+    read_group(robot.object("actual"), s.robot.actual);
+    StrictJsonReader enc = robot.object("encoder");
     enc.read("gear_ratio", s.robot.encoder.gear_ratio);
     enc.read("counts_per_rev", s.robot.encoder.counts_per_rev);
     enc.finish();
     robot.finish();
   }
   {
-    JsonObject drive = top.object("drive");
+    StrictJsonReader drive = top.object("drive");
     drive.read("speed", s.drive.speed);
     drive.read("turn_rate", s.drive.turn_rate);
     drive.read("pause", s.drive.pause);
     drive.read("equal_wheel_ticks", s.drive.equal_wheel_ticks);
-    read_response(drive.object("response"), s.drive.response);
+    read_group(drive.object("response"), s.drive.response);
     drive.finish();
   }
   read_motion(top.object("motion"), s.motion);
   {
-    JsonObject physics = top.object("physics");
+    StrictJsonReader physics = top.object("physics");
     physics.read("step", s.physics.step);
     physics.read("trajectory_rate", s.physics.trajectory_rate);
     physics.finish();
   }
   {
-    JsonObject floor = top.object("floor");
+    StrictJsonReader floor = top.object("floor");
     floor.read("k_left", s.floor.k_left);
     floor.read("k_right", s.floor.k_right);
     floor.finish();
   }
-  read_motion_noise(top.object("motion_noise"), s.motion_noise);
+  read_group(top.object("motion_noise"), s.motion_noise);
   {
-    JsonObject slip = top.object("slip");
+    StrictJsonReader slip = top.object("slip");
     read_enum(slip, "unit", kSlipUnits, s.slip.unit);
-    read_slip_profile(slip.object("straight"), s.slip.straight);
-    read_slip_profile(slip.object("turn"), s.slip.turn);
+    read_group(slip.object("straight"), s.slip.straight);
+    read_group(slip.object("turn"), s.slip.turn);
     slip.finish();
   }
   for (auto [key, timing] :
        {std::pair{"encoders", &s.encoders.timing}, std::pair{"odometry", &s.odometry.timing}}) {
-    JsonObject o = top.object(key);
-    read_timing(o, *timing);
+    StrictJsonReader o = top.object(key);
+    read_fields(o, *timing);
     o.finish();
   }
   read_compass(top.object("compass"), s.compass);
   read_laser(top.object("laser"), s.laser);
   {
-    JsonObject truth = top.object("truth");
+    StrictJsonReader truth = top.object("truth");
     truth.read("rate", s.truth.rate);
     truth.read("noise_xy", s.truth.noise_xy);
     truth.read("noise_theta", s.truth.noise_theta);

@@ -3,7 +3,8 @@
 #include <cmath>
 
 #include "core/errors.h"
-#include "datasets/sim/json_fields.h"
+#include "core/json_file.h"
+#include "core/json_options.h"
 
 namespace locbench::sim {
 namespace {
@@ -144,7 +145,7 @@ LineMap corridor_world(double length, double width) {
 }
 
 LineMap world_from_json(const nlohmann::json& j, const std::string& source) {
-  JsonObject o(j, "", source);
+  StrictJsonReader o(j, "", source);
   std::string name = "world";
   o.read("name", name);
   const auto* segs = o.raw("segments");

@@ -180,9 +180,30 @@ TEST(GateRules, RejectAnUnknownKeyByItsPath) {
     load_gate_rules(dir.file("r.json").string());
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("accuracy[0]: unknown key \"max_relativ\""),
+    EXPECT_NE(std::string(e.what()).find("rules.accuracy[0].max_relativ: unknown key (expected one of: "),
               std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("max_relative_worsening"), std::string::npos) << e.what();
   }
+}
+
+TEST(GateRules, RejectAWrongTypeAndAnOutOfRangeValueByTheirPathAndFile) {
+  testing::ScratchDir dir;
+  const auto message = [&](const std::string& text) {
+    std::ofstream(dir.file("r.json")) << text;
+    try {
+      load_gate_rules(dir.file("r.json").string());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string file = dir.file("r.json").string();
+  EXPECT_EQ(message(R"({"accuracy": [{"max_relative_worsening": "5%"}]})"),
+            file + ": rules.accuracy[0].max_relative_worsening: expected a number, found string");
+  EXPECT_EQ(message(R"({"speed_ratios": [{"name": "a", "numerator": "b", "denominator": "c", "alpha": 2}]})"),
+            file + ": rules.speed_ratios[0].alpha: expected a number in (0, 1)");
+  EXPECT_EQ(message(R"({"fail_on_missing": 1})"),
+            file + ": rules.fail_on_missing: expected true or false, found number");
 }
 
 TEST(GateInput, RejectsJsonThatIsNeitherAReportNorABenchmark) {

@@ -70,6 +70,32 @@ TEST(DiagnoseInput, MalformedHistogramsNameWhatWasExpected) {
   EXPECT_NE(err(R"({"unit": "deg", "edges": [0,1,2,3,4,5], "counts": [9,9,9,9,9]})").find("residual"),
             std::string::npos);
   EXPECT_NE(err(R"([1, 2])").find("object"), std::string::npos);
+  EXPECT_EQ(err(R"({"residual": "r", "unit": "deg", "edges": [0,1,2,3,4,5], "counts": [9,9,9,9,9], "bins": 5})"),
+            "h.json: bins: unknown key (expected one of: residual, unit, edges, counts, source)");
+  EXPECT_EQ(err(R"({"residual": 1, "unit": "deg", "edges": [0,1,2,3,4,5], "counts": [9,9,9,9,9]})"),
+            "h.json: residual: expected a string, found number");
+}
+
+TEST(DiagnosisOptions, WrongTypesUnknownKeysAndOutOfRangeValuesAreNamed) {
+  const auto err = [](const nlohmann::json& j) {
+    try {
+      DiagnosisOptions o;
+      from_json(j, o);
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // A string used to escape as a library exception ("internal error").
+  EXPECT_EQ(err({{"false_alarm", "1%"}}), "DiagnosisOptions.false_alarm: expected a number, found string");
+  EXPECT_EQ(err({{"false_alarm", 0.5}}), "DiagnosisOptions.false_alarm: expected a number in (0, 0.5), got 0.5");
+  EXPECT_EQ(err({{"holdout_block", 0}}), "DiagnosisOptions.holdout_block: expected ≥ 1, got 0");
+  EXPECT_EQ(err({{"window", 1.0}}).rfind("DiagnosisOptions.window: unknown key (expected one of: false_alarm, window_s,", 0),
+            0u);
+  DiagnosisOptions o;
+  from_json({{"window_s", 2.0}, {"rpe_chain", 5}}, o);
+  EXPECT_EQ(o.windows.duration, 2.0);
+  EXPECT_EQ(o.rpe_chain, 5u);
 }
 
 TEST(DiagnoseHistogram, Table3_1IsAQuantizedResidualOnA2DegreeLattice) {

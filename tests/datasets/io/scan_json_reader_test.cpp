@@ -45,7 +45,7 @@ TEST(ScanJsonReader, MalformedInputNamesTheFileAndWhatWasExpected) {
   expect_error(R"({"ranges": [1.0, "x"], "bearings": [0, 1]})", "numbers only");
   expect_error(R"({"ranges": [1.0, 2.0], "bearings": [0.0]})", "as many bearings as ranges");
   expect_error(R"({"ranges": [1.0]})", "\"bearings\" or");
-  expect_error(R"({"ranges": [1.0], )", "one JSON object");
+  expect_error(R"({"ranges": [1.0], )", "invalid JSON");
   expect_error(R"([1, 2])", "a JSON object");
 }
 

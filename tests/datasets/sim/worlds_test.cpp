@@ -91,7 +91,7 @@ TEST(WorldJson, BadFilesAreInputErrorsNamingTheFileAndTheProblem) {
       {write("short.json", "{\"segments\": [[0,0,1]]}"), "segments[0]"},
       {write("text.json", "{\"segments\": [[0,0,1,\"a\"]]}"), "segments[0][3]"},
       {write("zero.json", "{\"segments\": [[1,1,1,1]]}"), "zero-length"},
-      {write("extra.json", "{\"segments\": [], \"scale\": 2}"), "unknown key 'scale'"},
+      {write("extra.json", "{\"segments\": [], \"scale\": 2}"), "scale: unknown key (expected one of: "},
       {dir.file("absent.json"), "cannot open"},
   };
   for (const auto& [path, fragment] : cases) {
