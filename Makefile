@@ -14,6 +14,13 @@ GATE_CONFIG := benchmarks/baselines/gate_config.json
 # Monte-Carlo runs per experiment in the gate (the baseline is made with the same number).
 GATE_RUNS ?= 3
 
+# Unity builds (CMake batches 8 sources of a target into one unit): the headers' inline code
+# (Eigen, nlohmann-json, fmt, gtest) is generated once per batch instead of once per file.
+# Measured on 2026-11-25 (CPU seconds, g++ 12): algorithms/diagnosis at -O1, 13 files, 57.4 s
+# separately vs 26.8 s as one unit; tests/algorithms/diagnosis under ASan/UBSan -g1, 14 files,
+# 80.2 s vs 21.4 s. UNITY= (empty) builds file by file.
+UNITY ?= -DCMAKE_UNITY_BUILD=ON
+
 .PHONY: all setup build run test gate baseline bench bench-gate speed-baseline clean
 
 all: build
@@ -26,7 +33,7 @@ setup:
 # of 8.8 s, with identical results (no fast-math; IEEE arithmetic is the same at any level).
 build: setup
 	@cmake -S . -B $(RELEASE) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
-	  -DLOCBENCH_BUILD_TESTS=OFF >/dev/null
+	  -DLOCBENCH_BUILD_TESTS=OFF $(UNITY) >/dev/null
 	@cmake --build $(RELEASE) -j$(JOBS) --target locbench
 
 # Default suite on embedded defaults → JSON reports under $(OUT)/, a summary table, and the page
@@ -45,7 +52,7 @@ run: build
 # ASan, not parsing).
 test: setup
 	@cmake -S . -B $(TESTBUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DLOCBENCH_SANITIZE=ON \
-	  -DLOCBENCH_WERROR=ON >/dev/null
+	  -DLOCBENCH_WERROR=ON $(UNITY) >/dev/null
 	@s=$$(date +%s); cmake --build $(TESTBUILD) -j$(JOBS) && echo "make test: build took $$(( $$(date +%s) - s )) s"
 	@s=$$(date +%s); cd $(TESTBUILD) && ctest --output-on-failure -j$(JOBS); rc=$$?; \
 	  echo "make test: ctest took $$(( $$(date +%s) - s )) s"; exit $$rc

@@ -1,6 +1,6 @@
 // Scenario and world JSON (simulate, match --map), with the input limits checked.
-#include "algorithms/core/json_file.h"
-#include "algorithms/core/json_options.h"
+#include "core/json_file.h"
+#include "core/json_options.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/worlds.h"
 #include "fuzz/fuzz_input.h"

@@ -1,6 +1,6 @@
 #pragma once
-// The reports' name for the one JSON file reader (algorithms/core/json_file.h).
-#include "algorithms/core/json_file.h"
+// The reports' name for the one JSON file reader (core/json_file.h).
+#include "core/json_file.h"
 
 namespace locbench::reports {
 

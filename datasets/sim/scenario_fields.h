@@ -1,11 +1,11 @@
 #pragma once
 // The scenario's flat option groups, each field stated once (name, unit, allowed range,
 // meaning): scenario_json.cpp reads and writes them through these visitors and scenario.cpp
-// checks their ranges with validate_fields (algorithms/core/option_fields.h). Groups whose rules
+// checks their ranges with validate_fields (core/option_fields.h). Groups whose rules
 // depend on other fields (sensor timing only when enabled, slip rate by its unit) keep those
 // rules in scenario.cpp.
-#include "algorithms/core/option_fields.h"
-#include "algorithms/core/robot_params.h"
+#include "core/option_fields.h"
+#include "core/robot_params.h"
 #include "datasets/sim/drive_response.h"
 #include "datasets/sim/motion_noise.h"
 #include "datasets/sim/scenario.h"

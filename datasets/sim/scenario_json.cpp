@@ -9,8 +9,8 @@
 #include "core/errors.h"
 #include "core/input_limits.h"
 #include "datasets/sim/motion_program.h"
-#include "algorithms/core/json_file.h"
-#include "algorithms/core/json_options.h"
+#include "core/json_file.h"
+#include "core/json_options.h"
 #include "datasets/sim/scenario_fields.h"
 #include "datasets/sim/presets.h"
 

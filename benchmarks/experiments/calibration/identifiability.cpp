@@ -153,7 +153,7 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Identifiabi
   }
 };
 
-const Registration<CalibrationIdentifiability> registration;
+const Registration<CalibrationIdentifiability> calibration_identifiability_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

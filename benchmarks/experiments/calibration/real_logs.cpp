@@ -187,7 +187,7 @@ class CalibrationRealLogs final : public Experiment {
   }
 };
 
-const Registration<CalibrationRealLogs> registration;
+const Registration<CalibrationRealLogs> calibration_real_logs_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -6,7 +6,7 @@
 namespace locbench::experiments {
 namespace {
 
-const Registration<CalibrationUmbmark> registration("umbmark_borenstein");
+const Registration<CalibrationUmbmark> calibration_umbmark_borenstein_registration("umbmark_borenstein");
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -6,7 +6,7 @@
 namespace locbench::experiments {
 namespace {
 
-const Registration<CalibrationUmbmark> registration("umbmark_trilobot");
+const Registration<CalibrationUmbmark> calibration_umbmark_trilobot_registration("umbmark_trilobot");
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -94,7 +94,7 @@ class DiagnosisFalseAlarms final : public MonteCarloExperiment<FalseAlarmSetup> 
   }
 };
 
-const Registration<DiagnosisFalseAlarms> registration;
+const Registration<DiagnosisFalseAlarms> diagnosis_false_alarms_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -202,7 +202,7 @@ class DiagnosisPower final : public MonteCarloExperiment<PowerSetup> {
   }
 };
 
-const Registration<DiagnosisPower> registration;
+const Registration<DiagnosisPower> diagnosis_power_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -165,7 +165,7 @@ class DiagnosisRealLogs final : public Experiment {
   }
 };
 
-const Registration<DiagnosisRealLogs> registration;
+const Registration<DiagnosisRealLogs> diagnosis_real_logs_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -238,7 +238,7 @@ class DiagnosisSimToReal final : public Experiment {
   }
 };
 
-const Registration<DiagnosisSimToReal> registration;
+const Registration<DiagnosisSimToReal> diagnosis_sim_to_real_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

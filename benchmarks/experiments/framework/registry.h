@@ -4,11 +4,12 @@
 //
 //   namespace {
 //   class OdometrySimCorridor final : public MonteCarloExperiment<CorridorSetup> { … };
-//   const Registration<OdometrySimCorridor> registration;   // or registration("constructor arg")
+//   const Registration<OdometrySimCorridor> odometry_sim_corridor_registration;   // or …("constructor arg")
 //   }  // namespace
 //
-// The registrar runs while the program loads and stores a factory; no experiment is constructed
-// then. all_experiments() (experiment.h) makes each one once, on first use, sorted by name, so the
+// The registrar is named after the file (<topic>_<name>_registration) so that files batched into
+// one unity-build unit never define the same name twice. It runs while the program loads and
+// stores a factory; no experiment is constructed then. all_experiments() (experiment.h) makes each one once, on first use, sorted by name, so the
 // order never depends on the link order. The experiments are compiled into an OBJECT library
 // (../CMakeLists.txt), which puts every registrar into the program: from a static library the
 // linker would drop the files nothing refers to.

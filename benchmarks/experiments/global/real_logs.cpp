@@ -271,7 +271,7 @@ class GlobalRealLogs final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<GlobalRealLogs> registration;
+const Registration<GlobalRealLogs> global_real_logs_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

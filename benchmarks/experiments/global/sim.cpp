@@ -304,7 +304,7 @@ class GlobalSim final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<GlobalSim> registration;
+const Registration<GlobalSim> global_sim_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

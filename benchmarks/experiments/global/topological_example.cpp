@@ -72,7 +72,7 @@ class GlobalTopological final : public Experiment {
   }
 };
 
-const Registration<GlobalTopological> registration;
+const Registration<GlobalTopological> global_topological_example_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

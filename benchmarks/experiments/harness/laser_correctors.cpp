@@ -15,11 +15,6 @@ namespace {
 
 using pose_correction::PoseCorrectionOptions;
 
-std::size_t points_of(const std::vector<laser::SegmentMatch>& matches) {
-  std::size_t n = 0;
-  for (const auto& m : matches) n += m.points.size();
-  return n;
-}
 
 // The diagnostics of a chapter-6 correction (laser_correctors.h).
 void diagnose(const pose_correction::PoseCorrection& c, ScanPairCorrection& out) {
@@ -197,6 +192,12 @@ std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vecto
     }
   }
   return out;
+}
+
+std::size_t points_of(const std::vector<laser::SegmentMatch>& matches) {
+  std::size_t n = 0;
+  for (const auto& m : matches) n += m.points.size();
+  return n;
 }
 
 }  // namespace locbench::experiments

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/laser/segment_match.h"
 #include "core/line_map.h"
 #include "core/pose2.h"
 #include "core/scan.h"
@@ -60,5 +61,8 @@ nlohmann::json default_corrector_options();
 // The correctors named in `which`, in order; UsageError for an unknown name or invalid options.
 std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vector<std::string>& which,
                                                                 const nlohmann::json& options);
+
+// The scan points behind a set of segment matches.
+std::size_t points_of(const std::vector<laser::SegmentMatch>& matches);
 
 }  // namespace locbench::experiments

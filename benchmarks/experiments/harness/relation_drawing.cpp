@@ -49,12 +49,6 @@ DrawnSeries match_links(std::string name, const std::vector<laser::SegmentMatch>
   return s;
 }
 
-std::size_t points_of(const std::vector<laser::SegmentMatch>& matches) {
-  std::size_t n = 0;
-  for (const auto& m : matches) n += m.points.size();
-  return n;
-}
-
 }  // namespace
 
 DrawnRelation draw_relation(const Scan& first, const LineMap& first_lines, const Scan& second,

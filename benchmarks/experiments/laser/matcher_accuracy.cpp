@@ -242,7 +242,7 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<LaserMatcherAccuracy> registration;
+const Registration<LaserMatcherAccuracy> laser_matcher_accuracy_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -494,7 +494,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<LaserRealLogs> registration;
+const Registration<LaserRealLogs> laser_real_logs_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

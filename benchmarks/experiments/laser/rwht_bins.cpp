@@ -174,7 +174,7 @@ class LaserRwhtBins final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<LaserRwhtBins> registration;
+const Registration<LaserRwhtBins> laser_rwht_bins_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

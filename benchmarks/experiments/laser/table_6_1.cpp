@@ -74,7 +74,7 @@ class Table61 final : public ThesisTableExperiment {
   }
 };
 
-const Registration<Table61> registration;
+const Registration<Table61> laser_table_6_1_registration;
 
 }  // namespace
 }  // namespace locbench::experiments::thesis_pose

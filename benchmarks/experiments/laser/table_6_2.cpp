@@ -110,7 +110,7 @@ class Table62 final : public ThesisTableExperiment {
   }
 };
 
-const Registration<Table62> registration;
+const Registration<Table62> laser_table_6_2_registration;
 
 }  // namespace
 }  // namespace locbench::experiments::thesis_pose

@@ -85,7 +85,7 @@ class Tables6364 final : public ThesisTableExperiment {
   }
 };
 
-const Registration<Tables6364> registration;
+const Registration<Tables6364> laser_tables_6_3_6_4_registration;
 
 }  // namespace
 }  // namespace locbench::experiments::thesis_pose

@@ -234,7 +234,7 @@ class LaserTracking final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<LaserTracking> registration;
+const Registration<LaserTracking> laser_tracking_table_6_5_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -85,7 +85,7 @@ class EncoderResolutionSweep final : public MonteCarloExperiment<SweepSetup> {
   }
 };
 
-const Registration<EncoderResolutionSweep> registration;
+const Registration<EncoderResolutionSweep> noise_encoder_resolution_sweep_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

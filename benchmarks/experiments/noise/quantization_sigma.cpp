@@ -66,7 +66,7 @@ class QuantizationSigma final : public Experiment {
   }
 };
 
-const Registration<QuantizationSigma> registration;
+const Registration<QuantizationSigma> noise_quantization_sigma_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

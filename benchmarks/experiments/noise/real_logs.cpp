@@ -132,7 +132,7 @@ class NoiseRealLogs final : public Experiment {
   }
 };
 
-const Registration<NoiseRealLogs> registration;
+const Registration<NoiseRealLogs> noise_real_logs_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -181,7 +181,7 @@ class NoiseTables final : public MonteCarloExperiment<NoiseSetup> {
   }
 };
 
-const Registration<NoiseTables> registration;
+const Registration<NoiseTables> noise_tables_4_1_4_2_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -84,7 +84,7 @@ class OdometryRealLogs final : public Experiment {
   }
 };
 
-const Registration<OdometryRealLogs> registration;
+const Registration<OdometryRealLogs> odometry_real_logs_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -170,7 +170,7 @@ class OdometrySimCorridor final : public MonteCarloExperiment<CorridorSetup> {
   }
 };
 
-const Registration<OdometrySimCorridor> registration;
+const Registration<OdometrySimCorridor> odometry_sim_corridor_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -264,7 +264,7 @@ class SlipCompassEkf final : public MonteCarloExperiment<CompassSetup> {
   }
 };
 
-const Registration<SlipCompassEkf> registration;
+const Registration<SlipCompassEkf> slip_compass_ekf_table_3_2_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -260,7 +260,7 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<SlipIkfVsCalibration> registration;
+const Registration<SlipIkfVsCalibration> slip_ikf_vs_calibration_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

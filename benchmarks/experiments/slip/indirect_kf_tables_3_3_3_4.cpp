@@ -330,7 +330,7 @@ class SlipIndirectKf final : public MonteCarloExperiment<IkfSetup> {
   }
 };
 
-const Registration<SlipIndirectKf> registration;
+const Registration<SlipIndirectKf> slip_indirect_kf_tables_3_3_3_4_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -81,7 +81,7 @@ class SlipNormality final : public Experiment {
   }
 };
 
-const Registration<SlipNormality> registration;
+const Registration<SlipNormality> slip_normality_table_3_1_registration;
 
 }  // namespace
 }  // namespace locbench::experiments

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "algorithms/core/errors.h"
+#include "core/errors.h"
 #include "algorithms/laser/eap_matcher.h"
 
 namespace locbench::laser {
