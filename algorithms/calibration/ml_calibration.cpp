@@ -1,7 +1,10 @@
 #include "algorithms/calibration/ml_calibration.h"
 
+#include <ceres/ceres.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -55,16 +58,49 @@ Eigen::VectorXd whiten(const Whitening& w, const Eigen::VectorXd& r) {
   return e;
 }
 
-// Whitened Jacobian by central differences.
-Eigen::MatrixXd whitened_jacobian(const Problem& pb, const Whitening& w, const Eigen::VectorXd& x) {
-  const auto p = static_cast<Eigen::Index>(pb.free.size());
-  Eigen::MatrixXd J(3 * static_cast<Eigen::Index>(pb.active.size()), p);
-  for (Eigen::Index j = 0; j < p; ++j) {
-    const double h = 1e-6 * (std::abs(x(j)) + 1e-2);
-    Eigen::VectorXd xp = x, xm = x;
-    xp(j) += h;
-    xm(j) -= h;
-    J.col(j) = whiten(w, pb.residuals(pb.full(xp)) - pb.residuals(pb.full(xm))) / (2.0 * h);
+// One sample's whitened residual Σᵢ⁻¹ᐟ² rᵢ as a function of the free parameters, for Ceres
+// (central differences: the residual code is double-only). `whitening` is shared by every
+// sample's functor and replaced between the noise alternation's rounds.
+struct WhitenedResidual {
+  const Problem* pb;
+  const Whitening* whitening;
+  std::size_t slot;  // index into pb->active and *whitening
+  bool operator()(double const* const* x, double* out) const {
+    Vector6 v = pb->base;
+    for (std::size_t j = 0; j < pb->free.size(); ++j) v(pb->free[j]) = x[0][j];
+    const Eigen::Vector3d r = (*whitening)[slot] *
+        reference_residual(pb->data, pb->data.samples[pb->active[slot]],
+                           ModelParameters::from_vector(v));
+    for (int c = 0; c < 3; ++c) out[c] = r(c);
+    return r.allFinite();
+  }
+};
+
+// The Ceres problem Σ‖Σᵢ⁻¹ᐟ² rᵢ‖² over the free parameters `x` (one parameter block).
+// The step 1e-6·|x| (absolute 1e-6 at zero) is Ceres's default for central differences.
+std::unique_ptr<ceres::Problem> whitened_problem(const Problem& pb, const Whitening& w,
+                                                 Eigen::VectorXd& x) {
+  ceres::Problem::Options po;
+  auto problem = std::make_unique<ceres::Problem>(po);
+  for (std::size_t i = 0; i < pb.active.size(); ++i) {
+    auto* cost = new ceres::DynamicNumericDiffCostFunction<WhitenedResidual, ceres::CENTRAL>(
+        new WhitenedResidual{&pb, &w, i});
+    cost->AddParameterBlock(static_cast<int>(x.size()));
+    cost->SetNumResiduals(3);
+    problem->AddResidualBlock(cost, nullptr, x.data());
+  }
+  return problem;
+}
+
+// Whitened Jacobian (3 rows per active sample) at x, from the Ceres problem.
+Eigen::MatrixXd whitened_jacobian(ceres::Problem& problem, Eigen::Index rows, Eigen::Index cols) {
+  ceres::CRSMatrix crs;
+  problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &crs);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, cols);
+  for (int r = 0; r < crs.num_rows; ++r) {
+    for (int k = crs.rows[static_cast<std::size_t>(r)]; k < crs.rows[static_cast<std::size_t>(r) + 1]; ++k) {
+      J(r, crs.cols[static_cast<std::size_t>(k)]) = crs.values[static_cast<std::size_t>(k)];
+    }
   }
   return J;
 }
@@ -74,68 +110,30 @@ struct LmOutcome {
   bool converged = false;
 };
 
-// Levenberg–Marquardt on Σ‖Σᵢ⁻¹ᐟ² rᵢ‖² with Marquardt's diagonal scaling.
-LmOutcome levenberg_marquardt(const Problem& pb, const Whitening& w, Eigen::VectorXd& x,
-                              int max_iterations) {
+// Ceres's Levenberg–Marquardt (dense QR) on Σ‖Σᵢ⁻¹ᐟ² rᵢ‖². Tolerances: relative cost change
+// 1e-14 and step 1e-12 of |x| — at the resolution of the central differences, as the
+// hand-written solver it replaced stopped (ML_CALIBRATION.md compares the two).
+LmOutcome levenberg_marquardt(ceres::Problem& problem, Eigen::VectorXd& x, int max_iterations) {
   LmOutcome out;
   if (x.size() == 0) {
     out.converged = true;
     return out;
   }
-  auto cost_at = [&](const Eigen::VectorXd& xx) {
-    return whiten(w, pb.residuals(pb.full(xx))).squaredNorm();
-  };
-  double cost = cost_at(x);
-  double lambda = 1e-3;
-  for (int it = 0; it < max_iterations; ++it) {
-    ++out.iterations;
-    const Eigen::MatrixXd J = whitened_jacobian(pb, w, x);
-    const Eigen::VectorXd e = whiten(w, pb.residuals(pb.full(x)));
-    const Eigen::MatrixXd H = J.transpose() * J;
-    const Eigen::VectorXd g = J.transpose() * e;
-    // Marquardt scaling D = diag(H); in the scaled problem, directions the data do not determine
-    // (eigenvalues below 1e-8 of the largest — numerical differentiation leaves ~1e-10 in an
-    // exactly flat direction) get no step, so undetermined combinations stay at their start
-    // values instead of drifting along a flat cost.
-    const Eigen::VectorXd d =
-        H.diagonal().cwiseMax(1e-12 * H.diagonal().maxCoeff() + 1e-300).cwiseSqrt().cwiseInverse();
-    const Eigen::MatrixXd Hs = d.asDiagonal() * H * d.asDiagonal();
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hs);
-    const Eigen::VectorXd gs = eig.eigenvectors().transpose() * (d.asDiagonal() * g);
-    const double emax = eig.eigenvalues().maxCoeff();
-    bool accepted = false;
-    Eigen::VectorXd step;
-    double new_cost = cost;
-    while (lambda < 1e16) {
-      Eigen::VectorXd z = Eigen::VectorXd::Zero(gs.size());
-      for (Eigen::Index k = 0; k < gs.size(); ++k) {
-        const double ev = eig.eigenvalues()(k);
-        if (ev > 1e-8 * emax) z(k) = -gs(k) / (ev * (1.0 + lambda));
-      }
-      step = d.asDiagonal() * (eig.eigenvectors() * z);
-      const Eigen::VectorXd xn = x + step;
-      const double c = step.allFinite() ? cost_at(xn) : kInf;
-      if (std::isfinite(c) && c <= cost) {
-        x = xn;
-        new_cost = c;
-        accepted = true;
-        lambda = std::max(lambda / 10.0, 1e-15);
-        break;
-      }
-      lambda *= 10.0;
-    }
-    if (!accepted) {  // no step lowers the cost: at the minimum to machine precision
-      out.converged = true;
-      break;
-    }
-    const double decrease = cost - new_cost;
-    cost = new_cost;
-    // The step measured in standard errors (H is the Fisher information) or the cost change.
-    if (step.dot(H * step) < 1e-12 || decrease <= 1e-14 * cost) {
-      out.converged = true;
-      break;
-    }
-  }
+  ceres::Solver::Options o;
+  o.minimizer_type = ceres::TRUST_REGION;
+  o.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  o.linear_solver_type = ceres::DENSE_QR;
+  o.max_num_iterations = max_iterations;
+  o.function_tolerance = 1e-14;
+  o.parameter_tolerance = 1e-12;
+  o.gradient_tolerance = 1e-14;
+  o.num_threads = 1;
+  o.logging_type = ceres::SILENT;
+  o.minimizer_progress_to_stdout = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(o, &problem, &summary);
+  out.iterations = std::max(0, static_cast<int>(summary.iterations.size()) - 1);
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
   return out;
 }
 
@@ -326,12 +324,15 @@ Solution solve(const Problem& pb, const ParameterMask& free_mask, const ModelPar
                            p.residuals(p.full(x)));
   }
   const int rounds = opt.noise.estimate ? std::max(1, opt.noise_iterations) : 1;
+  sol.whitening.resize(p.active.size());
+  const auto problem = x.size() > 0 ? whitened_problem(p, sol.whitening, x) : nullptr;
   for (int round = 0; round < rounds; ++round) {
     const auto shapes = noise_shapes(p, p.full(x), opt.noise.virtual_track);
     if (!whitening_of(noise, shapes, sol.whitening)) {
       throw std::invalid_argument("calibrate_ml: a sample covariance is not positive definite");
     }
-    const LmOutcome lm = levenberg_marquardt(p, sol.whitening, x, opt.max_iterations);
+    const LmOutcome lm = problem ? levenberg_marquardt(*problem, x, opt.max_iterations)
+                                 : LmOutcome{0, true};
     sol.iterations += lm.iterations;
     sol.converged = lm.converged;
     if (!opt.noise.estimate) break;
@@ -447,8 +448,11 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   // Fisher information at the solution and what it determines.
   Problem fin = pb;
   fin.base = sol.values;
-  const Eigen::VectorXd x = fin.free_values(sol.values);
-  const Eigen::MatrixXd J = whitened_jacobian(fin, sol.whitening, x);
+  Eigen::VectorXd x = fin.free_values(sol.values);
+  const auto rows = 3 * static_cast<Eigen::Index>(pb.active.size());
+  const Eigen::MatrixXd J =
+      x.size() > 0 ? whitened_jacobian(*whitened_problem(fin, sol.whitening, x), rows, x.size())
+                   : Eigen::MatrixXd(rows, 0);
   const Eigen::MatrixXd F = J.transpose() * J;
   // A square root of F (F = RᵀR) carries the same information as the whitened Jacobian itself,
   // in p rows instead of 3n (identifiability.h would otherwise need a 3n × 3n identity).
