@@ -2,6 +2,7 @@
 
 #include <ceres/crs_matrix.h>
 #include <ceres/dynamic_numeric_diff_cost_function.h>
+#include <ceres/manifold.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
@@ -138,6 +139,72 @@ LmOutcome levenberg_marquardt(ceres::Problem& problem, Eigen::VectorXd& x, int m
   out.iterations = std::max(0, static_cast<int>(summary.iterations.size()) - 1);
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   return out;
+}
+
+// x = x₀ + B·u: the solver steps only within the span of B's columns.
+class LinearSubspace final : public ceres::Manifold {
+ public:
+  explicit LinearSubspace(Eigen::MatrixXd basis)
+      : basis_(std::move(basis)),
+        inverse_(basis_.completeOrthogonalDecomposition().pseudoInverse()) {}
+  int AmbientSize() const override { return static_cast<int>(basis_.rows()); }
+  int TangentSize() const override { return static_cast<int>(basis_.cols()); }
+  bool Plus(const double* x, const double* delta, double* x_plus_delta) const override {
+    Eigen::Map<Eigen::VectorXd>(x_plus_delta, basis_.rows()) =
+        Eigen::Map<const Eigen::VectorXd>(x, basis_.rows()) +
+        basis_ * Eigen::Map<const Eigen::VectorXd>(delta, basis_.cols());
+    return true;
+  }
+  bool PlusJacobian(const double* /*x*/, double* jacobian) const override {
+    RowMajor(jacobian, basis_.rows(), basis_.cols()) = basis_;
+    return true;
+  }
+  bool Minus(const double* y, const double* x, double* y_minus_x) const override {
+    Eigen::Map<Eigen::VectorXd>(y_minus_x, basis_.cols()) =
+        inverse_ * (Eigen::Map<const Eigen::VectorXd>(y, basis_.rows()) -
+                    Eigen::Map<const Eigen::VectorXd>(x, basis_.rows()));
+    return true;
+  }
+  bool MinusJacobian(const double* /*x*/, double* jacobian) const override {
+    RowMajor(jacobian, basis_.cols(), basis_.rows()) = inverse_;
+    return true;
+  }
+
+ private:
+  using RowMajor = Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
+  Eigen::MatrixXd basis_, inverse_;
+};
+
+// Ceres's damping lets Levenberg–Marquardt step along directions the data do not determine (a
+// straight run's wheelbase moved 3 % along its flat direction). Before each solve, the
+// parameter block is restricted to the directions the data determine at its start, so the
+// undetermined combinations keep their start (closed-form) values: in Marquardt-scaled
+// coordinates (D = diag(JᵀJ)^−½), the eigenvectors of D·JᵀJ·D with at least 1e-8 of the largest
+// eigenvalue (central differences leave ~1e-10 in an exactly flat direction). Identifiable
+// problems solve on the full space.
+void restrict_to_determined(ceres::Problem& problem, Eigen::VectorXd& x) {
+  problem.SetManifold(x.data(), nullptr);
+  const auto rows = 3 * static_cast<Eigen::Index>(problem.NumResidualBlocks());
+  const Eigen::MatrixXd J = whitened_jacobian(problem, rows, x.size());
+  const Eigen::MatrixXd H = J.transpose() * J;
+  const Eigen::VectorXd d =
+      H.diagonal().cwiseMax(1e-12 * H.diagonal().maxCoeff() + 1e-300).cwiseSqrt().cwiseInverse();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(d.asDiagonal() * H * d.asDiagonal());
+  const double emax = eig.eigenvalues().maxCoeff();
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    if (eig.eigenvalues()(k) > 1e-8 * emax) kept.push_back(k);
+  }
+  if (kept.size() == static_cast<std::size_t>(x.size())) return;
+  if (kept.empty()) {
+    problem.SetParameterBlockConstant(x.data());
+    return;
+  }
+  Eigen::MatrixXd basis(x.size(), static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t c = 0; c < kept.size(); ++c) {
+    basis.col(static_cast<Eigen::Index>(c)) = d.asDiagonal() * eig.eigenvectors().col(kept[c]);
+  }
+  problem.SetManifold(x.data(), new LinearSubspace(basis));
 }
 
 // ---- Noise model ----------------------------------------------------------------------------
@@ -334,6 +401,7 @@ Solution solve(const Problem& pb, const ParameterMask& free_mask, const ModelPar
     if (!whitening_of(noise, shapes, sol.whitening)) {
       throw std::invalid_argument("calibrate_ml: a sample covariance is not positive definite");
     }
+    if (problem) restrict_to_determined(*problem, x);
     const LmOutcome lm = problem ? levenberg_marquardt(*problem, x, opt.max_iterations)
                                  : LmOutcome{0, true};
     sol.iterations += lm.iterations;
