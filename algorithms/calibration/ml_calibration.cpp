@@ -1,5 +1,7 @@
 #include "algorithms/calibration/ml_calibration.h"
 
+#include <ceres/problem.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -7,45 +9,19 @@
 #include <stdexcept>
 
 #include "algorithms/calibration/closed_form_calibration.h"
+#include "algorithms/calibration/ml_calibration_solver.h"
 
 namespace locbench {
 namespace {
 
-using Vector6 = Eigen::Matrix<double, 6, 1>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The free parameters of one solve: which of the six, over which samples.
-struct Problem {
-  const CalibrationData& data;
-  std::vector<std::size_t> active;  // sample indices
-  std::vector<int> free;            // indices into the 6-vector
-  Vector6 base;                     // values of all six (fixed ones stay)
+using ml_solver::LmOutcome;
+using ml_solver::Problem;
+using ml_solver::Vector6;
+using ml_solver::Whitening;
 
-  Vector6 full(const Eigen::VectorXd& x) const {
-    Vector6 v = base;
-    for (std::size_t j = 0; j < free.size(); ++j) v(free[j]) = x(static_cast<Eigen::Index>(j));
-    return v;
-  }
-  Eigen::VectorXd free_values(const Vector6& v) const {
-    Eigen::VectorXd x(static_cast<Eigen::Index>(free.size()));
-    for (std::size_t j = 0; j < free.size(); ++j) x(static_cast<Eigen::Index>(j)) = v(free[j]);
-    return x;
-  }
-  // Raw residuals predicted − reference, 3 per active sample.
-  Eigen::VectorXd residuals(const Vector6& v) const {
-    const ModelParameters p = ModelParameters::from_vector(v);
-    Eigen::VectorXd r(3 * static_cast<Eigen::Index>(active.size()));
-    for (std::size_t i = 0; i < active.size(); ++i) {
-      r.segment<3>(3 * static_cast<Eigen::Index>(i)) =
-          reference_residual(data, data.samples[active[i]], p);
-    }
-    return r;
-  }
-};
-
-// Per active sample: Σᵢ⁻¹ᐟ² (inverse Cholesky factor) to whiten its residual.
-using Whitening = std::vector<Eigen::Matrix3d>;
-
+// Σᵢ⁻¹ᐟ² rᵢ for every active sample.
 Eigen::VectorXd whiten(const Whitening& w, const Eigen::VectorXd& r) {
   Eigen::VectorXd e(r.size());
   for (std::size_t i = 0; i < w.size(); ++i) {
@@ -53,90 +29,6 @@ Eigen::VectorXd whiten(const Whitening& w, const Eigen::VectorXd& r) {
     e.segment<3>(k) = w[i] * r.segment<3>(k);
   }
   return e;
-}
-
-// Whitened Jacobian by central differences.
-Eigen::MatrixXd whitened_jacobian(const Problem& pb, const Whitening& w, const Eigen::VectorXd& x) {
-  const auto p = static_cast<Eigen::Index>(pb.free.size());
-  Eigen::MatrixXd J(3 * static_cast<Eigen::Index>(pb.active.size()), p);
-  for (Eigen::Index j = 0; j < p; ++j) {
-    const double h = 1e-6 * (std::abs(x(j)) + 1e-2);
-    Eigen::VectorXd xp = x, xm = x;
-    xp(j) += h;
-    xm(j) -= h;
-    J.col(j) = whiten(w, pb.residuals(pb.full(xp)) - pb.residuals(pb.full(xm))) / (2.0 * h);
-  }
-  return J;
-}
-
-struct LmOutcome {
-  int iterations = 0;
-  bool converged = false;
-};
-
-// Levenberg–Marquardt on Σ‖Σᵢ⁻¹ᐟ² rᵢ‖² with Marquardt's diagonal scaling.
-LmOutcome levenberg_marquardt(const Problem& pb, const Whitening& w, Eigen::VectorXd& x,
-                              int max_iterations) {
-  LmOutcome out;
-  if (x.size() == 0) {
-    out.converged = true;
-    return out;
-  }
-  auto cost_at = [&](const Eigen::VectorXd& xx) {
-    return whiten(w, pb.residuals(pb.full(xx))).squaredNorm();
-  };
-  double cost = cost_at(x);
-  double lambda = 1e-3;
-  for (int it = 0; it < max_iterations; ++it) {
-    ++out.iterations;
-    const Eigen::MatrixXd J = whitened_jacobian(pb, w, x);
-    const Eigen::VectorXd e = whiten(w, pb.residuals(pb.full(x)));
-    const Eigen::MatrixXd H = J.transpose() * J;
-    const Eigen::VectorXd g = J.transpose() * e;
-    // Marquardt scaling D = diag(H); in the scaled problem, directions the data do not determine
-    // (eigenvalues below 1e-8 of the largest — numerical differentiation leaves ~1e-10 in an
-    // exactly flat direction) get no step, so undetermined combinations stay at their start
-    // values instead of drifting along a flat cost.
-    const Eigen::VectorXd d =
-        H.diagonal().cwiseMax(1e-12 * H.diagonal().maxCoeff() + 1e-300).cwiseSqrt().cwiseInverse();
-    const Eigen::MatrixXd Hs = d.asDiagonal() * H * d.asDiagonal();
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Hs);
-    const Eigen::VectorXd gs = eig.eigenvectors().transpose() * (d.asDiagonal() * g);
-    const double emax = eig.eigenvalues().maxCoeff();
-    bool accepted = false;
-    Eigen::VectorXd step;
-    double new_cost = cost;
-    while (lambda < 1e16) {
-      Eigen::VectorXd z = Eigen::VectorXd::Zero(gs.size());
-      for (Eigen::Index k = 0; k < gs.size(); ++k) {
-        const double ev = eig.eigenvalues()(k);
-        if (ev > 1e-8 * emax) z(k) = -gs(k) / (ev * (1.0 + lambda));
-      }
-      step = d.asDiagonal() * (eig.eigenvectors() * z);
-      const Eigen::VectorXd xn = x + step;
-      const double c = step.allFinite() ? cost_at(xn) : kInf;
-      if (std::isfinite(c) && c <= cost) {
-        x = xn;
-        new_cost = c;
-        accepted = true;
-        lambda = std::max(lambda / 10.0, 1e-15);
-        break;
-      }
-      lambda *= 10.0;
-    }
-    if (!accepted) {  // no step lowers the cost: at the minimum to machine precision
-      out.converged = true;
-      break;
-    }
-    const double decrease = cost - new_cost;
-    cost = new_cost;
-    // The step measured in standard errors (H is the Fisher information) or the cost change.
-    if (step.dot(H * step) < 1e-12 || decrease <= 1e-14 * cost) {
-      out.converged = true;
-      break;
-    }
-  }
-  return out;
 }
 
 // ---- Noise model ----------------------------------------------------------------------------
@@ -326,12 +218,16 @@ Solution solve(const Problem& pb, const ParameterMask& free_mask, const ModelPar
                            p.residuals(p.full(x)));
   }
   const int rounds = opt.noise.estimate ? std::max(1, opt.noise_iterations) : 1;
+  sol.whitening.resize(p.active.size());
+  const auto problem = x.size() > 0 ? ml_solver::whitened_problem(p, sol.whitening, x) : nullptr;
   for (int round = 0; round < rounds; ++round) {
     const auto shapes = noise_shapes(p, p.full(x), opt.noise.virtual_track);
     if (!whitening_of(noise, shapes, sol.whitening)) {
       throw std::invalid_argument("calibrate_ml: a sample covariance is not positive definite");
     }
-    const LmOutcome lm = levenberg_marquardt(p, sol.whitening, x, opt.max_iterations);
+    if (problem) ml_solver::restrict_to_determined(*problem, x);
+    const LmOutcome lm = problem ? ml_solver::levenberg_marquardt(*problem, x, opt.max_iterations)
+                                 : LmOutcome{0, true};
     sol.iterations += lm.iterations;
     sol.converged = lm.converged;
     if (!opt.noise.estimate) break;
@@ -447,8 +343,11 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   // Fisher information at the solution and what it determines.
   Problem fin = pb;
   fin.base = sol.values;
-  const Eigen::VectorXd x = fin.free_values(sol.values);
-  const Eigen::MatrixXd J = whitened_jacobian(fin, sol.whitening, x);
+  Eigen::VectorXd x = fin.free_values(sol.values);
+  const auto rows = 3 * static_cast<Eigen::Index>(pb.active.size());
+  const Eigen::MatrixXd J =
+      x.size() > 0 ? ml_solver::whitened_jacobian(*ml_solver::whitened_problem(fin, sol.whitening, x), rows, x.size())
+                   : Eigen::MatrixXd(rows, 0);
   const Eigen::MatrixXd F = J.transpose() * J;
   // A square root of F (F = RᵀR) carries the same information as the whitened Jacobian itself,
   // in p rows instead of 3n (identifiability.h would otherwise need a 3n × 3n identity).

@@ -5,7 +5,7 @@
 // (IEEE T-RO 2013) do — with a covariance for every estimate. ML_CALIBRATION.md has the details.
 //
 // Estimator: the closed form (closed_form_calibration.h) gives the start; then a joint
-// Levenberg–Marquardt minimisation of Σ rᵢᵀ Σᵢ⁻¹ rᵢ over all free parameters, rᵢ = predicted −
+// Levenberg–Marquardt minimisation (Ceres Solver, ml_calibration_solver.h) of Σ rᵢᵀ Σᵢ⁻¹ rᵢ over all free parameters, rᵢ = predicted −
 // reference displacement, alternated with the ML estimate of the noise model's unknown
 // variances (Σᵢ evaluated at the current parameters and held fixed within each solve).
 // Covariance: the inverse Fisher information (Σ Jᵢᵀ Σᵢ⁻¹ Jᵢ)⁻¹ at the solution.

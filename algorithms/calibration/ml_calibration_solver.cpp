@@ -1,0 +1,163 @@
+#include "algorithms/calibration/ml_calibration_solver.h"
+
+#include <ceres/crs_matrix.h>
+#include <ceres/dynamic_numeric_diff_cost_function.h>
+#include <ceres/manifold.h>
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <utility>
+
+namespace locbench::ml_solver {
+
+namespace {
+
+// One sample's whitened residual Σᵢ⁻¹ᐟ² rᵢ as a function of the free parameters, for Ceres
+// (central differences: the residual code is double-only). `whitening` is shared by every
+// sample's functor and replaced between the noise alternation's rounds.
+struct WhitenedResidual {
+  const Problem* pb;
+  const Whitening* whitening;
+  std::size_t slot;  // index into pb->active and *whitening
+  bool operator()(double const* const* x, double* out) const {
+    Vector6 v = pb->base;
+    for (std::size_t j = 0; j < pb->free.size(); ++j) v(pb->free[j]) = x[0][j];
+    const Eigen::Vector3d r = (*whitening)[slot] *
+        reference_residual(pb->data, pb->data.samples[pb->active[slot]],
+                           ModelParameters::from_vector(v));
+    for (int c = 0; c < 3; ++c) out[c] = r(c);
+    return r.allFinite();
+  }
+};
+
+}  // namespace
+
+// The Ceres problem Σ‖Σᵢ⁻¹ᐟ² rᵢ‖² over the free parameters `x` (one parameter block).
+// The step 1e-6·|x| (absolute 1e-6 at zero) is Ceres's default for central differences.
+std::unique_ptr<ceres::Problem> whitened_problem(const Problem& pb, const Whitening& w,
+                                                 Eigen::VectorXd& x) {
+  ceres::Problem::Options po;
+  auto problem = std::make_unique<ceres::Problem>(po);
+  for (std::size_t i = 0; i < pb.active.size(); ++i) {
+    auto* cost = new ceres::DynamicNumericDiffCostFunction<WhitenedResidual, ceres::CENTRAL>(
+        new WhitenedResidual{&pb, &w, i});
+    cost->AddParameterBlock(static_cast<int>(x.size()));
+    cost->SetNumResiduals(3);
+    problem->AddResidualBlock(cost, nullptr, x.data());
+  }
+  return problem;
+}
+
+// Whitened Jacobian (3 rows per active sample) at x, from the Ceres problem.
+Eigen::MatrixXd whitened_jacobian(ceres::Problem& problem, Eigen::Index rows, Eigen::Index cols) {
+  ceres::CRSMatrix crs;
+  problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &crs);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, cols);
+  for (int r = 0; r < crs.num_rows; ++r) {
+    for (int k = crs.rows[static_cast<std::size_t>(r)]; k < crs.rows[static_cast<std::size_t>(r) + 1]; ++k) {
+      J(r, crs.cols[static_cast<std::size_t>(k)]) = crs.values[static_cast<std::size_t>(k)];
+    }
+  }
+  return J;
+}
+
+// Ceres's Levenberg–Marquardt (dense QR) on Σ‖Σᵢ⁻¹ᐟ² rᵢ‖². Tolerances: relative cost change
+// 1e-10 (χ² ≈ 3n/2 moves by < 1e-6 per thousand samples: far below one standard error²) and
+// step 1e-10 of |x| (ML_CALIBRATION.md compares it with the hand-written solver it replaced).
+LmOutcome levenberg_marquardt(ceres::Problem& problem, Eigen::VectorXd& x, int max_iterations) {
+  LmOutcome out;
+  if (x.size() == 0) {
+    out.converged = true;
+    return out;
+  }
+  ceres::Solver::Options o;
+  o.minimizer_type = ceres::TRUST_REGION;
+  o.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  o.linear_solver_type = ceres::DENSE_QR;
+  o.max_num_iterations = max_iterations;
+  o.function_tolerance = 1e-10;
+  o.parameter_tolerance = 1e-10;
+  o.gradient_tolerance = 1e-10;
+  o.num_threads = 1;
+  o.logging_type = ceres::SILENT;
+  o.minimizer_progress_to_stdout = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(o, &problem, &summary);
+  out.iterations = std::max(0, static_cast<int>(summary.iterations.size()) - 1);
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  return out;
+}
+
+namespace {
+
+// x = x₀ + B·u: the solver steps only within the span of B's columns.
+class LinearSubspace final : public ceres::Manifold {
+ public:
+  explicit LinearSubspace(Eigen::MatrixXd basis)
+      : basis_(std::move(basis)),
+        inverse_(basis_.completeOrthogonalDecomposition().pseudoInverse()) {}
+  int AmbientSize() const override { return static_cast<int>(basis_.rows()); }
+  int TangentSize() const override { return static_cast<int>(basis_.cols()); }
+  bool Plus(const double* x, const double* delta, double* x_plus_delta) const override {
+    Eigen::Map<Eigen::VectorXd>(x_plus_delta, basis_.rows()) =
+        Eigen::Map<const Eigen::VectorXd>(x, basis_.rows()) +
+        basis_ * Eigen::Map<const Eigen::VectorXd>(delta, basis_.cols());
+    return true;
+  }
+  bool PlusJacobian(const double* /*x*/, double* jacobian) const override {
+    RowMajor(jacobian, basis_.rows(), basis_.cols()) = basis_;
+    return true;
+  }
+  bool Minus(const double* y, const double* x, double* y_minus_x) const override {
+    Eigen::Map<Eigen::VectorXd>(y_minus_x, basis_.cols()) =
+        inverse_ * (Eigen::Map<const Eigen::VectorXd>(y, basis_.rows()) -
+                    Eigen::Map<const Eigen::VectorXd>(x, basis_.rows()));
+    return true;
+  }
+  bool MinusJacobian(const double* /*x*/, double* jacobian) const override {
+    RowMajor(jacobian, basis_.cols(), basis_.rows()) = inverse_;
+    return true;
+  }
+
+ private:
+  using RowMajor = Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
+  Eigen::MatrixXd basis_, inverse_;
+};
+
+}  // namespace
+
+// Ceres's damping lets Levenberg–Marquardt step along directions the data do not determine (a
+// straight run's wheelbase moved 3 % along its flat direction). Before each solve, the
+// parameter block is restricted to the directions the data determine at its start, so the
+// undetermined combinations keep their start (closed-form) values: in Marquardt-scaled
+// coordinates (D = diag(JᵀJ)^−½), the eigenvectors of D·JᵀJ·D with at least 1e-8 of the largest
+// eigenvalue (central differences leave ~1e-10 in an exactly flat direction). Identifiable
+// problems solve on the full space.
+void restrict_to_determined(ceres::Problem& problem, Eigen::VectorXd& x) {
+  problem.SetManifold(x.data(), nullptr);
+  const auto rows = 3 * static_cast<Eigen::Index>(problem.NumResidualBlocks());
+  const Eigen::MatrixXd J = whitened_jacobian(problem, rows, x.size());
+  const Eigen::MatrixXd H = J.transpose() * J;
+  const Eigen::VectorXd d =
+      H.diagonal().cwiseMax(1e-12 * H.diagonal().maxCoeff() + 1e-300).cwiseSqrt().cwiseInverse();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(d.asDiagonal() * H * d.asDiagonal());
+  const double emax = eig.eigenvalues().maxCoeff();
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    if (eig.eigenvalues()(k) > 1e-8 * emax) kept.push_back(k);
+  }
+  if (kept.size() == static_cast<std::size_t>(x.size())) return;
+  if (kept.empty()) {
+    problem.SetParameterBlockConstant(x.data());
+    return;
+  }
+  Eigen::MatrixXd basis(x.size(), static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t c = 0; c < kept.size(); ++c) {
+    basis.col(static_cast<Eigen::Index>(c)) = d.asDiagonal() * eig.eigenvectors().col(kept[c]);
+  }
+  problem.SetManifold(x.data(), new LinearSubspace(basis));
+}
+
+}  // namespace locbench::ml_solver
