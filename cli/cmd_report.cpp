@@ -89,7 +89,7 @@ int report(const ReportArgs& args) {
   const std::vector<reports::Report> loaded = load_all(args.inputs);
   reports::HtmlOptions options;
   options.title = args.title;
-  const std::string html = reports::html_report(loaded, reports::gnuplot_renderer(*gnuplot), options);
+  const std::string html = reports::html_report(loaded, reports::gnuplot_batch_renderer(*gnuplot), options);
   const std::filesystem::path out(args.out);
   reports::write_file_atomically(out, html);
   std::cerr << "wrote " << out.string() << " (" << loaded.size() << " reports, " << html.size()

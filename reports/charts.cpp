@@ -222,7 +222,13 @@ std::string plot_script(const Plot& plot) {
       const std::string block = fmt::format("s{}", i);
       s += datablock(block, ps.x, ps.y);
       const bool truth = ps.name == "truth";
-      terms.push_back(fmt::format("${} using 1:2 with lines lw {} lc rgb '{}' title {}", block,
+      // Binned means: lines through the bins' points; a profile's reference line (the second
+      // series: a threshold) dashed, and its marked estimate (the third: value and interval) as points.
+      const std::string style = plot.kind == "binned"                 ? "linespoints pt 7 ps 0.7"
+                                : plot.kind == "profile" && i == 1 ? "lines dt 2"
+                                : plot.kind == "profile" && i >= 2 ? "linespoints pt 7 ps 0.9"
+                                                                   : "lines";
+      terms.push_back(fmt::format("${} using 1:2 with {} lw {} lc rgb '{}' title {}", block, style,
                                   truth ? 3.0 : 1.5, truth ? "#000000" : kColours[i % 8],
                                   quote(ps.name)));
     }
@@ -233,6 +239,8 @@ std::string plot_script(const Plot& plot) {
       if (w > 0 && hgt > 0 && w / hgt < 4.0 && hgt / w < 4.0) s += "set size ratio -1\n";
     }
     if (plot.kind == "error_vs_distance") s += "set yrange [0:*]\n";
+    if (plot.kind == "binned") s += "set xzeroaxis lt -1 lw 1 lc rgb '#888888'\n";
+    if (plot.kind == "profile") s += "set yrange [0:*]\n";
   }
   if (terms.empty()) {
     s += "set label 1 'no data' at graph 0.5, graph 0.5 center\nplot [0:1][0:1] NaN notitle\n";

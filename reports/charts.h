@@ -1,6 +1,7 @@
 #pragma once
 // Charts of a report as gnuplot scripts (pure functions; `locbench report` runs gnuplot on them):
-// trajectories, error against distance travelled and histograms of per-run metric values.
+// trajectories, error against distance travelled, histograms of per-run metric values, empirical
+// CDFs of error samples, binned residual means and likelihood profiles.
 #include <string>
 #include <utility>
 #include <vector>

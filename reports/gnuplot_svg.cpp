@@ -92,6 +92,38 @@ std::string run_gnuplot(const std::filesystem::path& gnuplot, const std::string&
   return svg;
 }
 
+std::vector<std::string> run_gnuplot_batch(const std::filesystem::path& gnuplot,
+                                           const std::vector<std::string>& scripts) {
+  if (scripts.empty()) return {};
+  TempDir dir;
+  const auto script_path = dir.path / "charts.gp";
+  const auto err_path = dir.path / "stderr.txt";
+  std::string all;
+  for (std::size_t i = 0; i < scripts.size(); ++i) {
+    // Datablocks persist across `reset`: undefine them so one chart never draws another's data.
+    all += "reset\nundefine $*\nset output '" + (dir.path / ("chart" + std::to_string(i) + ".svg")).string() + "'\n";
+    all += scripts[i];
+    all += "unset output\n";
+  }
+  write_file_atomically(script_path, all);
+  const std::string quoted = "'" + std::regex_replace(gnuplot.string(), std::regex("'"), "'\\''") + "'";
+  const std::string cmd = quoted + " '" + script_path.string() + "' > /dev/null 2> '" + err_path.string() + "'";
+  const int status = std::system(cmd.c_str());
+  std::vector<std::string> svgs;
+  svgs.reserve(scripts.size());
+  for (std::size_t i = 0; i < scripts.size(); ++i) {
+    const auto svg_path = dir.path / ("chart" + std::to_string(i) + ".svg");
+    std::string svg = read_file(svg_path);
+    if (status != 0 || svg.find("<svg") == std::string::npos) {
+      throw InputError(svg_path.string(), 0,
+                       "gnuplot failed on chart " + std::to_string(i + 1) + " of " + std::to_string(scripts.size()) +
+                           " (" + gnuplot.string() + "; is $TMPDIR full or unwritable?): " + read_file(err_path));
+    }
+    svgs.push_back(std::move(svg));
+  }
+  return svgs;
+}
+
 std::string inline_svg(const std::string& svg, const std::string& prefix) {
   std::string s = svg;
   const auto start = s.find("<svg");

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace locbench::reports {
 
@@ -12,6 +13,12 @@ std::optional<std::filesystem::path> find_gnuplot();
 // Runs `gnuplot` on `script` (which sets the svg terminal and plots to stdout) and returns the
 // SVG it wrote; std::runtime_error with gnuplot's messages when it fails.
 std::string run_gnuplot(const std::filesystem::path& gnuplot, const std::string& script);
+
+// Runs one `gnuplot` on all `scripts` (each of the form above) and returns their SVGs in order:
+// each script is preceded by `reset` and `set output` to its own file, so one process draws the
+// page. std::runtime_error-derived InputError with gnuplot's messages when it fails.
+std::vector<std::string> run_gnuplot_batch(const std::filesystem::path& gnuplot,
+                                           const std::vector<std::string>& scripts);
 
 // An SVG document made fit to inline into HTML: the XML declaration dropped and every id made
 // unique with `prefix` (references included), so several charts can share one page.

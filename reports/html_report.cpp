@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "reports/charts.h"
+#include "reports/findings.h"
 #include "reports/gnuplot_svg.h"
 
 namespace locbench::reports {
@@ -42,6 +43,10 @@ figure.chart{margin:1rem 0 2rem}
 figure.chart svg{width:100%;max-width:760px;height:auto;border:1px solid #eee}
 figcaption{font-size:.85rem;color:#555}
 ul.findings li{margin-bottom:.4rem}
+section#findings{background:#fafaf5;border:1px solid #ddd;padding:.2rem 1rem 1rem;margin:1rem 0 2rem}
+td.v-reproduced{color:#116611;font-weight:600}
+td.v-not-reproduced{color:#a40000;font-weight:600}
+td.v-the-thesis-is-wrong{color:#8a5a00;font-weight:600}
 )css";
 
 void summary_table(std::string& h, const ExperimentResults& b) {
@@ -109,6 +114,84 @@ void published_tables(std::string& h, const ExperimentResults& b) {
   }
 }
 
+std::string verdict_class(Verdict v) {
+  std::string c = "v-";
+  for (char ch : to_string(v)) c += ch == ' ' ? '-' : ch;
+  return c;
+}
+
+// Our measurement of a table in one cell: each row's published → ours, in the table's unit.
+std::string measurement_cell(const PublishedComparison& c) {
+  std::string out;
+  for (const PublishedRow& r : c.rows) {
+    if (!r.published || !r.ours) continue;
+    out += fmt::format("{}{}: {} → {}", out.empty() ? "" : "; ", html_escape(r.label), num(r.published), num(r.ours));
+  }
+  return out.empty() ? "—" : with_unit(out, c.unit) + " <span class=meta>(published → ours)</span>";
+}
+
+std::string gain_text(const KeptCause& c) {
+  if (!c.gain) return "—";
+  const FindingGain& g = *c.gain;
+  const double rel = g.before != 0.0 ? (g.before - g.after) / std::abs(g.before) : 0.0;
+  return fmt::format("{} {} → {} ({:+.1f}%)", html_escape(g.metric), num(g.before), num(g.after), 100.0 * rel);
+}
+
+// The front section: published tables with a verdict, then the diagnosed logs.
+void findings_section(std::string& h, const std::vector<Report>& reports) {
+  std::string tables, logs;
+  for (const Report& r : reports) {
+    for (const PublishedComparison& c : r.body.published) {
+      const TableFinding f = table_finding(c);
+      if (f.verdict == Verdict::kNoVerdict) continue;
+      tables += fmt::format(
+          "<tr><td><a href=\"#{}\">{}</a></td><td>{} — {}{}</td><td>{}</td><td class=\"{}\">{}</td><td>{}</td></tr>\n",
+          anchor(r.body.experiment), html_escape(r.body.experiment), html_escape(c.source), html_escape(c.quantity),
+          c.claim.empty() ? "" : "<br>" + html_escape(c.claim), measurement_cell(c), verdict_class(f.verdict),
+          to_string(f.verdict), html_escape(f.reason));
+    }
+    for (const DiagnosedLog& d : r.body.diagnoses) {
+      std::string causes;
+      for (const KeptCause& c : d.causes) {
+        std::string params;
+        for (const FindingEstimate& e : c.parameters) {
+          params += fmt::format("{}{} = {} [{}, {}]", params.empty() ? "" : ", ", html_escape(e.name), num(e.value),
+                                num(e.lo), num(e.hi));
+        }
+        causes += fmt::format("<li><b>{}</b>{}: {}; held-out {}</li>", html_escape(c.id),
+                              c.identifiable ? "" : " <span class=bad>confounded</span>", params.empty() ? "—" : params,
+                              gain_text(c));
+      }
+      logs += fmt::format("<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td class=note>{}</td></tr>\n",
+                          anchor(r.body.experiment), html_escape(d.log), html_escape(d.reference),
+                          causes.empty() ? "none kept" : "<ul>" + causes + "</ul>", html_escape(d.verdict));
+    }
+  }
+  if (tables.empty() && logs.empty()) return;
+  h += "<section id=findings>\n<h2>Findings</h2>\n";
+  if (!tables.empty()) {
+    h += "<h3>Published tables: the thesis's claim, our measurement, the verdict</h3>\n"
+         "<p class=note>The verdict is computed from the numbers below: a row is reproduced when |ours − "
+         "published| is within the tolerance its experiment states; the thesis is wrong when our figure is "
+         "confirmed by an independent computation and the published one is not.</p>\n"
+         "<table class=findings-published><thead><tr><th>experiment</th><th>claim</th><th>measured</th>"
+         "<th>verdict</th><th>reason</th></tr></thead><tbody>\n" +
+         tables + "</tbody></table>\n";
+  }
+  if (!logs.empty()) {
+    h += "<h3>Real logs: what the diagnosis kept</h3>\n"
+         "<p class=note>Causes kept by the diagnosis, each parameter with its 95% interval, and the held-out "
+         "gain of the cause alone in its primary metric (before → after).</p>\n"
+         "<table class=findings-diagnosis><thead><tr><th>log</th><th>reference</th><th>causes kept</th>"
+         "<th>verdict</th></tr></thead><tbody>\n" +
+         logs + "</tbody></table>\n";
+  }
+  h += "</section>\n";
+}
+
+// Stands for chart i in the page until the charts are drawn (all at once).
+std::string chart_placeholder(std::size_t i) { return fmt::format("\x01chart{}\x01", i); }
+
 }  // namespace
 
 std::string html_escape(const std::string& text) {
@@ -121,6 +204,7 @@ std::string html_escape(const std::string& text) {
       case '>': out += "&gt;"; break;
       case '"': out += "&quot;"; break;
       case '\'': out += "&#39;"; break;
+      case '\x01': break;  // reserved for the page's chart placeholders
       default: out += c;
     }
   }
@@ -133,15 +217,41 @@ ChartRenderer gnuplot_renderer(std::filesystem::path gnuplot) {
   };
 }
 
+ChartBatchRenderer gnuplot_batch_renderer(std::filesystem::path gnuplot) {
+  return [gnuplot](const std::vector<Plot>& plots, const std::vector<std::string>& ids) {
+    std::vector<std::string> scripts;
+    scripts.reserve(plots.size());
+    for (const Plot& p : plots) scripts.push_back(plot_script(p));
+    std::vector<std::string> svgs = run_gnuplot_batch(gnuplot, scripts);
+    for (std::size_t i = 0; i < svgs.size(); ++i) svgs[i] = inline_svg(svgs[i], ids[i] + "-");
+    return svgs;
+  };
+}
+
 std::string html_report(const std::vector<Report>& reports, const ChartRenderer& render,
                         const HtmlOptions& options) {
+  return html_report(
+      reports,
+      [&render](const std::vector<Plot>& plots, const std::vector<std::string>& ids) {
+        std::vector<std::string> out;
+        for (std::size_t i = 0; i < plots.size(); ++i) out.push_back(render(plots[i], ids[i]));
+        return out;
+      },
+      options);
+}
+
+std::string html_report(const std::vector<Report>& reports, const ChartBatchRenderer& render,
+                        const HtmlOptions& options) {
+  std::vector<Plot> chart_plots;
+  std::vector<std::string> chart_ids;
   std::string h;
   h += "<!DOCTYPE html>\n<html lang=en>\n<head>\n<meta charset=utf-8>\n"
        "<meta name=viewport content=\"width=device-width, initial-scale=1\">\n"
        "<link rel=icon href=\"data:,\">\n<title>" +
        html_escape(options.title) + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n";
   h += "<h1>" + html_escape(options.title) + "</h1>\n";
-  h += "<table class=overview><thead><tr><th>experiment</th><th>results</th><th>published "
+  findings_section(h, reports);
+  h += "<h2 id=index>Experiments</h2>\n<table class=overview><thead><tr><th>experiment</th><th>results</th><th>published "
        "tables</th><th>Monte-Carlo runs</th><th>cases not run</th></tr></thead><tbody>\n";
   for (const Report& r : reports) {
     h += fmt::format("<tr><td><a href=\"#{}\">{}</a></td><td class=n>{}</td><td class=n>{}</td>"
@@ -185,7 +295,9 @@ std::string html_report(const std::vector<Report>& reports, const ChartRenderer&
       for (const Plot& plot : ps) {
         const std::string id = fmt::format("chart{}", ++chart);
         h += fmt::format("<figure class=chart id=\"{}\" data-kind=\"{}\">\n", id, html_escape(plot.kind));
-        h += render(plot, id);
+        h += chart_placeholder(chart_plots.size());
+        chart_plots.push_back(plot);
+        chart_ids.push_back(id);
         h += fmt::format("\n<figcaption>{}{}</figcaption>\n</figure>\n", html_escape(plot.title),
                          plot.note.empty() ? "" : " — " + html_escape(plot.note));
       }
@@ -208,7 +320,20 @@ std::string html_report(const std::vector<Report>& reports, const ChartRenderer&
     h += "</section>\n";
   }
   h += "</body>\n</html>\n";
-  return h;
+  // The charts, drawn together, in place of their placeholders (in page order).
+  const std::vector<std::string> svgs = chart_plots.empty() ? std::vector<std::string>{} : render(chart_plots, chart_ids);
+  std::string page;
+  page.reserve(h.size() + 64 * 1024 * svgs.size());
+  std::size_t from = 0;
+  for (std::size_t i = 0; i < chart_plots.size(); ++i) {
+    const std::string mark = chart_placeholder(i);
+    const std::size_t at = h.find(mark, from);
+    page.append(h, from, at - from);
+    page += i < svgs.size() ? svgs[i] : std::string();
+    from = at + mark.size();
+  }
+  page.append(h, from, std::string::npos);
+  return page;
 }
 
 }  // namespace locbench::reports

@@ -61,6 +61,16 @@ struct PublishedRow {
   std::string label;
   std::optional<double> published;
   std::optional<double> ours;
+  // Optional: the same quantity computed another way (e.g. numerically where `ours` is closed
+  // form). When ours and the check agree within the tolerance and the published figure does not,
+  // the verdict is "the thesis is wrong" (reports/findings.h).
+  std::optional<double> check = std::nullopt;
+  // False for rows the verdict leaves out (e.g. per-run rows of runs not paired with the
+  // thesis's, where only the mean row compares).
+  bool compared = true;
+  // Optional: this row's own tolerance (e.g. from both sides' standard errors), in place of the
+  // table's.
+  std::optional<double> tolerance = std::nullopt;
 };
 struct PublishedComparison {
   std::string source;  // e.g. "thesis Table 3.2"
@@ -68,6 +78,37 @@ struct PublishedComparison {
   std::string unit;
   std::vector<PublishedRow> rows;
   std::string note;    // where and why the figures differ
+  // Optional, for the findings (reports/findings.h): the thesis's claim in one line, and the
+  // tolerance within which a row counts as reproduced, |ours − published| ≤ max(tolerance,
+  // relative_tolerance·|published|), with why that tolerance. Without a tolerance the table gets
+  // no verdict.
+  std::string claim = {};
+  std::optional<double> tolerance = std::nullopt;           // in `unit`
+  std::optional<double> relative_tolerance = std::nullopt;  // fraction of |published|
+  std::string tolerance_basis = {};
+};
+
+// What a diagnosis kept on one log (diagnosis/real_logs): each cause with its fitted parameters'
+// 95% intervals and its held-out gain, and the diagnosis's verdict.
+struct FindingEstimate {
+  std::string name;
+  double value = 0.0, lo = 0.0, hi = 0.0;  // 95% interval [lo, hi]
+};
+struct FindingGain {
+  std::string metric;
+  double before = 0.0, after = 0.0;  // held-out, in the metric's units
+};
+struct KeptCause {
+  std::string id;
+  std::vector<FindingEstimate> parameters;
+  std::optional<FindingGain> gain;  // the cause's primary held-out metric
+  bool identifiable = true;         // false: confounded with another cause
+};
+struct DiagnosedLog {
+  std::string log;
+  std::string reference;
+  std::vector<KeptCause> causes;
+  std::string verdict;
 };
 
 // A series to plot: named (x, y) points, e.g. the truth's trajectory or a filter's error.
@@ -78,7 +119,8 @@ struct PlotSeries {
 };
 // A chart a reader wants beside the numbers (drawn by `locbench report`). Kinds:
 // "trajectory" (x, y in the plane, equal axes), "error_vs_distance" (error against distance
-// travelled), "histogram" (series y values are samples; x is unused and empty), "cdf" (series y
+// travelled), "binned" (binned means of a residual against a covariate, lines with points),
+// "profile" (a curve, e.g. the deviance against a time offset, lines), "histogram" (series y values are samples; x is unused and empty), "cdf" (series y
 // values are samples drawn as overlaid empirical CDFs; x is unused and empty), "scan_pair"
 // (laser scans in one robot frame, equal axes: a series whose name ends in "lines" or "matches"
 // holds segments as consecutive point pairs, drawn as lines; any other series is points).
@@ -113,6 +155,7 @@ struct ExperimentResults {
   std::vector<CaseNote> cases;
   std::vector<std::string> notes;  // findings in plain words (what agrees, what does not, why)
   std::vector<Plot> plots;         // optional series for charts (trajectories, error vs distance)
+  std::vector<DiagnosedLog> diagnoses;  // optional: per log, what a diagnosis kept (findings)
 };
 
 struct Report {

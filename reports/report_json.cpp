@@ -41,6 +41,55 @@ T get(const json& j, const char* key, const std::string& source, const std::stri
   }
 }
 
+json diagnosed_log_to_json(const DiagnosedLog& d) {
+  json causes = json::array();
+  for (const KeptCause& c : d.causes) {
+    json params = json::array();
+    for (const FindingEstimate& e : c.parameters) {
+      params.push_back({{"name", e.name}, {"value", optional_number(e.value)},
+                        {"lo", optional_number(e.lo)}, {"hi", optional_number(e.hi)}});
+    }
+    json cj = {{"id", c.id}, {"parameters", params}, {"identifiable", c.identifiable}};
+    if (c.gain) {
+      cj["gain"] = {{"metric", c.gain->metric}, {"before", optional_number(c.gain->before)},
+                    {"after", optional_number(c.gain->after)}};
+    }
+    causes.push_back(std::move(cj));
+  }
+  return {{"log", d.log}, {"reference", d.reference}, {"causes", causes}, {"verdict", d.verdict}};
+}
+
+double number_or_nan(const json& j, const char* key, const std::string& source, const std::string& where) {
+  if (j.contains(key) && j.at(key).is_null()) return std::nan("");
+  return get<double>(j, key, source, where);
+}
+
+DiagnosedLog diagnosed_log_from_json(const json& j, const std::string& source) {
+  DiagnosedLog d;
+  d.log = get<std::string>(j, "log", source, "diagnoses");
+  d.reference = get<std::string>(j, "reference", source, "diagnoses");
+  d.verdict = get<std::string>(j, "verdict", source, "diagnoses");
+  for (const json& cj : get<json>(j, "causes", source, "diagnoses")) {
+    KeptCause c;
+    c.id = get<std::string>(cj, "id", source, "diagnoses cause");
+    c.identifiable = get<bool>(cj, "identifiable", source, "diagnoses cause");
+    for (const json& e : get<json>(cj, "parameters", source, "diagnoses cause")) {
+      c.parameters.push_back({get<std::string>(e, "name", source, "cause parameter"),
+                              number_or_nan(e, "value", source, "cause parameter"),
+                              number_or_nan(e, "lo", source, "cause parameter"),
+                              number_or_nan(e, "hi", source, "cause parameter")});
+    }
+    if (cj.contains("gain")) {
+      const json& g = cj.at("gain");
+      c.gain = FindingGain{get<std::string>(g, "metric", source, "cause gain"),
+                           number_or_nan(g, "before", source, "cause gain"),
+                           number_or_nan(g, "after", source, "cause gain")};
+    }
+    d.causes.push_back(std::move(c));
+  }
+  return d;
+}
+
 json plot_to_json(const Plot& p) {
   json series = json::array();
   for (const PlotSeries& s : p.series) {
@@ -99,12 +148,21 @@ json results_to_json(const ExperimentResults& b) {
   for (const PublishedComparison& c : b.published) {
     json rows = json::array();
     for (const PublishedRow& row : c.rows) {
-      rows.push_back({{"label", row.label},
-                      {"published", optional_number(row.published)},
-                      {"ours", optional_number(row.ours)}});
+      json r = {{"label", row.label},
+                {"published", optional_number(row.published)},
+                {"ours", optional_number(row.ours)}};
+      if (row.check) r["check"] = optional_number(row.check);
+      if (!row.compared) r["compared"] = false;
+      if (row.tolerance) r["tolerance"] = *row.tolerance;
+      rows.push_back(std::move(r));
     }
-    j["published"].push_back({{"source", c.source}, {"quantity", c.quantity}, {"unit", c.unit},
-                              {"rows", rows}, {"note", c.note}});
+    json pc = {{"source", c.source}, {"quantity", c.quantity}, {"unit", c.unit},
+               {"rows", rows}, {"note", c.note}};
+    if (!c.claim.empty()) pc["claim"] = c.claim;
+    if (c.tolerance) pc["tolerance"] = *c.tolerance;
+    if (c.relative_tolerance) pc["relative_tolerance"] = *c.relative_tolerance;
+    if (!c.tolerance_basis.empty()) pc["tolerance_basis"] = c.tolerance_basis;
+    j["published"].push_back(std::move(pc));
   }
   j["cases"] = json::array();
   for (const CaseNote& c : b.cases) {
@@ -114,6 +172,10 @@ json results_to_json(const ExperimentResults& b) {
   if (!b.plots.empty()) {
     j["plots"] = json::array();
     for (const Plot& p : b.plots) j["plots"].push_back(plot_to_json(p));
+  }
+  if (!b.diagnoses.empty()) {
+    j["diagnoses"] = json::array();
+    for (const DiagnosedLog& d : b.diagnoses) j["diagnoses"].push_back(diagnosed_log_to_json(d));
   }
   return j;
 }
@@ -198,6 +260,14 @@ ExperimentResults results_from_json(const json& j, const std::string& source) {
     x.quantity = get<std::string>(pc, "quantity", source, "published");
     x.unit = get<std::string>(pc, "unit", source, "published");
     x.note = get<std::string>(pc, "note", source, "published");
+    if (pc.contains("claim")) x.claim = get<std::string>(pc, "claim", source, "published");
+    if (pc.contains("tolerance")) x.tolerance = get<double>(pc, "tolerance", source, "published");
+    if (pc.contains("relative_tolerance")) {
+      x.relative_tolerance = get<double>(pc, "relative_tolerance", source, "published");
+    }
+    if (pc.contains("tolerance_basis")) {
+      x.tolerance_basis = get<std::string>(pc, "tolerance_basis", source, "published");
+    }
     for (const json& row : get<json>(pc, "rows", source, "published")) {
       PublishedRow pr;
       pr.label = get<std::string>(row, "label", source, "published row");
@@ -207,6 +277,11 @@ ExperimentResults results_from_json(const json& j, const std::string& source) {
       if (row.contains("ours") && !row["ours"].is_null()) {
         pr.ours = get<double>(row, "ours", source, "published row");
       }
+      if (row.contains("check") && !row["check"].is_null()) {
+        pr.check = get<double>(row, "check", source, "published row");
+      }
+      if (row.contains("compared")) pr.compared = get<bool>(row, "compared", source, "published row");
+      if (row.contains("tolerance")) pr.tolerance = get<double>(row, "tolerance", source, "published row");
       x.rows.push_back(std::move(pr));
     }
     b.published.push_back(std::move(x));
@@ -220,6 +295,11 @@ ExperimentResults results_from_json(const json& j, const std::string& source) {
   if (j.contains("plots")) {
     for (const json& p : get<json>(j, "plots", source, "report")) {
       b.plots.push_back(plot_from_json(p, source));
+    }
+  }
+  if (j.contains("diagnoses")) {
+    for (const json& d : get<json>(j, "diagnoses", source, "report")) {
+      b.diagnoses.push_back(diagnosed_log_from_json(d, source));
     }
   }
   return b;

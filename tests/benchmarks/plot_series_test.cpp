@@ -46,6 +46,30 @@ TEST(TrajectorySeries, ThinsLongPathsButKeepsTheEnds) {
   EXPECT_EQ(s.x.back(), 999.0);
 }
 
+TEST(CdfSamples, KeepsEvenlySpacedOrderStatisticsWithBothEnds) {
+  std::vector<double> v;
+  for (int i = 1000; i >= 0; --i) v.push_back(double(i));  // 0…1000, reversed
+  v.push_back(std::nan(""));
+  const auto s = cdf_samples("m", v, 11);
+  ASSERT_EQ(s.y.size(), 11u);
+  EXPECT_EQ(s.y.front(), 0.0);
+  EXPECT_EQ(s.y[5], 500.0);
+  EXPECT_EQ(s.y.back(), 1000.0);
+  EXPECT_EQ(cdf_samples("m", {3.0, 1.0, 2.0}, 11).y, (std::vector<double>{1.0, 2.0, 3.0}));
+}
+
+TEST(BinnedMeans, AveragesEqualCountBinsAlongX) {
+  // y = 2x on x = 0…11: 3 bins of 4 → means x 1.5, 5.5, 9.5 and y 3, 11, 19.
+  std::vector<double> x, y;
+  for (int i = 11; i >= 0; --i) {
+    x.push_back(i);
+    y.push_back(2.0 * i);
+  }
+  const auto s = binned_means("b", x, y, 3);
+  EXPECT_EQ(s.x, (std::vector<double>{1.5, 5.5, 9.5}));
+  EXPECT_EQ(s.y, (std::vector<double>{3.0, 11.0, 19.0}));
+}
+
 // The experiment's results with its default configuration and `runs` Monte-Carlo runs.
 reports::ExperimentResults run_with_defaults(const std::string& name, int runs) {
   const Experiment* e = find_experiment(name);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <fstream>
 #include <map>
 
@@ -121,16 +123,27 @@ TEST(RealLogExperiments, LaserRealLogsCorrectsAUsersLog) {
               1e-12);
   EXPECT_LT(d.summary.ci95_high, 0.0);
   // The 3 worst relations of eap_ch6_ls drawn before and after, in the first robot frame.
-  ASSERT_EQ(r.plots.size(), 6u);
-  for (const auto& p : r.plots) {
+  // First each method's error distribution (translation, rotation): one CDF series per method,
+  // every relation's error (fewer than 200, so none thinned out).
+  ASSERT_EQ(r.plots.size(), 8u);
+  for (int k = 0; k < 2; ++k) {
+    const auto& c = r.plots[static_cast<std::size_t>(k)];
+    EXPECT_EQ(c.kind, "cdf");
+    ASSERT_FALSE(c.series.empty());
+    EXPECT_EQ(c.series[0].name, "odometry_raw");
+    EXPECT_EQ(c.series[0].y.size(), files.relation_count);
+    EXPECT_TRUE(std::is_sorted(c.series[0].y.begin(), c.series[0].y.end()));
+  }
+  std::vector<reports::Plot> pairs(r.plots.begin() + 2, r.plots.end());
+  for (const auto& p : pairs) {
     EXPECT_EQ(p.kind, "scan_pair");
     ASSERT_GE(p.series.size(), 4u);
     EXPECT_EQ(p.series[0].name, "first scan");
     EXPECT_EQ(p.series[0].x.size(), 181u);  // every beam of the room hits a wall
     EXPECT_EQ(p.series[1].x.size() % 2, 0u);  // lines as point pairs
   }
-  EXPECT_NE(r.plots[0].title.find("before"), std::string::npos);
-  EXPECT_NE(r.plots[1].title.find("after"), std::string::npos);
+  EXPECT_NE(pairs[0].title.find("before"), std::string::npos);
+  EXPECT_NE(pairs[1].title.find("after"), std::string::npos);
 }
 
 // global/real_logs places its map on the scan-matched path: on the small log, whose odometry

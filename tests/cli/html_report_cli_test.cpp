@@ -184,6 +184,67 @@ TEST_F(HtmlReport, DrawsTheWorstRelationsOfAUsersLogAsScanPairs) {
   EXPECT_TRUE(found.empty()) << found.front();
 }
 
+// The page opens on its findings: published tables with a verdict computed from their numbers
+// (normality Table 3.1 recomputed from the same histogram; the quantization σ, where the thesis's
+// 5.00 mm is not the L2 optimum), then each diagnosed log's kept causes — before the index of
+// experiments. The diagnosed log (a simulated uncalibrated UMBmark run, its TRUEPOS the
+// reference) gets its residual-against-covariate charts, its time-offset profile and the error
+// CDFs of the nominal and the diagnosed model, all drawn.
+TEST_F(HtmlReport, OpensOnTheFindingsAndDrawsTheDiagnosisCharts) {
+  const auto log = dir.file("umbmark.clf");
+  ASSERT_EQ(run_locbench("simulate umbmark_trilobot --seed 7 -o " + log.string()).exit_code, 0);
+  const std::string reports = (dir.path() / "reports").string();
+  const Outcome run = run_locbench("run diagnosis/real_logs --log " + log.string() + " --out " + reports);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const Outcome tables = run_locbench("run slip/normality_table_3_1 noise/quantization_sigma --out " + reports);
+  ASSERT_EQ(tables.exit_code, 0) << tables.output;
+  const auto html = dir.file("findings.html");
+  const Outcome o = run_locbench("report " + reports + " -o " + html.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const Rendered r = render(html, dir.path() / "profile");
+  ASSERT_EQ(r.exit_code, 0) << r.log;
+  const std::size_t findings = r.dom.find("<section id=\"findings\">");
+  const std::size_t index = r.dom.find("<table class=\"overview\">");
+  ASSERT_NE(findings, std::string::npos) << r.dom.substr(0, 800);
+  ASSERT_NE(index, std::string::npos);
+  EXPECT_LT(findings, index);  // findings first
+  EXPECT_EQ(r.dom.find("<section", 0), findings);
+  const std::string front = r.dom.substr(findings, index - findings);
+  // Table 3.1's statistics agree to the printed digits: reproduced, with its row count.
+  EXPECT_NE(front.find("thesis Table 3.1"), std::string::npos);
+  EXPECT_NE(front.find("all 9 rows within"), std::string::npos) << front.substr(0, 2000);
+  EXPECT_NE(front.find("class=\"v-reproduced\""), std::string::npos);
+  // The quantization σ: the exact optimum, confirmed by the closed form, contradicts the thesis.
+  EXPECT_NE(front.find("contradict the thesis"), std::string::npos) << front.substr(0, 3000);
+  // The diagnosed log: its kept causes with intervals and held-out gains.
+  EXPECT_NE(front.find("Real logs: what the diagnosis kept"), std::string::npos);
+  EXPECT_NE(front.find("umbmark"), std::string::npos);
+  EXPECT_NE(front.find("held-out"), std::string::npos);
+  int binned = 0, profiles = 0, cdfs = 0;
+  for (std::size_t at = r.dom.find("<figure class=\"chart\""); at != std::string::npos;
+       at = r.dom.find("<figure class=\"chart\"", at + 1)) {
+    const std::string f = r.dom.substr(at, r.dom.find("</figure>", at) - at);
+    ASSERT_NE(f.find("<svg"), std::string::npos) << f.substr(0, 300);
+    if (f.find("data-kind=\"binned\"") != std::string::npos) {
+      ++binned;
+      EXPECT_NE(f.find("nominal model"), std::string::npos);
+      EXPECT_NE(f.find("with "), std::string::npos);
+      EXPECT_GE(count_of(f, "gpPt6"), 10u) << f.substr(0, 300);  // the bins' points
+    } else if (f.find("data-kind=\"profile\"") != std::string::npos) {
+      ++profiles;
+      EXPECT_GE(longest_path(f), 30u) << f.substr(0, 300);  // 61 offsets
+    } else if (f.find("data-kind=\"cdf\"") != std::string::npos) {
+      ++cdfs;
+      EXPECT_GE(longest_path(f), 20u) << f.substr(0, 300);
+    }
+  }
+  EXPECT_GE(binned, 1);
+  EXPECT_EQ(profiles, 1);
+  EXPECT_EQ(cdfs, 2);  // translation and heading error, nominal vs diagnosed
+  const auto found = problems(r.log);
+  EXPECT_TRUE(found.empty()) << found.front();
+}
+
 // The check above can fail: a page that logs to the console is caught.
 TEST_F(HtmlReport, TheConsoleCheckCatchesAPageThatLogsAnError) {
   const auto html = dir.file("bad.html");

@@ -132,3 +132,51 @@ TEST(ReportJson, ResultsRoundTripExactlyWithoutTheContext) {
 
 }  // namespace
 }  // namespace locbench::reports
+
+namespace locbench::reports {
+namespace {
+
+// The findings' fields (tolerances, checks, diagnosed logs) survive a round trip, and a report
+// without them (every report written before) still loads with them empty.
+TEST(ReportJson, FindingsFieldsRoundTripAndAreOptional) {
+  Report r = testing::sample_report();
+  PublishedComparison c{"thesis Table X", "error", "mm", {{"a", 1.0, 1.1}}, "note"};
+  c.rows[0].check = 1.2;
+  c.rows[0].tolerance = 0.3;
+  c.rows[0].compared = false;
+  c.claim = "the error is 1 mm";
+  c.tolerance = 0.5;
+  c.relative_tolerance = 0.01;
+  c.tolerance_basis = "printed digits";
+  r.body.published = {c};
+  r.body.diagnoses = {{"log1", "TRUEPOS", {{"velocity_scale", {{"scale", 1.02, 1.01, 1.03}},
+                                            FindingGain{"translation_rms", 0.2, 0.1}, true}},
+                       "one cause"}};
+  const Report back = report_from_json(to_json(r), "mem");
+  ASSERT_EQ(back.body.published.size(), 1u);
+  const PublishedComparison& b = back.body.published[0];
+  EXPECT_EQ(b.claim, "the error is 1 mm");
+  EXPECT_EQ(b.tolerance, 0.5);
+  EXPECT_EQ(b.relative_tolerance, 0.01);
+  EXPECT_EQ(b.tolerance_basis, "printed digits");
+  EXPECT_EQ(b.rows[0].check, 1.2);
+  EXPECT_EQ(b.rows[0].tolerance, 0.3);
+  EXPECT_FALSE(b.rows[0].compared);
+  ASSERT_EQ(back.body.diagnoses.size(), 1u);
+  const DiagnosedLog& d = back.body.diagnoses[0];
+  EXPECT_EQ(d.log, "log1");
+  ASSERT_EQ(d.causes.size(), 1u);
+  EXPECT_EQ(d.causes[0].parameters[0].hi, 1.03);
+  ASSERT_TRUE(d.causes[0].gain);
+  EXPECT_EQ(d.causes[0].gain->after, 0.1);
+
+  nlohmann::json old = to_json(testing::sample_report());
+  ASSERT_FALSE(old.contains("diagnoses"));
+  const Report loaded = report_from_json(old, "old");
+  EXPECT_TRUE(loaded.body.diagnoses.empty());
+  for (const auto& p : loaded.body.published) EXPECT_FALSE(p.tolerance);
+  EXPECT_TRUE(validate_report_json(to_json(r)).empty());
+}
+
+}  // namespace
+}  // namespace locbench::reports

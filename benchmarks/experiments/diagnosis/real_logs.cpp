@@ -17,6 +17,7 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/diagnosis_plots.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "reports/checksum.h"
 
@@ -50,6 +51,7 @@ class DiagnosisRealLogs final : public Experiment {
     const auto specs = real_log_specs(config.at("datasets"), name());
     const auto names = real_log_names(specs);
     auto record = [&](const diagnosis::Diagnosis& d, const std::string& ds, std::size_t n) {
+      out.diagnoses.push_back(diagnosed_log(ds, d));
       out.results.push_back(reports::make_estimate("diagnose", ds, "causes_detected", "",
                                                    static_cast<double>(d.detected.size()), 0.0, n));
       out.results.push_back(reports::make_estimate("diagnose", ds, "unexplained_structures", "",
@@ -87,6 +89,7 @@ class DiagnosisRealLogs final : public Experiment {
       std::optional<reports::DatasetRef> dataset;
       std::optional<reports::CaseNote> note;
       std::optional<diagnosis::ScaleChecks> checks;
+      std::vector<reports::Plot> plots;  // residuals before/after each kept cause, offset profile, CDFs
       std::size_t samples = 0;
     };
     std::vector<Outcome> outcomes(names.size());
@@ -111,7 +114,9 @@ class DiagnosisRealLogs final : public Experiment {
       for (const auto& c : o.diagnosis->causes) {
         if (c.id == "sensor_time_offset" && c.detected && !c.parameters.empty()) offset = c.parameters[0].value;
       }
-      o.checks = diagnosis::scale_checks(diagnosis::build_motion_data(loaded.log, opt.windows), offset);
+      const diagnosis::MotionData motion = diagnosis::build_motion_data(loaded.log, opt.windows);
+      o.checks = diagnosis::scale_checks(motion, offset);
+      o.plots = diagnosis_plots(names[i], motion, *o.diagnosis);
       o.dataset = loaded.dataset;
       o.samples = loaded.log.odometry.size() + loaded.log.encoders.size();
     });
@@ -120,6 +125,7 @@ class DiagnosisRealLogs final : public Experiment {
       if (outcomes[i].diagnosis) {
         out.datasets.push_back(*outcomes[i].dataset);
         record(*outcomes[i].diagnosis, names[i], outcomes[i].samples);
+        for (auto& p : outcomes[i].plots) out.plots.push_back(std::move(p));
         if (const auto& c = outcomes[i].checks; c && outcomes[i].diagnosis->reference.find("compass heading") == std::string::npos) {
           const std::size_t n = outcomes[i].samples;
           out.results.push_back(reports::make_estimate("check", names[i], "path_length_ratio", "", c->path_length_ratio, 0.0, n));

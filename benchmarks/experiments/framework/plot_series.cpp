@@ -1,5 +1,7 @@
 #include "benchmarks/experiments/framework/plot_series.h"
 
+#include <algorithm>
+#include <utility>
 #include <cmath>
 #include <limits>
 
@@ -67,6 +69,64 @@ reports::PlotSeries mean_over_runs(const std::string& name, const std::vector<do
     if (n == 0) continue;
     s.x.push_back(distances[i]);
     s.y.push_back(sum / n);
+  }
+  return s;
+}
+
+}  // namespace locbench::experiments
+
+namespace locbench::experiments {
+
+reports::PlotSeries cdf_samples(const std::string& name, std::vector<double> values, std::size_t n) {
+  reports::PlotSeries s;
+  s.name = name;
+  std::erase_if(values, [](double v) { return !std::isfinite(v); });
+  std::sort(values.begin(), values.end());
+  if (values.size() <= n || n < 2) {
+    s.y = std::move(values);
+    return s;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = (i * (values.size() - 1) + (n - 1) / 2) / (n - 1);
+    s.y.push_back(values[k]);
+  }
+  return s;
+}
+
+reports::Plot error_cdf_plot(std::string name, std::string title, std::string x_label, std::string x_unit,
+                             std::vector<reports::PlotSeries> samples, std::string note) {
+  reports::Plot p;
+  p.name = std::move(name);
+  p.kind = "cdf";
+  p.title = std::move(title);
+  p.x_label = std::move(x_label);
+  p.x_unit = std::move(x_unit);
+  p.y_label = "fraction of samples";
+  p.series = std::move(samples);
+  p.note = std::move(note);
+  return p;
+}
+
+reports::PlotSeries binned_means(const std::string& name, const std::vector<double>& x,
+                                 const std::vector<double>& y, std::size_t bins) {
+  reports::PlotSeries s;
+  s.name = name;
+  std::vector<std::pair<double, double>> xy;
+  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i) {
+    if (std::isfinite(x[i]) && std::isfinite(y[i])) xy.emplace_back(x[i], y[i]);
+  }
+  std::sort(xy.begin(), xy.end());
+  bins = std::max<std::size_t>(1, std::min(bins, xy.size() / 3));
+  for (std::size_t b = 0; b < bins && !xy.empty(); ++b) {
+    const std::size_t lo = b * xy.size() / bins, hi = (b + 1) * xy.size() / bins;
+    if (hi - lo < 3) continue;
+    double sx = 0.0, sy = 0.0;
+    for (std::size_t i = lo; i < hi; ++i) {
+      sx += xy[i].first;
+      sy += xy[i].second;
+    }
+    s.x.push_back(sx / static_cast<double>(hi - lo));
+    s.y.push_back(sy / static_cast<double>(hi - lo));
   }
   return s;
 }

@@ -28,3 +28,21 @@ reports::PlotSeries mean_over_runs(const std::string& name, const std::vector<do
                                    const std::vector<std::vector<double>>& runs);
 
 }  // namespace locbench::experiments
+
+namespace locbench::experiments {
+
+// A sample thinned for a "cdf" plot: its `n` evenly spaced order statistics (all of it when it
+// has at most n finite values), so the drawn CDF matches the full sample's to 1/n.
+reports::PlotSeries cdf_samples(const std::string& name, std::vector<double> values, std::size_t n = 200);
+
+// A "cdf" plot of error samples (one series per method, e.g. from cdf_samples): the error
+// distribution of each method, as evo shows APE/RPE.
+reports::Plot error_cdf_plot(std::string name, std::string title, std::string x_label, std::string x_unit,
+                             std::vector<reports::PlotSeries> samples, std::string note);
+
+// Binned means of y against x: the finite pairs sorted by x, cut into `bins` bins of equal count;
+// per bin the mean x and mean y (a bin needs at least 3 pairs).
+reports::PlotSeries binned_means(const std::string& name, const std::vector<double>& x,
+                                 const std::vector<double>& y, std::size_t bins = 12);
+
+}  // namespace locbench::experiments

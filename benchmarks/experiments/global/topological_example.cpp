@@ -64,6 +64,9 @@ class GlobalTopological final : public Experiment {
               {"p_t(2) : p_t(4)", 18.0, b2 / b4}};
     p.note = "The slides label the first posterior line p_t(1|o_t, i); the node it computes is 2 "
              "(the only one 1-2 can reach). Not normalised, as on the slides.";
+    p.claim = "after 'open hallway left, open door right' the robot is at node 2 with odds 18 : 1 over node 4";
+    p.tolerance = 5e-4;
+    p.tolerance_basis = "half a unit in the slides' last printed digit (0.001)";
     out.published.push_back(std::move(p));
     out.notes.push_back(fmt::format("p(i|2) = {:.3f}, p(i|4) = {:.3f}; posteriors {:.3f} at node 2 and "
                                     "{:.3f} at node 4, {:.1f} : 1 (slides: 0.324, 0.018, 18 : 1).",

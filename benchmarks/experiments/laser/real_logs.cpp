@@ -21,6 +21,7 @@
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/laser_correctors.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/plot_series.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "benchmarks/experiments/harness/relation_drawing.h"
 #include "datasets/io/odometry_interpolation.h"
@@ -304,6 +305,22 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
       out.notes.push_back(verdict(s, r, ds, out));
       out.notes.push_back(diagnosis(s, r, ds));
       out.notes.push_back(scale_check(s, r, ds));
+      // Error distributions per method (thinned to 200 order statistics each).
+      std::vector<reports::PlotSeries> trans, rot;
+      for (std::size_t m = 0; m <= s.methods.size(); ++m) {
+        const std::string method = m == 0 ? "odometry_raw" : s.methods[m - 1];
+        std::vector<double> t_mm = r.translation[m], r_deg = r.rotation[m];
+        for (double& v : t_mm) v = to_mm(v);
+        for (double& v : r_deg) v = to_deg(v);
+        trans.push_back(cdf_samples(method, std::move(t_mm)));
+        rot.push_back(cdf_samples(method, std::move(r_deg)));
+      }
+      out.plots.push_back(error_cdf_plot(reports::key_part(ds + "_rpe_translation_cdf"),
+                                         ds + ": relative-pose translation error per method", "translation error",
+                                         "mm", std::move(trans), fmt::format("{} relations", r.relations)));
+      out.plots.push_back(error_cdf_plot(reports::key_part(ds + "_rpe_rotation_cdf"),
+                                         ds + ": relative-pose rotation error per method", "rotation error", "deg",
+                                         std::move(rot), fmt::format("{} relations", r.relations)));
       for (std::size_t k = 0; k < r.drawn.size(); ++k) {
         for (reports::Plot& p : relation_plots(ds, r, k)) out.plots.push_back(std::move(p));
       }

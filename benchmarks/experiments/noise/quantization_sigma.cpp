@@ -52,6 +52,12 @@ class QuantizationSigma final : public Experiment {
       t.rows.push_back({fmt::format("σ, C = {:.2f} mm (exact L2 optimum)", cs[i]), ps[i], q.l2_optimal_sigma});
       t.rows.push_back({fmt::format("σ, C = {:.2f} mm (thesis's formula 4.35)", cs[i]), ps[i], q.thesis_optimal_sigma});
       t.rows.push_back({fmt::format("G2, C = {:.2f} mm (thesis's formula at σ = 5.00)", cs[i]), pg[i], q.thesis_l2_at_published});
+      // Verdict inputs: the exact optimum (Brent) checked by the closed form (Lambert W); σ rows
+      // within 0.05 mm, G2 rows within half a unit of the printed 4th decimal.
+      t.rows[t.rows.size() - 3].check = l2_optimal_sigma_closed_form(cs[i]);
+      t.rows[t.rows.size() - 3].tolerance = 0.05;
+      t.rows[t.rows.size() - 2].tolerance = 0.05;
+      t.rows[t.rows.size() - 1].tolerance = 5e-5;
     }
     t.note =
         "The exact L2 optimum is σ* = 0.43659·C (5.518 mm for C = 12.64 mm), not 5.00 mm: the thesis "
@@ -60,6 +66,8 @@ class QuantizationSigma final : public Experiment {
         "and 5.04 mm, printed as 5.00. The published G2 = 0.0021 is that approximate formula at "
         "σ = 5.00 (0.002102); the exact L2 distance there is 6.4e-4 /mm. The moment-matched "
         "σ = C/√6 = 5.160 mm has the triangle's variance C²/6.";
+    t.claim = "σ = 5.00 mm is the L2-optimal Gaussian stand-in for C = 12.64 mm encoder quantization";
+    t.tolerance_basis = "σ within 0.05 mm (the thesis rounds its formula's 5.02–5.04 to 5.00), G2 within 5e-5 /mm";
     out.published.push_back(std::move(t));
     out.notes.push_back(out.published.back().note);
     return out;

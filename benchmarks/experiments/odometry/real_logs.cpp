@@ -2,11 +2,15 @@
 // - Freiburg logs (aces, intel, mit_csail): the relative-motion error of raw odometry on the
 //   hand-checked relations (Kümmerle et al. 2009), translation and rotation.
 // - MRCLAM 6 robots: velocity dead reckoning against Vicon ground truth over fixed windows.
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include "core/errors.h"
 #include "core/trajectory_error.h"
+#include "core/units.h"
 #include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/plot_series.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "datasets/io/odometry_interpolation.h"
@@ -66,6 +70,18 @@ class OdometryRealLogs final : public Experiment {
                                                  "m", over, err.translation, false));
       res.results.push_back(reports::make_metric(method, dataset, "rpe" + suffix + "_rotation",
                                                  "rad", over, err.rotation, false));
+      const auto scaled = [](std::vector<double> v, double f) {
+        for (double& e : v) e *= f;
+        return v;
+      };
+      res.plots.push_back(error_cdf_plot(reports::key_part(dataset + "_rpe_translation_cdf"),
+                                         dataset + ": odometry translation error per relation", "translation error",
+                                         "mm", {cdf_samples(method, scaled(err.translation, to_mm(1.0)))},
+                                         fmt::format("{} relations ({})", err.translation.size(), over)));
+      res.plots.push_back(error_cdf_plot(reports::key_part(dataset + "_rpe_rotation_cdf"),
+                                         dataset + ": odometry rotation error per relation", "rotation error", "deg",
+                                         {cdf_samples(method, scaled(err.rotation, to_deg(1.0)))},
+                                         fmt::format("{} relations ({})", err.rotation.size(), over)));
       if (method != "odometry_raw") return;
       // Freiburg relations mix local motions with loop closures minutes apart; the local
       // ones (t2 − t1 ≤ local_relation_max_dt_s) show odometry's short-range quality.

@@ -67,6 +67,10 @@ class SlipNormality final : public Experiment {
         "overall level ≤ α); both are below, H0 (normal) accepted; two-sided p-values {:.3f} "
         "and {:.3f}.",
         std::abs(r.u1), std::abs(r.u2), r.critical, alpha, r.p1, r.p2);
+    t.claim = "the Δθ' histogram passes the skewness–kurtosis normality test (|u1| = 0.146, |u2| = 1.764)";
+    t.tolerance = 0.005;
+    t.relative_tolerance = 0.001;
+    t.tolerance_basis = "the printed precision: μ and σ to 0.01°, the statistics to 5 significant digits";
     out.published.push_back(std::move(t));
     out.notes.push_back(fmt::format(
         "n = {}, σ1 = {:.5f}, μ2 = {:.5f}, σ2 = {:.5f} (thesis: 0.08580, 2.99259, 0.17065); "
