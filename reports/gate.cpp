@@ -136,7 +136,7 @@ GateRatioRow compare_ratio(const SpeedRatioRule& rule, const GateInput& baseline
   return row;
 }
 
-std::string num(const std::optional<double>& v) {
+std::string gate_number(const std::optional<double>& v) {
   return v ? fmt::format("{:.6g}", *v) : std::string("—");
 }
 std::string pct(const std::optional<double>& v) {
@@ -209,8 +209,8 @@ std::string gate_table(const GateVerdict& v) {
   std::string out = fmt::format("{:<{}}  {:>12}  {:>12}  {:>9}  {:<9}  {}\n", "result", w,
                                 "old", "new", "change", "status", "detail");
   for (const GateRow& r : v.rows) {
-    out += fmt::format("{:<{}}  {:>12}  {:>12}  {:>9}  {:<9}  {}\n", r.key, w, num(r.old_value),
-                       num(r.new_value), pct(r.relative_change), r.status, r.detail);
+    out += fmt::format("{:<{}}  {:>12}  {:>12}  {:>9}  {:<9}  {}\n", r.key, w, gate_number(r.old_value),
+                       gate_number(r.new_value), pct(r.relative_change), r.status, r.detail);
   }
   if (v.geomean_ratio) {
     out += fmt::format("{:<{}}  {:>12}  {:>12}  {:>9}\n", "OVERALL_GEOMEAN", w, "", "",
@@ -218,7 +218,7 @@ std::string gate_table(const GateVerdict& v) {
   }
   for (const GateRatioRow& r : v.ratios) {
     out += fmt::format("ratio {:<{}}  {:>12}  {:>12}  {:>9}  {:<9}  {}{}\n", r.name, w - 6,
-                       num(r.old_ratio), num(r.new_ratio), pct(r.relative_change), r.status,
+                       gate_number(r.old_ratio), gate_number(r.new_ratio), pct(r.relative_change), r.status,
                        r.p_value ? fmt::format("p = {:.3g}; ", *r.p_value) : "", r.detail);
   }
   out += v.passed() ? "gate: PASSED\n"
@@ -233,8 +233,8 @@ std::string gate_markdown(const GateVerdict& v) {
                                              v.failures);
   out += "| result | old | new | change | status | detail |\n|---|---:|---:|---:|---|---|\n";
   for (const GateRow& r : v.rows) {
-    out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", r.key, num(r.old_value),
-                       num(r.new_value), pct(r.relative_change), r.status, r.detail);
+    out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", r.key, gate_number(r.old_value),
+                       gate_number(r.new_value), pct(r.relative_change), r.status, r.detail);
   }
   if (v.geomean_ratio) {
     out += fmt::format("| **geometric mean** | | | {} | | |\n", pct(*v.geomean_ratio - 1.0));
@@ -243,8 +243,8 @@ std::string gate_markdown(const GateVerdict& v) {
     out += "\n| speed ratio | old | new | change | p | status | detail |\n"
            "|---|---:|---:|---:|---:|---|---|\n";
     for (const GateRatioRow& r : v.ratios) {
-      out += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", r.name, num(r.old_ratio),
-                         num(r.new_ratio), pct(r.relative_change), num(r.p_value), r.status,
+      out += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", r.name, gate_number(r.old_ratio),
+                         gate_number(r.new_ratio), pct(r.relative_change), gate_number(r.p_value), r.status,
                          r.detail);
     }
   }

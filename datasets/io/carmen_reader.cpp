@@ -208,7 +208,7 @@ class CarmenParser {
   std::map<std::size_t, std::vector<double>> bearings_;
 };
 
-Log read_lines(LineReader& reader) {
+Log read_carmen_lines(LineReader& reader) {
   CarmenParser parser(reader.source());
   std::string_view line;
   while (reader.next(line)) parser.parse_line(line, reader.line_number());
@@ -222,12 +222,12 @@ Log read_lines(LineReader& reader) {
 
 Log read_carmen_log(const std::filesystem::path& path) {
   LineReader reader(path);
-  return read_lines(reader);
+  return read_carmen_lines(reader);
 }
 
 Log parse_carmen_log(std::string_view text, const std::string& source_name) {
   LineReader reader(text, source_name);
-  return read_lines(reader);
+  return read_carmen_lines(reader);
 }
 
 std::map<std::string, std::size_t> skipped_record_counts(const Log& log) {

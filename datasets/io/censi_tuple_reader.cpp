@@ -63,7 +63,7 @@ WheelSpeedTuple to_tuple(const nlohmann::json& j, const std::string& file, std::
   return t;
 }
 
-std::vector<WheelSpeedTuple> read_lines(LineReader& reader) {
+std::vector<WheelSpeedTuple> read_tuple_lines(LineReader& reader) {
   std::vector<WheelSpeedTuple> out;
   std::string_view line;
   while (reader.next(line)) {
@@ -82,13 +82,13 @@ std::vector<WheelSpeedTuple> read_lines(LineReader& reader) {
 
 std::vector<WheelSpeedTuple> read_censi_tuples(const std::filesystem::path& path) {
   LineReader reader(path);
-  return read_lines(reader);
+  return read_tuple_lines(reader);
 }
 
 std::vector<WheelSpeedTuple> parse_censi_tuples(std::string_view text,
                                                 const std::string& source_name) {
   LineReader reader(text, source_name);
-  return read_lines(reader);
+  return read_tuple_lines(reader);
 }
 
 }  // namespace locbench

@@ -7,7 +7,7 @@
 namespace locbench {
 namespace {
 
-std::vector<Relation> read_lines(LineReader& reader) {
+std::vector<Relation> read_relation_lines(LineReader& reader) {
   static constexpr std::array<const char*, 8> kNames = {"t1", "t2",   "x",     "y",
                                                         "z",  "roll", "pitch", "yaw"};
   std::vector<Relation> out;
@@ -21,12 +21,12 @@ std::vector<Relation> read_lines(LineReader& reader) {
 
 std::vector<Relation> read_relations(const std::filesystem::path& path) {
   LineReader reader(path);
-  return read_lines(reader);
+  return read_relation_lines(reader);
 }
 
 std::vector<Relation> parse_relations(std::string_view text, const std::string& source_name) {
   LineReader reader(text, source_name);
-  return read_lines(reader);
+  return read_relation_lines(reader);
 }
 
 }  // namespace locbench

@@ -11,7 +11,7 @@ namespace {
 
 constexpr double kNormTolerance = 1e-3;
 
-Trajectory read_lines(LineReader& reader) {
+Trajectory read_tum_lines(LineReader& reader) {
   static constexpr std::array<const char*, 8> kNames = {"timestamp", "x",  "y",  "z",
                                                         "qx",        "qy", "qz", "qw"};
   std::vector<StampedPose> poses;
@@ -36,12 +36,12 @@ Trajectory read_lines(LineReader& reader) {
 
 Trajectory read_tum(const std::filesystem::path& path) {
   LineReader reader(path);
-  return read_lines(reader);
+  return read_tum_lines(reader);
 }
 
 Trajectory parse_tum(std::string_view text, const std::string& source_name) {
   LineReader reader(text, source_name);
-  return read_lines(reader);
+  return read_tum_lines(reader);
 }
 
 }  // namespace locbench

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/units.h"
+
 namespace locbench::experiments {
 
 reports::PlotSeries trajectory_series(const std::string& name, const Trajectory& t,
@@ -105,6 +107,30 @@ reports::Plot error_cdf_plot(std::string name, std::string title, std::string x_
   p.series = std::move(samples);
   p.note = std::move(note);
   return p;
+}
+
+std::vector<reports::Plot> relative_pose_error_cdfs(const std::string& dataset, const std::string& what,
+                                                    const std::vector<std::string>& methods,
+                                                    const std::vector<std::vector<double>>& translation_m,
+                                                    const std::vector<std::vector<double>>& rotation_rad,
+                                                    const std::string& note) {
+  const auto scaled = [](std::vector<double> v, double factor) {
+    for (double& e : v) e *= factor;
+    return v;
+  };
+  std::vector<reports::PlotSeries> trans, rot;
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    trans.push_back(cdf_samples(methods[m], scaled(translation_m.at(m), to_mm(1.0))));
+    rot.push_back(cdf_samples(methods[m], scaled(rotation_rad.at(m), to_deg(1.0))));
+  }
+  std::vector<reports::Plot> plots;
+  plots.push_back(error_cdf_plot(reports::key_part(dataset + "_rpe_translation_cdf"),
+                                 dataset + ": " + what + " translation error", "translation error", "mm",
+                                 std::move(trans), note));
+  plots.push_back(error_cdf_plot(reports::key_part(dataset + "_rpe_rotation_cdf"),
+                                 dataset + ": " + what + " rotation error", "rotation error", "deg", std::move(rot),
+                                 note));
+  return plots;
 }
 
 reports::PlotSeries binned_means(const std::string& name, const std::vector<double>& x,

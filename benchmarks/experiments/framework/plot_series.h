@@ -40,6 +40,15 @@ reports::PlotSeries cdf_samples(const std::string& name, std::vector<double> val
 reports::Plot error_cdf_plot(std::string name, std::string title, std::string x_label, std::string x_unit,
                              std::vector<reports::PlotSeries> samples, std::string note);
 
+// A log's relative-pose error CDFs, one series per method: "<dataset>_rpe_translation_cdf" (mm)
+// and "<dataset>_rpe_rotation_cdf" (deg), titled "<dataset>: <what> translation/rotation error".
+// translation_m[k] and rotation_rad[k] are method k's errors per relation (SI).
+std::vector<reports::Plot> relative_pose_error_cdfs(const std::string& dataset, const std::string& what,
+                                                    const std::vector<std::string>& methods,
+                                                    const std::vector<std::vector<double>>& translation_m,
+                                                    const std::vector<std::vector<double>>& rotation_rad,
+                                                    const std::string& note);
+
 // Binned means of y against x: the finite pairs sorted by x, cut into `bins` bins of equal count;
 // per bin the mean x and mean y (a bin needs at least 3 pairs).
 reports::PlotSeries binned_means(const std::string& name, const std::vector<double>& x,

@@ -23,6 +23,7 @@
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/plot_series.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
+#include "benchmarks/experiments/harness/real_scan_pairs.h"
 #include "benchmarks/experiments/harness/relation_drawing.h"
 #include "datasets/io/odometry_interpolation.h"
 
@@ -67,38 +68,6 @@ struct Record {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, status, reason, path, checksum, records, duration, relations, t1, t2, lines,
                                    translation, rotation, position_fixed, matched_points, length_error,
                                    moved, information_ratio, heading_spread, reference_length, drawn_index, drawn)
-
-// A map of the lines extracted from one scan, in its robot frame.
-LineMap lines_as_map(const laser::ExtractionResult& lines) {
-  LineMap m;
-  m.name = "previous_scan";
-  for (const laser::ExtractedLine& l : lines.lines) {
-    const Segment s = l.fit.segment();
-    if (s.length() > 1e-6) m.segments.push_back(s);
-  }
-  return m;
-}
-
-// The scan stamped t (within 1 ms: mit-csail's relations print 5 decimals, its scans 6).
-std::optional<std::size_t> scan_near(const std::map<double, std::size_t>& scans, double t) {
-  auto it = scans.lower_bound(t - 1e-3);
-  if (it == scans.end() || it->first > t + 1e-3) return std::nullopt;
-  auto best = it;
-  for (; it != scans.end() && it->first <= t + 1e-3; ++it) {
-    if (std::abs(it->first - t) < std::abs(best->first - t)) best = it;
-  }
-  return best->second;
-}
-
-// "bag": 180-beam scans get the bearings the ROS bags of aces and intel store (angle_min −90°,
-// angle_increment 180°/179, so the last beam is at +90°); "log": as read (CARMEN's 1° steps,
-// −90°…+89°, or what the log's PARAMs declare).
-void apply_beam_angles(Log& log, const std::string& convention) {
-  if (convention == "log") return;
-  for (auto& r : log.laser) {
-    if (r.scan.ranges.size() == 180) r.scan.bearings = even_bearings(180, -0.5 * kPi, 0.5 * kPi);
-  }
-}
 
 std::string interval(std::span<const double> v, double scale, int digits) {
   if (v.empty()) return "none";
@@ -306,21 +275,12 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
       out.notes.push_back(diagnosis(s, r, ds));
       out.notes.push_back(scale_check(s, r, ds));
       // Error distributions per method (thinned to 200 order statistics each).
-      std::vector<reports::PlotSeries> trans, rot;
-      for (std::size_t m = 0; m <= s.methods.size(); ++m) {
-        const std::string method = m == 0 ? "odometry_raw" : s.methods[m - 1];
-        std::vector<double> t_mm = r.translation[m], r_deg = r.rotation[m];
-        for (double& v : t_mm) v = to_mm(v);
-        for (double& v : r_deg) v = to_deg(v);
-        trans.push_back(cdf_samples(method, std::move(t_mm)));
-        rot.push_back(cdf_samples(method, std::move(r_deg)));
+      std::vector<std::string> methods{"odometry_raw"};
+      methods.insert(methods.end(), s.methods.begin(), s.methods.end());
+      for (reports::Plot& p : relative_pose_error_cdfs(ds, "relative-pose", methods, r.translation, r.rotation,
+                                                       fmt::format("{} relations", r.relations))) {
+        out.plots.push_back(std::move(p));
       }
-      out.plots.push_back(error_cdf_plot(reports::key_part(ds + "_rpe_translation_cdf"),
-                                         ds + ": relative-pose translation error per method", "translation error",
-                                         "mm", std::move(trans), fmt::format("{} relations", r.relations)));
-      out.plots.push_back(error_cdf_plot(reports::key_part(ds + "_rpe_rotation_cdf"),
-                                         ds + ": relative-pose rotation error per method", "rotation error", "deg",
-                                         std::move(rot), fmt::format("{} relations", r.relations)));
       for (std::size_t k = 0; k < r.drawn.size(); ++k) {
         for (reports::Plot& p : relation_plots(ds, r, k)) out.plots.push_back(std::move(p));
       }

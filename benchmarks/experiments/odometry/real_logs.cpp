@@ -70,18 +70,11 @@ class OdometryRealLogs final : public Experiment {
                                                  "m", over, err.translation, false));
       res.results.push_back(reports::make_metric(method, dataset, "rpe" + suffix + "_rotation",
                                                  "rad", over, err.rotation, false));
-      const auto scaled = [](std::vector<double> v, double f) {
-        for (double& e : v) e *= f;
-        return v;
-      };
-      res.plots.push_back(error_cdf_plot(reports::key_part(dataset + "_rpe_translation_cdf"),
-                                         dataset + ": odometry translation error per relation", "translation error",
-                                         "mm", {cdf_samples(method, scaled(err.translation, to_mm(1.0)))},
-                                         fmt::format("{} relations ({})", err.translation.size(), over)));
-      res.plots.push_back(error_cdf_plot(reports::key_part(dataset + "_rpe_rotation_cdf"),
-                                         dataset + ": odometry rotation error per relation", "rotation error", "deg",
-                                         {cdf_samples(method, scaled(err.rotation, to_deg(1.0)))},
-                                         fmt::format("{} relations ({})", err.rotation.size(), over)));
+      for (reports::Plot& p : relative_pose_error_cdfs(dataset, "odometry", {method}, {err.translation},
+                                                       {err.rotation},
+                                                       fmt::format("{} relations ({})", err.translation.size(), over))) {
+        res.plots.push_back(std::move(p));
+      }
       if (method != "odometry_raw") return;
       // Freiburg relations mix local motions with loop closures minutes apart; the local
       // ones (t2 − t1 ≤ local_relation_max_dt_s) show odometry's short-range quality.
