@@ -7,9 +7,12 @@ OUT ?= out
 
 BASELINE := benchmarks/baselines/default
 RULES := benchmarks/baselines/rules.json
-# Overrides that keep the gate fast under ASan (laser/real_logs: the first 100 relations of each
-# log instead of all ~4000, no relations drawn, no per-relation values: 50 s in a Debug build
-# without ASan for its 11 correctors, PL-ICP 60% of it); the baseline is made with the same file.
+# Overrides that keep the gate fast under ASan, measured per experiment with the ASan binary on
+# 2026-11-25 (gate 344 s before them): laser/real_logs on the first 50 relations of each log (101 →
+# 55 s), no relations drawn, no per-relation values; calibration/real_logs on Censi's lstraight and
+# l90, aces and MRCLAM robot 2 (175 s with every set: the Ceres solve evaluates the -O0, ASan-
+# instrumented model for its numeric derivatives); diagnosis/real_logs on aces and intel;
+# sim_to_real on aces and robot 2, 120 s each. The baseline is made with the same file.
 GATE_CONFIG := benchmarks/baselines/gate_config.json
 # Monte-Carlo runs per experiment in the gate (the baseline is made with the same number).
 GATE_RUNS ?= 3
