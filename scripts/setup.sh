@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
+  lld                  # linker: the test executables link 4× faster than with GNU ld (CMakeLists.txt)
   libeigen3-dev        # linear algebra (poses, covariances)
   libgtest-dev libgmock-dev   # unit tests
   libbenchmark-dev     # speed kernels
