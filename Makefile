@@ -44,9 +44,15 @@ build: setup
 # Default suite on embedded defaults → JSON reports under $(OUT)/, a summary table, and the page
 # a person reads, $(OUT)/report.html (tables and gnuplot charts, self-contained). Monte-Carlo
 # runs use every core (THREADS, default all; results are the same for any number).
+# The real-log diagnosis dominates the suite's time (Release, one thread, 2026-11-25: diagnosis/
+# real_logs 198 s of CPU on its 8 logs, sim_to_real 44 s, all 22 others 29 s together), so
+# `make run` diagnoses 3 whole logs (ACES, Intel, MRCLAM robot 1) and builds twins of 2 logs over
+# 120 s (benchmarks/suites/make_run.json): 53 s of CPU for the suite. `make run RUN_CONFIG=` runs
+# every log at full length.
 THREADS ?= $(shell nproc)
+RUN_CONFIG ?= benchmarks/suites/make_run.json
 run: build
-	@s=$$(date +%s); $(RELEASE)/cli/locbench run --out $(OUT) --threads $(THREADS); rc=$$?; \
+	@s=$$(date +%s); $(RELEASE)/cli/locbench run --out $(OUT) --threads $(THREADS) $(if $(RUN_CONFIG),--config $(RUN_CONFIG)); rc=$$?; \
 	  echo "make: suite took $$(( $$(date +%s) - s )) s"; exit $$rc
 	@s=$$(date +%s); $(RELEASE)/cli/locbench report $(OUT) -o $(OUT)/report.html; rc=$$?; \
 	  echo "make: report took $$(( $$(date +%s) - s )) s"; exit $$rc

@@ -23,10 +23,10 @@ namespace locbench::diagnosis {
 
 std::vector<CompassResidual> compass_residuals(const CompassData& d, double time_offset) {
   std::vector<CompassResidual> out(d.readings.size());
+  TruthInterpolator truth(d.truth);
   for (std::size_t i = 0; i < d.readings.size(); ++i) {
     const double t = d.readings[i].t - time_offset;
-    const auto p = interpolate_truth(d.truth, t);
-    const auto a = interpolate_truth(d.truth, t - 0.05), b = interpolate_truth(d.truth, t + 0.05);
+    const auto a = truth.at(t - 0.05), p = truth.at(t), b = truth.at(t + 0.05);
     if (!p) continue;
     out[i].t = d.readings[i].t;
     out[i].r = angle_diff(d.readings[i].heading, p->theta);

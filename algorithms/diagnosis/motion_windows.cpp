@@ -53,14 +53,27 @@ auto interpolate_records(const std::vector<Record>& records, double t, Value val
   return blend(value(a), value(b), dt > 0.0 ? (t - a.t) / dt : 0.0);
 }
 
+Pose2 blend_poses(const Pose2& a, const Pose2& b, double s) {
+  return Pose2(a.x + s * (b.x - a.x), a.y + s * (b.y - a.y), a.theta + s * angle_diff(b.theta, a.theta));
+}
+
 }  // namespace
 
 std::optional<Pose2> interpolate_truth(const std::vector<TruePose>& truth, double t) {
-  return interpolate_records(
-      truth, t, [](const TruePose& p) { return p.pose; },
-      [](const Pose2& a, const Pose2& b, double s) {
-        return Pose2(a.x + s * (b.x - a.x), a.y + s * (b.y - a.y), a.theta + s * angle_diff(b.theta, a.theta));
-      });
+  return interpolate_records(truth, t, [](const TruePose& p) { return p.pose; }, blend_poses);
+}
+
+std::optional<Pose2> TruthInterpolator::at(double t) {
+  if (truth_.empty() || t < truth_.front().t || t > truth_.back().t) return std::nullopt;
+  // Step to the first record with time ≥ t: what interpolate_records's lower_bound finds.
+  next_ = std::min(next_, truth_.size() - 1);
+  while (next_ + 1 < truth_.size() && truth_[next_].t < t) ++next_;
+  while (next_ > 0 && truth_[next_ - 1].t >= t) --next_;
+  if (next_ == 0) return truth_.front().pose;
+  const TruePose& a = truth_[next_ - 1];
+  const TruePose& b = truth_[next_];
+  const double dt = b.t - a.t;
+  return blend_poses(a.pose, b.pose, dt > 0.0 ? (t - a.t) / dt : 0.0);
 }
 
 std::optional<double> interpolate_compass(const std::vector<CompassReading>& compass, double t) {

@@ -73,6 +73,18 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options = {});
 // The reference pose at logged time t (linear interpolation, heading on the circle); nullopt
 // outside the truth's time span.
 std::optional<Pose2> interpolate_truth(const std::vector<TruePose>& truth, double t);
+// interpolate_truth for many times in (roughly) increasing order: the same values, bit for bit,
+// with the bracketing record found by stepping from the previous one instead of a binary search
+// (the compass likelihood interpolates three times per reading at every evaluation).
+class TruthInterpolator {
+ public:
+  explicit TruthInterpolator(const std::vector<TruePose>& truth) : truth_(truth) {}
+  std::optional<Pose2> at(double t);
+
+ private:
+  const std::vector<TruePose>& truth_;
+  std::size_t next_ = 0;  // index of the first record with time ≥ the last query's
+};
 // The compass heading at time t (interpolated along the shorter arc); nullopt outside.
 std::optional<double> interpolate_compass(const std::vector<CompassReading>& compass, double t);
 

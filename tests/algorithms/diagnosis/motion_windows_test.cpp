@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <numbers>
+#include <random>
 
 #include "core/errors.h"
 
@@ -57,6 +59,37 @@ TEST(MotionWindows, TruthIsInterpolatedLinearlyAndOnlyInsideItsSpan) {
   EXPECT_NEAR(std::abs(mid->theta), std::numbers::pi, 1e-9);
   EXPECT_FALSE(interpolate_truth(truth, -0.01).has_value());
   EXPECT_FALSE(interpolate_truth(truth, 1.01).has_value());
+}
+
+// 400 random queries — three per reading as the compass likelihood asks, plus jumps back and
+// beyond either end — on truth with repeated time stamps: the stepping interpolator gives
+// interpolate_truth's values bit for bit.
+TEST(MotionWindows, TheSteppingTruthInterpolatorEqualsTheBinarySearchBitForBit) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<TruePose> truth;
+  double t = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    if (u(rng) > 0.1) t += 0.01 + 0.1 * u(rng);  // one record in ten repeats the previous time
+    truth.push_back({t, {u(rng), u(rng), 6.0 * u(rng) - 3.0}, {}});
+  }
+  TruthInterpolator cursor(truth);
+  int inside = 0;
+  for (int q = 0; q < 400; ++q) {
+    const double c = q % 50 == 49 ? (u(rng) * 1.4 - 0.2) * t : q * t / 400.0 + 0.05 * (q % 3 - 1);
+    const auto a = interpolate_truth(truth, c), b = cursor.at(c);
+    ASSERT_EQ(a.has_value(), b.has_value()) << "t = " << c;
+    if (!a) continue;
+    ++inside;
+    EXPECT_EQ(a->x, b->x) << "t = " << c;
+    EXPECT_EQ(a->y, b->y) << "t = " << c;
+    EXPECT_EQ(a->theta, b->theta) << "t = " << c;
+  }
+  EXPECT_GT(inside, 350);
+  // A time stamp shared by two records gives the first of them, as lower_bound does.
+  const auto repeated = std::adjacent_find(truth.begin(), truth.end(), [](const TruePose& a, const TruePose& b) { return a.t == b.t; });
+  ASSERT_NE(repeated, truth.end());
+  EXPECT_EQ(TruthInterpolator(truth).at(repeated->t)->x, interpolate_truth(truth, repeated->t)->x);
 }
 
 TEST(MotionWindows, CompassIsInterpolatedAlongTheShorterArc) {
