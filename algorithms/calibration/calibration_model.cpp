@@ -50,6 +50,115 @@ WheelTravel wheel_travel(const CalibrationData& data, const OdometryIncrement& i
           a.distance + 0.5 * virtual_track * a.rotation, virtual_track};
 }
 
+// ∂(ΔD, Δθ)/∂q of arc_of (rows ΔD, Δθ): linear in the scales, Δθ ∝ 1/B in the wheelbase.
+Eigen::Matrix<double, 2, 3> arc_jacobian(const CalibrationData& data, const OdometryIncrement& inc,
+                                         const Eigen::Vector3d& q) {
+  Eigen::Matrix<double, 2, 3> d = Eigen::Matrix<double, 2, 3>::Zero();
+  switch (data.kind) {
+    case OdometryInputKind::kWheelTicks:
+    case OdometryInputKind::kWheelAngles: {
+      const bool ticks = data.kind == OdometryInputKind::kWheelTicks;
+      const double ul = (ticks ? data.meters_per_tick_left : 1.0) * inc.first;   // ∂U_L/∂q₀
+      const double ur = (ticks ? data.meters_per_tick_right : 1.0) * inc.second;  // ∂U_R/∂q₁
+      const double rotation = (q(1) * ur - q(0) * ul) / q(2);
+      d << 0.5 * ul, 0.5 * ur, 0.0, -ul / q(2), ur / q(2), -rotation / q(2);
+      break;
+    }
+    case OdometryInputKind::kBodyIncrements:
+      d << inc.first, 0.0, 0.0, 0.0, inc.second, inc.first;
+      break;
+    case OdometryInputKind::kVelocityIntegrals:
+      d << inc.first, 0.0, 0.0, 0.0, inc.second, inc.dt;
+      break;
+  }
+  return d;
+}
+
+// The robot displacement o over a sample in plain doubles (Pose2 would wrap the heading at every
+// step; only the final one is wrapped) and, when `d_odometry` is given, ∂(o_x, o_y, o_θ)/∂q,
+// carried through the composition: o ← o ∘ a gives ∂o ← F_p·∂o + R·A·∂(ΔD, Δθ)/∂q
+// (F_p, R, A as in odometry_noise_shape).
+Pose2 compose_arcs(const CalibrationData& data, const CalibrationSample& sample,
+                   const Eigen::Vector3d& odometry, Eigen::Matrix3d* d_odometry) {
+  double x = 0.0, y = 0.0, th = 0.0;
+  Eigen::Matrix3d d = Eigen::Matrix3d::Zero();
+  for (const OdometryIncrement& inc : sample.increments) {
+    const ArcIncrement a = arc_of(data, inc, odometry);
+    const ArcTerms t = arc_terms(a.rotation);
+    const double ax = a.distance * t.s, ay = a.distance * t.c;
+    const double c = std::cos(th), s = std::sin(th);
+    if (d_odometry != nullptr) {
+      const Eigen::Matrix<double, 2, 3> dq = arc_jacobian(data, inc, odometry);
+      const Eigen::RowVector3d dax = t.s * dq.row(0) + a.distance * t.ds * dq.row(1);
+      const Eigen::RowVector3d day = t.c * dq.row(0) + a.distance * t.dc * dq.row(1);
+      const Eigen::RowVector3d dth = d.row(2);
+      d.row(0) += c * dax - s * day + (-s * ax - c * ay) * dth;
+      d.row(1) += s * dax + c * day + (c * ax - s * ay) * dth;
+      d.row(2) += dq.row(1);
+    }
+    x += c * ax - s * ay;
+    y += s * ax + c * ay;
+    th += a.rotation;
+  }
+  if (d_odometry != nullptr) *d_odometry = d;
+  return {x, y, th};
+}
+
+// ∂(ℓ⁻¹ ∘ o ∘ ℓ)/∂o for a robot displacement with heading `o_theta`: with
+// s_t = R(−ℓθ)(o_t + (R(oθ) − I)ℓ_t), s_θ = o_θ.
+Eigen::Matrix3d sensor_frame_jacobian(const Pose2& l, double o_theta) {
+  const double cl = std::cos(l.theta), sl = std::sin(l.theta);
+  const double co = std::cos(o_theta), so = std::sin(o_theta);
+  const Eigen::Vector2d dRl(-so * l.x - co * l.y, co * l.x - so * l.y);
+  Eigen::Matrix2d Rt;
+  Rt << cl, sl, -sl, cl;  // R(−ℓθ)
+  Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+  G.topLeftCorner<2, 2>() = Rt;
+  G.topRightCorner<2, 1>() = Rt * dRl;
+  G(2, 2) = 1.0;
+  return G;
+}
+
+// ∂(ℓ⁻¹ ∘ o ∘ ℓ)/∂(ℓ_x, ℓ_y, ℓ_θ): R(−ℓθ)(R(oθ) − I) for the position, ∂R(−ℓθ)/∂ℓθ applied to
+// o_t + (R(oθ) − I)ℓ_t for the angle; the heading s_θ = o_θ does not depend on ℓ.
+Eigen::Matrix3d sensor_mount_jacobian(const Pose2& l, const Pose2& o) {
+  const double cl = std::cos(l.theta), sl = std::sin(l.theta);
+  const double co = std::cos(o.theta), so = std::sin(o.theta);
+  Eigen::Matrix2d Rt, dRt, Ro;
+  Rt << cl, sl, -sl, cl;     // R(−ℓθ)
+  dRt << -sl, cl, -cl, -sl;  // ∂R(−ℓθ)/∂ℓθ
+  Ro << co, -so, so, co;     // R(oθ)
+  const Eigen::Vector2d lt(l.x, l.y);
+  const Eigen::Vector2d v = o.translation() + (Ro - Eigen::Matrix2d::Identity()) * lt;
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+  M.topLeftCorner<2, 2>() = Rt * (Ro - Eigen::Matrix2d::Identity());
+  M.topRightCorner<2, 1>() = dRt * v;
+  return M;
+}
+
+// The residual and, when `jacobian` is given, its exact derivative (one code path for both, so
+// the residual is the same number either way).
+Eigen::Vector3d residual_of(const CalibrationData& data, const CalibrationSample& sample,
+                            const ModelParameters& p, Eigen::Matrix<double, 3, 6>* jacobian) {
+  Eigen::Matrix3d d_odometry;
+  const Pose2 o =
+      compose_arcs(data, sample, p.odometry, jacobian != nullptr ? &d_odometry : nullptr);
+  Pose2 e = o;
+  if (jacobian != nullptr) jacobian->setZero();
+  if (data.sensor_reference) {
+    e = p.sensor.inverse() * o * p.sensor;
+    if (jacobian != nullptr) {
+      jacobian->leftCols<3>() = sensor_frame_jacobian(p.sensor, o.theta) * d_odometry;
+      jacobian->rightCols<3>() = sensor_mount_jacobian(p.sensor, o);
+    }
+  } else if (jacobian != nullptr) {
+    jacobian->leftCols<3>() = d_odometry;
+  }
+  // The wrap of the angle residual has derivative 1 (away from ±π, where it jumps).
+  return {e.x - sample.reference.x, e.y - sample.reference.y,
+          angle_diff(e.theta, sample.reference.theta)};
+}
+
 }  // namespace
 
 std::array<std::string, 3> odometry_parameter_names(OdometryInputKind kind) {
@@ -114,19 +223,7 @@ Pose2 arc_displacement(double distance, double rotation) {
 
 Pose2 predict_robot_displacement(const CalibrationData& data, const CalibrationSample& sample,
                                  const Eigen::Vector3d& odometry) {
-  // Compose in plain doubles (Pose2 would wrap the heading at every step; only the final one
-  // is wrapped).
-  double x = 0.0, y = 0.0, th = 0.0;
-  for (const OdometryIncrement& inc : sample.increments) {
-    const ArcIncrement a = arc_of(data, inc, odometry);
-    const ArcTerms t = arc_terms(a.rotation);
-    const double ax = a.distance * t.s, ay = a.distance * t.c;
-    const double c = std::cos(th), s = std::sin(th);
-    x += c * ax - s * ay;
-    y += s * ax + c * ay;
-    th += a.rotation;
-  }
-  return {x, y, th};
+  return compose_arcs(data, sample, odometry, nullptr);
 }
 
 Pose2 predict_reference(const CalibrationData& data, const CalibrationSample& sample,
@@ -138,9 +235,15 @@ Pose2 predict_reference(const CalibrationData& data, const CalibrationSample& sa
 
 Eigen::Vector3d reference_residual(const CalibrationData& data, const CalibrationSample& sample,
                                    const ModelParameters& p) {
-  const Pose2 e = predict_reference(data, sample, p);
-  return {e.x - sample.reference.x, e.y - sample.reference.y,
-          angle_diff(e.theta, sample.reference.theta)};
+  return residual_of(data, sample, p, nullptr);
+}
+
+ResidualWithJacobian reference_residual_with_jacobian(const CalibrationData& data,
+                                                      const CalibrationSample& sample,
+                                                      const ModelParameters& p) {
+  ResidualWithJacobian out;
+  out.residual = residual_of(data, sample, p, &out.jacobian);
+  return out;
 }
 
 NoiseShape odometry_noise_shape(const CalibrationData& data, const CalibrationSample& sample,
@@ -182,17 +285,8 @@ NoiseShape odometry_noise_shape(const CalibrationData& data, const CalibrationSa
     th += rot;
   }
   if (data.sensor_reference) {
-    // s = ℓ⁻¹ ∘ o ∘ ℓ: s_t = R(−ℓθ)(o_t + (R(oθ) − I)ℓ_t), s_θ = o_θ.
-    const Pose2& l = p.sensor;
-    const double cl = std::cos(l.theta), sl = std::sin(l.theta);
-    const double co = std::cos(th), so = std::sin(th);
-    const Eigen::Vector2d dRl(-so * l.x - co * l.y, co * l.x - so * l.y);
-    Eigen::Matrix2d Rt;
-    Rt << cl, sl, -sl, cl;  // R(−ℓθ)
-    Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
-    G.topLeftCorner<2, 2>() = Rt;
-    G.topRightCorner<2, 1>() = Rt * dRl;
-    G(2, 2) = 1.0;
+    // s = ℓ⁻¹ ∘ o ∘ ℓ, linearised in o.
+    const Eigen::Matrix3d G = sensor_frame_jacobian(p.sensor, th);
     out.per_k2 = G * out.per_k2 * G.transpose();
     out.quantization = G * out.quantization * G.transpose();
   }

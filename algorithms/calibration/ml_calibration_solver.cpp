@@ -1,7 +1,7 @@
 #include "algorithms/calibration/ml_calibration_solver.h"
 
 #include <ceres/crs_matrix.h>
-#include <ceres/dynamic_numeric_diff_cost_function.h>
+#include <ceres/cost_function.h>
 #include <ceres/manifold.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
@@ -14,38 +14,56 @@ namespace locbench::ml_solver {
 
 namespace {
 
-// One sample's whitened residual Σᵢ⁻¹ᐟ² rᵢ as a function of the free parameters, for Ceres
-// (central differences: the residual code is double-only). `whitening` is shared by every
-// sample's functor and replaced between the noise alternation's rounds.
-struct WhitenedResidual {
-  const Problem* pb;
-  const Whitening* whitening;
-  std::size_t slot;  // index into pb->active and *whitening
-  bool operator()(double const* const* x, double* out) const {
-    Vector6 v = pb->base;
-    for (std::size_t j = 0; j < pb->free.size(); ++j) v(pb->free[j]) = x[0][j];
-    const Eigen::Vector3d r = (*whitening)[slot] *
-        reference_residual(pb->data, pb->data.samples[pb->active[slot]],
-                           ModelParameters::from_vector(v));
-    for (int c = 0; c < 3; ++c) out[c] = r(c);
+// One sample's whitened residual Σᵢ⁻¹ᐟ² rᵢ and its exact Jacobian Σᵢ⁻¹ᐟ² ∂rᵢ/∂x over the free
+// parameters x (reference_residual_with_jacobian), for Ceres. `whitening` is shared by every
+// sample's cost and replaced between the noise alternation's rounds.
+class WhitenedResidual final : public ceres::CostFunction {
+ public:
+  WhitenedResidual(const Problem& pb, const Whitening& whitening, std::size_t slot)
+      : pb_(pb), whitening_(whitening), slot_(slot) {
+    set_num_residuals(3);
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(pb.free.size()));
+  }
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
+    Vector6 v = pb_.base;
+    const std::size_t n = pb_.free.size();
+    for (std::size_t j = 0; j < n; ++j) v(pb_.free[j]) = x[0][j];
+    const CalibrationSample& sample = pb_.data.samples[pb_.active[slot_]];
+    const ModelParameters p = ModelParameters::from_vector(v);
+    const Eigen::Matrix3d& w = whitening_[slot_];
+    Eigen::Vector3d r;
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      const ResidualWithJacobian rj = reference_residual_with_jacobian(pb_.data, sample, p);
+      r = w * rj.residual;
+      const Eigen::Matrix<double, 3, 6> wj = w * rj.jacobian;
+      for (int row = 0; row < 3; ++row) {
+        for (std::size_t j = 0; j < n; ++j) {
+          jacobians[0][static_cast<std::size_t>(row) * n + j] = wj(row, pb_.free[j]);
+        }
+      }
+      if (!wj.allFinite()) return false;
+    } else {
+      r = w * reference_residual(pb_.data, sample, p);
+    }
+    for (int c = 0; c < 3; ++c) residuals[c] = r(c);
     return r.allFinite();
   }
+
+ private:
+  const Problem& pb_;
+  const Whitening& whitening_;
+  std::size_t slot_;  // index into pb.active and whitening
 };
 
 }  // namespace
 
 // The Ceres problem Σ‖Σᵢ⁻¹ᐟ² rᵢ‖² over the free parameters `x` (one parameter block).
-// The step 1e-6·|x| (absolute 1e-6 at zero) is Ceres's default for central differences.
 std::unique_ptr<ceres::Problem> whitened_problem(const Problem& pb, const Whitening& w,
                                                  Eigen::VectorXd& x) {
   ceres::Problem::Options po;
   auto problem = std::make_unique<ceres::Problem>(po);
   for (std::size_t i = 0; i < pb.active.size(); ++i) {
-    auto* cost = new ceres::DynamicNumericDiffCostFunction<WhitenedResidual, ceres::CENTRAL>(
-        new WhitenedResidual{&pb, &w, i});
-    cost->AddParameterBlock(static_cast<int>(x.size()));
-    cost->SetNumResiduals(3);
-    problem->AddResidualBlock(cost, nullptr, x.data());
+    problem->AddResidualBlock(new WhitenedResidual(pb, w, i), nullptr, x.data());
   }
   return problem;
 }
