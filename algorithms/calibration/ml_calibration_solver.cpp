@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace locbench::ml_solver {
@@ -31,22 +32,36 @@ class WhitenedResidual final : public ceres::CostFunction {
     const CalibrationSample& sample = pb_.data.samples[pb_.active[slot_]];
     const ModelParameters p = ModelParameters::from_vector(v);
     const Eigen::Matrix3d& w = whitening_[slot_];
-    Eigen::Vector3d r;
+    // Plain loops: Eigen's small products are slow in the unoptimised test build.
+    const double* wd = w.data();  // column-major: w(i, k) = wd[i + 3k]
+    double r[3] = {0.0, 0.0, 0.0};
     if (jacobians != nullptr && jacobians[0] != nullptr) {
       const ResidualWithJacobian rj = reference_residual_with_jacobian(pb_.data, sample, p);
-      r = w * rj.residual;
-      const Eigen::Matrix<double, 3, 6> wj = w * rj.jacobian;
-      for (int row = 0; row < 3; ++row) {
+      const double* jd = rj.jacobian.data();  // column-major: J(k, c) = jd[k + 3c]
+      for (std::size_t row = 0; row < 3; ++row) {
+        for (std::size_t k = 0; k < 3; ++k) r[row] += wd[row + 3 * k] * rj.residual(static_cast<Eigen::Index>(k));
         for (std::size_t j = 0; j < n; ++j) {
-          jacobians[0][static_cast<std::size_t>(row) * n + j] = wj(row, pb_.free[j]);
+          const auto col = static_cast<std::size_t>(pb_.free[j]);
+          double sum = 0.0;
+          for (std::size_t k = 0; k < 3; ++k) sum += wd[row + 3 * k] * jd[k + 3 * col];
+          jacobians[0][row * n + j] = sum;
         }
       }
-      if (!wj.allFinite()) return false;
     } else {
-      r = w * reference_residual(pb_.data, sample, p);
+      const Eigen::Vector3d raw = reference_residual(pb_.data, sample, p);
+      for (std::size_t row = 0; row < 3; ++row) {
+        for (std::size_t k = 0; k < 3; ++k) r[row] += wd[row + 3 * k] * raw(static_cast<Eigen::Index>(k));
+      }
     }
-    for (int c = 0; c < 3; ++c) residuals[c] = r(c);
-    return r.allFinite();
+    bool finite = true;
+    for (std::size_t c = 0; c < 3; ++c) {
+      residuals[c] = r[c];
+      finite = finite && std::isfinite(r[c]);
+    }
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      for (std::size_t i = 0; i < 3 * n; ++i) finite = finite && std::isfinite(jacobians[0][i]);
+    }
+    return finite;
   }
 
  private:
