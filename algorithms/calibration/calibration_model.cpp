@@ -156,7 +156,8 @@ Mat3 sensor_frame_jacobian(const Pose2& l, double o_theta) {
 // s_θ = o_θ does not depend on ℓ.
 Mat3 sensor_mount_jacobian(const Pose2& l, const Pose2& o) {
   const double cl = std::cos(l.theta), sl = std::sin(l.theta);
-  const double cm = std::cos(o.theta) - 1.0, so = std::sin(o.theta);  // R(oθ) − I = [[cm, −so], [so, cm]]
+  // R(oθ) − I = [[cm, −so], [so, cm]].
+  const double cm = std::cos(o.theta) - 1.0, so = std::sin(o.theta);
   const double vx = o.x + cm * l.x - so * l.y, vy = o.y + so * l.x + cm * l.y;
   return {{{cl * cm + sl * so, -cl * so + sl * cm, -sl * vx + cl * vy},
            {-sl * cm + cl * so, sl * so + cl * cm, -cl * vx - sl * vy},

@@ -37,9 +37,10 @@ class WhitenedResidual final : public ceres::CostFunction {
     double r[3] = {0.0, 0.0, 0.0};
     if (jacobians != nullptr && jacobians[0] != nullptr) {
       const ResidualWithJacobian rj = reference_residual_with_jacobian(pb_.data, sample, p);
+      const double* rd = rj.residual.data();
       const double* jd = rj.jacobian.data();  // column-major: J(k, c) = jd[k + 3c]
       for (std::size_t row = 0; row < 3; ++row) {
-        for (std::size_t k = 0; k < 3; ++k) r[row] += wd[row + 3 * k] * rj.residual(static_cast<Eigen::Index>(k));
+        for (std::size_t k = 0; k < 3; ++k) r[row] += wd[row + 3 * k] * rd[k];
         for (std::size_t j = 0; j < n; ++j) {
           const auto col = static_cast<std::size_t>(pb_.free[j]);
           double sum = 0.0;
@@ -49,8 +50,9 @@ class WhitenedResidual final : public ceres::CostFunction {
       }
     } else {
       const Eigen::Vector3d raw = reference_residual(pb_.data, sample, p);
+      const double* rd = raw.data();
       for (std::size_t row = 0; row < 3; ++row) {
-        for (std::size_t k = 0; k < 3; ++k) r[row] += wd[row + 3 * k] * raw(static_cast<Eigen::Index>(k));
+        for (std::size_t k = 0; k < 3; ++k) r[row] += wd[row + 3 * k] * rd[k];
       }
     }
     bool finite = true;
@@ -166,7 +168,8 @@ class LinearSubspace final : public ceres::Manifold {
 // parameter block is restricted to the directions the data determine at its start, so the
 // undetermined combinations keep their start (closed-form) values: in Marquardt-scaled
 // coordinates (D = diag(JᵀJ)^−½), the eigenvectors of D·JᵀJ·D with at least 1e-8 of the largest
-// eigenvalue (central differences leave ~1e-10 in an exactly flat direction). Identifiable
+// eigenvalue (exact derivatives leave rounding, ~1e-16, in an exactly flat direction; central
+// differences, used before, left ~1e-10). Identifiable
 // problems solve on the full space.
 void restrict_to_determined(ceres::Problem& problem, Eigen::VectorXd& x) {
   problem.SetManifold(x.data(), nullptr);

@@ -199,7 +199,9 @@ TEST(MlCalibrationSolver, CeresEvaluatesTheWhitenedExactJacobianOverTheFreeParam
   for (int i = 0; i < 5; ++i) {
     Eigen::Matrix3d L = Eigen::Matrix3d::Zero();
     for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c <= r; ++c) L(r, c) = r == c ? uniform(rng, 1.0, 100.0) : uniform(rng, -5.0, 5.0);
+      for (int c = 0; c <= r; ++c) {
+        L(r, c) = r == c ? uniform(rng, 1.0, 100.0) : uniform(rng, -5.0, 5.0);
+      }
     }
     w.push_back(L);
   }
@@ -208,11 +210,12 @@ TEST(MlCalibrationSolver, CeresEvaluatesTheWhitenedExactJacobianOverTheFreeParam
   const auto problem = ml_solver::whitened_problem(pb, w, x);
   const Eigen::MatrixXd J = ml_solver::whitened_jacobian(*problem, 15, 4);
   for (int i = 0; i < 5; ++i) {
-    const Eigen::Matrix<double, 3, 6> Ji =
-        w[static_cast<std::size_t>(i)] * reference_residual_with_jacobian(d, d.samples[static_cast<std::size_t>(i)], p).jacobian;
+    const Eigen::Matrix3d& wi = w[static_cast<std::size_t>(i)];
+    const CalibrationSample& si = d.samples[static_cast<std::size_t>(i)];
+    const Eigen::Matrix<double, 3, 6> Ji = wi * reference_residual_with_jacobian(d, si, p).jacobian;
     const Jacobian numeric = numeric_jacobian(
         [&](const Eigen::VectorXd& free) {
-          return Eigen::Vector3d(w[static_cast<std::size_t>(i)] * pb.residuals(pb.full(free)).segment<3>(3 * i));
+          return Eigen::Vector3d(wi * pb.residuals(pb.full(free)).segment<3>(3 * i));
         },
         x0);
     for (int j = 0; j < 4; ++j) {
