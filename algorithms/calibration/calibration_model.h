@@ -62,6 +62,18 @@ Pose2 predict_reference(const CalibrationData& data, const CalibrationSample& sa
 Eigen::Vector3d reference_residual(const CalibrationData& data, const CalibrationSample& sample,
                                    const ModelParameters& p);
 
+// The residual with its exact Jacobian ∂r/∂(odometry, sensor x, y, θ) (3 × 6, the order of
+// ModelParameters::vector()): the arcs' derivatives carried through the composition, then the
+// sensor conjugation's. The residual is the same number reference_residual gives. Columns of the
+// sensor are zero when the references are robot displacements.
+struct ResidualWithJacobian {
+  Eigen::Vector3d residual = Eigen::Vector3d::Zero();
+  Eigen::Matrix<double, 3, 6> jacobian = Eigen::Matrix<double, 3, 6>::Zero();
+};
+ResidualWithJacobian reference_residual_with_jacobian(const CalibrationData& data,
+                                                      const CalibrationSample& sample,
+                                                      const ModelParameters& p);
+
 // Covariance shape of a sample's predicted reference under wheel noise (eq. 4.16: each wheel's
 // travel U has variance k²|U|), propagated through the arcs (slides: Σ' = F_p Σ F_pᵀ +
 // F_Δ Σ_Δ F_Δᵀ) and into the sensor frame:

@@ -1,51 +1,86 @@
 #include "algorithms/calibration/ml_calibration_solver.h"
 
 #include <ceres/crs_matrix.h>
-#include <ceres/dynamic_numeric_diff_cost_function.h>
+#include <ceres/cost_function.h>
 #include <ceres/manifold.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace locbench::ml_solver {
 
 namespace {
 
-// One sample's whitened residual Σᵢ⁻¹ᐟ² rᵢ as a function of the free parameters, for Ceres
-// (central differences: the residual code is double-only). `whitening` is shared by every
-// sample's functor and replaced between the noise alternation's rounds.
-struct WhitenedResidual {
-  const Problem* pb;
-  const Whitening* whitening;
-  std::size_t slot;  // index into pb->active and *whitening
-  bool operator()(double const* const* x, double* out) const {
-    Vector6 v = pb->base;
-    for (std::size_t j = 0; j < pb->free.size(); ++j) v(pb->free[j]) = x[0][j];
-    const Eigen::Vector3d r = (*whitening)[slot] *
-        reference_residual(pb->data, pb->data.samples[pb->active[slot]],
-                           ModelParameters::from_vector(v));
-    for (int c = 0; c < 3; ++c) out[c] = r(c);
-    return r.allFinite();
+// One sample's whitened residual Σᵢ⁻¹ᐟ² rᵢ and its exact Jacobian Σᵢ⁻¹ᐟ² ∂rᵢ/∂x over the free
+// parameters x (reference_residual_with_jacobian), for Ceres. `whitening` is shared by every
+// sample's cost and replaced between the noise alternation's rounds.
+class WhitenedResidual final : public ceres::CostFunction {
+ public:
+  WhitenedResidual(const Problem& pb, const Whitening& whitening, std::size_t slot)
+      : pb_(pb), whitening_(whitening), slot_(slot) {
+    set_num_residuals(3);
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(pb.free.size()));
   }
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
+    Vector6 v = pb_.base;
+    const std::size_t n = pb_.free.size();
+    for (std::size_t j = 0; j < n; ++j) v(pb_.free[j]) = x[0][j];
+    const CalibrationSample& sample = pb_.data.samples[pb_.active[slot_]];
+    const ModelParameters p = ModelParameters::from_vector(v);
+    const Eigen::Matrix3d& w = whitening_[slot_];
+    // Plain loops: Eigen's small products are slow in the unoptimised test build.
+    const double* wd = w.data();  // column-major: w(i, k) = wd[i + 3k]
+    double r[3] = {0.0, 0.0, 0.0};
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      const ResidualWithJacobian rj = reference_residual_with_jacobian(pb_.data, sample, p);
+      const double* rd = rj.residual.data();
+      const double* jd = rj.jacobian.data();  // column-major: J(k, c) = jd[k + 3c]
+      for (std::size_t row = 0; row < 3; ++row) {
+        for (std::size_t k = 0; k < 3; ++k) r[row] += wd[row + 3 * k] * rd[k];
+        for (std::size_t j = 0; j < n; ++j) {
+          const auto col = static_cast<std::size_t>(pb_.free[j]);
+          double sum = 0.0;
+          for (std::size_t k = 0; k < 3; ++k) sum += wd[row + 3 * k] * jd[k + 3 * col];
+          jacobians[0][row * n + j] = sum;
+        }
+      }
+    } else {
+      const Eigen::Vector3d raw = reference_residual(pb_.data, sample, p);
+      const double* rd = raw.data();
+      for (std::size_t row = 0; row < 3; ++row) {
+        for (std::size_t k = 0; k < 3; ++k) r[row] += wd[row + 3 * k] * rd[k];
+      }
+    }
+    bool finite = true;
+    for (std::size_t c = 0; c < 3; ++c) {
+      residuals[c] = r[c];
+      finite = finite && std::isfinite(r[c]);
+    }
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      for (std::size_t i = 0; i < 3 * n; ++i) finite = finite && std::isfinite(jacobians[0][i]);
+    }
+    return finite;
+  }
+
+ private:
+  const Problem& pb_;
+  const Whitening& whitening_;
+  std::size_t slot_;  // index into pb.active and whitening
 };
 
 }  // namespace
 
 // The Ceres problem Σ‖Σᵢ⁻¹ᐟ² rᵢ‖² over the free parameters `x` (one parameter block).
-// The step 1e-6·|x| (absolute 1e-6 at zero) is Ceres's default for central differences.
 std::unique_ptr<ceres::Problem> whitened_problem(const Problem& pb, const Whitening& w,
                                                  Eigen::VectorXd& x) {
   ceres::Problem::Options po;
   auto problem = std::make_unique<ceres::Problem>(po);
   for (std::size_t i = 0; i < pb.active.size(); ++i) {
-    auto* cost = new ceres::DynamicNumericDiffCostFunction<WhitenedResidual, ceres::CENTRAL>(
-        new WhitenedResidual{&pb, &w, i});
-    cost->AddParameterBlock(static_cast<int>(x.size()));
-    cost->SetNumResiduals(3);
-    problem->AddResidualBlock(cost, nullptr, x.data());
+    problem->AddResidualBlock(new WhitenedResidual(pb, w, i), nullptr, x.data());
   }
   return problem;
 }
@@ -133,7 +168,8 @@ class LinearSubspace final : public ceres::Manifold {
 // parameter block is restricted to the directions the data determine at its start, so the
 // undetermined combinations keep their start (closed-form) values: in Marquardt-scaled
 // coordinates (D = diag(JᵀJ)^−½), the eigenvectors of D·JᵀJ·D with at least 1e-8 of the largest
-// eigenvalue (central differences leave ~1e-10 in an exactly flat direction). Identifiable
+// eigenvalue (exact derivatives leave rounding, ~1e-16, in an exactly flat direction; central
+// differences, used before, left ~1e-10). Identifiable
 // problems solve on the full space.
 void restrict_to_determined(ceres::Problem& problem, Eigen::VectorXd& x) {
   problem.SetManifold(x.data(), nullptr);

@@ -1,7 +1,7 @@
 #pragma once
 // The solver side of calibrate_ml (ml_calibration.h): the weighted least-squares problem
-// Σ‖Σᵢ⁻¹ᐟ² rᵢ‖² over the free calibration parameters on Ceres Solver — whitened residuals by
-// central differences, Levenberg–Marquardt, the whitened Jacobian for the Fisher information,
+// Σ‖Σᵢ⁻¹ᐟ² rᵢ‖² over the free calibration parameters on Ceres Solver — whitened residuals with
+// their exact Jacobian, Levenberg–Marquardt, the whitened Jacobian for the Fisher information,
 // and the restriction to the directions the data determine. ML_CALIBRATION.md, sections 3 and 8.
 #include <Eigen/Core>
 #include <cstddef>
