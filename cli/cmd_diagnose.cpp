@@ -22,7 +22,7 @@
 #include "datasets/log/data_root.h"
 #include "datasets/sim/scenario_json.h"
 #include "reports/finish_report.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/output_file.h"
 
 namespace locbench::cli {
@@ -109,7 +109,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
     if (!a.scenario.empty()) {
       throw UsageError("--scenario needs a log: a histogram of residuals has no motion to replay");
     }
-    const nlohmann::json j = reports::read_json_file(a.input, "residual histogram (JSON)");
+    const nlohmann::json j = read_json_file(a.input, "residual histogram (JSON)");
     d = diagnosis::diagnose_histogram(diagnosis::read_histogram(j, a.input), a.input, opt);
   } else {
     Log log;

@@ -21,7 +21,7 @@
 #include "datasets/io/log_loader.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/output_file.h"
 
 namespace locbench::cli {
@@ -85,7 +85,7 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
   reports::check_outputs({a.log, a.map, a.options}, {{"--report", a.report}, {"--tum", a.tum}});
   nlohmann::json options = g::default_method_options();
   if (!a.options.empty()) {
-    const nlohmann::json user = reports::read_json_file(a.options, "--options file (JSON)");
+    const nlohmann::json user = read_json_file(a.options, "--options file (JSON)");
     options = naming_file(a.options, [&] { return experiments::merge_config(options, user); });
   }
   const Log log = load_log(a.log);

@@ -15,7 +15,7 @@
 #include "benchmarks/experiments/framework/shard.h"
 #include "cli/commands.h"
 #include "reports/finish_report.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/schema_validation.h"
@@ -37,7 +37,7 @@ struct ShardFile {
 };
 
 ShardFile load(const std::filesystem::path& path) {
-  const nlohmann::json j = reports::read_json_file(path, "shard report (JSON)");
+  const nlohmann::json j = read_json_file(path, "shard report (JSON)");
   if (j.is_object() && j.value("schema", "") == reports::kReportSchema) {
     throw InputError(path.string(), 0,
                      "a full report, not a shard report (made by `locbench run --shard K/N`)");

@@ -8,7 +8,7 @@
 #include "cli/commands.h"
 #include "reports/gnuplot_svg.h"
 #include "reports/html_report.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/output_file.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
@@ -24,7 +24,7 @@ struct ReportArgs {
 };
 
 nlohmann::json parse_file(const std::filesystem::path& path) {
-  return reports::read_json_file(path, "report (JSON)");
+  return read_json_file(path, "report (JSON)");
 }
 
 reports::Report load(const std::filesystem::path& path, const nlohmann::json& j) {

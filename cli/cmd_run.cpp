@@ -15,7 +15,7 @@
 #include "cli/progress.h"
 #include "datasets/log/data_root.h"
 #include "reports/finish_report.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/output_file.h"
 #include "reports/shard_report.h"
 #include "reports/summary_table.h"
@@ -113,7 +113,7 @@ std::string args_shard_label(const experiments::Shard& s) {
 
 nlohmann::json load_overrides(const std::string& path) {
   if (path.empty()) return nlohmann::json::object();
-  nlohmann::json j = reports::read_json_file(path, "--config file (JSON)");
+  nlohmann::json j = read_json_file(path, "--config file (JSON)");
   if (!j.is_object()) throw InputError(path, 0, "expected a JSON object keyed by experiment name");
   return j;
 }
