@@ -144,9 +144,8 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
 }  // namespace
 
 Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
-  auto args = std::make_shared<DiagnoseArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "diagnose", "What the nominal model of a log gets wrong: residual tests, named causes, fitted extensions, gain");
+  const auto [cmd, args] = add_verb<DiagnoseArgs>(
+      app, "diagnose", "What the nominal model of a log gets wrong: residual tests, named causes, fitted extensions, gain");
   cmd->add_option("input", args->input,
                   "A log (CARMEN .clf[.gz] with ENCODER or ODOM and TRUEPOS/COMPASS; MRCLAM folder#robotN), "
                   "a catalog dataset name, or a residual histogram (.json)")
@@ -158,7 +157,7 @@ Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
                   "cause) as a simulator scenario JSON for `locbench simulate`");
   cmd->add_option("--false-alarm", args->false_alarm, "False-alarm level per log and channel, in [1e-12, 0.5) (default 0.01)");
   cmd->add_option("--window", args->window, "Residual window length [s], in (0, 3600] (default 1)");
-  cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+  add_data_option(cmd, args->data);
   return [args, command_line] { return diagnose(*args, command_line); };
 }
 

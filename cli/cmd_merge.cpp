@@ -192,9 +192,8 @@ int merge(const MergeArgs& args, const std::string& command_line) {
 }  // namespace
 
 Action add_merge_command(CLI::App& app, const std::string& command_line) {
-  auto args = std::make_shared<MergeArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "merge", "Merge shard reports (locbench run --shard K/N) into full reports");
+  const auto [cmd, args] = add_verb<MergeArgs>(
+      app, "merge", "Merge shard reports (locbench run --shard K/N) into full reports");
   cmd->add_option("shards", args->inputs, "Shard reports, or folders holding them")
       ->required()
       ->check(CLI::ExistingPath);

@@ -100,9 +100,8 @@ int report(const ReportArgs& args) {
 }  // namespace
 
 Action add_report_command(CLI::App& app) {
-  auto args = std::make_shared<ReportArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "report", "Write one self-contained HTML page (tables and charts) from reports");
+  const auto [cmd, args] = add_verb<ReportArgs>(
+      app, "report", "Write one self-contained HTML page (tables and charts) from reports");
   cmd->add_option("reports", args->inputs, "Report files, or folders holding them")
       ->required()
       ->check(CLI::ExistingPath);
