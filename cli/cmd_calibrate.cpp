@@ -222,8 +222,7 @@ int calibrate(const CalibrateArgs& a, const std::string& command_line) {
 }  // namespace
 
 Action add_calibrate_command(CLI::App& app, const std::string& command_line) {
-  auto args = std::make_shared<CalibrateArgs>();
-  CLI::App* cmd = app.add_subcommand("calibrate", "Calibrate odometry from measured data");
+  const auto [cmd, args] = add_verb<CalibrateArgs>(app, "calibrate", "Calibrate odometry from measured data");
   cmd->add_option("method", args->method, "umbmark-classic, umbmark-improved or ml")->required();
   cmd->add_option("input", args->input,
                   "UMBmark JSON (umbmark-*), or for ml: a log, a .tuple file or a dataset name "
@@ -231,7 +230,7 @@ Action add_calibrate_command(CLI::App& app, const std::string& command_line) {
       ->required();
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--relations", args->relations, "ml: reference relations for a log's ODOM");
-  cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+  add_data_option(cmd, args->data);
   return [args, command_line] { return calibrate(*args, command_line); };
 }
 

@@ -22,7 +22,7 @@
 #include "datasets/log/data_root.h"
 #include "datasets/sim/scenario_json.h"
 #include "reports/finish_report.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/output_file.h"
 
 namespace locbench::cli {
@@ -109,7 +109,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
     if (!a.scenario.empty()) {
       throw UsageError("--scenario needs a log: a histogram of residuals has no motion to replay");
     }
-    const nlohmann::json j = reports::read_json_file(a.input, "residual histogram (JSON)");
+    const nlohmann::json j = read_json_file(a.input, "residual histogram (JSON)");
     d = diagnosis::diagnose_histogram(diagnosis::read_histogram(j, a.input), a.input, opt);
   } else {
     Log log;
@@ -144,9 +144,8 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
 }  // namespace
 
 Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
-  auto args = std::make_shared<DiagnoseArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "diagnose", "What the nominal model of a log gets wrong: residual tests, named causes, fitted extensions, gain");
+  const auto [cmd, args] = add_verb<DiagnoseArgs>(
+      app, "diagnose", "What the nominal model of a log gets wrong: residual tests, named causes, fitted extensions, gain");
   cmd->add_option("input", args->input,
                   "A log (CARMEN .clf[.gz] with ENCODER or ODOM and TRUEPOS/COMPASS; MRCLAM folder#robotN), "
                   "a catalog dataset name, or a residual histogram (.json)")
@@ -158,7 +157,7 @@ Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
                   "cause) as a simulator scenario JSON for `locbench simulate`");
   cmd->add_option("--false-alarm", args->false_alarm, "False-alarm level per log and channel, in [1e-12, 0.5) (default 0.01)");
   cmd->add_option("--window", args->window, "Residual window length [s], in (0, 3600] (default 1)");
-  cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+  add_data_option(cmd, args->data);
   return [args, command_line] { return diagnose(*args, command_line); };
 }
 

@@ -49,9 +49,8 @@ int gate(const GateArgs& args) {
 }  // namespace
 
 Action add_gate_command(CLI::App& app) {
-  auto args = std::make_shared<GateArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "gate", "Compare reports (or Google Benchmark JSON) with a baseline; exit 1 on regression");
+  const auto [cmd, args] = add_verb<GateArgs>(
+      app, "gate", "Compare reports (or Google Benchmark JSON) with a baseline; exit 1 on regression");
   cmd->add_option("current", args->current, "Current reports: files or folders of *.json")
       ->required();
   cmd->add_option("--baseline", args->baseline, "Baseline reports: files or folders")

@@ -120,9 +120,8 @@ int list(const ListArgs& args) {
 }  // namespace
 
 Action add_list_command(CLI::App& app) {
-  auto args = std::make_shared<ListArgs>();
-  CLI::App* cmd = app.add_subcommand("list", "List experiments, scenarios and datasets found");
-  cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+  const auto [cmd, args] = add_verb<ListArgs>(app, "list", "List experiments, scenarios and datasets found");
+  add_data_option(cmd, args->data);
   cmd->add_flag("--no-load", args->no_load, "Only check that datasets exist; do not read them");
   return [args] { return list(*args); };
 }

@@ -21,7 +21,7 @@
 #include "datasets/io/log_loader.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/output_file.h"
 
 namespace locbench::cli {
@@ -85,17 +85,10 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
   reports::check_outputs({a.log, a.map, a.options}, {{"--report", a.report}, {"--tum", a.tum}});
   nlohmann::json options = g::default_method_options();
   if (!a.options.empty()) {
-    const nlohmann::json user = reports::read_json_file(a.options, "--options file (JSON)");
+    const nlohmann::json user = read_json_file(a.options, "--options file (JSON)");
     options = naming_file(a.options, [&] { return experiments::merge_config(options, user); });
   }
-  const Log log = load_log(a.log);
-  if (log.laser.empty()) {
-    throw InputError(a.log, 0, "laser scans (FLASER/ROBOTLASER records); the log has none");
-  }
-  for (const LaserReading& reading : log.laser) {
-    limits::check(static_cast<double>(reading.scan.ranges.size()), limits::kBeamsPerScan, a.log,
-                  fmt::format("the scan at t = {} (its beams)", reading.scan.timestamp));
-  }
+  const Log log = load_scan_log(a.log);
   std::vector<g::ScanStep> steps = g::scan_steps(log);
   if (steps.empty()) {
     throw InputError(a.log, 0, "odometry (ODOM records or FLASER odometry) covering the scans");
@@ -162,9 +155,8 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
 }  // namespace
 
 Action add_localize_command(CLI::App& app, const std::string& command_line) {
-  auto args = std::make_shared<LocalizeArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "localize", "Localize a log's scans in a line map: MCL, grid Markov or a Kalman tracker");
+  const auto [cmd, args] = add_verb<LocalizeArgs>(
+      app, "localize", "Localize a log's scans in a line map: MCL, grid Markov or a Kalman tracker");
   cmd->add_option("--method", args->method,
                   "mcl (default), grid_markov (markov-grid), ekf_eap (ekf) or kalman_line_features");
   cmd->add_option("--map", args->map, "Line map JSON: {\"name\", \"segments\": [[x1, y1, x2, y2], …]} [m]");

@@ -37,14 +37,7 @@ int match(const MatchArgs& a, const std::string& command_line) {
   reports::check_outputs({a.map, a.log}, {{"--report", a.report}, {"--tum", a.tum}});
   const LineMap map = sim::load_world(a.map);
   if (map.segments.empty()) throw InputError(a.map, 0, "a map with at least one segment");
-  const Log log = load_log(a.log);
-  if (log.laser.empty()) {
-    throw InputError(a.log, 0, "laser scans (FLASER/ROBOTLASER records); the log has none");
-  }
-  for (const LaserReading& reading : log.laser) {
-    limits::check(static_cast<double>(reading.scan.ranges.size()), limits::kBeamsPerScan, a.log,
-                  fmt::format("the scan at t = {} (its beams)", reading.scan.timestamp));
-  }
+  const Log log = load_scan_log(a.log);
   const auto matchers = experiments::make_matchers({a.matcher},
                                                    experiments::default_matcher_options(), &map);
   const laser::SegmentMatcher& matcher = *matchers.front();
@@ -112,9 +105,8 @@ int match(const MatchArgs& a, const std::string& command_line) {
 }  // namespace
 
 Action add_match_command(CLI::App& app, const std::string& command_line) {
-  auto args = std::make_shared<MatchArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "match", "Match a log's laser scans against a line map and correct each pose (ch. 5–6)");
+  const auto [cmd, args] = add_verb<MatchArgs>(
+      app, "match", "Match a log's laser scans against a line map and correct each pose (ch. 5–6)");
   cmd->add_option("--map", args->map, "Line map JSON: {\"name\", \"segments\": [[x1, y1, x2, y2], …]} [m]")
       ->required();
   cmd->add_option("--log", args->log, "CARMEN log with FLASER scans (plain or .gz)")->required();

@@ -15,7 +15,7 @@
 #include "benchmarks/experiments/framework/shard.h"
 #include "cli/commands.h"
 #include "reports/finish_report.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/schema_validation.h"
@@ -37,7 +37,7 @@ struct ShardFile {
 };
 
 ShardFile load(const std::filesystem::path& path) {
-  const nlohmann::json j = reports::read_json_file(path, "shard report (JSON)");
+  const nlohmann::json j = read_json_file(path, "shard report (JSON)");
   if (j.is_object() && j.value("schema", "") == reports::kReportSchema) {
     throw InputError(path.string(), 0,
                      "a full report, not a shard report (made by `locbench run --shard K/N`)");
@@ -192,9 +192,8 @@ int merge(const MergeArgs& args, const std::string& command_line) {
 }  // namespace
 
 Action add_merge_command(CLI::App& app, const std::string& command_line) {
-  auto args = std::make_shared<MergeArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "merge", "Merge shard reports (locbench run --shard K/N) into full reports");
+  const auto [cmd, args] = add_verb<MergeArgs>(
+      app, "merge", "Merge shard reports (locbench run --shard K/N) into full reports");
   cmd->add_option("shards", args->inputs, "Shard reports, or folders holding them")
       ->required()
       ->check(CLI::ExistingPath);

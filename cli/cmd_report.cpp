@@ -8,7 +8,7 @@
 #include "cli/commands.h"
 #include "reports/gnuplot_svg.h"
 #include "reports/html_report.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/output_file.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
@@ -24,7 +24,7 @@ struct ReportArgs {
 };
 
 nlohmann::json parse_file(const std::filesystem::path& path) {
-  return reports::read_json_file(path, "report (JSON)");
+  return read_json_file(path, "report (JSON)");
 }
 
 reports::Report load(const std::filesystem::path& path, const nlohmann::json& j) {
@@ -100,9 +100,8 @@ int report(const ReportArgs& args) {
 }  // namespace
 
 Action add_report_command(CLI::App& app) {
-  auto args = std::make_shared<ReportArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "report", "Write one self-contained HTML page (tables and charts) from reports");
+  const auto [cmd, args] = add_verb<ReportArgs>(
+      app, "report", "Write one self-contained HTML page (tables and charts) from reports");
   cmd->add_option("reports", args->inputs, "Report files, or folders holding them")
       ->required()
       ->check(CLI::ExistingPath);

@@ -15,7 +15,7 @@
 #include "cli/progress.h"
 #include "datasets/log/data_root.h"
 #include "reports/finish_report.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/output_file.h"
 #include "reports/shard_report.h"
 #include "reports/summary_table.h"
@@ -113,7 +113,7 @@ std::string args_shard_label(const experiments::Shard& s) {
 
 nlohmann::json load_overrides(const std::string& path) {
   if (path.empty()) return nlohmann::json::object();
-  nlohmann::json j = reports::read_json_file(path, "--config file (JSON)");
+  nlohmann::json j = read_json_file(path, "--config file (JSON)");
   if (!j.is_object()) throw InputError(path, 0, "expected a JSON object keyed by experiment name");
   return j;
 }
@@ -242,9 +242,8 @@ int run(const RunArgs& args, const std::string& command_line) {
 }  // namespace
 
 Action add_run_command(CLI::App& app, const std::string& command_line) {
-  auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "run", "Run experiments (default: the default suite) and write JSON reports");
+  const auto [cmd, args] = add_verb<RunArgs>(
+      app, "run", "Run experiments (default: the default suite) and write JSON reports");
   cmd->add_option("experiments", args->experiments,
                   "Experiment names or groups (e.g. odometry/sim_corridor, odometry)");
   cmd->add_option("--seed", args->seed, "Base seed of every random run (0 … 2^53 − 1)")
@@ -267,7 +266,7 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
                   "Run only shard K of N (tasks i with i mod N = K-1) and write "
                   "<out>/<experiment>.shard-K-of-N.json for `locbench merge`")
       ->type_name("K/N");
-  cmd->add_option("--data", args->data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+  add_data_option(cmd, args->data);
   cmd->add_option("--log", args->log,
                   "Run the real-data experiments on this log instead of the catalog's "
                   "(CARMEN .clf[.gz], MRCLAM folder[#robotN])");

@@ -62,9 +62,8 @@ int simulate(const SimulateArgs& args) {
 }  // namespace
 
 Action add_simulate_command(CLI::App& app) {
-  auto args = std::make_shared<SimulateArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "simulate", "Simulate a scenario and write its log (CARMEN format, .gz to compress)");
+  const auto [cmd, args] = add_verb<SimulateArgs>(
+      app, "simulate", "Simulate a scenario and write its log (CARMEN format, .gz to compress)");
   cmd->add_option("scenario", args->scenario,
                   "A scenario name (see `locbench list`) or a scenario JSON file")
       ->required();

@@ -2,6 +2,8 @@
 // One small file per verb; each registers its sub-command and returns the exit code.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <memory>
+#include <string>
 
 namespace locbench::cli {
 
@@ -10,6 +12,25 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitCheckFailed = 1;  // a gate or check failed
 inline constexpr int kExitBadInput = 2;     // bad input or usage
 inline constexpr int kExitInternal = 3;     // a bug: please report
+
+// A sub-command being declared: its CLI11 command and the arguments its options fill (shared
+// with the action that runs once the command line is parsed).
+template <class Args>
+struct Verb {
+  CLI::App* cmd;
+  std::shared_ptr<Args> args;
+};
+
+// Adds the sub-command `name` to `app`, with fresh default arguments.
+template <class Args>
+Verb<Args> add_verb(CLI::App& app, const char* name, const char* description) {
+  return {app.add_subcommand(name, description), std::make_shared<Args>()};
+}
+
+// --data, the dataset folder, as every verb that reads the catalog declares it.
+inline void add_data_option(CLI::App* cmd, std::string& data) {
+  cmd->add_option("--data", data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+}
 
 // Each add_* registers a sub-command on `app` and returns the action to run when it is chosen.
 using Action = std::function<int()>;

@@ -1,12 +1,29 @@
 #include "cli/pose_report.h"
 
+#include <fmt/format.h>
+
 #include <iostream>
 
 #include "cli/commands.h"
+#include "core/errors.h"
+#include "core/input_limits.h"
+#include "datasets/io/log_loader.h"
 #include "datasets/io/tum_writer.h"
 #include "reports/finish_report.h"
 
 namespace locbench::cli {
+
+Log load_scan_log(const std::string& spec) {
+  Log log = load_log(spec);
+  if (log.laser.empty()) {
+    throw InputError(spec, 0, "laser scans (FLASER/ROBOTLASER records); the log has none");
+  }
+  for (const LaserReading& reading : log.laser) {
+    limits::check(static_cast<double>(reading.scan.ranges.size()), limits::kBeamsPerScan, spec,
+                  fmt::format("the scan at t = {} (its beams)", reading.scan.timestamp));
+  }
+  return log;
+}
 
 int finish_pose_report(reports::Report& report, const std::string& verb,
                        const std::string& command_line, const std::string& report_path,

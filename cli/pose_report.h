@@ -1,12 +1,18 @@
 #pragma once
-// The end of the verbs that estimate a pose per scan (`match`, `localize`): the report (printed
-// with its summary, written when asked) and the estimated poses in TUM format when asked.
+// The two ends of the verbs that estimate a pose per scan (`match`, `localize`): the log they
+// read, and the report (printed with its summary, written when asked) and the estimated poses in
+// TUM format when asked.
 #include <string>
 
+#include "core/log.h"
 #include "core/trajectory.h"
 #include "reports/report.h"
 
 namespace locbench::cli {
+
+// The log `spec` (datasets/io/log_loader.h), which must hold laser scans, each with at most
+// limits::kBeamsPerScan beams; otherwise InputError naming the log.
+Log load_scan_log(const std::string& spec);
 
 // Finishes `report` (reports::finish_report, with the summary printed) and writes `poses` to
 // `tum_path` unless it is empty; returns kExitOk.

@@ -90,18 +90,16 @@ Histogram histogram(const std::vector<std::vector<double>>& samples, int bins) {
   return h;
 }
 
+Plot sample_plot(std::string kind, std::string y_label, std::string name, std::string title, std::string x_label,
+                 std::string x_unit, std::vector<PlotSeries> samples, std::string note) {
+  return {std::move(name),    std::move(kind), std::move(title),   std::move(x_label), std::move(x_unit),
+          std::move(y_label), std::string(),   std::move(samples), std::move(note)};
+}
+
 Plot histogram_plot(std::string name, std::string title, std::string x_label, std::string x_unit,
                     std::vector<PlotSeries> samples, std::string note) {
-  Plot p;
-  p.name = std::move(name);
-  p.kind = "histogram";
-  p.title = std::move(title);
-  p.x_label = std::move(x_label);
-  p.x_unit = std::move(x_unit);
-  p.y_label = "runs";
-  p.series = std::move(samples);
-  p.note = std::move(note);
-  return p;
+  return sample_plot("histogram", "runs", std::move(name), std::move(title), std::move(x_label), std::move(x_unit),
+                     std::move(samples), std::move(note));
 }
 
 std::vector<Plot> metric_histograms(const ExperimentResults& results, std::size_t min_values,

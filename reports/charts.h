@@ -19,7 +19,13 @@ struct Histogram {
 // `bins` bins (≥ 1); non-finite samples are left out; a degenerate range gets width 1e-9·scale.
 Histogram histogram(const std::vector<std::vector<double>>& samples, int bins);
 
-// A histogram plot (kind "histogram") of named sample sets, e.g. one metric's values per method.
+// A plot of named sample sets whose y axis the chart derives from the samples — a histogram's
+// counts, an empirical CDF's fractions: the one builder of every such kind.
+Plot sample_plot(std::string kind, std::string y_label, std::string name, std::string title, std::string x_label,
+                 std::string x_unit, std::vector<PlotSeries> samples, std::string note);
+
+// A histogram plot (kind "histogram", y "runs") of named sample sets, e.g. one metric's values
+// per method.
 Plot histogram_plot(std::string name, std::string title, std::string x_label, std::string x_unit,
                     std::vector<PlotSeries> samples, std::string note);
 

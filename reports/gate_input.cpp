@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
 

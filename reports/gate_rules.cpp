@@ -4,7 +4,7 @@
 
 #include "core/errors.h"
 #include "core/json_options.h"
-#include "reports/json_file.h"
+#include "core/json_file.h"
 
 namespace locbench::reports {
 namespace {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <initializer_list>
 
 #include "reports/charts.h"
 #include "reports/findings.h"
@@ -49,6 +50,15 @@ td.v-not-reproduced{color:#a40000;font-weight:600}
 td.v-the-thesis-is-wrong{color:#8a5a00;font-weight:600}
 )css";
 
+// A titled table: a header row of `columns` above `rows`; nothing at all when there are no rows.
+void titled_table(std::string& h, const char* title, const char* css_class,
+                  std::initializer_list<const char*> columns, const std::string& rows) {
+  if (rows.empty()) return;
+  h += fmt::format("<h3>{}</h3>\n<table class={}><thead><tr>", title, css_class);
+  for (const char* c : columns) h += fmt::format("<th>{}</th>", c);
+  h += "</tr></thead><tbody>\n" + rows + "</tbody></table>\n";
+}
+
 void summary_table(std::string& h, const ExperimentResults& b) {
   std::string rows;
   for (const MetricResult& m : b.results) {
@@ -64,11 +74,8 @@ void summary_table(std::string& h, const ExperimentResults& b) {
         html_escape(m.better),
         m.identifiable && !*m.identifiable ? " <span class=bad>not identifiable</span>" : "");
   }
-  if (rows.empty()) return;
-  h += "<h3>Results</h3>\n<table class=results><thead><tr><th>metric</th><th>method</th>"
-       "<th>dataset</th><th>mean ± 95% interval</th><th>95% interval</th><th>n</th>"
-       "<th>over</th><th>better</th></tr></thead><tbody>\n" +
-       rows + "</tbody></table>\n";
+  titled_table(h, "Results", "results",
+               {"metric", "method", "dataset", "mean ± 95% interval", "95% interval", "n", "over", "better"}, rows);
 }
 
 void estimates_table(std::string& h, const ExperimentResults& b) {
@@ -86,11 +93,9 @@ void estimates_table(std::string& h, const ExperimentResults& b) {
         identifiable ? num(s.stddev) : "—",
         identifiable ? "yes" : "<span class=bad>not identifiable</span>", html_escape(m.note));
   }
-  if (rows.empty()) return;
-  h += "<h3>Estimates</h3>\n<table class=estimates><thead><tr><th>parameter</th><th>method</th>"
-       "<th>dataset</th><th>estimate</th><th>95% interval</th><th>standard error</th>"
-       "<th>identifiable</th><th>note</th></tr></thead><tbody>\n" +
-       rows + "</tbody></table>\n";
+  titled_table(h, "Estimates", "estimates",
+               {"parameter", "method", "dataset", "estimate", "95% interval", "standard error", "identifiable", "note"},
+               rows);
 }
 
 void published_tables(std::string& h, const ExperimentResults& b) {

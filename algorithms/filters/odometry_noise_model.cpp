@@ -2,20 +2,17 @@
 
 #include <cmath>
 
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
 
 namespace locbench {
 
-const char* to_string(OdometryNoiseForm f) {
-  return f == OdometryNoiseForm::kThesis ? "thesis" : "jacobian";
-}
+constexpr EnumNames<OdometryNoiseForm, 2> kForms{{{OdometryNoiseForm::kThesis, "thesis"},
+                                                  {OdometryNoiseForm::kJacobian, "jacobian"}}};
 
-OdometryNoiseForm odometry_noise_form_from_string(const std::string& s) {
-  if (s == "thesis") return OdometryNoiseForm::kThesis;
-  if (s == "jacobian") return OdometryNoiseForm::kJacobian;
-  throw UsageError("expected \"thesis\" or \"jacobian\", got \"" + s + "\"");
-}
+const char* to_string(OdometryNoiseForm f) { return enum_name(kForms, f); }
+OdometryNoiseForm odometry_noise_form_from_string(const std::string& s) { return enum_value(kForms, s, "expected"); }
 
 // OdometryNoiseOptions' fields, stated once (the header explains each).
 template <class V>

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
 #include "core/units.h"
@@ -9,19 +10,11 @@
 
 namespace locbench::laser {
 
-const char* to_string(ClaimOrder c) {
-  switch (c) {
-    case ClaimOrder::kNearestSegment: return "nearest_segment";
-    case ClaimOrder::kMapOrder: return "map_order";
-  }
-  return "?";
-}
+constexpr EnumNames<ClaimOrder, 2> kClaimOrders{{{ClaimOrder::kNearestSegment, "nearest_segment"},
+                                                 {ClaimOrder::kMapOrder, "map_order"}}};
 
-ClaimOrder claim_order_from_string(const std::string& s) {
-  if (s == "nearest_segment") return ClaimOrder::kNearestSegment;
-  if (s == "map_order") return ClaimOrder::kMapOrder;
-  throw UsageError("claim_order must be \"nearest_segment\" or \"map_order\", got \"" + s + "\"");
-}
+const char* to_string(ClaimOrder c) { return enum_name(kClaimOrders, c); }
+ClaimOrder claim_order_from_string(const std::string& s) { return enum_value(kClaimOrders, s, "claim_order must be"); }
 
 // EapOptions' fields, stated once (eap_matcher.h explains each).
 template <class V>

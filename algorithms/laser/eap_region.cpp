@@ -1,5 +1,6 @@
 #include "algorithms/laser/eap_region.h"
 
+#include "core/enum_names.h"
 #include "core/errors.h"
 
 namespace locbench::laser {
@@ -13,19 +14,10 @@ namespace locbench::laser {
 //    So beyond P2, p ∈ ω1 ⇔ d2 ≤ d — the end disc of the stadium.
 // Hence ω1 equals {p : dist(p, P1P2) ≤ d} with the same ≤ on every boundary.
 
-const char* to_string(RegionRule r) {
-  switch (r) {
-    case RegionRule::kThesis: return "thesis";
-    case RegionRule::kStadium: return "stadium";
-  }
-  return "?";
-}
+constexpr EnumNames<RegionRule, 2> kRegionRules{{{RegionRule::kThesis, "thesis"}, {RegionRule::kStadium, "stadium"}}};
 
-RegionRule region_rule_from_string(const std::string& s) {
-  if (s == "thesis") return RegionRule::kThesis;
-  if (s == "stadium") return RegionRule::kStadium;
-  throw UsageError("region rule must be \"thesis\" or \"stadium\", got \"" + s + "\"");
-}
+const char* to_string(RegionRule r) { return enum_name(kRegionRules, r); }
+RegionRule region_rule_from_string(const std::string& s) { return enum_value(kRegionRules, s, "region rule must be"); }
 
 EapRegion::EapRegion(const Segment& segment, double d_limit)
     : p1_(segment.p1), p2_(segment.p2), d_limit_(d_limit) {

@@ -3,26 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
 
 namespace locbench::laser {
 
-const char* to_string(HoughWeighting w) {
-  switch (w) {
-    case HoughWeighting::kCount: return "count";
-    case HoughWeighting::kRange: return "range";
-    case HoughWeighting::kRangeIncidence: return "range_incidence";
-  }
-  return "?";
-}
+constexpr EnumNames<HoughWeighting, 3> kHoughWeightings{{{HoughWeighting::kCount, "count"},
+                                                         {HoughWeighting::kRange, "range"},
+                                                         {HoughWeighting::kRangeIncidence, "range_incidence"}}};
 
+const char* to_string(HoughWeighting w) { return enum_name(kHoughWeightings, w); }
 HoughWeighting hough_weighting_from_string(const std::string& s) {
-  if (s == "count") return HoughWeighting::kCount;
-  if (s == "range") return HoughWeighting::kRange;
-  if (s == "range_incidence") return HoughWeighting::kRangeIncidence;
-  throw UsageError("weighting must be \"count\", \"range\" or \"range_incidence\", got \"" + s +
-                   "\"");
+  return enum_value(kHoughWeightings, s, "weighting must be");
 }
 
 // HoughWeight's fields, stated once (hough_weighted.h explains each).

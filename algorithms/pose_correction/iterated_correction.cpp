@@ -1,16 +1,16 @@
 #include "algorithms/pose_correction/iterated_correction.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
 
+#include "algorithms/pose_correction/input_checks.h"
 #include "core/angle.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
+#include "core/pose_observability.h"
 
 namespace locbench::pose_correction {
 namespace {
@@ -27,12 +27,8 @@ std::vector<PointOnLine> points_on_lines(std::span<const laser::SegmentMatch> ma
                                          const LineMap& map) {
   std::vector<PointOnLine> out;
   for (const auto& m : matches) {
-    if (m.map_segment >= map.segments.size()) {
-      throw UsageError("iterated_point_to_line: a match names map segment " +
-                       std::to_string(m.map_segment) + ", the map has " +
-                       std::to_string(map.segments.size()));
-    }
-    const LineParams line = map.segments[m.map_segment].line();
+    const Segment& segment = matched_segment(m, map, "iterated_point_to_line");
+    const LineParams line = segment.line();
     const Eigen::Vector2d normal(std::cos(line.beta), std::sin(line.beta));
     for (const auto& p : m.points) out.push_back({p.robot, normal, line.rho, m.map_segment, 0.0});
   }
@@ -91,28 +87,6 @@ Normal normal_equations(const std::vector<PointOnLine>& pts, const Pose2& pose) 
   return n;
 }
 
-struct Eigen3 {
-  Eigen::Matrix3d scale;
-  Eigen::Vector3d values;
-  Eigen::Matrix3d vectors;
-  std::array<bool, 3> observable{true, true, true};
-  bool degenerate = false;
-};
-
-Eigen3 decompose(const Eigen::Matrix3d& h, double length, double ratio) {
-  Eigen3 e;
-  e.scale = Eigen::Vector3d(1.0, 1.0, 1.0 / length).asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(e.scale * h * e.scale);
-  e.values = es.eigenvalues();
-  e.vectors = es.eigenvectors();
-  const double largest = e.values.maxCoeff();
-  for (std::size_t k = 0; k < 3; ++k) {
-    e.observable[k] = largest > 0.0 && e.values[static_cast<Eigen::Index>(k)] > ratio * largest;
-    e.degenerate = e.degenerate || !e.observable[k];
-  }
-  return e;
-}
-
 double rms_range(const std::vector<PointOnLine>& pts) {
   double ss = 0.0;
   for (const auto& p : pts) ss += p.robot.squaredNorm();
@@ -158,7 +132,7 @@ std::optional<Steps> gauss_newton(std::span<const laser::SegmentMatch> matches, 
     kept = all;
     trim(kept, x, options.keep_fraction);
     const Normal n = normal_equations(kept, x);
-    const Eigen3 e = decompose(n.h, length, options.degenerate_ratio);
+    const PoseObservability e = pose_observability(n.h, length, options.degenerate_ratio);
     const Eigen::Vector3d g = e.scale * n.g;
     Eigen::Vector3d d = Eigen::Vector3d::Zero();
     for (std::size_t k = 0; k < 3; ++k) {
@@ -184,7 +158,7 @@ IteratedCorrection finish(Steps st, const IteratedCorrectionOptions& options) {
   std::vector<PointOnLine> kept = std::move(st.all);
   trim(kept, x, options.keep_fraction);
   const Normal n = normal_equations(kept, x);
-  const Eigen3 e = decompose(n.h, length, options.degenerate_ratio);
+  const PoseObservability e = pose_observability(n.h, length, options.degenerate_ratio);
   const double dof = static_cast<double>(kept.size()) - 3.0;
   out.residual_rms = std::sqrt(n.ss / static_cast<double>(kept.size()));
   const double s2 =
@@ -239,10 +213,7 @@ IteratedCorrection iterated_point_to_line(const laser::SegmentMatcher& matcher, 
                                           const LineMap& map, const Pose2& estimate,
                                           const IteratedCorrectionOptions& options) {
   validate(options);
-  if (!std::isfinite(estimate.x) || !std::isfinite(estimate.y) ||
-      !std::isfinite(estimate.theta)) {
-    throw UsageError("iterated_point_to_line: the estimate is not finite");
-  }
+  require_finite_estimate(estimate, "iterated_point_to_line");
   IteratedCorrection out;
   out.corrected = estimate;
   Pose2 pose = estimate;

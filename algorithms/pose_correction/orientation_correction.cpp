@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "algorithms/pose_correction/input_checks.h"
 #include "core/angle.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
@@ -130,17 +131,13 @@ OrientationCorrection correct_orientation(std::span<const laser::SegmentMatch> m
   OrientationCorrection out;
   std::vector<Eigen::Vector2d> world;
   for (const auto& m : matches) {
-    if (m.map_segment >= map.segments.size()) {
-      throw UsageError("correct_orientation: a match names map segment " +
-                       std::to_string(m.map_segment) + ", the map has " +
-                       std::to_string(map.segments.size()));
-    }
+    const Segment& segment = matched_segment(m, map, "correct_orientation");
     if (m.points.size() < static_cast<std::size_t>(options.min_points)) continue;
     world.clear();
     for (const auto& p : m.points) world.push_back(estimate * p.robot);  // eq. 5.3
     SegmentOrientation s;
     try {
-      s = segment_orientation(world, map.segments[m.map_segment], options);
+      s = segment_orientation(world, segment, options);
     } catch (const UsageError&) {
       continue;  // all points coincide: no direction
     }

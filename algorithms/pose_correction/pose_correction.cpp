@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "algorithms/pose_correction/input_checks.h"
 #include "core/angle.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
@@ -25,10 +26,7 @@ PoseCorrection correct_pose(std::span<const laser::SegmentMatch> matches, const 
                             const Pose2& estimate, const Pose2& sensor_mount,
                             const PoseCorrectionOptions& options) {
   validate(options);
-  if (!std::isfinite(estimate.x) || !std::isfinite(estimate.y) ||
-      !std::isfinite(estimate.theta)) {
-    throw UsageError("correct_pose: the estimate is not finite");
-  }
+  require_finite_estimate(estimate, "correct_pose");
   PoseCorrection out;
   out.corrected = estimate;
   Pose2 pose = estimate;

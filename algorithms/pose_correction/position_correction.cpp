@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/pose_correction/input_checks.h"
 #include "core/angle.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
@@ -56,13 +57,9 @@ PositionNormalEquations position_normal_equations(std::span<const laser::Segment
   PositionNormalEquations eq;
   std::vector<double> betas;
   for (const auto& m : matches) {
-    if (m.map_segment >= map.segments.size()) {
-      throw UsageError("correct_position: a match names map segment " +
-                       std::to_string(m.map_segment) + ", the map has " +
-                       std::to_string(map.segments.size()));
-    }
+    const Segment& segment = matched_segment(m, map, "correct_position");
     if (m.points.size() < static_cast<std::size_t>(options.min_points)) continue;
-    const LineParams line = map.segments[m.map_segment].line();
+    const LineParams line = segment.line();
     const double c = std::cos(line.beta), s = std::sin(line.beta);
     const Eigen::Vector2d n(c, s);
     for (const auto& p : m.points) {

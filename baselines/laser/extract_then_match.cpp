@@ -5,73 +5,54 @@
 namespace locbench::laser {
 namespace {
 
-// Scan under the estimate → world-frame lines (by `extract`) → map matches.
-template <class Extract>
-MatchResult extract_then_match(const Scan& scan, const LineMap& map, const Pose2& estimate,
-                               const LineMatchOptions& matching, Extract extract) {
+// Each baseline's name and extraction step (lines in frame `f`).
+const char* name_of(const SplitAndMergeOptions&) { return "split_and_merge"; }
+const char* name_of(const AgglomerativeOptions&) { return "agglomerative"; }
+const char* name_of(const RwhtOptions&) { return "rwht"; }
+
+ExtractionResult lines_of(std::span<const ScanPoint> p, LineFrame f, const SplitAndMergeOptions& o) {
+  return split_and_merge(p, f, o);
+}
+ExtractionResult lines_of(std::span<const ScanPoint> p, LineFrame f, const AgglomerativeOptions& o) {
+  return agglomerative_lines(p, f, o);
+}
+ExtractionResult lines_of(std::span<const ScanPoint> p, LineFrame f, const RwhtOptions& o) {
+  return rwht_lines(p, f, o).extraction;
+}
+
+}  // namespace
+
+template <class Extraction>
+ExtractThenMatcher<Extraction>::ExtractThenMatcher(const Options& options) : options_(options) {
+  validate(options_.extraction);
+  validate(options_.matching);
+}
+
+// Scan under the estimate → world-frame lines → map matches.
+template <class Extraction>
+MatchResult ExtractThenMatcher<Extraction>::match(const Scan& scan, const LineMap& map, const Pose2& estimate) const {
   const std::vector<ScanPoint> points = scan_points(scan, estimate);  // eq. 5.2–5.3
-  ExtractionResult extracted = extract(points, LineFrame::world);
+  ExtractionResult extracted = lines_of(points, LineFrame::world, options_.extraction);
   const Eigen::Vector2d pivot = (estimate * scan.sensor_pose).translation();
-  LineToMapMatches m = match_lines_to_map(extracted.lines, map, pivot, matching);
+  LineToMapMatches m = match_lines_to_map(extracted.lines, map, pivot, options_.matching);
   MatchResult result;
   result.matches = std::move(m.matches);
   result.work = extracted.work + m.work;
   return result;
 }
 
-}  // namespace
-
-SplitAndMergeMatcher::SplitAndMergeMatcher(const SplitAndMergeMatcherOptions& options)
-    : options_(options) {
-  validate(options_.extraction);
-  validate(options_.matching);
+template <class Extraction>
+ExtractionResult ExtractThenMatcher<Extraction>::extract_lines(const Scan& scan) const {
+  return lines_of(scan_points(scan, Pose2()), LineFrame::robot, options_.extraction);
 }
 
-MatchResult SplitAndMergeMatcher::match(const Scan& scan, const LineMap& map,
-                                        const Pose2& estimate) const {
-  return extract_then_match(scan, map, estimate, options_.matching,
-                            [this](std::span<const ScanPoint> p, LineFrame f) {
-                              return split_and_merge(p, f, options_.extraction);
-                            });
+template <class Extraction>
+std::string ExtractThenMatcher<Extraction>::name() const {
+  return name_of(options_.extraction);
 }
 
-ExtractionResult SplitAndMergeMatcher::extract_lines(const Scan& scan) const {
-  return split_and_merge(scan_points(scan, Pose2()), LineFrame::robot, options_.extraction);
-}
-
-AgglomerativeMatcher::AgglomerativeMatcher(const AgglomerativeMatcherOptions& options)
-    : options_(options) {
-  validate(options_.extraction);
-  validate(options_.matching);
-}
-
-MatchResult AgglomerativeMatcher::match(const Scan& scan, const LineMap& map,
-                                        const Pose2& estimate) const {
-  return extract_then_match(scan, map, estimate, options_.matching,
-                            [this](std::span<const ScanPoint> p, LineFrame f) {
-                              return agglomerative_lines(p, f, options_.extraction);
-                            });
-}
-
-ExtractionResult AgglomerativeMatcher::extract_lines(const Scan& scan) const {
-  return agglomerative_lines(scan_points(scan, Pose2()), LineFrame::robot, options_.extraction);
-}
-
-RwhtMatcher::RwhtMatcher(const RwhtMatcherOptions& options) : options_(options) {
-  validate(options_.extraction);
-  validate(options_.matching);
-}
-
-MatchResult RwhtMatcher::match(const Scan& scan, const LineMap& map,
-                               const Pose2& estimate) const {
-  return extract_then_match(scan, map, estimate, options_.matching,
-                            [this](std::span<const ScanPoint> p, LineFrame f) {
-                              return rwht_lines(p, f, options_.extraction).extraction;
-                            });
-}
-
-ExtractionResult RwhtMatcher::extract_lines(const Scan& scan) const {
-  return rwht_lines(scan_points(scan, Pose2()), LineFrame::robot, options_.extraction).extraction;
-}
+template class ExtractThenMatcher<SplitAndMergeOptions>;
+template class ExtractThenMatcher<AgglomerativeOptions>;
+template class ExtractThenMatcher<RwhtOptions>;
 
 }  // namespace locbench::laser

@@ -15,56 +15,37 @@
 
 namespace locbench::laser {
 
-struct SplitAndMergeMatcherOptions {
-  SplitAndMergeOptions extraction;
+// A baseline's options: its extractor's (SplitAndMergeOptions, AgglomerativeOptions or
+// RwhtOptions) and the line-to-map matching's.
+template <class Extraction>
+struct ExtractThenMatchOptions {
+  Extraction extraction;
   LineMatchOptions matching;
 };
+using SplitAndMergeMatcherOptions = ExtractThenMatchOptions<SplitAndMergeOptions>;
+using AgglomerativeMatcherOptions = ExtractThenMatchOptions<AgglomerativeOptions>;
+using RwhtMatcherOptions = ExtractThenMatchOptions<RwhtOptions>;
 
-struct AgglomerativeMatcherOptions {
-  AgglomerativeOptions extraction;
-  LineMatchOptions matching;
-};
-
-struct RwhtMatcherOptions {
-  RwhtOptions extraction;
-  LineMatchOptions matching;
-};
-
-// Each constructor throws UsageError for invalid options.
-class SplitAndMergeMatcher final : public SegmentMatcher {
+// One matcher per extractor; the three differ only in the extraction step (and their name).
+template <class Extraction>
+class ExtractThenMatcher final : public SegmentMatcher {
  public:
-  explicit SplitAndMergeMatcher(const SplitAndMergeMatcherOptions& options = {});
-  std::string name() const override { return "split_and_merge"; }
+  using Options = ExtractThenMatchOptions<Extraction>;
+  // Throws UsageError for invalid options.
+  explicit ExtractThenMatcher(const Options& options = {});
+  std::string name() const override;
   MatchResult match(const Scan& scan, const LineMap& map, const Pose2& estimate) const override;
   ExtractionResult extract_lines(const Scan& scan) const;
-  const SplitAndMergeMatcherOptions& options() const { return options_; }
+  const Options& options() const { return options_; }
 
  private:
-  SplitAndMergeMatcherOptions options_;
+  Options options_;
 };
-
-class AgglomerativeMatcher final : public SegmentMatcher {
- public:
-  explicit AgglomerativeMatcher(const AgglomerativeMatcherOptions& options = {});
-  std::string name() const override { return "agglomerative"; }
-  MatchResult match(const Scan& scan, const LineMap& map, const Pose2& estimate) const override;
-  ExtractionResult extract_lines(const Scan& scan) const;
-  const AgglomerativeMatcherOptions& options() const { return options_; }
-
- private:
-  AgglomerativeMatcherOptions options_;
-};
-
-class RwhtMatcher final : public SegmentMatcher {
- public:
-  explicit RwhtMatcher(const RwhtMatcherOptions& options = {});
-  std::string name() const override { return "rwht"; }
-  MatchResult match(const Scan& scan, const LineMap& map, const Pose2& estimate) const override;
-  ExtractionResult extract_lines(const Scan& scan) const;
-  const RwhtMatcherOptions& options() const { return options_; }
-
- private:
-  RwhtMatcherOptions options_;
-};
+using SplitAndMergeMatcher = ExtractThenMatcher<SplitAndMergeOptions>;  // "split_and_merge"
+using AgglomerativeMatcher = ExtractThenMatcher<AgglomerativeOptions>;  // "agglomerative"
+using RwhtMatcher = ExtractThenMatcher<RwhtOptions>;                    // "rwht"
+extern template class ExtractThenMatcher<SplitAndMergeOptions>;
+extern template class ExtractThenMatcher<AgglomerativeOptions>;
+extern template class ExtractThenMatcher<RwhtOptions>;
 
 }  // namespace locbench::laser

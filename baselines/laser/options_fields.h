@@ -61,10 +61,8 @@ void visit_fields(V& v, LineMatchOptions& o) {
 }
 
 // The matchers: {"extraction": {...}, "matching": {...}}.
-template <class V, class M>
-  requires std::same_as<M, SplitAndMergeMatcherOptions> || std::same_as<M, AgglomerativeMatcherOptions> ||
-           std::same_as<M, RwhtMatcherOptions>
-void visit_fields(V& v, M& o) {
+template <class V, class Extraction>
+void visit_fields(V& v, ExtractThenMatchOptions<Extraction>& o) {
   v.nested("extraction", o.extraction, "the extractor's options");
   v.nested("matching", o.matching, "LineMatchOptions");
 }

@@ -11,6 +11,7 @@
 #include "core/angle.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
+#include "core/pose_observability.h"
 
 namespace locbench::laser {
 namespace {
@@ -157,30 +158,6 @@ NormalEquations normal_equations(const std::vector<Correspondence>& cs,
   return n;
 }
 
-// The eigen-decomposition of H in units where θ is scaled by `length` (so its eigenvalues
-// compare like with like), and which directions are observable.
-struct Observability {
-  Eigen::Matrix3d scale;  // diag(1, 1, 1/length): δ = scale · δ'
-  Eigen::Vector3d values;
-  Eigen::Matrix3d vectors;
-  std::array<bool, 3> observable{true, true, true};
-  bool degenerate = false;
-};
-
-Observability observability(const Eigen::Matrix3d& h, double length, double ratio) {
-  Observability o;
-  o.scale = Eigen::Vector3d(1.0, 1.0, 1.0 / length).asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(o.scale * h * o.scale);
-  o.values = es.eigenvalues();
-  o.vectors = es.eigenvectors();
-  const double largest = o.values.maxCoeff();
-  for (int k = 0; k < 3; ++k) {
-    o.observable[static_cast<std::size_t>(k)] = largest > 0.0 && o.values[k] > ratio * largest;
-    if (!o.observable[static_cast<std::size_t>(k)]) o.degenerate = true;
-  }
-  return o;
-}
-
 const char* const kMetricNames[] = {"point_to_line", "point_to_point"};
 
 }  // namespace
@@ -240,7 +217,7 @@ PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& init
     out.iterations = it + 1;
     if (cs.size() < min_n) return out;  // valid = false, motion = initial
     const NormalEquations n = normal_equations(cs, cur, motion, options.metric);
-    const Observability obs = observability(n.h, length, options.degenerate_ratio);
+    const PoseObservability obs = pose_observability(n.h, length, options.degenerate_ratio);
     // Gauss–Newton step in the observable directions only (scaled units).
     const Eigen::Vector3d g = obs.scale * n.g;
     Eigen::Vector3d step = Eigen::Vector3d::Zero();
@@ -258,7 +235,7 @@ PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& init
   }
   // Covariance at the result, on the last correspondences.
   const NormalEquations n = normal_equations(cs, cur, motion, options.metric);
-  const Observability obs = observability(n.h, length, options.degenerate_ratio);
+  const PoseObservability obs = pose_observability(n.h, length, options.degenerate_ratio);
   const double dof = static_cast<double>(n.rows) - 3.0;
   out.residual_rms = std::sqrt(n.ss / static_cast<double>(std::max<std::size_t>(n.rows, 1)));
   const double s2 = std::max(dof > 0.0 ? n.ss / dof : 0.0,

@@ -220,14 +220,10 @@ Log read_carmen_lines(LineReader& reader) {
 
 }  // namespace
 
-Log read_carmen_log(const std::filesystem::path& path) {
-  LineReader reader(path);
-  return read_carmen_lines(reader);
-}
+Log read_carmen_log(const std::filesystem::path& path) { return read_lines_of(path, read_carmen_lines); }
 
 Log parse_carmen_log(std::string_view text, const std::string& source_name) {
-  LineReader reader(text, source_name);
-  return read_carmen_lines(reader);
+  return read_lines_of(text, source_name, read_carmen_lines);
 }
 
 std::map<std::string, std::size_t> skipped_record_counts(const Log& log) {

@@ -68,14 +68,10 @@ CensiPublishedResult read_text(LineReader& reader) {
 
 double CensiPublishedResult::standard_error(int i) const { return std::sqrt(covariance(i, i)); }
 
-CensiPublishedResult read_censi_results(const std::filesystem::path& path) {
-  LineReader reader(path);
-  return read_text(reader);
-}
+CensiPublishedResult read_censi_results(const std::filesystem::path& path) { return read_lines_of(path, read_text); }
 
 CensiPublishedResult parse_censi_results(std::string_view text, const std::string& source_name) {
-  LineReader reader(text, source_name);
-  return read_text(reader);
+  return read_lines_of(text, source_name, read_text);
 }
 
 }  // namespace locbench

@@ -81,14 +81,12 @@ std::vector<WheelSpeedTuple> read_tuple_lines(LineReader& reader) {
 }  // namespace
 
 std::vector<WheelSpeedTuple> read_censi_tuples(const std::filesystem::path& path) {
-  LineReader reader(path);
-  return read_tuple_lines(reader);
+  return read_lines_of(path, read_tuple_lines);
 }
 
 std::vector<WheelSpeedTuple> parse_censi_tuples(std::string_view text,
                                                 const std::string& source_name) {
-  LineReader reader(text, source_name);
-  return read_tuple_lines(reader);
+  return read_lines_of(text, source_name, read_tuple_lines);
 }
 
 }  // namespace locbench

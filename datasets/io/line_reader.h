@@ -49,4 +49,17 @@ class LineReader {
   std::uint64_t length_ = 0;  // decompressed bytes read
 };
 
+// Reads a file, or text in memory, with `read` (a function of LineReader&): both entry points of
+// every line-based format, in one place.
+template <class Read>
+auto read_lines_of(const std::filesystem::path& path, Read read) {
+  LineReader reader(path);
+  return read(reader);
+}
+template <class Read>
+auto read_lines_of(std::string_view text, const std::string& source_name, Read read) {
+  LineReader reader(text, source_name);
+  return read(reader);
+}
+
 }  // namespace locbench

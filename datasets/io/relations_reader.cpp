@@ -20,13 +20,11 @@ std::vector<Relation> read_relation_lines(LineReader& reader) {
 }  // namespace
 
 std::vector<Relation> read_relations(const std::filesystem::path& path) {
-  LineReader reader(path);
-  return read_relation_lines(reader);
+  return read_lines_of(path, read_relation_lines);
 }
 
 std::vector<Relation> parse_relations(std::string_view text, const std::string& source_name) {
-  LineReader reader(text, source_name);
-  return read_relation_lines(reader);
+  return read_lines_of(text, source_name, read_relation_lines);
 }
 
 }  // namespace locbench

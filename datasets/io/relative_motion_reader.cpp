@@ -64,14 +64,10 @@ std::vector<RelativeMotionPair> parse_relative_motion_pairs(std::string_view odo
   return pair_rows(odometry, reference);
 }
 
-std::vector<TickMotion> read_tick_motions(const std::filesystem::path& path) {
-  LineReader reader(path);
-  return tick_rows(reader);
-}
+std::vector<TickMotion> read_tick_motions(const std::filesystem::path& path) { return read_lines_of(path, tick_rows); }
 
 std::vector<TickMotion> parse_tick_motions(std::string_view text, const std::string& source_name) {
-  LineReader reader(text, source_name);
-  return tick_rows(reader);
+  return read_lines_of(text, source_name, tick_rows);
 }
 
 }  // namespace locbench

@@ -34,14 +34,10 @@ Trajectory read_tum_lines(LineReader& reader) {
 
 }  // namespace
 
-Trajectory read_tum(const std::filesystem::path& path) {
-  LineReader reader(path);
-  return read_tum_lines(reader);
-}
+Trajectory read_tum(const std::filesystem::path& path) { return read_lines_of(path, read_tum_lines); }
 
 Trajectory parse_tum(std::string_view text, const std::string& source_name) {
-  LineReader reader(text, source_name);
-  return read_tum_lines(reader);
+  return read_lines_of(text, source_name, read_tum_lines);
 }
 
 }  // namespace locbench

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/angle.h"
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/input_limits.h"
 #include "datasets/sim/motion_program.h"
@@ -20,39 +21,31 @@ using nlohmann::json;
 
 namespace {
 
-constexpr std::array<std::pair<WorldKind, const char*>, 5> kWorldKinds{{
+constexpr EnumNames<WorldKind, 5> kWorldKinds{{
     {WorldKind::kNone, "none"},
     {WorldKind::kRoom, "room"},
     {WorldKind::kCorridor, "corridor"},
     {WorldKind::kFile, "file"},
     {WorldKind::kInline, "inline"},
 }};
-constexpr std::array<std::pair<MotionKind, const char*>, 4> kMotionKinds{{
+constexpr EnumNames<MotionKind, 4> kMotionKinds{{
     {MotionKind::kStraight, "straight"},
     {MotionKind::kUmbmark, "umbmark"},
     {MotionKind::kWaypoints, "waypoints"},
     {MotionKind::kReplay, "replay"},
 }};
-constexpr std::array<std::pair<SlipRateUnit, const char*>, 2> kSlipUnits{{
+constexpr EnumNames<SlipRateUnit, 2> kSlipUnits{{
     {SlipRateUnit::kPerSample, "per_sample"},
     {SlipRateUnit::kPerMetre, "per_metre"},
 }};
-constexpr std::array<std::pair<DisturbanceZone::Shape, const char*>, 2> kZoneShapes{{
+constexpr EnumNames<DisturbanceZone::Shape, 2> kZoneShapes{{
     {DisturbanceZone::Shape::kRectangle, "rectangle"},
     {DisturbanceZone::Shape::kCircle, "circle"},
 }};
 
 template <typename E, std::size_t N>
-const char* name_of(const std::array<std::pair<E, const char*>, N>& table, E value) {
-  for (const auto& [v, name] : table) {
-    if (v == value) return name;
-  }
-  return "?";
-}
-
-template <typename E, std::size_t N>
 void read_enum(StrictJsonReader& o, const char* key,
-               const std::array<std::pair<E, const char*>, N>& table, E& out) {
+               const EnumNames<E, N>& table, E& out) {
   if (!o.has(key)) {
     o.raw(key);
     return;
@@ -81,7 +74,7 @@ void read_group(StrictJsonReader o, O& out) {
 }
 
 json zone_json(const DisturbanceZone& z) {
-  json j = {{"shape", name_of(kZoneShapes, z.shape)}, {"bias", z.bias}};
+  json j = {{"shape", enum_name(kZoneShapes, z.shape)}, {"bias", z.bias}};
   if (z.shape == DisturbanceZone::Shape::kCircle) {
     j["center"] = vec(z.center);
     j["radius"] = z.radius;
@@ -186,9 +179,9 @@ void read_laser(StrictJsonReader o, LaserConfig& l) {
 
 }  // namespace
 
-const char* to_string(WorldKind k) { return name_of(kWorldKinds, k); }
-const char* to_string(MotionKind k) { return name_of(kMotionKinds, k); }
-const char* to_string(SlipRateUnit u) { return name_of(kSlipUnits, u); }
+const char* to_string(WorldKind k) { return enum_name(kWorldKinds, k); }
+const char* to_string(MotionKind k) { return enum_name(kMotionKinds, k); }
+const char* to_string(SlipRateUnit u) { return enum_name(kSlipUnits, u); }
 
 json to_json(const Scenario& s) {
   json segments = json::array();

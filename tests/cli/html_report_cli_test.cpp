@@ -61,17 +61,20 @@ std::vector<std::string> problems(const std::string& log) {
   return out;
 }
 
-// The most line segments in one SVG path of `svg` (a plotted series has many; a frame few).
-std::size_t longest_path(const std::string& svg) {
+// The most `command` letters ('L' line segments, 'M' moves) in one `d` attribute of `svg`.
+std::size_t most_in_one_path(const std::string& svg, char command) {
   std::size_t best = 0;
   for (std::size_t at = svg.find(" d="); at != std::string::npos; at = svg.find(" d=", at + 1)) {
     const char quote = svg[at + 3];
     const std::size_t end = svg.find(quote, at + 4);
     const std::string d = svg.substr(at + 4, end - at - 4);
-    best = std::max<std::size_t>(best, static_cast<std::size_t>(std::count(d.begin(), d.end(), 'L')));
+    best = std::max<std::size_t>(best, static_cast<std::size_t>(std::count(d.begin(), d.end(), command)));
   }
   return best;
 }
+
+// The most line segments in one SVG path of `svg` (a plotted series has many; a frame few).
+std::size_t longest_path(const std::string& svg) { return most_in_one_path(svg, 'L'); }
 
 std::size_t count_of(const std::string& text, const std::string& what) {
   std::size_t n = 0;
@@ -137,17 +140,8 @@ TEST_F(HtmlReport, RendersInChromiumWithItsChartsTablesAndNoConsoleErrors) {
   EXPECT_GT(std::filesystem::file_size(shot), 50'000u);  // a page of tables and charts, not blank
 }
 
-// Separate sub-paths ("M" moves) in the longest run of `d` attributes of `svg`.
-std::size_t most_moves(const std::string& svg) {
-  std::size_t best = 0;
-  for (std::size_t at = svg.find(" d="); at != std::string::npos; at = svg.find(" d=", at + 1)) {
-    const char quote = svg[at + 3];
-    const std::size_t end = svg.find(quote, at + 4);
-    const std::string d = svg.substr(at + 4, end - at - 4);
-    best = std::max<std::size_t>(best, static_cast<std::size_t>(std::count(d.begin(), d.end(), 'M')));
-  }
-  return best;
-}
+// Separate sub-paths ("M" moves) in the `d` attribute of `svg` that has the most.
+std::size_t most_moves(const std::string& svg) { return most_in_one_path(svg, 'M'); }
 
 // laser/real_logs on a user's log (written here): its worst relations drawn as scan pairs —
 // both scans as points, the first scan's lines and the matches as separate segments — before

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/json_file.h"
+#include "tests/options_error_message.h"
 
 namespace locbench::option_fields_test {
 
@@ -53,15 +54,7 @@ void from_json(const nlohmann::json& j, Outer& o) {
   validate(o);
 }
 
-std::string error_of(const nlohmann::json& j) {
-  try {
-    Outer o;
-    from_json(j, o);
-  } catch (const UsageError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string error_of(const nlohmann::json& j) { return testing::options_error_message<Outer>(j); }
 
 TEST(OptionFields, ToJsonWritesEveryFieldOnceWithNestedStructsAndEnumNames) {
   nlohmann::json j;

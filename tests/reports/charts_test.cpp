@@ -103,6 +103,24 @@ TEST(PlotScript, DrawsAPlaneTrajectoryToScaleButNotACorridor) {
   EXPECT_EQ(plot_script(trajectory(10.0, 0.3)).find("set size ratio -1"), std::string::npos);
 }
 
+TEST(SamplePlot, KeepsKindLabelsSamplesAndNoteAndLeavesTheYUnitEmpty) {
+  const Plot p = sample_plot("cdf", "fraction of samples", "c", "errors", "final error", "mm",
+                             {{"a", {}, {3.0, 1.0}}}, "run 0");
+  EXPECT_EQ(p.kind, "cdf");
+  EXPECT_EQ(p.y_label, "fraction of samples");
+  EXPECT_EQ(p.y_unit, "");
+  EXPECT_EQ(p.name, "c");
+  EXPECT_EQ(p.title, "errors");
+  EXPECT_EQ(p.x_label, "final error");
+  EXPECT_EQ(p.x_unit, "mm");
+  ASSERT_EQ(p.series.size(), 1u);
+  EXPECT_EQ(p.series[0].y, (std::vector<double>{3.0, 1.0}));
+  EXPECT_EQ(p.note, "run 0");
+  const Plot h = histogram_plot("h", "errors", "final error", "m", {}, "");
+  EXPECT_EQ(h.kind, "histogram");
+  EXPECT_EQ(h.y_label, "runs");
+}
+
 TEST(PlotScript, DrawsAHistogramAsBoxesOfTheBinnedCounts) {
   const Plot p = histogram_plot("h", "errors", "final error", "m",
                                 {{"a", {}, {0.0, 0.0, 1.0, 1.0, 1.0}}}, "");

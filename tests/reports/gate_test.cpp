@@ -114,14 +114,19 @@ GateRules ratio_rules() {
   return r;
 }
 
-TEST(Gate, ASpeedRatioThatGrowsSignificantlyFails) {
+// The ratio rule's verdict on a baseline and a current run, given BM_Fast's times [µs] in each
+// repetition; BM_Slow takes 100 µs in every one.
+GateVerdict ratio_verdict(const std::vector<double>& base_fast, const std::vector<double>& now_fast) {
   testing::ScratchDir dir;
+  write_bench(dir.file("base.json"), base_fast, std::vector<double>(base_fast.size(), 100.0));
+  write_bench(dir.file("now.json"), now_fast, std::vector<double>(now_fast.size(), 100.0));
+  return evaluate_gate(load_gate_input({dir.file("base.json").string()}),
+                       load_gate_input({dir.file("now.json").string()}), ratio_rules());
+}
+
+TEST(Gate, ASpeedRatioThatGrowsSignificantlyFails) {
   // Baseline ratio ≈ 0.5 over 6 repetitions; now ≈ 0.7 in every repetition.
-  write_bench(dir.file("base.json"), {50, 51, 49, 50, 52, 48}, {100, 100, 100, 100, 100, 100});
-  write_bench(dir.file("now.json"), {70, 71, 69, 70, 72, 68}, {100, 100, 100, 100, 100, 100});
-  const GateVerdict v = evaluate_gate(load_gate_input({dir.file("base.json").string()}),
-                                      load_gate_input({dir.file("now.json").string()}),
-                                      ratio_rules());
+  const GateVerdict v = ratio_verdict({50, 51, 49, 50, 52, 48}, {70, 71, 69, 70, 72, 68});
   ASSERT_EQ(v.ratios.size(), 1u);
   EXPECT_EQ(v.ratios[0].status, "regressed");
   EXPECT_NEAR(*v.ratios[0].old_ratio, 0.5, 1e-12);
@@ -132,14 +137,9 @@ TEST(Gate, ASpeedRatioThatGrowsSignificantlyFails) {
 }
 
 TEST(Gate, ARatioChangeThatIsNoiseIsNotARegression) {
-  testing::ScratchDir dir;
   // Both runs scatter between 0.40 and 0.62: medians 0.525 and 0.595 (+13%, above the 10%
   // tolerance), but the samples overlap too much for the change to be significant.
-  write_bench(dir.file("base.json"), {40, 60, 45, 55, 50, 58}, {100, 100, 100, 100, 100, 100});
-  write_bench(dir.file("now.json"), {42, 62, 61, 59, 44, 60}, {100, 100, 100, 100, 100, 100});
-  const GateVerdict v = evaluate_gate(load_gate_input({dir.file("base.json").string()}),
-                                      load_gate_input({dir.file("now.json").string()}),
-                                      ratio_rules());
+  const GateVerdict v = ratio_verdict({40, 60, 45, 55, 50, 58}, {42, 62, 61, 59, 44, 60});
   EXPECT_NEAR(*v.ratios[0].relative_change, 0.595 / 0.525 - 1.0, 1e-12);
   EXPECT_EQ(v.ratios[0].status, "ok") << v.ratios[0].detail;
   EXPECT_GT(*v.ratios[0].p_value, 0.05);

@@ -29,6 +29,12 @@ Report report_with_chart() {
   return r;
 }
 
+// The page of the sample report, charts drawn by the stub.
+std::string sample_page() {
+  StubRenderer stub;
+  return html_report({testing::sample_report()}, stub.renderer());
+}
+
 TEST(HtmlReport, IsOneSelfContainedPageWithoutScriptOrExternalResources) {
   StubRenderer stub;
   const std::string h = html_report({report_with_chart()}, stub.renderer());
@@ -40,8 +46,7 @@ TEST(HtmlReport, IsOneSelfContainedPageWithoutScriptOrExternalResources) {
 }
 
 TEST(HtmlReport, ShowsMeanWithIts95PercentIntervalPerMetricAndMethod) {
-  StubRenderer stub;
-  const std::string h = html_report({testing::sample_report()}, stub.renderer());
+  const std::string h = sample_page();
   // values 0.10, 0.12, 0.08: mean 0.1, s = 0.02, t(0.975, 2) = 4.303 → ± 0.04968.
   EXPECT_NE(h.find("<td>final_position_error</td><td>odometry_nominal</td><td>sim_corridor</td>"
                    "<td class=n>0.1 ± 0.04968 m</td>"),
@@ -50,8 +55,7 @@ TEST(HtmlReport, ShowsMeanWithIts95PercentIntervalPerMetricAndMethod) {
 }
 
 TEST(HtmlReport, PutsPublishedBesideOursWithTheDifference) {
-  StubRenderer stub;
-  const std::string h = html_report({testing::sample_report()}, stub.renderer());
+  const std::string h = sample_page();
   EXPECT_NE(h.find("Published vs ours: thesis Table 3.2 — final error [mm]"), std::string::npos);
   // 512.3 − 580 = −67.7; 512.3 / 580 = 0.8833.
   EXPECT_NE(h.find("<td>run 1</td><td class=n>580</td><td class=n>512.3</td><td class=n>-67.7</td>"
@@ -62,8 +66,7 @@ TEST(HtmlReport, PutsPublishedBesideOursWithTheDifference) {
 }
 
 TEST(HtmlReport, ListsEstimatesWithIntervalsAndSaysWhichAreNotIdentifiable) {
-  StubRenderer stub;
-  const std::string h = html_report({testing::sample_report()}, stub.renderer());
+  const std::string h = sample_page();
   EXPECT_NE(h.find("<h3>Estimates</h3>"), std::string::npos);
   EXPECT_NE(h.find("<span class=bad>not identifiable</span></td><td class=note>only E_o/E_b is "
                    "determined by the square</td>"),

@@ -10,6 +10,7 @@
 #include "algorithms/diagnosis/diagnosis.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "tests/input_error_message.h"
+#include "tests/options_error_message.h"
 
 namespace locbench::diagnosis {
 namespace {
@@ -77,15 +78,7 @@ TEST(DiagnoseInput, MalformedHistogramsNameWhatWasExpected) {
 }
 
 TEST(DiagnosisOptions, WrongTypesUnknownKeysAndOutOfRangeValuesAreNamed) {
-  const auto err = [](const nlohmann::json& j) {
-    try {
-      DiagnosisOptions o;
-      from_json(j, o);
-    } catch (const UsageError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto err = testing::options_error_message<DiagnosisOptions>;
   // A string used to escape as a library exception ("internal error").
   EXPECT_EQ(err({{"false_alarm", "1%"}}), "DiagnosisOptions.false_alarm: expected a number, found string");
   EXPECT_EQ(err({{"false_alarm", 0.5}}), "DiagnosisOptions.false_alarm: expected a number in (0, 0.5), got 0.5");

@@ -34,6 +34,15 @@ Diagnosis diagnose(const PhysicalEffects& e, std::uint64_t seed, sim::PhysicalOp
   return diagnose_log(sim::generate_physical_log(e, seed, o));
 }
 
+// `cause` is named, its `name` parameter within `tolerance` of `value`, and nothing is left
+// unexplained.
+void expect_explained_by(const Diagnosis& d, const std::string& cause, const std::string& name, double value,
+                         double tolerance) {
+  ASSERT_TRUE(detected(d, cause)) << summary(d);
+  EXPECT_NEAR(parameter(d, cause, name).value, value, tolerance) << summary(d);
+  EXPECT_TRUE(d.unexplained.empty()) << summary(d);
+}
+
 TEST(DiagnosePhysicalLogs, OdometryStampedAQuarterSecondEarlyIsFoundToTwoHundredthsWithNothingLeft) {
   PhysicalEffects e;
   e.odometry_time_offset = -0.25;  // between the 10 Hz samples' multiples only by accident
@@ -48,10 +57,7 @@ TEST(DiagnosePhysicalLogs, OdometryStampedAQuarterSecondEarlyIsFoundToTwoHundred
 TEST(DiagnosePhysicalLogs, AnOffsetOfThirteenHundredthsIsFoundThoughNoMultipleOfTheSamplePeriod) {
   PhysicalEffects e;
   e.odometry_time_offset = -0.13;
-  const Diagnosis d = diagnose(e, 12);
-  ASSERT_TRUE(detected(d, "sensor_time_offset")) << summary(d);
-  EXPECT_NEAR(parameter(d, "sensor_time_offset", "offset_s").value, -0.13, 0.02) << summary(d);
-  EXPECT_TRUE(d.unexplained.empty()) << summary(d);
+  expect_explained_by(diagnose(e, 12), "sensor_time_offset", "offset_s", -0.13, 0.02);
 }
 
 TEST(DiagnosePhysicalLogs, AVelocityScaleBesideAnOffsetIsFittedJointlyWithAFiniteInterval) {
@@ -82,10 +88,7 @@ TEST(DiagnosePhysicalLogs, ADistanceScaleThatGrowsWithSpeedIsNamedSpeedDependent
   PhysicalEffects e;
   e.velocity_scale = 0.98;
   e.speed_slope = -0.1;  // 0.97 at 0.1 m/s, 0.93 at 0.5 m/s
-  const Diagnosis d = diagnose(e, 15);
-  ASSERT_TRUE(detected(d, "speed_dependent_scale")) << summary(d);
-  EXPECT_NEAR(parameter(d, "speed_dependent_scale", "slope_s_per_m").value, -0.1, 0.025) << summary(d);
-  EXPECT_TRUE(d.unexplained.empty()) << summary(d);
+  expect_explained_by(diagnose(e, 15), "speed_dependent_scale", "slope_s_per_m", -0.1, 0.025);
 }
 
 TEST(DiagnosePhysicalLogs, HeavyTailedProcessNoiseIsNamedAndBiasesNoScale) {

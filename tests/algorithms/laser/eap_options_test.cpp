@@ -7,19 +7,12 @@
 
 #include "core/errors.h"
 #include "algorithms/laser/eap_matcher.h"
+#include "tests/options_error_message.h"
 
 namespace locbench::laser {
 namespace {
 
-std::string error_of(const nlohmann::json& j) {
-  try {
-    EapOptions o;
-    from_json(j, o);
-  } catch (const UsageError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string error_of(const nlohmann::json& j) { return testing::options_error_message<EapOptions>(j); }
 
 TEST(EapOptions, JsonRoundTripsEveryField) {
   EapOptions o;

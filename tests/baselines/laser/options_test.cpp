@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "baselines/laser/options_json.h"
+#include "tests/options_error_message.h"
 
 namespace locbench::laser {
 namespace {
@@ -111,15 +112,7 @@ TEST(LaserBaselineOptions, JsonRoundTripKeepsEveryField) {
 }
 
 TEST(LaserBaselineOptions, JsonRejectsUnknownKeysWrongTypesAndBadValuesByName) {
-  RwhtMatcherOptions o;
-  const auto message = [&](const nlohmann::json& j) {
-    try {
-      from_json(j, o);
-    } catch (const UsageError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto message = testing::options_error_message<RwhtMatcherOptions>;
   EXPECT_NE(message({{"extraction", {{"angel_bin", 0.1}}}}).find("angel_bin"), std::string::npos);
   EXPECT_NE(message({{"extraction", {{"range_bin", "5 cm"}}}}).find("range_bin"),
             std::string::npos);
