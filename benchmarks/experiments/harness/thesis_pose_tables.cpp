@@ -50,18 +50,8 @@ std::pair<double, std::size_t> finite_mean(const std::vector<double>& v) {
   return {n ? s / static_cast<double>(n) : std::nan(""), n};
 }
 
-Setup ThesisTableExperiment::setup(const nlohmann::json& config, const McPlan& plan) const {
-  Setup s;
-  from_json(config.at("eap"), s.eap);
-  s.configuration = config;
-  s.configuration["runs"] = plan.runs;
-  return s;
-}
-
-nlohmann::json ThesisTableExperiment::base_config() {
-  nlohmann::json eap;
-  to_json(eap, laser::EapOptions{});
-  return {{"runs", 10}, {"eap", eap}};
+Setup ThesisTableExperiment::setup(const TableOptions& o, const McPlan& plan) const {
+  return {o.eap, recorded(o, plan)};
 }
 
 reports::ExperimentResults ThesisTableExperiment::start(const Setup& s, const McPlan& plan,

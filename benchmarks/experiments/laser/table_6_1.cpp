@@ -9,8 +9,7 @@
 #include "benchmarks/experiments/harness/thesis_pose_tables.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench::experiments::thesis_pose {
-namespace {
+namespace locbench::experiments::thesis_pose::laser_table_6_1 {
 
 constexpr double kTable61[11][2] = {{56.12, 56.17}, {68.41, 60.72}, {60.18, 63.74}, {39.18, 27.35},
                                     {23.25, 9.02},  {32.47, 20.97}, {27.29, 4.65},  {35.94, 16.82},
@@ -18,12 +17,7 @@ constexpr double kTable61[11][2] = {{56.12, 56.17}, {68.41, 60.72}, {60.18, 63.7
 
 class Table61 final : public ThesisTableExperiment {
  public:
-  std::string name() const override { return "laser/table_6_1"; }
-  std::string description() const override {
-    return "Point-to-line vs point-to-point position correction at the thesis pose, estimate "
-           "(2100, 1100) mm, heading error −5…5° (Table 6.1)";
-  }
-  nlohmann::json default_config() const override { return base_config(); }
+  using ThesisTableExperiment::ThesisTableExperiment;
   nlohmann::json run_task(const Setup& s, const McPlan& plan, int k) const override {
     const LineMap room = sim::room_world();
     const Scan scan = thesis_scan(plan.run_seed(k), room);
@@ -79,7 +73,9 @@ class Table61 final : public ThesisTableExperiment {
   }
 };
 
-const Registration<Table61> laser_table_6_1_registration;
+const Registration<Table61> laser_table_6_1_registration(
+    {.name = "laser/table_6_1",
+     .description = "Point-to-line vs point-to-point position correction at the thesis pose, estimate "
+                     "(2100, 1100) mm, heading error −5…5° (Table 6.1)"});
 
-}  // namespace
-}  // namespace locbench::experiments::thesis_pose
+}  // namespace locbench::experiments::thesis_pose::laser_table_6_1

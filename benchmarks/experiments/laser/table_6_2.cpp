@@ -13,8 +13,7 @@
 #include "benchmarks/experiments/harness/thesis_pose_tables.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench::experiments::thesis_pose {
-namespace {
+namespace locbench::experiments::thesis_pose::laser_table_6_2 {
 
 struct Row62 {
   int d_limit_mm;
@@ -30,12 +29,7 @@ constexpr std::size_t kRows62 = std::size(kTable62);
 
 class Table62 final : public ThesisTableExperiment {
  public:
-  std::string name() const override { return "laser/table_6_2"; }
-  std::string description() const override {
-    return "The d_limit sweep 50…400 mm at the thesis pose, estimate (2100, 1100, 43°): matched "
-           "segments, heading and position error after correction (Table 6.2)";
-  }
-  nlohmann::json default_config() const override { return base_config(); }
+  using ThesisTableExperiment::ThesisTableExperiment;
   nlohmann::json run_task(const Setup& s, const McPlan& plan, int k) const override {
     const LineMap room = sim::room_world();
     const Scan scan = thesis_scan(plan.run_seed(k), room);
@@ -119,7 +113,9 @@ class Table62 final : public ThesisTableExperiment {
   }
 };
 
-const Registration<Table62> laser_table_6_2_registration;
+const Registration<Table62> laser_table_6_2_registration(
+    {.name = "laser/table_6_2",
+     .description = "The d_limit sweep 50…400 mm at the thesis pose, estimate (2100, 1100, 43°): matched "
+                     "segments, heading and position error after correction (Table 6.2)"});
 
-}  // namespace
-}  // namespace locbench::experiments::thesis_pose
+}  // namespace locbench::experiments::thesis_pose::laser_table_6_2

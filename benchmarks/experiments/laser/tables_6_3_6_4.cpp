@@ -10,8 +10,7 @@
 #include "benchmarks/experiments/harness/thesis_pose_tables.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench::experiments::thesis_pose {
-namespace {
+namespace locbench::experiments::thesis_pose::laser_tables_6_3_6_4 {
 
 struct Row63 {
   double x_mm, y_mm, theta_deg;  // the estimate
@@ -25,12 +24,7 @@ const Row63 kTable63[] = {{2080, 1080, 42, -0.18, 54.96}, {2060, 1085, 43, -0.07
 
 class Tables6364 final : public ThesisTableExperiment {
  public:
-  std::string name() const override { return "laser/tables_6_3_6_4"; }
-  std::string description() const override {
-    return "Heading and position correction from ten perturbed estimates at the thesis pose "
-           "(Tables 6.3/6.4): errors after, and after/before ratios";
-  }
-  nlohmann::json default_config() const override { return base_config(); }
+  using ThesisTableExperiment::ThesisTableExperiment;
   nlohmann::json run_task(const Setup& s, const McPlan& plan, int k) const override {
     const LineMap room = sim::room_world();
     const Scan scan = thesis_scan(plan.run_seed(k), room);
@@ -90,7 +84,9 @@ class Tables6364 final : public ThesisTableExperiment {
   }
 };
 
-const Registration<Tables6364> laser_tables_6_3_6_4_registration;
+const Registration<Tables6364> laser_tables_6_3_6_4_registration(
+    {.name = "laser/tables_6_3_6_4",
+     .description = "Heading and position correction from ten perturbed estimates at the thesis pose "
+                     "(Tables 6.3/6.4): errors after, and after/before ratios"});
 
-}  // namespace
-}  // namespace locbench::experiments::thesis_pose
+}  // namespace locbench::experiments::thesis_pose::laser_tables_6_3_6_4
