@@ -23,6 +23,11 @@
 
 namespace locbench::experiments::calibration_identifiability {
 
+const ExperimentInfo kInfo{
+    .name = "calibration/identifiability",
+    .description = "UMBmark identifiability on simulated robots: E_d, E_b, E_o swept alone and together; "
+                   "estimates of classic and improved UMBmark against the truth, with Fisher findings"};
+
 struct IdentifiabilityCase {
   std::string name;
   UmbmarkErrorParams truth;
@@ -169,9 +174,6 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Options, Id
   }
 };
 
-const Registration<CalibrationIdentifiability> calibration_identifiability_registration(
-    {.name = "calibration/identifiability",
-     .description = "UMBmark identifiability on simulated robots: E_d, E_b, E_o swept alone and together; "
-                     "estimates of classic and improved UMBmark against the truth, with Fisher findings"});
+const Registration<CalibrationIdentifiability> calibration_identifiability_registration(kInfo);
 
 }  // namespace locbench::experiments::calibration_identifiability

@@ -24,6 +24,11 @@
 
 namespace locbench::experiments::calibration_real_logs {
 
+const ExperimentInfo kInfo{
+    .name = "calibration/real_logs",
+    .description = "ML odometry calibration on real data: Censi's Khepera sets beside the published "
+                   "solutions; Freiburg and MRCLAM calibrated on one half, evaluated on the other"};
+
 reports::MetricResult one_value(const std::string& method, const std::string& dataset,
                                 const std::string& variant, const std::string& unit,
                                 double value) {
@@ -161,45 +166,38 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
           h.calibrated_translation.rmse, -100 * h.translation_rmse_reduction,
           h.nominal_rotation.rmse, h.calibrated_rotation.rmse, -100 * h.rotation_rmse_reduction));
     };
-    // Loads one real log; a missing catalog log is a skipped case (nullopt).
-    auto load = [&](const RealLogSpec& spec) -> std::optional<LoadedRealLog> {
-      progress();
-      LoadedRealLog loaded = load_real_log(spec, options.data_root);
-      if (loaded.status == "failed") throw InputError(loaded.dataset.path, 0, loaded.reason);
-      if (loaded.status != "ok") {
-        out.cases.push_back({"calibration/" + spec.name, loaded.status,
-                             "dataset not found at " + loaded.dataset.path});
-        return std::nullopt;
+    // Calibrates on each log of `specs` that loads; a missing catalog log is a skipped case.
+    auto each_loaded = [&](const std::vector<RealLogSpec>& specs, const MlCalibrationOptions& o,
+                           const auto& samples_of) {
+      for (const RealLogSpec& spec : specs) {
+        progress();
+        LoadedRealLog loaded = load_real_log(spec, options.data_root);
+        if (loaded.status == "failed") throw InputError(loaded.dataset.path, 0, loaded.reason);
+        if (loaded.status != "ok") {
+          out.cases.push_back({"calibration/" + spec.name, loaded.status,
+                               "dataset not found at " + loaded.dataset.path});
+          continue;
+        }
+        held_out(spec.name, samples_of(loaded.log), o, loaded.dataset.path);
       }
-      return loaded;
     };
-    for (const RealLogSpec& spec : rel_logs) {
-      const auto loaded = load(spec);
-      if (!loaded) continue;
-      RelationSampleOptions local;
-      local.max_duration = c.relation_max_duration_s;
-      MlCalibrationOptions o;
-      o.estimate_rotation_per_distance = true;
-      held_out(spec.name, calibration_data_from_relations(loaded->log, local), o, loaded->dataset.path);
-    }
-    for (const RealLogSpec& spec : vel_logs) {
-      const auto loaded = load(spec);
-      if (!loaded) continue;
-      SampleIntervalOptions intervals;
-      intervals.odometry_time_offset = c.velocity_time_offset_s;
-      MlCalibrationOptions o;
-      o.noise.kind = NoiseModelKind::kPerComponent;
-      held_out(spec.name, calibration_data_from_velocities(loaded->log, intervals), o,
-               loaded->dataset.path);
-    }
+    RelationSampleOptions local;
+    local.max_duration = c.relation_max_duration_s;
+    MlCalibrationOptions with_rotation_per_distance;
+    with_rotation_per_distance.estimate_rotation_per_distance = true;
+    each_loaded(rel_logs, with_rotation_per_distance,
+                [&](const Log& log) { return calibration_data_from_relations(log, local); });
+    SampleIntervalOptions intervals;
+    intervals.odometry_time_offset = c.velocity_time_offset_s;
+    MlCalibrationOptions per_component;
+    per_component.noise.kind = NoiseModelKind::kPerComponent;
+    each_loaded(vel_logs, per_component,
+                [&](const Log& log) { return calibration_data_from_velocities(log, intervals); });
     options.report_progress(1.0);
     return out;
   }
 };
 
-const Registration<CalibrationRealLogs> calibration_real_logs_registration(
-    {.name = "calibration/real_logs",
-     .description = "ML odometry calibration on real data: Censi's Khepera sets beside the published "
-                     "solutions; Freiburg and MRCLAM calibrated on one half, evaluated on the other"});
+const Registration<CalibrationRealLogs> calibration_real_logs_registration(kInfo);
 
 }  // namespace locbench::experiments::calibration_real_logs

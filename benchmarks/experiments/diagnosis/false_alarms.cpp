@@ -16,6 +16,12 @@
 
 namespace locbench::experiments::diagnosis_false_alarms {
 
+const ExperimentInfo kInfo{
+    .name = "diagnosis/false_alarms",
+    .description = "False alarms of the diagnosis on logs with nothing hidden, from the window-model generator and from the "
+                   "physical generator (goal ≤ 1% per log)",
+    .in_default_suite = false};  // 400 diagnoses; `locbench run diagnosis/false_alarms`
+
 struct Options {
   int runs = 200;
   double false_alarm = 0.01;
@@ -95,10 +101,6 @@ class DiagnosisFalseAlarms final : public MonteCarloExperiment<Options, FalseAla
   }
 };
 
-const Registration<DiagnosisFalseAlarms> diagnosis_false_alarms_registration(
-    {.name = "diagnosis/false_alarms",
-     .description = "False alarms of the diagnosis on logs with nothing hidden, from the window-model generator and from the "
-                     "physical generator (goal ≤ 1% per log)",
-     .in_default_suite = false});  // 400 diagnoses; `locbench run diagnosis/false_alarms`
+const Registration<DiagnosisFalseAlarms> diagnosis_false_alarms_registration(kInfo);
 
 }  // namespace locbench::experiments::diagnosis_false_alarms

@@ -18,6 +18,12 @@
 
 namespace locbench::experiments::diagnosis_power {
 
+const ExperimentInfo kInfo{
+    .name = "diagnosis/power",
+    .description = "Hidden effects in simulated logs: detection power against effect size, interval coverage, "
+                   "held-out gain, and the false-alarm rate on logs with nothing hidden",
+    .in_default_suite = false};  // ~1 min on 2 cores; `locbench run diagnosis`
+
 struct PowerCase {
   std::string id;  // "" for the null case
   double magnitude = 0.0;
@@ -209,10 +215,6 @@ class DiagnosisPower final : public MonteCarloExperiment<Options, PowerSetup> {
   }
 };
 
-const Registration<DiagnosisPower> diagnosis_power_registration(
-    {.name = "diagnosis/power",
-     .description = "Hidden effects in simulated logs: detection power against effect size, interval coverage, "
-                     "held-out gain, and the false-alarm rate on logs with nothing hidden",
-     .in_default_suite = false});  // ~1 min on 2 cores; `locbench run diagnosis`
+const Registration<DiagnosisPower> diagnosis_power_registration(kInfo);
 
 }  // namespace locbench::experiments::diagnosis_power

@@ -24,6 +24,11 @@
 
 namespace locbench::experiments::diagnosis_real_logs {
 
+const ExperimentInfo kInfo{
+    .name = "diagnosis/real_logs",
+    .description = "What the nominal odometry model gets wrong on real logs (Freiburg relations, MRCLAM Vicon) and "
+                   "on the thesis's Table 3.1 histogram: named causes, fitted parameters, held-out gain"};
+
 struct Options {
   nlohmann::json datasets = freiburg_and_mrclam_logs();
   double false_alarm = 0.01;
@@ -173,9 +178,6 @@ class DiagnosisRealLogs final : public OptionsExperiment<Options> {
   }
 };
 
-const Registration<DiagnosisRealLogs> diagnosis_real_logs_registration(
-    {.name = "diagnosis/real_logs",
-     .description = "What the nominal odometry model gets wrong on real logs (Freiburg relations, MRCLAM Vicon) and "
-                     "on the thesis's Table 3.1 histogram: named causes, fitted parameters, held-out gain"});
+const Registration<DiagnosisRealLogs> diagnosis_real_logs_registration(kInfo);
 
 }  // namespace locbench::experiments::diagnosis_real_logs

@@ -33,6 +33,12 @@
 
 namespace locbench::experiments::diagnosis_sim_to_real {
 
+const ExperimentInfo kInfo{
+    .name = "diagnosis/sim_to_real",
+    .description = "The diagnosis run back through the simulator: each real log's synthetic twin (its odometry replayed, truth "
+                   "simulated) under the nominal and under the extended model, compared with the log by the Kolmogorov–Smirnov "
+                   "distance of the window residuals (1 s and 10 s windows; relations on Freiburg), per component"};
+
 // The records of `log` with time in [from, to] (relations: both ends inside).
 Log restrict_log(const Log& log, double from, double to) {
   Log out;
@@ -241,10 +247,6 @@ class DiagnosisSimToReal final : public OptionsExperiment<Options> {
   }
 };
 
-const Registration<DiagnosisSimToReal> diagnosis_sim_to_real_registration(
-    {.name = "diagnosis/sim_to_real",
-     .description = "The diagnosis run back through the simulator: each real log's synthetic twin (its odometry replayed, truth "
-                     "simulated) under the nominal and under the extended model, compared with the log by the Kolmogorov–Smirnov "
-                     "distance of the window residuals (1 s and 10 s windows; relations on Freiburg), per component"});
+const Registration<DiagnosisSimToReal> diagnosis_sim_to_real_registration(kInfo);
 
 }  // namespace locbench::experiments::diagnosis_sim_to_real

@@ -183,8 +183,8 @@ class Describe : public option_fields::Describe {
   template <class T>
   void field(const char* name, const std::vector<T>& value, const char* unit, Range range,
              const char* meaning) {
-    std::string allowed = "list of " + list_item_expected<T>();
-    if constexpr (std::is_arithmetic_v<T>) allowed += "s, each " + range.text();
+    std::string allowed = "list; each item " + list_item_expected<T>();
+    if constexpr (std::is_arithmetic_v<T>) allowed += ", " + range.text();
     rows_.push_back({name, unit, list_json(value).dump(), allowed, meaning});
   }
   void field(const char* name, const nlohmann::json& value, const char* unit, Range, const char* meaning) {

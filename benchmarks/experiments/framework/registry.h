@@ -3,12 +3,12 @@
 // Google Benchmark's BENCHMARK() works:
 //
 //   namespace locbench::experiments::odometry_sim_corridor {
+//   const ExperimentInfo kInfo{.name = "odometry/sim_corridor", .description = "…"};
 //   class OdometrySimCorridor final : public MonteCarloExperiment<Options, Setup> { … };
-//   const Registration<OdometrySimCorridor> odometry_sim_corridor_registration(
-//       {.name = "odometry/sim_corridor", .description = "…"});   // or …("constructor arg")
-//   }  // namespace locbench::experiments::odometry_sim_corridor
+//   const Registration<OdometrySimCorridor> odometry_sim_corridor_registration(kInfo);
+//   }  // namespace locbench::experiments::odometry_sim_corridor     (or …("constructor arg"))
 //
-// The name and description are data (ExperimentInfo), stated once, here. The file's own types
+// The name and description are data (ExperimentInfo), stated once, at the top of the file. The file's own types
 // and the registrar live in a namespace named after the file (<topic>_<name>), not an anonymous
 // one, so that files batched into one unity-build unit never define the same name twice. It runs while the program loads and
 // stores a factory; no experiment is constructed then. all_experiments() (experiment.h) makes each one once, on first use, sorted by name, so the

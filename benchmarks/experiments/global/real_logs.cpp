@@ -23,6 +23,12 @@
 
 namespace locbench::experiments::global_real_logs {
 
+const ExperimentInfo kInfo{
+    .name = "global/real_logs",
+    .description = "MCL and grid Markov from an unknown start vs the Kalman trackers on real Freiburg scans "
+                   "(ACES, Intel, MIT CSAIL) against a line map built from each log's own first window",
+    .in_default_suite = false};
+
 using global::ScanStep;
 
 struct Setup {
@@ -274,10 +280,6 @@ class GlobalRealLogs final : public MonteCarloExperiment<Options, Setup> {
   }
 };
 
-const Registration<GlobalRealLogs> global_real_logs_registration(
-    {.name = "global/real_logs",
-     .description = "MCL and grid Markov from an unknown start vs the Kalman trackers on real Freiburg scans "
-                     "(ACES, Intel, MIT CSAIL) against a line map built from each log's own first window",
-     .in_default_suite = false});
+const Registration<GlobalRealLogs> global_real_logs_registration(kInfo);
 
 }  // namespace locbench::experiments::global_real_logs

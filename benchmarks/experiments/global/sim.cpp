@@ -28,6 +28,13 @@
 
 namespace locbench::experiments::global_sim {
 
+const ExperimentInfo kInfo{
+    .name = "global/sim",
+    .description = "Global localization (MCL, grid Markov) from an unknown start, tracking once converged "
+                   "and kidnap recovery, against the chapter-6 EKF and the line-feature Kalman localizer "
+                   "started at the truth; simulated room, corridor and random rooms",
+    .in_default_suite = false};  // ~1 min in Release
+
 using global::ScanStep;
 
 const char* const kWorlds[] = {"room", "corridor", "random_room"};
@@ -296,11 +303,6 @@ class GlobalSim final : public MonteCarloExperiment<Options, Setup> {
   }
 };
 
-const Registration<GlobalSim> global_sim_registration(
-    {.name = "global/sim",
-     .description = "Global localization (MCL, grid Markov) from an unknown start, tracking once converged "
-                     "and kidnap recovery, against the chapter-6 EKF and the line-feature Kalman localizer "
-                     "started at the truth; simulated room, corridor and random rooms",
-     .in_default_suite = false});  // ~1 min in Release
+const Registration<GlobalSim> global_sim_registration(kInfo);
 
 }  // namespace locbench::experiments::global_sim

@@ -12,6 +12,12 @@
 
 namespace locbench::experiments::global_topological_example {
 
+const ExperimentInfo kInfo{
+    .name = "global/topological_example",
+    .description = "Markov localization on the slides' topological map (Dervish sensor table): prior "
+                   "1.0 / 0.2, action 1-2 → 2 and 2-3 → 3, 3-4, 4, observation 'open hallway left, open "
+                   "door right' → 0.324 at node 2 and 0.018 at node 4 (18 : 1)"};
+
 using namespace locbench::global;
 
 struct Options {
@@ -83,10 +89,6 @@ class GlobalTopological final : public OptionsExperiment<Options> {
   }
 };
 
-const Registration<GlobalTopological> global_topological_example_registration(
-    {.name = "global/topological_example",
-     .description = "Markov localization on the slides' topological map (Dervish sensor table): prior "
-                     "1.0 / 0.2, action 1-2 → 2 and 2-3 → 3, 3-4, 4, observation 'open hallway left, open "
-                     "door right' → 0.324 at node 2 and 0.018 at node 4 (18 : 1)"});
+const Registration<GlobalTopological> global_topological_example_registration(kInfo);
 
 }  // namespace locbench::experiments::global_topological_example

@@ -7,6 +7,7 @@
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
+#include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
 
 namespace locbench::experiments::thesis_pose {
@@ -52,6 +53,19 @@ std::pair<double, std::size_t> finite_mean(const std::vector<double>& v) {
 
 Setup ThesisTableExperiment::setup(const TableOptions& o, const McPlan& plan) const {
   return {o.eap, recorded(o, plan)};
+}
+
+nlohmann::json ThesisTableExperiment::run_task(const Setup& s, const McPlan& plan, int k) const {
+  const LineMap room = sim::room_world();
+  return Record{row_values(s, thesis_scan(plan.run_seed(k), room), room)};
+}
+
+reports::ExperimentResults ThesisTableExperiment::summarise(
+    const Setup& s, const McPlan& plan, const std::vector<nlohmann::json>& records) const {
+  const auto recs = records_of(records);
+  reports::ExperimentResults out = start(s, plan, recs.size());
+  tabulate(recs, out);
+  return out;
 }
 
 reports::ExperimentResults ThesisTableExperiment::start(const Setup& s, const McPlan& plan,

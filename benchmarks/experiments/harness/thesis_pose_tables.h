@@ -71,8 +71,16 @@ class ThesisTableExperiment : public MonteCarloExperiment<TableOptions, Setup> {
  public:
   using MonteCarloExperiment::MonteCarloExperiment;
   Setup setup(const TableOptions& o, const McPlan& plan) const override;
+  // Run k: one scan of the room from the thesis pose, then the table's rows.
+  nlohmann::json run_task(const Setup& s, const McPlan& plan, int k) const final;
+  reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
+                                       const std::vector<nlohmann::json>& records) const final;
 
  protected:
+  // One run's numbers, the rows' flattened (Record::values), from its scan of the room.
+  virtual std::vector<double> row_values(const Setup& s, const Scan& scan, const LineMap& room) const = 0;
+  // The table's metrics, published comparisons and notes from every run's record.
+  virtual void tabulate(const std::vector<Record>& recs, reports::ExperimentResults& out) const = 0;
   reports::ExperimentResults start(const Setup& s, const McPlan& plan, std::size_t runs) const;
   // Metric over runs from column `col` of rows of width `width`, row `row`.
   static std::vector<double> column(const std::vector<Record>& recs, std::size_t width,

@@ -23,6 +23,12 @@
 
 namespace locbench::experiments::laser_matcher_accuracy {
 
+const ExperimentInfo kInfo{
+    .name = "laser/matcher_accuracy",
+    .description = "EAP vs split-and-merge, agglomerative and RWHT matchers on the 8 m room and random "
+                   "rooms: segment detection, line errors, point precision/recall under pose error, "
+                   "range noise, clutter and dropouts (Monte-Carlo)"};
+
 const char* const kWorlds[] = {"room", "random_room"};
 constexpr int kWorldCount = 2;
 const char* const kMetricNames[] = {"segment_recall", "false_matches", "rho_error_rms",
@@ -268,10 +274,6 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
   }
 };
 
-const Registration<LaserMatcherAccuracy> laser_matcher_accuracy_registration(
-    {.name = "laser/matcher_accuracy",
-     .description = "EAP vs split-and-merge, agglomerative and RWHT matchers on the 8 m room and random "
-                     "rooms: segment detection, line errors, point precision/recall under pose error, "
-                     "range noise, clutter and dropouts (Monte-Carlo)"});
+const Registration<LaserMatcherAccuracy> laser_matcher_accuracy_registration(kInfo);
 
 }  // namespace locbench::experiments::laser_matcher_accuracy

@@ -29,6 +29,13 @@
 
 namespace locbench::experiments::laser_real_logs {
 
+const ExperimentInfo kInfo{
+    .name = "laser/real_logs",
+    .description = "Scan-to-previous-scan correction on real logs (Freiburg ACES, Intel, MIT CSAIL, or "
+                   "--log/--relations): relative-pose error of the thesis's matchers + chapter-6 least "
+                   "squares, EAP + iterated point-to-line, PL-ICP and point-to-point ICP against the "
+                   ".relations, beside raw odometry"};
+
 struct Options {
   int runs = 1;  // not Monte-Carlo: one task per dataset
   nlohmann::json datasets = freiburg_logs();
@@ -476,11 +483,6 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
   }
 };
 
-const Registration<LaserRealLogs> laser_real_logs_registration(
-    {.name = "laser/real_logs",
-     .description = "Scan-to-previous-scan correction on real logs (Freiburg ACES, Intel, MIT CSAIL, or "
-                     "--log/--relations): relative-pose error of the thesis's matchers + chapter-6 least "
-                     "squares, EAP + iterated point-to-line, PL-ICP and point-to-point ICP against the "
-                     ".relations, beside raw odometry"});
+const Registration<LaserRealLogs> laser_real_logs_registration(kInfo);
 
 }  // namespace locbench::experiments::laser_real_logs

@@ -23,6 +23,11 @@
 
 namespace locbench::experiments::laser_rwht_bins {
 
+const ExperimentInfo kInfo{
+    .name = "laser/rwht_bins",
+    .description = "RWHT accuracy against cost across angle and range bin sizes (room, thesis pose): "
+                   "peak-cell and refitted line errors, segments found, accumulator cells, work"};
+
 const Pose2 kPose(2.0, 1.0, deg(46.0));
 constexpr int kValues = 7;  // per bin pair: peak |Δρ|, |Δβ|, refit |Δρ|, |Δβ|, recall, cells, work
 const char* const kNames[kValues] = {"peak_rho_error", "peak_beta_error", "refit_rho_error",
@@ -175,9 +180,6 @@ class LaserRwhtBins final : public MonteCarloExperiment<Options, Setup> {
   }
 };
 
-const Registration<LaserRwhtBins> laser_rwht_bins_registration(
-    {.name = "laser/rwht_bins",
-     .description = "RWHT accuracy against cost across angle and range bin sizes (room, thesis pose): "
-                     "peak-cell and refitted line errors, segments found, accumulator cells, work"});
+const Registration<LaserRwhtBins> laser_rwht_bins_registration(kInfo);
 
 }  // namespace locbench::experiments::laser_rwht_bins

@@ -32,6 +32,11 @@
 
 namespace locbench::experiments::laser_tracking_table_6_5 {
 
+const ExperimentInfo kInfo{
+    .name = "laser/tracking_table_6_5",
+    .description = "Corridor tracking, 200 mm/s, 5 Hz, 10 m (Table 6.5): chapter-6 EKF with EAP or "
+                   "split-and-merge matches vs the slides' line-feature Kalman localizer vs odometry"};
+
 enum Method { kOdometry, kEkfEap, kEkfSplitMerge, kLineKalman, kMethods };
 const char* const kMethodNames[kMethods] = {"odometry", "ekf_eap", "ekf_split_and_merge",
                                             "kalman_line_features"};
@@ -238,9 +243,6 @@ class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
   }
 };
 
-const Registration<LaserTracking> laser_tracking_table_6_5_registration(
-    {.name = "laser/tracking_table_6_5",
-     .description = "Corridor tracking, 200 mm/s, 5 Hz, 10 m (Table 6.5): chapter-6 EKF with EAP or "
-                     "split-and-merge matches vs the slides' line-feature Kalman localizer vs odometry"});
+const Registration<LaserTracking> laser_tracking_table_6_5_registration(kInfo);
 
 }  // namespace locbench::experiments::laser_tracking_table_6_5

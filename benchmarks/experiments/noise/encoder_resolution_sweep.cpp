@@ -16,6 +16,11 @@
 
 namespace locbench::experiments::noise_encoder_resolution_sweep {
 
+const ExperimentInfo kInfo{
+    .name = "noise/encoder_resolution_sweep",
+    .description = "The four compass-aided filters from Pioneer-like (0.0152 mm/tick) to Trilobot-like "
+                   "(12.64 mm/tick) encoders: final error and NEES consistency"};
+
 struct SweepSetup {
   std::vector<double> resolutions;      // [m per tick]
   std::vector<sim::Scenario> scenarios;  // one per resolution
@@ -83,9 +88,6 @@ class EncoderResolutionSweep final : public MonteCarloExperiment<Options, SweepS
   }
 };
 
-const Registration<EncoderResolutionSweep> noise_encoder_resolution_sweep_registration(
-    {.name = "noise/encoder_resolution_sweep",
-     .description = "The four compass-aided filters from Pioneer-like (0.0152 mm/tick) to Trilobot-like "
-                     "(12.64 mm/tick) encoders: final error and NEES consistency"});
+const Registration<EncoderResolutionSweep> noise_encoder_resolution_sweep_registration(kInfo);
 
 }  // namespace locbench::experiments::noise_encoder_resolution_sweep

@@ -12,6 +12,11 @@
 
 namespace locbench::experiments::noise_quantization_sigma {
 
+const ExperimentInfo kInfo{
+    .name = "noise/quantization_sigma",
+    .description = "Gaussian stand-in of the encoder quantization error (eq. 4.27–4.35): exact L2-optimal "
+                   "σ and moment-matched σ = C/√6 beside the published σ = 5.00 mm"};
+
 struct Options {
   std::vector<double> resolutions_mm = {12.64, 12.70};
   std::vector<double> published_sigma_mm = {5.00, 5.00};
@@ -76,9 +81,6 @@ class QuantizationSigma final : public OptionsExperiment<Options> {
   }
 };
 
-const Registration<QuantizationSigma> noise_quantization_sigma_registration(
-    {.name = "noise/quantization_sigma",
-     .description = "Gaussian stand-in of the encoder quantization error (eq. 4.27–4.35): exact L2-optimal "
-                     "σ and moment-matched σ = C/√6 beside the published σ = 5.00 mm"});
+const Registration<QuantizationSigma> noise_quantization_sigma_registration(kInfo);
 
 }  // namespace locbench::experiments::noise_quantization_sigma

@@ -23,6 +23,11 @@
 
 namespace locbench::experiments::noise_real_logs {
 
+const ExperimentInfo kInfo{
+    .name = "noise/real_logs",
+    .description = "Consistency (NEES) of the odometry noise models on real odometry: Freiburg against "
+                   ".relations, MRCLAM against Vicon windows (no compass in any real log)"};
+
 enum class Model { kAdaptive, kFixedQ };
 
 // NEES of one relation: odometry integrated from t1 to t2 in the frame at t1, covariance
@@ -93,8 +98,6 @@ class NoiseRealLogs final : public OptionsExperiment<Options> {
     OdometryNoiseOptions adaptive;
     adaptive.k_left = adaptive.k_right = c.adaptive.k;
     adaptive.sigma_left = adaptive.sigma_right = c.adaptive.sigma_m;
-    const Eigen::Vector3d fixed_q = c.fixed_q_diag;
-    const double track = c.virtual_track_m;
     const auto specs = real_log_specs(c.datasets, name());
     const ChiSquareInterval band = average_chi_square_interval(3, 1, 0.95);
     for_each_real_log(specs, options, "noise", out,
@@ -119,7 +122,7 @@ class NoiseRealLogs final : public OptionsExperiment<Options> {
         std::size_t inside = 0;
         for (const Relation& r : rel) {
           const auto v = relation_nees(odom, r, m == 0 ? Model::kAdaptive : Model::kFixedQ,
-                                       adaptive, fixed_q, track);
+                                       adaptive, c.fixed_q_diag, c.virtual_track_m);
           if (!v || !std::isfinite(*v)) continue;
           nees.push_back(*v);
           if (band.contains(*v)) ++inside;
@@ -148,9 +151,6 @@ class NoiseRealLogs final : public OptionsExperiment<Options> {
   }
 };
 
-const Registration<NoiseRealLogs> noise_real_logs_registration(
-    {.name = "noise/real_logs",
-     .description = "Consistency (NEES) of the odometry noise models on real odometry: Freiburg against "
-                     ".relations, MRCLAM against Vicon windows (no compass in any real log)"});
+const Registration<NoiseRealLogs> noise_real_logs_registration(kInfo);
 
 }  // namespace locbench::experiments::noise_real_logs

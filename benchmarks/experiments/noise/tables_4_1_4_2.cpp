@@ -21,6 +21,11 @@
 
 namespace locbench::experiments::noise_tables_4_1_4_2 {
 
+const ExperimentInfo kInfo{
+    .name = "noise/tables_4_1_4_2",
+    .description = "Fixed-Q EKF vs adaptive noise model vs Sage–Husa AEKF vs VB-AKF on simulated Trilobot "
+                   "corridor runs: final error (Tables 4.1/4.2), spread, NEES/NIS consistency"};
+
 // Error against distance travelled is sampled every kDistanceStep metres of the true path.
 constexpr double kDistanceStep = 0.25;  // [m]
 
@@ -176,9 +181,6 @@ class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {
   }
 };
 
-const Registration<NoiseTables> noise_tables_4_1_4_2_registration(
-    {.name = "noise/tables_4_1_4_2",
-     .description = "Fixed-Q EKF vs adaptive noise model vs Sage–Husa AEKF vs VB-AKF on simulated Trilobot "
-                     "corridor runs: final error (Tables 4.1/4.2), spread, NEES/NIS consistency"});
+const Registration<NoiseTables> noise_tables_4_1_4_2_registration(kInfo);
 
 }  // namespace locbench::experiments::noise_tables_4_1_4_2

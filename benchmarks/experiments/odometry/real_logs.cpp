@@ -18,6 +18,11 @@
 
 namespace locbench::experiments::odometry_real_logs {
 
+const ExperimentInfo kInfo{
+    .name = "odometry/real_logs",
+    .description = "Raw odometry error on real logs: relative-motion error on the Freiburg relations "
+                   "and velocity dead reckoning against MRCLAM Vicon ground truth over fixed windows"};
+
 Trajectory truth_trajectory(const Log& log) {
   Trajectory t;
   for (const TruePose& p : log.truth) t.push_back({p.t, p.pose});
@@ -43,8 +48,6 @@ class OdometryRealLogs final : public OptionsExperiment<Options> {
   reports::ExperimentResults run_with(const Options& c, const RunOptions& options) const override {
     reports::ExperimentResults out = start_results(options_json(c));
     const auto specs = real_log_specs(c.datasets, name());
-    const double window = c.mrclam_window_s;
-    const double local_dt = c.local_relation_max_dt_s;
     for_each_real_log(specs, options, "odometry", out,
                       [&](const RealLogSpec& spec, const LoadedRealLog& loaded,
                           reports::ExperimentResults& res) {
@@ -55,10 +58,10 @@ class OdometryRealLogs final : public OptionsExperiment<Options> {
       std::string method = "odometry_raw", over = "freiburg_relations";
       std::string suffix;
       if (reference.empty() && !log.truth.empty()) {
-        reference = window_relations(truth_trajectory(log), window);
+        reference = window_relations(truth_trajectory(log), c.mrclam_window_s);
         method = "odometry_velocity";
         over = "ground_truth_windows";
-        suffix = "_" + std::to_string(static_cast<int>(std::lround(window))) + "s";
+        suffix = "_" + std::to_string(static_cast<int>(std::lround(c.mrclam_window_s))) + "s";
       }
       const PoseErrors err = relation_error(odom, reference);
       if (err.translation.empty()) {
@@ -80,7 +83,7 @@ class OdometryRealLogs final : public OptionsExperiment<Options> {
       // ones (t2 − t1 ≤ local_relation_max_dt_s) show odometry's short-range quality.
       std::vector<Relation> local;
       for (const Relation& r : reference) {
-        if (r.t2 - r.t1 <= local_dt) local.push_back(r);
+        if (r.t2 - r.t1 <= c.local_relation_max_dt_s) local.push_back(r);
       }
       const PoseErrors local_err = relation_error(odom, local);
       if (local_err.translation.empty()) return;
@@ -93,9 +96,6 @@ class OdometryRealLogs final : public OptionsExperiment<Options> {
   }
 };
 
-const Registration<OdometryRealLogs> odometry_real_logs_registration(
-    {.name = "odometry/real_logs",
-     .description = "Raw odometry error on real logs: relative-motion error on the Freiburg relations "
-                     "and velocity dead reckoning against MRCLAM Vicon ground truth over fixed windows"});
+const Registration<OdometryRealLogs> odometry_real_logs_registration(kInfo);
 
 }  // namespace locbench::experiments::odometry_real_logs

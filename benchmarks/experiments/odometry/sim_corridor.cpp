@@ -25,6 +25,11 @@
 
 namespace locbench::experiments::odometry_sim_corridor {
 
+const ExperimentInfo kInfo{
+    .name = "odometry/sim_corridor",
+    .description = "Dead-reckoning error of simulated 10 m corridor runs (Trilobot-like, Monte-Carlo): "
+                   "nominal model vs true geometry"};
+
 struct RunErrors {
   double final_position = 0.0;  // [m]
   double final_heading = 0.0;   // [rad]
@@ -169,9 +174,6 @@ class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorS
   }
 };
 
-const Registration<OdometrySimCorridor> odometry_sim_corridor_registration(
-    {.name = "odometry/sim_corridor",
-     .description = "Dead-reckoning error of simulated 10 m corridor runs (Trilobot-like, Monte-Carlo): "
-                     "nominal model vs true geometry"});
+const Registration<OdometrySimCorridor> odometry_sim_corridor_registration(kInfo);
 
 }  // namespace locbench::experiments::odometry_sim_corridor

@@ -27,6 +27,11 @@
 
 namespace locbench::experiments::slip_compass_ekf_table_3_2 {
 
+const ExperimentInfo kInfo{
+    .name = "slip/compass_ekf_table_3_2",
+    .description = "Compass EKF without/with wheel-slip correction on simulated Trilobot corridor runs "
+                   "(Table 3.2), slip-detection precision/recall, gyro fallback in a disturbed zone"};
+
 constexpr double kPublishedWithout[10] = {580.49, 550.62, 467.74, 406.29, 464.62,
                                           847.33, 575.97, 641.25, 574.05, 484.07};
 constexpr double kPublishedWith[10] = {75.95, 73.89, 89.96, 63.98, 62.05,
@@ -291,9 +296,6 @@ class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> 
   }
 };
 
-const Registration<SlipCompassEkf> slip_compass_ekf_table_3_2_registration(
-    {.name = "slip/compass_ekf_table_3_2",
-     .description = "Compass EKF without/with wheel-slip correction on simulated Trilobot corridor runs "
-                     "(Table 3.2), slip-detection precision/recall, gyro fallback in a disturbed zone"});
+const Registration<SlipCompassEkf> slip_compass_ekf_table_3_2_registration(kInfo);
 
 }  // namespace locbench::experiments::slip_compass_ekf_table_3_2

@@ -32,6 +32,11 @@
 
 namespace locbench::experiments::slip_ikf_vs_calibration {
 
+const ExperimentInfo kInfo{
+    .name = "slip/ikf_vs_calibration",
+    .description = "Indirect Kalman filter (compass) vs classic and improved UMBmark on the same simulated "
+                   "Trilobot: parameter estimates and validation-path error of each corrected model"};
+
 enum Method { kUncalibrated, kClassic, kImproved, kIkfSquares, kIkfStraight, kIkfStraightEnd, kTrue, kMethods };
 const char* const kMethodNames[kMethods] = {
     "uncalibrated",           "umbmark_classic",           "umbmark_improved",
@@ -259,9 +264,6 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
   }
 };
 
-const Registration<SlipIkfVsCalibration> slip_ikf_vs_calibration_registration(
-    {.name = "slip/ikf_vs_calibration",
-     .description = "Indirect Kalman filter (compass) vs classic and improved UMBmark on the same simulated "
-                     "Trilobot: parameter estimates and validation-path error of each corrected model"});
+const Registration<SlipIkfVsCalibration> slip_ikf_vs_calibration_registration(kInfo);
 
 }  // namespace locbench::experiments::slip_ikf_vs_calibration

@@ -29,6 +29,11 @@
 
 namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4 {
 
+const ExperimentInfo kInfo{
+    .name = "slip/indirect_kf_tables_3_3_3_4",
+    .description = "Indirect Kalman filter for S_L, S_R, δB on simulated straight corridor runs "
+                   "(Tables 3.3/3.4): estimates, identifiability, error after correcting the diameters"};
+
 constexpr double kPublishedImprovement[10] = {16.34, 43.15, 24.80, 16.74, 46.67,
                                               25.55, 22.51, 65.75, 53.27, 21.12};
 constexpr int kVariants = 2;
@@ -338,9 +343,6 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
   }
 };
 
-const Registration<SlipIndirectKf> slip_indirect_kf_tables_3_3_3_4_registration(
-    {.name = "slip/indirect_kf_tables_3_3_3_4",
-     .description = "Indirect Kalman filter for S_L, S_R, δB on simulated straight corridor runs "
-                     "(Tables 3.3/3.4): estimates, identifiability, error after correcting the diameters"});
+const Registration<SlipIndirectKf> slip_indirect_kf_tables_3_3_3_4_registration(kInfo);
 
 }  // namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4

@@ -13,6 +13,10 @@
 
 namespace locbench::experiments::slip_normality_table_3_1 {
 
+const ExperimentInfo kInfo{
+    .name = "slip/normality_table_3_1",
+    .description = "Skewness–kurtosis normality test on the thesis's 809-sample Δθ' histogram (Table 3.1)"};
+
 struct Options {
   double alpha = 0.1;
   std::vector<double> midpoints_deg = {-4.5, -3.5, -2.5, -1.5, -0.5, 0.5, 1.5, 2.5, 3.5, 4.5};
@@ -87,8 +91,6 @@ class SlipNormality final : public OptionsExperiment<Options> {
   }
 };
 
-const Registration<SlipNormality> slip_normality_table_3_1_registration(
-    {.name = "slip/normality_table_3_1",
-     .description = "Skewness–kurtosis normality test on the thesis's 809-sample Δθ' histogram (Table 3.1)"});
+const Registration<SlipNormality> slip_normality_table_3_1_registration(kInfo);
 
 }  // namespace locbench::experiments::slip_normality_table_3_1
