@@ -58,16 +58,11 @@ TEST(Registry, HoldsOneExperimentPerFileNamedAsTheFileIs) {
 // An experiment that only has a name, for the registry's own logic.
 class Named final : public Experiment {
  public:
-  explicit Named(std::string name) : name_(std::move(name)) {}
-  std::string name() const override { return name_; }
-  std::string description() const override { return "test"; }
+  explicit Named(std::string name) : Experiment({.name = std::move(name), .description = "test"}) {}
   nlohmann::json default_config() const override { return nlohmann::json::object(); }
   reports::ExperimentResults run(const nlohmann::json&, const RunOptions&) const override {
     return {};
   }
-
- private:
-  std::string name_;
 };
 
 ExperimentFactory named(const std::string& name) {

@@ -13,6 +13,7 @@
 #include "baselines/calibration/umbmark_classic.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/scenario_option.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
@@ -20,51 +21,71 @@
 #include "datasets/sim/umbmark_input.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::calibration_identifiability {
+
+const ExperimentInfo kInfo{
+    .name = "calibration/identifiability",
+    .description = "UMBmark identifiability on simulated robots: E_d, E_b, E_o swept alone and together; "
+                   "estimates of classic and improved UMBmark against the truth, with Fisher findings"};
 
 struct IdentifiabilityCase {
   std::string name;
   UmbmarkErrorParams truth;
 };
+// One case: the true error parameters of the simulated robot (eq. 2.3–2.13).
+struct CaseOptions {
+  std::string name;
+  double E_d = 1.0;
+  double E_b = 1.0;
+  double E_o = 1.0;
+};
+template <class V>
+void visit_fields(V& v, CaseOptions& o) {
+  v.field("name", o.name, "", Range{}, "the case's name in result keys");
+  v.field("E_d", o.E_d, "", positive(), "true wheel-diameter ratio");
+  v.field("E_b", o.E_b, "", positive(), "true wheelbase scale");
+  v.field("E_o", o.E_o, "", positive(), "true mean-diameter scale");
+}
+LOCBENCH_EXPERIMENT_OPTIONS(CaseOptions)
+
+sim::Scenario borenstein_without_errors() {
+  sim::Scenario s = sim::preset("umbmark_borenstein");
+  s.robot.actual = s.robot.nominal;
+  return s;
+}
+
+struct Options {
+  int runs = 4;
+  sim::Scenario scenario = borenstein_without_errors();
+  std::vector<CaseOptions> cases = {{"E_d_1.005", 1.005, 1.0, 1.0},
+                                    {"E_b_1.02", 1.0, 1.02, 1.0},
+                                    {"E_o_0.99", 1.0, 1.0, 0.99},
+                                    {"E_o_1.01", 1.0, 1.0, 1.01},
+                                    {"all", 1.005, 1.02, 0.99}};
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs per case");
+  v.coded("scenario", o.scenario, scenario_json, scenario_option, "the robot and the square (datasets/sim)");
+  v.field("cases", o.cases, "", Range{}, "the true error parameters swept");
+}
+
 struct IdentifiabilitySetup {
   sim::Scenario base;  // slip off
   std::vector<IdentifiabilityCase> cases;
   nlohmann::json configuration;
 };
 
-class CalibrationIdentifiability final : public MonteCarloExperiment<IdentifiabilitySetup> {
+class CalibrationIdentifiability final : public MonteCarloExperiment<Options, IdentifiabilitySetup> {
  public:
-  std::string name() const override { return "calibration/identifiability"; }
-  std::string description() const override {
-    return "UMBmark identifiability on simulated robots: E_d, E_b, E_o swept alone and together; "
-           "estimates of classic and improved UMBmark against the truth, with Fisher findings";
-  }
-  nlohmann::json default_config() const override {
-    sim::Scenario s = sim::preset("umbmark_borenstein");
-    s.robot.actual = s.robot.nominal;
-    return {{"runs", 4},
-            {"scenario", sim::to_json(s)},
-            {"cases",
-             {{{"name", "E_d_1.005"}, {"E_d", 1.005}, {"E_b", 1.0}, {"E_o", 1.0}},
-              {{"name", "E_b_1.02"}, {"E_d", 1.0}, {"E_b", 1.02}, {"E_o", 1.0}},
-              {{"name", "E_o_0.99"}, {"E_d", 1.0}, {"E_b", 1.0}, {"E_o", 0.99}},
-              {{"name", "E_o_1.01"}, {"E_d", 1.0}, {"E_b", 1.0}, {"E_o", 1.01}},
-              {{"name", "all"}, {"E_d", 1.005}, {"E_b", 1.02}, {"E_o", 0.99}}}}};
-  }
-
-  IdentifiabilitySetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  IdentifiabilitySetup setup(const Options& o, const McPlan& plan) const override {
     IdentifiabilitySetup u;
-    u.base = sim::scenario_from_json(config.at("scenario"), "<configuration>");
+    u.base = o.scenario;
     u.base.slip.turn.rate = u.base.slip.straight.rate = 0.0;
-    u.configuration = config;
-    u.configuration["runs"] = plan.runs;
+    u.configuration = recorded(o, plan);
     u.configuration["scenario"] = sim::to_json(u.base);
-    for (const auto& cs : config.at("cases")) {
-      u.cases.push_back({cs.at("name").get<std::string>(),
-                         {cs.at("E_d").get<double>(), cs.at("E_b").get<double>(),
-                          cs.at("E_o").get<double>()}});
-    }
+    for (const CaseOptions& c : o.cases) u.cases.push_back({c.name, {c.E_d, c.E_b, c.E_o}});
     return u;
   }
 
@@ -153,7 +174,6 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Identifiabi
   }
 };
 
-const Registration<CalibrationIdentifiability> calibration_identifiability_registration;
+const Registration<CalibrationIdentifiability> calibration_identifiability_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::calibration_identifiability

@@ -14,6 +14,7 @@
 #include "algorithms/calibration/ml_calibration.h"
 #include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
@@ -21,8 +22,12 @@
 #include "datasets/io/censi_results_reader.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::calibration_real_logs {
+
+const ExperimentInfo kInfo{
+    .name = "calibration/real_logs",
+    .description = "ML odometry calibration on real data: Censi's Khepera sets beside the published "
+                   "solutions; Freiburg and MRCLAM calibrated on one half, evaluated on the other"};
 
 reports::MetricResult one_value(const std::string& method, const std::string& dataset,
                                 const std::string& variant, const std::string& unit,
@@ -31,31 +36,38 @@ reports::MetricResult one_value(const std::string& method, const std::string& da
                               std::vector<double>{value});
 }
 
-class CalibrationRealLogs final : public Experiment {
- public:
-  std::string name() const override { return "calibration/real_logs"; }
-  std::string description() const override {
-    return "ML odometry calibration on real data: Censi's Khepera sets beside the published "
-           "solutions; Freiburg and MRCLAM calibrated on one half, evaluated on the other";
-  }
-  nlohmann::json default_config() const override {
-    return {{"censi_parts", {"lstraight", "lstraight_0", "lstraight_1", "lstraight_2", "l90",
-                             "l90_0", "l90_1", "l90_2"}},
-            {"relations_logs", {"aces", "intel", "mit_csail"}},
-            {"relation_max_duration_s", 10.0},
-            {"velocity_logs", {"mrclam6_robot1", "mrclam6_robot2", "mrclam6_robot3",
-                               "mrclam6_robot4", "mrclam6_robot5"}},
-            {"velocity_time_offset_s", 0.25},
-            {"training_fraction", 0.5}};
-  }
+struct Options {
+  std::vector<std::string> censi_parts = {"lstraight", "lstraight_0", "lstraight_1", "lstraight_2",
+                                          "l90",       "l90_0",       "l90_1",       "l90_2"};
+  nlohmann::json relations_logs = freiburg_logs();
+  double relation_max_duration_s = 10.0;
+  nlohmann::json velocity_logs = {"mrclam6_robot1", "mrclam6_robot2", "mrclam6_robot3",
+                                  "mrclam6_robot4", "mrclam6_robot5"};
+  double velocity_time_offset_s = 0.25;
+  double training_fraction = 0.5;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("censi_parts", o.censi_parts, "", Range{}, "Censi's Khepera sets");
+  v.field("relations_logs", o.relations_logs, "", Range{}, "logs calibrated on their relations");
+  v.field("relation_max_duration_s", o.relation_max_duration_s, "s", positive(),
+          "longest relation used as a sample");
+  v.field("velocity_logs", o.velocity_logs, "", Range{}, "logs calibrated on velocities and truth");
+  v.field("velocity_time_offset_s", o.velocity_time_offset_s, "s", any_finite(),
+          "odometry time offset of the velocity logs");
+  v.field("training_fraction", o.training_fraction, "", open(0.0, 1.0),
+          "share of each log calibrated on (the rest evaluates)");
+}
 
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const override {
-    reports::ExperimentResults out = start_results(config);
-    const auto parts = config.at("censi_parts").get<std::vector<std::string>>();
-    const auto rel_logs = real_log_specs(config.at("relations_logs"), name() + ": relations_logs");
-    const auto vel_logs = real_log_specs(config.at("velocity_logs"), name() + ": velocity_logs");
-    const double fraction = config.at("training_fraction").get<double>();
+class CalibrationRealLogs final : public OptionsExperiment<Options> {
+ public:
+  using OptionsExperiment::OptionsExperiment;
+  reports::ExperimentResults run_with(const Options& c, const RunOptions& options) const override {
+    reports::ExperimentResults out = start_results(options_json(c));
+    const std::vector<std::string>& parts = c.censi_parts;
+    const auto rel_logs = real_log_specs(c.relations_logs, name() + ": relations_logs");
+    const auto vel_logs = real_log_specs(c.velocity_logs, name() + ": velocity_logs");
+    const double fraction = c.training_fraction;
     const std::size_t total = parts.size() + rel_logs.size() + vel_logs.size();
     std::size_t done = 0;
     auto progress = [&] { options.report_progress(static_cast<double>(done++) / total); };
@@ -154,43 +166,38 @@ class CalibrationRealLogs final : public Experiment {
           h.calibrated_translation.rmse, -100 * h.translation_rmse_reduction,
           h.nominal_rotation.rmse, h.calibrated_rotation.rmse, -100 * h.rotation_rmse_reduction));
     };
-    // Loads one real log; a missing catalog log is a skipped case (nullopt).
-    auto load = [&](const RealLogSpec& spec) -> std::optional<LoadedRealLog> {
-      progress();
-      LoadedRealLog loaded = load_real_log(spec, options.data_root);
-      if (loaded.status == "failed") throw InputError(loaded.dataset.path, 0, loaded.reason);
-      if (loaded.status != "ok") {
-        out.cases.push_back({"calibration/" + spec.name, loaded.status,
-                             "dataset not found at " + loaded.dataset.path});
-        return std::nullopt;
+    // Calibrates on each log of `specs` that loads; a missing catalog log is a skipped case.
+    auto each_loaded = [&](const std::vector<RealLogSpec>& specs, const MlCalibrationOptions& o,
+                           const auto& samples_of) {
+      for (const RealLogSpec& spec : specs) {
+        progress();
+        LoadedRealLog loaded = load_real_log(spec, options.data_root);
+        if (loaded.status == "failed") throw InputError(loaded.dataset.path, 0, loaded.reason);
+        if (loaded.status != "ok") {
+          out.cases.push_back({"calibration/" + spec.name, loaded.status,
+                               "dataset not found at " + loaded.dataset.path});
+          continue;
+        }
+        held_out(spec.name, samples_of(loaded.log), o, loaded.dataset.path);
       }
-      return loaded;
     };
-    for (const RealLogSpec& spec : rel_logs) {
-      const auto loaded = load(spec);
-      if (!loaded) continue;
-      RelationSampleOptions local;
-      local.max_duration = config.at("relation_max_duration_s").get<double>();
-      MlCalibrationOptions o;
-      o.estimate_rotation_per_distance = true;
-      held_out(spec.name, calibration_data_from_relations(loaded->log, local), o, loaded->dataset.path);
-    }
-    for (const RealLogSpec& spec : vel_logs) {
-      const auto loaded = load(spec);
-      if (!loaded) continue;
-      SampleIntervalOptions intervals;
-      intervals.odometry_time_offset = config.at("velocity_time_offset_s").get<double>();
-      MlCalibrationOptions o;
-      o.noise.kind = NoiseModelKind::kPerComponent;
-      held_out(spec.name, calibration_data_from_velocities(loaded->log, intervals), o,
-               loaded->dataset.path);
-    }
+    RelationSampleOptions local;
+    local.max_duration = c.relation_max_duration_s;
+    MlCalibrationOptions with_rotation_per_distance;
+    with_rotation_per_distance.estimate_rotation_per_distance = true;
+    each_loaded(rel_logs, with_rotation_per_distance,
+                [&](const Log& log) { return calibration_data_from_relations(log, local); });
+    SampleIntervalOptions intervals;
+    intervals.odometry_time_offset = c.velocity_time_offset_s;
+    MlCalibrationOptions per_component;
+    per_component.noise.kind = NoiseModelKind::kPerComponent;
+    each_loaded(vel_logs, per_component,
+                [&](const Log& log) { return calibration_data_from_velocities(log, intervals); });
     options.report_progress(1.0);
     return out;
   }
 };
 
-const Registration<CalibrationRealLogs> calibration_real_logs_registration;
+const Registration<CalibrationRealLogs> calibration_real_logs_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::calibration_real_logs

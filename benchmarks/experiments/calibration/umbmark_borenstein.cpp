@@ -3,10 +3,8 @@
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/calibration_umbmark.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::calibration_umbmark_borenstein {
 
 const Registration<CalibrationUmbmark> calibration_umbmark_borenstein_registration("umbmark_borenstein");
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::calibration_umbmark_borenstein

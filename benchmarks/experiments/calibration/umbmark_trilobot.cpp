@@ -3,10 +3,8 @@
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/calibration_umbmark.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::calibration_umbmark_trilobot {
 
 const Registration<CalibrationUmbmark> calibration_umbmark_trilobot_registration("umbmark_trilobot");
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::calibration_umbmark_trilobot

@@ -14,8 +14,26 @@
 #include "datasets/diagnosis/hidden_effects.h"
 #include "datasets/diagnosis/physical_log_generator.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::diagnosis_false_alarms {
+
+const ExperimentInfo kInfo{
+    .name = "diagnosis/false_alarms",
+    .description = "False alarms of the diagnosis on logs with nothing hidden, from the window-model generator and from the "
+                   "physical generator (goal ≤ 1% per log)",
+    .in_default_suite = false};  // 400 diagnoses; `locbench run diagnosis/false_alarms`
+
+struct Options {
+  int runs = 200;
+  double false_alarm = 0.01;
+  double physical_duration_s = 120.0;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "logs per generator");
+  v.field("false_alarm", o.false_alarm, "", open(0.0, 1.0), "false-alarm rate of each test");
+  v.field("physical_duration_s", o.physical_duration_s, "s", closed(60.0, 3600.0),
+          "length of each physical generator's log");
+}
 
 struct FalseAlarmSetup {
   nlohmann::json config;
@@ -23,25 +41,14 @@ struct FalseAlarmSetup {
   double physical_duration = 120.0;
 };
 
-class DiagnosisFalseAlarms final : public MonteCarloExperiment<FalseAlarmSetup> {
+class DiagnosisFalseAlarms final : public MonteCarloExperiment<Options, FalseAlarmSetup> {
  public:
-  std::string name() const override { return "diagnosis/false_alarms"; }
-  std::string description() const override {
-    return "False alarms of the diagnosis on logs with nothing hidden, from the window-model generator and from the "
-           "physical generator (goal ≤ 1% per log)";
-  }
-  bool in_default_suite() const override { return false; }  // 400 diagnoses; `locbench run diagnosis/false_alarms`
-  nlohmann::json default_config() const override {
-    return {{"runs", 200}, {"false_alarm", 0.01}, {"physical_duration_s", 120.0}};
-  }
-  FalseAlarmSetup setup(const nlohmann::json& config, const McPlan&) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  FalseAlarmSetup setup(const Options& c, const McPlan&) const override {
     FalseAlarmSetup s;
-    s.config = config;
-    s.options.false_alarm = config.at("false_alarm").get<double>();
-    s.physical_duration = config.at("physical_duration_s").get<double>();
-    if (!(s.physical_duration >= 60.0 && s.physical_duration <= 3600.0)) {
-      throw UsageError("diagnosis/false_alarms: physical_duration_s must be in [60, 3600]");
-    }
+    s.config = options_json(c);
+    s.options.false_alarm = c.false_alarm;
+    s.physical_duration = c.physical_duration_s;
     return s;
   }
   int tasks(const FalseAlarmSetup&, const McPlan& plan) const override { return 2 * plan.runs; }
@@ -94,7 +101,6 @@ class DiagnosisFalseAlarms final : public MonteCarloExperiment<FalseAlarmSetup> 
   }
 };
 
-const Registration<DiagnosisFalseAlarms> diagnosis_false_alarms_registration;
+const Registration<DiagnosisFalseAlarms> diagnosis_false_alarms_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::diagnosis_false_alarms

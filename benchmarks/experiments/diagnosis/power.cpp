@@ -16,8 +16,13 @@
 #include "benchmarks/experiments/framework/registry.h"
 #include "datasets/diagnosis/hidden_effects.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::diagnosis_power {
+
+const ExperimentInfo kInfo{
+    .name = "diagnosis/power",
+    .description = "Hidden effects in simulated logs: detection power against effect size, interval coverage, "
+                   "held-out gain, and the false-alarm rate on logs with nothing hidden",
+    .in_default_suite = false};  // ~1 min on 2 cores; `locbench run diagnosis`
 
 struct PowerCase {
   std::string id;  // "" for the null case
@@ -27,6 +32,7 @@ struct PowerCase {
 struct PowerSetup {
   std::vector<PowerCase> cases;  // null first
   int null_runs = 20;
+  int waypoints = 16;
   diagnosis::DiagnosisOptions options;
   nlohmann::json config;
 };
@@ -48,6 +54,22 @@ nlohmann::json default_grids() {
           {"sensor_time_offset", {0.002, 0.005, 0.01, 0.02, 0.05}}};
 }
 
+struct Options {
+  int runs = 5;
+  int null_runs = 40;
+  double false_alarm = 0.01;
+  int waypoints = 16;
+  nlohmann::json grids = default_grids();
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "logs per effect and magnitude");
+  v.field("null_runs", o.null_runs, "", non_negative(), "logs with nothing hidden");
+  v.field("false_alarm", o.false_alarm, "", open(0.0, 1.0), "false-alarm rate of each test");
+  v.field("waypoints", o.waypoints, "", at_least(2), "waypoints of each generated path");
+  v.field("grids", o.grids, "", Range{}, "effect id → magnitudes (sim::hidden_effect_ids())");
+}
+
 bool velocity_effect(const std::string& id) {
   return id == "velocity_scale" || id == "turn_rate_scale" || id == "turn_rate_bias";
 }
@@ -59,25 +81,16 @@ const diagnosis::Cause* find(const diagnosis::Diagnosis& d, const std::string& i
   return nullptr;
 }
 
-class DiagnosisPower final : public MonteCarloExperiment<PowerSetup> {
+class DiagnosisPower final : public MonteCarloExperiment<Options, PowerSetup> {
  public:
-  std::string name() const override { return "diagnosis/power"; }
-  std::string description() const override {
-    return "Hidden effects in simulated logs: detection power against effect size, interval coverage, "
-           "held-out gain, and the false-alarm rate on logs with nothing hidden";
-  }
-  bool in_default_suite() const override { return false; }  // ~1 min on 2 cores; `locbench run diagnosis`
-  nlohmann::json default_config() const override {
-    return {{"runs", 5}, {"null_runs", 40}, {"false_alarm", 0.01}, {"waypoints", 16}, {"grids", default_grids()}};
-  }
-
-  PowerSetup setup(const nlohmann::json& config, const McPlan&) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  PowerSetup setup(const Options& cfg, const McPlan&) const override {
     PowerSetup s;
-    s.config = config;
-    s.null_runs = config.at("null_runs").get<int>();
-    if (s.null_runs < 0) throw UsageError("diagnosis/power: null_runs must be ≥ 0");
-    s.options.false_alarm = config.at("false_alarm").get<double>();
-    for (const auto& [id, grid] : config.at("grids").items()) {
+    s.config = options_json(cfg);
+    s.null_runs = cfg.null_runs;
+    s.waypoints = cfg.waypoints;
+    s.options.false_alarm = cfg.false_alarm;
+    for (const auto& [id, grid] : cfg.grids.items()) {
       for (const auto& m : grid) s.cases.push_back({id, m.get<double>()});
     }
     return s;
@@ -90,7 +103,7 @@ class DiagnosisPower final : public MonteCarloExperiment<PowerSetup> {
     const bool null = task < s.null_runs;
     const PowerCase c = null ? PowerCase{} : s.cases[static_cast<std::size_t>((task - s.null_runs) / plan.runs)];
     sim::GeneratorOptions o;
-    o.waypoints = s.config.at("waypoints").get<int>();
+    o.waypoints = s.waypoints;
     o.velocity_odometry = velocity_effect(c.id);
     if (c.id == "compass_quantization") o.waypoints = std::max(o.waypoints, 60);  // many headings
     std::vector<sim::HiddenEffect> effects;
@@ -202,7 +215,6 @@ class DiagnosisPower final : public MonteCarloExperiment<PowerSetup> {
   }
 };
 
-const Registration<DiagnosisPower> diagnosis_power_registration;
+const Registration<DiagnosisPower> diagnosis_power_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::diagnosis_power

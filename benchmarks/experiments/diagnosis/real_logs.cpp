@@ -16,39 +16,46 @@
 #include "algorithms/diagnosis/scale_checks.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
+#include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/diagnosis_plots.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::diagnosis_real_logs {
 
-class DiagnosisRealLogs final : public Experiment {
+const ExperimentInfo kInfo{
+    .name = "diagnosis/real_logs",
+    .description = "What the nominal odometry model gets wrong on real logs (Freiburg relations, MRCLAM Vicon) and "
+                   "on the thesis's Table 3.1 histogram: named causes, fitted parameters, held-out gain"};
+
+struct Options {
+  nlohmann::json datasets = freiburg_and_mrclam_logs();
+  double false_alarm = 0.01;
+  double window_s = 1.0;
+  // The thesis's histogram, as diagnosis::read_histogram reads it.
+  nlohmann::json table_3_1 = {{"residual", "encoder_minus_compass_heading_increment"},
+                              {"unit", "deg"},
+                              {"edges", {-5, -4, -3, -2, -1, 0, 1, 2, 3, 4, 5}},
+                              {"counts", {3, 15, 5, 177, 20, 419, 11, 139, 7, 13}}};
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("datasets", o.datasets, "", Range{}, "catalog names or user files (real_log_harness.h)");
+  v.field("false_alarm", o.false_alarm, "", open(0.0, 1.0), "false-alarm rate of each test");
+  v.field("window_s", o.window_s, "s", positive(), "residual window");
+  v.field("table_3_1", o.table_3_1, "", Range{}, "histogram diagnosed beside the logs");
+}
+
+class DiagnosisRealLogs final : public OptionsExperiment<Options> {
  public:
-  std::string name() const override { return "diagnosis/real_logs"; }
-  std::string description() const override {
-    return "What the nominal odometry model gets wrong on real logs (Freiburg relations, MRCLAM Vicon) and "
-           "on the thesis's Table 3.1 histogram: named causes, fitted parameters, held-out gain";
-  }
-  nlohmann::json default_config() const override {
-    return {{"datasets", {"aces", "intel", "mit_csail", "mrclam6_robot1", "mrclam6_robot2", "mrclam6_robot3",
-                          "mrclam6_robot4", "mrclam6_robot5"}},
-            {"false_alarm", 0.01},
-            {"window_s", 1.0},
-            {"table_3_1",
-             {{"residual", "encoder_minus_compass_heading_increment"},
-              {"unit", "deg"},
-              {"edges", {-5, -4, -3, -2, -1, 0, 1, 2, 3, 4, 5}},
-              {"counts", {3, 15, 5, 177, 20, 419, 11, 139, 7, 13}}}}};
-  }
-
-  reports::ExperimentResults run(const nlohmann::json& config, const RunOptions& options) const override {
-    reports::ExperimentResults out = start_results(config);
+  using OptionsExperiment::OptionsExperiment;
+  reports::ExperimentResults run_with(const Options& cfg, const RunOptions& options) const override {
+    reports::ExperimentResults out = start_results(options_json(cfg));
     diagnosis::DiagnosisOptions opt;
-    opt.false_alarm = config.at("false_alarm").get<double>();
-    opt.windows.duration = config.at("window_s").get<double>();
-    const auto specs = real_log_specs(config.at("datasets"), name());
+    opt.false_alarm = cfg.false_alarm;
+    opt.windows.duration = cfg.window_s;
+    const auto specs = real_log_specs(cfg.datasets, name());
     const auto names = real_log_names(specs);
     auto record = [&](const diagnosis::Diagnosis& d, const std::string& ds, std::size_t n) {
       out.diagnoses.push_back(diagnosed_log(ds, d));
@@ -159,10 +166,10 @@ class DiagnosisRealLogs final : public Experiment {
       }
     }
     options.report_progress(0.9);
-    const auto h = diagnosis::read_histogram(config.at("table_3_1"), "table_3_1");
+    const auto h = diagnosis::read_histogram(cfg.table_3_1, "table_3_1");
     const auto d = diagnosis::diagnose_histogram(h, "thesis Table 3.1", opt);
     out.datasets.push_back({"thesis_table_3_1", "thesis Table 3.1 (transcribed)",
-                            reports::text_checksum(config.at("table_3_1").dump()), h.counts.size(), 0.0});
+                            reports::text_checksum(cfg.table_3_1.dump()), h.counts.size(), 0.0});
     double n = 0.0;
     for (double c : h.counts) n += c;
     record(d, "thesis_table_3_1", static_cast<std::size_t>(n));
@@ -171,7 +178,6 @@ class DiagnosisRealLogs final : public Experiment {
   }
 };
 
-const Registration<DiagnosisRealLogs> diagnosis_real_logs_registration;
+const Registration<DiagnosisRealLogs> diagnosis_real_logs_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::diagnosis_real_logs

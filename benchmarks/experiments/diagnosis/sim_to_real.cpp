@@ -25,13 +25,19 @@
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
+#include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "datasets/diagnosis/twin_comparison.h"
 #include "datasets/io/odometry_interpolation.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::diagnosis_sim_to_real {
+
+const ExperimentInfo kInfo{
+    .name = "diagnosis/sim_to_real",
+    .description = "The diagnosis run back through the simulator: each real log's synthetic twin (its odometry replayed, truth "
+                   "simulated) under the nominal and under the extended model, compared with the log by the Kolmogorov–Smirnov "
+                   "distance of the window residuals (1 s and 10 s windows; relations on Freiburg), per component"};
 
 // The records of `log` with time in [from, to] (relations: both ends inside).
 Log restrict_log(const Log& log, double from, double to) {
@@ -69,40 +75,43 @@ struct Outcome {
   std::size_t windows = 0;
 };
 
-class DiagnosisSimToReal final : public Experiment {
- public:
-  std::string name() const override { return "diagnosis/sim_to_real"; }
-  std::string description() const override {
-    return "The diagnosis run back through the simulator: each real log's synthetic twin (its odometry replayed, truth "
-           "simulated) under the nominal and under the extended model, compared with the log by the Kolmogorov–Smirnov "
-           "distance of the window residuals (1 s and 10 s windows; relations on Freiburg), per component";
-  }
-  nlohmann::json default_config() const override {
-    return {{"datasets", {"aces", "intel", "mit_csail", "mrclam6_robot1", "mrclam6_robot2", "mrclam6_robot3",
-                          "mrclam6_robot4", "mrclam6_robot5"}},
-            {"false_alarm", 0.01},
-            {"window_s", 1.0},
-            {"long_window_s", 10.0},
-            {"start_s", 0.0},
-            {"span_s", 300.0},
-            {"twin_runs", 2},
-            {"goal_ratio", 0.5}};
-  }
+struct Options {
+  nlohmann::json datasets = freiburg_and_mrclam_logs();
+  double false_alarm = 0.01;
+  double window_s = 1.0;
+  double long_window_s = 10.0;
+  double start_s = 0.0;
+  double span_s = 300.0;
+  int twin_runs = 2;
+  double goal_ratio = 0.5;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("datasets", o.datasets, "", Range{}, "catalog names or user files (real_log_harness.h)");
+  v.field("false_alarm", o.false_alarm, "", open(0.0, 1.0), "false-alarm rate of each test");
+  v.field("window_s", o.window_s, "s", positive(), "short residual window");
+  v.field("long_window_s", o.long_window_s, "s", positive(), "long residual window");
+  v.field("start_s", o.start_s, "s", non_negative(), "start of the span after the log's first record");
+  v.field("span_s", o.span_s, "s", non_negative(), "span of each log (0 = whole log)");
+  v.field("twin_runs", o.twin_runs, "", at_least(1), "simulated twins per model");
+  v.field("goal_ratio", o.goal_ratio, "", positive(), "D_extended / D_nominal counted as halved");
+}
 
-  reports::ExperimentResults run(const nlohmann::json& config, const RunOptions& options) const override {
-    reports::ExperimentResults out = start_results(config);
+class DiagnosisSimToReal final : public OptionsExperiment<Options> {
+ public:
+  using OptionsExperiment::OptionsExperiment;
+  reports::ExperimentResults run_with(const Options& cfg, const RunOptions& options) const override {
+    reports::ExperimentResults out = start_results(options_json(cfg));
     out.seeds = {options.seed};
     diagnosis::DiagnosisOptions opt;
-    opt.false_alarm = config.at("false_alarm").get<double>();
-    opt.windows.duration = config.at("window_s").get<double>();
-    const double long_window = config.at("long_window_s").get<double>();
-    const double start_s = config.at("start_s").get<double>();
-    const double span_s = config.at("span_s").get<double>();
-    const int runs = config.at("twin_runs").get<int>();
-    const double goal = config.at("goal_ratio").get<double>();
-    if (runs < 1) throw UsageError("diagnosis/sim_to_real: twin_runs must be >= 1");
-    if (!(span_s >= 0.0) || !(start_s >= 0.0)) throw UsageError("diagnosis/sim_to_real: start_s and span_s must be >= 0");
-    const auto specs = real_log_specs(config.at("datasets"), name());
+    opt.false_alarm = cfg.false_alarm;
+    opt.windows.duration = cfg.window_s;
+    const double long_window = cfg.long_window_s;
+    const double start_s = cfg.start_s;
+    const double span_s = cfg.span_s;
+    const int runs = cfg.twin_runs;
+    const double goal = cfg.goal_ratio;
+    const auto specs = real_log_specs(cfg.datasets, name());
     const auto names = real_log_names(specs);
     std::vector<Outcome> outcomes(names.size());
     parallel_tasks(options.threads, names.size(), [&](std::size_t i) {
@@ -238,7 +247,6 @@ class DiagnosisSimToReal final : public Experiment {
   }
 };
 
-const Registration<DiagnosisSimToReal> diagnosis_sim_to_real_registration;
+const Registration<DiagnosisSimToReal> diagnosis_sim_to_real_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::diagnosis_sim_to_real

@@ -40,12 +40,6 @@ reports::ExperimentResults Experiment::summarise_records(
   return reports::results_from_json(records.front(), name() + " (shard record)");
 }
 
-int monte_carlo_runs(const Experiment& e, const nlohmann::json& config, const RunOptions& options) {
-  const int runs = options.runs.value_or(config.at("runs").get<int>());
-  if (runs < 1) throw UsageError(e.name() + ": runs must be ≥ 1");
-  return runs;
-}
-
 nlohmann::json merge_config(const nlohmann::json& defaults, const nlohmann::json& overrides,
                             const std::string& path) {
   if (!overrides.is_object()) throw UsageError("configuration" + path + ": expected an object");

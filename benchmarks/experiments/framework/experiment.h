@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "reports/report.h"
@@ -25,14 +26,20 @@ struct RunOptions {
   }
 };
 
+// What an experiment is called and says it does: stated once, given to the base class.
+struct ExperimentInfo {
+  std::string name;         // stable, e.g. "odometry/sim_corridor"; also the report's file stem
+  std::string description;  // one line for `locbench list` and the report
+  bool in_default_suite = true;  // part of the suite `locbench run` runs with no argument
+};
+
 class Experiment {
  public:
+  explicit Experiment(ExperimentInfo info) : info_(std::move(info)) {}
   virtual ~Experiment() = default;
-  // Stable name, e.g. "odometry/sim_corridor"; also the report's file stem.
-  virtual std::string name() const = 0;
-  virtual std::string description() const = 0;
-  // Part of the default suite run by `locbench run` with no argument.
-  virtual bool in_default_suite() const { return true; }
+  const std::string& name() const { return info_.name; }
+  const std::string& description() const { return info_.description; }
+  bool in_default_suite() const { return info_.in_default_suite; }
   // Every option with its default; a user's configuration is merged over it.
   virtual nlohmann::json default_config() const = 0;
   virtual reports::ExperimentResults run(const nlohmann::json& config,
@@ -58,10 +65,10 @@ class Experiment {
   virtual reports::ExperimentResults summarise_records(
       const nlohmann::json& config, const RunOptions& options,
       const std::vector<nlohmann::json>& records) const;
-};
 
-// Monte-Carlo runs: --runs when given, else the configuration's "runs"; UsageError if < 1.
-int monte_carlo_runs(const Experiment& e, const nlohmann::json& config, const RunOptions& options);
+ private:
+  ExperimentInfo info_;
+};
 
 // All registered experiments (registry.h), sorted by name.
 const std::vector<std::unique_ptr<Experiment>>& all_experiments();

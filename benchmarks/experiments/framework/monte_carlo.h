@@ -16,6 +16,7 @@
 #include "core/errors.h"
 #include "core/rng.h"
 #include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/experiment_options.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "reports/shard_report.h"
 
@@ -33,11 +34,14 @@ struct McPlan {
   }
 };
 
-template <typename Setup>
+template <typename Options, typename Setup>
 class MonteCarloExperiment : public Experiment {
  public:
-  // Deterministic from (config, plan); must not depend on plan.threads.
-  virtual Setup setup(const nlohmann::json& config, const McPlan& plan) const = 0;
+  using Experiment::Experiment;
+  // The options' defaults, as JSON.
+  nlohmann::json default_config() const final { return options_json(defaults()); }
+  // Deterministic from (options, plan); must not depend on plan.threads.
+  virtual Setup setup(const Options& options, const McPlan& plan) const = 0;
   // Number of tasks; a sweep may use runs × cases.
   virtual int tasks(const Setup&, const McPlan& plan) const { return plan.runs; }
   // Thread-safe and pure: depends only on (setup, plan.seed, plan.runs, task).
@@ -46,19 +50,11 @@ class MonteCarloExperiment : public Experiment {
   virtual reports::ExperimentResults summarise(const Setup& setup, const McPlan& plan,
                                                const std::vector<nlohmann::json>& records) const = 0;
 
-  McPlan plan(const nlohmann::json& config, const RunOptions& options) const {
-    McPlan p;
-    p.seed = options.seed;
-    p.runs = monte_carlo_runs(*this, config, options);
-    p.data_root = options.data_root;
-    p.threads = options.threads;
-    return p;
-  }
-
   reports::ExperimentResults run(const nlohmann::json& config,
                                  const RunOptions& options) const final {
-    const McPlan p = plan(config, options);
-    const Setup s = setup(config, p);
+    const Options o = read(config);
+    const McPlan p = plan(o, options);
+    const Setup s = setup(o, p);
     std::vector<int> all(static_cast<std::size_t>(tasks(s, p)));
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
     const std::vector<nlohmann::json> records = records_of(s, p, options, all);
@@ -68,14 +64,16 @@ class MonteCarloExperiment : public Experiment {
   }
 
   int task_count(const nlohmann::json& config, const RunOptions& options) const final {
-    const McPlan p = plan(config, options);
-    return tasks(setup(config, p), p);
+    const Options o = read(config);
+    const McPlan p = plan(o, options);
+    return tasks(setup(o, p), p);
   }
 
   std::vector<nlohmann::json> run_tasks(const nlohmann::json& config, const RunOptions& options,
                                         const std::vector<int>& which) const final {
-    const McPlan p = plan(config, options);
-    const Setup s = setup(config, p);
+    const Options o = read(config);
+    const McPlan p = plan(o, options);
+    const Setup s = setup(o, p);
     const int n = tasks(s, p);
     for (int t : which) {
       if (t < 0 || t >= n) {
@@ -91,8 +89,9 @@ class MonteCarloExperiment : public Experiment {
   reports::ExperimentResults summarise_records(
       const nlohmann::json& config, const RunOptions& options,
       const std::vector<nlohmann::json>& records) const final {
-    const McPlan p = plan(config, options);
-    const Setup s = setup(config, p);
+    const Options o = read(config);
+    const McPlan p = plan(o, options);
+    const Setup s = setup(o, p);
     if (static_cast<int>(records.size()) != tasks(s, p)) {
       throw UsageError(name() + ": " + std::to_string(records.size()) + " records for " +
                        std::to_string(tasks(s, p)) + " tasks");
@@ -100,7 +99,26 @@ class MonteCarloExperiment : public Experiment {
     return summarise(s, p, records);
   }
 
+ protected:
+  // The defaults of the options (Options{} unless the experiment's depend on its constructor).
+  virtual Options defaults() const { return Options{}; }
+  // The configuration a report records: the options, with the runs this process ran.
+  static nlohmann::json recorded(Options o, const McPlan& p) {
+    o.runs = p.runs;
+    return options_json(o);
+  }
+
  private:
+  Options read(const nlohmann::json& config) const { return read_options(config, name(), defaults()); }
+  McPlan plan(const Options& o, const RunOptions& options) const {
+    McPlan p;
+    p.seed = options.seed;
+    p.runs = options.runs.value_or(o.runs);
+    if (p.runs < 1) throw UsageError(name() + ": runs must be ≥ 1");
+    p.data_root = options.data_root;
+    p.threads = options.threads;
+    return p;
+  }
   // Runs `tasks` on options.threads threads; records by position, canonical.
   std::vector<nlohmann::json> records_of(const Setup& s, const McPlan& p,
                                          const RunOptions& options,

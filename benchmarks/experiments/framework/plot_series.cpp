@@ -97,16 +97,8 @@ reports::PlotSeries cdf_samples(const std::string& name, std::vector<double> val
 
 reports::Plot error_cdf_plot(std::string name, std::string title, std::string x_label, std::string x_unit,
                              std::vector<reports::PlotSeries> samples, std::string note) {
-  reports::Plot p;
-  p.name = std::move(name);
-  p.kind = "cdf";
-  p.title = std::move(title);
-  p.x_label = std::move(x_label);
-  p.x_unit = std::move(x_unit);
-  p.y_label = "fraction of samples";
-  p.series = std::move(samples);
-  p.note = std::move(note);
-  return p;
+  return {std::move(name),    "cdf", std::move(title),   std::move(x_label), std::move(x_unit),
+          "fraction of samples", "",    std::move(samples), std::move(note)};
 }
 
 std::vector<reports::Plot> relative_pose_error_cdfs(const std::string& dataset, const std::string& what,

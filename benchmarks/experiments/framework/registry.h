@@ -2,13 +2,15 @@
 // Registration of an experiment: one line in the experiment's own file, beside its class, the way
 // Google Benchmark's BENCHMARK() works:
 //
-//   namespace {
-//   class OdometrySimCorridor final : public MonteCarloExperiment<CorridorSetup> { … };
-//   const Registration<OdometrySimCorridor> odometry_sim_corridor_registration;   // or …("constructor arg")
-//   }  // namespace
+//   namespace locbench::experiments::odometry_sim_corridor {
+//   const ExperimentInfo kInfo{.name = "odometry/sim_corridor", .description = "…"};
+//   class OdometrySimCorridor final : public MonteCarloExperiment<Options, Setup> { … };
+//   const Registration<OdometrySimCorridor> odometry_sim_corridor_registration(kInfo);
+//   }  // namespace locbench::experiments::odometry_sim_corridor     (or …("constructor arg"))
 //
-// The registrar is named after the file (<topic>_<name>_registration) so that files batched into
-// one unity-build unit never define the same name twice. It runs while the program loads and
+// The name and description are data (ExperimentInfo), stated once, at the top of the file. The file's own types
+// and the registrar live in a namespace named after the file (<topic>_<name>), not an anonymous
+// one, so that files batched into one unity-build unit never define the same name twice. It runs while the program loads and
 // stores a factory; no experiment is constructed then. all_experiments() (experiment.h) makes each one once, on first use, sorted by name, so the
 // order never depends on the link order. The experiments are compiled into an OBJECT library
 // (../CMakeLists.txt), which puts every registrar into the program: from a static library the
@@ -34,6 +36,9 @@ template <typename E>
 class Registration {
  public:
   // The arguments are copied into the factory and given to E's constructor.
+  explicit Registration(ExperimentInfo info) {
+    register_experiment([info] { return std::make_unique<E>(info); });
+  }
   template <typename... Args>
   explicit Registration(Args... args) {
     register_experiment([args...] { return std::make_unique<E>(args...); });

@@ -26,8 +26,14 @@
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::global_sim {
+
+const ExperimentInfo kInfo{
+    .name = "global/sim",
+    .description = "Global localization (MCL, grid Markov) from an unknown start, tracking once converged "
+                   "and kidnap recovery, against the chapter-6 EKF and the line-feature Kalman localizer "
+                   "started at the truth; simulated room, corridor and random rooms",
+    .in_default_suite = false};  // ~1 min in Release
 
 using global::ScanStep;
 
@@ -141,40 +147,33 @@ sim::Scenario tour(const LineMap& w, int waypoints, Rng& rng) {
   return s;
 }
 
-class GlobalSim final : public MonteCarloExperiment<Setup> {
+struct Options : global::MethodComparisonOptions {
+  int runs = 3;
+  int waypoints = 4;
+  double corridor_length_m = 16.0;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs per world");
+  global::visit_method_comparison_fields(v, o);
+  v.field("waypoints", o.waypoints, "", at_least(1), "waypoints of each random tour");
+  v.field("corridor_length_m", o.corridor_length_m, "m", at_least(4.0), "the corridor world's length");
+}
+
+class GlobalSim final : public MonteCarloExperiment<Options, Setup> {
  public:
-  std::string name() const override { return "global/sim"; }
-  std::string description() const override {
-    return "Global localization (MCL, grid Markov) from an unknown start, tracking once converged "
-           "and kidnap recovery, against the chapter-6 EKF and the line-feature Kalman localizer "
-           "started at the truth; simulated room, corridor and random rooms";
-  }
-  bool in_default_suite() const override { return false; }  // ~1 min in Release
-  nlohmann::json default_config() const override {
-    return {{"runs", 3},
-            {"methods", global::method_names()},
-            {"method_options", global::default_method_options()},
-            {"convergence_position_m", 0.5},
-            {"convergence_heading_rad", 0.35},
-            {"waypoints", 4},
-            {"corridor_length_m", 16.0}};
-  }
-  Setup setup(const nlohmann::json& config, const McPlan& plan) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  Setup setup(const Options& o, const McPlan& plan) const override {
     Setup s;
-    s.methods = config.at("methods").get<std::vector<std::string>>();
-    s.method_options = config.at("method_options");
-    s.criterion = {config.at("convergence_position_m").get<double>(),
-                   config.at("convergence_heading_rad").get<double>()};
-    s.waypoints = config.at("waypoints").get<int>();
-    s.corridor_length = config.at("corridor_length_m").get<double>();
-    if (s.waypoints < 1 || s.corridor_length < 4.0) {
-      throw UsageError(name() + ": waypoints ≥ 1 and corridor_length_m ≥ 4 needed");
-    }
+    s.methods = o.methods;
+    s.method_options = o.method_options;
+    s.criterion = o.criterion();
+    s.waypoints = o.waypoints;
+    s.corridor_length = o.corridor_length_m;
     // Validate every method's options now (UsageError names the key).
     const LineMap probe = sim::room_world();
     for (const auto& m : s.methods) global::make_localizer(m, probe, s.method_options, Pose2{}, 1);
-    s.configuration = config;
-    s.configuration["runs"] = plan.runs;
+    s.configuration = recorded(o, plan);
     return s;
   }
   int tasks(const Setup&, const McPlan& plan) const override { return plan.runs * kWorldCount; }
@@ -304,7 +303,6 @@ class GlobalSim final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<GlobalSim> global_sim_registration;
+const Registration<GlobalSim> global_sim_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::global_sim

@@ -6,34 +6,47 @@
 #include <fmt/format.h>
 
 #include "baselines/global/topological_markov.h"
+#include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::global_topological_example {
+
+const ExperimentInfo kInfo{
+    .name = "global/topological_example",
+    .description = "Markov localization on the slides' topological map (Dervish sensor table): prior "
+                   "1.0 / 0.2, action 1-2 → 2 and 2-3 → 3, 3-4, 4, observation 'open hallway left, open "
+                   "door right' → 0.324 at node 2 and 0.018 at node 4 (18 : 1)"};
 
 using namespace locbench::global;
 
-class GlobalTopological final : public Experiment {
+struct Options {
+  double prior_1_2 = 1.0;
+  double prior_2_3 = 0.2;
+  double door_open_probability = 0.4;
+  bool normalise = false;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("prior_1_2", o.prior_1_2, "", non_negative(), "prior belief at node 1-2");
+  v.field("prior_2_3", o.prior_2_3, "", non_negative(), "prior belief at node 2-3");
+  v.field("door_open_probability", o.door_open_probability, "", closed(0.0, 1.0),
+          "probability that node 2's door is open");
+  v.flag("normalise", o.normalise, "normalise the belief after each update");
+}
+
+class GlobalTopological final : public OptionsExperiment<Options> {
  public:
-  std::string name() const override { return "global/topological_example"; }
-  std::string description() const override {
-    return "Markov localization on the slides' topological map (Dervish sensor table): prior "
-           "1.0 / 0.2, action 1-2 → 2 and 2-3 → 3, 3-4, 4, observation 'open hallway left, open "
-           "door right' → 0.324 at node 2 and 0.018 at node 4 (18 : 1)";
-  }
-  nlohmann::json default_config() const override {
-    return {{"prior_1_2", 1.0}, {"prior_2_3", 0.2}, {"door_open_probability", 0.4}, {"normalise", false}};
-  }
-  reports::ExperimentResults run(const nlohmann::json& config, const RunOptions&) const override {
-    const double p12 = config.at("prior_1_2").get<double>();
-    const double p23 = config.at("prior_2_3").get<double>();
-    const double open = config.at("door_open_probability").get<double>();
+  using OptionsExperiment::OptionsExperiment;
+  reports::ExperimentResults run_with(const Options& o, const RunOptions&) const override {
+    const double p12 = o.prior_1_2;
+    const double p23 = o.prior_2_3;
+    const double open = o.door_open_probability;
     const SideModel wall = {{Feature::kWall, 1.0}}, hall = {{Feature::kOpenHallway, 1.0}};
     const SideModel door = {{Feature::kClosedDoor, 1.0 - open}, {Feature::kOpenDoor, open}};
     TopologicalMarkov m({{"1-2", wall, wall}, {"2", hall, door}, {"2-3", wall, wall},
                          {"3", wall, wall}, {"3-4", wall, wall}, {"4", hall, hall}},
-                        dervish_sensor_table(), {config.at("normalise").get<bool>()});
+                        dervish_sensor_table(), {o.normalise});
     m.set_belief({p12, 0.0, p23, 0.0, 0.0, 0.0});
     std::vector<std::vector<double>> t(6, std::vector<double>(6, 0.0));
     t[1][0] = t[3][2] = t[4][2] = t[5][2] = 1.0;
@@ -44,6 +57,7 @@ class GlobalTopological final : public Experiment {
     m.perception_update(obs);
     const double b2 = m.belief()[1], b4 = m.belief()[5];
 
+    const nlohmann::json config = options_json(o);
     reports::ExperimentResults out = start_results(config);
     out.datasets.push_back({"slides/dervish_topological", "slides (transcribed)",
                             reports::text_checksum(config.dump()), 6, 0.0});
@@ -75,7 +89,6 @@ class GlobalTopological final : public Experiment {
   }
 };
 
-const Registration<GlobalTopological> global_topological_example_registration;
+const Registration<GlobalTopological> global_topological_example_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::global_topological_example

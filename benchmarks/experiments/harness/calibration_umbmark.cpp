@@ -155,60 +155,49 @@ void add_table_2_1(reports::ExperimentResults& out, const std::vector<std::array
 
 }  // namespace
 
-CalibrationUmbmark::CalibrationUmbmark(std::string preset) : preset_(std::move(preset)) {}
-
-std::string CalibrationUmbmark::name() const { return "calibration/" + preset_; }
-
-std::string CalibrationUmbmark::description() const {
-  return "UMBmark on the simulated " + preset_ +
-         " robot: classic vs improved calibration, E_max,syst before/after, parameter "
-         "errors, validation-path error, identifiability (Monte-Carlo)";
+UmbmarkOptions umbmark_defaults(const std::string& preset) {
+  UmbmarkOptions o;
+  o.scenario = sim::preset(preset);
+  o.effects.wheels_driven_independently = !o.scenario.drive.equal_wheel_ticks;
+  o.validation_waypoints = irregular_validation_path(o.scenario.motion.side);
+  return o;
 }
 
-nlohmann::json CalibrationUmbmark::default_config() const {
-  const sim::Scenario s = sim::preset(preset_);
-  const double L = s.motion.side;
-  return {{"runs", 10},
-          {"scenario", sim::to_json(s)},
-          {"angle_formula", "x"},
-          {"effects",
-           {{"turn_slip", true},
-            {"tape_measure", true},
-            {"tape_measure_relative_error", 0.0},
-            {"wheels_driven_independently", !s.drive.equal_wheel_ticks}}},
-          // An irregular closed path unlike the square, in units of the side L.
-          {"validation_waypoints",
-           nlohmann::json::array({{L, 0.0}, {L, 0.6 * L}, {0.3 * L, 0.9 * L},
-                                  {-0.2 * L, 0.3 * L}, {0.0, 0.0}})}};
+std::vector<Eigen::Vector2d> irregular_validation_path(double side) {
+  const double L = side;
+  return {{L, 0.0}, {L, 0.6 * L}, {0.3 * L, 0.9 * L}, {-0.2 * L, 0.3 * L}, {0.0, 0.0}};
 }
 
-UmbmarkSetup CalibrationUmbmark::setup(const nlohmann::json& config, const McPlan& plan) const {
+CalibrationUmbmark::CalibrationUmbmark(std::string preset)
+    : MonteCarloExperiment({.name = "calibration/" + preset,
+                            .description = "UMBmark on the simulated " + preset +
+                                           " robot: classic vs improved calibration, E_max,syst "
+                                           "before/after, parameter errors, validation-path error, "
+                                           "identifiability (Monte-Carlo)"}),
+      preset_(std::move(preset)) {}
+
+UmbmarkSetup CalibrationUmbmark::setup(const UmbmarkOptions& o, const McPlan& plan) const {
   UmbmarkSetup u;
   sim::Scenario& scenario = u.scenario;
-  scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
+  scenario = o.scenario;
   if (scenario.motion.kind != sim::MotionKind::kUmbmark) {
     throw UsageError(name() + ": the scenario's motion must be the UMBmark square");
   }
-  const nlohmann::json& fx = config.at("effects");
-  if (!fx.at("turn_slip").get<bool>()) scenario.slip.turn.rate = 0.0;
-  scenario.drive.equal_wheel_ticks = !fx.at("wheels_driven_independently").get<bool>();
+  if (!o.effects.turn_slip) scenario.slip.turn.rate = 0.0;
+  scenario.drive.equal_wheel_ticks = !o.effects.wheels_driven_independently;
   // Borenstein's protocol: E_s = D_a/D_n is measured with a tape and compensated *before*
   // the runs (the nominal diameters are scaled by it), so the square's return errors carry
   // no E_s turn error and the calibration takes E_s = 1 relative to that nominal model. An
   // inaccurate tape leaves a relative error on it.
-  if (fx.at("tape_measure").get<bool>()) {
+  if (o.effects.tape_measure) {
     const double e_s = error_params(scenario.robot.nominal, scenario.robot.actual).E_o *
-                       (1.0 + fx.at("tape_measure_relative_error").get<double>());
+                       (1.0 + o.effects.tape_measure_relative_error);
     scenario.robot.nominal.diameter_left *= e_s;
     scenario.robot.nominal.diameter_right *= e_s;
   }
-  u.classic.angles = u.improved.angles =
-      angle_formula(config.at("angle_formula").get<std::string>());
-  for (const auto& w : config.at("validation_waypoints")) {
-    u.validation.emplace_back(w.at(0).get<double>(), w.at(1).get<double>());
-  }
-  u.configuration = config;
-  u.configuration["runs"] = plan.runs;
+  u.classic.angles = u.improved.angles = angle_formula(o.angle_formula);
+  u.validation = o.validation_waypoints;
+  u.configuration = recorded(o, plan);
   u.configuration["scenario"] = sim::to_json(scenario);
   return u;
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/line_map.h"
+#include "core/option_fields.h"
 #include "core/pose2.h"
 #include "core/scan.h"
 #include "core/log.h"
@@ -67,6 +68,25 @@ struct ConvergenceCriterion {
   double position = 0.5;  // [m]
   double heading = 0.35;  // [rad]
 };
+
+// The options global/sim and global/real_logs share: the methods compared, their options and
+// when an estimate counts as converged.
+struct MethodComparisonOptions {
+  std::vector<std::string> methods = method_names();
+  nlohmann::json method_options = default_method_options();  // make_localizer's
+  double convergence_position_m = 0.5;
+  double convergence_heading_rad = 0.35;
+  ConvergenceCriterion criterion() const { return {convergence_position_m, convergence_heading_rad}; }
+};
+template <class V>
+void visit_method_comparison_fields(V& v, MethodComparisonOptions& o) {
+  v.field("methods", o.methods, "", Range{}, "the localizers compared (method_names())");
+  v.field("method_options", o.method_options, "", Range{}, "each method's options (make_localizer)");
+  v.field("convergence_position_m", o.convergence_position_m, "m", positive(),
+          "converged: position error at most this");
+  v.field("convergence_heading_rad", o.convergence_heading_rad, "rad", positive(),
+          "converged: heading error at most this");
+}
 // Index (relative to `begin`) of the first step from which the estimate stays within the
 // criterion of the reference until `end`; nullopt when it never settles.
 std::optional<std::size_t> converged_from(const std::vector<Pose2>& est, const std::vector<ScanStep>& steps,

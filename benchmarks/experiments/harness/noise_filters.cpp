@@ -131,8 +131,4 @@ void add_filter_results(reports::ExperimentResults& out, const std::string& data
   }
 }
 
-sim::Scenario corridor_from(const nlohmann::json& config) {
-  return sim::scenario_from_json(config.at("scenario"), "<configuration>");
-}
-
 }  // namespace locbench::experiments

@@ -10,6 +10,9 @@
 
 #include "core/trajectory.h"
 #include "core/units.h"
+#include "benchmarks/experiments/framework/experiment_options.h"
+#include "benchmarks/experiments/harness/scenario_option.h"
+#include "datasets/sim/presets.h"
 #include "datasets/sim/scenario.h"
 #include "datasets/sim/simulation_result.h"
 #include "reports/report.h"
@@ -77,7 +80,18 @@ std::vector<std::vector<double>> common_length(std::vector<std::vector<double>> 
 void add_filter_results(reports::ExperimentResults& out, const std::string& dataset,
                         const FilterSamples& s);
 
-// The configuration's "scenario".
-sim::Scenario corridor_from(const nlohmann::json& config);
+// The options the filter experiments share: simulated corridor runs filtered by the four
+// filters (noise/tables_4_1_4_2, noise/encoder_resolution_sweep).
+struct CorridorFilterOptions {
+  int runs = 10;
+  sim::Scenario scenario = sim::preset("corridor");
+  nlohmann::json filters = default_filter_options(kFilterInitialCovariance);  // run_noise_filters
+};
+template <class V>
+void visit_corridor_filter_fields(V& v, CorridorFilterOptions& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs");
+  v.coded("scenario", o.scenario, scenario_json, scenario_option, "the simulated corridor run (datasets/sim)");
+  v.field("filters", o.filters, "", Range{}, "each filter's options (run_noise_filters)");
+}
 
 }  // namespace locbench::experiments

@@ -38,6 +38,14 @@ struct RealLogSpec {
 // a user's file that does not exist.
 std::vector<RealLogSpec> real_log_specs(const nlohmann::json& datasets, const std::string& experiment);
 
+// The catalog's real logs as a configuration's default "datasets": the three Freiburg logs with
+// scans and relations, and those with the five MRCLAM robots (odometry and Vicon truth).
+inline nlohmann::json freiburg_logs() { return {"aces", "intel", "mit_csail"}; }
+inline nlohmann::json freiburg_and_mrclam_logs() {
+  return {"aces",           "intel",          "mit_csail",      "mrclam6_robot1",
+          "mrclam6_robot2", "mrclam6_robot3", "mrclam6_robot4", "mrclam6_robot5"};
+}
+
 // The names of `specs`, in order.
 std::vector<std::string> real_log_names(const std::vector<RealLogSpec>& specs);
 

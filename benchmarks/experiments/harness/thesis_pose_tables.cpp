@@ -7,6 +7,7 @@
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
+#include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
 
 namespace locbench::experiments::thesis_pose {
@@ -50,18 +51,21 @@ std::pair<double, std::size_t> finite_mean(const std::vector<double>& v) {
   return {n ? s / static_cast<double>(n) : std::nan(""), n};
 }
 
-Setup ThesisTableExperiment::setup(const nlohmann::json& config, const McPlan& plan) const {
-  Setup s;
-  from_json(config.at("eap"), s.eap);
-  s.configuration = config;
-  s.configuration["runs"] = plan.runs;
-  return s;
+Setup ThesisTableExperiment::setup(const TableOptions& o, const McPlan& plan) const {
+  return {o.eap, recorded(o, plan)};
 }
 
-nlohmann::json ThesisTableExperiment::base_config() {
-  nlohmann::json eap;
-  to_json(eap, laser::EapOptions{});
-  return {{"runs", 10}, {"eap", eap}};
+nlohmann::json ThesisTableExperiment::run_task(const Setup& s, const McPlan& plan, int k) const {
+  const LineMap room = sim::room_world();
+  return Record{row_values(s, thesis_scan(plan.run_seed(k), room), room)};
+}
+
+reports::ExperimentResults ThesisTableExperiment::summarise(
+    const Setup& s, const McPlan& plan, const std::vector<nlohmann::json>& records) const {
+  const auto recs = records_of(records);
+  reports::ExperimentResults out = start(s, plan, recs.size());
+  tabulate(recs, out);
+  return out;
 }
 
 reports::ExperimentResults ThesisTableExperiment::start(const Setup& s, const McPlan& plan,

@@ -43,6 +43,17 @@ Outcome correct_from(const Scan& scan, const LineMap& room, const Pose2& estimat
 // E_p¹: the estimate's position error [mm].
 double e_p1_mm(const Pose2& estimate);
 
+// The three tables' configuration.
+struct TableOptions {
+  int runs = 10;
+  laser::EapOptions eap;
+};
+template <class V>
+void visit_fields(V& v, TableOptions& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs (one scan each)");
+  v.nested("eap", o.eap, "EAP matcher (algorithms/laser/eap_matcher.h)");
+}
+
 struct Setup {
   laser::EapOptions eap;
   nlohmann::json configuration;
@@ -56,12 +67,20 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, values)
 std::pair<double, std::size_t> finite_mean(const std::vector<double>& v);
 
 // Shared shape of the three table experiments.
-class ThesisTableExperiment : public MonteCarloExperiment<Setup> {
+class ThesisTableExperiment : public MonteCarloExperiment<TableOptions, Setup> {
  public:
-  Setup setup(const nlohmann::json& config, const McPlan& plan) const override;
+  using MonteCarloExperiment::MonteCarloExperiment;
+  Setup setup(const TableOptions& o, const McPlan& plan) const override;
+  // Run k: one scan of the room from the thesis pose, then the table's rows.
+  nlohmann::json run_task(const Setup& s, const McPlan& plan, int k) const final;
+  reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
+                                       const std::vector<nlohmann::json>& records) const final;
 
  protected:
-  static nlohmann::json base_config();
+  // One run's numbers, the rows' flattened (Record::values), from its scan of the room.
+  virtual std::vector<double> row_values(const Setup& s, const Scan& scan, const LineMap& room) const = 0;
+  // The table's metrics, published comparisons and notes from every run's record.
+  virtual void tabulate(const std::vector<Record>& recs, reports::ExperimentResults& out) const = 0;
   reports::ExperimentResults start(const Setup& s, const McPlan& plan, std::size_t runs) const;
   // Metric over runs from column `col` of rows of width `width`, row `row`.
   static std::vector<double> column(const std::vector<Record>& recs, std::size_t width,

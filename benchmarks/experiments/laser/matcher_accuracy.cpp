@@ -21,8 +21,13 @@
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::laser_matcher_accuracy {
+
+const ExperimentInfo kInfo{
+    .name = "laser/matcher_accuracy",
+    .description = "EAP vs split-and-merge, agglomerative and RWHT matchers on the 8 m room and random "
+                   "rooms: segment detection, line errors, point precision/recall under pose error, "
+                   "range noise, clutter and dropouts (Monte-Carlo)"};
 
 const char* const kWorlds[] = {"room", "random_room"};
 constexpr int kWorldCount = 2;
@@ -43,6 +48,73 @@ struct Condition {
   double spurious = 0.0;
   int clutter = 0;              // segments in the world but not in the map
 };
+
+// A condition as configured (units as named; Condition holds them in SI).
+struct ConditionOptions {
+  std::string name;
+  double position_error_m = 0.1414;
+  double heading_error_deg = 3.0;
+  double noise_mm = 5.0;
+  double range_offset_mm = 15.0;
+  double dropout = 0.0;
+  double spurious = 0.0;
+  int clutter_segments = 0;
+};
+template <class V>
+void visit_fields(V& v, ConditionOptions& o) {
+  v.field("name", o.name, "", Range{}, "the condition's name in result keys");
+  v.field("position_error_m", o.position_error_m, "m", non_negative(), "estimate's position error");
+  v.field("heading_error_deg", o.heading_error_deg, "deg", any_finite(), "estimate's heading error");
+  v.field("noise_mm", o.noise_mm, "mm", non_negative(), "range noise σ");
+  v.field("range_offset_mm", o.range_offset_mm, "mm", any_finite(), "systematic range offset");
+  v.field("dropout", o.dropout, "", closed(0.0, 1.0), "share of beams lost");
+  v.field("spurious", o.spurious, "", closed(0.0, 1.0), "share of spurious ranges");
+  v.field("clutter_segments", o.clutter_segments, "", non_negative(), "segments in the world but not in the map");
+}
+void validate_condition(const ConditionOptions& o) {
+  validate_options(o, "ConditionOptions");
+  if (o.dropout + o.spurious > 1) throw UsageError("ConditionOptions: dropout + spurious must be ≤ 1");
+}
+[[maybe_unused]] void to_json(nlohmann::json& j, const ConditionOptions& o) { j = options_json(o); }
+[[maybe_unused]] void from_json(const nlohmann::json& j, ConditionOptions& o) {
+  o = read_options(j, "ConditionOptions", o);
+  validate_condition(o);
+}
+
+struct RandomRoomOptions {
+  double min_size_m = 6.0;
+  double max_size_m = 12.0;
+  int boxes = 3;
+};
+template <class V>
+void visit_fields(V& v, RandomRoomOptions& o) {
+  v.field("min_size_m", o.min_size_m, "m", positive(), "smallest room side");
+  v.field("max_size_m", o.max_size_m, "m", positive(), "largest room side");
+  v.field("boxes", o.boxes, "", non_negative(), "boxes placed in the room");
+}
+LOCBENCH_EXPERIMENT_OPTIONS(RandomRoomOptions)
+
+struct Options {
+  int runs = 20;
+  std::vector<std::string> matchers = {"eap", "split_and_merge", "agglomerative", "rwht"};
+  nlohmann::json matcher_options = default_matcher_options();
+  // §5.4 / Table 6.2's estimate, then one change each.
+  std::vector<ConditionOptions> conditions = {
+      {"thesis_setting", 0.1414, 3.0, 5.0, 15.0, 0.0, 0.0, 0},
+      {"large_pose_error", 0.3, 8.0, 5.0, 15.0, 0.0, 0.0, 0},
+      {"range_noise_30mm", 0.1414, 3.0, 30.0, 0.0, 0.0, 0.0, 0},
+      {"clutter", 0.1414, 3.0, 5.0, 15.0, 0.0, 0.0, 8},
+      {"dropouts_spurious", 0.1414, 3.0, 5.0, 15.0, 0.2, 0.05, 0}};
+  RandomRoomOptions random_room;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs");
+  v.field("matchers", o.matchers, "", Range{}, "the matchers compared (make_matchers)");
+  v.field("matcher_options", o.matcher_options, "", Range{}, "each matcher's options");
+  v.field("conditions", o.conditions, "", Range{}, "the scan conditions");
+  v.nested("random_room", o.random_room, "the random rooms (sim::RandomRoomOptions)");
+}
 
 struct Setup {
   std::vector<std::string> matchers;
@@ -79,63 +151,23 @@ Pose2 random_free_pose(const LineMap& room, Rng& rng) {
   throw std::logic_error("laser/matcher_accuracy: no free pose found");
 }
 
-class LaserMatcherAccuracy final : public MonteCarloExperiment<Setup> {
+class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
  public:
-  std::string name() const override { return "laser/matcher_accuracy"; }
-  std::string description() const override {
-    return "EAP vs split-and-merge, agglomerative and RWHT matchers on the 8 m room and random "
-           "rooms: segment detection, line errors, point precision/recall under pose error, "
-           "range noise, clutter and dropouts (Monte-Carlo)";
-  }
-  nlohmann::json default_config() const override {
-    nlohmann::json conditions = nlohmann::json::array();
-    // name, pose error [m], heading error [deg], σ [mm], offset [mm], dropout, spurious, clutter
-    const auto c = [&](const char* n, double pe, double he, double s, double off, double d,
-                       double sp, int cl) {
-      conditions.push_back({{"name", n}, {"position_error_m", pe}, {"heading_error_deg", he},
-                            {"noise_mm", s}, {"range_offset_mm", off}, {"dropout", d},
-                            {"spurious", sp}, {"clutter_segments", cl}});
-    };
-    c("thesis_setting", 0.1414, 3.0, 5.0, 15.0, 0.0, 0.0, 0);  // §5.4 / Table 6.2's estimate
-    c("large_pose_error", 0.3, 8.0, 5.0, 15.0, 0.0, 0.0, 0);
-    c("range_noise_30mm", 0.1414, 3.0, 30.0, 0.0, 0.0, 0.0, 0);
-    c("clutter", 0.1414, 3.0, 5.0, 15.0, 0.0, 0.0, 8);
-    c("dropouts_spurious", 0.1414, 3.0, 5.0, 15.0, 0.2, 0.05, 0);
-    return {{"runs", 20},
-            {"matchers", {"eap", "split_and_merge", "agglomerative", "rwht"}},
-            {"matcher_options", default_matcher_options()},
-            {"conditions", conditions},
-            {"random_room", {{"min_size_m", 6.0}, {"max_size_m", 12.0}, {"boxes", 3}}}};
-  }
-
-  Setup setup(const nlohmann::json& config, const McPlan& plan) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  Setup setup(const Options& o, const McPlan& plan) const override {
     Setup s;
-    s.matchers = config.at("matchers").get<std::vector<std::string>>();
-    s.matcher_options = config.at("matcher_options");
+    s.matchers = o.matchers;
+    s.matcher_options = o.matcher_options;
     make_matchers(s.matchers, s.matcher_options, nullptr);  // validates names and options early
-    for (const auto& j : config.at("conditions")) {
-      Condition c;
-      c.name = j.at("name").get<std::string>();
-      c.position_error = j.at("position_error_m").get<double>();
-      c.heading_error = deg(j.at("heading_error_deg").get<double>());
-      c.noise = mm(j.at("noise_mm").get<double>());
-      c.range_offset = mm(j.at("range_offset_mm").get<double>());
-      c.dropout = j.at("dropout").get<double>();
-      c.spurious = j.at("spurious").get<double>();
-      c.clutter = j.at("clutter_segments").get<int>();
-      if (c.position_error < 0 || c.noise < 0 || c.dropout < 0 || c.spurious < 0 ||
-          c.dropout + c.spurious > 1 || c.clutter < 0) {
-        throw UsageError(name() + ": condition '" + c.name + "' has an invalid value");
-      }
-      s.conditions.push_back(c);
+    for (const ConditionOptions& j : o.conditions) {
+      s.conditions.push_back({j.name, j.position_error_m, deg(j.heading_error_deg), mm(j.noise_mm),
+                              mm(j.range_offset_mm), j.dropout, j.spurious, j.clutter_segments});
     }
-    const auto& rr = config.at("random_room");
-    s.random_room.min_size = rr.at("min_size_m").get<double>();
-    s.random_room.max_size = rr.at("max_size_m").get<double>();
-    s.random_room.boxes = rr.at("boxes").get<int>();
+    s.random_room.min_size = o.random_room.min_size_m;
+    s.random_room.max_size = o.random_room.max_size_m;
+    s.random_room.boxes = o.random_room.boxes;
     s.laser.timing.enabled = true;  // LMS 200 defaults: 181 beams, ±90°, 8 m
-    s.configuration = config;
-    s.configuration["runs"] = plan.runs;
+    s.configuration = recorded(o, plan);
     return s;
   }
 
@@ -242,7 +274,6 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<LaserMatcherAccuracy> laser_matcher_accuracy_registration;
+const Registration<LaserMatcherAccuracy> laser_matcher_accuracy_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::laser_matcher_accuracy

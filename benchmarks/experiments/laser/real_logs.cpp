@@ -27,8 +27,46 @@
 #include "benchmarks/experiments/harness/relation_drawing.h"
 #include "datasets/io/odometry_interpolation.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::laser_real_logs {
+
+const ExperimentInfo kInfo{
+    .name = "laser/real_logs",
+    .description = "Scan-to-previous-scan correction on real logs (Freiburg ACES, Intel, MIT CSAIL, or "
+                   "--log/--relations): relative-pose error of the thesis's matchers + chapter-6 least "
+                   "squares, EAP + iterated point-to-line, PL-ICP and point-to-point ICP against the "
+                   ".relations, beside raw odometry"};
+
+struct Options {
+  int runs = 1;  // not Monte-Carlo: one task per dataset
+  nlohmann::json datasets = freiburg_logs();
+  std::vector<std::string> matchers = {"eap", "split_and_merge", "agglomerative", "rwht"};
+  std::vector<std::string> correctors = {"eap_ch6_rematched", "eap_ch6_heading_only",
+                                         "eap_ch6_inverse_variance", "eap_iterated_pl",
+                                         "pl_icp", "icp_point_to_point"};
+  nlohmann::json corrector_options = default_corrector_options();
+  std::string beam_angles = "log";
+  nlohmann::json laser_mount = nullptr;
+  double max_relation_dt_s = 30.0;
+  std::size_t max_relations = 0;
+  std::size_t draw_worst = 3;
+  bool per_relation_values = true;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "unused: one task per dataset");
+  v.field("datasets", o.datasets, "", Range{}, "catalog names or user files (real_log_harness.h)");
+  v.field("matchers", o.matchers, "", Range{}, "matchers, each + chapter-6 least squares");
+  v.field("correctors", o.correctors, "", Range{}, "further correctors (make_correctors)");
+  v.field("corrector_options", o.corrector_options, "", Range{}, "each corrector's options");
+  v.field("beam_angles", o.beam_angles, "", Range{}, "\"log\" or \"bag\"");
+  v.field("laser_mount", o.laser_mount, "", Range{},
+          "[x m, y m, θ rad] of the laser in the robot frame; null = the log's");
+  v.field("max_relation_dt_s", o.max_relation_dt_s, "s", positive(), "longest relation evaluated");
+  v.field("max_relations", o.max_relations, "", Range{}, "relations per log (0 = all)");
+  v.field("draw_worst", o.draw_worst, "", Range{}, "relations drawn in the report, per log");
+  v.flag("per_relation_values", o.per_relation_values,
+         "each relation's error in the report (the rpe metrics' values), for checks by others");
+}
 
 struct Setup {
   std::vector<RealLogSpec> datasets;
@@ -88,58 +126,32 @@ std::vector<double> subset(const std::vector<double>& v, const std::vector<bool>
 constexpr double kWeakPosition = 0.02;
 constexpr double kHeadingSpread = 0.0349066;  // 2°
 
-class LaserRealLogs final : public MonteCarloExperiment<Setup> {
+class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
  public:
-  std::string name() const override { return "laser/real_logs"; }
-  std::string description() const override {
-    return "Scan-to-previous-scan correction on real logs (Freiburg ACES, Intel, MIT CSAIL, or "
-           "--log/--relations): relative-pose error of the thesis's matchers + chapter-6 least "
-           "squares, EAP + iterated point-to-line, PL-ICP and point-to-point ICP against the "
-           ".relations, beside raw odometry";
-  }
-  nlohmann::json default_config() const override {
-    return {{"runs", 1},  // not Monte-Carlo: one task per dataset
-            {"datasets", {"aces", "intel", "mit_csail"}},
-            {"matchers", {"eap", "split_and_merge", "agglomerative", "rwht"}},
-            {"correctors", {"eap_ch6_rematched", "eap_ch6_heading_only", "eap_ch6_inverse_variance",
-                            "eap_iterated_pl",
-                            "pl_icp", "icp_point_to_point"}},
-            {"corrector_options", default_corrector_options()},
-            {"beam_angles", "log"},
-            {"laser_mount", nullptr},  // [x m, y m, θ rad] of the laser in the robot frame; null = the log's
-            {"max_relation_dt_s", 30.0},
-            {"max_relations", 0},  // 0 = all
-            {"draw_worst", 3},     // relations drawn in the report, per log
-            // Each relation's error in the report (the rpe metrics' values), for checks by others.
-            {"per_relation_values", true}};
-  }
-  Setup setup(const nlohmann::json& config, const McPlan& plan) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  Setup setup(const Options& o, const McPlan&) const override {
     Setup s;
-    s.datasets = real_log_specs(config.at("datasets"), name());
-    for (const auto& m : config.at("matchers").get<std::vector<std::string>>()) {
-      s.methods.push_back(m + "_ch6_ls");
-    }
-    for (const auto& c : config.at("correctors").get<std::vector<std::string>>()) {
-      s.methods.push_back(c);
-    }
-    s.corrector_options = config.at("corrector_options");
+    s.datasets = real_log_specs(o.datasets, name());
+    for (const auto& m : o.matchers) s.methods.push_back(m + "_ch6_ls");
+    for (const auto& c : o.correctors) s.methods.push_back(c);
+    s.corrector_options = o.corrector_options;
     make_correctors(s.methods, s.corrector_options);  // validates names and options
-    s.beam_angles = config.at("beam_angles").get<std::string>();
+    s.beam_angles = o.beam_angles;
     if (s.beam_angles != "log" && s.beam_angles != "bag") {
       throw UsageError(name() + ": beam_angles: expected \"log\" or \"bag\", found \"" +
                        s.beam_angles + "\"");
     }
-    if (const auto& m = config.at("laser_mount"); !m.is_null()) {
-      const auto v = m.get<std::vector<double>>();
-      if (v.size() != 3) throw UsageError(name() + ": laser_mount: expected [x, y, theta] or null");
-      s.laser_mount = Pose2(v[0], v[1], v[2]);
+    if (const auto& m = o.laser_mount; !m.is_null()) {
+      if (!m.is_array() || m.size() != 3 || !m[0].is_number() || !m[1].is_number() || !m[2].is_number()) {
+        throw UsageError(name() + ": laser_mount: expected [x, y, theta] or null");
+      }
+      s.laser_mount = Pose2(m[0].get<double>(), m[1].get<double>(), m[2].get<double>());
     }
-    s.max_dt = config.at("max_relation_dt_s").get<double>();
-    s.max_relations = config.at("max_relations").get<std::size_t>();
-    s.draw_worst = config.at("draw_worst").get<std::size_t>();
-    s.per_relation_values = config.at("per_relation_values").get<bool>();
-    s.configuration = config;
-    (void)plan;
+    s.max_dt = o.max_relation_dt_s;
+    s.max_relations = o.max_relations;
+    s.draw_worst = o.draw_worst;
+    s.per_relation_values = o.per_relation_values;
+    s.configuration = options_json(o);
     return s;
   }
   int tasks(const Setup& s, const McPlan&) const override {
@@ -471,7 +483,6 @@ class LaserRealLogs final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<LaserRealLogs> laser_real_logs_registration;
+const Registration<LaserRealLogs> laser_real_logs_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::laser_real_logs

@@ -21,8 +21,12 @@
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::laser_rwht_bins {
+
+const ExperimentInfo kInfo{
+    .name = "laser/rwht_bins",
+    .description = "RWHT accuracy against cost across angle and range bin sizes (room, thesis pose): "
+                   "peak-cell and refitted line errors, segments found, accumulator cells, work"};
 
 const Pose2 kPose(2.0, 1.0, deg(46.0));
 constexpr int kValues = 7;  // per bin pair: peak |Δρ|, |Δβ|, refit |Δρ|, |Δβ|, recall, cells, work
@@ -30,6 +34,18 @@ const char* const kNames[kValues] = {"peak_rho_error", "peak_beta_error", "refit
                                      "refit_beta_error", "segment_recall", "cells", "work"};
 const char* const kUnits[kValues] = {"m", "rad", "m", "rad", "", "", ""};
 const char* const kBetter[kValues] = {"lower", "lower", "lower", "lower", "higher", "lower", "lower"};
+
+struct Options {
+  int runs = 5;
+  std::vector<double> angle_bins_deg = {0.25, 0.5, 1.0, 2.0, 4.0};
+  std::vector<double> range_bins_cm = {1.25, 2.5, 5.0, 10.0, 20.0};
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs");
+  v.field("angle_bins_deg", o.angle_bins_deg, "deg", positive(), "the accumulator's angle bins");
+  v.field("range_bins_cm", o.range_bins_cm, "cm", positive(), "the accumulator's range bins");
+}
 
 struct Setup {
   std::vector<double> angle_bins;  // [rad]
@@ -53,27 +69,17 @@ std::pair<double, double> line_difference(const LineParams& a, const LineParams&
   return {dr, db};
 }
 
-class LaserRwhtBins final : public MonteCarloExperiment<Setup> {
+class LaserRwhtBins final : public MonteCarloExperiment<Options, Setup> {
  public:
-  std::string name() const override { return "laser/rwht_bins"; }
-  std::string description() const override {
-    return "RWHT accuracy against cost across angle and range bin sizes (room, thesis pose): "
-           "peak-cell and refitted line errors, segments found, accumulator cells, work";
-  }
-  nlohmann::json default_config() const override {
-    return {{"runs", 5},
-            {"angle_bins_deg", {0.25, 0.5, 1.0, 2.0, 4.0}},
-            {"range_bins_cm", {1.25, 2.5, 5.0, 10.0, 20.0}}};
-  }
-  Setup setup(const nlohmann::json& config, const McPlan& plan) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  Setup setup(const Options& o, const McPlan& plan) const override {
     Setup s;
-    for (double a : config.at("angle_bins_deg").get<std::vector<double>>()) s.angle_bins.push_back(deg(a));
-    for (double r : config.at("range_bins_cm").get<std::vector<double>>()) s.range_bins.push_back(r / 100.0);
+    for (double a : o.angle_bins_deg) s.angle_bins.push_back(deg(a));
+    for (double r : o.range_bins_cm) s.range_bins.push_back(r / 100.0);
     if (s.angle_bins.empty() || s.range_bins.empty()) {
       throw UsageError(name() + ": angle_bins_deg and range_bins_cm must not be empty");
     }
-    s.configuration = config;
-    s.configuration["runs"] = plan.runs;
+    s.configuration = recorded(o, plan);
     return s;
   }
 
@@ -174,7 +180,6 @@ class LaserRwhtBins final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<LaserRwhtBins> laser_rwht_bins_registration;
+const Registration<LaserRwhtBins> laser_rwht_bins_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::laser_rwht_bins

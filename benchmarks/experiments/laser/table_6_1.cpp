@@ -9,8 +9,12 @@
 #include "benchmarks/experiments/harness/thesis_pose_tables.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench::experiments::thesis_pose {
-namespace {
+namespace locbench::experiments::thesis_pose::laser_table_6_1 {
+
+const ExperimentInfo kInfo{
+    .name = "laser/table_6_1",
+    .description = "Point-to-line vs point-to-point position correction at the thesis pose, estimate "
+                   "(2100, 1100) mm, heading error −5…5° (Table 6.1)"};
 
 constexpr double kTable61[11][2] = {{56.12, 56.17}, {68.41, 60.72}, {60.18, 63.74}, {39.18, 27.35},
                                     {23.25, 9.02},  {32.47, 20.97}, {27.29, 4.65},  {35.94, 16.82},
@@ -18,29 +22,19 @@ constexpr double kTable61[11][2] = {{56.12, 56.17}, {68.41, 60.72}, {60.18, 63.7
 
 class Table61 final : public ThesisTableExperiment {
  public:
-  std::string name() const override { return "laser/table_6_1"; }
-  std::string description() const override {
-    return "Point-to-line vs point-to-point position correction at the thesis pose, estimate "
-           "(2100, 1100) mm, heading error −5…5° (Table 6.1)";
-  }
-  nlohmann::json default_config() const override { return base_config(); }
-  nlohmann::json run_task(const Setup& s, const McPlan& plan, int k) const override {
-    const LineMap room = sim::room_world();
-    const Scan scan = thesis_scan(plan.run_seed(k), room);
-    Record r;
+  using ThesisTableExperiment::ThesisTableExperiment;
+  std::vector<double> row_values(const Setup& s, const Scan& scan, const LineMap& room) const override {
+    std::vector<double> r;
     for (int e = -5; e <= 5; ++e) {
       const Pose2 est(2.1, 1.1, kThesisPose.theta + deg(e));
       const Outcome pl = correct_from(scan, room, est, s.eap, pose_correction::PositionMethod::kPointToLine);
       const Outcome pp = correct_from(scan, room, est, s.eap, pose_correction::PositionMethod::kPointToPoint);
-      r.values.insert(r.values.end(), {pl.position_error_mm, pp.position_error_mm,
-                                       pp.heading_error_deg});
+      r.insert(r.end(), {pl.position_error_mm, pp.position_error_mm,
+                        pp.heading_error_deg});
     }
     return r;
   }
-  reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
-                                       const std::vector<nlohmann::json>& j) const override {
-    const auto recs = records_of(j);
-    reports::ExperimentResults out = start(s, plan, recs.size());
+  void tabulate(const std::vector<Record>& recs, reports::ExperimentResults& out) const override {
     reports::PublishedComparison pl, pp;
     pl.source = pp.source = "thesis Table 6.1";
     pl.quantity = "E_p² after point-to-line LS, by heading error E_o¹ (mean over runs)";
@@ -75,11 +69,9 @@ class Table61 final : public ThesisTableExperiment {
     out.notes.push_back(fmt::format(
         "Point-to-point beats point-to-line in {} of 11 rows here (thesis: {} of 11).", pp_wins,
         pp_wins_published));
-    return out;
   }
 };
 
-const Registration<Table61> laser_table_6_1_registration;
+const Registration<Table61> laser_table_6_1_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments::thesis_pose
+}  // namespace locbench::experiments::thesis_pose::laser_table_6_1

@@ -13,8 +13,12 @@
 #include "benchmarks/experiments/harness/thesis_pose_tables.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench::experiments::thesis_pose {
-namespace {
+namespace locbench::experiments::thesis_pose::laser_table_6_2 {
+
+const ExperimentInfo kInfo{
+    .name = "laser/table_6_2",
+    .description = "The d_limit sweep 50…400 mm at the thesis pose, estimate (2100, 1100, 43°): matched "
+                   "segments, heading and position error after correction (Table 6.2)"};
 
 struct Row62 {
   int d_limit_mm;
@@ -30,17 +34,10 @@ constexpr std::size_t kRows62 = std::size(kTable62);
 
 class Table62 final : public ThesisTableExperiment {
  public:
-  std::string name() const override { return "laser/table_6_2"; }
-  std::string description() const override {
-    return "The d_limit sweep 50…400 mm at the thesis pose, estimate (2100, 1100, 43°): matched "
-           "segments, heading and position error after correction (Table 6.2)";
-  }
-  nlohmann::json default_config() const override { return base_config(); }
-  nlohmann::json run_task(const Setup& s, const McPlan& plan, int k) const override {
-    const LineMap room = sim::room_world();
-    const Scan scan = thesis_scan(plan.run_seed(k), room);
+  using ThesisTableExperiment::ThesisTableExperiment;
+  std::vector<double> row_values(const Setup& s, const Scan& scan, const LineMap& room) const override {
     const Pose2 est(2.1, 1.1, deg(43.0));
-    Record r;
+    std::vector<double> r;
     for (const Row62& row : kTable62) {
       laser::EapOptions o = s.eap;
       o.d_limit = mm(row.d_limit_mm);
@@ -50,15 +47,12 @@ class Table62 final : public ThesisTableExperiment {
       t.max_direction_error = 0.0;
       t.trim_distance = 0.0;
       const Outcome u = correct_from(scan, room, est, t, pose_correction::PositionMethod::kPointToPoint);
-      r.values.insert(r.values.end(), {c.matched_segments, c.heading_error_deg, c.position_error_mm,
-                                       u.matched_segments, u.heading_error_deg, u.position_error_mm});
+      r.insert(r.end(), {c.matched_segments, c.heading_error_deg, c.position_error_mm,
+                        u.matched_segments, u.heading_error_deg, u.position_error_mm});
     }
     return r;
   }
-  reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
-                                       const std::vector<nlohmann::json>& j) const override {
-    const auto recs = records_of(j);
-    reports::ExperimentResults out = start(s, plan, recs.size());
+  void tabulate(const std::vector<Record>& recs, reports::ExperimentResults& out) const override {
     reports::PublishedComparison seg, eo, ep;
     seg.source = eo.source = ep.source = "thesis Table 6.2";
     seg.quantity = "matched segments by d_limit (mean over runs)";
@@ -115,11 +109,9 @@ class Table62 final : public ThesisTableExperiment {
         "their −87° or −18° as evidence (results eap_thesis_rules_*).",
         mean(thesis_rules_heading),
         *std::max_element(thesis_rules_heading.begin(), thesis_rules_heading.end())));
-    return out;
   }
 };
 
-const Registration<Table62> laser_table_6_2_registration;
+const Registration<Table62> laser_table_6_2_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments::thesis_pose
+}  // namespace locbench::experiments::thesis_pose::laser_table_6_2

@@ -10,8 +10,12 @@
 #include "benchmarks/experiments/harness/thesis_pose_tables.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench::experiments::thesis_pose {
-namespace {
+namespace locbench::experiments::thesis_pose::laser_tables_6_3_6_4 {
+
+const ExperimentInfo kInfo{
+    .name = "laser/tables_6_3_6_4",
+    .description = "Heading and position correction from ten perturbed estimates at the thesis pose "
+                   "(Tables 6.3/6.4): errors after, and after/before ratios"};
 
 struct Row63 {
   double x_mm, y_mm, theta_deg;  // the estimate
@@ -25,27 +29,17 @@ const Row63 kTable63[] = {{2080, 1080, 42, -0.18, 54.96}, {2060, 1085, 43, -0.07
 
 class Tables6364 final : public ThesisTableExperiment {
  public:
-  std::string name() const override { return "laser/tables_6_3_6_4"; }
-  std::string description() const override {
-    return "Heading and position correction from ten perturbed estimates at the thesis pose "
-           "(Tables 6.3/6.4): errors after, and after/before ratios";
-  }
-  nlohmann::json default_config() const override { return base_config(); }
-  nlohmann::json run_task(const Setup& s, const McPlan& plan, int k) const override {
-    const LineMap room = sim::room_world();
-    const Scan scan = thesis_scan(plan.run_seed(k), room);
-    Record r;
+  using ThesisTableExperiment::ThesisTableExperiment;
+  std::vector<double> row_values(const Setup& s, const Scan& scan, const LineMap& room) const override {
+    std::vector<double> r;
     for (const Row63& row : kTable63) {
       const Pose2 est(mm(row.x_mm), mm(row.y_mm), deg(row.theta_deg));
       const Outcome c = correct_from(scan, room, est, s.eap, pose_correction::PositionMethod::kPointToPoint);
-      r.values.insert(r.values.end(), {c.heading_error_deg, c.position_error_mm});
+      r.insert(r.end(), {c.heading_error_deg, c.position_error_mm});
     }
     return r;
   }
-  reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
-                                       const std::vector<nlohmann::json>& j) const override {
-    const auto recs = records_of(j);
-    reports::ExperimentResults out = start(s, plan, recs.size());
+  void tabulate(const std::vector<Record>& recs, reports::ExperimentResults& out) const override {
     reports::PublishedComparison eo, ep;
     eo.source = ep.source = "thesis Tables 6.3/6.4";
     eo.quantity = "|E_o²/E_o¹| per experiment (mean over runs)";
@@ -86,11 +80,9 @@ class Tables6364 final : public ThesisTableExperiment {
         "Heading error after correction is at most {:.1f}% of before (thesis: < 10%); position "
         "error after is {:.1f}–{:.1f}% of before (thesis: 5.24–51.38%).",
         worst_eo, best_ep, worst_ep));
-    return out;
   }
 };
 
-const Registration<Tables6364> laser_tables_6_3_6_4_registration;
+const Registration<Tables6364> laser_tables_6_3_6_4_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments::thesis_pose
+}  // namespace locbench::experiments::thesis_pose::laser_tables_6_3_6_4

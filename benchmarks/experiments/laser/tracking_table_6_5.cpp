@@ -23,19 +23,49 @@
 #include "baselines/localization/line_observation.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/harness/scenario_option.h"
 #include "reports/findings.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::laser_tracking_table_6_5 {
+
+const ExperimentInfo kInfo{
+    .name = "laser/tracking_table_6_5",
+    .description = "Corridor tracking, 200 mm/s, 5 Hz, 10 m (Table 6.5): chapter-6 EKF with EAP or "
+                   "split-and-merge matches vs the slides' line-feature Kalman localizer vs odometry"};
 
 enum Method { kOdometry, kEkfEap, kEkfSplitMerge, kLineKalman, kMethods };
 const char* const kMethodNames[kMethods] = {"odometry", "ekf_eap", "ekf_split_and_merge",
                                             "kalman_line_features"};
 constexpr double kTable65[10] = {62.07, 55.48, 71.42, 66.24, 48.69, 81.46, 70.28, 53.48, 67.69, 53.43};
+
+sim::Scenario corridor_at_5_hz() {
+  sim::Scenario s = sim::preset("corridor_laser");
+  s.encoders.timing.rate = 5.0;  // §6.6.2: encoders and laser both at 5 Hz
+  return s;
+}
+
+struct Options {
+  int runs = 10;
+  sim::Scenario scenario = corridor_at_5_hz();
+  laser::EapOptions eap;
+  laser::SplitAndMergeMatcherOptions split_and_merge;
+  pose_correction::EkfTrackerOptions tracker;
+  localization::LineFeatureKalmanOptions line_kalman;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs");
+  v.coded("scenario", o.scenario, scenario_json, scenario_option, "the simulated corridor run (datasets/sim)");
+  v.nested("eap", o.eap, "EAP matcher of ekf_eap");
+  v.coded("split_and_merge", o.split_and_merge, adl_json<laser::SplitAndMergeMatcherOptions>,
+          adl_from_json<laser::SplitAndMergeMatcherOptions>, "split-and-merge matcher");
+  v.nested("tracker", o.tracker, "the chapter-6 EKF tracker");
+  v.nested("line_kalman", o.line_kalman, "the slides' line-feature Kalman localizer");
+}
 
 struct Setup {
   sim::Scenario scenario;
@@ -60,38 +90,14 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, final_position_error, final_heading_e
                                    rms_position_error, full_updates, heading_updates, records,
                                    duration, path_x, path_y)
 
-class LaserTracking final : public MonteCarloExperiment<Setup> {
+class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
  public:
-  std::string name() const override { return "laser/tracking_table_6_5"; }
-  std::string description() const override {
-    return "Corridor tracking, 200 mm/s, 5 Hz, 10 m (Table 6.5): chapter-6 EKF with EAP or "
-           "split-and-merge matches vs the slides' line-feature Kalman localizer vs odometry";
-  }
-  nlohmann::json default_config() const override {
-    sim::Scenario s = sim::preset("corridor_laser");
-    s.encoders.timing.rate = 5.0;  // §6.6.2: encoders and laser both at 5 Hz
-    nlohmann::json eap, sm, tr, lk;
-    to_json(eap, laser::EapOptions{});
-    to_json(sm, laser::SplitAndMergeMatcherOptions{});
-    to_json(tr, pose_correction::EkfTrackerOptions{});
-    to_json(lk, localization::LineFeatureKalmanOptions{});
-    return {{"runs", 10}, {"scenario", sim::to_json(s)}, {"eap", eap},
-            {"split_and_merge", sm}, {"tracker", tr}, {"line_kalman", lk}};
-  }
-
-  Setup setup(const nlohmann::json& config, const McPlan& plan) const override {
-    Setup s;
-    s.scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
-    if (s.scenario.laser.timing.rate <= 0 || s.scenario.encoders.timing.rate <= 0) {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  Setup setup(const Options& o, const McPlan& plan) const override {
+    if (o.scenario.laser.timing.rate <= 0 || o.scenario.encoders.timing.rate <= 0) {
       throw UsageError(name() + ": the scenario needs encoders and a laser");
     }
-    from_json(config.at("eap"), s.eap);
-    from_json(config.at("split_and_merge"), s.split_and_merge);
-    from_json(config.at("tracker"), s.tracker);
-    from_json(config.at("line_kalman"), s.line_kalman);
-    s.configuration = config;
-    s.configuration["runs"] = plan.runs;
-    return s;
+    return {o.scenario, o.eap, o.split_and_merge, o.tracker, o.line_kalman, recorded(o, plan)};
   }
 
   nlohmann::json run_task(const Setup& s, const McPlan& plan, int k) const override {
@@ -237,7 +243,6 @@ class LaserTracking final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<LaserTracking> laser_tracking_table_6_5_registration;
+const Registration<LaserTracking> laser_tracking_table_6_5_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::laser_tracking_table_6_5

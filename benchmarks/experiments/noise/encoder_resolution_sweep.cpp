@@ -14,36 +14,39 @@
 #include "datasets/sim/simulator.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::noise_encoder_resolution_sweep {
+
+const ExperimentInfo kInfo{
+    .name = "noise/encoder_resolution_sweep",
+    .description = "The four compass-aided filters from Pioneer-like (0.0152 mm/tick) to Trilobot-like "
+                   "(12.64 mm/tick) encoders: final error and NEES consistency"};
 
 struct SweepSetup {
   std::vector<double> resolutions;      // [m per tick]
   std::vector<sim::Scenario> scenarios;  // one per resolution
+  nlohmann::json filters;
   nlohmann::json configuration;
 };
 
-class EncoderResolutionSweep final : public MonteCarloExperiment<SweepSetup> {
+struct Options : CorridorFilterOptions {
+  Options() { runs = 5; }
+  std::vector<double> meters_per_tick = {0.0000152, 0.0001, 0.001, 0.005, 0.01264};
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  visit_corridor_filter_fields(v, o);
+  v.field("meters_per_tick", o.meters_per_tick, "m", positive(), "the encoder resolutions swept");
+}
+
+class EncoderResolutionSweep final : public MonteCarloExperiment<Options, SweepSetup> {
  public:
-  std::string name() const override { return "noise/encoder_resolution_sweep"; }
-  std::string description() const override {
-    return "The four compass-aided filters from Pioneer-like (0.0152 mm/tick) to Trilobot-like "
-           "(12.64 mm/tick) encoders: final error and NEES consistency";
-  }
-  nlohmann::json default_config() const override {
-    return {{"runs", 5},
-            {"scenario", sim::to_json(sim::preset("corridor"))},
-            {"filters", default_filter_options(kFilterInitialCovariance)},
-            {"meters_per_tick", {0.0000152, 0.0001, 0.001, 0.005, 0.01264}}};
-  }
-  SweepSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  SweepSetup setup(const Options& o, const McPlan& plan) const override {
     SweepSetup u;
-    const sim::Scenario base = corridor_from(config);
-    u.configuration = config;
-    u.configuration["runs"] = plan.runs;
-    for (double c : config.at("meters_per_tick").get<std::vector<double>>()) {
-      if (!(c > 0.0)) throw UsageError(name() + ": meters_per_tick must be > 0");
-      sim::Scenario s = base;
+    u.filters = o.filters;
+    u.configuration = recorded(o, plan);
+    for (double c : o.meters_per_tick) {
+      sim::Scenario s = o.scenario;
       // Counts per wheel revolution giving c metres per tick on the nominal left wheel.
       s.robot.encoder.gear_ratio = 1.0;
       s.robot.encoder.counts_per_rev = kPi * s.robot.nominal.diameter_left / c;
@@ -61,7 +64,7 @@ class EncoderResolutionSweep final : public MonteCarloExperiment<SweepSetup> {
   nlohmann::json run_task(const SweepSetup& u, const McPlan& plan, int task) const override {
     const sim::Scenario& s = u.scenarios[static_cast<std::size_t>(task / plan.runs)];
     const sim::SimulationResult r = sim::simulate(s, plan.run_seed(task % plan.runs));
-    return record_of(run_noise_filters(r, u.configuration.at("filters")), r);
+    return record_of(run_noise_filters(r, u.filters), r);
   }
 
   reports::ExperimentResults summarise(const SweepSetup& u, const McPlan& plan,
@@ -85,7 +88,6 @@ class EncoderResolutionSweep final : public MonteCarloExperiment<SweepSetup> {
   }
 };
 
-const Registration<EncoderResolutionSweep> noise_encoder_resolution_sweep_registration;
+const Registration<EncoderResolutionSweep> noise_encoder_resolution_sweep_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::noise_encoder_resolution_sweep

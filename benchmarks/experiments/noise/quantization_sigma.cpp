@@ -7,29 +7,36 @@
 
 #include "core/errors.h"
 #include "algorithms/filters/quantization_noise.h"
-#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::noise_quantization_sigma {
 
-class QuantizationSigma final : public Experiment {
+const ExperimentInfo kInfo{
+    .name = "noise/quantization_sigma",
+    .description = "Gaussian stand-in of the encoder quantization error (eq. 4.27–4.35): exact L2-optimal "
+                   "σ and moment-matched σ = C/√6 beside the published σ = 5.00 mm"};
+
+struct Options {
+  std::vector<double> resolutions_mm = {12.64, 12.70};
+  std::vector<double> published_sigma_mm = {5.00, 5.00};
+  std::vector<double> published_G2 = {0.0021, 0.0020};
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("resolutions_mm", o.resolutions_mm, "mm", positive(), "encoder resolutions C");
+  v.field("published_sigma_mm", o.published_sigma_mm, "mm", positive(), "the thesis's σ, per C");
+  v.field("published_G2", o.published_G2, "1/mm", non_negative(), "the thesis's G2, per C");
+}
+
+class QuantizationSigma final : public OptionsExperiment<Options> {
  public:
-  std::string name() const override { return "noise/quantization_sigma"; }
-  std::string description() const override {
-    return "Gaussian stand-in of the encoder quantization error (eq. 4.27–4.35): exact L2-optimal "
-           "σ and moment-matched σ = C/√6 beside the published σ = 5.00 mm";
-  }
-  nlohmann::json default_config() const override {
-    return {{"resolutions_mm", {12.64, 12.70}}, {"published_sigma_mm", {5.00, 5.00}},
-            {"published_G2", {0.0021, 0.0020}}};
-  }
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions&) const override {
-    reports::ExperimentResults out = start_results(config);
-    const auto cs = config.at("resolutions_mm").get<std::vector<double>>();
-    const auto ps = config.at("published_sigma_mm").get<std::vector<double>>();
-    const auto pg = config.at("published_G2").get<std::vector<double>>();
+  using OptionsExperiment::OptionsExperiment;
+  reports::ExperimentResults run_with(const Options& o, const RunOptions&) const override {
+    reports::ExperimentResults out = start_results(options_json(o));
+    const std::vector<double>& cs = o.resolutions_mm;
+    const std::vector<double>& ps = o.published_sigma_mm;
+    const std::vector<double>& pg = o.published_G2;
     if (cs.size() != ps.size() || cs.size() != pg.size()) {
       throw UsageError(name() + ": resolutions_mm, published_sigma_mm, published_G2 differ in length");
     }
@@ -74,7 +81,6 @@ class QuantizationSigma final : public Experiment {
   }
 };
 
-const Registration<QuantizationSigma> noise_quantization_sigma_registration;
+const Registration<QuantizationSigma> noise_quantization_sigma_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::noise_quantization_sigma

@@ -16,12 +16,17 @@
 #include "algorithms/filters/consistency.h"
 #include "algorithms/filters/odometry_noise_model.h"
 #include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "datasets/io/odometry_interpolation.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::noise_real_logs {
+
+const ExperimentInfo kInfo{
+    .name = "noise/real_logs",
+    .description = "Consistency (NEES) of the odometry noise models on real odometry: Freiburg against "
+                   ".relations, MRCLAM against Vicon windows (no compass in any real log)"};
 
 enum class Model { kAdaptive, kFixedQ };
 
@@ -53,33 +58,47 @@ std::optional<double> relation_nees(const Trajectory& odom, const Relation& r, M
   return pose_nees(r.delta, Eigen::Vector3d(x.x, x.y, x.theta), P);
 }
 
-class NoiseRealLogs final : public Experiment {
+// The adaptive model's parameters, the same for both wheels.
+struct AdaptiveOptions {
+  double k = 0.005;
+  double sigma_m = 0.005;
+};
+template <class V>
+void visit_fields(V& v, AdaptiveOptions& o) {
+  v.field("k", o.k, "", non_negative(), "k_left = k_right of the adaptive model (eq. 4.36–4.44)");
+  v.field("sigma_m", o.sigma_m, "m", non_negative(), "σ_left = σ_right of the adaptive model");
+}
+LOCBENCH_EXPERIMENT_OPTIONS(AdaptiveOptions)
+
+struct Options {
+  nlohmann::json datasets = freiburg_and_mrclam_logs();
+  double relation_max_duration_s = 10.0;
+  double mrclam_window_s = 2.0;
+  double virtual_track_m = 0.5;
+  AdaptiveOptions adaptive;
+  Eigen::Vector3d fixed_q_diag{6.33e-6, 6.33e-6, 2.0 * deg(1.0) * deg(1.0)};
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("datasets", o.datasets, "", Range{}, "catalog names or user files (real_log_harness.h)");
+  v.field("relation_max_duration_s", o.relation_max_duration_s, "s", positive(),
+          "longest Freiburg relation evaluated");
+  v.field("mrclam_window_s", o.mrclam_window_s, "s", positive(), "ground-truth window on MRCLAM");
+  v.field("virtual_track_m", o.virtual_track_m, "m", positive(),
+          "track of the virtual differential drive the odometry is split into");
+  v.nested("adaptive", o.adaptive, "the adaptive noise model");
+  v.field("fixed_q_diag", o.fixed_q_diag, "m², m², rad²", non_negative(), "diagonal of the fixed Q");
+}
+
+class NoiseRealLogs final : public OptionsExperiment<Options> {
  public:
-  std::string name() const override { return "noise/real_logs"; }
-  std::string description() const override {
-    return "Consistency (NEES) of the odometry noise models on real odometry: Freiburg against "
-           ".relations, MRCLAM against Vicon windows (no compass in any real log)";
-  }
-  nlohmann::json default_config() const override {
-    return {{"datasets", {"aces", "intel", "mit_csail", "mrclam6_robot1", "mrclam6_robot2",
-                          "mrclam6_robot3", "mrclam6_robot4", "mrclam6_robot5"}},
-            {"relation_max_duration_s", 10.0},
-            {"mrclam_window_s", 2.0},
-            {"virtual_track_m", 0.5},
-            {"adaptive", {{"k", 0.005}, {"sigma_m", 0.005}}},
-            {"fixed_q_diag", {6.33e-6, 6.33e-6, 2.0 * deg(1.0) * deg(1.0)}}};
-  }
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const override {
-    reports::ExperimentResults out = start_results(config);
+  using OptionsExperiment::OptionsExperiment;
+  reports::ExperimentResults run_with(const Options& c, const RunOptions& options) const override {
+    reports::ExperimentResults out = start_results(options_json(c));
     OdometryNoiseOptions adaptive;
-    adaptive.k_left = adaptive.k_right = config.at("adaptive").at("k").get<double>();
-    adaptive.sigma_left = adaptive.sigma_right = config.at("adaptive").at("sigma_m").get<double>();
-    const auto q = config.at("fixed_q_diag").get<std::vector<double>>();
-    if (q.size() != 3) throw UsageError(name() + ": fixed_q_diag needs 3 numbers");
-    const Eigen::Vector3d fixed_q(q[0], q[1], q[2]);
-    const double track = config.at("virtual_track_m").get<double>();
-    const auto specs = real_log_specs(config.at("datasets"), name());
+    adaptive.k_left = adaptive.k_right = c.adaptive.k;
+    adaptive.sigma_left = adaptive.sigma_right = c.adaptive.sigma_m;
+    const auto specs = real_log_specs(c.datasets, name());
     const ChiSquareInterval band = average_chi_square_interval(3, 1, 0.95);
     for_each_real_log(specs, options, "noise", out,
                       [&](const RealLogSpec& spec, const LoadedRealLog& loaded,
@@ -90,12 +109,12 @@ class NoiseRealLogs final : public Experiment {
       std::vector<Relation> rel;
       if (!log.relations.empty()) {
         for (const Relation& r : log.relations) {
-          if (r.t2 - r.t1 <= config.at("relation_max_duration_s").get<double>()) rel.push_back(r);
+          if (r.t2 - r.t1 <= c.relation_max_duration_s) rel.push_back(r);
         }
       } else {
         Trajectory truth;
         for (const TruePose& p : log.truth) truth.push_back({p.t, p.pose});
-        rel = window_relations(truth, config.at("mrclam_window_s").get<double>());
+        rel = window_relations(truth, c.mrclam_window_s);
       }
       const char* model_names[2] = {"adaptive_noise_model", "fixed_q"};
       for (int m = 0; m < 2; ++m) {
@@ -103,7 +122,7 @@ class NoiseRealLogs final : public Experiment {
         std::size_t inside = 0;
         for (const Relation& r : rel) {
           const auto v = relation_nees(odom, r, m == 0 ? Model::kAdaptive : Model::kFixedQ,
-                                       adaptive, fixed_q, track);
+                                       adaptive, c.fixed_q_diag, c.virtual_track_m);
           if (!v || !std::isfinite(*v)) continue;
           nees.push_back(*v);
           if (band.contains(*v)) ++inside;
@@ -132,7 +151,6 @@ class NoiseRealLogs final : public Experiment {
   }
 };
 
-const Registration<NoiseRealLogs> noise_real_logs_registration;
+const Registration<NoiseRealLogs> noise_real_logs_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::noise_real_logs

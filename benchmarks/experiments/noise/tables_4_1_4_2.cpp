@@ -19,14 +19,25 @@
 #include "datasets/sim/simulator.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::noise_tables_4_1_4_2 {
+
+const ExperimentInfo kInfo{
+    .name = "noise/tables_4_1_4_2",
+    .description = "Fixed-Q EKF vs adaptive noise model vs Sage–Husa AEKF vs VB-AKF on simulated Trilobot "
+                   "corridor runs: final error (Tables 4.1/4.2), spread, NEES/NIS consistency"};
 
 // Error against distance travelled is sampled every kDistanceStep metres of the true path.
 constexpr double kDistanceStep = 0.25;  // [m]
 
+struct Options : CorridorFilterOptions {};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  visit_corridor_filter_fields(v, o);
+}
+
 struct NoiseSetup {
   sim::Scenario scenario;
+  nlohmann::json filters;
   nlohmann::json configuration;
 };
 
@@ -61,27 +72,16 @@ void add_plots(reports::ExperimentResults& out, const McPlan& plan,
   out.plots.push_back(std::move(dist));
 }
 
-class NoiseTables final : public MonteCarloExperiment<NoiseSetup> {
+class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {
  public:
-  std::string name() const override { return "noise/tables_4_1_4_2"; }
-  std::string description() const override {
-    return "Fixed-Q EKF vs adaptive noise model vs Sage–Husa AEKF vs VB-AKF on simulated Trilobot "
-           "corridor runs: final error (Tables 4.1/4.2), spread, NEES/NIS consistency";
-  }
-  nlohmann::json default_config() const override {
-    return {{"runs", 10},
-            {"scenario", sim::to_json(sim::preset("corridor"))},
-            {"filters", default_filter_options(kFilterInitialCovariance)}};
-  }
-  NoiseSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
-    NoiseSetup u{corridor_from(config), config};
-    u.configuration["runs"] = plan.runs;
-    return u;
+  using MonteCarloExperiment::MonteCarloExperiment;
+  NoiseSetup setup(const Options& o, const McPlan& plan) const override {
+    return {o.scenario, o.filters, recorded(o, plan)};
   }
 
   nlohmann::json run_task(const NoiseSetup& u, const McPlan& plan, int k) const override {
     const sim::SimulationResult r = sim::simulate(u.scenario, plan.run_seed(k));
-    const FilterRun run = run_noise_filters(r, u.configuration.at("filters"));
+    const FilterRun run = run_noise_filters(r, u.filters);
     nlohmann::json rec = record_of(run, r);
     // Chart data: each filter's and the odometry's error at every kDistanceStep of travel.
     const std::vector<double> grid = distance_grid(run.truth.path_length(), kDistanceStep);
@@ -181,7 +181,6 @@ class NoiseTables final : public MonteCarloExperiment<NoiseSetup> {
   }
 };
 
-const Registration<NoiseTables> noise_tables_4_1_4_2_registration;
+const Registration<NoiseTables> noise_tables_4_1_4_2_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::noise_tables_4_1_4_2

@@ -11,12 +11,17 @@
 #include "core/units.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/plot_series.h"
+#include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "datasets/io/odometry_interpolation.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::odometry_real_logs {
+
+const ExperimentInfo kInfo{
+    .name = "odometry/real_logs",
+    .description = "Raw odometry error on real logs: relative-motion error on the Freiburg relations "
+                   "and velocity dead reckoning against MRCLAM Vicon ground truth over fixed windows"};
 
 Trajectory truth_trajectory(const Log& log) {
   Trajectory t;
@@ -24,27 +29,25 @@ Trajectory truth_trajectory(const Log& log) {
   return t;
 }
 
-class OdometryRealLogs final : public Experiment {
- public:
-  std::string name() const override { return "odometry/real_logs"; }
-  std::string description() const override {
-    return "Raw odometry error on real logs: relative-motion error on the Freiburg relations "
-           "and velocity dead reckoning against MRCLAM Vicon ground truth over fixed windows";
-  }
-  nlohmann::json default_config() const override {
-    return {{"datasets", {"aces", "intel", "mit_csail", "mrclam6_robot1", "mrclam6_robot2",
-                          "mrclam6_robot3", "mrclam6_robot4", "mrclam6_robot5"}},
-            {"mrclam_window_s", 10.0},
-            {"local_relation_max_dt_s", 2.0}};
-  }
+struct Options {
+  nlohmann::json datasets = freiburg_and_mrclam_logs();
+  double mrclam_window_s = 10.0;
+  double local_relation_max_dt_s = 2.0;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("datasets", o.datasets, "", Range{}, "catalog names or user files (real_log_harness.h)");
+  v.field("mrclam_window_s", o.mrclam_window_s, "s", positive(), "ground-truth window on MRCLAM");
+  v.field("local_relation_max_dt_s", o.local_relation_max_dt_s, "s", positive(),
+          "longest relation counted as local");
+}
 
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const override {
-    reports::ExperimentResults out = start_results(config);
-    const auto specs = real_log_specs(config.at("datasets"), name());
-    const double window = config.at("mrclam_window_s").get<double>();
-    const double local_dt = config.at("local_relation_max_dt_s").get<double>();
-    if (!(window > 0.0)) throw UsageError("odometry/real_logs: mrclam_window_s must be > 0");
+class OdometryRealLogs final : public OptionsExperiment<Options> {
+ public:
+  using OptionsExperiment::OptionsExperiment;
+  reports::ExperimentResults run_with(const Options& c, const RunOptions& options) const override {
+    reports::ExperimentResults out = start_results(options_json(c));
+    const auto specs = real_log_specs(c.datasets, name());
     for_each_real_log(specs, options, "odometry", out,
                       [&](const RealLogSpec& spec, const LoadedRealLog& loaded,
                           reports::ExperimentResults& res) {
@@ -55,10 +58,10 @@ class OdometryRealLogs final : public Experiment {
       std::string method = "odometry_raw", over = "freiburg_relations";
       std::string suffix;
       if (reference.empty() && !log.truth.empty()) {
-        reference = window_relations(truth_trajectory(log), window);
+        reference = window_relations(truth_trajectory(log), c.mrclam_window_s);
         method = "odometry_velocity";
         over = "ground_truth_windows";
-        suffix = "_" + std::to_string(static_cast<int>(std::lround(window))) + "s";
+        suffix = "_" + std::to_string(static_cast<int>(std::lround(c.mrclam_window_s))) + "s";
       }
       const PoseErrors err = relation_error(odom, reference);
       if (err.translation.empty()) {
@@ -80,7 +83,7 @@ class OdometryRealLogs final : public Experiment {
       // ones (t2 − t1 ≤ local_relation_max_dt_s) show odometry's short-range quality.
       std::vector<Relation> local;
       for (const Relation& r : reference) {
-        if (r.t2 - r.t1 <= local_dt) local.push_back(r);
+        if (r.t2 - r.t1 <= c.local_relation_max_dt_s) local.push_back(r);
       }
       const PoseErrors local_err = relation_error(odom, local);
       if (local_err.translation.empty()) return;
@@ -93,7 +96,6 @@ class OdometryRealLogs final : public Experiment {
   }
 };
 
-const Registration<OdometryRealLogs> odometry_real_logs_registration;
+const Registration<OdometryRealLogs> odometry_real_logs_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::odometry_real_logs

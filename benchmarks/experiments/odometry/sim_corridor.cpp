@@ -17,13 +17,18 @@
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/plot_series.h"
+#include "benchmarks/experiments/harness/scenario_option.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::odometry_sim_corridor {
+
+const ExperimentInfo kInfo{
+    .name = "odometry/sim_corridor",
+    .description = "Dead-reckoning error of simulated 10 m corridor runs (Trilobot-like, Monte-Carlo): "
+                   "nominal model vs true geometry"};
 
 struct RunErrors {
   double final_position = 0.0;  // [m]
@@ -44,6 +49,16 @@ RunErrors errors_of(const Trajectory& truth, const Trajectory& estimate) {
 // Error against distance travelled is sampled every kDistanceStep metres of the true path.
 constexpr double kDistanceStep = 0.25;  // [m]
 const char* const kMethods[2] = {"odometry_nominal", "odometry_true_geometry"};
+
+struct Options {
+  int runs = 20;
+  sim::Scenario scenario = sim::preset("corridor");
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs");
+  v.coded("scenario", o.scenario, scenario_json, scenario_option, "the simulated corridor run (datasets/sim)");
+}
 
 struct CorridorSetup {
   sim::Scenario scenario;
@@ -72,22 +87,11 @@ reports::PlotSeries series_from(const nlohmann::json& j) {
           j.at("y").get<std::vector<double>>()};
 }
 
-class OdometrySimCorridor final : public MonteCarloExperiment<CorridorSetup> {
+class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorSetup> {
  public:
-  std::string name() const override { return "odometry/sim_corridor"; }
-  std::string description() const override {
-    return "Dead-reckoning error of simulated 10 m corridor runs (Trilobot-like, Monte-Carlo): "
-           "nominal model vs true geometry";
-  }
-  nlohmann::json default_config() const override {
-    return {{"runs", 20}, {"scenario", sim::to_json(sim::preset("corridor"))}};
-  }
-
-  CorridorSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
-    CorridorSetup s{sim::scenario_from_json(config.at("scenario"), "<configuration>"), config};
-    s.configuration["runs"] = plan.runs;
-    s.configuration["scenario"] = sim::to_json(s.scenario);
-    return s;
+  using MonteCarloExperiment::MonteCarloExperiment;
+  CorridorSetup setup(const Options& o, const McPlan& plan) const override {
+    return {o.scenario, recorded(o, plan)};
   }
 
   nlohmann::json run_task(const CorridorSetup& s, const McPlan& plan, int k) const override {
@@ -170,7 +174,6 @@ class OdometrySimCorridor final : public MonteCarloExperiment<CorridorSetup> {
   }
 };
 
-const Registration<OdometrySimCorridor> odometry_sim_corridor_registration;
+const Registration<OdometrySimCorridor> odometry_sim_corridor_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::odometry_sim_corridor

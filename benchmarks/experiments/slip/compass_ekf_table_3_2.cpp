@@ -18,14 +18,19 @@
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/slip_sim.h"
+#include "benchmarks/experiments/harness/scenario_option.h"
 #include "reports/findings.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::slip_compass_ekf_table_3_2 {
+
+const ExperimentInfo kInfo{
+    .name = "slip/compass_ekf_table_3_2",
+    .description = "Compass EKF without/with wheel-slip correction on simulated Trilobot corridor runs "
+                   "(Table 3.2), slip-detection precision/recall, gyro fallback in a disturbed zone"};
 
 constexpr double kPublishedWithout[10] = {580.49, 550.62, 467.74, 406.29, 464.62,
                                           847.33, 575.97, 641.25, 574.05, 484.07};
@@ -35,6 +40,53 @@ constexpr double kPublishedWith[10] = {75.95, 73.89, 89.96, 63.98, 62.05,
 const char* const kDisturbedMethods[4] = {"ekf_no_slip_correction", "ekf_slip_correction",
                                           "ekf_slip_correction_latched",
                                           "ekf_slip_correction_latched_gyro"};
+
+struct GyroOptions {
+  double bias_deg_per_s = 0.05;
+  double noise_deg_per_sqrt_s = 0.1;
+};
+template <class V>
+void visit_fields(V& v, GyroOptions& o) {
+  v.field("bias_deg_per_s", o.bias_deg_per_s, "deg/s", any_finite(), "the gyro's constant bias");
+  v.field("noise_deg_per_sqrt_s", o.noise_deg_per_sqrt_s, "deg/√s", non_negative(), "its white-noise density");
+}
+LOCBENCH_EXPERIMENT_OPTIONS(GyroOptions)
+
+// A rectangle where the compass reads `bias_deg` off.
+struct ZoneOptions {
+  Eigen::Vector2d min{4.0, -0.9};  // [m]
+  Eigen::Vector2d max{6.0, 0.9};   // [m]
+  double bias_deg = 30.0;
+};
+template <class V>
+void visit_fields(V& v, ZoneOptions& o) {
+  v.field("min", o.min, "m", any_finite(), "lower corner [x, y]");
+  v.field("max", o.max, "m", any_finite(), "upper corner [x, y]");
+  v.field("bias_deg", o.bias_deg, "deg", any_finite(), "the compass's error inside");
+}
+LOCBENCH_EXPERIMENT_OPTIONS(ZoneOptions)
+
+struct Options {
+  int runs = 10;
+  int calibration_runs = 4;
+  sim::Scenario scenario = sim::preset("corridor");
+  SlipDetectorOptions detector;
+  double large_slip_mm = 8.0;
+  double latch_tolerance_deg = 5.0;
+  GyroOptions gyro;
+  ZoneOptions disturbance_zone;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs");
+  v.field("calibration_runs", o.calibration_runs, "", at_least(1), "runs the slip models are calibrated on");
+  v.coded("scenario", o.scenario, scenario_json, scenario_option, "the simulated corridor run (datasets/sim)");
+  v.nested("detector", o.detector, "the slip detector (slip_detector.h)");
+  v.field("large_slip_mm", o.large_slip_mm, "mm", positive(), "a slip counted as large");
+  v.field("latch_tolerance_deg", o.latch_tolerance_deg, "deg", positive(), "the latched-gyro fallback's tolerance");
+  v.nested("gyro", o.gyro, "the simulated gyro");
+  v.nested("disturbance_zone", o.disturbance_zone, "the compass disturbance of the disturbed runs");
+}
 
 struct CompassSetup {
   sim::Scenario scenario;
@@ -47,49 +99,25 @@ struct CompassSetup {
   nlohmann::json configuration;
 };
 
-class SlipCompassEkf final : public MonteCarloExperiment<CompassSetup> {
+class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> {
  public:
-  std::string name() const override { return "slip/compass_ekf_table_3_2"; }
-  std::string description() const override {
-    return "Compass EKF without/with wheel-slip correction on simulated Trilobot corridor runs "
-           "(Table 3.2), slip-detection precision/recall, gyro fallback in a disturbed zone";
-  }
-  nlohmann::json default_config() const override {
-    nlohmann::json det;
-    to_json(det, SlipDetectorOptions{});
-    return {{"runs", 10},
-            {"calibration_runs", 4},
-            {"scenario", sim::to_json(sim::preset("corridor"))},
-            {"detector", det},
-            {"large_slip_mm", 8.0},
-            {"latch_tolerance_deg", 5.0},
-            {"gyro", {{"bias_deg_per_s", 0.05}, {"noise_deg_per_sqrt_s", 0.1}}},
-            {"disturbance_zone",
-             {{"min", {4.0, -0.9}}, {"max", {6.0, 0.9}}, {"bias_deg", 30.0}}}};
-  }
-
-  CompassSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  CompassSetup setup(const Options& o, const McPlan& plan) const override {
     CompassSetup u;
-    u.cal_runs = config.at("calibration_runs").get<int>();
-    if (u.cal_runs < 1) throw UsageError(name() + ": calibration_runs must be ≥ 1");
-    u.scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
-    from_json(config.at("detector"), u.ekf_opt.detector);
-    u.ekf_opt.latch_tolerance = deg(config.at("latch_tolerance_deg").get<double>());
-    u.large = mm(config.at("large_slip_mm").get<double>());
-    u.gyro.bias = deg(config.at("gyro").at("bias_deg_per_s").get<double>());
-    u.gyro.noise_density = deg(config.at("gyro").at("noise_deg_per_sqrt_s").get<double>());
+    u.cal_runs = o.calibration_runs;
+    u.scenario = o.scenario;
+    u.ekf_opt.detector = o.detector;
+    u.ekf_opt.latch_tolerance = deg(o.latch_tolerance_deg);
+    u.large = mm(o.large_slip_mm);
+    u.gyro.bias = deg(o.gyro.bias_deg_per_s);
+    u.gyro.noise_density = deg(o.gyro.noise_deg_per_sqrt_s);
     u.disturbed = u.scenario;
-    {
-      const auto& z = config.at("disturbance_zone");
-      sim::DisturbanceZone zone;
-      zone.min = {z.at("min").at(0).get<double>(), z.at("min").at(1).get<double>()};
-      zone.max = {z.at("max").at(0).get<double>(), z.at("max").at(1).get<double>()};
-      zone.bias = deg(z.at("bias_deg").get<double>());
-      u.disturbed.compass.zones.push_back(zone);
-    }
-    u.configuration = config;
-    u.configuration["runs"] = plan.runs;
-    u.configuration["scenario"] = sim::to_json(u.scenario);
+    sim::DisturbanceZone zone;
+    zone.min = o.disturbance_zone.min;
+    zone.max = o.disturbance_zone.max;
+    zone.bias = deg(o.disturbance_zone.bias_deg);
+    u.disturbed.compass.zones.push_back(zone);
+    u.configuration = recorded(o, plan);
     // Slip models (μ, σ of θ_E − θ_C and of θ_E − θ_G) from calibration runs.
     u.cal = slip_sim::calibrate(u.scenario, plan.seed, u.cal_runs, u.gyro);
     return u;
@@ -268,7 +296,6 @@ class SlipCompassEkf final : public MonteCarloExperiment<CompassSetup> {
   }
 };
 
-const Registration<SlipCompassEkf> slip_compass_ekf_table_3_2_registration;
+const Registration<SlipCompassEkf> slip_compass_ekf_table_3_2_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::slip_compass_ekf_table_3_2

@@ -22,14 +22,20 @@
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/harness/slip_sim.h"
+#include "benchmarks/experiments/harness/calibration_umbmark.h"
+#include "benchmarks/experiments/harness/scenario_option.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/umbmark_input.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::slip_ikf_vs_calibration {
+
+const ExperimentInfo kInfo{
+    .name = "slip/ikf_vs_calibration",
+    .description = "Indirect Kalman filter (compass) vs classic and improved UMBmark on the same simulated "
+                   "Trilobot: parameter estimates and validation-path error of each corrected model"};
 
 enum Method { kUncalibrated, kClassic, kImproved, kIkfSquares, kIkfStraight, kIkfStraightEnd, kTrue, kMethods };
 const char* const kMethodNames[kMethods] = {
@@ -37,6 +43,29 @@ const char* const kMethodNames[kMethods] = {
     "ikf_umbmark_squares",    "ikf_straight_heading_only", "ikf_straight_end_position",
     "true_geometry"};
 const char* const kParams[3] = {"E_d", "E_b", "E_o"};
+
+struct Options {
+  int runs = 6;
+  sim::Scenario squares = sim::preset("umbmark_trilobot");
+  sim::Scenario straight = sim::preset("corridor");
+  IndirectKfOptions ikf;
+  double end_position_sigma_mm = 5.0;
+  // Borenstein measures E_s = D_a/D_n with a tape before the runs; off by default so that every
+  // method starts from the same belief (classic then keeps E_o = 1).
+  bool tape_measure = false;
+  std::vector<Eigen::Vector2d> validation_waypoints = irregular_validation_path(squares.motion.side);
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs");
+  v.coded("squares", o.squares, scenario_json, scenario_option, "the UMBmark squares (datasets/sim)");
+  v.coded("straight", o.straight, scenario_json, scenario_option, "the straight runs (its robot is the squares')");
+  v.nested("ikf", o.ikf, "the indirect Kalman filter (indirect_kalman_filter.h)");
+  v.field("end_position_sigma_mm", o.end_position_sigma_mm, "mm", positive(),
+          "σ of each run's measured end position");
+  v.flag("tape_measure", o.tape_measure, "E_s measured with a tape before the runs");
+  v.field("validation_waypoints", o.validation_waypoints, "m", any_finite(), "the validation path, [x, y] each");
+}
 
 struct Setup {
   sim::Scenario squares;
@@ -93,35 +122,13 @@ IkfRunResult ikf_on_squares(const sim::SimulationResult& r, const NominalModel& 
   return run_indirect_kf(runs, s.ikf, model.wheelbase);
 }
 
-class SlipIkfVsCalibration final : public MonteCarloExperiment<Setup> {
+class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
  public:
-  std::string name() const override { return "slip/ikf_vs_calibration"; }
-  std::string description() const override {
-    return "Indirect Kalman filter (compass) vs classic and improved UMBmark on the same simulated "
-           "Trilobot: parameter estimates and validation-path error of each corrected model";
-  }
-  nlohmann::json default_config() const override {
-    const sim::Scenario sq = sim::preset("umbmark_trilobot");
-    const double L = sq.motion.side;
-    nlohmann::json ikf;
-    to_json(ikf, IndirectKfOptions{});
-    return {{"runs", 6},
-            {"squares", sim::to_json(sq)},
-            {"straight", sim::to_json(sim::preset("corridor"))},
-            {"ikf", ikf},
-            {"end_position_sigma_mm", 5.0},
-            // Borenstein measures E_s = D_a/D_n with a tape before the runs; off by default so
-            // that every method starts from the same belief (classic then keeps E_o = 1).
-            {"tape_measure", false},
-            {"validation_waypoints",
-             nlohmann::json::array({{L, 0.0}, {L, 0.6 * L}, {0.3 * L, 0.9 * L},
-                                    {-0.2 * L, 0.3 * L}, {0.0, 0.0}})}};
-  }
-
-  Setup setup(const nlohmann::json& config, const McPlan& plan) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  Setup setup(const Options& o, const McPlan& plan) const override {
     Setup s;
-    s.squares = sim::scenario_from_json(config.at("squares"), "<configuration> squares");
-    s.straight = sim::scenario_from_json(config.at("straight"), "<configuration> straight");
+    s.squares = o.squares;
+    s.straight = o.straight;
     if (s.squares.motion.kind != sim::MotionKind::kUmbmark) {
       throw UsageError(name() + ": squares.motion must be the UMBmark square");
     }
@@ -130,14 +137,11 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Setup> {
     }
     // The same robot and the same belief in both.
     s.straight.robot = s.squares.robot;
-    from_json(config.at("ikf"), s.ikf);
-    s.end_variance = std::pow(mm(config.at("end_position_sigma_mm").get<double>()), 2);
-    s.tape_measure = config.at("tape_measure").get<bool>();
-    for (const auto& w : config.at("validation_waypoints")) {
-      s.validation.emplace_back(w.at(0).get<double>(), w.at(1).get<double>());
-    }
-    s.configuration = config;
-    s.configuration["runs"] = plan.runs;
+    s.ikf = o.ikf;
+    s.end_variance = std::pow(mm(o.end_position_sigma_mm), 2);
+    s.tape_measure = o.tape_measure;
+    s.validation = o.validation_waypoints;
+    s.configuration = recorded(o, plan);
     s.configuration["straight"] = sim::to_json(s.straight);
     return s;
   }
@@ -260,7 +264,6 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Setup> {
   }
 };
 
-const Registration<SlipIkfVsCalibration> slip_ikf_vs_calibration_registration;
+const Registration<SlipIkfVsCalibration> slip_ikf_vs_calibration_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::slip_ikf_vs_calibration

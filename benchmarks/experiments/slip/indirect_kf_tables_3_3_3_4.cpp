@@ -20,14 +20,19 @@
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/slip_sim.h"
+#include "benchmarks/experiments/harness/scenario_option.h"
 #include "reports/findings.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4 {
+
+const ExperimentInfo kInfo{
+    .name = "slip/indirect_kf_tables_3_3_3_4",
+    .description = "Indirect Kalman filter for S_L, S_R, δB on simulated straight corridor runs "
+                   "(Tables 3.3/3.4): estimates, identifiability, error after correcting the diameters"};
 
 constexpr double kPublishedImprovement[10] = {16.34, 43.15, 24.80, 16.74, 46.67,
                                               25.55, 22.51, 65.75, 53.27, 21.12};
@@ -58,52 +63,54 @@ std::string describe(const IdentifiabilityReport& r) {
   return s;
 }
 
+struct Options {
+  int runs = 10;
+  int calibration_runs = 4;
+  sim::Scenario scenario = sim::preset("corridor");
+  SlipDetectorOptions detector;
+  IndirectKfOptions ikf;
+  double end_position_sigma_mm = 5.0;
+  // The thesis feeds the IKF the slip-corrected travel (note to eq. 3.25). On this preset the
+  // detector's false alarms break the telescoping of the quantization errors (see the notes), so
+  // the default is the raw encoder travel.
+  bool slip_corrected_travel = false;
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs");
+  v.field("calibration_runs", o.calibration_runs, "", at_least(1), "runs the slip model is calibrated on");
+  v.coded("scenario", o.scenario, scenario_json, scenario_option, "the simulated corridor run (datasets/sim)");
+  v.nested("detector", o.detector, "the slip detector (slip_detector.h)");
+  v.nested("ikf", o.ikf, "the indirect Kalman filter (indirect_kalman_filter.h)");
+  v.field("end_position_sigma_mm", o.end_position_sigma_mm, "mm", positive(),
+          "σ of each run's measured end position");
+  v.flag("slip_corrected_travel", o.slip_corrected_travel, "feed the IKF the slip-corrected travel");
+}
+
 struct IkfSetup {
   sim::Scenario scenario;
   SlipEkfOptions ekf_opt;
   IndirectKfOptions ikf_opt;
   bool corrected_travel = false;
   double end_var = 0.0;  // [m²] variance of the measured end position
+  double end_sigma_mm = 0.0;
   SlipModel model;       // μ, σ of Δθ' from the calibration runs
   nlohmann::json configuration;
 };
 
-class SlipIndirectKf final : public MonteCarloExperiment<IkfSetup> {
+class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
  public:
-  std::string name() const override { return "slip/indirect_kf_tables_3_3_3_4"; }
-  std::string description() const override {
-    return "Indirect Kalman filter for S_L, S_R, δB on simulated straight corridor runs "
-           "(Tables 3.3/3.4): estimates, identifiability, error after correcting the diameters";
-  }
-  nlohmann::json default_config() const override {
-    nlohmann::json det, ikf;
-    to_json(det, SlipDetectorOptions{});
-    to_json(ikf, IndirectKfOptions{});
-    return {{"runs", 10},
-            {"calibration_runs", 4},
-            {"scenario", sim::to_json(sim::preset("corridor"))},
-            {"detector", det},
-            {"ikf", ikf},
-            {"end_position_sigma_mm", 5.0},
-            // The thesis feeds the IKF the slip-corrected travel (note to eq. 3.25). On this
-            // preset the detector's false alarms break the telescoping of the quantization
-            // errors (see the notes), so the default is the raw encoder travel.
-            {"slip_corrected_travel", false}};
-  }
-
-  IkfSetup setup(const nlohmann::json& config, const McPlan& plan) const override {
+  using MonteCarloExperiment::MonteCarloExperiment;
+  IkfSetup setup(const Options& o, const McPlan& plan) const override {
     IkfSetup u;
-    const int cal_runs = config.at("calibration_runs").get<int>();
-    if (cal_runs < 1) throw UsageError(name() + ": calibration_runs must be ≥ 1");
-    u.scenario = sim::scenario_from_json(config.at("scenario"), "<configuration>");
-    from_json(config.at("detector"), u.ekf_opt.detector);
-    from_json(config.at("ikf"), u.ikf_opt);
-    u.corrected_travel = config.at("slip_corrected_travel").get<bool>();
-    u.end_var = std::pow(mm(config.at("end_position_sigma_mm").get<double>()), 2);
-    u.configuration = config;
-    u.configuration["runs"] = plan.runs;
-    u.configuration["scenario"] = sim::to_json(u.scenario);
-    u.model = slip_sim::calibrate(u.scenario, plan.seed, cal_runs, {}).compass;
+    u.scenario = o.scenario;
+    u.ekf_opt.detector = o.detector;
+    u.ikf_opt = o.ikf;
+    u.corrected_travel = o.slip_corrected_travel;
+    u.end_var = std::pow(mm(o.end_position_sigma_mm), 2);
+    u.end_sigma_mm = o.end_position_sigma_mm;
+    u.configuration = recorded(o, plan);
+    u.model = slip_sim::calibrate(u.scenario, plan.seed, o.calibration_runs, {}).compass;
     return u;
   }
 
@@ -272,7 +279,7 @@ class SlipIndirectKf final : public MonteCarloExperiment<IkfSetup> {
         "filter reached them is not recoverable from the text. Its δB = −0.000036 is in mm "
         "(B' = 197.929964 mm), i.e. no correction.",
         true_values[0] - true_values[1], describe(id_straight[0]),
-        u.configuration.at("end_position_sigma_mm").get<double>(), describe(id_straight[1]));
+        u.end_sigma_mm, describe(id_straight[1]));
     t33.claim = "the IKF estimates S_L ≈ S_R ≈ 0.0036 and δB ≈ 0 from the compass heading on straight runs";
     t33.tolerance = 0.0005;
     t33.tolerance_basis = "0.0005 (1/mm, or mm for δB): a seventh of the true S, well above the runs' scatter";
@@ -336,7 +343,6 @@ class SlipIndirectKf final : public MonteCarloExperiment<IkfSetup> {
   }
 };
 
-const Registration<SlipIndirectKf> slip_indirect_kf_tables_3_3_3_4_registration;
+const Registration<SlipIndirectKf> slip_indirect_kf_tables_3_3_3_4_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4

@@ -7,31 +7,37 @@
 #include <vector>
 
 #include "core/skewness_kurtosis_normality.h"
-#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "reports/checksum.h"
 
-namespace locbench::experiments {
-namespace {
+namespace locbench::experiments::slip_normality_table_3_1 {
 
-class SlipNormality final : public Experiment {
+const ExperimentInfo kInfo{
+    .name = "slip/normality_table_3_1",
+    .description = "Skewness–kurtosis normality test on the thesis's 809-sample Δθ' histogram (Table 3.1)"};
+
+struct Options {
+  double alpha = 0.1;
+  std::vector<double> midpoints_deg = {-4.5, -3.5, -2.5, -1.5, -0.5, 0.5, 1.5, 2.5, 3.5, 4.5};
+  std::vector<int> counts = {3, 15, 5, 177, 20, 419, 11, 139, 7, 13};
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("alpha", o.alpha, "", open(0.0, 1.0), "significance level of the test");
+  v.field("midpoints_deg", o.midpoints_deg, "deg", any_finite(), "the histogram's bin midpoints");
+  v.field("counts", o.counts, "", non_negative(), "samples per bin (thesis Table 3.1)");
+}
+
+class SlipNormality final : public OptionsExperiment<Options> {
  public:
-  std::string name() const override { return "slip/normality_table_3_1"; }
-  std::string description() const override {
-    return "Skewness–kurtosis normality test on the thesis's 809-sample Δθ' histogram (Table 3.1)";
-  }
-  nlohmann::json default_config() const override {
-    return {{"alpha", 0.1},
-            {"midpoints_deg", {-4.5, -3.5, -2.5, -1.5, -0.5, 0.5, 1.5, 2.5, 3.5, 4.5}},
-            {"counts", {3, 15, 5, 177, 20, 419, 11, 139, 7, 13}}};
-  }
-
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const override {
+  using OptionsExperiment::OptionsExperiment;
+  reports::ExperimentResults run_with(const Options& o, const RunOptions& options) const override {
+    const nlohmann::json config = options_json(o);
     reports::ExperimentResults out = start_results(config);
-    const auto mid = config.at("midpoints_deg").get<std::vector<double>>();
-    const auto counts = config.at("counts").get<std::vector<double>>();
-    const double alpha = config.at("alpha").get<double>();
+    const std::vector<double>& mid = o.midpoints_deg;
+    const std::vector<double> counts(o.counts.begin(), o.counts.end());
+    const double alpha = o.alpha;
     const NormalityTestResult r = skewness_kurtosis_test_binned(mid, counts, alpha);
     options.report_progress(1.0);
     out.datasets.push_back({"thesis_table_3_1", "thesis Table 3.1 (transcribed)",
@@ -85,7 +91,6 @@ class SlipNormality final : public Experiment {
   }
 };
 
-const Registration<SlipNormality> slip_normality_table_3_1_registration;
+const Registration<SlipNormality> slip_normality_table_3_1_registration(kInfo);
 
-}  // namespace
-}  // namespace locbench::experiments
+}  // namespace locbench::experiments::slip_normality_table_3_1
