@@ -33,12 +33,13 @@ setup:
 	@s=$$(date +%s); ./scripts/setup.sh; rc=$$?; \
 	  echo "make: setup (Debian packages) took $$(( $$(date +%s) - s )) s"; exit $$rc
 
-# Release build of the CLI (no tests). -O1 rather than CMake's -O3: measured on 2 cores, the
+# Release build of the CLI (no tests), unity batches of 16 sources (2026-11-25, fresh build on
+# 2 cores: 147 s with batches of 8, 140 s with 16). -O1 rather than CMake's -O3: measured on 2 cores, the
 # clean build takes 2 min 16 s instead of 2 min 50 s and the default suite runs in 6.9 s instead
 # of 8.8 s, with identical results (no fast-math; IEEE arithmetic is the same at any level).
 build: setup
 	@s=$$(date +%s); cmake -S . -B $(RELEASE) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
-	  -DLOCBENCH_BUILD_TESTS=OFF $(UNITY) >/dev/null && cmake --build $(RELEASE) -j$(JOBS) --target locbench; rc=$$?; \
+	  -DLOCBENCH_BUILD_TESTS=OFF $(UNITY) $(if $(UNITY),-DCMAKE_UNITY_BUILD_BATCH_SIZE=16) >/dev/null && cmake --build $(RELEASE) -j$(JOBS) --target locbench; rc=$$?; \
 	  echo "make: build took $$(( $$(date +%s) - s )) s"; exit $$rc
 
 # Default suite on embedded defaults → JSON reports under $(OUT)/, a summary table, and the page
