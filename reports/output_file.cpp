@@ -15,6 +15,17 @@ namespace locbench::reports {
 namespace fs = std::filesystem;
 namespace {
 
+// The process's umask, read once (umask can only be read by setting it; the function-local
+// static makes that happen on one thread only).
+mode_t process_umask() {
+  static const mode_t mask = [] {
+    const mode_t m = ::umask(0);
+    ::umask(m);
+    return m;
+  }();
+  return mask;
+}
+
 [[noreturn]] void fail(const fs::path& path, const std::string& what, int err) {
   throw InputError(path.string(), 0, what + ": " + std::strerror(err));
 }
@@ -100,7 +111,12 @@ AtomicOutput::AtomicOutput(const fs::path& target) : target_(target) {
   std::string name = (dir / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
   const int fd = ::mkstemp(name.data());
   if (fd < 0) fail(target, "cannot open for writing (a temporary file beside it)", errno);
+  // mkstemp creates the file 0600; the output gets what any new file gets (0666 less the umask),
+  // so that reports are readable by whoever could read the folder.
+  const int rc = ::fchmod(fd, 0666 & ~process_umask());
+  const int err = errno;
   ::close(fd);
+  if (rc != 0) fail(target, "cannot set the permissions of the temporary file beside it", err);
   temp_ = name;
 }
 

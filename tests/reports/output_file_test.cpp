@@ -3,6 +3,7 @@
 #include "reports/output_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <fstream>
 #include <sstream>
@@ -24,6 +25,18 @@ TEST(OutputFile, ReplacesTheTargetAndLeavesNoTemporaryFile) {
   std::size_t files = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir.file("a"))) files += e.is_regular_file();
   EXPECT_EQ(files, 1u);
+}
+
+// Written through a temporary file, an output still gets a new file's mode: 0666 less the
+// process's umask (0644 under the usual 022), not mkstemp's 0600.
+TEST(OutputFile, AnOutputHasTheModeOfANewFileNotOfATemporaryOne) {
+  testing::ScratchDir dir;
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  write_file_atomically(dir.file("r.json"), "{}");
+  struct stat st {};
+  ASSERT_EQ(::stat(dir.file("r.json").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0666 & ~mask) << "umask " << std::oct << mask;
 }
 
 TEST(OutputFile, AnUncommittedOutputLeavesThePreviousFileIntact) {
