@@ -47,9 +47,10 @@ build: setup
 # runs use every core (THREADS, default all; results are the same for any number).
 # The real-log diagnosis dominates the suite's time (Release, one thread, 2026-11-25: diagnosis/
 # real_logs 198 s of CPU on its 8 logs, sim_to_real 44 s, all 22 others 29 s together), so
-# `make run` diagnoses 3 whole logs (ACES, Intel, MRCLAM robot 1) and builds twins of 2 logs over
-# 120 s (benchmarks/suites/make_run.json): 53 s of CPU for the suite. `make run RUN_CONFIG=` runs
-# every log at full length.
+# `make run` diagnoses 2 whole logs (ACES, Intel) and compares twins of ACES and MRCLAM robot 2
+# over their first 120 s, which diagnoses those spans (benchmarks/suites/make_run.json; measured
+# with 2 threads: diagnosis 7.0 s wall, 12.0 s with MRCLAM robot 1 added; twins 4.8 s).
+# `make run RUN_CONFIG=` runs every log at full length.
 THREADS ?= $(shell nproc)
 RUN_CONFIG ?= benchmarks/suites/make_run.json
 run: build
