@@ -26,7 +26,13 @@ namespace locbench::experiments::calibration_identifiability {
 const ExperimentInfo kInfo{
     .name = "calibration/identifiability",
     .description = "UMBmark identifiability on simulated robots: E_d, E_b, E_o swept alone and together; "
-                   "estimates of classic and improved UMBmark against the truth, with Fisher findings"};
+                   "estimates of classic and improved UMBmark against the truth, with Fisher findings",
+    .reading = {
+        "Read the E_o_0.99 and E_o_1.01 cases: the improved method's E_o estimate does not follow "
+        "the true E_o (its error is ≈ −(E_o − 1)), because the square's return errors see E_b and "
+        "E_o only through the turn angle E_o/E_b and the logged leg counts are commanded, not "
+        "measured; the E_o error lands on E_b instead. E_d is determined by every design. A "
+        "tape-measured leg length would determine E_o (see the notes of the E_o results)."}};
 
 struct IdentifiabilityCase {
   std::string name;
@@ -164,12 +170,6 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Options, Id
         }
       }
     }
-    out.notes.push_back(
-        "Read the E_o_0.99 and E_o_1.01 cases: the improved method's E_o estimate does not follow "
-        "the true E_o (its error is ≈ −(E_o − 1)), because the square's return errors see E_b and "
-        "E_o only through the turn angle E_o/E_b and the logged leg counts are commanded, not "
-        "measured; the E_o error lands on E_b instead. E_d is determined by every design. A "
-        "tape-measured leg length would determine E_o (see the notes of the E_o results).");
     return out;
   }
 };

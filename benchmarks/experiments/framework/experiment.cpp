@@ -18,6 +18,7 @@ reports::ExperimentResults Experiment::start_results(const nlohmann::json& confi
   out.experiment = name();
   out.description = description();
   out.configuration = configuration;
+  out.notes = info_.reading;
   return out;
 }
 

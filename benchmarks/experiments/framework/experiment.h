@@ -31,6 +31,9 @@ struct ExperimentInfo {
   std::string name;         // stable, e.g. "odometry/sim_corridor"; also the report's file stem
   std::string description;  // one line for `locbench list` and the report
   bool in_default_suite = true;  // part of the suite `locbench run` runs with no argument
+  // How to read the results, whatever the run found: the report's first notes, before those the
+  // run adds (what it measured, what it could not).
+  std::vector<std::string> reading = {};
 };
 
 class Experiment {
@@ -45,8 +48,8 @@ class Experiment {
   virtual reports::ExperimentResults run(const nlohmann::json& config,
                                          const RunOptions& options) const = 0;
 
-  // The results' head: this experiment's name and description and the configuration it ran
-  // with; the caller adds what it measured.
+  // The results' head: this experiment's name, description, reading notes and the configuration
+  // it ran with; the caller adds what it measured.
   reports::ExperimentResults start_results(const nlohmann::json& configuration) const;
 
   // Tasks for shards and merge (`locbench run --shard K/N`, `locbench merge`). An experiment is

@@ -33,7 +33,12 @@ const ExperimentInfo kInfo{
     .description = "Global localization (MCL, grid Markov) from an unknown start, tracking once converged "
                    "and kidnap recovery, against the chapter-6 EKF and the line-feature Kalman localizer "
                    "started at the truth; simulated room, corridor and random rooms",
-    .in_default_suite = false};  // ~1 min in Release
+    .in_default_suite = false,  // ~1 min in Release
+    .reading = {
+        "The Kalman trackers start at the true pose (they cannot localize globally), so their "
+        "'success' is that they stayed converged; after the kidnapping their linearised update "
+        "matches the scan against the wrong part of the map. Tracking RMS counts only runs that "
+        "had converged by the middle of the first tour (n in each result)."}};
 
 using global::ScanStep;
 
@@ -294,11 +299,6 @@ class GlobalSim final : public MonteCarloExperiment<Options, Setup> {
       }
       out.notes.push_back(line);
     }
-    out.notes.push_back(
-        "The Kalman trackers start at the true pose (they cannot localize globally), so their "
-        "'success' is that they stayed converged; after the kidnapping their linearised update "
-        "matches the scan against the wrong part of the map. Tracking RMS counts only runs that "
-        "had converged by the middle of the first tour (n in each result).");
     return out;
   }
 };

@@ -27,7 +27,14 @@ const ExperimentInfo kInfo{
     .name = "laser/matcher_accuracy",
     .description = "EAP vs split-and-merge, agglomerative and RWHT matchers on the 8 m room and random "
                    "rooms: segment detection, line errors, point precision/recall under pose error, "
-                   "range noise, clutter and dropouts (Monte-Carlo)"};
+                   "range noise, clutter and dropouts (Monte-Carlo)",
+    .reading = {
+        "Detectable = a map segment hit by ≥ 5 beams spanning > 0.2 m (the matchers' own "
+        "acceptance rule). Δρ, Δβ: the matched points placed with the TRUE pose and refitted, "
+        "against the map line, so they measure extraction and assignment, not the pose error. "
+        "A systematic range offset (+15 mm, the LMS 200 datasheet) shows up in Δρ of every "
+        "method alike. `work` counts each method's inner-loop tests (not comparable across "
+        "methods; time is measured by locbench_speed)."}};
 
 const char* const kWorlds[] = {"room", "random_room"};
 constexpr int kWorldCount = 2;
@@ -263,13 +270,6 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
                           mean(prec_v));
     }
     out.notes.push_back(line);
-    out.notes.push_back(
-        "Detectable = a map segment hit by ≥ 5 beams spanning > 0.2 m (the matchers' own "
-        "acceptance rule). Δρ, Δβ: the matched points placed with the TRUE pose and refitted, "
-        "against the map line, so they measure extraction and assignment, not the pose error. "
-        "A systematic range offset (+15 mm, the LMS 200 datasheet) shows up in Δρ of every "
-        "method alike. `work` counts each method's inner-loop tests (not comparable across "
-        "methods; time is measured by locbench_speed).");
     return out;
   }
 };

@@ -34,7 +34,13 @@ const ExperimentInfo kInfo{
     .description = "Scan-to-previous-scan correction on real logs (Freiburg ACES, Intel, MIT CSAIL, or "
                    "--log/--relations): relative-pose error of the thesis's matchers + chapter-6 least "
                    "squares, EAP + iterated point-to-line, PL-ICP and point-to-point ICP against the "
-                   ".relations, beside raw odometry"};
+                   ".relations, beside raw odometry",
+    .reading = {
+        "The map of each pair for the *_ch6_ls and eap_* correctors is the split-and-merge lines "
+        "of the first scan (one extractor for all matchers, so that only the matching differs); "
+        "pl_icp and icp_point_to_point use the first scan's points. Every corrector starts from "
+        "the odometry's relative motion. *_ch6_ls = one pass of chapter 6 (weighted-LS heading, "
+        "point-to-point position; heading-only when the matched lines are parallel)."}};
 
 struct Options {
   int runs = 1;  // not Monte-Carlo: one task per dataset
@@ -297,12 +303,6 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
         for (reports::Plot& p : relation_plots(ds, r, k)) out.plots.push_back(std::move(p));
       }
     }
-    out.notes.push_back(
-        "The map of each pair for the *_ch6_ls and eap_* correctors is the split-and-merge lines "
-        "of the first scan (one extractor for all matchers, so that only the matching differs); "
-        "pl_icp and icp_point_to_point use the first scan's points. Every corrector starts from "
-        "the odometry's relative motion. *_ch6_ls = one pass of chapter 6 (weighted-LS heading, "
-        "point-to-point position; heading-only when the matched lines are parallel).");
     return out;
   }
 

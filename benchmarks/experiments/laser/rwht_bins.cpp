@@ -26,7 +26,13 @@ namespace locbench::experiments::laser_rwht_bins {
 const ExperimentInfo kInfo{
     .name = "laser/rwht_bins",
     .description = "RWHT accuracy against cost across angle and range bin sizes (room, thesis pose): "
-                   "peak-cell and refitted line errors, segments found, accumulator cells, work"};
+                   "peak-cell and refitted line errors, segments found, accumulator cells, work",
+    .reading = {
+        "The thesis's claim holds for the Hough estimate itself (the peak cell's line is off by "
+        "about half a bin), but after the least-squares refit of each peak's points the line "
+        "errors no longer depend on the bins, as long as a peak still gathers the wall's points: "
+        "the bins then set only the cost (cells grow as 1/(Δα·Δr)) and, when too coarse, which "
+        "walls are found."}};
 
 const Pose2 kPose(2.0, 1.0, deg(46.0));
 constexpr int kValues = 7;  // per bin pair: peak |Δρ|, |Δβ|, refit |Δρ|, |Δβ|, recall, cells, work
@@ -170,12 +176,6 @@ class LaserRwhtBins final : public MonteCarloExperiment<Options, Setup> {
       }
     }
     out.notes.push_back(line);
-    out.notes.push_back(
-        "The thesis's claim holds for the Hough estimate itself (the peak cell's line is off by "
-        "about half a bin), but after the least-squares refit of each peak's points the line "
-        "errors no longer depend on the bins, as long as a peak still gathers the wall's points: "
-        "the bins then set only the cost (cells grow as 1/(Δα·Δr)) and, when too coarse, which "
-        "walls are found.");
     return out;
   }
 };

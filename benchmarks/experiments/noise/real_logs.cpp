@@ -26,7 +26,16 @@ namespace locbench::experiments::noise_real_logs {
 const ExperimentInfo kInfo{
     .name = "noise/real_logs",
     .description = "Consistency (NEES) of the odometry noise models on real odometry: Freiburg against "
-                   ".relations, MRCLAM against Vicon windows (no compass in any real log)"};
+                   ".relations, MRCLAM against Vicon windows (no compass in any real log)",
+    .reading = {
+        "Not evaluable on real data: the compass-aided filters (fixed-Q EKF, adaptive model, "
+        "Sage–Husa AEKF, VB-AKF) and the slip detector — none of our real logs has a compass; "
+        "the encoder-quantization model — the real logs carry odometry poses or velocities, not "
+        "ticks (BreezySLAM's ticks have no reference). Here the models' prediction covariance is "
+        "checked against reference relative motions only. Read the medians: the adaptive model's "
+        "Q (eq. 4.43–4.44) is diagonal with var(w_d)·cos²(θ) and var(w_d)·sin²(θ), so for motion "
+        "along a world axis it has no lateral variance; such relations get a near-singular "
+        "covariance and an enormous NEES, which dominates the means."}};
 
 enum class Model { kAdaptive, kFixedQ };
 
@@ -138,15 +147,6 @@ class NoiseRealLogs final : public OptionsExperiment<Options> {
             band.lower, band.upper));
       }
     });
-    out.notes.push_back(
-        "Not evaluable on real data: the compass-aided filters (fixed-Q EKF, adaptive model, "
-        "Sage–Husa AEKF, VB-AKF) and the slip detector — none of our real logs has a compass; "
-        "the encoder-quantization model — the real logs carry odometry poses or velocities, not "
-        "ticks (BreezySLAM's ticks have no reference). Here the models' prediction covariance is "
-        "checked against reference relative motions only. Read the medians: the adaptive model's "
-        "Q (eq. 4.43–4.44) is diagonal with var(w_d)·cos²(θ) and var(w_d)·sin²(θ), so for motion "
-        "along a world axis it has no lateral variance; such relations get a near-singular "
-        "covariance and an enormous NEES, which dominates the means.");
     return out;
   }
 };

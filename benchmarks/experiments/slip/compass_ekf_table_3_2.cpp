@@ -30,7 +30,19 @@ namespace locbench::experiments::slip_compass_ekf_table_3_2 {
 const ExperimentInfo kInfo{
     .name = "slip/compass_ekf_table_3_2",
     .description = "Compass EKF without/with wheel-slip correction on simulated Trilobot corridor runs "
-                   "(Table 3.2), slip-detection precision/recall, gyro fallback in a disturbed zone"};
+                   "(Table 3.2), slip-detection precision/recall, gyro fallback in a disturbed zone",
+    .reading = {
+        "The first EKF's pseudo-measurement Z = θ̂(k−1) + θ_E(k) equals its own prediction, so "
+        "its innovation is always zero: it is dead reckoning with the encoders, as the thesis's "
+        "own Table 3.2 column implies. The gain of the second EKF comes mostly from the absolute "
+        "compass heading, not from the slip correction of ΔD and Δθ.",
+        "Disturbed runs: a 30° zone bias over x ∈ [4, 6] m. Rule 3 flags only the samples where "
+        "the bias switches on or off; in between the increments look normal while the absolute "
+        "heading is 30° off, so the published rule alone lets the biased heading into the EKF. "
+        "'latched' keeps the compass disturbed while the summed unexplained jumps exceed the "
+        "tolerance and uses Z = θ̂(k−1) + θ_E(k); 'latched_gyro' uses a simulated gyro "
+        "(ours: bias and white noise from the configuration) for the slip rule and "
+        "Z = θ̂(k−1) + θ_G(k) there."}};
 
 constexpr double kPublishedWithout[10] = {580.49, 550.62, 467.74, 406.29, 464.62,
                                           847.33, 575.97, 641.25, 574.05, 484.07};
@@ -245,19 +257,6 @@ class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> 
         "{:.1f}%; events losing ≥ {:.0f} mm: {} of {} found ({:.1f}%).",
         total_events, total_det, total_tp, pct(total_tp, total_det), pct(total_tp, total_events),
         to_mm(large), total_large_tp, total_large, pct(total_large_tp, total_large)));
-    out.notes.push_back(
-        "The first EKF's pseudo-measurement Z = θ̂(k−1) + θ_E(k) equals its own prediction, so "
-        "its innovation is always zero: it is dead reckoning with the encoders, as the thesis's "
-        "own Table 3.2 column implies. The gain of the second EKF comes mostly from the absolute "
-        "compass heading, not from the slip correction of ΔD and Δθ.");
-    out.notes.push_back(
-        "Disturbed runs: a 30° zone bias over x ∈ [4, 6] m. Rule 3 flags only the samples where "
-        "the bias switches on or off; in between the increments look normal while the absolute "
-        "heading is 30° off, so the published rule alone lets the biased heading into the EKF. "
-        "'latched' keeps the compass disturbed while the summed unexplained jumps exceed the "
-        "tolerance and uses Z = θ̂(k−1) + θ_E(k); 'latched_gyro' uses a simulated gyro "
-        "(ours: bias and white noise from the configuration) for the slip rule and "
-        "Z = θ̂(k−1) + θ_G(k) there.");
     return out;
   }
 

@@ -35,7 +35,17 @@ namespace locbench::experiments::slip_ikf_vs_calibration {
 const ExperimentInfo kInfo{
     .name = "slip/ikf_vs_calibration",
     .description = "Indirect Kalman filter (compass) vs classic and improved UMBmark on the same simulated "
-                   "Trilobot: parameter estimates and validation-path error of each corrected model"};
+                   "Trilobot: parameter estimates and validation-path error of each corrected model",
+    .reading = {
+        "What each can determine (algorithms/calibration/README.md, algorithms/slip/README.md): "
+        "closed squares fix E_d and one combination of E_b and E_o whether read by UMBmark's "
+        "return errors or by the IKF's compass headings and end points (a closed loop returns to "
+        "its start whatever the common scale); straight runs with headings fix only S_R − S_L; "
+        "a measured end position of a straight run adds the common scale E_o but never E_b. "
+        "The IKF is linearised about zero error: with the uncalibrated model's 0.85% right-wheel "
+        "error its estimates are biased by ~(error)² (tests/algorithms/slip).",
+        "Not compared: the ML calibration of algorithms/calibration (it needs relative-motion "
+        "measurements such as scan matching, which these runs do not produce)."}};
 
 enum Method { kUncalibrated, kClassic, kImproved, kIkfSquares, kIkfStraight, kIkfStraightEnd, kTrue, kMethods };
 const char* const kMethodNames[kMethods] = {
@@ -249,17 +259,6 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
           "an E_b larger than the true one — which then also helps on the validation path's "
           "turns. The straight-run IKF never sees a turn and cannot.");
     }
-    out.notes.push_back(
-        "What each can determine (algorithms/calibration/README.md, algorithms/slip/README.md): "
-        "closed squares fix E_d and one combination of E_b and E_o whether read by UMBmark's "
-        "return errors or by the IKF's compass headings and end points (a closed loop returns to "
-        "its start whatever the common scale); straight runs with headings fix only S_R − S_L; "
-        "a measured end position of a straight run adds the common scale E_o but never E_b. "
-        "The IKF is linearised about zero error: with the uncalibrated model's 0.85% right-wheel "
-        "error its estimates are biased by ~(error)² (tests/algorithms/slip).");
-    out.notes.push_back(
-        "Not compared: the ML calibration of algorithms/calibration (it needs relative-motion "
-        "measurements such as scan matching, which these runs do not produce).");
     return out;
   }
 };

@@ -32,7 +32,18 @@ namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4 {
 const ExperimentInfo kInfo{
     .name = "slip/indirect_kf_tables_3_3_3_4",
     .description = "Indirect Kalman filter for S_L, S_R, δB on simulated straight corridor runs "
-                   "(Tables 3.3/3.4): estimates, identifiability, error after correcting the diameters"};
+                   "(Tables 3.3/3.4): estimates, identifiability, error after correcting the diameters",
+    .reading = {
+        "Finding (ours): with 12.64 mm ticks the per-sample odometry heading swings by ±1 tick "
+        "(±3.7°) while the true heading does not; Z = compass − odometry contains that swing, and "
+        "the δB regressor Σ(U_L − U_R)/B² is exactly −θ_odometry/B (the S_R + S_L regressor is "
+        "θ_odometry/2), so the heading-only IKF fits the quantization swing with a large δB and a "
+        "negative common scale. Its 'corrected' model is worse than the nominal one; the "
+        "end-position variant holds δB at 0 and is not affected.",
+        "The δθ row of F uses the nominal B and the odometry heading; the transition is the 6×6 "
+        "of eq. 3.20–3.23 (the printed eq. 3.25 repeats the S_L row). Measurement sign: "
+        "Z = compass heading − odometry heading, which with D' = D(1 + S) makes S > 0 for a wheel "
+        "larger than nominal (see algorithms/slip/indirect_kalman_filter.h)."}};
 
 constexpr double kPublishedImprovement[10] = {16.34, 43.15, 24.80, 16.74, 46.67,
                                               25.55, 22.51, 65.75, 53.27, 21.12};
@@ -318,13 +329,6 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
         "but never δB; a path with turns plus a distance reference determines all three.",
         scenario.motion.distance, describe(id_straight[0]), describe(id_straight[1]),
         describe(id_square[0]), describe(id_square[1])));
-    out.notes.push_back(
-        "Finding (ours): with 12.64 mm ticks the per-sample odometry heading swings by ±1 tick "
-        "(±3.7°) while the true heading does not; Z = compass − odometry contains that swing, and "
-        "the δB regressor Σ(U_L − U_R)/B² is exactly −θ_odometry/B (the S_R + S_L regressor is "
-        "θ_odometry/2), so the heading-only IKF fits the quantization swing with a large δB and a "
-        "negative common scale. Its 'corrected' model is worse than the nominal one; the "
-        "end-position variant holds δB at 0 and is not affected.");
     out.notes.push_back(fmt::format(
         "IKF input: {}. With 12.64 mm ticks a sample's θ_E swings by one tick (3.7°) and the next "
         "sample swings back (the counts are cumulative, so the errors telescope). The slip rule "
@@ -334,11 +338,6 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
         "Harmless inside the compass EKF (the compass heading is absolute), fatal for the IKF's "
         "odometry heading; set slip_corrected_travel = true to see it.",
         u.corrected_travel ? "slip-corrected travel (as the thesis)" : "raw encoder travel (default)"));
-    out.notes.push_back(
-        "The δθ row of F uses the nominal B and the odometry heading; the transition is the 6×6 "
-        "of eq. 3.20–3.23 (the printed eq. 3.25 repeats the S_L row). Measurement sign: "
-        "Z = compass heading − odometry heading, which with D' = D(1 + S) makes S > 0 for a wheel "
-        "larger than nominal (see algorithms/slip/indirect_kalman_filter.h).");
     return out;
   }
 };

@@ -15,7 +15,12 @@ namespace locbench::experiments::slip_normality_table_3_1 {
 
 const ExperimentInfo kInfo{
     .name = "slip/normality_table_3_1",
-    .description = "Skewness–kurtosis normality test on the thesis's 809-sample Δθ' histogram (Table 3.1)"};
+    .description = "Skewness–kurtosis normality test on the thesis's 809-sample Δθ' histogram (Table 3.1)",
+    .reading = {
+        "A caution the thesis does not make: the histogram is far from smooth (counts 177, 20, "
+        "419, 11, 139 alternate), as expected when Δθ' is a difference of two quantized "
+        "increments (encoder ≈ 3.7° per tick over the 198 mm wheelbase, compass 2°); the "
+        "moment test only looks at skewness and kurtosis and does not see this."}};
 
 struct Options {
   double alpha = 0.1;
@@ -82,11 +87,6 @@ class SlipNormality final : public OptionsExperiment<Options> {
         "n = {}, σ1 = {:.5f}, μ2 = {:.5f}, σ2 = {:.5f} (thesis: 0.08580, 2.99259, 0.17065); "
         "normality {}.",
         r.n, r.sigma1, r.mu2, r.sigma2, r.normal ? "accepted" : "rejected"));
-    out.notes.push_back(
-        "A caution the thesis does not make: the histogram is far from smooth (counts 177, 20, "
-        "419, 11, 139 alternate), as expected when Δθ' is a difference of two quantized "
-        "increments (encoder ≈ 3.7° per tick over the 198 mm wheelbase, compass 2°); the "
-        "moment test only looks at skewness and kurtosis and does not see this.");
     return out;
   }
 };
