@@ -4,14 +4,13 @@
 //       file, or a catalog dataset name (`locbench list`), e.g. censi_khepera:l90, aces.
 #include <fmt/format.h>
 
-
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/ml_calibration.h"
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
-#include "core/errors.h"
 #include "baselines/calibration/umbmark_classic.h"
 #include "cli/commands.h"
+#include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/censi_tuple_reader.h"
@@ -44,17 +43,16 @@ reports::ExperimentResults calibrate_umbmark(const CalibrateArgs& a, bool improv
   out.experiment = "calibrate/" + method;
   out.description = improved ? "Improved UMBmark (thesis eq. 2.16–2.27) on a measured square"
                              : "Classic UMBmark (Borenstein & Feng, eq. 2.3–2.13) on a measured square";
-  out.datasets.push_back({"umbmark_input", a.input, reports::file_checksum(a.input),
-                          in.runs.size(), 0.0});
+  out.datasets.push_back({"umbmark_input", a.input, reports::file_checksum(a.input), in.runs.size(), 0.0});
   out.configuration = {{"method", method}, {"input", a.input}};
   const UmbmarkCentroids c = umbmark_centroids(in.runs);
   UmbmarkIdentifiabilityOptions idopt;
   idopt.run_sigma = c.run_sigma > 0.0 ? c.run_sigma : 0.02;
   idopt.runs_per_direction = std::max(1, std::min(c.runs_cw, c.runs_ccw));
-  const UmbmarkDesignFinding f = analyze_umbmark_design(
-      improved ? UmbmarkDesign::kSquareWithLegTicks : UmbmarkDesign::kSquare,
-      improved ? UmbmarkParameterSet::kImproved : UmbmarkParameterSet::kClassic, in.nominal,
-      in.encoder, in.side_length, {}, idopt);
+  const UmbmarkDesignFinding f =
+      analyze_umbmark_design(improved ? UmbmarkDesign::kSquareWithLegTicks : UmbmarkDesign::kSquare,
+                             improved ? UmbmarkParameterSet::kImproved : UmbmarkParameterSet::kClassic, in.nominal,
+                             in.encoder, in.side_length, {}, idopt);
   auto finding = [&f](const std::string& name) -> const ParameterFinding* {
     for (const auto& p : f.report.parameters) {
       if (p.name == name) return &p;
@@ -75,8 +73,8 @@ reports::ExperimentResults calibrate_umbmark(const CalibrateArgs& a, bool improv
     const ParameterFinding* pf = finding(depends_on);
     if (pf && !pf->identifiable) {
       m = make_estimate(method, ds, name, unit, value, std::numeric_limits<double>::infinity(), n);
-      m.note = (name == depends_on ? "" : "follows from " + depends_on + ", which is not determined: ") +
-               pf->reason + remedy(depends_on);
+      m.note = (name == depends_on ? "" : "follows from " + depends_on + ", which is not determined: ") + pf->reason +
+               remedy(depends_on);
     }
     out.results.push_back(std::move(m));
   };
@@ -88,8 +86,7 @@ reports::ExperimentResults calibrate_umbmark(const CalibrateArgs& a, bool improv
     const double Ed = r.E_d;
     add("E_d", "", Ed, se_d, "E_d");
     add("E_b", "", r.E_b, se_b, "E_b");
-    reports::MetricResult es = reports::make_metric(method, ds, "E_s", "", "input",
-                                                    std::vector<double>{r.E_s});
+    reports::MetricResult es = reports::make_metric(method, ds, "E_s", "", "input", std::vector<double>{r.E_s});
     es.note = "tape-measured input (eq. 2.15), not estimated from the runs";
     out.results.push_back(std::move(es));
     add("D_L", "m", r.D_L, 2.0 * r.D_a / ((Ed + 1) * (Ed + 1)) * se_d, "E_d");
@@ -109,14 +106,14 @@ reports::ExperimentResults calibrate_umbmark(const CalibrateArgs& a, bool improv
     add("c_L", "m/tick", r.c_L, 0.0, "E_o");
     add("c_R", "m/tick", r.c_R, 0.0, "E_o");
   }
-  out.results.push_back(reports::make_metric(method, ds, "e_max_syst_of_input", "m", "input",
-                                              std::vector<double>{c.e_max_syst}));
-  out.notes.push_back(fmt::format(
-      "Identifiability ({}; {}): Fisher rank {} of {}, condition number {:.3g}, per-run σ {:.3f} m "
-      "from the runs' scatter. Standard errors of E_d and E_b are Fisher's; derived quantities "
-      "are linearised from them.",
-      to_string(f.design), to_string(f.parameter_set), f.report.rank, f.report.parameter_count,
-      f.report.condition_number, idopt.run_sigma));
+  out.results.push_back(
+      reports::make_metric(method, ds, "e_max_syst_of_input", "m", "input", std::vector<double>{c.e_max_syst}));
+  out.notes.push_back(
+      fmt::format("Identifiability ({}; {}): Fisher rank {} of {}, condition number {:.3g}, per-run σ {:.3f} m "
+                  "from the runs' scatter. Standard errors of E_d and E_b are Fisher's; derived quantities "
+                  "are linearised from them.",
+                  to_string(f.design), to_string(f.parameter_set), f.report.rank, f.report.parameter_count,
+                  f.report.condition_number, idopt.run_sigma));
   return out;
 }
 
@@ -182,21 +179,20 @@ reports::ExperimentResults calibrate_ml_cmd(const CalibrateArgs& a) {
   const CalibrationData data = ml_input(a, ref, opt);
   out.datasets.push_back(ref);
   const MlCalibrationResult r = calibrate_ml(data, opt);
-  out.configuration = {{"method", "ml"}, {"input", a.input}, {"samples", r.samples_used},
-                       {"rejected", r.samples_rejected}};
+  out.configuration = {
+      {"method", "ml"}, {"input", a.input}, {"samples", r.samples_used}, {"rejected", r.samples_rejected}};
   const std::string ds = reports::key_part(std::filesystem::path(ref.name).filename().string());
   for (const CalibratedParameter& p : r.parameters) {
-    reports::MetricResult m = make_estimate("ml", ds, p.name, "", p.value, p.standard_error,
-                                            r.samples_used);
+    reports::MetricResult m = make_estimate("ml", ds, p.name, "", p.value, p.standard_error, r.samples_used);
     m.identifiable = p.identifiable;
     if (!p.identifiable) m.note = p.reason;
     out.results.push_back(std::move(m));
   }
-  out.notes.push_back(fmt::format(
-      "{} samples used, {} rejected; residual RMS {:.4g} m / {:.4g} rad; χ²/dof {:.3g}; "
-      "converged: {}.",
-      r.samples_used, r.samples_rejected, r.residual_rms_translation, r.residual_rms_rotation,
-      r.chi2_per_dof, r.converged ? "yes" : "no"));
+  out.notes.push_back(
+      fmt::format("{} samples used, {} rejected; residual RMS {:.4g} m / {:.4g} rad; χ²/dof {:.3g}; "
+                  "converged: {}.",
+                  r.samples_used, r.samples_rejected, r.residual_rms_translation, r.residual_rms_rotation,
+                  r.chi2_per_dof, r.converged ? "yes" : "no"));
   return out;
 }
 
@@ -210,8 +206,7 @@ int calibrate(const CalibrateArgs& a, const std::string& command_line) {
   } else if (a.method == "ml") {
     report.body = calibrate_ml_cmd(a);
   } else {
-    throw UsageError("calibrate: METHOD must be umbmark-classic, umbmark-improved or ml, not \"" +
-                     a.method + "\"");
+    throw UsageError("calibrate: METHOD must be umbmark-classic, umbmark-improved or ml, not \"" + a.method + "\"");
   }
   reports::ReportTail tail("calibrate", command_line, a.report);
   tail.print_summary = true;

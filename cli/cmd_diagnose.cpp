@@ -9,20 +9,20 @@
 
 #include <filesystem>
 #include <fstream>
-#include <optional>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 
-#include "core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "cli/commands.h"
+#include "core/errors.h"
+#include "core/json_file.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/diagnosis/twin_scenario.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/log/data_root.h"
 #include "datasets/sim/scenario_json.h"
 #include "reports/finish_report.h"
-#include "core/json_file.h"
 #include "reports/output_file.h"
 
 namespace locbench::cli {
@@ -55,8 +55,8 @@ void print(const diagnosis::Diagnosis& d) {
   }
   for (const auto& c : d.causes) {
     if (!c.detected) continue;
-    std::cout << fmt::format("cause {:<22} {} = {:.4g} (threshold {:.4g}){}\n", c.id, c.statistic, c.value,
-                             c.threshold, c.identifiable ? "" : " — confounded");
+    std::cout << fmt::format("cause {:<22} {} = {:.4g} (threshold {:.4g}){}\n", c.id, c.statistic, c.value, c.threshold,
+                             c.identifiable ? "" : " — confounded");
     for (const auto& p : c.parameters) {
       std::cout << fmt::format("  {:<12} {:.6g}  95% [{:.6g}, {:.6g}]\n", p.name, p.value, p.lo, p.hi);
     }
@@ -71,8 +71,8 @@ void print(const diagnosis::Diagnosis& d) {
     std::cout << "unconfirmed: " << id << " (likelihood ratio passed on training windows, no held-out gain)\n";
   }
   for (const auto& u : d.unexplained) {
-    std::cout << fmt::format("unexplained: {} of {} against {} (statistic {:.4g}, p = {:.3g})\n", u.test,
-                             u.residual, u.variable.empty() ? "-" : u.variable, u.statistic, u.p_value);
+    std::cout << fmt::format("unexplained: {} of {} against {} (statistic {:.4g}, p = {:.3g})\n", u.test, u.residual,
+                             u.variable.empty() ? "-" : u.variable, u.statistic, u.p_value);
   }
   std::cout << "verdict: " << d.verdict << std::endl;
 }
@@ -145,7 +145,8 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
 
 Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
   const auto [cmd, args] = add_verb<DiagnoseArgs>(
-      app, "diagnose", "What the nominal model of a log gets wrong: residual tests, named causes, fitted extensions, gain");
+      app, "diagnose",
+      "What the nominal model of a log gets wrong: residual tests, named causes, fitted extensions, gain");
   cmd->add_option("input", args->input,
                   "A log (CARMEN .clf[.gz] with ENCODER or ODOM and TRUEPOS/COMPASS; MRCLAM folder#robotN), "
                   "a catalog dataset name, or a residual histogram (.json)")
@@ -155,7 +156,8 @@ Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--scenario", args->scenario,
                   "Write the log's synthetic twin (its odometry replayed under the nominal model plus every kept "
                   "cause) as a simulator scenario JSON for `locbench simulate`");
-  cmd->add_option("--false-alarm", args->false_alarm, "False-alarm level per log and channel, in [1e-12, 0.5) (default 0.01)");
+  cmd->add_option("--false-alarm", args->false_alarm,
+                  "False-alarm level per log and channel, in [1e-12, 0.5) (default 0.01)");
   cmd->add_option("--window", args->window, "Residual window length [s], in (0, 3600] (default 1)");
   add_data_option(cmd, args->data);
   return [args, command_line] { return diagnose(*args, command_line); };

@@ -2,8 +2,8 @@
 // result got worse than the rules allow.
 #include <iostream>
 
-#include "core/errors.h"
 #include "cli/commands.h"
+#include "core/errors.h"
 #include "reports/gate.h"
 #include "reports/output_file.h"
 
@@ -51,10 +51,8 @@ int gate(const GateArgs& args) {
 Action add_gate_command(CLI::App& app) {
   const auto [cmd, args] = add_verb<GateArgs>(
       app, "gate", "Compare reports (or Google Benchmark JSON) with a baseline; exit 1 on regression");
-  cmd->add_option("current", args->current, "Current reports: files or folders of *.json")
-      ->required();
-  cmd->add_option("--baseline", args->baseline, "Baseline reports: files or folders")
-      ->required();
+  cmd->add_option("current", args->current, "Current reports: files or folders of *.json")->required();
+  cmd->add_option("--baseline", args->baseline, "Baseline reports: files or folders")->required();
   cmd->add_option("--rules", args->rules,
                   "Rules JSON (default: every result may worsen by 5% and must leave its 95% "
                   "interval to fail)");

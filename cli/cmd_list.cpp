@@ -4,9 +4,9 @@
 
 #include <iostream>
 
-#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "cli/commands.h"
+#include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/log/data_root.h"
@@ -40,8 +40,7 @@ std::string counts(const Log& log) {
 int list(const ListArgs& args) {
   std::cout << "Experiments (* = default suite):\n";
   for (const auto& e : experiments::all_experiments()) {
-    std::cout << fmt::format("  {} {:<26} {}\n", e->in_default_suite() ? '*' : ' ', e->name(),
-                             e->description());
+    std::cout << fmt::format("  {} {:<26} {}\n", e->in_default_suite() ? '*' : ' ', e->name(), e->description());
   }
   std::cout << "\nMethods (the name each has in result keys; thesis = proposed, baseline = compared against):\n";
   struct Method {
@@ -55,7 +54,8 @@ int list(const ListArgs& args) {
       {"ml", "algorithms/calibration", "ours: maximum-likelihood odometry + sensor-pose calibration"},
       {"slip_detector", "algorithms/slip", "thesis: compass slip detection and correction (eq. 3.3–3.17)"},
       {"ikf_*", "algorithms/slip", "thesis: indirect Kalman filter for S_L, S_R, δB (eq. 3.18–3.26)"},
-      {"adaptive_model_ekf", "algorithms/filters", "thesis: compass EKF with the adaptive odometry noise (eq. 4.36–4.44)"},
+      {"adaptive_model_ekf", "algorithms/filters",
+       "thesis: compass EKF with the adaptive odometry noise (eq. 4.36–4.44)"},
       {"fixed_q_ekf", "baselines/filters", "baseline: EKF with fixed Q"},
       {"sage_husa_aekf", "baselines/filters", "baseline: Sage–Husa AEKF (Deng forgetting, Zhang fix)"},
       {"vb_akf", "baselines/filters", "baseline: variational-Bayes AKF (Särkkä & Nummenmaa 2009)"},
@@ -97,8 +97,7 @@ int list(const ListArgs& args) {
       continue;
     }
     if (!d.reader_pending.empty()) {
-      std::cout << fmt::format("    {:<26} present; reader arrives with {}\n", d.name,
-                               d.reader_pending);
+      std::cout << fmt::format("    {:<26} present; reader arrives with {}\n", d.name, d.reader_pending);
       continue;
     }
     if (args.no_load) {
@@ -108,8 +107,7 @@ int list(const ListArgs& args) {
     try {
       const Log log = load_catalog_dataset(d, root);
       const auto [t0, t1] = log.time_span();
-      std::cout << fmt::format("    {:<26} {:.1f} s from t = {:.3f}: {}\n", d.name, t1 - t0, t0,
-                               counts(log));
+      std::cout << fmt::format("    {:<26} {:.1f} s from t = {:.3f}: {}\n", d.name, t1 - t0, t0, counts(log));
     } catch (const InputError& e) {
       std::cout << fmt::format("    {:<26} unreadable: {}\n", d.name, e.what());
     }

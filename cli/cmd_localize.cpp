@@ -12,16 +12,16 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/errors.h"
-#include "core/input_limits.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/harness/global_harness.h"
 #include "cli/commands.h"
 #include "cli/pose_report.h"
+#include "core/errors.h"
+#include "core/input_limits.h"
+#include "core/json_file.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
-#include "core/json_file.h"
 #include "reports/output_file.h"
 
 namespace locbench::cli {
@@ -52,8 +52,8 @@ Pose2 parse_start(const std::string& text) {
   std::istringstream in(text);
   double v[3];
   char comma = 0;
-  if (!(in >> v[0] >> comma >> v[1] >> comma >> v[2]) || !in.eof() || !std::isfinite(v[0]) ||
-      !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+  if (!(in >> v[0] >> comma >> v[1] >> comma >> v[2]) || !in.eof() || !std::isfinite(v[0]) || !std::isfinite(v[1]) ||
+      !std::isfinite(v[2])) {
     throw UsageError("--start: expected X,Y,THETA in metres and radians, got '" + text + "'");
   }
   return {v[0], v[1], v[2]};
@@ -106,8 +106,10 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
     reference = "odometry (map built from the log)";
   }
   std::optional<Pose2> start;
-  if (!a.start.empty()) start = parse_start(a.start);
-  else if (steps.front().reference) start = steps.front().reference;
+  if (!a.start.empty())
+    start = parse_start(a.start);
+  else if (steps.front().reference)
+    start = steps.front().reference;
   if (!g::is_global_method(method) && !start) {
     throw UsageError(method + " tracks from a known start: give --start X,Y,THETA (the log has no TRUEPOS)");
   }
@@ -121,14 +123,17 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
   auto& out = report.body;
   out.experiment = "localize/" + method;
   out.description = "Localization of every scan of a log in a line map (" + method + ")";
-  out.configuration = {{"map", a.map.empty() ? "from the log" : a.map}, {"log", a.log},
-                       {"method", method}, {"seed", a.seed}, {"method_options", options}};
+  out.configuration = {{"map", a.map.empty() ? "from the log" : a.map},
+                       {"log", a.log},
+                       {"method", method},
+                       {"seed", a.seed},
+                       {"method_options", options}};
   out.seeds.push_back(a.seed);
-  out.datasets.push_back({log.name.empty() ? "log" : log.name, a.log, reports::file_checksum(a.log),
-                          log.record_count(), log.time_span().second - log.time_span().first});
+  out.datasets.push_back({log.name.empty() ? "log" : log.name, a.log, reports::file_checksum(a.log), log.record_count(),
+                          log.time_span().second - log.time_span().first});
   if (!a.map.empty()) {
-    out.datasets.push_back({map.name.empty() ? "map" : map.name, a.map, reports::file_checksum(a.map),
-                            map.segments.size(), 0.0});
+    out.datasets.push_back(
+        {map.name.empty() ? "map" : map.name, a.map, reports::file_checksum(a.map), map.segments.size(), 0.0});
   }
   const std::string ds = reports::key_part(std::filesystem::path(a.log).filename().string());
   out.results.push_back(reports::make_metric(method, ds, "memory", "bytes", "estimate",
@@ -146,8 +151,8 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
         c ? fmt::format("Within 0.5 m and 0.35 rad of the {} from {:.1f} s ({:.1f} m travelled) to the end; "
                         "final error {:.3f} m.",
                         reference, steps[*c].t - steps[0].t, g::path_length(steps, 0, *c), pos.back())
-          : fmt::format("Never settled within 0.5 m and 0.35 rad of the {}; final error {:.3f} m.",
-                        reference, pos.back()));
+          : fmt::format("Never settled within 0.5 m and 0.35 rad of the {}; final error {:.3f} m.", reference,
+                        pos.back()));
   }
   return finish_pose_report(report, "localize", command_line, a.report, traj, a.tum);
 }

@@ -7,13 +7,13 @@
 
 #include <cmath>
 
-#include "core/errors.h"
-#include "core/input_limits.h"
-#include "core/statistics.h"
 #include "algorithms/pose_correction/pose_correction.h"
 #include "benchmarks/experiments/harness/laser_matchers.h"
 #include "cli/commands.h"
 #include "cli/pose_report.h"
+#include "core/errors.h"
+#include "core/input_limits.h"
+#include "core/statistics.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/sim/worlds.h"
@@ -38,8 +38,7 @@ int match(const MatchArgs& a, const std::string& command_line) {
   const LineMap map = sim::load_world(a.map);
   if (map.segments.empty()) throw InputError(a.map, 0, "a map with at least one segment");
   const Log log = load_scan_log(a.log);
-  const auto matchers = experiments::make_matchers({a.matcher},
-                                                   experiments::default_matcher_options(), &map);
+  const auto matchers = experiments::make_matchers({a.matcher}, experiments::default_matcher_options(), &map);
   const laser::SegmentMatcher& matcher = *matchers.front();
   const std::optional<Trajectory> odom =
       log.odometry.empty() ? std::nullopt : std::optional<Trajectory>(odometry_trajectory(log));
@@ -77,15 +76,16 @@ int match(const MatchArgs& a, const std::string& command_line) {
   auto& out = report.body;
   out.experiment = "match/" + a.matcher;
   out.description = "Scan-to-map matching (" + a.matcher + ") and chapter-6 correction of each scan";
-  out.configuration = {{"map", a.map}, {"log", a.log}, {"matcher", a.matcher},
+  out.configuration = {{"map", a.map},
+                       {"log", a.log},
+                       {"matcher", a.matcher},
                        {"matcher_options", experiments::default_matcher_options()}};
-  out.datasets.push_back({log.name.empty() ? "log" : log.name, a.log, reports::file_checksum(a.log),
-                          log.record_count(), log.time_span().second - log.time_span().first});
-  out.datasets.push_back({map.name.empty() ? "map" : map.name, a.map, reports::file_checksum(a.map),
-                          map.segments.size(), 0.0});
+  out.datasets.push_back({log.name.empty() ? "log" : log.name, a.log, reports::file_checksum(a.log), log.record_count(),
+                          log.time_span().second - log.time_span().first});
+  out.datasets.push_back(
+      {map.name.empty() ? "map" : map.name, a.map, reports::file_checksum(a.map), map.segments.size(), 0.0});
   const std::string ds = reports::key_part(std::filesystem::path(a.log).filename().string());
-  const auto add = [&](const char* variant, const char* unit, const std::vector<double>& v,
-                       const char* better) {
+  const auto add = [&](const char* variant, const char* unit, const std::vector<double>& v, const char* better) {
     reports::MetricResult m = reports::make_metric(a.matcher, ds, variant, unit, "scans", v, false);
     m.better = better;
     out.results.push_back(std::move(m));
@@ -96,8 +96,10 @@ int match(const MatchArgs& a, const std::string& command_line) {
   add("correction_translation", "m", shift, "stable");
   add("correction_rotation", "rad", turn, "stable");
   if (skipped) {
-    out.notes.push_back(fmt::format("{} scans had no pose (no FLASER pose and no odometry at their "
-                                    "stamp) and were skipped.", skipped));
+    out.notes.push_back(
+        fmt::format("{} scans had no pose (no FLASER pose and no odometry at their "
+                    "stamp) and were skipped.",
+                    skipped));
   }
   return finish_pose_report(report, "match", command_line, a.report, corrected, a.tum);
 }
@@ -105,13 +107,11 @@ int match(const MatchArgs& a, const std::string& command_line) {
 }  // namespace
 
 Action add_match_command(CLI::App& app, const std::string& command_line) {
-  const auto [cmd, args] = add_verb<MatchArgs>(
-      app, "match", "Match a log's laser scans against a line map and correct each pose (ch. 5–6)");
-  cmd->add_option("--map", args->map, "Line map JSON: {\"name\", \"segments\": [[x1, y1, x2, y2], …]} [m]")
-      ->required();
+  const auto [cmd, args] =
+      add_verb<MatchArgs>(app, "match", "Match a log's laser scans against a line map and correct each pose (ch. 5–6)");
+  cmd->add_option("--map", args->map, "Line map JSON: {\"name\", \"segments\": [[x1, y1, x2, y2], …]} [m]")->required();
   cmd->add_option("--log", args->log, "CARMEN log with FLASER scans (plain or .gz)")->required();
-  cmd->add_option("--matcher", args->matcher,
-                  "eap (default), eap_indexed, split_and_merge, agglomerative or rwht");
+  cmd->add_option("--matcher", args->matcher, "eap (default), eap_indexed, split_and_merge, agglomerative or rwht");
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--tum", args->tum, "Write the corrected poses here (TUM format)");
   return [args, command_line] { return match(*args, command_line); };

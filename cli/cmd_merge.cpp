@@ -5,17 +5,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <optional>
 #include <iostream>
 #include <map>
+#include <optional>
 
-#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/shard.h"
 #include "cli/commands.h"
-#include "reports/finish_report.h"
+#include "core/errors.h"
 #include "core/json_file.h"
+#include "reports/finish_report.h"
 #include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/schema_validation.h"
@@ -39,8 +39,7 @@ struct ShardFile {
 ShardFile load(const std::filesystem::path& path) {
   const nlohmann::json j = read_json_file(path, "shard report (JSON)");
   if (j.is_object() && j.value("schema", "") == reports::kReportSchema) {
-    throw InputError(path.string(), 0,
-                     "a full report, not a shard report (made by `locbench run --shard K/N`)");
+    throw InputError(path.string(), 0, "a full report, not a shard report (made by `locbench run --shard K/N`)");
   }
   if (const auto errors = reports::validate_shard_json(j); !errors.empty()) {
     throw InputError(path.string(), 0, "not a valid shard report: " + errors.front());
@@ -57,8 +56,7 @@ std::vector<ShardFile> load_all(const std::vector<std::string>& inputs) {
       std::vector<std::filesystem::path> found;
       for (const auto& entry : std::filesystem::recursive_directory_iterator(p)) {
         const std::string n = entry.path().filename().string();
-        if (entry.is_regular_file() && n.find(".shard-") != std::string::npos &&
-            n.ends_with(".json")) {
+        if (entry.is_regular_file() && n.find(".shard-") != std::string::npos && n.ends_with(".json")) {
           found.push_back(entry.path());
         }
       }
@@ -104,17 +102,17 @@ void check_consistent(const std::vector<const ShardFile*>& group) {
   for (const ShardFile* f : group) {
     const auto [it, fresh] = by_index.emplace(f->shard.index, f);
     if (!fresh) {
-      throw InputError(f->path, 0, fmt::format("shard {}/{} given twice (also {})", f->shard.index,
-                                               f->shard.count, it->second->path));
+      throw InputError(
+          f->path, 0,
+          fmt::format("shard {}/{} given twice (also {})", f->shard.index, f->shard.count, it->second->path));
     }
     std::vector<int> got;
     for (const auto& r : f->shard.records) got.push_back(r.task);
     const experiments::Shard sh{f->shard.index, f->shard.count};
-    if (sh.index < 1 || sh.index > sh.count ||
-        got != experiments::shard_tasks(sh, f->shard.tasks)) {
+    if (sh.index < 1 || sh.index > sh.count || got != experiments::shard_tasks(sh, f->shard.tasks)) {
       throw InputError(f->path, 0,
-                       fmt::format("shard {}/{} does not hold the tasks i with i mod {} = {}",
-                                   sh.index, sh.count, sh.count, sh.index - 1));
+                       fmt::format("shard {}/{} does not hold the tasks i with i mod {} = {}", sh.index, sh.count,
+                                   sh.count, sh.index - 1));
     }
   }
   for (int k = 1; k <= s.count; ++k) {
@@ -124,8 +122,7 @@ void check_consistent(const std::vector<const ShardFile*>& group) {
   }
 }
 
-reports::Report merge_group(const std::vector<const ShardFile*>& group, int threads,
-                            const std::string& command_line) {
+reports::Report merge_group(const std::vector<const ShardFile*>& group, int threads, const std::string& command_line) {
   check_consistent(group);
   const reports::ShardReport& s = group.front()->shard;
   const reports::Provenance here = reports::current_provenance(command_line);
@@ -170,15 +167,15 @@ int merge(const MergeArgs& args, const std::string& command_line) {
   for (const ShardFile& f : files) groups[f.shard.experiment].push_back(&f);
   const bool single_file = groups.size() == 1 && args.out.ends_with(".json");
   if (groups.size() > 1 && args.out.ends_with(".json")) {
-    throw UsageError(fmt::format("the shards hold {} experiments: -o must be a folder, not {}",
-                                 groups.size(), args.out));
+    throw UsageError(
+        fmt::format("the shards hold {} experiments: -o must be a folder, not {}", groups.size(), args.out));
   }
   std::vector<reports::Report> written;
   for (const auto& [name, group] : groups) {
     reports::Report report = merge_group(group, args.threads, command_line);
-    reports::ReportTail tail("merge of " + name, command_line,
-                             single_file ? std::filesystem::path(args.out)
-                                         : std::filesystem::path(args.out) / (name + ".json"));
+    reports::ReportTail tail(
+        "merge of " + name, command_line,
+        single_file ? std::filesystem::path(args.out) : std::filesystem::path(args.out) / (name + ".json"));
     tail.threads = args.threads;
     tail.shards = group.front()->shard.count;
     tail.wrote_detail = fmt::format("{} shards", group.size());
@@ -192,13 +189,12 @@ int merge(const MergeArgs& args, const std::string& command_line) {
 }  // namespace
 
 Action add_merge_command(CLI::App& app, const std::string& command_line) {
-  const auto [cmd, args] = add_verb<MergeArgs>(
-      app, "merge", "Merge shard reports (locbench run --shard K/N) into full reports");
+  const auto [cmd, args] =
+      add_verb<MergeArgs>(app, "merge", "Merge shard reports (locbench run --shard K/N) into full reports");
   cmd->add_option("shards", args->inputs, "Shard reports, or folders holding them")
       ->required()
       ->check(CLI::ExistingPath);
-  cmd->add_option("-o,--out", args->out,
-                  "Report file (one experiment, ends in .json) or folder (one report each)")
+  cmd->add_option("-o,--out", args->out, "Report file (one experiment, ends in .json) or folder (one report each)")
       ->required();
   cmd->add_option("--threads", args->threads, "Worker threads for any work of the summary step")
       ->check(CLI::PositiveNumber)

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <iostream>
 
-#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "cli/commands.h"
+#include "core/errors.h"
+#include "core/json_file.h"
 #include "reports/gnuplot_svg.h"
 #include "reports/html_report.h"
-#include "core/json_file.h"
 #include "reports/output_file.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
@@ -23,9 +23,7 @@ struct ReportArgs {
   std::string title = "locbench report";
 };
 
-nlohmann::json parse_file(const std::filesystem::path& path) {
-  return read_json_file(path, "report (JSON)");
-}
+nlohmann::json parse_file(const std::filesystem::path& path) { return read_json_file(path, "report (JSON)"); }
 
 reports::Report load(const std::filesystem::path& path, const nlohmann::json& j) {
   const std::string schema = j.is_object() ? j.value("schema", "") : "";
@@ -92,16 +90,15 @@ int report(const ReportArgs& args) {
   const std::string html = reports::html_report(loaded, reports::gnuplot_batch_renderer(*gnuplot), options);
   const std::filesystem::path out(args.out);
   reports::write_file_atomically(out, html);
-  std::cerr << "wrote " << out.string() << " (" << loaded.size() << " reports, " << html.size()
-            << " bytes)\n";
+  std::cerr << "wrote " << out.string() << " (" << loaded.size() << " reports, " << html.size() << " bytes)\n";
   return kExitOk;
 }
 
 }  // namespace
 
 Action add_report_command(CLI::App& app) {
-  const auto [cmd, args] = add_verb<ReportArgs>(
-      app, "report", "Write one self-contained HTML page (tables and charts) from reports");
+  const auto [cmd, args] =
+      add_verb<ReportArgs>(app, "report", "Write one self-contained HTML page (tables and charts) from reports");
   cmd->add_option("reports", args->inputs, "Report files, or folders holding them")
       ->required()
       ->check(CLI::ExistingPath);

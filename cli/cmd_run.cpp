@@ -4,18 +4,18 @@
 #include <cmath>
 #include <iostream>
 
-#include "core/errors.h"
-#include "core/input_limits.h"
-#include "core/rng.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "benchmarks/experiments/framework/shard.h"
+#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "core/errors.h"
+#include "core/input_limits.h"
+#include "core/json_file.h"
+#include "core/rng.h"
 #include "datasets/log/data_root.h"
 #include "reports/finish_report.h"
-#include "core/json_file.h"
 #include "reports/output_file.h"
 #include "reports/shard_report.h"
 #include "reports/summary_table.h"
@@ -32,9 +32,9 @@ struct RunArgs {
   std::vector<std::string> sets;
   std::string data;
   int threads = experiments::hardware_threads();
-  std::string shard;  // "K/N", empty: the whole experiment
+  std::string shard;                         // "K/N", empty: the whole experiment
   std::string log, relations, ground_truth;  // a user's real log (real_log_harness.h)
-  std::vector<std::string> skip_missing;  // dataset names whose absence is accepted ("all": any)
+  std::vector<std::string> skip_missing;     // dataset names whose absence is accepted ("all": any)
 };
 
 // `--set a.b.c=VALUE` → {"a": {"b": {"c": VALUE}}}; VALUE is read as JSON, else as a string.
@@ -107,9 +107,7 @@ bool skip_allowed(const std::vector<std::string>& names, const std::string& case
   return false;
 }
 
-std::string args_shard_label(const experiments::Shard& s) {
-  return fmt::format("shard {}/{}", s.index, s.count);
-}
+std::string args_shard_label(const experiments::Shard& s) { return fmt::format("shard {}/{}", s.index, s.count); }
 
 nlohmann::json load_overrides(const std::string& path) {
   if (path.empty()) return nlohmann::json::object();
@@ -119,9 +117,8 @@ nlohmann::json load_overrides(const std::string& path) {
 }
 
 // Shard K/N of one experiment: its tasks' records → <out>/<experiment>.shard-K-of-N.json.
-void run_shard(const experiments::Experiment& e, const nlohmann::json& config,
-               experiments::RunOptions options, const experiments::Shard& shard,
-               const std::string& out, const std::string& command_line) {
+void run_shard(const experiments::Experiment& e, const nlohmann::json& config, experiments::RunOptions options,
+               const experiments::Shard& shard, const std::string& out, const std::string& command_line) {
   reports::ShardReport r;
   r.experiment = e.name();
   r.description = e.description();
@@ -139,8 +136,8 @@ void run_shard(const experiments::Experiment& e, const nlohmann::json& config,
         tasks.empty() ? std::vector<nlohmann::json>{} : e.run_tasks(config, options, tasks);
     for (std::size_t i = 0; i < tasks.size(); ++i) r.records.push_back({tasks[i], records[i]});
   }
-  const auto path = std::filesystem::path(out) /
-                    fmt::format("{}.shard-{}-of-{}.json", e.name(), shard.index, shard.count);
+  const auto path =
+      std::filesystem::path(out) / fmt::format("{}.shard-{}-of-{}.json", e.name(), shard.index, shard.count);
   reports::ReportTail tail(e.name(), command_line, path);
   tail.threads = options.threads;
   tail.wrote_detail = fmt::format("{} of {} tasks", tasks.size(), r.tasks);
@@ -164,8 +161,7 @@ int run(const RunArgs& args, const std::string& command_line) {
   if (args.log.empty() && (!args.relations.empty() || !args.ground_truth.empty())) {
     throw UsageError("--relations and --ground-truth need --log");
   }
-  const auto log_override =
-      experiments::real_log_cli_override(args.log, args.relations, args.ground_truth);
+  const auto log_override = experiments::real_log_cli_override(args.log, args.relations, args.ground_truth);
   if (log_override) {
     for (const auto* e : chosen) {
       if (!experiments::takes_real_logs(e->default_config())) {
@@ -221,7 +217,8 @@ int run(const RunArgs& args, const std::string& command_line) {
       }
     }
     for (const reports::CaseNote& c : report.body.cases) {
-      if (c.status == "skipped" && !skip_allowed(args.skip_missing, c.name)) missing.push_back(c.name + ": " + c.reason);
+      if (c.status == "skipped" && !skip_allowed(args.skip_missing, c.name))
+        missing.push_back(c.name + ": " + c.reason);
     }
     reports::ReportTail tail(e->name(), command_line, std::filesystem::path(args.out) / (e->name() + ".json"));
     tail.threads = options.threads;
@@ -242,8 +239,8 @@ int run(const RunArgs& args, const std::string& command_line) {
 }  // namespace
 
 Action add_run_command(CLI::App& app, const std::string& command_line) {
-  const auto [cmd, args] = add_verb<RunArgs>(
-      app, "run", "Run experiments (default: the default suite) and write JSON reports");
+  const auto [cmd, args] =
+      add_verb<RunArgs>(app, "run", "Run experiments (default: the default suite) and write JSON reports");
   cmd->add_option("experiments", args->experiments,
                   "Experiment names or groups (e.g. odometry/sim_corridor, odometry)");
   cmd->add_option("--seed", args->seed, "Base seed of every random run (0 … 2^53 − 1)")
@@ -252,8 +249,7 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--runs", args->runs, "Monte-Carlo runs, 1 … 100000 (default: each experiment's own)")
       ->check(CLI::Range(1, static_cast<int>(limits::kMonteCarloRuns.max)));
   cmd->add_option("-o,--out", args->out, "Folder for reports")->capture_default_str();
-  cmd->add_option("--config", args->config,
-                  "JSON file {\"experiment/name\": {option: value}} overriding defaults");
+  cmd->add_option("--config", args->config, "JSON file {\"experiment/name\": {option: value}} overriding defaults");
   cmd->add_option("--set", args->sets,
                   "Override one option, KEY.PATH=VALUE (JSON value), e.g. "
                   "filters.sage_husa_aekf.forgetting=0.95; repeatable");

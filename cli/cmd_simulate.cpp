@@ -3,9 +3,9 @@
 
 #include <iostream>
 
+#include "cli/commands.h"
 #include "core/errors.h"
 #include "core/trajectory.h"
-#include "cli/commands.h"
 #include "datasets/io/carmen_writer.h"
 #include "datasets/io/tum_writer.h"
 #include "datasets/sim/presets.h"
@@ -53,19 +53,17 @@ int simulate(const SimulateArgs& args) {
   std::cerr << fmt::format(
       "wrote {}: scenario {}, seed {}, {:.1f} s, {} ENCODER, {} ODOM, {} COMPASS, {} FLASER, {} "
       "TRUEPOS, {} true slip events\n",
-      args.out, scenario.name, args.seed, t1 - t0, result.log.encoders.size(),
-      result.log.odometry.size(), result.log.compass.size(), result.log.laser.size(),
-      result.log.truth.size(), result.slips.size());
+      args.out, scenario.name, args.seed, t1 - t0, result.log.encoders.size(), result.log.odometry.size(),
+      result.log.compass.size(), result.log.laser.size(), result.log.truth.size(), result.slips.size());
   return kExitOk;
 }
 
 }  // namespace
 
 Action add_simulate_command(CLI::App& app) {
-  const auto [cmd, args] = add_verb<SimulateArgs>(
-      app, "simulate", "Simulate a scenario and write its log (CARMEN format, .gz to compress)");
-  cmd->add_option("scenario", args->scenario,
-                  "A scenario name (see `locbench list`) or a scenario JSON file")
+  const auto [cmd, args] =
+      add_verb<SimulateArgs>(app, "simulate", "Simulate a scenario and write its log (CARMEN format, .gz to compress)");
+  cmd->add_option("scenario", args->scenario, "A scenario name (see `locbench list`) or a scenario JSON file")
       ->required();
   cmd->add_option("--seed", args->seed, "Seed of every noise source")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Log file to write (.clf or .clf.gz)");

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <map>
 
+#include "cli/commands.h"
 #include "core/errors.h"
 #include "core/input_limits.h"
-#include "cli/commands.h"
 
 int main(int argc, char** argv) {
   using namespace locbench::cli;

@@ -25,9 +25,8 @@ Log load_scan_log(const std::string& spec) {
   return log;
 }
 
-int finish_pose_report(reports::Report& report, const std::string& verb,
-                       const std::string& command_line, const std::string& report_path,
-                       const Trajectory& poses, const std::string& tum_path) {
+int finish_pose_report(reports::Report& report, const std::string& verb, const std::string& command_line,
+                       const std::string& report_path, const Trajectory& poses, const std::string& tum_path) {
   reports::ReportTail tail(verb, command_line, report_path);
   tail.print_summary = true;
   reports::finish_report(report, tail);

@@ -16,8 +16,7 @@ Log load_scan_log(const std::string& spec);
 
 // Finishes `report` (reports::finish_report, with the summary printed) and writes `poses` to
 // `tum_path` unless it is empty; returns kExitOk.
-int finish_pose_report(reports::Report& report, const std::string& verb,
-                       const std::string& command_line, const std::string& report_path,
-                       const Trajectory& poses, const std::string& tum_path);
+int finish_pose_report(reports::Report& report, const std::string& verb, const std::string& command_line,
+                       const std::string& report_path, const Trajectory& poses, const std::string& tum_path);
 
 }  // namespace locbench::cli

@@ -31,8 +31,7 @@ struct MotionPrediction {
   Vector3 mean = Vector3::Zero();
   Matrix3 jacobian = Matrix3::Identity();
 };
-inline MotionPrediction predict_motion(const Vector3& x, const WheelDisplacement& u,
-                                       double wheelbase) {
+inline MotionPrediction predict_motion(const Vector3& x, const WheelDisplacement& u, double wheelbase) {
   const Pose2 p = to_pose(x);
   return {to_vector(odometry_step(p, u, wheelbase)), odometry_jacobian_pose(p, u, wheelbase)};
 }
@@ -44,9 +43,8 @@ struct CompassInnovation {
   double variance = 0.0;    // S [rad²]
   Vector3 gain = Vector3::Zero();
 };
-inline CompassInnovation compass_innovation(const Vector3& x_pred, const Matrix3& p_pred,
-                                            double heading, double r_variance,
-                                            double r_mean = 0.0) {
+inline CompassInnovation compass_innovation(const Vector3& x_pred, const Matrix3& p_pred, double heading,
+                                            double r_variance, double r_mean = 0.0) {
   CompassInnovation c;
   c.innovation = angle_diff(heading, x_pred(2) + r_mean);
   c.variance = p_pred(2, 2) + r_variance;
@@ -89,9 +87,8 @@ struct CompassFilterStep {
 // One step of the plain compass EKF with process noise Q and compass variance R: the prediction
 // X̂(k/k−1) = F(X̂(k−1)), P(k/k−1) = ∇F P ∇Fᵀ + Q (eq. 4.1–4.2), then, when a heading came, the
 // compass update (eq. 4.45). Updates x and p in place.
-inline CompassFilterStep compass_ekf_step(Vector3& x, Matrix3& p, const WheelDisplacement& u,
-                                          double wheelbase, const Matrix3& q,
-                                          std::optional<double> heading, double r_variance) {
+inline CompassFilterStep compass_ekf_step(Vector3& x, Matrix3& p, const WheelDisplacement& u, double wheelbase,
+                                          const Matrix3& q, std::optional<double> heading, double r_variance) {
   const MotionPrediction pred = predict_motion(x, u, wheelbase);
   x = pred.mean;
   p = symmetrize(pred.jacobian * p * pred.jacobian.transpose() + q);

@@ -6,16 +6,15 @@
 
 namespace locbench {
 
-Trajectory dead_reckon_encoders(std::span<const EncoderReading> encoders,
-                                const NominalModel& model, const Pose2& start) {
+Trajectory dead_reckon_encoders(std::span<const EncoderReading> encoders, const NominalModel& model,
+                                const Pose2& start) {
   Trajectory traj;
   if (encoders.empty()) return traj;
   Pose2 pose = start;
   traj.push_back({encoders[0].t, pose});
   for (std::size_t i = 1; i < encoders.size(); ++i) {
-    const WheelDisplacement u =
-        displacement_from_ticks(model, encoders[i].left - encoders[i - 1].left,
-                                encoders[i].right - encoders[i - 1].right);
+    const WheelDisplacement u = displacement_from_ticks(model, encoders[i].left - encoders[i - 1].left,
+                                                        encoders[i].right - encoders[i - 1].right);
     pose = odometry_step(pose, u, model.wheelbase);
     traj.push_back({encoders[i].t, pose});
   }

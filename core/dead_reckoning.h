@@ -10,8 +10,8 @@ namespace locbench {
 
 // Integrates cumulative encoder counts with a wheel model (eq. 1.1–1.3), starting at `start`
 // at the time of the first reading.
-Trajectory dead_reckon_encoders(std::span<const EncoderReading> encoders,
-                                const NominalModel& model, const Pose2& start);
+Trajectory dead_reckon_encoders(std::span<const EncoderReading> encoders, const NominalModel& model,
+                                const Pose2& start);
 
 // Integrates forward and rotational velocities (tv, rv held over each interval, midpoint
 // rule), starting at `start` at the time of the first reading.

@@ -10,15 +10,14 @@ namespace locbench {
 Pose2 odometry_step(const Pose2& p, const WheelDisplacement& u, double wheelbase) {
   const BodyIncrement d = body_increment(u, wheelbase);
   const double mid = p.theta + 0.5 * d.rotation;
-  return {p.x + d.distance * std::cos(mid), p.y + d.distance * std::sin(mid),
-          p.theta + d.rotation};
+  return {p.x + d.distance * std::cos(mid), p.y + d.distance * std::sin(mid), p.theta + d.rotation};
 }
 
 Pose2 exact_arc_step(const Pose2& p, const WheelDisplacement& u, double wheelbase) {
   const BodyIncrement d = body_increment(u, wheelbase);
   const double half = 0.5 * d.rotation;
-  const double chord = std::abs(half) < 1e-4 ? d.distance * (1.0 - half * half / 6.0)
-                                             : d.distance * std::sin(half) / half;
+  const double chord =
+      std::abs(half) < 1e-4 ? d.distance * (1.0 - half * half / 6.0) : d.distance * std::sin(half) / half;
   const double mid = p.theta + half;
   return {p.x + chord * std::cos(mid), p.y + chord * std::sin(mid), p.theta + d.rotation};
 }
@@ -44,8 +43,8 @@ Matrix32 odometry_jacobian_wheels(const Pose2& p, const WheelDisplacement& u, do
   return F;
 }
 
-Matrix3 propagate_covariance(const Matrix3& sigma, const Pose2& p, const WheelDisplacement& u,
-                             double wheelbase, const WheelNoise& noise) {
+Matrix3 propagate_covariance(const Matrix3& sigma, const Pose2& p, const WheelDisplacement& u, double wheelbase,
+                             const WheelNoise& noise) {
   const Matrix3 Fp = odometry_jacobian_pose(p, u, wheelbase);
   const Matrix32 Fu = odometry_jacobian_wheels(p, u, wheelbase);
   Eigen::Matrix2d sigma_u = Eigen::Matrix2d::Zero();

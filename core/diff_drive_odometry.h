@@ -16,10 +16,8 @@ struct WheelDisplacement {
 };
 
 // Travel of each wheel from encoder count increments under a model.
-inline WheelDisplacement displacement_from_ticks(const NominalModel& m, std::int64_t d_left,
-                                                 std::int64_t d_right) {
-  return {m.meters_per_tick_left * static_cast<double>(d_left),
-          m.meters_per_tick_right * static_cast<double>(d_right)};
+inline WheelDisplacement displacement_from_ticks(const NominalModel& m, std::int64_t d_left, std::int64_t d_right) {
+  return {m.meters_per_tick_left * static_cast<double>(d_left), m.meters_per_tick_right * static_cast<double>(d_right)};
 }
 
 // ΔD = (U_L + U_R)/2 and Δθ = (U_R − U_L)/B (eq. 1.1, 1.2).
@@ -59,7 +57,7 @@ Matrix3 odometry_jacobian_pose(const Pose2& p, const WheelDisplacement& u, doubl
 Matrix32 odometry_jacobian_wheels(const Pose2& p, const WheelDisplacement& u, double wheelbase);
 
 // Σ_p' = F_p Σ_p F_pᵀ + F_Δ Σ_Δ F_Δᵀ.
-Matrix3 propagate_covariance(const Matrix3& sigma, const Pose2& p, const WheelDisplacement& u,
-                             double wheelbase, const WheelNoise& noise);
+Matrix3 propagate_covariance(const Matrix3& sigma, const Pose2& p, const WheelDisplacement& u, double wheelbase,
+                             const WheelNoise& noise);
 
 }  // namespace locbench

@@ -14,9 +14,9 @@
 namespace locbench::limits {
 
 struct Limit {
-  std::string_view key;    // where it applies, as a user names it
-  double max;              // inclusive
-  std::string_view why;    // what it bounds
+  std::string_view key;  // where it applies, as a user names it
+  double max;            // inclusive
+  std::string_view why;  // what it bounds
 };
 
 // Residual histograms (`diagnose H.json`): bins and total count (the held-out split draws one
@@ -31,16 +31,17 @@ inline constexpr Limit kSimRuns{"motion.runs", 1'000, "UMBmark runs per directio
 inline constexpr Limit kSimDuration{"estimated simulated time [s]", 1e4, "physics steps and records"};
 inline constexpr Limit kSimPhysicsSteps{"estimated simulated time / physics.step", 2e7, "time of the simulation"};
 inline constexpr Limit kSimRecords{"estimated records of one sensor (time x rate)", 1e7, "memory of the log"};
-inline constexpr Limit kSimLaserValues{"estimated laser ranges (scans x beams)", 2e7, "memory of the log (8 bytes each)"};
+inline constexpr Limit kSimLaserValues{"estimated laser ranges (scans x beams)", 2e7,
+                                       "memory of the log (8 bytes each)"};
 // Scan matching (`match`, `localize`): beams of one scan (the clustering baselines are
 // quadratic in them). SICK LMS: 181 or 361.
 inline constexpr Limit kBeamsPerScan{"beams of one laser scan", 10'000, "time of the matchers"};
 // Monte-Carlo runs (`run --runs`, "runs" options).
 inline constexpr Limit kMonteCarloRuns{"--runs / runs", 100'000, "time and memory of the runs"};
 
-inline constexpr Limit kAll[] = {kHistogramBins, kHistogramTotalCount, kSimLaserBeams, kSimCoordinate,
-                                 kSimDistance,   kSimRuns,             kSimDuration,   kSimPhysicsSteps,
-                                 kSimRecords,    kSimLaserValues,      kBeamsPerScan,  kMonteCarloRuns};
+inline constexpr Limit kAll[] = {
+    kHistogramBins, kHistogramTotalCount, kSimLaserBeams, kSimCoordinate,  kSimDistance,  kSimRuns,
+    kSimDuration,   kSimPhysicsSteps,     kSimRecords,    kSimLaserValues, kBeamsPerScan, kMonteCarloRuns};
 
 // "limit: 1e+04" style text for messages and --help.
 inline std::string limit_text(double max) {
@@ -56,8 +57,8 @@ inline void check(double value, const Limit& limit, const std::string& file, con
   char v[32];
   std::snprintf(v, sizeof v, "%.6g", value);
   throw InputError(file, 0,
-                   key + ": " + v + " exceeds the limit " + limit_text(limit.max) + " (" +
-                       std::string(limit.why) + "; see `locbench --help`, \"Input limits\")");
+                   key + ": " + v + " exceeds the limit " + limit_text(limit.max) + " (" + std::string(limit.why) +
+                       "; see `locbench --help`, \"Input limits\")");
 }
 
 // The table for --help and the README.

@@ -16,9 +16,7 @@ namespace {
 std::string word_at(const std::string& text, std::size_t at) {
   if (text.empty()) return {};
   at = std::min(at, text.size() - 1);
-  auto part = [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.';
-  };
+  auto part = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.'; };
   std::size_t b = at, e = at;
   while (b > 0 && part(text[b - 1])) --b;
   while (e < text.size() && part(text[e])) ++e;
@@ -26,8 +24,7 @@ std::string word_at(const std::string& text, std::size_t at) {
 }
 
 bool names_non_finite(std::string w) {
-  std::transform(w.begin(), w.end(), w.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(w.begin(), w.end(), w.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (!w.empty() && (w[0] == '-' || w[0] == '+')) w.erase(0, 1);
   return w == "nan" || w == "inf" || w == "infinity";
 }
@@ -65,8 +62,7 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
                            "' is not a finite number (number overflow: it exceeds a double); expected "
                            "finite numbers (|x| < 1.8e308; JSON has no NaN or Infinity)");
     }
-    throw InputError(source, 0,
-                     what + ": expected finite numbers (|x| < 1.8e308; JSON has no NaN or Infinity)");
+    throw InputError(source, 0, what + ": expected finite numbers (|x| < 1.8e308; JSON has no NaN or Infinity)");
   }
 }
 

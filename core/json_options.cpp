@@ -22,8 +22,8 @@ std::string json_type_name(const nlohmann::json& v) {
 StrictJsonReader::StrictJsonReader(const nlohmann::json& j, std::string path, std::string source)
     : j_(j), path_(std::move(path)), source_(std::move(source)) {
   if (!j_.is_object()) {
-    throw_at(source_, (path_.empty() ? std::string("top level") : path_) +
-                          ": expected an object, found " + json_type_name(j_));
+    throw_at(source_,
+             (path_.empty() ? std::string("top level") : path_) + ": expected an object, found " + json_type_name(j_));
   }
 }
 
@@ -91,8 +91,7 @@ void read_numbers(const nlohmann::json& v, double* out, std::size_t n, const std
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!v[i].is_number()) {
-      throw_at(source, path + "[" + std::to_string(i) + "]: expected a number, found " +
-                           json_type_name(v[i]));
+      throw_at(source, path + "[" + std::to_string(i) + "]: expected a number, found " + json_type_name(v[i]));
     }
     out[i] = v[i].get<double>();
   }

@@ -77,7 +77,6 @@ class StrictJsonReader {
   std::vector<std::string> known_;  // in the order asked, for the "expected one of" list
 };
 
-
 // Name of a JSON value's type for messages: "number", "string", "array"...
 std::string json_type_name(const nlohmann::json& v);
 

@@ -10,8 +10,8 @@
 namespace locbench {
 
 struct RayHit {
-  double range = 0.0;      // distance from the ray origin [m]
-  std::size_t segment = 0; // index of the segment hit
+  double range = 0.0;       // distance from the ray origin [m]
+  std::size_t segment = 0;  // index of the segment hit
 };
 
 struct LineMap {
@@ -20,8 +20,7 @@ struct LineMap {
 
   // First segment hit by the ray origin + t·(cos a, sin a), 0 < t ≤ max_range.
   // Linear in the number of segments; fine for the worlds the simulator uses.
-  std::optional<RayHit> ray_cast(const Eigen::Vector2d& origin, double angle,
-                                 double max_range) const;
+  std::optional<RayHit> ray_cast(const Eigen::Vector2d& origin, double angle, double max_range) const;
 };
 
 }  // namespace locbench

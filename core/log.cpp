@@ -6,8 +6,7 @@
 
 namespace locbench {
 namespace {
-std::optional<double> param_double(const std::map<std::string, std::string>& p,
-                                   const char* name) {
+std::optional<double> param_double(const std::map<std::string, std::string>& p, const char* name) {
   const auto it = p.find(name);
   if (it == p.end()) return std::nullopt;
   char* end = nullptr;
@@ -47,8 +46,8 @@ std::pair<double, double> Log::time_span() const {
 }
 
 std::size_t Log::record_count() const {
-  return params.size() + encoders.size() + odometry.size() + compass.size() + laser.size() +
-         truth.size() + relations.size() + landmarks.size();
+  return params.size() + encoders.size() + odometry.size() + compass.size() + laser.size() + truth.size() +
+         relations.size() + landmarks.size();
 }
 
 }  // namespace locbench

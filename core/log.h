@@ -15,8 +15,8 @@
 namespace locbench {
 
 struct Log {
-  std::string name;         // short dataset name, e.g. "aces" or "sim/corridor"
-  std::string source;       // path it was read from, or "simulated"
+  std::string name;    // short dataset name, e.g. "aces" or "sim/corridor"
+  std::string source;  // path it was read from, or "simulated"
   // PARAM records, verbatim (name → value text).
   std::map<std::string, std::string> params;
 

@@ -15,8 +15,7 @@ std::string Range::text() const {
 std::string fields_markdown(const std::vector<FieldDoc>& rows) {
   std::string out = "| key | default | unit | allowed | meaning |\n| --- | --- | --- | --- | --- |\n";
   for (const FieldDoc& r : rows) {
-    out += fmt::format("| `{}` | `{}` | {} | {} | {} |\n", r.name, r.default_json, r.unit, r.allowed,
-                       r.meaning);
+    out += fmt::format("| `{}` | `{}` | {} | {} | {} |\n", r.name, r.default_json, r.unit, r.allowed, r.meaning);
   }
   return out;
 }

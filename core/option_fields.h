@@ -175,8 +175,8 @@ class Validate {
   }
 
  private:
-  [[noreturn]] void out_of_range(const char* name, const char* unit, Range range,
-                                 const nlohmann::json& value, const char* each = "") const {
+  [[noreturn]] void out_of_range(const char* name, const char* unit, Range range, const nlohmann::json& value,
+                                 const char* each = "") const {
     throw UsageError(what_ + "." + name + ": expected " + each + range.text() +
                      (*unit ? std::string(" ") + unit : std::string()) + ", got " + value.dump());
   }
@@ -274,6 +274,6 @@ std::vector<FieldDoc> describe_fields(const O& defaults = O{}) {
 
 // Defines to_json and from_json (strict, then validate()) of an options struct from its
 // visit_fields; use inside the struct's namespace, in one .cpp.
-#define LOCBENCH_OPTIONS_JSON(Options)                                                           \
-  void to_json(nlohmann::json& j, const Options& o) { j = ::locbench::fields_to_json(o); }     \
+#define LOCBENCH_OPTIONS_JSON(Options)                                                     \
+  void to_json(nlohmann::json& j, const Options& o) { j = ::locbench::fields_to_json(o); } \
   void from_json(const nlohmann::json& j, Options& o) { ::locbench::options_from_json(j, o, #Options); }

@@ -37,8 +37,6 @@ struct Pose2 {
 // Relative motion from a to b expressed in a's frame: a⁻¹ ∘ b.
 inline Pose2 between(const Pose2& a, const Pose2& b) { return a.inverse() * b; }
 
-inline double translation_distance(const Pose2& a, const Pose2& b) {
-  return std::hypot(a.x - b.x, a.y - b.y);
-}
+inline double translation_distance(const Pose2& a, const Pose2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 }  // namespace locbench

@@ -9,9 +9,9 @@
 namespace locbench {
 
 struct PoseObservability {
-  Eigen::Matrix3d scale;  // diag(1, 1, 1/length): δ = scale · δ'
-  Eigen::Vector3d values;   // eigenvalues of scale · H · scale, ascending
-  Eigen::Matrix3d vectors;  // their eigenvectors (columns)
+  Eigen::Matrix3d scale;                             // diag(1, 1, 1/length): δ = scale · δ'
+  Eigen::Vector3d values;                            // eigenvalues of scale · H · scale, ascending
+  Eigen::Matrix3d vectors;                           // their eigenvectors (columns)
   std::array<bool, 3> observable{true, true, true};  // value > ratio × the largest value
   bool degenerate = false;                           // some direction is not observable
 };

@@ -16,9 +16,7 @@ class Rng {
 
   // An independent stream for sub-task `index` of a run with this seed (Monte-Carlo run k,
   // sensor j...), so results do not depend on the order or thread tasks run in.
-  static Rng stream(std::uint64_t seed, std::uint64_t index) {
-    return Rng(derive_seed(seed, index));
-  }
+  static Rng stream(std::uint64_t seed, std::uint64_t index) { return Rng(derive_seed(seed, index)); }
   // The seed of sub-task `index` of a run with base seed `seed` (recorded in reports). Kept
   // below 2^53 so every JSON reader, JavaScript included, reads it back exactly.
   static std::uint64_t derive_seed(std::uint64_t seed, std::uint64_t index) {

@@ -16,8 +16,8 @@ struct WheelGeometry {
 };
 
 struct EncoderSpec {
-  double gear_ratio = 1.0;        // n
-  double counts_per_rev = 1.0;    // C_e, encoder counts per motor revolution
+  double gear_ratio = 1.0;      // n
+  double counts_per_rev = 1.0;  // C_e, encoder counts per motor revolution
   // Encoder counts per wheel revolution, n·C_e.
   double counts_per_wheel_rev() const { return gear_ratio * counts_per_rev; }
 };
@@ -35,16 +35,12 @@ struct RobotParams {
   EncoderSpec encoder;
 
   // Metres per tick for a wheel of diameter d: c = πd / (n C_e) (eq. 2.24–2.25 inverted).
-  double meters_per_tick(double diameter) const {
-    return kPi * diameter / encoder.counts_per_wheel_rev();
-  }
+  double meters_per_tick(double diameter) const { return kPi * diameter / encoder.counts_per_wheel_rev(); }
   NominalModel nominal_model() const {
-    return {meters_per_tick(nominal.diameter_left), meters_per_tick(nominal.diameter_right),
-            nominal.wheelbase};
+    return {meters_per_tick(nominal.diameter_left), meters_per_tick(nominal.diameter_right), nominal.wheelbase};
   }
   NominalModel actual_model() const {
-    return {meters_per_tick(actual.diameter_left), meters_per_tick(actual.diameter_right),
-            actual.wheelbase};
+    return {meters_per_tick(actual.diameter_left), meters_per_tick(actual.diameter_right), actual.wheelbase};
   }
   // E_d = D_R/D_L of the actual wheels (eq. 2.1).
   double E_d() const { return actual.diameter_right / actual.diameter_left; }

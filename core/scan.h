@@ -11,15 +11,13 @@
 namespace locbench {
 
 struct Scan {
-  double timestamp = 0.0;              // [s]
-  std::vector<double> ranges;          // [m]; a range ≥ max_range means "no return"
-  std::vector<double> bearings;        // [rad], sensor frame, counter-clockwise
-  Pose2 sensor_pose;                   // sensor in the robot frame
+  double timestamp = 0.0;        // [s]
+  std::vector<double> ranges;    // [m]; a range ≥ max_range means "no return"
+  std::vector<double> bearings;  // [rad], sensor frame, counter-clockwise
+  Pose2 sensor_pose;             // sensor in the robot frame
   double max_range = std::numeric_limits<double>::infinity();
 
-  bool valid(std::size_t i) const {
-    return std::isfinite(ranges[i]) && ranges[i] > 0.0 && ranges[i] < max_range;
-  }
+  bool valid(std::size_t i) const { return std::isfinite(ranges[i]) && ranges[i] > 0.0 && ranges[i] < max_range; }
   // Beam i's end point in the sensor frame (eq. 5.2 before the mounting transform).
   Eigen::Vector2d point(std::size_t i) const {
     return {ranges[i] * std::cos(bearings[i]), ranges[i] * std::sin(bearings[i])};

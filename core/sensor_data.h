@@ -31,9 +31,9 @@ struct CompassReading {
 
 // A laser scan with the poses logged beside it (FLASER record).
 struct LaserReading {
-  Scan scan;          // scan.timestamp is the record time
-  Pose2 pose;         // robot (or laser) pose estimate logged with the scan
-  Pose2 odom_pose;    // odometry pose at scan time (zero in *.from_bag logs)
+  Scan scan;        // scan.timestamp is the record time
+  Pose2 pose;       // robot (or laser) pose estimate logged with the scan
+  Pose2 odom_pose;  // odometry pose at scan time (zero in *.from_bag logs)
 };
 
 // Ground-truth pose (TRUEPOS record; MRCLAM Vicon ground truth).

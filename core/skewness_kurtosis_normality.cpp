@@ -9,8 +9,7 @@
 namespace locbench {
 namespace {
 
-NormalityTestResult weighted_test(std::span<const double> x, std::span<const double> w,
-                                  double alpha) {
+NormalityTestResult weighted_test(std::span<const double> x, std::span<const double> w, double alpha) {
   if (!(alpha > 0.0 && alpha < 1.0)) {
     throw std::invalid_argument("skewness_kurtosis_test: alpha must be in (0, 1)");
   }
@@ -38,12 +37,11 @@ NormalityTestResult weighted_test(std::span<const double> x, std::span<const dou
   r.b4 /= n;
   if (!(r.b2 > 0.0)) throw std::invalid_argument("skewness_kurtosis_test: constant sample");
   r.stddev = std::sqrt(r.b2);
-  r.g1 = r.b3 / std::pow(r.b2, 1.5);                                     // (3.5)
-  r.g2 = r.b4 / (r.b2 * r.b2);                                           // (3.6)
-  r.sigma1 = std::sqrt(6.0 * (n - 2.0) / ((n + 1.0) * (n + 3.0)));       // (3.7)
-  r.mu2 = 3.0 - 6.0 / (n + 1.0);                                         // (3.8)
-  r.sigma2 = std::sqrt(24.0 * n * (n - 2.0) * (n - 3.0) /
-                       ((n + 1.0) * (n + 1.0) * (n + 3.0) * (n + 5.0)));
+  r.g1 = r.b3 / std::pow(r.b2, 1.5);                                // (3.5)
+  r.g2 = r.b4 / (r.b2 * r.b2);                                      // (3.6)
+  r.sigma1 = std::sqrt(6.0 * (n - 2.0) / ((n + 1.0) * (n + 3.0)));  // (3.7)
+  r.mu2 = 3.0 - 6.0 / (n + 1.0);                                    // (3.8)
+  r.sigma2 = std::sqrt(24.0 * n * (n - 2.0) * (n - 3.0) / ((n + 1.0) * (n + 1.0) * (n + 3.0) * (n + 5.0)));
   r.u1 = r.g1 / r.sigma1;
   r.u2 = (r.g2 - r.mu2) / r.sigma2;
   r.p1 = 2.0 * normal_upper_tail(std::abs(r.u1));
@@ -62,8 +60,7 @@ NormalityTestResult skewness_kurtosis_test(std::span<const double> samples, doub
   return weighted_test(samples, ones, alpha);
 }
 
-NormalityTestResult skewness_kurtosis_test_binned(std::span<const double> midpoints,
-                                                  std::span<const double> counts,
+NormalityTestResult skewness_kurtosis_test_binned(std::span<const double> midpoints, std::span<const double> counts,
                                                   double alpha) {
   if (midpoints.size() != counts.size()) {
     throw std::invalid_argument("skewness_kurtosis_test_binned: midpoints and counts differ in size");

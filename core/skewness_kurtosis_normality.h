@@ -16,19 +16,19 @@
 namespace locbench {
 
 struct NormalityTestResult {
-  double n = 0.0;       // sample size (sum of the counts for a histogram)
-  double mean = 0.0;    // x̄
-  double stddev = 0.0;  // √B2 (the thesis's σ = √(E[x²] − μ²), §3.2.3)
-  double b2 = 0.0, b3 = 0.0, b4 = 0.0;  // central moments (eq. 3.5–3.6)
-  double g1 = 0.0;  // sample skewness (3.5)
-  double g2 = 0.0;  // sample kurtosis (3.6), 3 for a normal population
+  double n = 0.0;                                // sample size (sum of the counts for a histogram)
+  double mean = 0.0;                             // x̄
+  double stddev = 0.0;                           // √B2 (the thesis's σ = √(E[x²] − μ²), §3.2.3)
+  double b2 = 0.0, b3 = 0.0, b4 = 0.0;           // central moments (eq. 3.5–3.6)
+  double g1 = 0.0;                               // sample skewness (3.5)
+  double g2 = 0.0;                               // sample kurtosis (3.6), 3 for a normal population
   double sigma1 = 0.0, mu2 = 0.0, sigma2 = 0.0;  // (3.7–3.8)
-  double u1 = 0.0;  // G1/σ1
-  double u2 = 0.0;  // (G2 − μ2)/σ2
-  double p1 = 1.0;  // two-sided p-value of u1: 2(1 − Φ(|u1|))
-  double p2 = 1.0;  // two-sided p-value of u2
+  double u1 = 0.0;                               // G1/σ1
+  double u2 = 0.0;                               // (G2 − μ2)/σ2
+  double p1 = 1.0;                               // two-sided p-value of u1: 2(1 − Φ(|u1|))
+  double p2 = 1.0;                               // two-sided p-value of u2
   double alpha = 0.1;
-  double critical = 0.0;  // z_{α/4}
+  double critical = 0.0;         // z_{α/4}
   bool reject_skewness = false;  // |u1| ≥ z_{α/4}
   bool reject_kurtosis = false;  // |u2| ≥ z_{α/4}
   bool normal = true;            // H0 accepted (neither rejects)
@@ -40,8 +40,7 @@ NormalityTestResult skewness_kurtosis_test(std::span<const double> samples, doub
 
 // A binned sample, as Table 3.1: each value is taken at its bin mid-point, weighted by its
 // count (non-negative; n = Σ counts). Same errors, plus mismatched lengths.
-NormalityTestResult skewness_kurtosis_test_binned(std::span<const double> midpoints,
-                                                  std::span<const double> counts,
+NormalityTestResult skewness_kurtosis_test_binned(std::span<const double> midpoints, std::span<const double> counts,
                                                   double alpha = 0.1);
 
 }  // namespace locbench

@@ -61,9 +61,7 @@ double student_t_critical(double confidence, double dof) {
   return boost::math::quantile(dist, 0.5 + 0.5 * confidence);
 }
 
-double normal_quantile(double p) {
-  return boost::math::quantile(boost::math::normal_distribution<double>(), p);
-}
+double normal_quantile(double p) { return boost::math::quantile(boost::math::normal_distribution<double>(), p); }
 
 double normal_upper_tail(double z) {
   return boost::math::cdf(boost::math::complement(boost::math::normal_distribution<double>(), z));
@@ -72,8 +70,8 @@ double normal_upper_tail(double z) {
 double skewness_z(double g1, double n) {
   if (!(n >= 8.0)) throw std::invalid_argument("skewness_z: needs n >= 8");
   const double u1 = g1 * std::sqrt((n + 1.0) * (n + 3.0) / (6.0 * (n - 2.0)));
-  const double beta2 = 3.0 * (n * n + 27.0 * n - 70.0) * (n + 1.0) * (n + 3.0) /
-                       ((n - 2.0) * (n + 5.0) * (n + 7.0) * (n + 9.0));
+  const double beta2 =
+      3.0 * (n * n + 27.0 * n - 70.0) * (n + 1.0) * (n + 3.0) / ((n - 2.0) * (n + 5.0) * (n + 7.0) * (n + 9.0));
   const double w2 = -1.0 + std::sqrt(2.0 * (beta2 - 1.0));
   const double delta = 1.0 / std::sqrt(0.5 * std::log(w2));
   const double alpha = std::sqrt(2.0 / (w2 - 1.0));
@@ -107,8 +105,8 @@ Summary summarize(std::span<const double> v) {
   s.min = *mn;
   s.max = *mx;
   if (s.n >= 2) {
-    const double half = student_t_critical(0.95, static_cast<double>(s.n - 1)) * s.stddev /
-                        std::sqrt(static_cast<double>(s.n));
+    const double half =
+        student_t_critical(0.95, static_cast<double>(s.n - 1)) * s.stddev / std::sqrt(static_cast<double>(s.n));
     s.ci95_low = s.mean - half;
     s.ci95_high = s.mean + half;
   } else {
@@ -143,8 +141,12 @@ MannWhitneyResult mann_whitney_u(std::span<const double> a, std::span<const doub
   bool ties = false;
   for (double x : a) {
     for (double y : b) {
-      if (x > y) r.u += 1.0;
-      else if (x == y) { r.u += 0.5; ties = true; }
+      if (x > y)
+        r.u += 1.0;
+      else if (x == y) {
+        r.u += 0.5;
+        ties = true;
+      }
     }
   }
   std::vector<double> all(a.begin(), a.end());

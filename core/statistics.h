@@ -18,7 +18,7 @@ double rms(std::span<const double> v);
 struct Summary {
   std::size_t n = 0;
   double mean = 0.0;
-  double stddev = 0.0;   // sample standard deviation (0 when n < 2)
+  double stddev = 0.0;    // sample standard deviation (0 when n < 2)
   double ci95_low = 0.0;  // 95% confidence interval of the mean (Student t, n − 1 dof)
   double ci95_high = 0.0;
   double median = 0.0;
@@ -54,8 +54,8 @@ namespace locbench {
 // correction and continuity correction.
 struct MannWhitneyResult {
   double u = 0.0;
-  double p_greater = 1.0;   // H1: values of `a` tend to be larger than those of `b`
-  double p_less = 1.0;      // H1: values of `a` tend to be smaller
+  double p_greater = 1.0;  // H1: values of `a` tend to be larger than those of `b`
+  double p_less = 1.0;     // H1: values of `a` tend to be smaller
   double p_two_sided = 1.0;
   bool exact = false;
 };

@@ -22,8 +22,8 @@ void Trajectory::push_back(const StampedPose& p) {
 
 std::optional<Pose2> Trajectory::pose_at(double t) const {
   if (poses_.empty() || t < poses_.front().t || t > poses_.back().t) return std::nullopt;
-  const auto it = std::lower_bound(poses_.begin(), poses_.end(), t,
-                                   [](const StampedPose& p, double v) { return p.t < v; });
+  const auto it =
+      std::lower_bound(poses_.begin(), poses_.end(), t, [](const StampedPose& p, double v) { return p.t < v; });
   if (it->t == t || it == poses_.begin()) return it->pose;
   const StampedPose& a = *(it - 1);
   const StampedPose& b = *it;

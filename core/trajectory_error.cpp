@@ -20,8 +20,7 @@ ErrorStatistics error_statistics(std::span<const double> errors) {
   return s;
 }
 
-PoseErrors absolute_pose_error(const Trajectory& reference, const Trajectory& estimate,
-                               Alignment alignment) {
+PoseErrors absolute_pose_error(const Trajectory& reference, const Trajectory& estimate, Alignment alignment) {
   PoseErrors out;
   if (reference.empty() || estimate.empty()) return out;
   Pose2 correction = Pose2::identity();  // applied on the left of each estimate pose

@@ -24,13 +24,12 @@ struct ErrorStatistics {
 ErrorStatistics error_statistics(std::span<const double> errors);
 
 enum class Alignment {
-  kNone,          // compare poses as given
-  kFirstPose,     // express the estimate relative to its first pose, anchored at the reference
+  kNone,       // compare poses as given
+  kFirstPose,  // express the estimate relative to its first pose, anchored at the reference
 };
 
 // APE at each estimate pose whose time lies inside the reference (reference interpolated).
-PoseErrors absolute_pose_error(const Trajectory& reference, const Trajectory& estimate,
-                               Alignment alignment);
+PoseErrors absolute_pose_error(const Trajectory& reference, const Trajectory& estimate, Alignment alignment);
 
 // For each relation (t1, t2, Δ_ref) with both times inside the estimate: the error of
 // Δ_est = est(t1)⁻¹ est(t2) against Δ_ref, i.e. Δ_ref⁻¹ Δ_est.

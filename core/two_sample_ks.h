@@ -9,7 +9,7 @@
 namespace locbench {
 
 struct KsResult {
-  double d = 0.0;        // in [0, 1]
+  double d = 0.0;  // in [0, 1]
   double p_value = 1.0;
   std::size_t n = 0, m = 0;
 };

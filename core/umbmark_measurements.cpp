@@ -6,9 +6,7 @@
 
 namespace locbench {
 
-std::string to_string(UmbmarkDirection d) {
-  return d == UmbmarkDirection::kClockwise ? "cw" : "ccw";
-}
+std::string to_string(UmbmarkDirection d) { return d == UmbmarkDirection::kClockwise ? "cw" : "ccw"; }
 
 UmbmarkCentroids umbmark_centroids(const std::vector<UmbmarkReturn>& runs) {
   UmbmarkCentroids c;

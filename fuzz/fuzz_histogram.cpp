@@ -1,7 +1,7 @@
 // Residual histograms (diagnose H.json): reading, limits, and the fits on what is accepted.
 #include "algorithms/diagnosis/diagnosis.h"
-#include "fuzz/fuzz_input.h"
 #include "core/json_file.h"
+#include "fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace locbench;

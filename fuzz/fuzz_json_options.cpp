@@ -2,9 +2,9 @@
 // read into every laser matcher's option structs.
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/harness/laser_matchers.h"
+#include "core/json_file.h"
 #include "datasets/sim/worlds.h"
 #include "fuzz/fuzz_input.h"
-#include "core/json_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace locbench;

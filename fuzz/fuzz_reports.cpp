@@ -1,6 +1,6 @@
 // Reports and shards as `report`, `gate` and `merge` read them: schema first, then the model.
-#include "fuzz/fuzz_input.h"
 #include "core/json_file.h"
+#include "fuzz/fuzz_input.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
 #include "reports/shard_report.h"

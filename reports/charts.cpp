@@ -14,9 +14,12 @@ namespace {
 std::string quote(const std::string& s) {
   std::string out = "'";
   for (char c : s) {
-    if (c == '\'') out += "''";
-    else if (c == '\n') out += ' ';
-    else out += c;
+    if (c == '\'')
+      out += "''";
+    else if (c == '\n')
+      out += ' ';
+    else
+      out += c;
   }
   return out + "'";
 }
@@ -26,8 +29,7 @@ std::string axis_label(const std::string& label, const std::string& unit) {
 }
 
 // A datablock $name of finite (x, y) rows.
-std::string datablock(const std::string& name, const std::vector<double>& x,
-                      const std::vector<double>& y) {
+std::string datablock(const std::string& name, const std::vector<double>& x, const std::vector<double>& y) {
   std::string out = "$" + name + " << EOD\n";
   for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i) {
     if (std::isfinite(x[i]) && std::isfinite(y[i])) out += fmt::format("{:.9g} {:.9g}\n", x[i], y[i]);
@@ -37,12 +39,10 @@ std::string datablock(const std::string& name, const std::vector<double>& x,
 
 // Segments as consecutive (x, y) pairs, one blank line after each so that gnuplot does not join
 // them; a pair with a non-finite coordinate is left out.
-std::string segment_datablock(const std::string& name, const std::vector<double>& x,
-                              const std::vector<double>& y) {
+std::string segment_datablock(const std::string& name, const std::vector<double>& x, const std::vector<double>& y) {
   std::string out = "$" + name + " << EOD\n";
   for (std::size_t i = 0; i + 1 < std::min(x.size(), y.size()); i += 2) {
-    if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(x[i + 1]) ||
-        !std::isfinite(y[i + 1])) {
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(x[i + 1]) || !std::isfinite(y[i + 1])) {
       continue;
     }
     out += fmt::format("{:.9g} {:.9g}\n{:.9g} {:.9g}\n\n", x[i], y[i], x[i + 1], y[i + 1]);
@@ -55,9 +55,7 @@ constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
 
 }  // namespace
 
-bool is_segment_series(const std::string& name) {
-  return name.ends_with("lines") || name.ends_with("matches");
-}
+bool is_segment_series(const std::string& name) { return name.ends_with("lines") || name.ends_with("matches"); }
 
 Histogram histogram(const std::vector<std::vector<double>>& samples, int bins) {
   Histogram h;
@@ -102,8 +100,7 @@ Plot histogram_plot(std::string name, std::string title, std::string x_label, st
                      std::move(samples), std::move(note));
 }
 
-std::vector<Plot> metric_histograms(const ExperimentResults& results, std::size_t min_values,
-                                    std::size_t max_plots) {
+std::vector<Plot> metric_histograms(const ExperimentResults& results, std::size_t min_values, std::size_t max_plots) {
   // (dataset, variant) in first-seen order → methods' values.
   std::vector<std::pair<std::string, std::string>> order;
   std::map<std::pair<std::string, std::string>, std::vector<const MetricResult*>> groups;
@@ -120,11 +117,10 @@ std::vector<Plot> metric_histograms(const ExperimentResults& results, std::size_
     const auto& ms = groups[key];
     std::vector<PlotSeries> series;
     for (const MetricResult* m : ms) series.push_back({m->method, {}, m->values});
-    plots.push_back(histogram_plot(
-        "histogram_" + key.first + "_" + key.second,
-        fmt::format("{} on {}: distribution over Monte-Carlo runs", key.second, key.first),
-        key.second, ms.front()->unit, std::move(series),
-        fmt::format("{} runs per method", ms.front()->values.size())));
+    plots.push_back(histogram_plot("histogram_" + key.first + "_" + key.second,
+                                   fmt::format("{} on {}: distribution over Monte-Carlo runs", key.second, key.first),
+                                   key.second, ms.front()->unit, std::move(series),
+                                   fmt::format("{} runs per method", ms.front()->values.size())));
   }
   return plots;
 }
@@ -163,9 +159,9 @@ std::string plot_script(const Plot& plot) {
       const std::string block = fmt::format("s{}", i);
       s += datablock(block, c.x, c.y);
       // The first sample (the reference) in black; later ones dashed in turn, so equal curves stay visible.
-      terms.push_back(fmt::format("${} using 1:2 with steps lw {} dt {} lc rgb '{}' title {}", block, i == 0 ? 2.5 : 2.0,
-                                  i == 0 ? 1 : static_cast<int>(i), i == 0 ? "#000000" : kColours[i % 8],
-                                  quote(plot.series[i].name)));
+      terms.push_back(fmt::format("${} using 1:2 with steps lw {} dt {} lc rgb '{}' title {}", block,
+                                  i == 0 ? 2.5 : 2.0, i == 0 ? 1 : static_cast<int>(i),
+                                  i == 0 ? "#000000" : kColours[i % 8], quote(plot.series[i].name)));
     }
   } else if (plot.kind == "histogram") {
     std::vector<std::vector<double>> samples;
@@ -176,8 +172,7 @@ std::string plot_script(const Plot& plot) {
     }
     const int bins = std::clamp(static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n)))) + 1, 5, 20);
     const Histogram h = histogram(samples, bins);
-    s += fmt::format("set boxwidth {:.9g} absolute\nset style fill transparent solid 0.45 border\n",
-                     h.width);
+    s += fmt::format("set boxwidth {:.9g} absolute\nset style fill transparent solid 0.45 border\n", h.width);
     s += "set yrange [0:*]\n";
     for (std::size_t i = 0; i < plot.series.size(); ++i) {
       std::vector<double> x, y;
@@ -187,8 +182,8 @@ std::string plot_script(const Plot& plot) {
       }
       const std::string block = fmt::format("s{}", i);
       s += datablock(block, x, y);
-      terms.push_back(fmt::format("${} using 1:2 with boxes lc rgb '{}' title {}", block,
-                                  kColours[i % 8], quote(plot.series[i].name)));
+      terms.push_back(fmt::format("${} using 1:2 with boxes lc rgb '{}' title {}", block, kColours[i % 8],
+                                  quote(plot.series[i].name)));
     }
   } else if (plot.kind == "scan_pair") {
     s += "set size ratio -1\n";
@@ -202,8 +197,8 @@ std::string plot_script(const Plot& plot) {
                                     ps.name.ends_with("lines") ? 2.0 : 0.6, colour, quote(ps.name)));
       } else {
         s += datablock(block, ps.x, ps.y);
-        terms.push_back(fmt::format("${} using 1:2 with points pt 7 ps 0.35 lc rgb '{}' title {}",
-                                    block, colour, quote(ps.name)));
+        terms.push_back(
+            fmt::format("${} using 1:2 with points pt 7 ps 0.35 lc rgb '{}' title {}", block, colour, quote(ps.name)));
       }
     }
   } else {
@@ -222,13 +217,12 @@ std::string plot_script(const Plot& plot) {
       const bool truth = ps.name == "truth";
       // Binned means: lines through the bins' points; a profile's reference line (the second
       // series: a threshold) dashed, and its marked estimate (the third: value and interval) as points.
-      const std::string style = plot.kind == "binned"                 ? "linespoints pt 7 ps 0.7"
+      const std::string style = plot.kind == "binned"              ? "linespoints pt 7 ps 0.7"
                                 : plot.kind == "profile" && i == 1 ? "lines dt 2"
                                 : plot.kind == "profile" && i >= 2 ? "linespoints pt 7 ps 0.9"
                                                                    : "lines";
-      terms.push_back(fmt::format("${} using 1:2 with {} lw {} lc rgb '{}' title {}", block, style,
-                                  truth ? 3.0 : 1.5, truth ? "#000000" : kColours[i % 8],
-                                  quote(ps.name)));
+      terms.push_back(fmt::format("${} using 1:2 with {} lw {} lc rgb '{}' title {}", block, style, truth ? 3.0 : 1.5,
+                                  truth ? "#000000" : kColours[i % 8], quote(ps.name)));
     }
     // A plane trajectory is drawn to scale unless one side is much longer than the other
     // (a corridor), where scale would flatten it.

@@ -50,8 +50,8 @@ std::string file_checksum(const std::filesystem::path& path) {
 }
 
 std::string text_checksum(std::string_view text) {
-  const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(text.data()),
-                          static_cast<uInt>(text.size()));
+  const uLong crc =
+      crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(text.data()), static_cast<uInt>(text.size()));
   return hex(crc);
 }
 

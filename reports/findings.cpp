@@ -19,7 +19,8 @@ std::string to_string(Verdict v) {
 
 double row_tolerance(const PublishedComparison& c, const PublishedRow& row) {
   if (row.tolerance) return *row.tolerance;
-  return std::max(c.tolerance.value_or(0.0), c.relative_tolerance.value_or(0.0) * std::abs(row.published.value_or(0.0)));
+  return std::max(c.tolerance.value_or(0.0),
+                  c.relative_tolerance.value_or(0.0) * std::abs(row.published.value_or(0.0)));
 }
 
 TableFinding table_finding(const PublishedComparison& c) {
@@ -54,10 +55,11 @@ TableFinding table_finding(const PublishedComparison& c) {
       worst_tol = tol;
     }
   }
-  const bool per_row = std::any_of(c.rows.begin(), c.rows.end(), [](const PublishedRow& r) { return r.tolerance.has_value(); });
+  const bool per_row =
+      std::any_of(c.rows.begin(), c.rows.end(), [](const PublishedRow& r) { return r.tolerance.has_value(); });
   if ((!c.tolerance && !c.relative_tolerance && !per_row) || f.compared == 0) {
-    f.reason = f.compared == 0 ? "no row has both a published and a measured figure"
-                               : "the experiment states no tolerance";
+    f.reason =
+        f.compared == 0 ? "no row has both a published and a measured figure" : "the experiment states no tolerance";
     return f;
   }
   const std::string tol_text =
@@ -80,9 +82,10 @@ TableFinding table_finding(const PublishedComparison& c) {
                            f.within, f.compared, tol_text, f.thesis_wrong, describe(*explained, explained_tol));
   } else {
     f.verdict = Verdict::kNotReproduced;
-    f.reason = fmt::format("{} of {} rows within {}{}; worst: {}", f.within, f.compared, tol_text,
-                           f.thesis_wrong ? fmt::format(", {} contradict the thesis (ours confirmed another way)", f.thesis_wrong) : "",
-                           describe(*worst, worst_tol));
+    f.reason = fmt::format(
+        "{} of {} rows within {}{}; worst: {}", f.within, f.compared, tol_text,
+        f.thesis_wrong ? fmt::format(", {} contradict the thesis (ours confirmed another way)", f.thesis_wrong) : "",
+        describe(*worst, worst_tol));
   }
   if (!c.tolerance_basis.empty()) f.reason += " (tolerance: " + c.tolerance_basis + ")";
   return f;
@@ -95,9 +98,10 @@ void compare_means_only(PublishedComparison& c, const std::vector<double>& publi
   const double sd = published_runs.size() > 1 ? std::sqrt(ss / static_cast<double>(published_runs.size() - 1)) : 0.0;
   for (PublishedRow& r : c.rows) r.compared = r.label.starts_with("mean");
   c.tolerance = sd;
-  c.tolerance_basis = fmt::format("runs not paired with the thesis's: a mean is reproduced within one standard "
-                                  "deviation of the thesis's {} runs, {:.4g}{}",
-                                  published_runs.size(), sd, c.unit.empty() ? "" : " " + c.unit);
+  c.tolerance_basis = fmt::format(
+      "runs not paired with the thesis's: a mean is reproduced within one standard "
+      "deviation of the thesis's {} runs, {:.4g}{}",
+      published_runs.size(), sd, c.unit.empty() ? "" : " " + c.unit);
 }
 
 }  // namespace locbench::reports

@@ -22,10 +22,10 @@ double row_tolerance(const PublishedComparison& c, const PublishedRow& row);
 
 struct TableFinding {
   Verdict verdict = Verdict::kNoVerdict;
-  std::size_t compared = 0;     // rows with both figures
-  std::size_t within = 0;       // of those, within tolerance
-  std::size_t thesis_wrong = 0; // outside tolerance, our figure confirmed by the row's check
-  std::string reason;           // one line, with the numbers
+  std::size_t compared = 0;      // rows with both figures
+  std::size_t within = 0;        // of those, within tolerance
+  std::size_t thesis_wrong = 0;  // outside tolerance, our figure confirmed by the row's check
+  std::string reason;            // one line, with the numbers
 };
 // Row verdicts: |ours − published| ≤ tolerance → reproduced; else a row whose check lies within
 // tolerance of ours and outside tolerance of the published figure → the thesis is wrong; else not

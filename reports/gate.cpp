@@ -56,23 +56,18 @@ GateRow compare(const GateSeries& old_s, const GateSeries& new_s, const GateRule
   double worse = lower_better ? new_s.value - old_s.value : old_s.value - new_s.value;
   if (old_s.better == "closer_to_zero") worse = std::abs(new_s.value) - std::abs(old_s.value);
   if (old_s.better == "stable") worse = std::abs(new_s.value - old_s.value);
-  const double allowed =
-      std::max(rule->max_relative_worsening * std::abs(old_s.value), rule->max_absolute_worsening);
+  const double allowed = std::max(rule->max_relative_worsening * std::abs(old_s.value), rule->max_absolute_worsening);
   const bool has_interval = old_s.n >= 2 && rule->outside_interval;
   const bool outside_either = new_s.value > old_s.ci95_high || new_s.value < old_s.ci95_low;
   const bool signed_rule = old_s.better == "closer_to_zero" || old_s.better == "stable";
-  const bool outside = signed_rule ? outside_either
-                                   : (lower_better ? new_s.value > old_s.ci95_high
-                                                   : new_s.value < old_s.ci95_low);
-  const bool beyond = signed_rule ? outside_either
-                                  : (lower_better ? new_s.value < old_s.ci95_low
-                                                  : new_s.value > old_s.ci95_high);
+  const bool outside =
+      signed_rule ? outside_either : (lower_better ? new_s.value > old_s.ci95_high : new_s.value < old_s.ci95_low);
+  const bool beyond =
+      signed_rule ? outside_either : (lower_better ? new_s.value < old_s.ci95_low : new_s.value > old_s.ci95_high);
   if (worse > allowed && (!has_interval || outside)) {
     row.status = "regressed";
-    row.detail = fmt::format("worse by {:.4g} {} (allowed {:.4g}{}; rule \"{}\")", worse,
-                             old_s.unit, allowed,
-                             has_interval ? ", and outside the baseline's 95% interval" : "",
-                             rule->match);
+    row.detail = fmt::format("worse by {:.4g} {} (allowed {:.4g}{}; rule \"{}\")", worse, old_s.unit, allowed,
+                             has_interval ? ", and outside the baseline's 95% interval" : "", rule->match);
   } else if (worse < -allowed && (!has_interval || beyond)) {
     row.status = "improved";
   } else if (worse > allowed) {
@@ -81,8 +76,7 @@ GateRow compare(const GateSeries& old_s, const GateSeries& new_s, const GateRule
   return row;
 }
 
-GateRatioRow compare_ratio(const SpeedRatioRule& rule, const GateInput& baseline,
-                           const GateInput& current) {
+GateRatioRow compare_ratio(const SpeedRatioRule& rule, const GateInput& baseline, const GateInput& current) {
   GateRatioRow row;
   row.name = rule.name;
   const auto find = [](const GateInput& in, const std::string& k) -> const GateSeries* {
@@ -103,8 +97,7 @@ GateRatioRow compare_ratio(const SpeedRatioRule& rule, const GateInput& baseline
   row.status = "ok";
   if (rule.max_ratio && *row.new_ratio > *rule.max_ratio) {
     row.status = "regressed";
-    row.detail = fmt::format("ratio {:.4g} exceeds the ceiling {:.4g}", *row.new_ratio,
-                             *rule.max_ratio);
+    row.detail = fmt::format("ratio {:.4g} exceeds the ceiling {:.4g}", *row.new_ratio, *rule.max_ratio);
     return row;
   }
   if (!on || !od) {
@@ -119,16 +112,15 @@ GateRatioRow compare_ratio(const SpeedRatioRule& rule, const GateInput& baseline
     row.p_value = mann_whitney_u(now, before).p_greater;
     if (grew && *row.p_value < rule.alpha) {
       row.status = "regressed";
-      row.detail = fmt::format("ratio grew {:+.1f}% (p = {:.3g} < {})",
-                               100 * *row.relative_change, *row.p_value, rule.alpha);
+      row.detail =
+          fmt::format("ratio grew {:+.1f}% (p = {:.3g} < {})", 100 * *row.relative_change, *row.p_value, rule.alpha);
     } else if (grew) {
-      row.detail = fmt::format("ratio grew {:+.1f}% but p = {:.3g} ≥ {}: not significant",
-                               100 * *row.relative_change, *row.p_value, rule.alpha);
+      row.detail = fmt::format("ratio grew {:+.1f}% but p = {:.3g} ≥ {}: not significant", 100 * *row.relative_change,
+                               *row.p_value, rule.alpha);
     }
   } else if (grew) {
     row.status = "regressed";
-    row.detail = fmt::format("ratio grew {:+.1f}% (no repetitions: no significance test)",
-                             100 * *row.relative_change);
+    row.detail = fmt::format("ratio grew {:+.1f}% (no repetitions: no significance test)", 100 * *row.relative_change);
   }
   if (row.status == "ok" && *row.relative_change < -rule.max_relative_increase) {
     row.status = "improved";
@@ -136,17 +128,12 @@ GateRatioRow compare_ratio(const SpeedRatioRule& rule, const GateInput& baseline
   return row;
 }
 
-std::string gate_number(const std::optional<double>& v) {
-  return v ? fmt::format("{:.6g}", *v) : std::string("—");
-}
-std::string pct(const std::optional<double>& v) {
-  return v ? fmt::format("{:+.2f}%", 100.0 * *v) : std::string("—");
-}
+std::string gate_number(const std::optional<double>& v) { return v ? fmt::format("{:.6g}", *v) : std::string("—"); }
+std::string pct(const std::optional<double>& v) { return v ? fmt::format("{:+.2f}%", 100.0 * *v) : std::string("—"); }
 
 }  // namespace
 
-GateVerdict evaluate_gate(const GateInput& baseline, const GateInput& current,
-                          const GateRules& rules) {
+GateVerdict evaluate_gate(const GateInput& baseline, const GateInput& current, const GateRules& rules) {
   GateVerdict v;
   double log_sum = 0.0;
   std::size_t log_n = 0;
@@ -206,56 +193,50 @@ GateVerdict evaluate_gate(const GateInput& baseline, const GateInput& current,
 std::string gate_table(const GateVerdict& v) {
   std::size_t w = 9;
   for (const GateRow& r : v.rows) w = std::max(w, r.key.size());
-  std::string out = fmt::format("{:<{}}  {:>12}  {:>12}  {:>9}  {:<9}  {}\n", "result", w,
-                                "old", "new", "change", "status", "detail");
+  std::string out = fmt::format("{:<{}}  {:>12}  {:>12}  {:>9}  {:<9}  {}\n", "result", w, "old", "new", "change",
+                                "status", "detail");
   for (const GateRow& r : v.rows) {
     out += fmt::format("{:<{}}  {:>12}  {:>12}  {:>9}  {:<9}  {}\n", r.key, w, gate_number(r.old_value),
                        gate_number(r.new_value), pct(r.relative_change), r.status, r.detail);
   }
   if (v.geomean_ratio) {
-    out += fmt::format("{:<{}}  {:>12}  {:>12}  {:>9}\n", "OVERALL_GEOMEAN", w, "", "",
-                       pct(*v.geomean_ratio - 1.0));
+    out += fmt::format("{:<{}}  {:>12}  {:>12}  {:>9}\n", "OVERALL_GEOMEAN", w, "", "", pct(*v.geomean_ratio - 1.0));
   }
   for (const GateRatioRow& r : v.ratios) {
-    out += fmt::format("ratio {:<{}}  {:>12}  {:>12}  {:>9}  {:<9}  {}{}\n", r.name, w - 6,
-                       gate_number(r.old_ratio), gate_number(r.new_ratio), pct(r.relative_change), r.status,
+    out += fmt::format("ratio {:<{}}  {:>12}  {:>12}  {:>9}  {:<9}  {}{}\n", r.name, w - 6, gate_number(r.old_ratio),
+                       gate_number(r.new_ratio), pct(r.relative_change), r.status,
                        r.p_value ? fmt::format("p = {:.3g}; ", *r.p_value) : "", r.detail);
   }
   out += v.passed() ? "gate: PASSED\n"
-                    : fmt::format("gate: FAILED ({} failing check{})\n", v.failures,
-                                  v.failures == 1 ? "" : "s");
+                    : fmt::format("gate: FAILED ({} failing check{})\n", v.failures, v.failures == 1 ? "" : "s");
   return out;
 }
 
 std::string gate_markdown(const GateVerdict& v) {
   std::string out = v.passed() ? "### locbench gate: ✅ passed\n\n"
-                               : fmt::format("### locbench gate: ❌ failed ({} failing)\n\n",
-                                             v.failures);
+                               : fmt::format("### locbench gate: ❌ failed ({} failing)\n\n", v.failures);
   out += "| result | old | new | change | status | detail |\n|---|---:|---:|---:|---|---|\n";
   for (const GateRow& r : v.rows) {
-    out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", r.key, gate_number(r.old_value),
-                       gate_number(r.new_value), pct(r.relative_change), r.status, r.detail);
+    out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", r.key, gate_number(r.old_value), gate_number(r.new_value),
+                       pct(r.relative_change), r.status, r.detail);
   }
   if (v.geomean_ratio) {
     out += fmt::format("| **geometric mean** | | | {} | | |\n", pct(*v.geomean_ratio - 1.0));
   }
   if (!v.ratios.empty()) {
-    out += "\n| speed ratio | old | new | change | p | status | detail |\n"
-           "|---|---:|---:|---:|---:|---|---|\n";
+    out +=
+        "\n| speed ratio | old | new | change | p | status | detail |\n"
+        "|---|---:|---:|---:|---:|---|---|\n";
     for (const GateRatioRow& r : v.ratios) {
       out += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", r.name, gate_number(r.old_ratio),
-                         gate_number(r.new_ratio), pct(r.relative_change), gate_number(r.p_value), r.status,
-                         r.detail);
+                         gate_number(r.new_ratio), pct(r.relative_change), gate_number(r.p_value), r.status, r.detail);
     }
   }
   return out;
 }
 
-nlohmann::json gate_json(const GateVerdict& v, const GateInput& baseline,
-                         const GateInput& current) {
-  const auto opt = [](const std::optional<double>& x) {
-    return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
-  };
+nlohmann::json gate_json(const GateVerdict& v, const GateInput& baseline, const GateInput& current) {
+  const auto opt = [](const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); };
   nlohmann::json j;
   j["schema"] = "locbench.gate/1";
   j["passed"] = v.passed();
@@ -265,15 +246,22 @@ nlohmann::json gate_json(const GateVerdict& v, const GateInput& baseline,
   j["geomean_ratio"] = opt(v.geomean_ratio);
   j["rows"] = nlohmann::json::array();
   for (const GateRow& r : v.rows) {
-    j["rows"].push_back({{"name", r.key}, {"unit", r.unit}, {"old", opt(r.old_value)},
-                         {"new", opt(r.new_value)}, {"relative_change", opt(r.relative_change)},
-                         {"status", r.status}, {"detail", r.detail}});
+    j["rows"].push_back({{"name", r.key},
+                         {"unit", r.unit},
+                         {"old", opt(r.old_value)},
+                         {"new", opt(r.new_value)},
+                         {"relative_change", opt(r.relative_change)},
+                         {"status", r.status},
+                         {"detail", r.detail}});
   }
   j["ratios"] = nlohmann::json::array();
   for (const GateRatioRow& r : v.ratios) {
-    j["ratios"].push_back({{"name", r.name}, {"old", opt(r.old_ratio)}, {"new", opt(r.new_ratio)},
+    j["ratios"].push_back({{"name", r.name},
+                           {"old", opt(r.old_ratio)},
+                           {"new", opt(r.new_ratio)},
                            {"relative_change", opt(r.relative_change)},
-                           {"p_value", opt(r.p_value)}, {"status", r.status},
+                           {"p_value", opt(r.p_value)},
+                           {"status", r.status},
                            {"detail", r.detail}});
   }
   return j;

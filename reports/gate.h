@@ -27,8 +27,8 @@ struct GateRatioRow {
   std::string name;
   std::optional<double> old_ratio, new_ratio;  // medians
   std::optional<double> relative_change;
-  std::optional<double> p_value;               // Mann–Whitney, H1: the ratio grew
-  std::string status;                          // "ok", "improved", "regressed", "missing"
+  std::optional<double> p_value;  // Mann–Whitney, H1: the ratio grew
+  std::string status;             // "ok", "improved", "regressed", "missing"
   std::string detail;
 };
 
@@ -40,8 +40,7 @@ struct GateVerdict {
   bool passed() const { return failures == 0; }
 };
 
-GateVerdict evaluate_gate(const GateInput& baseline, const GateInput& current,
-                          const GateRules& rules);
+GateVerdict evaluate_gate(const GateInput& baseline, const GateInput& current, const GateRules& rules);
 
 // A plain table (stdout), a Markdown summary (CI logs) and a JSON verdict.
 std::string gate_table(const GateVerdict& v);

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <sstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "core/errors.h"
 #include "core/json_file.h"
@@ -137,8 +137,8 @@ void require_one_run(const GateInput& in, bool revisions, const std::string& rol
         first = &entry;
       } else if (entry.second != first->second) {
         throw InputError(entry.first, 0,
-                         "the " + role + " reports mix runs: " + what + " " + entry.second + " here, " +
-                             first->second + " in " + first->first +
+                         "the " + role + " reports mix runs: " + what + " " + entry.second + " here, " + first->second +
+                             " in " + first->first +
                              " (two runs into one folder?); pass --allow-mixed to compare them anyway");
       }
     }

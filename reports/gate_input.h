@@ -13,8 +13,8 @@ struct GateSeries {
   std::string dataset;
   std::string unit;
   std::string better = "lower";
-  bool is_time = false;    // a Google Benchmark time [ns]: only gated through ratios
-  double value = 0.0;      // mean (reports) or median of repetitions (benchmarks)
+  bool is_time = false;  // a Google Benchmark time [ns]: only gated through ratios
+  double value = 0.0;    // mean (reports) or median of repetitions (benchmarks)
   std::size_t n = 0;
   double ci95_low = 0.0, ci95_high = 0.0;
   std::vector<double> samples;  // per-run values or per-repetition times, when known

@@ -3,8 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
-#include "core/json_options.h"
 #include "core/json_file.h"
+#include "core/json_options.h"
 
 namespace locbench::reports {
 namespace {

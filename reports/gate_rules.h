@@ -19,11 +19,11 @@ struct AccuracyRule {
 // Speed is judged as a ratio of two benchmarks measured in the same run, never as a time.
 struct SpeedRatioRule {
   std::string name;
-  std::string numerator;    // series key, e.g. "bench:BM_Eap/181/14"
+  std::string numerator;  // series key, e.g. "bench:BM_Eap/181/14"
   std::string denominator;
-  std::optional<double> max_ratio;     // absolute ceiling on the current ratio
-  double max_relative_increase = 0.10; // against the baseline's ratio
-  double alpha = 0.05;                 // Mann–Whitney significance with repetitions
+  std::optional<double> max_ratio;      // absolute ceiling on the current ratio
+  double max_relative_increase = 0.10;  // against the baseline's ratio
+  double alpha = 0.05;                  // Mann–Whitney significance with repetitions
 };
 
 struct GateRules {

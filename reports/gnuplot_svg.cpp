@@ -4,8 +4,8 @@
 
 #include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -37,14 +37,15 @@ struct TempDir {
     const std::filesystem::path base = std::filesystem::temp_directory_path(ec);
     if (ec) {
       const char* env = std::getenv("TMPDIR");
-      throw InputError(env ? env : "$TMPDIR", 0,
-                       "cannot use the temporary folder for gnuplot: " + ec.message() +
-                           " (set TMPDIR to a writable folder)");
+      throw InputError(
+          env ? env : "$TMPDIR", 0,
+          "cannot use the temporary folder for gnuplot: " + ec.message() + " (set TMPDIR to a writable folder)");
     }
     std::string tmpl = (base / "locbench-gnuplot-XXXXXX").string();
     if (!mkdtemp(tmpl.data())) {
-      throw InputError(tmpl, 0, std::string("cannot create a temporary folder for gnuplot: ") + std::strerror(errno) +
-                                    " (set TMPDIR to a writable folder)");
+      throw InputError(tmpl, 0,
+                       std::string("cannot create a temporary folder for gnuplot: ") + std::strerror(errno) +
+                           " (set TMPDIR to a writable folder)");
     }
     path = tmpl;
   }
@@ -80,14 +81,14 @@ std::string run_gnuplot(const std::filesystem::path& gnuplot, const std::string&
   write_file_atomically(script_path, script);  // checked: a full $TMPDIR is an error, exit 2
   // Paths are ours (no quotes in them); gnuplot's path may come from $LOCBENCH_GNUPLOT.
   const std::string quoted = "'" + std::regex_replace(gnuplot.string(), std::regex("'"), "'\\''") + "'";
-  const std::string cmd = quoted + " '" + script_path.string() + "' > '" + svg_path.string() +
-                          "' 2> '" + err_path.string() + "'";
+  const std::string cmd =
+      quoted + " '" + script_path.string() + "' > '" + svg_path.string() + "' 2> '" + err_path.string() + "'";
   const int status = std::system(cmd.c_str());
   const std::string svg = read_file(svg_path);
   if (status != 0 || svg.find("<svg") == std::string::npos) {
-    throw InputError(svg_path.string(), 0,
-                     "gnuplot failed (" + gnuplot.string() + "; is $TMPDIR full or unwritable?): " +
-                         read_file(err_path));
+    throw InputError(
+        svg_path.string(), 0,
+        "gnuplot failed (" + gnuplot.string() + "; is $TMPDIR full or unwritable?): " + read_file(err_path));
   }
   return svg;
 }
@@ -139,8 +140,7 @@ std::string inline_svg(const std::string& svg, const std::string& prefix) {
       for (const std::string& pre : {std::string("id="), std::string("href=")}) {
         const std::string from_text = pre + q + (pre == "href=" ? "#" : "") + id + q;
         const std::string to_text = pre + q + (pre == "href=" ? "#" : "") + to + q;
-        for (std::size_t p = s.find(from_text); p != std::string::npos;
-             p = s.find(from_text, p + to_text.size())) {
+        for (std::size_t p = s.find(from_text); p != std::string::npos; p = s.find(from_text, p + to_text.size())) {
           s.replace(p, from_text.size(), to_text);
         }
       }

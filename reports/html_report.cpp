@@ -51,8 +51,8 @@ td.v-the-thesis-is-wrong{color:#8a5a00;font-weight:600}
 )css";
 
 // A titled table: a header row of `columns` above `rows`; nothing at all when there are no rows.
-void titled_table(std::string& h, const char* title, const char* css_class,
-                  std::initializer_list<const char*> columns, const std::string& rows) {
+void titled_table(std::string& h, const char* title, const char* css_class, std::initializer_list<const char*> columns,
+                  const std::string& rows) {
   if (rows.empty()) return;
   h += fmt::format("<h3>{}</h3>\n<table class={}><thead><tr>", title, css_class);
   for (const char* c : columns) h += fmt::format("<th>{}</th>", c);
@@ -69,9 +69,8 @@ void summary_table(std::string& h, const ExperimentResults& b) {
     rows += fmt::format(
         "<tr><td>{}</td><td>{}</td><td>{}</td><td class=n>{}</td><td class=n>[{}, {}]</td>"
         "<td class=n>{}</td><td>{}</td><td>{}{}</td></tr>\n",
-        html_escape(m.variant), html_escape(m.method), html_escape(m.dataset),
-        with_unit(mean, m.unit), num(s.ci95_low), num(s.ci95_high), s.n, html_escape(m.over),
-        html_escape(m.better),
+        html_escape(m.variant), html_escape(m.method), html_escape(m.dataset), with_unit(mean, m.unit), num(s.ci95_low),
+        num(s.ci95_high), s.n, html_escape(m.over), html_escape(m.better),
         m.identifiable && !*m.identifiable ? " <span class=bad>not identifiable</span>" : "");
   }
   titled_table(h, "Results", "results",
@@ -87,10 +86,8 @@ void estimates_table(std::string& h, const ExperimentResults& b) {
     rows += fmt::format(
         "<tr><td>{}</td><td>{}</td><td>{}</td><td class=n>{}</td><td class=n>{}</td>"
         "<td class=n>{}</td><td>{}</td><td class=note>{}</td></tr>\n",
-        html_escape(m.variant), html_escape(m.method), html_escape(m.dataset),
-        with_unit(num(s.mean), m.unit),
-        identifiable ? "[" + num(s.ci95_low) + ", " + num(s.ci95_high) + "]" : "—",
-        identifiable ? num(s.stddev) : "—",
+        html_escape(m.variant), html_escape(m.method), html_escape(m.dataset), with_unit(num(s.mean), m.unit),
+        identifiable ? "[" + num(s.ci95_low) + ", " + num(s.ci95_high) + "]" : "—", identifiable ? num(s.stddev) : "—",
         identifiable ? "yes" : "<span class=bad>not identifiable</span>", html_escape(m.note));
   }
   titled_table(h, "Estimates", "estimates",
@@ -100,8 +97,8 @@ void estimates_table(std::string& h, const ExperimentResults& b) {
 
 void published_tables(std::string& h, const ExperimentResults& b) {
   for (const PublishedComparison& c : b.published) {
-    h += fmt::format("<h3>Published vs ours: {} — {}{}</h3>\n", html_escape(c.source),
-                     html_escape(c.quantity), c.unit.empty() ? "" : " [" + html_escape(c.unit) + "]");
+    h += fmt::format("<h3>Published vs ours: {} — {}{}</h3>\n", html_escape(c.source), html_escape(c.quantity),
+                     c.unit.empty() ? "" : " [" + html_escape(c.unit) + "]");
     h += "<table class=published><thead><tr><th></th><th>published</th><th>ours</th>"
          "<th>ours − published</th><th>ours / published</th></tr></thead><tbody>\n";
     for (const PublishedRow& r : c.rows) {
@@ -110,9 +107,10 @@ void published_tables(std::string& h, const ExperimentResults& b) {
         diff = num(*r.ours - *r.published);
         if (*r.published != 0.0) ratio = num(*r.ours / *r.published);
       }
-      h += fmt::format("<tr><td>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td>"
-                       "<td class=n>{}</td></tr>\n",
-                       html_escape(r.label), num(r.published), num(r.ours), diff, ratio);
+      h += fmt::format(
+          "<tr><td>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td>"
+          "<td class=n>{}</td></tr>\n",
+          html_escape(r.label), num(r.published), num(r.ours), diff, ratio);
     }
     h += "</tbody></table>\n";
     if (!c.note.empty()) h += "<p class=note>" + html_escape(c.note) + "</p>\n";
@@ -233,8 +231,7 @@ ChartBatchRenderer gnuplot_batch_renderer(std::filesystem::path gnuplot) {
   };
 }
 
-std::string html_report(const std::vector<Report>& reports, const ChartRenderer& render,
-                        const HtmlOptions& options) {
+std::string html_report(const std::vector<Report>& reports, const ChartRenderer& render, const HtmlOptions& options) {
   return html_report(
       reports,
       [&render](const std::vector<Plot>& plots, const std::vector<std::string>& ids) {
@@ -256,35 +253,34 @@ std::string html_report(const std::vector<Report>& reports, const ChartBatchRend
        html_escape(options.title) + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n";
   h += "<h1>" + html_escape(options.title) + "</h1>\n";
   findings_section(h, reports);
-  h += "<h2 id=index>Experiments</h2>\n<table class=overview><thead><tr><th>experiment</th><th>results</th><th>published "
+  h += "<h2 id=index>Experiments</h2>\n<table "
+       "class=overview><thead><tr><th>experiment</th><th>results</th><th>published "
        "tables</th><th>Monte-Carlo runs</th><th>cases not run</th></tr></thead><tbody>\n";
   for (const Report& r : reports) {
-    h += fmt::format("<tr><td><a href=\"#{}\">{}</a></td><td class=n>{}</td><td class=n>{}</td>"
-                     "<td class=n>{}</td><td class=n>{}</td></tr>\n",
-                     anchor(r.body.experiment), html_escape(r.body.experiment),
-                     r.body.results.size(), r.body.published.size(), r.body.seeds.size(),
-                     r.body.cases.size());
+    h += fmt::format(
+        "<tr><td><a href=\"#{}\">{}</a></td><td class=n>{}</td><td class=n>{}</td>"
+        "<td class=n>{}</td><td class=n>{}</td></tr>\n",
+        anchor(r.body.experiment), html_escape(r.body.experiment), r.body.results.size(), r.body.published.size(),
+        r.body.seeds.size(), r.body.cases.size());
   }
   h += "</tbody></table>\n";
   int chart = 0;
   for (const Report& r : reports) {
     const ExperimentResults& b = r.body;
     const Provenance& p = r.provenance;
-    h += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n<p>{}</p>\n", anchor(b.experiment),
-                     html_escape(b.experiment), html_escape(b.description));
-    h += fmt::format(
-        "<p class=meta>locbench {} at {} ({}), {} · {} · {} seeds{}{}</p>\n",
-        html_escape(p.tool_version), html_escape(p.git_revision), html_escape(p.build_type),
-        html_escape(p.host), html_escape(p.utc_time), b.seeds.size(),
-        p.threads ? fmt::format(" · {} threads", *p.threads) : "",
-        p.shards ? fmt::format(" · merged from {} shards", *p.shards) : "");
+    h += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n<p>{}</p>\n", anchor(b.experiment), html_escape(b.experiment),
+                     html_escape(b.description));
+    h += fmt::format("<p class=meta>locbench {} at {} ({}), {} · {} · {} seeds{}{}</p>\n", html_escape(p.tool_version),
+                     html_escape(p.git_revision), html_escape(p.build_type), html_escape(p.host),
+                     html_escape(p.utc_time), b.seeds.size(), p.threads ? fmt::format(" · {} threads", *p.threads) : "",
+                     p.shards ? fmt::format(" · merged from {} shards", *p.shards) : "");
     if (!b.datasets.empty()) {
       h += "<p class=meta>Data: ";
       for (std::size_t i = 0; i < b.datasets.size(); ++i) {
         const DatasetRef& d = b.datasets[i];
         h += (i ? "; " : "") + html_escape(d.name) +
-             fmt::format(" ({}, {} records, {} s, {})", html_escape(d.path), d.records,
-                         num(d.duration_s), html_escape(d.checksum));
+             fmt::format(" ({}, {} records, {} s, {})", html_escape(d.path), d.records, num(d.duration_s),
+                         html_escape(d.checksum));
       }
       h += "</p>\n";
     }
@@ -317,8 +313,8 @@ std::string html_report(const std::vector<Report>& reports, const ChartBatchRend
     if (!b.cases.empty()) {
       h += "<h3>Cases not run</h3>\n<ul>\n";
       for (const CaseNote& c : b.cases) {
-        h += fmt::format("<li><b>{}</b> ({}): {}</li>\n", html_escape(c.name),
-                         html_escape(c.status), html_escape(c.reason));
+        h += fmt::format("<li><b>{}</b> ({}): {}</li>\n", html_escape(c.name), html_escape(c.status),
+                         html_escape(c.reason));
       }
       h += "</ul>\n";
     }
@@ -326,7 +322,8 @@ std::string html_report(const std::vector<Report>& reports, const ChartBatchRend
   }
   h += "</body>\n</html>\n";
   // The charts, drawn together, in place of their placeholders (in page order).
-  const std::vector<std::string> svgs = chart_plots.empty() ? std::vector<std::string>{} : render(chart_plots, chart_ids);
+  const std::vector<std::string> svgs =
+      chart_plots.empty() ? std::vector<std::string>{} : render(chart_plots, chart_ids);
   std::string page;
   page.reserve(h.size() + 64 * 1024 * svgs.size());
   std::size_t from = 0;

@@ -174,13 +174,13 @@ void check_outputs(const std::vector<std::string>& inputs, const std::vector<Nam
       const std::string file = in.substr(0, in.find('#'));
       std::error_code ec;
       if (same_file(o.path, file)) {
-        throw InputError(o.path, 0, o.flag + " would overwrite the input " + in +
-                                        ": choose another output path");
+        throw InputError(o.path, 0, o.flag + " would overwrite the input " + in + ": choose another output path");
       }
       if (!folder_ext.empty() && fs::is_directory(file, ec) && inside(o.path, file) &&
           fs::path(o.path).extension() == folder_ext) {
-        throw InputError(o.path, 0, o.flag + " lies in the input folder " + in + ", whose " + folder_ext +
-                                        " files are read as inputs: choose a path outside it");
+        throw InputError(o.path, 0,
+                         o.flag + " lies in the input folder " + in + ", whose " + folder_ext +
+                             " files are read as inputs: choose a path outside it");
       }
     }
     for (const NamedPath* p : seen) {

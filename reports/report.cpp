@@ -5,9 +5,8 @@
 
 namespace locbench::reports {
 
-MetricResult make_metric(std::string method, std::string dataset, std::string variant,
-                         std::string unit, std::string over, std::span<const double> values,
-                         bool keep_values) {
+MetricResult make_metric(std::string method, std::string dataset, std::string variant, std::string unit,
+                         std::string over, std::span<const double> values, bool keep_values) {
   MetricResult m;
   m.method = std::move(method);
   m.dataset = std::move(dataset);
@@ -26,8 +25,8 @@ std::string key_part(std::string name) {
   return name;
 }
 
-MetricResult make_estimate(std::string method, std::string dataset, std::string variant,
-                           std::string unit, double value, double standard_error, std::size_t n) {
+MetricResult make_estimate(std::string method, std::string dataset, std::string variant, std::string unit, double value,
+                           double standard_error, std::size_t n) {
   MetricResult m;
   m.method = std::move(method);
   m.dataset = std::move(dataset);

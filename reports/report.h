@@ -21,7 +21,7 @@ struct Provenance {
   std::string compiler_flags;
   std::string build_type;
   std::string host;
-  std::string utc_time;       // ISO 8601, e.g. 2026-11-21T23:59:00Z
+  std::string utc_time;  // ISO 8601, e.g. 2026-11-21T23:59:00Z
   std::string command_line;
   std::optional<int> threads;  // worker threads of the Monte-Carlo runs (results never depend on it)
   std::optional<int> shards;   // set when the report was merged from this many shard reports
@@ -44,7 +44,7 @@ struct MetricResult {
   // Which change is an improvement: "lower", "higher", "closer_to_zero" (signed errors) or
   // "stable" (estimates: any change beyond tolerance is a regression).
   std::string better = "lower";
-  std::string over;     // what the statistics run over: "monte_carlo_runs", "relations", …
+  std::string over;  // what the statistics run over: "monte_carlo_runs", "relations", …
   Summary summary;
   std::vector<double> values;  // the samples summarised (may be empty for large series)
   // For estimated parameters: whether the data determine it, and in plain words why not and
@@ -77,7 +77,7 @@ struct PublishedComparison {
   std::string quantity;
   std::string unit;
   std::vector<PublishedRow> rows;
-  std::string note;    // where and why the figures differ
+  std::string note;  // where and why the figures differ
   // Optional, for the findings (reports/findings.h): the thesis's claim in one line, and the
   // tolerance within which a row counts as reproduced, |ours − published| ≤ max(tolerance,
   // relative_tolerance·|published|), with why that tolerance. Without a tolerance the table gets
@@ -120,10 +120,10 @@ struct PlotSeries {
 // A chart a reader wants beside the numbers (drawn by `locbench report`). Kinds:
 // "trajectory" (x, y in the plane, equal axes), "error_vs_distance" (error against distance
 // travelled), "binned" (binned means of a residual against a covariate, lines with points),
-// "profile" (a curve, e.g. the deviance against a time offset, lines), "histogram" (series y values are samples; x is unused and empty), "cdf" (series y
-// values are samples drawn as overlaid empirical CDFs; x is unused and empty), "scan_pair"
-// (laser scans in one robot frame, equal axes: a series whose name ends in "lines" or "matches"
-// holds segments as consecutive point pairs, drawn as lines; any other series is points).
+// "profile" (a curve, e.g. the deviance against a time offset, lines), "histogram" (series y values are samples; x is
+// unused and empty), "cdf" (series y values are samples drawn as overlaid empirical CDFs; x is unused and empty),
+// "scan_pair" (laser scans in one robot frame, equal axes: a series whose name ends in "lines" or "matches" holds
+// segments as consecutive point pairs, drawn as lines; any other series is points).
 struct Plot {
   std::string name;  // stable id within the experiment, e.g. "trajectories_run_0"
   std::string kind;
@@ -153,8 +153,8 @@ struct ExperimentResults {
   std::vector<MetricResult> results;
   std::vector<PublishedComparison> published;
   std::vector<CaseNote> cases;
-  std::vector<std::string> notes;  // findings in plain words (what agrees, what does not, why)
-  std::vector<Plot> plots;         // optional series for charts (trajectories, error vs distance)
+  std::vector<std::string> notes;       // findings in plain words (what agrees, what does not, why)
+  std::vector<Plot> plots;              // optional series for charts (trajectories, error vs distance)
   std::vector<DiagnosedLog> diagnoses;  // optional: per log, what a diagnosis kept (findings)
 };
 
@@ -168,14 +168,13 @@ struct Report {
 std::string key_part(std::string name);
 
 // Builds a MetricResult from samples (Student-t 95% interval of the mean).
-MetricResult make_metric(std::string method, std::string dataset, std::string variant,
-                         std::string unit, std::string over, std::span<const double> values,
-                         bool keep_values = true);
+MetricResult make_metric(std::string method, std::string dataset, std::string variant, std::string unit,
+                         std::string over, std::span<const double> values, bool keep_values = true);
 // One estimate with its standard error (n = the measurements it came from): mean = value,
 // stddev = standard error, ci95 = value ± 1.96·SE (normal), over = "estimate". A non-finite
 // standard error (not identifiable) is written as stddev 0 with an empty interval around the
 // value and identifiable = false.
-MetricResult make_estimate(std::string method, std::string dataset, std::string variant,
-                           std::string unit, double value, double standard_error, std::size_t n);
+MetricResult make_estimate(std::string method, std::string dataset, std::string variant, std::string unit, double value,
+                           double standard_error, std::size_t n);
 
 }  // namespace locbench::reports

@@ -12,17 +12,24 @@ namespace locbench::reports {
 namespace {
 using nlohmann::json;
 
-json optional_number(const std::optional<double>& v) {
-  return v && std::isfinite(*v) ? json(*v) : json(nullptr);
-}
+json optional_number(const std::optional<double>& v) { return v && std::isfinite(*v) ? json(*v) : json(nullptr); }
 
 json metric_to_json(const MetricResult& m) {
   const Summary& s = m.summary;
-  json j = {{"name", m.name()},     {"method", m.method}, {"dataset", m.dataset},
-            {"variant", m.variant}, {"unit", m.unit},     {"better", m.better},
-            {"over", m.over},       {"n", s.n},           {"mean", s.mean},
-            {"stddev", s.stddev},   {"ci95", {s.ci95_low, s.ci95_high}},
-            {"median", s.median},   {"min", s.min},       {"max", s.max}};
+  json j = {{"name", m.name()},
+            {"method", m.method},
+            {"dataset", m.dataset},
+            {"variant", m.variant},
+            {"unit", m.unit},
+            {"better", m.better},
+            {"over", m.over},
+            {"n", s.n},
+            {"mean", s.mean},
+            {"stddev", s.stddev},
+            {"ci95", {s.ci95_low, s.ci95_high}},
+            {"median", s.median},
+            {"min", s.min},
+            {"max", s.max}};
   if (!m.values.empty()) j["values"] = m.values;
   if (m.identifiable) j["identifiable"] = *m.identifiable;
   if (!m.note.empty()) j["note"] = m.note;
@@ -46,12 +53,15 @@ json diagnosed_log_to_json(const DiagnosedLog& d) {
   for (const KeptCause& c : d.causes) {
     json params = json::array();
     for (const FindingEstimate& e : c.parameters) {
-      params.push_back({{"name", e.name}, {"value", optional_number(e.value)},
-                        {"lo", optional_number(e.lo)}, {"hi", optional_number(e.hi)}});
+      params.push_back({{"name", e.name},
+                        {"value", optional_number(e.value)},
+                        {"lo", optional_number(e.lo)},
+                        {"hi", optional_number(e.hi)}});
     }
     json cj = {{"id", c.id}, {"parameters", params}, {"identifiable", c.identifiable}};
     if (c.gain) {
-      cj["gain"] = {{"metric", c.gain->metric}, {"before", optional_number(c.gain->before)},
+      cj["gain"] = {{"metric", c.gain->metric},
+                    {"before", optional_number(c.gain->before)},
                     {"after", optional_number(c.gain->after)}};
     }
     causes.push_back(std::move(cj));
@@ -74,10 +84,9 @@ DiagnosedLog diagnosed_log_from_json(const json& j, const std::string& source) {
     c.id = get<std::string>(cj, "id", source, "diagnoses cause");
     c.identifiable = get<bool>(cj, "identifiable", source, "diagnoses cause");
     for (const json& e : get<json>(cj, "parameters", source, "diagnoses cause")) {
-      c.parameters.push_back({get<std::string>(e, "name", source, "cause parameter"),
-                              number_or_nan(e, "value", source, "cause parameter"),
-                              number_or_nan(e, "lo", source, "cause parameter"),
-                              number_or_nan(e, "hi", source, "cause parameter")});
+      c.parameters.push_back(
+          {get<std::string>(e, "name", source, "cause parameter"), number_or_nan(e, "value", source, "cause parameter"),
+           number_or_nan(e, "lo", source, "cause parameter"), number_or_nan(e, "hi", source, "cause parameter")});
     }
     if (cj.contains("gain")) {
       const json& g = cj.at("gain");
@@ -122,8 +131,7 @@ Plot plot_from_json(const json& j, const std::string& source) {
     ps.x = get<std::vector<double>>(s, "x", source, "plot series");
     ps.y = get<std::vector<double>>(s, "y", source, "plot series");
     if (p.kind != "histogram" && p.kind != "cdf" && ps.x.size() != ps.y.size()) {
-      throw InputError(source, 0, "plot " + p.name + ", series " + ps.name +
-                                      ": x and y differ in length");
+      throw InputError(source, 0, "plot " + p.name + ", series " + ps.name + ": x and y differ in length");
     }
     p.series.push_back(std::move(ps));
   }
@@ -138,8 +146,11 @@ json results_to_json(const ExperimentResults& b) {
   j["seeds"] = b.seeds;
   j["datasets"] = json::array();
   for (const DatasetRef& d : b.datasets) {
-    j["datasets"].push_back({{"name", d.name}, {"path", d.path}, {"checksum", d.checksum},
-                             {"records", d.records}, {"duration_s", d.duration_s}});
+    j["datasets"].push_back({{"name", d.name},
+                             {"path", d.path},
+                             {"checksum", d.checksum},
+                             {"records", d.records},
+                             {"duration_s", d.duration_s}});
   }
   j["configuration"] = b.configuration;
   j["results"] = json::array();
@@ -148,16 +159,14 @@ json results_to_json(const ExperimentResults& b) {
   for (const PublishedComparison& c : b.published) {
     json rows = json::array();
     for (const PublishedRow& row : c.rows) {
-      json r = {{"label", row.label},
-                {"published", optional_number(row.published)},
-                {"ours", optional_number(row.ours)}};
+      json r = {
+          {"label", row.label}, {"published", optional_number(row.published)}, {"ours", optional_number(row.ours)}};
       if (row.check) r["check"] = optional_number(row.check);
       if (!row.compared) r["compared"] = false;
       if (row.tolerance) r["tolerance"] = *row.tolerance;
       rows.push_back(std::move(r));
     }
-    json pc = {{"source", c.source}, {"quantity", c.quantity}, {"unit", c.unit},
-               {"rows", rows}, {"note", c.note}};
+    json pc = {{"source", c.source}, {"quantity", c.quantity}, {"unit", c.unit}, {"rows", rows}, {"note", c.note}};
     if (!c.claim.empty()) pc["claim"] = c.claim;
     if (c.tolerance) pc["tolerance"] = *c.tolerance;
     if (c.relative_tolerance) pc["relative_tolerance"] = *c.relative_tolerance;
@@ -184,10 +193,14 @@ json to_json(const Report& r) {
   const Provenance& p = r.provenance;
   json j = results_to_json(r.body);
   j["schema"] = kReportSchema;
-  j["context"] = {{"tool", "locbench"},          {"tool_version", p.tool_version},
-                  {"git_revision", p.git_revision}, {"compiler", p.compiler},
-                  {"compiler_flags", p.compiler_flags}, {"build_type", p.build_type},
-                  {"host", p.host},              {"utc_time", p.utc_time},
+  j["context"] = {{"tool", "locbench"},
+                  {"tool_version", p.tool_version},
+                  {"git_revision", p.git_revision},
+                  {"compiler", p.compiler},
+                  {"compiler_flags", p.compiler_flags},
+                  {"build_type", p.build_type},
+                  {"host", p.host},
+                  {"utc_time", p.utc_time},
                   {"command_line", p.command_line}};
   if (p.threads) j["context"]["threads"] = *p.threads;
   if (p.shards) j["context"]["shards"] = *p.shards;
@@ -223,11 +236,10 @@ ExperimentResults results_from_json(const json& j, const std::string& source) {
   b.description = get<std::string>(e, "description", source, "experiment");
   b.seeds = get<std::vector<std::uint64_t>>(j, "seeds", source, "report");
   for (const json& d : get<json>(j, "datasets", source, "report")) {
-    b.datasets.push_back({get<std::string>(d, "name", source, "dataset"),
-                          get<std::string>(d, "path", source, "dataset"),
-                          get<std::string>(d, "checksum", source, "dataset"),
-                          get<std::size_t>(d, "records", source, "dataset"),
-                          get<double>(d, "duration_s", source, "dataset")});
+    b.datasets.push_back(
+        {get<std::string>(d, "name", source, "dataset"), get<std::string>(d, "path", source, "dataset"),
+         get<std::string>(d, "checksum", source, "dataset"), get<std::size_t>(d, "records", source, "dataset"),
+         get<double>(d, "duration_s", source, "dataset")});
   }
   b.configuration = get<json>(j, "configuration", source, "report");
   for (const json& m : get<json>(j, "results", source, "report")) {
@@ -287,8 +299,7 @@ ExperimentResults results_from_json(const json& j, const std::string& source) {
     b.published.push_back(std::move(x));
   }
   for (const json& cn : get<json>(j, "cases", source, "report")) {
-    b.cases.push_back({get<std::string>(cn, "name", source, "case"),
-                       get<std::string>(cn, "status", source, "case"),
+    b.cases.push_back({get<std::string>(cn, "name", source, "case"), get<std::string>(cn, "status", source, "case"),
                        get<std::string>(cn, "reason", source, "case")});
   }
   if (j.contains("notes")) b.notes = get<std::vector<std::string>>(j, "notes", source, "report");
@@ -309,12 +320,10 @@ Report report_from_json(const json& j, const std::string& source) {
   if (!j.is_object()) throw InputError(source, 0, "expected a JSON object (a locbench report)");
   const auto schema = get<std::string>(j, "schema", source, "report");
   if (schema != kReportSchema) {
-    throw InputError(source, 0, "expected schema \"" + std::string(kReportSchema) +
-                                    "\", found \"" + schema + "\"");
+    throw InputError(source, 0, "expected schema \"" + std::string(kReportSchema) + "\", found \"" + schema + "\"");
   }
   Report r;
-  r.provenance =
-      provenance_from_json(j.contains("context") ? j.at("context") : json::object(), source);
+  r.provenance = provenance_from_json(j.contains("context") ? j.at("context") : json::object(), source);
   r.body = results_from_json(j, source);
   return r;
 }

@@ -7,7 +7,7 @@
 
 #include "diagnosis_schema.h"  // generated
 #include "report_schema.h"     // generated
-#include "shard_schema.h"   // generated
+#include "shard_schema.h"      // generated
 
 namespace locbench::reports {
 

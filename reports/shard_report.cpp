@@ -23,8 +23,7 @@ T get(const json& j, const char* key, const std::string& source) {
   try {
     return j.at(key).get<T>();
   } catch (const json::exception&) {
-    throw InputError(source, 0, std::string("shard report: field \"") + key +
-                                    "\" has the wrong type");
+    throw InputError(source, 0, std::string("shard report: field \"") + key + "\" has the wrong type");
   }
 }
 
@@ -64,9 +63,7 @@ json decode_nonfinite(const json& j) {
   });
 }
 
-json canonical_record(const json& record) {
-  return decode_nonfinite(json::parse(encode_nonfinite(record).dump()));
-}
+json canonical_record(const json& record) { return decode_nonfinite(json::parse(encode_nonfinite(record).dump())); }
 
 json to_json(const ShardReport& s) {
   json records = json::array();
@@ -87,9 +84,9 @@ ShardReport shard_report_from_json(const json& j, const std::string& source) {
   if (!j.is_object()) throw InputError(source, 0, "expected a JSON object (a locbench shard)");
   const auto schema = get<std::string>(j, "schema", source);
   if (schema != kShardSchema) {
-    throw InputError(source, 0, "expected schema \"" + std::string(kShardSchema) + "\", found \"" +
-                                    schema + "\"" +
-                                    (schema == kReportSchema ? " (a full report, not a shard)" : ""));
+    throw InputError(source, 0,
+                     "expected schema \"" + std::string(kShardSchema) + "\", found \"" + schema + "\"" +
+                         (schema == kReportSchema ? " (a full report, not a shard)" : ""));
   }
   ShardReport s;
   s.provenance = provenance_from_json(get<json>(j, "context", source), source);

@@ -28,10 +28,10 @@ struct ShardReport {
   std::string description;
   nlohmann::json configuration = nlohmann::json::object();  // as given: defaults + overrides
   std::uint64_t seed = 1;
-  std::optional<int> runs;  // --runs, when given
-  int index = 1;            // K (1-based)
-  int count = 1;            // N
-  int tasks = 0;            // tasks of the whole experiment
+  std::optional<int> runs;           // --runs, when given
+  int index = 1;                     // K (1-based)
+  int count = 1;                     // N
+  int tasks = 0;                     // tasks of the whole experiment
   std::vector<ShardRecord> records;  // this shard's tasks, ascending
 };
 

@@ -23,6 +23,7 @@ packages=(
   chromium             # tests: render the HTML report headless, check charts and console
   parallel             # docs/gnu_parallel.sh: shards on one or several machines (tested)
   clang libclang-rt-14-dev   # fuzz/: libFuzzer targets of the readers (-DLOCBENCH_FUZZ=ON)
+  clang-format         # tests: Style.EverySourceIsClangFormatted (.clang-format); `make format`
 )
 
 missing=()

@@ -54,9 +54,8 @@ Reference truth_reference(const Log& log) {
 }
 
 // Cuts increments into samples (SampleIntervalOptions) whose reference comes from `truth`.
-std::vector<CalibrationSample> cut_samples(const std::vector<TimedIncrement>& incs,
-                                           const SampleIntervalOptions& opt, const Reference& truth,
-                                           const std::optional<Pose2>& sensor_mount) {
+std::vector<CalibrationSample> cut_samples(const std::vector<TimedIncrement>& incs, const SampleIntervalOptions& opt,
+                                           const Reference& truth, const std::optional<Pose2>& sensor_mount) {
   std::vector<CalibrationSample> out;
   std::size_t i = 0;
   while (i < incs.size()) {
@@ -125,10 +124,8 @@ OdometryIncrement arc_increment(const Pose2& delta, double dt) {
   return {forward >= 0.0 ? length : -length, delta.theta, dt};
 }
 
-CalibrationData calibration_data_from_encoders(const Log& log,
-                                               const SampleIntervalOptions& intervals,
-                                               std::optional<NominalModel> nominal,
-                                               std::optional<Pose2> sensor_mount) {
+CalibrationData calibration_data_from_encoders(const Log& log, const SampleIntervalOptions& intervals,
+                                               std::optional<NominalModel> nominal, std::optional<Pose2> sensor_mount) {
   if (log.encoders.size() < 2) throw InputError(log.source, 0, "needs ENCODER records");
   if (log.truth.empty()) throw InputError(log.source, 0, "needs TRUEPOS ground truth");
   if (!nominal) nominal = log.nominal_model();
@@ -140,8 +137,7 @@ CalibrationData calibration_data_from_encoders(const Log& log,
   // A NaN, zero, negative or denormal geometry is an input error, not a fit.
   const auto plausible = [&](double v, const char* name, double lo, double hi, const char* unit) {
     if (!(v >= lo && v <= hi)) {
-      throw InputError(log.source, 0,
-                       fmt::format("PARAM {} = {}: expected {} in [{}, {}]", name, v, unit, lo, hi));
+      throw InputError(log.source, 0, fmt::format("PARAM {} = {}: expected {} in [{}, {}]", name, v, unit, lo, hi));
     }
   };
   plausible(nominal->wheelbase, "robot_wheelbase", 0.01, 5.0, "metres");
@@ -178,16 +174,15 @@ CalibrationData calibration_data_from_encoders(const Log& log,
   d.quantized_ticks = true;
   d.nominal = Eigen::Vector3d(1.0, 1.0, nominal->wheelbase);
   d.sensor_reference = sensor_mount.has_value();
-  d.nominal_sensor_pose = Pose2(param_or(log, "robot_frontlaser_offset", 0.0),
-                                param_or(log, "robot_frontlaser_side_offset", 0.0),
-                                param_or(log, "robot_frontlaser_angular_offset", 0.0));
+  d.nominal_sensor_pose =
+      Pose2(param_or(log, "robot_frontlaser_offset", 0.0), param_or(log, "robot_frontlaser_side_offset", 0.0),
+            param_or(log, "robot_frontlaser_angular_offset", 0.0));
   d.samples = cut_samples(incs, intervals, truth, sensor_mount);
   if (d.samples.empty()) throw InputError(log.source, 0, "no sample lies inside the ground truth");
   return d;
 }
 
-CalibrationData calibration_data_from_relations(const Log& log,
-                                                const RelationSampleOptions& options) {
+CalibrationData calibration_data_from_relations(const Log& log, const RelationSampleOptions& options) {
   if (log.relations.empty()) throw InputError(log.source, 0, "needs reference relations");
   if (log.odometry.empty() && log.laser.empty()) {
     throw InputError(log.source, 0, "needs ODOM records (or odometry poses in FLASER records)");
@@ -229,14 +224,12 @@ CalibrationData calibration_data_from_relations(const Log& log,
   if (d.samples.empty()) {
     throw InputError(log.source, 0, "no relation lies inside the odometry's time span");
   }
-  std::stable_sort(
-      d.samples.begin(), d.samples.end(),
-      [](const CalibrationSample& a, const CalibrationSample& b) { return a.t_start < b.t_start; });
+  std::stable_sort(d.samples.begin(), d.samples.end(),
+                   [](const CalibrationSample& a, const CalibrationSample& b) { return a.t_start < b.t_start; });
   return d;
 }
 
-CalibrationData calibration_data_from_velocities(const Log& log,
-                                                 const SampleIntervalOptions& intervals) {
+CalibrationData calibration_data_from_velocities(const Log& log, const SampleIntervalOptions& intervals) {
   if (log.odometry.size() < 2) throw InputError(log.source, 0, "needs ODOM velocity records");
   if (log.truth.empty()) throw InputError(log.source, 0, "needs ground truth");
   const Reference truth = truth_reference(log);
@@ -262,8 +255,7 @@ CalibrationData calibration_data_from_velocities(const Log& log,
   return d;
 }
 
-CalibrationData calibration_data_from_wheel_speed_tuples(std::span<const WheelSpeedTuple> tuples,
-                                                         double nominal_radius,
+CalibrationData calibration_data_from_wheel_speed_tuples(std::span<const WheelSpeedTuple> tuples, double nominal_radius,
                                                          double nominal_axle) {
   CalibrationData d;
   d.source = "wheel-speed tuples";
@@ -293,8 +285,7 @@ CalibrationData calibration_data_from_motion_pairs(std::span<const RelativeMotio
   return d;
 }
 
-CalibrationData calibration_data_from_tick_motions(std::span<const TickMotion> rows,
-                                                   const NominalModel& nominal) {
+CalibrationData calibration_data_from_tick_motions(std::span<const TickMotion> rows, const NominalModel& nominal) {
   CalibrationData d;
   d.source = "tick motions";
   d.kind = OdometryInputKind::kWheelTicks;
@@ -328,8 +319,7 @@ CalibrationData subset(const CalibrationData& data, std::size_t begin, std::size
 }
 
 bool is_finite(const CalibrationSample& s) {
-  if (!std::isfinite(s.reference.x) || !std::isfinite(s.reference.y) ||
-      !std::isfinite(s.reference.theta)) {
+  if (!std::isfinite(s.reference.x) || !std::isfinite(s.reference.y) || !std::isfinite(s.reference.theta)) {
     return false;
   }
   return std::all_of(s.increments.begin(), s.increments.end(), [](const OdometryIncrement& i) {

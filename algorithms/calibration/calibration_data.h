@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "core/calibration_records.h"
+#include "core/log.h"
 #include "core/pose2.h"
 #include "core/robot_params.h"
-#include "core/log.h"
 
 namespace locbench {
 
@@ -109,8 +109,7 @@ struct RelationSampleOptions {
 // `sensor_mount`, the reference is the displacement of a sensor mounted at that pose on the true
 // robot (as a scan matcher would see it) and sensor_reference is set. Throws InputError when the
 // log lacks encoders or ground truth, or no sample results.
-CalibrationData calibration_data_from_encoders(const Log& log,
-                                               const SampleIntervalOptions& intervals = {},
+CalibrationData calibration_data_from_encoders(const Log& log, const SampleIntervalOptions& intervals = {},
                                                std::optional<NominalModel> nominal = std::nullopt,
                                                std::optional<Pose2> sensor_mount = std::nullopt);
 
@@ -119,21 +118,18 @@ CalibrationData calibration_data_from_encoders(const Log& log,
 // (kBodyIncrements); samples in order of t1. Uses the FLASER odometry poses for logs without
 // ODOM (mit-csail). Relations outside the odometry's time span are skipped. Throws InputError
 // without relations, without odometry, or when no relation lies inside the odometry.
-CalibrationData calibration_data_from_relations(const Log& log,
-                                                const RelationSampleOptions& options = {});
+CalibrationData calibration_data_from_relations(const Log& log, const RelationSampleOptions& options = {});
 
 // ODOM velocities (tv, rv, each held until the next record — MRCLAM) + ground truth
 // (kVelocityIntegrals); intervals cut as for encoders. Throws InputError like the above.
-CalibrationData calibration_data_from_velocities(const Log& log,
-                                                 const SampleIntervalOptions& intervals = {});
+CalibrationData calibration_data_from_velocities(const Log& log, const SampleIntervalOptions& intervals = {});
 
 // Censi et al.'s tuples: one sample per tuple with a single increment of wheel angles
 // (T·phi_l, T·phi_r) over T (kWheelAngles), the reference being the scan matcher's sensor
 // displacement (sensor_reference = true). The nominal Khepera III values r = 21 mm, b = 90 mm
 // (the upstream solver's E_b divides by 0.09 m) only serve as the uncalibrated comparison.
 CalibrationData calibration_data_from_wheel_speed_tuples(std::span<const WheelSpeedTuple> tuples,
-                                                         double nominal_radius = 0.021,
-                                                         double nominal_axle = 0.09);
+                                                         double nominal_radius = 0.021, double nominal_axle = 0.09);
 
 // Relative-motion pairs (stachniss_ls_calib): one sample per row, its single increment the
 // odometry displacement reduced to an arc (kBodyIncrements), the reference the scan-matched

@@ -34,21 +34,17 @@ ArcTerms arc_terms(double th) {
 struct WheelTravel {
   double left = 0.0, right = 0.0, track = 1.0;
 };
-WheelTravel wheel_travel(const CalibrationData& data, const OdometryIncrement& inc,
-                         const Eigen::Vector3d& q, double virtual_track) {
+WheelTravel wheel_travel(const CalibrationData& data, const OdometryIncrement& inc, const Eigen::Vector3d& q,
+                         double virtual_track) {
   switch (data.kind) {
     case OdometryInputKind::kWheelTicks:
-      return {q(0) * data.meters_per_tick_left * inc.first,
-              q(1) * data.meters_per_tick_right * inc.second, q(2)};
-    case OdometryInputKind::kWheelAngles:
-      return {q(0) * inc.first, q(1) * inc.second, q(2)};
+      return {q(0) * data.meters_per_tick_left * inc.first, q(1) * data.meters_per_tick_right * inc.second, q(2)};
+    case OdometryInputKind::kWheelAngles: return {q(0) * inc.first, q(1) * inc.second, q(2)};
     case OdometryInputKind::kBodyIncrements:
-    case OdometryInputKind::kVelocityIntegrals:
-      break;
+    case OdometryInputKind::kVelocityIntegrals: break;
   }
   const ArcIncrement a = arc_of(data, inc, q);
-  return {a.distance - 0.5 * virtual_track * a.rotation,
-          a.distance + 0.5 * virtual_track * a.rotation, virtual_track};
+  return {a.distance - 0.5 * virtual_track * a.rotation, a.distance + 0.5 * virtual_track * a.rotation, virtual_track};
 }
 
 // Small matrices as plain arrays: the code below runs per increment and per solver evaluation,
@@ -89,21 +85,18 @@ Eigen::Matrix3d to_eigen(const Mat3& m) {
 
 // ∂(ΔD, Δθ)/∂q of arc_of (rows ΔD, Δθ): linear in the scales, Δθ ∝ 1/B in the wheelbase.
 using ArcJacobian = std::array<std::array<double, 3>, 2>;
-ArcJacobian arc_jacobian(const CalibrationData& data, const OdometryIncrement& inc,
-                         const Eigen::Vector3d& q) {
+ArcJacobian arc_jacobian(const CalibrationData& data, const OdometryIncrement& inc, const Eigen::Vector3d& q) {
   switch (data.kind) {
     case OdometryInputKind::kWheelTicks:
     case OdometryInputKind::kWheelAngles: {
       const bool ticks = data.kind == OdometryInputKind::kWheelTicks;
-      const double ul = (ticks ? data.meters_per_tick_left : 1.0) * inc.first;   // ∂U_L/∂q₀
+      const double ul = (ticks ? data.meters_per_tick_left : 1.0) * inc.first;    // ∂U_L/∂q₀
       const double ur = (ticks ? data.meters_per_tick_right : 1.0) * inc.second;  // ∂U_R/∂q₁
       const double b = q(2), rotation = (q(1) * ur - q(0) * ul) / b;
       return {{{0.5 * ul, 0.5 * ur, 0.0}, {-ul / b, ur / b, -rotation / b}}};
     }
-    case OdometryInputKind::kBodyIncrements:
-      return {{{inc.first, 0.0, 0.0}, {0.0, inc.second, inc.first}}};
-    case OdometryInputKind::kVelocityIntegrals:
-      return {{{inc.first, 0.0, 0.0}, {0.0, inc.second, inc.dt}}};
+    case OdometryInputKind::kBodyIncrements: return {{{inc.first, 0.0, 0.0}, {0.0, inc.second, inc.first}}};
+    case OdometryInputKind::kVelocityIntegrals: return {{{inc.first, 0.0, 0.0}, {0.0, inc.second, inc.dt}}};
   }
   return {};
 }
@@ -112,8 +105,8 @@ ArcJacobian arc_jacobian(const CalibrationData& data, const OdometryIncrement& i
 // step; only the final one is wrapped) and, when `d_odometry` is given, ∂(o_x, o_y, o_θ)/∂q,
 // carried through the composition: o ← o ∘ a gives ∂o ← F_p·∂o + R·A·∂(ΔD, Δθ)/∂q
 // (F_p, R, A as in odometry_noise_shape).
-Pose2 compose_arcs(const CalibrationData& data, const CalibrationSample& sample,
-                   const Eigen::Vector3d& odometry, Mat3* d_odometry) {
+Pose2 compose_arcs(const CalibrationData& data, const CalibrationSample& sample, const Eigen::Vector3d& odometry,
+                   Mat3* d_odometry) {
   double x = 0.0, y = 0.0, th = 0.0;
   Mat3 d{};
   for (const OdometryIncrement& inc : sample.increments) {
@@ -166,11 +159,10 @@ Mat3 sensor_mount_jacobian(const Pose2& l, const Pose2& o) {
 
 // The residual and, when `jacobian` is given, its exact derivative (one code path for both, so
 // the residual is the same number either way).
-Eigen::Vector3d residual_of(const CalibrationData& data, const CalibrationSample& sample,
-                            const ModelParameters& p, Eigen::Matrix<double, 3, 6>* jacobian) {
+Eigen::Vector3d residual_of(const CalibrationData& data, const CalibrationSample& sample, const ModelParameters& p,
+                            Eigen::Matrix<double, 3, 6>* jacobian) {
   Mat3 d_odometry{};
-  const Pose2 o =
-      compose_arcs(data, sample, p.odometry, jacobian != nullptr ? &d_odometry : nullptr);
+  const Pose2 o = compose_arcs(data, sample, p.odometry, jacobian != nullptr ? &d_odometry : nullptr);
   Pose2 e = o;
   Mat3 d_sensor{};
   if (data.sensor_reference) {
@@ -180,8 +172,7 @@ Eigen::Vector3d residual_of(const CalibrationData& data, const CalibrationSample
       Mat3 Gd{};
       for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) {
-          Gd[i][j] = G[i][0] * d_odometry[0][j] + G[i][1] * d_odometry[1][j] +
-                     G[i][2] * d_odometry[2][j];
+          Gd[i][j] = G[i][0] * d_odometry[0][j] + G[i][1] * d_odometry[1][j] + G[i][2] * d_odometry[2][j];
         }
       }
       d_odometry = Gd;
@@ -197,29 +188,22 @@ Eigen::Vector3d residual_of(const CalibrationData& data, const CalibrationSample
     }
   }
   // The wrap of the angle residual has derivative 1 (away from ±π, where it jumps).
-  return {e.x - sample.reference.x, e.y - sample.reference.y,
-          angle_diff(e.theta, sample.reference.theta)};
+  return {e.x - sample.reference.x, e.y - sample.reference.y, angle_diff(e.theta, sample.reference.theta)};
 }
 
 }  // namespace
 
 std::array<std::string, 3> odometry_parameter_names(OdometryInputKind kind) {
   switch (kind) {
-    case OdometryInputKind::kWheelTicks:
-      return {"left_scale", "right_scale", "wheelbase"};
-    case OdometryInputKind::kWheelAngles:
-      return {"r_L", "r_R", "b"};
-    case OdometryInputKind::kBodyIncrements:
-      return {"translation_scale", "rotation_scale", "rotation_per_distance"};
-    case OdometryInputKind::kVelocityIntegrals:
-      return {"tv_scale", "rv_scale", "rv_bias"};
+    case OdometryInputKind::kWheelTicks: return {"left_scale", "right_scale", "wheelbase"};
+    case OdometryInputKind::kWheelAngles: return {"r_L", "r_R", "b"};
+    case OdometryInputKind::kBodyIncrements: return {"translation_scale", "rotation_scale", "rotation_per_distance"};
+    case OdometryInputKind::kVelocityIntegrals: return {"tv_scale", "rv_scale", "rv_bias"};
   }
   return {"p0", "p1", "p2"};
 }
 
-std::array<std::string, 3> sensor_parameter_names() {
-  return {"sensor_x", "sensor_y", "sensor_theta"};
-}
+std::array<std::string, 3> sensor_parameter_names() { return {"sensor_x", "sensor_y", "sensor_theta"}; }
 
 Eigen::Matrix<double, 6, 1> ModelParameters::vector() const {
   Eigen::Matrix<double, 6, 1> v;
@@ -241,8 +225,7 @@ ModelParameters nominal_parameters(const CalibrationData& data) {
   return p;
 }
 
-ArcIncrement arc_of(const CalibrationData& data, const OdometryIncrement& inc,
-                    const Eigen::Vector3d& q) {
+ArcIncrement arc_of(const CalibrationData& data, const OdometryIncrement& inc, const Eigen::Vector3d& q) {
   switch (data.kind) {
     case OdometryInputKind::kWheelTicks:
     case OdometryInputKind::kWheelAngles: {
@@ -250,10 +233,8 @@ ArcIncrement arc_of(const CalibrationData& data, const OdometryIncrement& inc,
       const WheelTravel u = wheel_travel(data, inc, q, 1.0);
       return {0.5 * (u.left + u.right), (u.right - u.left) / u.track};
     }
-    case OdometryInputKind::kBodyIncrements:
-      return {q(0) * inc.first, q(1) * inc.second + q(2) * inc.first};
-    case OdometryInputKind::kVelocityIntegrals:
-      return {q(0) * inc.first, q(1) * inc.second + q(2) * inc.dt};
+    case OdometryInputKind::kBodyIncrements: return {q(0) * inc.first, q(1) * inc.second + q(2) * inc.first};
+    case OdometryInputKind::kVelocityIntegrals: return {q(0) * inc.first, q(1) * inc.second + q(2) * inc.dt};
   }
   return {};
 }
@@ -268,8 +249,7 @@ Pose2 predict_robot_displacement(const CalibrationData& data, const CalibrationS
   return compose_arcs(data, sample, odometry, nullptr);
 }
 
-Pose2 predict_reference(const CalibrationData& data, const CalibrationSample& sample,
-                        const ModelParameters& p) {
+Pose2 predict_reference(const CalibrationData& data, const CalibrationSample& sample, const ModelParameters& p) {
   const Pose2 o = predict_robot_displacement(data, sample, p.odometry);
   if (!data.sensor_reference) return o;
   return p.sensor.inverse() * o * p.sensor;
@@ -280,16 +260,15 @@ Eigen::Vector3d reference_residual(const CalibrationData& data, const Calibratio
   return residual_of(data, sample, p, nullptr);
 }
 
-ResidualWithJacobian reference_residual_with_jacobian(const CalibrationData& data,
-                                                      const CalibrationSample& sample,
+ResidualWithJacobian reference_residual_with_jacobian(const CalibrationData& data, const CalibrationSample& sample,
                                                       const ModelParameters& p) {
   ResidualWithJacobian out;
   out.residual = residual_of(data, sample, p, &out.jacobian);
   return out;
 }
 
-NoiseShape odometry_noise_shape(const CalibrationData& data, const CalibrationSample& sample,
-                                const ModelParameters& p, double virtual_track) {
+NoiseShape odometry_noise_shape(const CalibrationData& data, const CalibrationSample& sample, const ModelParameters& p,
+                                double virtual_track) {
   Mat3 per_k2{}, quantization{};
   double th = 0.0;
   const std::size_t n = sample.increments.size();
@@ -313,8 +292,7 @@ NoiseShape odometry_noise_shape(const CalibrationData& data, const CalibrationSa
     add_outer(per_k2, fl, std::abs(u.left));
     add_outer(per_k2, fr, std::abs(u.right));
     quantization = congruence(Fp, quantization);
-    if (data.kind == OdometryInputKind::kWheelTicks && data.quantized_ticks &&
-        (k == 0 || k + 1 == n)) {
+    if (data.kind == OdometryInputKind::kWheelTicks && data.quantized_ticks && (k == 0 || k + 1 == n)) {
       // e_start on the first increment, e_end on the last, C²/12 each (uniform remainders).
       const double cl = p.odometry(0) * data.meters_per_tick_left;
       const double cr = p.odometry(1) * data.meters_per_tick_right;

@@ -44,8 +44,7 @@ struct ArcIncrement {
   double distance = 0.0;
   double rotation = 0.0;
 };
-ArcIncrement arc_of(const CalibrationData& data, const OdometryIncrement& inc,
-                    const Eigen::Vector3d& odometry);
+ArcIncrement arc_of(const CalibrationData& data, const OdometryIncrement& inc, const Eigen::Vector3d& odometry);
 
 // The displacement of a circular arc of length ΔD turning by Δθ (formula above).
 Pose2 arc_displacement(double distance, double rotation);
@@ -55,8 +54,7 @@ Pose2 predict_robot_displacement(const CalibrationData& data, const CalibrationS
                                  const Eigen::Vector3d& odometry);
 
 // What the sample's reference should be under `p`: the robot displacement o, or ℓ⁻¹ ∘ o ∘ ℓ.
-Pose2 predict_reference(const CalibrationData& data, const CalibrationSample& sample,
-                        const ModelParameters& p);
+Pose2 predict_reference(const CalibrationData& data, const CalibrationSample& sample, const ModelParameters& p);
 
 // Residual predicted − reference: (Δx, Δy, wrapped Δθ), in the reference's start frame.
 Eigen::Vector3d reference_residual(const CalibrationData& data, const CalibrationSample& sample,
@@ -70,8 +68,7 @@ struct ResidualWithJacobian {
   Eigen::Vector3d residual = Eigen::Vector3d::Zero();
   Eigen::Matrix<double, 3, 6> jacobian = Eigen::Matrix<double, 3, 6>::Zero();
 };
-ResidualWithJacobian reference_residual_with_jacobian(const CalibrationData& data,
-                                                      const CalibrationSample& sample,
+ResidualWithJacobian reference_residual_with_jacobian(const CalibrationData& data, const CalibrationSample& sample,
                                                       const ModelParameters& p);
 
 // Covariance shape of a sample's predicted reference under wheel noise (eq. 4.16: each wheel's
@@ -88,7 +85,7 @@ struct NoiseShape {
   Eigen::Matrix3d per_k2 = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d quantization = Eigen::Matrix3d::Zero();
 };
-NoiseShape odometry_noise_shape(const CalibrationData& data, const CalibrationSample& sample,
-                                const ModelParameters& p, double virtual_track);
+NoiseShape odometry_noise_shape(const CalibrationData& data, const CalibrationSample& sample, const ModelParameters& p,
+                                double virtual_track);
 
 }  // namespace locbench

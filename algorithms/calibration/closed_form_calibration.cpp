@@ -20,26 +20,19 @@ Eigen::Vector2d rotation_regressors(const CalibrationData& data, const Calibrati
   for (const OdometryIncrement& inc : s.increments) {
     switch (data.kind) {
       case OdometryInputKind::kWheelTicks:
-        a += Eigen::Vector2d(data.meters_per_tick_left * inc.first,
-                             data.meters_per_tick_right * inc.second);
+        a += Eigen::Vector2d(data.meters_per_tick_left * inc.first, data.meters_per_tick_right * inc.second);
         break;
-      case OdometryInputKind::kWheelAngles:
-        a += Eigen::Vector2d(inc.first, inc.second);
-        break;
-      case OdometryInputKind::kBodyIncrements:
-        a += Eigen::Vector2d(inc.second, inc.first);
-        break;
-      case OdometryInputKind::kVelocityIntegrals:
-        a += Eigen::Vector2d(inc.second, inc.dt);
-        break;
+      case OdometryInputKind::kWheelAngles: a += Eigen::Vector2d(inc.first, inc.second); break;
+      case OdometryInputKind::kBodyIncrements: a += Eigen::Vector2d(inc.second, inc.first); break;
+      case OdometryInputKind::kVelocityIntegrals: a += Eigen::Vector2d(inc.second, inc.dt); break;
     }
   }
   return a;
 }
 
 // Minimum-norm correction of x0: x0 + A⁺(y − A·x0), A⁺ by SVD with a relative cutoff.
-Eigen::VectorXd min_norm_update(const Eigen::MatrixXd& A, const Eigen::VectorXd& y,
-                                const Eigen::VectorXd& x0, double& condition) {
+Eigen::VectorXd min_norm_update(const Eigen::MatrixXd& A, const Eigen::VectorXd& y, const Eigen::VectorXd& x0,
+                                double& condition) {
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd s = svd.singularValues();
   condition = std::numeric_limits<double>::infinity();
@@ -72,11 +65,9 @@ ClosedFormResult closed_form_calibration(const CalibrationData& data, const Mode
   out.parameters = start;
 
   // ---- Step 1: rotation coefficients β (wheels: J21, J22; others: q1, q2).
-  Eigen::Vector2d beta0 =
-      wheels ? Eigen::Vector2d(-q0(0) / q0(2), q0(1) / q0(2)) : Eigen::Vector2d(q0(1), q0(2));
-  std::array<bool, 2> beta_free = wheels
-                                      ? std::array<bool, 2>{free[0] || free[2], free[1] || free[2]}
-                                      : std::array<bool, 2>{free[1], free[2]};
+  Eigen::Vector2d beta0 = wheels ? Eigen::Vector2d(-q0(0) / q0(2), q0(1) / q0(2)) : Eigen::Vector2d(q0(1), q0(2));
+  std::array<bool, 2> beta_free =
+      wheels ? std::array<bool, 2>{free[0] || free[2], free[1] || free[2]} : std::array<bool, 2>{free[1], free[2]};
   const Eigen::Index nfree = (beta_free[0] ? 1 : 0) + (beta_free[1] ? 1 : 0);
   const auto n = static_cast<Eigen::Index>(data.samples.size());
   Eigen::Vector2d beta = beta0;
@@ -144,8 +135,7 @@ ClosedFormResult closed_form_calibration(const CalibrationData& data, const Mode
     double num = 0.0, den = 0.0;
     for (const CalibrationSample& s : data.samples) {
       const Pose2 o = predict_robot_displacement(data, s, unit);
-      const Pose2 ref =
-          data.sensor_reference ? sensor * s.reference * sensor.inverse() : s.reference;
+      const Pose2 ref = data.sensor_reference ? sensor * s.reference * sensor.inverse() : s.reference;
       num += o.x * ref.x + o.y * ref.y;
       den += o.x * o.x + o.y * o.y;
     }

@@ -27,11 +27,10 @@ PoseErrors relative_motion_errors(const CalibrationData& data, const ModelParame
   return e;
 }
 
-HeldOutEvaluation evaluate_held_out(const CalibrationData& data,
-                                    const MlCalibrationOptions& options, double training_fraction) {
+HeldOutEvaluation evaluate_held_out(const CalibrationData& data, const MlCalibrationOptions& options,
+                                    double training_fraction) {
   const std::size_t n = data.samples.size();
-  const auto split =
-      static_cast<std::size_t>(std::floor(training_fraction * static_cast<double>(n)));
+  const auto split = static_cast<std::size_t>(std::floor(training_fraction * static_cast<double>(n)));
   if (!(training_fraction > 0.0 && training_fraction < 1.0) || split == 0 || split >= n) {
     throw std::invalid_argument("evaluate_held_out: need samples on both sides of the split");
   }
@@ -58,8 +57,7 @@ HeldOutEvaluation evaluate_held_out(const CalibrationData& train, const Calibrat
   auto reduction = [](double after_rmse, double before_rmse) {
     return before_rmse > 0.0 ? 1.0 - after_rmse / before_rmse : 0.0;
   };
-  out.translation_rmse_reduction =
-      reduction(out.calibrated_translation.rmse, out.nominal_translation.rmse);
+  out.translation_rmse_reduction = reduction(out.calibrated_translation.rmse, out.nominal_translation.rmse);
   out.rotation_rmse_reduction = reduction(out.calibrated_rotation.rmse, out.nominal_rotation.rmse);
   return out;
 }

@@ -32,14 +32,12 @@ struct HeldOutEvaluation {
 // order for log-derived data). With a sensor reference, the nominal odometry is compared with
 // the sensor pose held at the calibrated one, so the numbers measure the odometry alone.
 // Throws std::invalid_argument unless 0 < fraction < 1 leaves samples on both sides.
-HeldOutEvaluation evaluate_held_out(const CalibrationData& data,
-                                    const MlCalibrationOptions& options = {},
+HeldOutEvaluation evaluate_held_out(const CalibrationData& data, const MlCalibrationOptions& options = {},
                                     double training_fraction = 0.5);
 
 // The same with the two sets given: calibrate on `training`, evaluate on `evaluation` (e.g. the
 // held-out half restricted to short relations). Both must have samples and the same kind.
-HeldOutEvaluation evaluate_held_out(const CalibrationData& training,
-                                    const CalibrationData& evaluation,
+HeldOutEvaluation evaluate_held_out(const CalibrationData& training, const CalibrationData& evaluation,
                                     const MlCalibrationOptions& options = {});
 
 }  // namespace locbench

@@ -1,9 +1,9 @@
 #include "algorithms/calibration/identifiability.h"
 
+#include <fmt/format.h>
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
 #include <cmath>
-#include <fmt/format.h>
 #include <limits>
 #include <stdexcept>
 
@@ -11,13 +11,11 @@ namespace locbench {
 
 IdentifiabilityReport analyze_identifiability(const Eigen::MatrixXd& jacobian,
                                               const Eigen::MatrixXd& measurement_covariance,
-                                              const std::vector<std::string>& names,
-                                              const Eigen::VectorXd& values,
+                                              const std::vector<std::string>& names, const Eigen::VectorXd& values,
                                               double relative_tolerance) {
   const Eigen::Index p = jacobian.cols();
   if (static_cast<Eigen::Index>(names.size()) != p || values.size() != p ||
-      measurement_covariance.rows() != jacobian.rows() ||
-      measurement_covariance.cols() != jacobian.rows()) {
+      measurement_covariance.rows() != jacobian.rows() || measurement_covariance.cols() != jacobian.rows()) {
     throw std::invalid_argument("analyze_identifiability: dimensions do not match");
   }
   const Eigen::LLT<Eigen::MatrixXd> llt(measurement_covariance);
@@ -47,9 +45,8 @@ IdentifiabilityReport analyze_identifiability(const Eigen::MatrixXd& jacobian,
     }
   }
   r.covariance = cov;
-  r.condition_number = r.rank == r.parameter_count && r.rank > 0
-                           ? (smax * smax) / (s(r.rank - 1) * s(r.rank - 1))
-                           : std::numeric_limits<double>::infinity();
+  r.condition_number = r.rank == r.parameter_count && r.rank > 0 ? (smax * smax) / (s(r.rank - 1) * s(r.rank - 1))
+                                                                 : std::numeric_limits<double>::infinity();
   for (const Eigen::VectorXd& d : null_dirs) {
     std::string text;
     for (Eigen::Index j = 0; j < p; ++j) {
@@ -69,8 +66,7 @@ IdentifiabilityReport analyze_identifiability(const Eigen::MatrixXd& jacobian,
         break;
       }
     }
-    f.standard_error = f.identifiable ? std::sqrt(cov(j, j))
-                                      : std::numeric_limits<double>::infinity();
+    f.standard_error = f.identifiable ? std::sqrt(cov(j, j)) : std::numeric_limits<double>::infinity();
     r.parameters.push_back(std::move(f));
   }
   return r;

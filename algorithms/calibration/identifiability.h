@@ -14,7 +14,7 @@ struct ParameterFinding {
   double value = 0.0;
   double standard_error = 0.0;  // √(F⁺)ᵢᵢ; +∞ when not identifiable
   bool identifiable = true;
-  std::string reason;           // why not (the undetermined combination), empty otherwise
+  std::string reason;  // why not (the undetermined combination), empty otherwise
 };
 
 struct IdentifiabilityReport {
@@ -32,8 +32,7 @@ struct IdentifiabilityReport {
 // component (above 1e-6) in any null-space direction.
 IdentifiabilityReport analyze_identifiability(const Eigen::MatrixXd& jacobian,
                                               const Eigen::MatrixXd& measurement_covariance,
-                                              const std::vector<std::string>& names,
-                                              const Eigen::VectorXd& values,
+                                              const std::vector<std::string>& names, const Eigen::VectorXd& values,
                                               double relative_tolerance = 1e-10);
 
 }  // namespace locbench

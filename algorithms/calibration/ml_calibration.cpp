@@ -36,7 +36,7 @@ Eigen::VectorXd whiten(const Whitening& w, const Eigen::VectorXd& r) {
 struct NoiseState {
   NoiseModelKind kind = NoiseModelKind::kOdometryPropagated;
   Eigen::Vector3d values = Eigen::Vector3d::Zero();  // σ_x, σ_y, σ_θ or k, σ_t, σ_r
-  double nll = kInf;  // −2 log-likelihood of the residuals it was estimated from
+  double nll = kInf;                                 // −2 log-likelihood of the residuals it was estimated from
 };
 
 Eigen::Matrix3d sample_covariance(const NoiseState& n, const NoiseShape& shape) {
@@ -88,8 +88,7 @@ VarianceFit variance_fit(const Eigen::Vector3d& theta, const std::vector<NoiseSh
   A[2] = Eigen::Vector3d(0.0, 0.0, 1.0).asDiagonal();
   for (std::size_t i = 0; i < shapes.size(); ++i) {
     A[0] = shapes[i].per_k2;
-    const Eigen::Matrix3d S =
-        theta(0) * A[0] + theta(1) * A[1] + theta(2) * A[2] + shapes[i].quantization;
+    const Eigen::Matrix3d S = theta(0) * A[0] + theta(1) * A[1] + theta(2) * A[2] + shapes[i].quantization;
     const double det = S.determinant();
     if (!(det > 0.0)) {
       f.nll = kInf;
@@ -119,8 +118,7 @@ VarianceFit variance_fit(const Eigen::Vector3d& theta, const std::vector<NoiseSh
 // kOdometryPropagated: Fisher scoring on φ = log θ with a backtracking line search; each θ_c
 // stays in [1e-18, 1] (units of k², m², rad²) and a component held at a bound by its gradient
 // leaves the step (e.g. σ_t for exact ground truth goes to the lower bound).
-NoiseState estimate_noise(const NoiseState& start, const std::vector<NoiseShape>& shapes,
-                          const Eigen::VectorXd& r) {
+NoiseState estimate_noise(const NoiseState& start, const std::vector<NoiseShape>& shapes, const Eigen::VectorXd& r) {
   NoiseState n = start;
   const auto m = static_cast<Eigen::Index>(shapes.size());
   if (n.kind == NoiseModelKind::kPerComponent) {
@@ -181,9 +179,7 @@ NoiseState estimate_noise(const NoiseState& start, const std::vector<NoiseShape>
 
 // The alternation has converged when re-estimating the noise no longer changes the likelihood
 // of the residuals noticeably (values heading for a bound may still creep).
-bool noise_converged(const NoiseState& a, const NoiseState& b) {
-  return std::abs(a.nll - b.nll) < 1e-3;
-}
+bool noise_converged(const NoiseState& a, const NoiseState& b) { return std::abs(a.nll - b.nll) < 1e-3; }
 
 // ---- One solve on a set of samples ----------------------------------------------------------
 
@@ -208,14 +204,12 @@ Solution solve(const Problem& pb, const ParameterMask& free_mask, const ModelPar
   Eigen::VectorXd x = p.free_values(p.base);
   NoiseState noise;
   noise.kind = opt.noise.kind;
-  noise.values =
-      opt.noise.kind == NoiseModelKind::kPerComponent
-          ? Eigen::Vector3d(opt.noise.sigma_x, opt.noise.sigma_y, opt.noise.sigma_theta)
-          : Eigen::Vector3d(opt.noise.k, opt.noise.sigma_translation, opt.noise.sigma_rotation);
+  noise.values = opt.noise.kind == NoiseModelKind::kPerComponent
+                     ? Eigen::Vector3d(opt.noise.sigma_x, opt.noise.sigma_y, opt.noise.sigma_theta)
+                     : Eigen::Vector3d(opt.noise.k, opt.noise.sigma_translation, opt.noise.sigma_rotation);
   if (opt.noise.estimate) {
     // Start the noise from the closed form's residuals.
-    noise = estimate_noise(noise, noise_shapes(p, p.full(x), opt.noise.virtual_track),
-                           p.residuals(p.full(x)));
+    noise = estimate_noise(noise, noise_shapes(p, p.full(x), opt.noise.virtual_track), p.residuals(p.full(x)));
   }
   const int rounds = opt.noise.estimate ? std::max(1, opt.noise_iterations) : 1;
   sol.whitening.resize(p.active.size());
@@ -226,13 +220,12 @@ Solution solve(const Problem& pb, const ParameterMask& free_mask, const ModelPar
       throw std::invalid_argument("calibrate_ml: a sample covariance is not positive definite");
     }
     if (problem) ml_solver::restrict_to_determined(*problem, x);
-    const LmOutcome lm = problem ? ml_solver::levenberg_marquardt(*problem, x, opt.max_iterations)
-                                 : LmOutcome{0, true};
+    const LmOutcome lm = problem ? ml_solver::levenberg_marquardt(*problem, x, opt.max_iterations) : LmOutcome{0, true};
     sol.iterations += lm.iterations;
     sol.converged = lm.converged;
     if (!opt.noise.estimate) break;
-    const NoiseState next = estimate_noise(
-        noise, noise_shapes(p, p.full(x), opt.noise.virtual_track), p.residuals(p.full(x)));
+    const NoiseState next =
+        estimate_noise(noise, noise_shapes(p, p.full(x), opt.noise.virtual_track), p.residuals(p.full(x)));
     const bool done = noise_converged(noise, next);
     noise = next;
     if (done) break;
@@ -283,8 +276,7 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   for (const CalibrationSample& s : data.samples) {
     if (!is_finite(s)) throw std::invalid_argument("calibrate_ml: non-finite sample");
   }
-  if (opt.outliers.iterations < 0 || !(opt.outliers.fraction > 0.0) ||
-      !(opt.outliers.fraction <= 0.5)) {
+  if (opt.outliers.iterations < 0 || !(opt.outliers.fraction > 0.0) || !(opt.outliers.fraction <= 0.5)) {
     throw std::invalid_argument("calibrate_ml: outliers need iterations >= 0, 0 < fraction <= 0.5");
   }
   if (opt.max_iterations < 1 || !(opt.noise.virtual_track > 0.0)) {
@@ -293,8 +285,7 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   if (!opt.noise.estimate &&
       (opt.noise.kind == NoiseModelKind::kPerComponent
            ? !(opt.noise.sigma_x > 0.0 && opt.noise.sigma_y > 0.0 && opt.noise.sigma_theta > 0.0)
-           : !(opt.noise.k >= 0.0 && opt.noise.sigma_translation > 0.0 &&
-               opt.noise.sigma_rotation > 0.0))) {
+           : !(opt.noise.k >= 0.0 && opt.noise.sigma_translation > 0.0 && opt.noise.sigma_rotation > 0.0))) {
     throw std::invalid_argument("calibrate_ml: fixed noise values must be positive");
   }
 
@@ -306,8 +297,7 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
     names[static_cast<std::size_t>(j)] = odo_names[static_cast<std::size_t>(j)];
     names[static_cast<std::size_t>(j) + 3] = sensor_names[static_cast<std::size_t>(j)];
   }
-  const bool wheels =
-      data.kind == OdometryInputKind::kWheelTicks || data.kind == OdometryInputKind::kWheelAngles;
+  const bool wheels = data.kind == OdometryInputKind::kWheelTicks || data.kind == OdometryInputKind::kWheelAngles;
   ParameterMask free{true, true, wheels, false, false, false};
   if (data.kind == OdometryInputKind::kBodyIncrements) free[2] = opt.estimate_rotation_per_distance;
   if (data.kind == OdometryInputKind::kVelocityIntegrals) free[2] = opt.estimate_rotation_rate_bias;
@@ -352,12 +342,11 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   // A square root of F (F = RᵀR) carries the same information as the whitened Jacobian itself,
   // in p rows instead of 3n (identifiability.h would otherwise need a 3n × 3n identity).
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(F);
-  const Eigen::MatrixXd R =
-      eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * eig.eigenvectors().transpose();
+  const Eigen::MatrixXd R = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * eig.eigenvectors().transpose();
   std::vector<std::string> free_names;
   for (int j : pb.free) free_names.push_back(names[static_cast<std::size_t>(j)]);
-  res.identifiability = analyze_identifiability(R, Eigen::MatrixXd::Identity(R.rows(), R.rows()),
-                                                free_names, x, opt.identifiability_tolerance);
+  res.identifiability = analyze_identifiability(R, Eigen::MatrixXd::Identity(R.rows(), R.rows()), free_names, x,
+                                                opt.identifiability_tolerance);
   res.covariance = res.identifiability.covariance;
 
   res.kind = data.kind;
@@ -368,8 +357,8 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   for (std::size_t j = 0; j < pb.free.size(); ++j) {
     const int k = pb.free[j];
     const ParameterFinding& f = res.identifiability.parameters[j];
-    res.parameters.push_back({names[static_cast<std::size_t>(k)], sol.values(k), nominal(k),
-                              f.standard_error, closed(k), f.identifiable, f.reason});
+    res.parameters.push_back({names[static_cast<std::size_t>(k)], sol.values(k), nominal(k), f.standard_error,
+                              closed(k), f.identifiable, f.reason});
   }
   res.noise_kind = sol.noise.kind;
   res.noise = sol.noise.values;

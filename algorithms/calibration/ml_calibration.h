@@ -5,10 +5,10 @@
 // (IEEE T-RO 2013) do — with a covariance for every estimate. ML_CALIBRATION.md has the details.
 //
 // Estimator: the closed form (closed_form_calibration.h) gives the start; then a joint
-// Levenberg–Marquardt minimisation (Ceres Solver, ml_calibration_solver.h) of Σ rᵢᵀ Σᵢ⁻¹ rᵢ over all free parameters, rᵢ = predicted −
-// reference displacement, alternated with the ML estimate of the noise model's unknown
-// variances (Σᵢ evaluated at the current parameters and held fixed within each solve).
-// Covariance: the inverse Fisher information (Σ Jᵢᵀ Σᵢ⁻¹ Jᵢ)⁻¹ at the solution.
+// Levenberg–Marquardt minimisation (Ceres Solver, ml_calibration_solver.h) of Σ rᵢᵀ Σᵢ⁻¹ rᵢ over all free parameters,
+// rᵢ = predicted − reference displacement, alternated with the ML estimate of the noise model's unknown variances (Σᵢ
+// evaluated at the current parameters and held fixed within each solve). Covariance: the inverse Fisher information (Σ
+// Jᵢᵀ Σᵢ⁻¹ Jᵢ)⁻¹ at the solution.
 #include <Eigen/Core>
 #include <cstddef>
 #include <string>
@@ -113,7 +113,6 @@ struct MlCalibrationResult {
 
 // Throws std::invalid_argument for data without samples, non-finite samples, more free
 // parameters than 3 × samples, an unknown name in `fixed`, or invalid options.
-MlCalibrationResult calibrate_ml(const CalibrationData& data,
-                                 const MlCalibrationOptions& options = {});
+MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibrationOptions& options = {});
 
 }  // namespace locbench

@@ -1,7 +1,7 @@
 #include "algorithms/calibration/ml_calibration_solver.h"
 
-#include <ceres/crs_matrix.h>
 #include <ceres/cost_function.h>
+#include <ceres/crs_matrix.h>
 #include <ceres/manifold.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
@@ -75,8 +75,7 @@ class WhitenedResidual final : public ceres::CostFunction {
 }  // namespace
 
 // The Ceres problem Σ‖Σᵢ⁻¹ᐟ² rᵢ‖² over the free parameters `x` (one parameter block).
-std::unique_ptr<ceres::Problem> whitened_problem(const Problem& pb, const Whitening& w,
-                                                 Eigen::VectorXd& x) {
+std::unique_ptr<ceres::Problem> whitened_problem(const Problem& pb, const Whitening& w, Eigen::VectorXd& x) {
   ceres::Problem::Options po;
   auto problem = std::make_unique<ceres::Problem>(po);
   for (std::size_t i = 0; i < pb.active.size(); ++i) {
@@ -131,8 +130,7 @@ namespace {
 class LinearSubspace final : public ceres::Manifold {
  public:
   explicit LinearSubspace(Eigen::MatrixXd basis)
-      : basis_(std::move(basis)),
-        inverse_(basis_.completeOrthogonalDecomposition().pseudoInverse()) {}
+      : basis_(std::move(basis)), inverse_(basis_.completeOrthogonalDecomposition().pseudoInverse()) {}
   int AmbientSize() const override { return static_cast<int>(basis_.rows()); }
   int TangentSize() const override { return static_cast<int>(basis_.cols()); }
   bool Plus(const double* x, const double* delta, double* x_plus_delta) const override {
@@ -147,8 +145,8 @@ class LinearSubspace final : public ceres::Manifold {
   }
   bool Minus(const double* y, const double* x, double* y_minus_x) const override {
     Eigen::Map<Eigen::VectorXd>(y_minus_x, basis_.cols()) =
-        inverse_ * (Eigen::Map<const Eigen::VectorXd>(y, basis_.rows()) -
-                    Eigen::Map<const Eigen::VectorXd>(x, basis_.rows()));
+        inverse_ *
+        (Eigen::Map<const Eigen::VectorXd>(y, basis_.rows()) - Eigen::Map<const Eigen::VectorXd>(x, basis_.rows()));
     return true;
   }
   bool MinusJacobian(const double* /*x*/, double* jacobian) const override {
@@ -176,8 +174,7 @@ void restrict_to_determined(ceres::Problem& problem, Eigen::VectorXd& x) {
   const auto rows = 3 * static_cast<Eigen::Index>(problem.NumResidualBlocks());
   const Eigen::MatrixXd J = whitened_jacobian(problem, rows, x.size());
   const Eigen::MatrixXd H = J.transpose() * J;
-  const Eigen::VectorXd d =
-      H.diagonal().cwiseMax(1e-12 * H.diagonal().maxCoeff() + 1e-300).cwiseSqrt().cwiseInverse();
+  const Eigen::VectorXd d = H.diagonal().cwiseMax(1e-12 * H.diagonal().maxCoeff() + 1e-300).cwiseSqrt().cwiseInverse();
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(d.asDiagonal() * H * d.asDiagonal());
   const double emax = eig.eigenvalues().maxCoeff();
   std::vector<Eigen::Index> kept;

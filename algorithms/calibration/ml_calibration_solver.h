@@ -41,8 +41,7 @@ struct Problem {
     const ModelParameters p = ModelParameters::from_vector(v);
     Eigen::VectorXd r(3 * static_cast<Eigen::Index>(active.size()));
     for (std::size_t i = 0; i < active.size(); ++i) {
-      r.segment<3>(3 * static_cast<Eigen::Index>(i)) =
-          reference_residual(data, data.samples[active[i]], p);
+      r.segment<3>(3 * static_cast<Eigen::Index>(i)) = reference_residual(data, data.samples[active[i]], p);
     }
     return r;
   }
@@ -54,8 +53,7 @@ using Whitening = std::vector<Eigen::Matrix3d>;
 // The Ceres problem Σ‖Σᵢ⁻¹ᐟ² rᵢ‖² over the free parameters `x` (one parameter block, which
 // Ceres reads and writes in place: `x` must outlive the problem). `w` is read at every
 // evaluation, so the noise alternation may replace its matrices between solves.
-std::unique_ptr<ceres::Problem> whitened_problem(const Problem& pb, const Whitening& w,
-                                                 Eigen::VectorXd& x);
+std::unique_ptr<ceres::Problem> whitened_problem(const Problem& pb, const Whitening& w, Eigen::VectorXd& x);
 
 // Whitened Jacobian (3 rows per active sample) at the parameter block's current values.
 Eigen::MatrixXd whitened_jacobian(ceres::Problem& problem, Eigen::Index rows, Eigen::Index cols);

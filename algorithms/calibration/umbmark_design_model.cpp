@@ -40,8 +40,7 @@ Ticks command(double left, double right, const NominalModel& m, const UmbmarkDes
   };
   if (o.equal_wheel_ticks) {
     const double c = 0.5 * (m.meters_per_tick_left + m.meters_per_tick_right);
-    return {std::copysign(count(std::abs(left), c), left),
-            std::copysign(count(std::abs(right), c), right)};
+    return {std::copysign(count(std::abs(left), c), left), std::copysign(count(std::abs(right), c), right)};
   }
   return {std::copysign(count(std::abs(left), m.meters_per_tick_left), left),
           std::copysign(count(std::abs(right), m.meters_per_tick_right), right)};
@@ -49,9 +48,8 @@ Ticks command(double left, double right, const NominalModel& m, const UmbmarkDes
 
 }  // namespace
 
-UmbmarkPrediction predict_umbmark(const WheelGeometry& nominal, const EncoderSpec& encoder,
-                                  double side_length, const UmbmarkErrorParams& truth,
-                                  const UmbmarkDesignOptions& options) {
+UmbmarkPrediction predict_umbmark(const WheelGeometry& nominal, const EncoderSpec& encoder, double side_length,
+                                  const UmbmarkErrorParams& truth, const UmbmarkDesignOptions& options) {
   const RobotParams robot{nominal, true_geometry(nominal, truth), encoder};
   const NominalModel nm = robot.nominal_model();
   const NominalModel am = robot.actual_model();
@@ -69,20 +67,18 @@ UmbmarkPrediction predict_umbmark(const WheelGeometry& nominal, const EncoderSpe
   const Pose2 one_leg = arc(Pose2{}, true_left, true_right, am.wheelbase);
   out.leg_chord = std::hypot(one_leg.x, one_leg.y);
   out.leg_heading_change = (true_right - true_left) / am.wheelbase;
-  out.turn_angle =
-      (turn.left * am.meters_per_tick_left + turn.right * am.meters_per_tick_right) / am.wheelbase;
+  out.turn_angle = (turn.left * am.meters_per_tick_left + turn.right * am.meters_per_tick_right) / am.wheelbase;
 
   for (const bool cw : {true, false}) {
     const double sign = cw ? -1.0 : 1.0;  // clockwise: right turns
     Pose2 t, o;                           // true pose and odometry, start frame
     for (int side = 0; side < 4; ++side) {
       t = arc(t, true_left, true_right, am.wheelbase);
-      o = arc(o, leg.left * nm.meters_per_tick_left, leg.right * nm.meters_per_tick_right,
+      o = arc(o, leg.left * nm.meters_per_tick_left, leg.right * nm.meters_per_tick_right, nm.wheelbase);
+      t = arc(t, -sign * turn.left * am.meters_per_tick_left, sign * turn.right * am.meters_per_tick_right,
+              am.wheelbase);
+      o = arc(o, -sign * turn.left * nm.meters_per_tick_left, sign * turn.right * nm.meters_per_tick_right,
               nm.wheelbase);
-      t = arc(t, -sign * turn.left * am.meters_per_tick_left,
-              sign * turn.right * am.meters_per_tick_right, am.wheelbase);
-      o = arc(o, -sign * turn.left * nm.meters_per_tick_left,
-              sign * turn.right * nm.meters_per_tick_right, nm.wheelbase);
     }
     const Eigen::Vector2d e = t.translation() - o.translation();
     const double h = angle_diff(t.theta, o.theta);
@@ -94,12 +90,9 @@ UmbmarkPrediction predict_umbmark(const WheelGeometry& nominal, const EncoderSpe
 
 std::string to_string(UmbmarkDesign d) {
   switch (d) {
-    case UmbmarkDesign::kSquare:
-      return "square";
-    case UmbmarkDesign::kSquareWithLegTicks:
-      return "square + logged leg counts N_L, N_R";
-    case UmbmarkDesign::kSquareWithTapedLeg:
-      return "square + tape-measured straight leg";
+    case UmbmarkDesign::kSquare: return "square";
+    case UmbmarkDesign::kSquareWithLegTicks: return "square + logged leg counts N_L, N_R";
+    case UmbmarkDesign::kSquareWithTapedLeg: return "square + tape-measured straight leg";
     case UmbmarkDesign::kSquareWithTapedLegAndLegTicks:
       return "square + tape-measured straight leg + logged leg counts";
   }
@@ -107,19 +100,16 @@ std::string to_string(UmbmarkDesign d) {
 }
 
 std::string to_string(UmbmarkParameterSet p) {
-  return p == UmbmarkParameterSet::kClassic ? "classic (E_d, E_b; E_o known)"
-                                            : "improved (E_d, E_b, E_o)";
+  return p == UmbmarkParameterSet::kClassic ? "classic (E_d, E_b; E_o known)" : "improved (E_d, E_b, E_o)";
 }
 
 namespace {
 
 bool has_leg_ticks(UmbmarkDesign d) {
-  return d == UmbmarkDesign::kSquareWithLegTicks ||
-         d == UmbmarkDesign::kSquareWithTapedLegAndLegTicks;
+  return d == UmbmarkDesign::kSquareWithLegTicks || d == UmbmarkDesign::kSquareWithTapedLegAndLegTicks;
 }
 bool has_taped_leg(UmbmarkDesign d) {
-  return d == UmbmarkDesign::kSquareWithTapedLeg ||
-         d == UmbmarkDesign::kSquareWithTapedLegAndLegTicks;
+  return d == UmbmarkDesign::kSquareWithTapedLeg || d == UmbmarkDesign::kSquareWithTapedLegAndLegTicks;
 }
 
 // The design's measurement vector: centroids (x_cw, y_cw, x_ccw, y_ccw) [m], then N_L, N_R
@@ -150,8 +140,7 @@ std::string remedy_for(const std::string& parameter) {
 
 }  // namespace
 
-UmbmarkDesignFinding analyze_umbmark_design(UmbmarkDesign design, UmbmarkParameterSet set,
-                                            const WheelGeometry& nominal,
+UmbmarkDesignFinding analyze_umbmark_design(UmbmarkDesign design, UmbmarkParameterSet set, const WheelGeometry& nominal,
                                             const EncoderSpec& encoder, double side_length,
                                             const UmbmarkErrorParams& at,
                                             const UmbmarkIdentifiabilityOptions& options) {
@@ -178,8 +167,7 @@ UmbmarkDesignFinding analyze_umbmark_design(UmbmarkDesign design, UmbmarkParamet
     return e;
   };
   auto h = [&](const Eigen::VectorXd& v) {
-    return measure(design,
-                   predict_umbmark(nominal, encoder, side_length, params_of(v), options.model));
+    return measure(design, predict_umbmark(nominal, encoder, side_length, params_of(v), options.model));
   };
   const Eigen::VectorXd y0 = h(values);
   f.jacobian = Eigen::MatrixXd::Zero(y0.size(), p);
@@ -202,8 +190,8 @@ UmbmarkDesignFinding analyze_umbmark_design(UmbmarkDesign design, UmbmarkParamet
     f.measurements.push_back("taped leg length");
     variances.push_back(options.tape_sigma * options.tape_sigma);
   }
-  const Eigen::VectorXd var = Eigen::Map<const Eigen::VectorXd>(
-      variances.data(), static_cast<Eigen::Index>(variances.size()));
+  const Eigen::VectorXd var =
+      Eigen::Map<const Eigen::VectorXd>(variances.data(), static_cast<Eigen::Index>(variances.size()));
   f.report = analyze_identifiability(f.jacobian, var.asDiagonal().toDenseMatrix(), names, values);
 
   for (auto& par : f.report.parameters) {

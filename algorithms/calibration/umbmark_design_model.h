@@ -61,9 +61,8 @@ struct UmbmarkPrediction {
   double turn_angle = 0.0;
 };
 
-UmbmarkPrediction predict_umbmark(const WheelGeometry& nominal, const EncoderSpec& encoder,
-                                  double side_length, const UmbmarkErrorParams& truth,
-                                  const UmbmarkDesignOptions& options = {});
+UmbmarkPrediction predict_umbmark(const WheelGeometry& nominal, const EncoderSpec& encoder, double side_length,
+                                  const UmbmarkErrorParams& truth, const UmbmarkDesignOptions& options = {});
 
 // ---- Identifiability of the error sources from a design's measurements ----
 
@@ -106,8 +105,7 @@ struct UmbmarkDesignFinding {
 
 // The Fisher-information analysis (analyze_identifiability) of `design` for the parameters of
 // `set`, with the Jacobian taken by central differences of predict_umbmark at `at`.
-UmbmarkDesignFinding analyze_umbmark_design(UmbmarkDesign design, UmbmarkParameterSet set,
-                                            const WheelGeometry& nominal,
+UmbmarkDesignFinding analyze_umbmark_design(UmbmarkDesign design, UmbmarkParameterSet set, const WheelGeometry& nominal,
                                             const EncoderSpec& encoder, double side_length,
                                             const UmbmarkErrorParams& at,
                                             const UmbmarkIdentifiabilityOptions& options = {});

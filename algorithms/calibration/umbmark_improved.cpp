@@ -9,8 +9,7 @@
 
 namespace locbench {
 
-ImprovedUmbmarkResult improved_umbmark(const UmbmarkInput& in,
-                                       const ImprovedUmbmarkOptions& options) {
+ImprovedUmbmarkResult improved_umbmark(const UmbmarkInput& in, const ImprovedUmbmarkOptions& options) {
   check_umbmark_input(in, true);
   if (!(options.measured_leg_length >= 0.0) || !std::isfinite(options.measured_leg_length)) {
     throw std::invalid_argument("improved UMBmark: measured_leg_length must be ≥ 0");
@@ -56,8 +55,7 @@ ImprovedUmbmarkResult improved_umbmark(const UmbmarkInput& in,
   // Step 4 (2.18–2.23). β·R → chord as β → 0: (chord/2)·β/sin(β/2).
   r.radius_left = r.radius - b / 2.0;
   r.radius_right = r.radius + b / 2.0;
-  const double beta_r =
-      std::abs(r.beta) < 1e-8 ? chord : (chord / 2.0) * r.beta / std::sin(r.beta / 2.0);
+  const double beta_r = std::abs(r.beta) < 1e-8 ? chord : (chord / 2.0) * r.beta / std::sin(r.beta / 2.0);
   r.arc_left = beta_r - r.beta * b / 2.0;   // β·(R − B/2)
   r.arc_right = beta_r + r.beta * b / 2.0;  // β·(R + B/2)
   r.c_L = r.arc_left / static_cast<double>(in.leg_ticks_left);

@@ -67,7 +67,6 @@ struct ImprovedUmbmarkResult {
 
 // Throws std::invalid_argument for input check_umbmark_input rejects (leg counts required), or
 // when the angles are too large for 2.5/2.27.
-ImprovedUmbmarkResult improved_umbmark(const UmbmarkInput& in,
-                                       const ImprovedUmbmarkOptions& options = {});
+ImprovedUmbmarkResult improved_umbmark(const UmbmarkInput& in, const ImprovedUmbmarkOptions& options = {});
 
 }  // namespace locbench

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "algorithms/diagnosis/motion_windows.h"
 #include "core/angle.h"
 #include "core/chi_square.h"
 #include "core/statistics.h"
 #include "core/units.h"
-#include "algorithms/diagnosis/motion_windows.h"
 
 #include <fmt/format.h>
 
@@ -44,14 +44,12 @@ double log_density(double e, double step, double sigma) {
   if (step <= 0.0) return -0.5 * (e * e / (sigma * sigma)) - std::log(sigma * std::sqrt(2.0 * kPi));
   const double hi = (e + 0.5 * step) / sigma, lo = (e - 0.5 * step) / sigma;
   // Φ(hi) − Φ(lo) through the upper tails for accuracy far from 0.
-  const double mass = lo > 0.0 ? normal_upper_tail(lo) - normal_upper_tail(hi)
-                               : normal_upper_tail(-hi) - normal_upper_tail(-lo);
+  const double mass =
+      lo > 0.0 ? normal_upper_tail(lo) - normal_upper_tail(hi) : normal_upper_tail(-hi) - normal_upper_tail(-lo);
   return std::log(std::max(mass, 1e-300) / step);
 }
 
-bool in_zone(const CompassZone& z, double x, double y) {
-  return z.enabled && std::hypot(x - z.x, y - z.y) <= z.radius;
-}
+bool in_zone(const CompassZone& z, double x, double y) { return z.enabled && std::hypot(x - z.x, y - z.y) <= z.radius; }
 
 }  // namespace
 
@@ -71,8 +69,7 @@ double compass_nll(const CompassData& d, const CompassModel& m, const std::vecto
   return nll;
 }
 
-CompassZone best_compass_zone(const CompassData& d, const CompassModel& m,
-                              const std::vector<std::size_t>& index) {
+CompassZone best_compass_zone(const CompassData& d, const CompassModel& m, const std::vector<std::size_t>& index) {
   const auto res = compass_residuals(d, m.time_offset);
   std::vector<const CompassResidual*> use;
   for (std::size_t k : index) {
@@ -139,7 +136,8 @@ struct CompassFit {
 
 class CompassFitter {
  public:
-  CompassFitter(const CompassData& d, std::vector<std::size_t> index, double dt) : d_(d), index_(std::move(index)), dt_(dt) {}
+  CompassFitter(const CompassData& d, std::vector<std::size_t> index, double dt)
+      : d_(d), index_(std::move(index)), dt_(dt) {}
   double nll(const CompassModel& m) const { return compass_nll(d_, m, index_); }
 
   // Newton on σ, bias and zone bias; a free offset profiled with the others held, alternating,
@@ -259,11 +257,14 @@ ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt
     c.value = lt.value;
     c.threshold = 0.99;
     if (coarser) {
-      c.parameters.push_back({"step_rad", lat->step, lat->step - lat->step_uncertainty, lat->step + lat->step_uncertainty});
-      c.parameters.push_back({"offset_rad", lat->offset, lat->offset - lat->step_uncertainty, lat->offset + lat->step_uncertainty});
+      c.parameters.push_back(
+          {"step_rad", lat->step, lat->step - lat->step_uncertainty, lat->step + lat->step_uncertainty});
+      c.parameters.push_back(
+          {"offset_rad", lat->offset, lat->offset - lat->step_uncertainty, lat->offset + lat->step_uncertainty});
       CompassModel with = declared;
       with.step = lat->step;
-      with.sigma = std::max(1e-4, std::sqrt(std::max(0.0, nominal.model.sigma * nominal.model.sigma - lat->step * lat->step / 12.0)));
+      with.sigma = std::max(
+          1e-4, std::sqrt(std::max(0.0, nominal.model.sigma * nominal.model.sigma - lat->step * lat->step / 12.0)));
       base = fitter.fit({}, with);
       c.gains.push_back(heldout(nominal.model, base.model));
     }
@@ -273,7 +274,8 @@ ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt
   const auto& ids = compass_candidates();
   std::map<std::vector<std::size_t>, CompassFit> fits;
   std::map<std::size_t, std::size_t> discs;  // disc scans: candidates searched
-  std::function<const CompassFit&(std::vector<std::size_t>)> fit_set = [&](std::vector<std::size_t> active) -> const CompassFit& {
+  std::function<const CompassFit&(std::vector<std::size_t>)> fit_set =
+      [&](std::vector<std::size_t> active) -> const CompassFit& {
     if (active.empty()) return base;
     std::vector<std::size_t> key = active;
     std::sort(key.begin(), key.end());
@@ -292,7 +294,8 @@ ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt
       ids.size(), base.nll,
       [&](std::size_t i) {
         // The disc is the best of those searched: its bias is judged at the level divided over them.
-        const double scan = ids[i] == cause::kCompassDisturbance && discs.count(i) ? static_cast<double>(discs[i]) : 1.0;
+        const double scan =
+            ids[i] == cause::kCompassDisturbance && discs.count(i) ? static_cast<double>(discs[i]) : 1.0;
         return chi_square_upper_quantile(ChiSquareDof(1.0), opt.false_alarm / (static_cast<double>(ids.size()) * scan));
       },
       [&](const std::vector<std::size_t>& active) {
@@ -312,7 +315,8 @@ ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt
     if (auto e = f.estimate(ids[i])) c.parameters.push_back(*e);
     if (ids[i] == cause::kTimeOffset) c.extra["sensor"] = "compass";
     if (ids[i] == cause::kCompassDisturbance && f.model.zone.enabled) {
-      c.extra["region"] = {{"shape", "disc"}, {"center_m", {f.model.zone.x, f.model.zone.y}}, {"radius_m", f.model.zone.radius}};
+      c.extra["region"] = {
+          {"shape", "disc"}, {"center_m", {f.model.zone.x, f.model.zone.y}}, {"radius_m", f.model.zone.radius}};
     }
     if (entered) {
       std::vector<std::size_t> others;
@@ -323,16 +327,17 @@ ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt
       c.validated = c.gains.front().relative() > 0.0;
       c.detected = *c.validated;
       if (!c.detected) {
-        out.heldout_notes.emplace_back(c.id, fmt::format("{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not "
-                                                         "improve the held-out readings ({:.4g} → {:.4g})",
-                                                         c.id, c.value, c.threshold, c.gains.front().before,
-                                                         c.gains.front().after));
+        out.heldout_notes.emplace_back(
+            c.id, fmt::format("{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not "
+                              "improve the held-out readings ({:.4g} → {:.4g})",
+                              c.id, c.value, c.threshold, c.gains.front().before, c.gains.front().after));
       }
     }
     c.explanation = explain(c);
     out.causes.push_back(c);
   }
-  std::stable_sort(out.causes.begin(), out.causes.end(), [](const Cause& a, const Cause& b) { return a.detected > b.detected; });
+  std::stable_sort(out.causes.begin(), out.causes.end(),
+                   [](const Cause& a, const Cause& b) { return a.detected > b.detected; });
   std::vector<std::size_t> kept;
   for (std::size_t i : sel.entered) {
     for (const auto& c : out.causes) {
@@ -359,7 +364,8 @@ ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt
   out.remaining.push_back(dependence_test(rr, fy, "position_dependence", "compass", "y"));
   // A kept lattice accounts for the moment tests its round-off disturbs (cause_catalog.cpp).
   if (coarser) {
-    std::erase_if(out.remaining, [](const ResidualTest& t) { return accounts_for(cause_spec(cause::kCompassQuantization), t); });
+    std::erase_if(out.remaining,
+                  [](const ResidualTest& t) { return accounts_for(cause_spec(cause::kCompassQuantization), t); });
   }
   // Lead/lag only when the best offset is beyond the resolution (see the odometry channel).
   if (offset_resolved(fit_set({1}).model.time_offset)) {

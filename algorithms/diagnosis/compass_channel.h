@@ -6,8 +6,8 @@
 // N(0, σ²) (s = 0). The zone is a disc (centre, radius) in which readings carry an extra bias.
 #include <vector>
 
-#include "core/sensor_data.h"
 #include "algorithms/diagnosis/odometry_channel.h"
+#include "core/sensor_data.h"
 
 namespace locbench::diagnosis {
 
@@ -34,9 +34,9 @@ struct CompassModel {
 
 struct CompassResidual {
   double t = 0.0;
-  double r = 0.0;          // reading − true heading (bias and zone not removed)
+  double r = 0.0;           // reading − true heading (bias and zone not removed)
   double x = 0.0, y = 0.0;  // true position
-  double turn_rate = 0.0;  // true [rad/s]
+  double turn_rate = 0.0;   // true [rad/s]
   bool valid = false;
 };
 
@@ -44,8 +44,7 @@ std::vector<CompassResidual> compass_residuals(const CompassData& d, double time
 double compass_nll(const CompassData& d, const CompassModel& m, const std::vector<std::size_t>& index);
 // The disc with the largest likelihood gain for a constant extra bias inside it, searched over
 // centres on the path and radii 0.25–4 m (at least 10 readings inside and 10 outside).
-CompassZone best_compass_zone(const CompassData& d, const CompassModel& m,
-                              const std::vector<std::size_t>& index);
+CompassZone best_compass_zone(const CompassData& d, const CompassModel& m, const std::vector<std::size_t>& index);
 
 // The compass channel: the readings' lattice (quantization coarser than declared, found from
 // the printed values), then forward selection of compass_bias, sensor_time_offset (profiled, as

@@ -7,11 +7,11 @@
 #include <functional>
 #include <map>
 
-#include "core/errors.h"
-#include "core/option_fields.h"
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/compass_channel.h"
 #include "algorithms/diagnosis/odometry_channel.h"
+#include "core/errors.h"
+#include "core/option_fields.h"
 
 namespace locbench::diagnosis {
 
@@ -34,13 +34,15 @@ namespace {
 std::string verdict_of(const Diagnosis& d) {
   const std::string unconfirmed =
       d.unconfirmed.empty() ? ""
-                            : fmt::format(" ({} cause(s) passed the likelihood-ratio test on the training windows but did "
-                                          "not improve the held-out ones: see unconfirmed)",
-                                          d.unconfirmed.size());
+                            : fmt::format(
+                                  " ({} cause(s) passed the likelihood-ratio test on the training windows but did "
+                                  "not improve the held-out ones: see unconfirmed)",
+                                  d.unconfirmed.size());
   if (d.detected.empty() && d.unexplained.empty()) {
-    return fmt::format("No significant discrepancy: the nominal model explains the residuals against {} "
-                       "at a false-alarm level of {} per channel{}.",
-                       d.reference, d.false_alarm, unconfirmed);
+    return fmt::format(
+        "No significant discrepancy: the nominal model explains the residuals against {} "
+        "at a false-alarm level of {} per channel{}.",
+        d.reference, d.false_alarm, unconfirmed);
   }
   std::string s = "The nominal model ";
   if (!d.detected.empty()) {
@@ -58,7 +60,6 @@ std::string verdict_of(const Diagnosis& d) {
   }
   return s + unconfirmed + ".";
 }
-
 
 // Why a residual structure that survived the kept causes is not accounted for: the catalog
 // cause that would account for it, and what happened to it.
@@ -97,8 +98,10 @@ Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options) {
                          {"meters_per_tick_right", data.nominal.meters_per_tick_right},
                          {"wheelbase_m", data.nominal.wheelbase}};
   } else {
-    out.nominal_model = {{"odometry", "logged pose / velocities"}, {"velocity_scale", 1.0},
-                         {"turn_rate_scale", 1.0}, {"turn_rate_bias_rad_s", 0.0}};
+    out.nominal_model = {{"odometry", "logged pose / velocities"},
+                         {"velocity_scale", 1.0},
+                         {"turn_rate_scale", 1.0},
+                         {"turn_rate_bias_rad_s", 0.0}};
   }
   out.nominal_model["noise"] = "constant white noise per window component (fitted)";
 
@@ -117,18 +120,24 @@ Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options) {
   } else {
     out.not_testable.push_back("compass_bias, compass_quantization, compass_disturbance: need COMPASS and TRUEPOS");
   }
-  out.not_testable.push_back("laser_range_bias, laser_range_scale: need laser scans and a map of the world, which a log does not carry");
+  out.not_testable.push_back(
+      "laser_range_bias, laser_range_scale: need laser scans and a map of the world, which a log does not carry");
   if (data.odometry == OdometryKind::kEncoder) {
-    out.not_testable.push_back("velocity_scale, speed_dependent_scale, turn_rate_scale, turn_rate_bias, drive_response: "
-                               "apply to velocity odometry (ODOM without ENCODER)");
+    out.not_testable.push_back(
+        "velocity_scale, speed_dependent_scale, turn_rate_scale, turn_rate_bias, drive_response: "
+        "apply to velocity odometry (ODOM without ENCODER)");
   } else {
-    out.not_testable.push_back("wheel_diameter_ratio, wheelbase_scale, mean_diameter_scale, encoder_quantization, wheel_slip: need ENCODER counts");
+    out.not_testable.push_back(
+        "wheel_diameter_ratio, wheelbase_scale, mean_diameter_scale, encoder_quantization, wheel_slip: need ENCODER "
+        "counts");
   }
   if (data.reference == ReferenceKind::kCompass) {
-    out.not_testable.push_back("velocity_scale: a heading reference measures no distance (and E_o only through E_o/E_b)");
+    out.not_testable.push_back(
+        "velocity_scale: a heading reference measures no distance (and E_o only through E_o/E_b)");
   }
   if (data.reference == ReferenceKind::kRelations) {
-    out.not_testable.push_back("sensor_time_offset: relations are stamped at the scans, which carry the odometry's clock");
+    out.not_testable.push_back(
+        "sensor_time_offset: relations are stamped at the scans, which carry the odometry's clock");
   }
 
   // Judge once: every test of every channel at the level divided over all of them.
@@ -147,7 +156,9 @@ Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options) {
     for (auto& t : *tests) t.passed = t.p_value > level;
   }
   for (const auto& t : remaining) {
-    if (!t.passed) out.unexplained.push_back({t.name, t.residual, t.variable, t.value, t.p_value, t.strength, reason_for(t, out.causes, notes)});
+    if (!t.passed)
+      out.unexplained.push_back(
+          {t.name, t.residual, t.variable, t.value, t.p_value, t.strength, reason_for(t, out.causes, notes)});
   }
   // Detected: odometry channel by evidence order, then compass; the causes that passed the
   // likelihood ratio but not the held-out check are listed apart (with their reason above).

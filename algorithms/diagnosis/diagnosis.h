@@ -30,13 +30,12 @@ Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options = {});
 struct ResidualHistogram {
   std::string residual;
   std::string unit;
-  std::vector<double> edges;   // SI after reading (rad or m)
+  std::vector<double> edges;  // SI after reading (rad or m)
   std::vector<double> counts;
 };
 // Throws InputError (file, what was expected) for malformed histograms.
 ResidualHistogram read_histogram(const nlohmann::json& j, const std::string& file);
-Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name,
-                             const DiagnosisOptions& options = {});
+Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name, const DiagnosisOptions& options = {});
 
 // The report, "schema": "locbench.diagnosis/1".
 nlohmann::json to_json(const Diagnosis& d);

@@ -9,7 +9,9 @@ namespace {
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 nlohmann::json gain_json(const Gain& g) {
-  return {{"metric", g.metric}, {"before", number(g.before)}, {"after", number(g.after)},
+  return {{"metric", g.metric},
+          {"before", number(g.before)},
+          {"after", number(g.after)},
           {"relative", number(g.relative())}};
 }
 
@@ -24,20 +26,25 @@ nlohmann::json to_json(const Diagnosis& d) {
   j["false_alarm"] = d.false_alarm;
   j["residual_tests"] = nlohmann::json::array();
   for (const auto& t : d.residual_tests) {
-    j["residual_tests"].push_back({{"name", t.name}, {"residual", t.residual}, {"variable", t.variable},
-                                   {"statistic", t.statistic}, {"value", number(t.value)},
-                                   {"p_value", number(t.p_value)}, {"strength", number(t.strength)},
+    j["residual_tests"].push_back({{"name", t.name},
+                                   {"residual", t.residual},
+                                   {"variable", t.variable},
+                                   {"statistic", t.statistic},
+                                   {"value", number(t.value)},
+                                   {"p_value", number(t.p_value)},
+                                   {"strength", number(t.strength)},
                                    {"passed", t.passed}});
   }
   j["causes"] = nlohmann::json::array();
   for (const auto& c : d.causes) {
-    nlohmann::json cj{{"id", c.id},
-                      {"channel", c.channel},
-                      {"detected", c.detected},
-                      {"evidence", {{"statistic", c.statistic}, {"value", number(c.value)}, {"threshold", number(c.threshold)}}},
-                      {"parameters", nlohmann::json::object()},
-                      {"identifiable", c.identifiable},
-                      {"explanation", c.explanation}};
+    nlohmann::json cj{
+        {"id", c.id},
+        {"channel", c.channel},
+        {"detected", c.detected},
+        {"evidence", {{"statistic", c.statistic}, {"value", number(c.value)}, {"threshold", number(c.threshold)}}},
+        {"parameters", nlohmann::json::object()},
+        {"identifiable", c.identifiable},
+        {"explanation", c.explanation}};
     if (c.validated) cj["evidence"]["heldout_validated"] = *c.validated;
     for (const auto& p : c.parameters) {
       cj["parameters"][p.name] = {{"value", number(p.value)}, {"ci95", {number(p.lo), number(p.hi)}}};
@@ -54,9 +61,13 @@ nlohmann::json to_json(const Diagnosis& d) {
   j["detected"] = d.detected;
   j["unexplained"] = nlohmann::json::array();
   for (const auto& u : d.unexplained) {
-    j["unexplained"].push_back({{"test", u.test}, {"residual", u.residual}, {"variable", u.variable},
-                                {"statistic", number(u.statistic)}, {"p_value", number(u.p_value)},
-                                {"strength", number(u.strength)}, {"reason", u.reason}});
+    j["unexplained"].push_back({{"test", u.test},
+                                {"residual", u.residual},
+                                {"variable", u.variable},
+                                {"statistic", number(u.statistic)},
+                                {"p_value", number(u.p_value)},
+                                {"strength", number(u.strength)},
+                                {"reason", u.reason}});
   }
   j["unconfirmed"] = d.unconfirmed;
   j["confounded"] = nlohmann::json::array();
@@ -66,8 +77,10 @@ nlohmann::json to_json(const Diagnosis& d) {
   j["not_testable"] = d.not_testable;
   j["gain"] = nlohmann::json::array();
   for (const auto& g : d.overall_gain) j["gain"].push_back(gain_json(g));
-  j["noise_floor"] = {{"window_s", d.noise_window_s}, {"sigma_x_m", number(d.noise_sigma_x)},
-                      {"sigma_y_m", number(d.noise_sigma_y)}, {"sigma_theta_rad", number(d.noise_sigma_theta)}};
+  j["noise_floor"] = {{"window_s", d.noise_window_s},
+                      {"sigma_x_m", number(d.noise_sigma_x)},
+                      {"sigma_y_m", number(d.noise_sigma_y)},
+                      {"sigma_theta_rad", number(d.noise_sigma_theta)}};
   j["verdict"] = d.verdict;
   return j;
 }

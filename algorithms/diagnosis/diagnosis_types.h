@@ -14,8 +14,8 @@ namespace locbench::diagnosis {
 struct DiagnosisOptions {
   double false_alarm = 0.01;  // per log and channel, divided over the causes tried (Bonferroni)
   WindowOptions windows;
-  std::size_t rpe_chain = 10;   // windows chained into one relative-pose segment
-  std::size_t block = 10;       // hold-out block length in windows (every third block held out)
+  std::size_t rpe_chain = 10;  // windows chained into one relative-pose segment
+  std::size_t block = 10;      // hold-out block length in windows (every third block held out)
 };
 void to_json(nlohmann::json& j, const DiagnosisOptions& o);
 void from_json(const nlohmann::json& j, DiagnosisOptions& o);  // strict: unknown key → UsageError
@@ -76,7 +76,7 @@ struct Diagnosis {
   std::vector<std::string> unconfirmed;
   std::vector<ConfoundedGroup> confounded;
   std::vector<std::string> not_testable;  // catalog ids this input cannot show, with why
-  std::vector<Gain> overall_gain;          // all kept causes together
+  std::vector<Gain> overall_gain;         // all kept causes together
   // The white noise floor of the nominal model fitted on the training windows (1σ per window of
   // `noise_window_s` seconds; x along and y left of the window's start heading, θ): what a
   // simulated twin of the log adds to every window besides the kept causes.

@@ -10,16 +10,16 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.h"
+#include "algorithms/diagnosis/diagnosis.h"
+#include "algorithms/diagnosis/ml_fit.h"
 #include "core/chi_square.h"
+#include "core/errors.h"
 #include "core/input_limits.h"
 #include "core/json_options.h"
 #include "core/rng.h"
+#include "core/skewness_kurtosis_normality.h"
 #include "core/statistics.h"
 #include "core/units.h"
-#include "algorithms/diagnosis/diagnosis.h"
-#include "algorithms/diagnosis/ml_fit.h"
-#include "core/skewness_kurtosis_normality.h"
 
 namespace locbench::diagnosis {
 
@@ -32,14 +32,19 @@ ResidualHistogram read_histogram(const nlohmann::json& j, const std::string& fil
   r.read("residual", h.residual);
   r.read("unit", h.unit);
   double scale = 0.0;
-  if (h.unit == "deg") scale = deg(1.0);
-  else if (h.unit == "rad" || h.unit == "m") scale = 1.0;
-  else if (h.unit == "mm") scale = mm(1.0);
-  else bad("unit '" + h.unit + "': expected one of deg, rad, mm, m");
+  if (h.unit == "deg")
+    scale = deg(1.0);
+  else if (h.unit == "rad" || h.unit == "m")
+    scale = 1.0;
+  else if (h.unit == "mm")
+    scale = mm(1.0);
+  else
+    bad("unit '" + h.unit + "': expected one of deg, rad, mm, m");
   if (!j["edges"].is_array() || !j["counts"].is_array()) bad("'edges' and 'counts' must be arrays of numbers");
   limits::check(static_cast<double>(j["counts"].size()), limits::kHistogramBins, file, "counts");
   if (j["edges"].size() != j["counts"].size() + 1) {
-    bad(fmt::format("{} edges for {} counts: expected one edge more than counts", j["edges"].size(), j["counts"].size()));
+    bad(fmt::format("{} edges for {} counts: expected one edge more than counts", j["edges"].size(),
+                    j["counts"].size()));
   }
   for (std::size_t i = 0; i < j["edges"].size(); ++i) {
     if (!j["edges"][i].is_number()) bad(fmt::format("edges[{}]: expected a number", i));
@@ -64,8 +69,10 @@ ResidualHistogram read_histogram(const nlohmann::json& j, const std::string& fil
   limits::check(n, limits::kHistogramTotalCount, file, "counts (their sum)");
   if (n < 30) bad(fmt::format("too few samples: {} counted, at least 30 needed", n));
   if (filled < 3) {
-    bad(fmt::format("counts: only {} bin(s) hold samples; a distribution needs samples in at least 3 bins "
-                    "(bins narrower than the residual's spread)", filled));
+    bad(
+        fmt::format("counts: only {} bin(s) hold samples; a distribution needs samples in at least 3 bins "
+                    "(bins narrower than the residual's spread)",
+                    filled));
   }
   return h;
 }
@@ -178,10 +185,10 @@ double lattice_nll(const ResidualHistogram& h, const std::vector<double>& counts
 
 std::vector<double> normal_probs(const ResidualHistogram& h, double mu, double sigma) {
   std::vector<double> p(h.counts.size());
-  for (std::size_t j = 0; j < p.size(); ++j) p[j] = normal_mass((h.edges[j] - mu) / sigma, (h.edges[j + 1] - mu) / sigma);
+  for (std::size_t j = 0; j < p.size(); ++j)
+    p[j] = normal_mass((h.edges[j] - mu) / sigma, (h.edges[j + 1] - mu) / sigma);
   return p;
 }
-
 
 struct HistFits {
   FitResult normal0, normal, lattice;
@@ -233,7 +240,8 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
   out.nominal_model = {{"residual", h.residual}, {"distribution", "normal, zero mean (continuous sensors, no bias)"}};
   std::vector<double> mids;
   double n = 0.0;
-  for (std::size_t j = 0; j < h.counts.size(); ++j) mids.push_back(0.5 * (h.edges[j] + h.edges[j + 1])), n += h.counts[j];
+  for (std::size_t j = 0; j < h.counts.size(); ++j)
+    mids.push_back(0.5 * (h.edges[j] + h.edges[j + 1])), n += h.counts[j];
 
   const HistFits all = fit_all(h, h.counts);
   // The residual battery: the thesis's normality test (§3.2.1), bias, goodness of fit.
@@ -241,7 +249,8 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
   out.residual_tests.push_back({"normality_skewness", h.residual, "", "u1", nt.u1, nt.p1, nt.g1});
   out.residual_tests.push_back({"normality_kurtosis", h.residual, "", "u2", nt.u2, nt.p2, nt.g2 - 3.0});
   const double lr_bias = 2.0 * (all.normal0.nll - all.normal.nll);
-  out.residual_tests.push_back({"bias", h.residual, "", "likelihood_ratio", lr_bias, chi_square_upper_tail(ChiSquareDof(1.0), lr_bias),
+  out.residual_tests.push_back({"bias", h.residual, "", "likelihood_ratio", lr_bias,
+                                chi_square_upper_tail(ChiSquareDof(1.0), lr_bias),
                                 all.normal.values[0] / all.normal.values[1]});
   double pearson = 0.0;
   const auto p = normal_probs(h, all.normal.values[0], all.normal.values[1]);
@@ -252,10 +261,11 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
     pearson += (h.counts[j] - e) * (h.counts[j] - e) / std::max(e, 1e-9);
   }
   const double dof = static_cast<double>(h.counts.size()) - 3.0;
-  out.residual_tests.push_back({"goodness_of_fit_normal", h.residual, "", "pearson_chi2", pearson, dof > 0.0 ? chi_square_upper_tail(ChiSquareDof(dof), pearson) : 1.0, pearson / n});
+  out.residual_tests.push_back({"goodness_of_fit_normal", h.residual, "", "pearson_chi2", pearson,
+                                dof > 0.0 ? chi_square_upper_tail(ChiSquareDof(dof), pearson) : 1.0, pearson / n});
   const double lr_lat = 2.0 * (all.normal.nll - all.lattice.nll);
-  out.residual_tests.push_back({"quantization_lattice", h.residual, "", "likelihood_ratio", lr_lat, chi_square_upper_tail(ChiSquareDof(3.0), lr_lat),
-                                all.lattice.values[1]});
+  out.residual_tests.push_back({"quantization_lattice", h.residual, "", "likelihood_ratio", lr_lat,
+                                chi_square_upper_tail(ChiSquareDof(3.0), lr_lat), all.lattice.values[1]});
   const double level = options.false_alarm / static_cast<double>(out.residual_tests.size());
   for (auto& t : out.residual_tests) t.passed = t.p_value > level;
 
@@ -270,7 +280,8 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
   for (double v : b) nb += v;
   auto heldout_normal = normal_nll(h, b, fa.normal.values[0], fa.normal.values[1]) / nb;
   auto heldout_lattice = lattice_nll(h, b, fa.lattice.values[0], fa.lattice.values[1], fa.lattice.values[2],
-                                     fa.lattice.values[3], fa.lattice.values[4]) / nb;
+                                     fa.lattice.values[3], fa.lattice.values[4]) /
+                         nb;
 
   const double thr = chi_square_upper_quantile(ChiSquareDof(3.0), options.false_alarm);
   Cause q{"compass_quantization", "histogram", lr_lat >= thr};
@@ -284,7 +295,8 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
   q.explanation = fmt::format(
       "the residual sits on a lattice of step {:.4g} {} (offset {:.3g} {}), blurred by σ = {:.3g} {}: the "
       "reference sensor reports multiples of the step, which a normal model of the residual misses",
-      all.lattice.values[1] * to_unit, h.unit, all.lattice.values[0] * to_unit, h.unit, all.lattice.values[2] * to_unit, h.unit);
+      all.lattice.values[1] * to_unit, h.unit, all.lattice.values[0] * to_unit, h.unit, all.lattice.values[2] * to_unit,
+      h.unit);
   q.gains.push_back({"heldout_nll_per_sample", heldout_normal, heldout_lattice});
   out.causes.push_back(q);
   if (q.detected) {
@@ -292,7 +304,8 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
     out.overall_gain = q.gains;
   }
   if (lr_bias >= chi_square_upper_quantile(ChiSquareDof(1.0), options.false_alarm)) {
-    out.unexplained.push_back({"bias", h.residual, "", lr_bias, chi_square_upper_tail(ChiSquareDof(1.0), lr_bias), all.normal.values[0] * to_unit,
+    out.unexplained.push_back({"bias", h.residual, "", lr_bias, chi_square_upper_tail(ChiSquareDof(1.0), lr_bias),
+                               all.normal.values[0] * to_unit,
                                "a histogram of one residual cannot tell its causes apart: wheel_diameter_ratio, "
                                "turn_rate_bias and compass_bias all shift it (confounded)"});
     out.confounded.push_back(
@@ -301,16 +314,23 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
          "a histogram has no distance, turn or time per sample, so a heading drift per sample cannot be "
          "attributed to unequal wheels (E_d), a turn-rate bias or a drifting compass"});
   }
-  out.not_testable.push_back("every cause but the residual's distribution: a histogram carries no time, distance or position");
+  out.not_testable.push_back(
+      "every cause but the residual's distribution: a histogram carries no time, distance or position");
   out.verdict = q.detected
-      ? fmt::format("The nominal (normal) model of {} misses a lattice of step {:.4g} {}: the residual is "
-                    "quantized{}.", h.residual, all.lattice.values[1] * to_unit, h.unit,
-                    out.unexplained.empty() ? "" : fmt::format(", and it has a bias of {:.3g} {} per sample no single cause explains",
-                                                               all.normal.values[0] * to_unit, h.unit))
-      : (out.unexplained.empty() ? fmt::format("No significant discrepancy: the histogram of {} is consistent with a "
-                                               "zero-mean normal residual at a false-alarm level of {}.", h.residual, options.false_alarm)
-                                 : fmt::format("The residual {} has a bias of {:.3g} {} per sample no single cause explains.",
-                                               h.residual, all.normal.values[0] * to_unit, h.unit));
+                    ? fmt::format(
+                          "The nominal (normal) model of {} misses a lattice of step {:.4g} {}: the residual is "
+                          "quantized{}.",
+                          h.residual, all.lattice.values[1] * to_unit, h.unit,
+                          out.unexplained.empty()
+                              ? ""
+                              : fmt::format(", and it has a bias of {:.3g} {} per sample no single cause explains",
+                                            all.normal.values[0] * to_unit, h.unit))
+                    : (out.unexplained.empty()
+                           ? fmt::format("No significant discrepancy: the histogram of {} is consistent with a "
+                                         "zero-mean normal residual at a false-alarm level of {}.",
+                                         h.residual, options.false_alarm)
+                           : fmt::format("The residual {} has a bias of {:.3g} {} per sample no single cause explains.",
+                                         h.residual, all.normal.values[0] * to_unit, h.unit));
   return out;
 }
 

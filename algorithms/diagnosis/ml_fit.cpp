@@ -21,8 +21,7 @@ struct Coordinates {
 
 }  // namespace
 
-FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params,
-                             int max_iterations) {
+FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params, int max_iterations) {
   const std::size_t n = params.size();
   const Coordinates coords{params};
   Eigen::VectorXd z(n);
@@ -33,8 +32,7 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
     const double v = nll(coords.values(x));
     return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
   };
-  auto gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g,
-                              Eigen::MatrixXd& h) {
+  auto gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
     g.resize(n);
     h.resize(n, n);
     std::vector<double> fp(n), fm(n);
@@ -54,8 +52,7 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
         pm[i] += coords.step(i), pm[j] -= coords.step(j);
         mp[i] -= coords.step(i), mp[j] += coords.step(j);
         mm[i] -= coords.step(i), mm[j] -= coords.step(j);
-        h(i, j) = h(j, i) =
-            (f(pp) - f(pm) - f(mp) + f(mm)) / (4.0 * coords.step(i) * coords.step(j));
+        h(i, j) = h(j, i) = (f(pp) - f(pm) - f(mp) + f(mm)) / (4.0 * coords.step(i) * coords.step(j));
       }
     }
   };
@@ -68,43 +65,43 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
   // Restarted (damping reset) until a restart gains nothing: a damped step that stalls far from
   // the optimum would otherwise inflate the likelihood-ratio statistics computed against it.
   for (int restart = 0; restart < 4 && n > 0; ++restart) {
-  const double before_restart = fx;
-  lambda = 1e-3;
-  r.converged = false;
-  for (int it = 0; it < max_iterations; ++it, ++r.iterations) {
-    gradient_hessian(z, fx, g, h);
-    // Levenberg damping on the scaled diagonal until the step lowers the NLL.
-    bool improved = false;
-    for (int tries = 0; tries < 30 && !improved; ++tries) {
-      Eigen::MatrixXd a = h;
-      for (std::size_t i = 0; i < n; ++i) a(i, i) += lambda * std::max(std::abs(h(i, i)), 1e-12);
-      Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
-      Eigen::VectorXd dz = -ldlt.solve(g);
-      if (ldlt.info() != Eigen::Success || !dz.allFinite() || !ldlt.isPositive()) {
-        lambda *= 10.0;
-        continue;
+    const double before_restart = fx;
+    lambda = 1e-3;
+    r.converged = false;
+    for (int it = 0; it < max_iterations; ++it, ++r.iterations) {
+      gradient_hessian(z, fx, g, h);
+      // Levenberg damping on the scaled diagonal until the step lowers the NLL.
+      bool improved = false;
+      for (int tries = 0; tries < 30 && !improved; ++tries) {
+        Eigen::MatrixXd a = h;
+        for (std::size_t i = 0; i < n; ++i) a(i, i) += lambda * std::max(std::abs(h(i, i)), 1e-12);
+        Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
+        Eigen::VectorXd dz = -ldlt.solve(g);
+        if (ldlt.info() != Eigen::Success || !dz.allFinite() || !ldlt.isPositive()) {
+          lambda *= 10.0;
+          continue;
+        }
+        const Eigen::VectorXd zn = z + dz;
+        const double fn = f(zn);
+        if (fn < fx) {
+          const double gain = fx - fn;
+          z = zn;
+          fx = fn;
+          // Converged when an (almost) undamped Newton step gains next to nothing (relative 1e-9).
+          if (gain < 1e-9 * (1.0 + std::abs(fx)) && lambda <= 1e-2) r.converged = true;
+          lambda = std::max(lambda / 10.0, 1e-9);
+          improved = true;
+        } else {
+          lambda *= 10.0;
+        }
       }
-      const Eigen::VectorXd zn = z + dz;
-      const double fn = f(zn);
-      if (fn < fx) {
-        const double gain = fx - fn;
-        z = zn;
-        fx = fn;
-        // Converged when an (almost) undamped Newton step gains next to nothing (relative 1e-9).
-        if (gain < 1e-9 * (1.0 + std::abs(fx)) && lambda <= 1e-2) r.converged = true;
-        lambda = std::max(lambda / 10.0, 1e-9);
-        improved = true;
-      } else {
-        lambda *= 10.0;
+      if (!improved) {
+        r.converged = true;  // no descent step exists at this resolution: a (local) minimum
+        break;
       }
+      if (r.converged) break;
     }
-    if (!improved) {
-      r.converged = true;  // no descent step exists at this resolution: a (local) minimum
-      break;
-    }
-    if (r.converged) break;
-  }
-  if (before_restart - fx < 1e-9 * (1.0 + std::abs(fx))) break;
+    if (before_restart - fx < 1e-9 * (1.0 + std::abs(fx))) break;
   }
   r.nll = fx;
   r.values = coords.values(z);
@@ -117,12 +114,11 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (h + h.transpose()));
   r.hessian_ok = eig.eigenvalues().minCoeff() > 1e-12 * std::max(1.0, eig.eigenvalues().maxCoeff());
   if (r.hessian_ok) {
-    r.covariance = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() *
-                   eig.eigenvectors().transpose();
+    r.covariance = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
   }
   for (std::size_t i = 0; i < n; ++i) {
-    const double se = r.hessian_ok ? std::sqrt(std::max(r.covariance(i, i), 0.0))
-                                   : std::numeric_limits<double>::infinity();
+    const double se =
+        r.hessian_ok ? std::sqrt(std::max(r.covariance(i, i), 0.0)) : std::numeric_limits<double>::infinity();
     r.standard_errors[i] = se;
     const double lo = z[i] - 1.959963984540054 * se, hi = z[i] + 1.959963984540054 * se;
     r.ci_low[i] = params[i].positive ? std::exp(lo) : lo;
@@ -139,6 +135,5 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
   if (!r.hessian_ok) r.max_abs_correlation = 1.0;
   return r;
 }
-
 
 }  // namespace locbench::diagnosis

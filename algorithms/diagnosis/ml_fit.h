@@ -26,8 +26,8 @@ struct FitResult {
   double nll = 0.0;                     // at the optimum
   int iterations = 0;
   bool converged = false;
-  bool hessian_ok = true;               // positive definite at the optimum
-  double max_abs_correlation = 0.0;     // between any two fitted coordinates
+  bool hessian_ok = true;            // positive definite at the optimum
+  double max_abs_correlation = 0.0;  // between any two fitted coordinates
   int most_correlated_a = -1, most_correlated_b = -1;
 };
 
@@ -36,6 +36,5 @@ using NegLogLikelihood = std::function<double(const std::vector<double>& values)
 // `nll` may return +inf for invalid values (the step is then shortened).
 FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params,
                              int max_iterations = 100);
-
 
 }  // namespace locbench::diagnosis

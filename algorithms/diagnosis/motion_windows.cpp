@@ -26,11 +26,9 @@ std::string MotionData::describe() const {
   switch (reference) {
     case ReferenceKind::kTruePose:
       return fmt::format("TRUEPOS ground truth ({} poses), {} windows", truth.size(), windows.size());
-    case ReferenceKind::kRelations:
-      return fmt::format("reference relations ({} windows)", windows.size());
+    case ReferenceKind::kRelations: return fmt::format("reference relations ({} windows)", windows.size());
     case ReferenceKind::kCompass:
-      return fmt::format("compass heading increments ({} readings), {} windows", compass.size(),
-                         windows.size());
+      return fmt::format("compass heading increments ({} readings), {} windows", compass.size(), windows.size());
   }
   return "";
 }
@@ -44,8 +42,7 @@ template <typename Record, typename Value, typename Blend>
 auto interpolate_records(const std::vector<Record>& records, double t, Value value, Blend blend)
     -> std::optional<decltype(value(records.front()))> {
   if (records.empty() || t < records.front().t || t > records.back().t) return std::nullopt;
-  auto it = std::lower_bound(records.begin(), records.end(), t,
-                             [](const Record& p, double v) { return p.t < v; });
+  auto it = std::lower_bound(records.begin(), records.end(), t, [](const Record& p, double v) { return p.t < v; });
   if (it == records.begin()) return value(*it);
   const Record& b = *it;
   const Record& a = *(it - 1);
@@ -60,7 +57,8 @@ Pose2 blend_poses(const Pose2& a, const Pose2& b, double s) {
 }  // namespace
 
 std::optional<Pose2> interpolate_truth(const std::vector<TruePose>& truth, double t) {
-  return interpolate_records(truth, t, [](const TruePose& p) { return p.pose; }, blend_poses);
+  return interpolate_records(
+      truth, t, [](const TruePose& p) { return p.pose; }, blend_poses);
 }
 
 std::optional<Pose2> TruthInterpolator::at(double t) {
@@ -98,9 +96,10 @@ void check_nominal(const Log& log, const NominalModel& m) {
   // Real encoders give 1 µm to ~20 mm per tick (the Trilobot: 12.64 mm); 0.1 m and more is a
   // millimetre value written as metres, below 1e-9 m (or a denormal) is no encoder.
   const double mpt_max = 0.1, mpt_min = 1e-9;
-  if (m.meters_per_tick_left > mpt_max || m.meters_per_tick_right > mpt_max ||
-      m.meters_per_tick_left < mpt_min || m.meters_per_tick_right < mpt_min) {
-    bad(fmt::format("PARAM robot_meters_per_tick_left/right = {}/{} are implausible: expected metres "
+  if (m.meters_per_tick_left > mpt_max || m.meters_per_tick_right > mpt_max || m.meters_per_tick_left < mpt_min ||
+      m.meters_per_tick_right < mpt_min) {
+    bad(
+        fmt::format("PARAM robot_meters_per_tick_left/right = {}/{} are implausible: expected metres "
                     "per tick in [{}, {}) (millimetres by mistake?)",
                     m.meters_per_tick_left, m.meters_per_tick_right, mpt_min, mpt_max));
   }
@@ -158,8 +157,10 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
       const auto& b = log.encoders[i];
       std::int64_t dl = 0, dr = 0;
       if (__builtin_sub_overflow(b.left, a.left, &dl) || __builtin_sub_overflow(b.right, a.right, &dr)) {
-        throw InputError(file, 0, fmt::format("ENCODER at t = {}: the tick counts jump by more than the "
-                                              "64-bit range from the previous record", b.t));
+        throw InputError(file, 0,
+                         fmt::format("ENCODER at t = {}: the tick counts jump by more than the "
+                                     "64-bit range from the previous record",
+                                     b.t));
       }
       m.steps.push_back({a.t, b.t, static_cast<double>(dl), static_cast<double>(dr)});
     }
@@ -170,16 +171,18 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
       m.steps.push_back(pose_step(log.odometry[i - 1], log.odometry[i]));
     }
   } else if (log.laser.size() >= 2 && !(log.laser[1].odom_pose.x == 0.0 && log.laser[1].odom_pose.y == 0.0 &&
-                                         log.laser[1].odom_pose.theta == 0.0)) {
+                                        log.laser[1].odom_pose.theta == 0.0)) {
     // No ODOM records: the odometry poses logged with the scans (FLASER odom_x, odom_y, odom_θ).
     m.odometry = OdometryKind::kPose;
     for (std::size_t i = 1; i < log.laser.size(); ++i) {
       const auto& a = log.laser[i - 1];
       const auto& b = log.laser[i];
-      m.steps.push_back(pose_step({a.scan.timestamp, a.odom_pose, 0.0, 0.0}, {b.scan.timestamp, b.odom_pose, 0.0, 0.0}));
+      m.steps.push_back(
+          pose_step({a.scan.timestamp, a.odom_pose, 0.0, 0.0}, {b.scan.timestamp, b.odom_pose, 0.0, 0.0}));
     }
   } else {
-    throw InputError(file, 0, "no odometry: expected ENCODER records, at least two ODOM records or FLASER odometry poses");
+    throw InputError(file, 0,
+                     "no odometry: expected ENCODER records, at least two ODOM records or FLASER odometry poses");
   }
   // Merge consecutive samples into sub-steps of at least `min_step` seconds: the model is linear
   // in each step's ΔN (or ΔD, Δθ), so only the arc integration within a sub-step is coarser.
@@ -209,11 +212,14 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
     char* end = nullptr;
     m.compass_step = std::strtod(it->second.c_str(), &end);
     if (end == it->second.c_str() || *end != '\0' || !std::isfinite(m.compass_step) || m.compass_step < 0.0) {
-      throw InputError(file, 0, "PARAM compass_resolution: expected a non-negative number of radians, found '" + it->second + "'");
+      throw InputError(
+          file, 0, "PARAM compass_resolution: expected a non-negative number of radians, found '" + it->second + "'");
     }
     if (m.compass_step > 0.5) {
-      throw InputError(file, 0, fmt::format("PARAM compass_resolution = {} is implausible: expected radians "
-                                            "(degrees by mistake?)", m.compass_step));
+      throw InputError(file, 0,
+                       fmt::format("PARAM compass_resolution = {} is implausible: expected radians "
+                                   "(degrees by mistake?)",
+                                   m.compass_step));
     }
   }
   if (log.truth.size() >= 2) {
@@ -243,7 +249,8 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
     for (const auto& r : relations) {
       if (r.t2 - r.t1 > 10.0 || !(r.t2 > r.t1)) continue;  // local relations (loop closures span minutes)
       if (r.t1 < all.front().t0 || r.t2 > all.back().t1) continue;
-      auto it = std::upper_bound(all.begin(), all.end(), r.t1, [](double v, const OdometryStep& st) { return v < st.t1; });
+      auto it =
+          std::upper_bound(all.begin(), all.end(), r.t1, [](double v, const OdometryStep& st) { return v < st.t1; });
       MotionWindow w;
       w.first = m.steps.size();
       for (; it != all.end() && it->t0 < r.t2; ++it) {

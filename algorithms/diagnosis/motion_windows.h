@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "core/log.h"
 #include "core/pose2.h"
 #include "core/robot_params.h"
 #include "core/sensor_data.h"
-#include "core/log.h"
 
 namespace locbench::diagnosis {
 
@@ -36,7 +36,7 @@ struct MotionWindow {
   double t0 = 0.0, t1 = 0.0;        // logged times of the window's ends
   Pose2 reference;                  // relations: the reference motion (fixed)
   // Covariates under the nominal model.
-  double distance = 0.0;      // |ΔD| summed [m]
+  double distance = 0.0;  // |ΔD| summed [m]
   double signed_distance = 0.0;
   double turn = 0.0;          // Σ Δθ [rad]
   double wheel_travel = 0.0;  // Σ (|U_L| + |U_R|) [m] (pose odometry: |ΔD|·2 + |Δθ|·B)
@@ -45,9 +45,9 @@ struct MotionWindow {
 };
 
 struct WindowOptions {
-  double duration = 1.0;       // target window length [s]
-  double max_gap = 1.0;        // a longer gap between odometry samples ends a window [s]
-  double min_step = 0.08;      // consecutive samples are merged into sub-steps this long [s]
+  double duration = 1.0;         // target window length [s]
+  double max_gap = 1.0;          // a longer gap between odometry samples ends a window [s]
+  double min_step = 0.08;        // consecutive samples are merged into sub-steps this long [s]
   std::size_t min_windows = 40;  // fewer is "too short a log"
 };
 
@@ -57,11 +57,11 @@ struct MotionData {
   NominalModel nominal;  // encoder logs; pose logs use wheelbase only for covariates (0 if unknown)
   std::vector<OdometryStep> steps;
   std::vector<MotionWindow> windows;
-  std::vector<TruePose> truth;           // kTruePose
-  std::vector<CompassReading> compass;   // every COMPASS reading (the reference when kCompass)
-  double compass_step = 0.0;             // PARAM compass_resolution [rad]; 0 when not declared
-  double reference_interval = 0.0;       // median sampling interval of truth or compass [s]
-  std::string describe() const;          // e.g. "TRUEPOS ground truth (4812 poses)"
+  std::vector<TruePose> truth;          // kTruePose
+  std::vector<CompassReading> compass;  // every COMPASS reading (the reference when kCompass)
+  double compass_step = 0.0;            // PARAM compass_resolution [rad]; 0 when not declared
+  double reference_interval = 0.0;      // median sampling interval of truth or compass [s]
+  std::string describe() const;         // e.g. "TRUEPOS ground truth (4812 poses)"
 };
 
 // Throws InputError (naming the log) when the log has no usable odometry, no reference, too few

@@ -9,17 +9,16 @@
 #include <optional>
 #include <string>
 
-#include "core/chi_square.h"
-#include "core/statistics.h"
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/ml_fit.h"
 #include "algorithms/diagnosis/odometry_battery.h"
 #include "algorithms/diagnosis/selection.h"
+#include "core/chi_square.h"
+#include "core/statistics.h"
 
 namespace locbench::diagnosis {
 
-void split_windows(std::size_t n, std::size_t block, std::vector<std::size_t>& train,
-                   std::vector<std::size_t>& test) {
+void split_windows(std::size_t n, std::size_t block, std::vector<std::size_t>& train, std::vector<std::size_t>& test) {
   for (std::size_t i = 0; i < n; ++i) ((i / block) % 3 == 2 ? test : train).push_back(i);
 }
 
@@ -79,7 +78,8 @@ class Fitter {
   // needs only the likelihood, the report the interval.
   OdoFit fit(const std::vector<const CauseSpec*>& active, const OdometryModel& start, bool interval,
              int max_iterations = 100) const {
-    const bool offset = std::any_of(active.begin(), active.end(), [](const CauseSpec* c) { return c->id == cause::kTimeOffset; });
+    const bool offset =
+        std::any_of(active.begin(), active.end(), [](const CauseSpec* c) { return c->id == cause::kTimeOffset; });
     if (!offset) return fit_held_offset(active, start, max_iterations);
     // Alternate: the others at a held offset, the offset profiled with the others held, until the
     // offset moves less than half a fine step; then the interval with the others re-fitted.
@@ -208,9 +208,11 @@ std::vector<Gain> ordered_gains(const HeldOut& h, PrimaryMetric metric, bool hea
   switch (m) {
     case PrimaryMetric::kTranslation: return {h.translation, h.heading, h.likelihood};
     case PrimaryMetric::kHeading:
-      return heading_only ? std::vector<Gain>{h.heading, h.likelihood} : std::vector<Gain>{h.heading, h.translation, h.likelihood};
+      return heading_only ? std::vector<Gain>{h.heading, h.likelihood}
+                          : std::vector<Gain>{h.heading, h.translation, h.likelihood};
     default:
-      return heading_only ? std::vector<Gain>{h.likelihood, h.heading} : std::vector<Gain>{h.likelihood, h.translation, h.heading};
+      return heading_only ? std::vector<Gain>{h.likelihood, h.heading}
+                          : std::vector<Gain>{h.likelihood, h.translation, h.heading};
   }
 }
 
@@ -265,7 +267,8 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
   // Fits by active set (sorted indices), each started from the fit of the set without its last
   // member when there is one.
   std::map<std::vector<std::size_t>, OdoFit> fits;
-  std::function<const OdoFit&(std::vector<std::size_t>)> fit_set = [&](std::vector<std::size_t> active) -> const OdoFit& {
+  std::function<const OdoFit&(std::vector<std::size_t>)> fit_set =
+      [&](std::vector<std::size_t> active) -> const OdoFit& {
     if (active.empty()) return nominal;
     std::vector<std::size_t> key = active;
     std::sort(key.begin(), key.end());
@@ -280,7 +283,8 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
   std::map<std::vector<std::size_t>, OdoFit> reported;
   auto report_fit = [&](std::vector<std::size_t> active) -> const OdoFit& {
     std::sort(active.begin(), active.end());
-    const bool offset = std::any_of(active.begin(), active.end(), [&](std::size_t i) { return candidates[i]->id == cause::kTimeOffset; });
+    const bool offset = std::any_of(active.begin(), active.end(),
+                                    [&](std::size_t i) { return candidates[i]->id == cause::kTimeOffset; });
     if (!offset) return fit_set(active);
     if (auto it = reported.find(active); it != reported.end()) return it->second;
     std::vector<const CauseSpec*> specs;
@@ -291,7 +295,8 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
   // cause that explains a symptom is named before a generic model of the symptom).
   const double m = static_cast<double>(candidates.size());
   auto threshold = [&](std::size_t i) {
-    return chi_square_upper_quantile(ChiSquareDof(static_cast<double>(candidates[i]->params.size())), opt.false_alarm / m);
+    return chi_square_upper_quantile(ChiSquareDof(static_cast<double>(candidates[i]->params.size())),
+                                     opt.false_alarm / m);
   };
   Selection sel;
   sel.evidence.resize(candidates.size());
@@ -344,9 +349,10 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
       for (std::size_t j : kept) {
         if (j != i) others.push_back(j);
       }
-      gains[i] = ordered_gains(heldout(d, fit_set(others).model, full.model, test, opt.rpe_chain), candidates[i]->metric,
-                               heading_only);
-      if (gains[i].front().relative() <= 0.0 && (!worst || gains[i].front().relative() < gains[*worst].front().relative())) {
+      gains[i] = ordered_gains(heldout(d, fit_set(others).model, full.model, test, opt.rpe_chain),
+                               candidates[i]->metric, heading_only);
+      if (gains[i].front().relative() <= 0.0 &&
+          (!worst || gains[i].front().relative() < gains[*worst].front().relative())) {
         worst = i;
       }
     }
@@ -365,12 +371,13 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
     const auto a = Fitter(d, first).fit(specs, full.model, false).estimate(p);
     const auto b = Fitter(d, second).fit(specs, full.model, false).estimate(p);
     const Gain& g = gains[i].front();
-    std::string note = fmt::format("{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not reduce the held-out {} "
-                                   "({:.4g} → {:.4g})",
-                                   candidates[i]->id, sel.evidence[i].lr, sel.evidence[i].threshold, g.metric, g.before, g.after);
+    std::string note = fmt::format(
+        "{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not reduce the held-out {} "
+        "({:.4g} → {:.4g})",
+        candidates[i]->id, sel.evidence[i].lr, sel.evidence[i].threshold, g.metric, g.before, g.after);
     if (a && b && a->lo < a->hi && b->lo < b->hi && (a->hi < b->lo || b->hi < a->lo)) {
-      note += fmt::format(": non-stationary, the halves of the log disagree on {}: {} vs {}", p.name, format_estimate(*a),
-                          format_estimate(*b));
+      note += fmt::format(": non-stationary, the halves of the log disagree on {}: {} vs {}", p.name,
+                          format_estimate(*a), format_estimate(*b));
     }
     out.heldout_notes.emplace_back(std::string(candidates[i]->id), note);
   }
@@ -408,7 +415,8 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
     for (std::size_t c = 0; c < candidates.size(); ++c) {
       const CauseSpec& sc = *candidates[c];
       if (c == a || sc.noise || sa.noise || sc.params.size() != 1 || sa.params.size() != 1) continue;
-      if (2.0 * (nominal.nll - fit_set({c}).nll) <= chi_square_upper_quantile(ChiSquareDof(1.0), opt.false_alarm / m)) continue;
+      if (2.0 * (nominal.nll - fit_set({c}).nll) <= chi_square_upper_quantile(ChiSquareDof(1.0), opt.false_alarm / m))
+        continue;
       const OdoFit& both = fit_set({a, c});
       if (both.fit.max_abs_correlation < 0.98) continue;
       const bool seen = std::any_of(out.confounded.begin(), out.confounded.end(), [&](const ConfoundedGroup& g) {
@@ -424,9 +432,10 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
       g.combination = fmt::format("{} = {:.6g} [{:.6g}, {:.6g}] (correlation {:.4f} when fitted together)",
                                   ratio ? pa + "/" + pc : pa + " with " + pc + " nominal", ea->value, ea->lo, ea->hi,
                                   both.fit.max_abs_correlation);
-      g.explanation = fmt::format("{} and {} act on these residuals the same way (the reference has no independent "
-                                  "distance or turn measurement that separates them); only their combination is determined",
-                                  sa.id, sc.id);
+      g.explanation = fmt::format(
+          "{} and {} act on these residuals the same way (the reference has no independent "
+          "distance or turn measurement that separates them); only their combination is determined",
+          sa.id, sc.id);
       out.confounded.push_back(g);
       for (auto& cause : out.causes) {
         if (cause.id == sa.id || cause.id == sc.id) cause.identifiable = false;

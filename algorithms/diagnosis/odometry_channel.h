@@ -31,7 +31,6 @@ struct OdometryChannelResult : ChannelResult {
 OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOptions& options);
 
 // The held-out split: every third block of `block` windows is held out.
-void split_windows(std::size_t n, std::size_t block, std::vector<std::size_t>& train,
-                   std::vector<std::size_t>& test);
+void split_windows(std::size_t n, std::size_t block, std::vector<std::size_t>& train, std::vector<std::size_t>& test);
 
 }  // namespace locbench::diagnosis

@@ -13,8 +13,7 @@ namespace {
 Pose2 advance(const Pose2& p, double dd, double dth) {
   const double half = 0.5 * dth;
   const double chord = std::abs(half) < 1e-6 ? dd : dd * std::sin(half) / half;
-  return {p.x + chord * std::cos(p.theta + half), p.y + chord * std::sin(p.theta + half),
-          p.theta + dth};
+  return {p.x + chord * std::cos(p.theta + half), p.y + chord * std::sin(p.theta + half), p.theta + dth};
 }
 
 double wheelbase_or_default(const MotionData& d) { return d.nominal.wheelbase > 0.0 ? d.nominal.wheelbase : 0.5; }
@@ -93,11 +92,9 @@ Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryM
   return p;
 }
 
-std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w,
-                                      const OdometryModel& m) {
+std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
   switch (d.reference) {
-    case ReferenceKind::kRelations:
-      return w.reference;
+    case ReferenceKind::kRelations: return w.reference;
     case ReferenceKind::kTruePose: {
       const auto a = interpolate_truth(d.truth, w.t0 - m.time_offset);
       const auto b = interpolate_truth(d.truth, w.t1 - m.time_offset);
@@ -133,8 +130,8 @@ WindowResidual residual_of(const MotionData& d, const MotionWindow& w, const Odo
 }
 
 std::vector<double> mean_key(const OdometryModel& m) {
-  return {m.E_d, m.E_b, m.E_o, m.velocity_scale, m.turn_rate_scale, m.turn_rate_bias, m.speed_slope, m.drive_tau,
-          m.stall_rate, m.stall_duration};
+  return {m.E_d,         m.E_b,       m.E_o,        m.velocity_scale, m.turn_rate_scale, m.turn_rate_bias,
+          m.speed_slope, m.drive_tau, m.stall_rate, m.stall_duration};
 }
 
 }  // namespace
@@ -155,7 +152,8 @@ std::vector<std::optional<T>>& WindowCache::table(std::vector<Entry<T>>& entries
     if (entries.size() < kEntries) {
       e = &entries.emplace_back();
     } else {
-      e = &*std::min_element(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.used < b.used; });
+      e = &*std::min_element(entries.begin(), entries.end(),
+                             [](const auto& a, const auto& b) { return a.used < b.used; });
     }
     e->key = key;
     e->values.assign(d_.windows.size(), std::nullopt);
@@ -177,7 +175,8 @@ namespace {
 // The Student-t density's constant lgamma((ν+1)/2) − lgamma(ν/2) − ½·log(νπ), once per model.
 struct Density {
   explicit Density(double nu)
-      : dof(nu), constant(nu > 0.0 ? std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu) - 0.5 * std::log(nu * kPi) : 0.0) {}
+      : dof(nu),
+        constant(nu > 0.0 ? std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu) - 0.5 * std::log(nu * kPi) : 0.0) {}
   double operator()(double r, double v) const {
     if (!(dof > 0.0)) return -0.5 * (r * r / v + std::log(2.0 * kPi * v));
     return constant - 0.5 * std::log(v) - 0.5 * (dof + 1.0) * std::log1p(r * r / (dof * v));
@@ -195,8 +194,8 @@ double log_density(const Eigen::Vector3d& r, const Eigen::Vector3d& v, bool head
 
 double component_log_density(double r, double v, double dof) { return Density(dof)(r, v); }
 
-double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
-                               const std::vector<std::size_t>& index, WindowCache* cache) {
+double negative_log_likelihood(const MotionData& d, const OdometryModel& m, const std::vector<std::size_t>& index,
+                               WindowCache* cache) {
   double nll = 0.0;
   const std::size_t n = index.empty() ? d.windows.size() : index.size();
   const double b = wheelbase_or_default(d) * m.E_b;
@@ -227,8 +226,7 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
       continue;
     }
     double ll = log_density(res.r, res.variance, res.heading_only, density);
-    if (m.slip_rate > 0.0 && m.slip_loss != 0.0 && d.odometry == OdometryKind::kEncoder &&
-        w.last > w.first) {
+    if (m.slip_rate > 0.0 && m.slip_loss != 0.0 && d.odometry == OdometryKind::kEncoder && w.last > w.first) {
       const double p = 1.0 - std::exp(-m.slip_rate * 0.5 * w.wheel_travel);
       if (p > 0.0) {
         double ul = 0.0, ur = 0.0;

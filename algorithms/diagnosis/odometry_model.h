@@ -45,7 +45,7 @@ struct OdometryModel {
   double speed_slope = 0.0;  // [s/m]
   double drive_tau = 0.0;    // [s]
   double time_offset = 0.0;
-  double dof = 0.0;          // Student-t degrees of freedom; 0 = normal
+  double dof = 0.0;  // Student-t degrees of freedom; 0 = normal
   double sigma_x = 1e-3, sigma_y = 1e-3, sigma_theta = 1e-3;
   double k2 = 0.0;
   double slip_rate = 0.0, slip_loss = 0.0;
@@ -60,16 +60,15 @@ double expected_stall_loss(const MotionData& d, const MotionWindow& w, const Odo
 struct WindowResidual {
   Eigen::Vector3d r = Eigen::Vector3d::Zero();         // reference − prediction
   Eigen::Vector3d variance = Eigen::Vector3d::Ones();  // without slip
-  Pose2 prediction;         // the model's prediction of the window
-  bool valid = false;       // the reference covers the (shifted) window
+  Pose2 prediction;                                    // the model's prediction of the window
+  bool valid = false;                                  // the reference covers the (shifted) window
   bool heading_only = false;
 };
 
 // The prediction of window w under model m (in the frame of the window's start).
 Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
 // The reference motion of window w read with the model's time offset.
-std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w,
-                                      const OdometryModel& m);
+std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
 WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
 
 // Window predictions and reference motions memoized by the parameters they depend on (the
@@ -105,8 +104,8 @@ class WindowCache {
 // Negative log-likelihood of the windows `index` (all when empty) under m; windows the shifted
 // reference does not cover count with the constant of a perfect fit so that likelihoods stay
 // comparable across offsets. `cache` (optional) must belong to d.
-double negative_log_likelihood(const MotionData& d, const OdometryModel& m,
-                               const std::vector<std::size_t>& index, WindowCache* cache = nullptr);
+double negative_log_likelihood(const MotionData& d, const OdometryModel& m, const std::vector<std::size_t>& index,
+                               WindowCache* cache = nullptr);
 
 // Log-density of one residual component r with (squared) scale v: normal (dof = 0) or Student-t.
 double component_log_density(double r, double v, double dof);

@@ -36,9 +36,8 @@ ResidualTest bias_test(std::span<const double> r, const std::string& residual) {
   return t;
 }
 
-ResidualTest dependence_test(std::span<const double> r, std::span<const double> x,
-                             const std::string& name, const std::string& residual,
-                             const std::string& variable) {
+ResidualTest dependence_test(std::span<const double> r, std::span<const double> x, const std::string& name,
+                             const std::string& residual, const std::string& variable) {
   ResidualTest t{name, residual, variable, "z"};
   const double rho = std::clamp(correlation(r, x), -0.999999, 0.999999);
   t.strength = rho;
@@ -72,8 +71,8 @@ ResidualTest heavy_tail_test(std::span<const double> r, const std::string& resid
   return t;
 }
 
-ResidualTest heteroscedasticity_test(std::span<const double> r, std::span<const double> x,
-                                     const std::string& residual, const std::string& variable) {
+ResidualTest heteroscedasticity_test(std::span<const double> r, std::span<const double> x, const std::string& residual,
+                                     const std::string& variable) {
   std::vector<double> r2(r.size());
   for (std::size_t i = 0; i < r.size(); ++i) r2[i] = r[i] * r[i];
   ResidualTest t = dependence_test(r2, x, "heteroscedasticity", residual, variable);
@@ -193,8 +192,7 @@ std::optional<Lattice> find_integer_lattice(std::span<const std::int64_t> increm
   // sampled on a fixed clock) are divisible by anything that divides those values.
   std::vector<std::int64_t> sorted = nz;
   std::sort(sorted.begin(), sorted.end());
-  const std::size_t distinct =
-      static_cast<std::size_t>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
+  const std::size_t distinct = static_cast<std::size_t>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
   if (distinct < 10) return std::nullopt;
   const std::int64_t median = sorted[distinct / 2];
   std::optional<Lattice> best;

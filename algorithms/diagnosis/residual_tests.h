@@ -25,16 +25,15 @@ struct ResidualTest {
 // Mean of r is zero (z = mean/(s/√n)).
 ResidualTest bias_test(std::span<const double> r, const std::string& residual);
 // Pearson correlation of r with x (z = atanh(ρ)·√(n − 3)).
-ResidualTest dependence_test(std::span<const double> r, std::span<const double> x,
-                             const std::string& name, const std::string& residual,
-                             const std::string& variable);
+ResidualTest dependence_test(std::span<const double> r, std::span<const double> x, const std::string& name,
+                             const std::string& residual, const std::string& variable);
 // Skewness (3.3–3.10, §3.2.1) of standardized residuals, two-sided.
 ResidualTest skewness_test(std::span<const double> r, const std::string& residual);
 // Kurtosis above normal (heavy tails), one-sided upper.
 ResidualTest heavy_tail_test(std::span<const double> r, const std::string& residual);
 // Variance growing with x: correlation of r² with x, one-sided (Breusch–Pagan-like).
-ResidualTest heteroscedasticity_test(std::span<const double> r, std::span<const double> x,
-                                     const std::string& residual, const std::string& variable);
+ResidualTest heteroscedasticity_test(std::span<const double> r, std::span<const double> x, const std::string& residual,
+                                     const std::string& variable);
 // Positive lag-1 autocorrelation (Ljung–Box with one lag, χ²₁, one-sided).
 ResidualTest autocorrelation_test(std::span<const double> r, const std::string& residual);
 

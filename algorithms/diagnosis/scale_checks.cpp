@@ -45,14 +45,16 @@ std::string scale_disagreement(const std::string& log, double value, double lo, 
   const double a = std::min(c.path_length_ratio, c.ls_velocity_scale) - tolerance;
   const double b = std::max(c.path_length_ratio, c.ls_velocity_scale) + tolerance;
   if (hi >= a && lo <= b) return "";
-  std::string s = fmt::format("{}: the kept {} {:.3f} [{:.3f}, {:.3f}] lies outside the independent checks' "
-                              "range ±{:.2f} ([{:.3f}, {:.3f}])",
-                              log, what, value, lo, hi, tolerance, a, b);
+  std::string s = fmt::format(
+      "{}: the kept {} {:.3f} [{:.3f}, {:.3f}] lies outside the independent checks' "
+      "range ±{:.2f} ([{:.3f}, {:.3f}])",
+      log, what, value, lo, hi, tolerance, a, b);
   if (what == "velocity scale" && std::abs(c.median_window_ratio - c.path_length_ratio) > tolerance) {
-    s += fmt::format(": the per-window ratio is skewed (median {:.3f}, path-length ratio {:.3f}); the diagnosis's "
-                     "Student-t fit follows the typical window, the sums follow the mean, which the windows that "
-                     "lose distance pull down (drive_stall models such windows when the held-out data support it)",
-                     c.median_window_ratio, c.path_length_ratio);
+    s += fmt::format(
+        ": the per-window ratio is skewed (median {:.3f}, path-length ratio {:.3f}); the diagnosis's "
+        "Student-t fit follows the typical window, the sums follow the mean, which the windows that "
+        "lose distance pull down (drive_stall models such windows when the held-out data support it)",
+        c.median_window_ratio, c.path_length_ratio);
   }
   return s;
 }

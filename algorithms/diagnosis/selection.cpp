@@ -41,8 +41,7 @@ Selection forward_select(std::size_t candidates, double nominal_nll,
 }
 
 OffsetProfile profile_offset(const std::function<double(double)>& nll_fixed,
-                             const std::function<double(double)>& nll_profiled, double dt,
-                             double range) {
+                             const std::function<double(double)>& nll_profiled, double dt, double range) {
   constexpr double kChi2_95 = 3.841458820694124;
   const double coarse = std::clamp(dt, 0.005, 0.05);
   const double fine = coarse / 10.0;

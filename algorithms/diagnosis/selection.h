@@ -47,11 +47,10 @@ Selection forward_select(std::size_t candidates, double nominal_nll,
 // offset) and interpolated linearly between steps; without `nll_profiled`, no interval (lo = hi).
 struct OffsetProfile {
   double value = 0.0, lo = 0.0, hi = 0.0;  // [s]
-  double nll = 0.0;                         // at `value`, other parameters held
-  double step = 0.0;                        // the fine grid's step [s]
+  double nll = 0.0;                        // at `value`, other parameters held
+  double step = 0.0;                       // the fine grid's step [s]
 };
 OffsetProfile profile_offset(const std::function<double(double)>& nll_fixed,
-                             const std::function<double(double)>& nll_profiled, double dt,
-                             double range = 0.5);
+                             const std::function<double(double)>& nll_profiled, double dt, double range = 0.5);
 
 }  // namespace locbench::diagnosis

@@ -22,16 +22,13 @@ void validate(const CompassEkfOptions& o) { validate_fields(o, "CompassEkfOption
 LOCBENCH_OPTIONS_JSON(CompassEkfOptions)
 
 CompassEkf::CompassEkf(const CompassEkfOptions& options, double wheelbase, const Pose2& start)
-    : options_(options),
-      wheelbase_(wheelbase),
-      x_(to_vector(start)),
-      p_(options.initial_covariance.asDiagonal()) {
+    : options_(options), wheelbase_(wheelbase), x_(to_vector(start)), p_(options.initial_covariance.asDiagonal()) {
   validate(options);
   require_positive_wheelbase(wheelbase, "CompassEkf");
 }
 
-CompassEkf::CompassEkf(ProcessNoiseModel process_noise, double compass_variance,
-                       const Matrix3& initial_covariance, double wheelbase, const Pose2& start)
+CompassEkf::CompassEkf(ProcessNoiseModel process_noise, double compass_variance, const Matrix3& initial_covariance,
+                       double wheelbase, const Pose2& start)
     : custom_q_(std::move(process_noise)),
       wheelbase_(wheelbase),
       x_(to_vector(start)),
@@ -44,12 +41,10 @@ CompassEkf::CompassEkf(ProcessNoiseModel process_noise, double compass_variance,
 
 Matrix3 CompassEkf::process_noise(const WheelDisplacement& u) const {
   if (custom_q_) return custom_q_(x_, u, wheelbase_);
-  return options_.process_noise_scale *
-         adaptive_process_noise(options_.noise, x_(2), u, wheelbase_);
+  return options_.process_noise_scale * adaptive_process_noise(options_.noise, x_(2), u, wheelbase_);
 }
 
-CompassFilterStep CompassEkf::step(const WheelDisplacement& u,
-                                   std::optional<double> compass_heading) {
+CompassFilterStep CompassEkf::step(const WheelDisplacement& u, std::optional<double> compass_heading) {
   const Matrix3 q = process_noise(u);  // Q(k−1) at X̂(k−1) (eq. 4.43)
   return compass_ekf_step(x_, p_, u, wheelbase_, q, compass_heading, options_.compass_variance);
 }

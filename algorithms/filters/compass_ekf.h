@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "core/compass_ekf_model.h"
 #include "algorithms/filters/odometry_noise_model.h"
+#include "core/compass_ekf_model.h"
 
 namespace locbench {
 
@@ -31,16 +31,15 @@ void from_json(const nlohmann::json& j, CompassEkfOptions& o);
 void validate(const CompassEkfOptions& o);
 
 // Q(k−1) from the previous estimate X̂(k−1), the sample's wheel travel and the wheelbase.
-using ProcessNoiseModel =
-    std::function<Matrix3(const Vector3& x_prev, const WheelDisplacement& u, double wheelbase)>;
+using ProcessNoiseModel = std::function<Matrix3(const Vector3& x_prev, const WheelDisplacement& u, double wheelbase)>;
 
 class CompassEkf {
  public:
   // The thesis's adaptive model. Throws UsageError for invalid options or wheelbase <= 0.
   CompassEkf(const CompassEkfOptions& options, double wheelbase, const Pose2& start);
   // Any process-noise model (e.g. a fixed or deliberately wrong Q).
-  CompassEkf(ProcessNoiseModel process_noise, double compass_variance,
-             const Matrix3& initial_covariance, double wheelbase, const Pose2& start);
+  CompassEkf(ProcessNoiseModel process_noise, double compass_variance, const Matrix3& initial_covariance,
+             double wheelbase, const Pose2& start);
 
   // One sample: predict with the wheel travel u, then correct with the compass heading [rad]
   // if one came with this sample.

@@ -7,8 +7,7 @@ namespace locbench {
 
 std::vector<CompassOdometrySample> pair_encoder_compass(std::span<const EncoderReading> encoders,
                                                         std::span<const CompassReading> compass,
-                                                        const NominalModel& model,
-                                                        double max_offset) {
+                                                        const NominalModel& model, double max_offset) {
   if (!(max_offset >= 0.0)) throw std::invalid_argument("pair_encoder_compass: max_offset < 0");
   std::vector<CompassOdometrySample> out;
   if (encoders.size() < 2) return out;
@@ -24,8 +23,7 @@ std::vector<CompassOdometrySample> pair_encoder_compass(std::span<const EncoderR
     while (c < compass.size() && compass[c].t < s.t - max_offset) ++c;
     std::size_t best = compass.size();
     for (std::size_t i = c; i < compass.size() && compass[i].t <= s.t + max_offset; ++i) {
-      if (best == compass.size() ||
-          std::abs(compass[i].t - s.t) < std::abs(compass[best].t - s.t)) {
+      if (best == compass.size() || std::abs(compass[i].t - s.t) < std::abs(compass[best].t - s.t)) {
         best = i;
       }
     }

@@ -24,7 +24,6 @@ struct CompassOdometrySample {
 // std::invalid_argument when max_offset < 0.
 std::vector<CompassOdometrySample> pair_encoder_compass(std::span<const EncoderReading> encoders,
                                                         std::span<const CompassReading> compass,
-                                                        const NominalModel& model,
-                                                        double max_offset);
+                                                        const NominalModel& model, double max_offset);
 
 }  // namespace locbench

@@ -10,8 +10,7 @@
 
 namespace locbench {
 
-double nees(const Eigen::Ref<const Eigen::VectorXd>& error,
-            const Eigen::Ref<const Eigen::MatrixXd>& covariance) {
+double nees(const Eigen::Ref<const Eigen::VectorXd>& error, const Eigen::Ref<const Eigen::MatrixXd>& covariance) {
   if (covariance.rows() != error.size() || covariance.cols() != error.size()) {
     throw std::invalid_argument("nees: covariance and error sizes differ");
   }
@@ -40,8 +39,7 @@ ChiSquareInterval average_chi_square_interval(int dof, int runs, double confiden
   return {chi_square_quantile(ChiSquareDof(n), tail) / runs, chi_square_upper_quantile(ChiSquareDof(n), tail) / runs};
 }
 
-ConsistencySummary summarize_consistency(const std::vector<std::vector<double>>& per_run, int dof,
-                                         double confidence) {
+ConsistencySummary summarize_consistency(const std::vector<std::vector<double>>& per_run, int dof, double confidence) {
   if (per_run.empty() || per_run.front().empty()) {
     throw std::invalid_argument("summarize_consistency: no runs or no steps");
   }

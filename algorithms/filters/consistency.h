@@ -15,8 +15,7 @@ namespace locbench {
 
 // eᵀP⁻¹e; +∞ when P is not positive definite (a zero error with singular P gives +∞ too: a
 // filter claiming certainty is not consistent).
-double nees(const Eigen::Ref<const Eigen::VectorXd>& error,
-            const Eigen::Ref<const Eigen::MatrixXd>& covariance);
+double nees(const Eigen::Ref<const Eigen::VectorXd>& error, const Eigen::Ref<const Eigen::MatrixXd>& covariance);
 // NEES of a pose estimate [x, y, θ] against the truth, heading error wrapped to [−π, π).
 double pose_nees(const Pose2& truth, const Eigen::Vector3d& mean, const Eigen::Matrix3d& cov);
 // ν²/S for a scalar innovation; +∞ when S <= 0.

@@ -8,8 +8,8 @@
 
 namespace locbench {
 
-constexpr EnumNames<OdometryNoiseForm, 2> kForms{{{OdometryNoiseForm::kThesis, "thesis"},
-                                                  {OdometryNoiseForm::kJacobian, "jacobian"}}};
+constexpr EnumNames<OdometryNoiseForm, 2> kForms{
+    {{OdometryNoiseForm::kThesis, "thesis"}, {OdometryNoiseForm::kJacobian, "jacobian"}}};
 
 const char* to_string(OdometryNoiseForm f) { return enum_name(kForms, f); }
 OdometryNoiseForm odometry_noise_form_from_string(const std::string& s) { return enum_value(kForms, s, "expected"); }
@@ -33,15 +33,14 @@ WheelNoiseVariance wheel_noise_variance(const OdometryNoiseOptions& o, const Whe
           o.k_right * o.k_right * std::abs(u.right) + o.sigma_right * o.sigma_right};
 }
 
-IncrementNoise increment_noise(const OdometryNoiseOptions& o, const WheelDisplacement& u,
-                               double wheelbase) {
+IncrementNoise increment_noise(const OdometryNoiseOptions& o, const WheelDisplacement& u, double wheelbase) {
   const WheelNoiseVariance w = wheel_noise_variance(o, u);
   const double sum = w.left + w.right;
   return {sum / 4.0, sum / (wheelbase * wheelbase)};  // eq. 4.36, 4.37
 }
 
-Matrix3 adaptive_process_noise(const OdometryNoiseOptions& o, double theta_prev,
-                               const WheelDisplacement& u, double wheelbase) {
+Matrix3 adaptive_process_noise(const OdometryNoiseOptions& o, double theta_prev, const WheelDisplacement& u,
+                               double wheelbase) {
   if (o.form == OdometryNoiseForm::kJacobian) {
     const WheelNoiseVariance w = wheel_noise_variance(o, u);
     const Matrix32 fu = odometry_jacobian_wheels(Pose2(0.0, 0.0, theta_prev), u, wheelbase);

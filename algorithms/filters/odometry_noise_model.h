@@ -51,12 +51,11 @@ struct IncrementNoise {
   double distance = 0.0;
   double rotation = 0.0;
 };
-IncrementNoise increment_noise(const OdometryNoiseOptions& o, const WheelDisplacement& u,
-                               double wheelbase);
+IncrementNoise increment_noise(const OdometryNoiseOptions& o, const WheelDisplacement& u, double wheelbase);
 
 // Q(k−1) for a step from heading theta_prev with wheel travel u (eq. 4.43–4.44, or the
 // Jacobian form).
-Matrix3 adaptive_process_noise(const OdometryNoiseOptions& o, double theta_prev,
-                               const WheelDisplacement& u, double wheelbase);
+Matrix3 adaptive_process_noise(const OdometryNoiseOptions& o, double theta_prev, const WheelDisplacement& u,
+                               double wheelbase);
 
 }  // namespace locbench

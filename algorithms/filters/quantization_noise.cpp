@@ -34,9 +34,7 @@ double brent_minimum_sigma(F f, double c) {
   return c * boost::math::tools::brent_find_minima(g, 0.05, 2.0, kBits, max_iter).first;
 }
 
-double normal_cdf(double x, double sigma) {
-  return 0.5 * std::erfc(-x / (std::numbers::sqrt2 * sigma));
-}
+double normal_cdf(double x, double sigma) { return 0.5 * std::erfc(-x / (std::numbers::sqrt2 * sigma)); }
 
 }  // namespace
 
@@ -58,8 +56,7 @@ double l2_distance(double sigma, double c) {
   require_positive(c, "C");
   // ∫f₁² = 2/(3C); ∫f₂² = 1/(2√π σ); ∫f₁f₂ = (1/C) erf(C/(√2σ)) − 2σ(1 − e^{−C²/2σ²})/(√(2π)C²).
   const double tail = -std::expm1(-c * c / (2.0 * sigma * sigma));
-  const double cross =
-      std::erf(c / (std::numbers::sqrt2 * sigma)) / c - 2.0 * sigma * tail / (kSqrt2Pi * c * c);
+  const double cross = std::erf(c / (std::numbers::sqrt2 * sigma)) / c - 2.0 * sigma * tail / (kSqrt2Pi * c * c);
   return 2.0 / (3.0 * c) + 1.0 / (2.0 * kSqrtPi * sigma) - 2.0 * cross;
 }
 
@@ -86,13 +83,10 @@ double thesis_objective(double sigma, double c) {
   require_positive(sigma, "sigma");
   require_positive(c, "C");
   const double tail = -std::expm1(-c * c / (2.0 * sigma * sigma));
-  return 1.0 / (4.0 * kSqrtPi * sigma) - std::sqrt(tail) / c +
-         std::numbers::sqrt2 * sigma / (kSqrtPi * c * c) * tail;
+  return 1.0 / (4.0 * kSqrtPi * sigma) - std::sqrt(tail) / c + std::numbers::sqrt2 * sigma / (kSqrtPi * c * c) * tail;
 }
 
-double thesis_l2_distance(double sigma, double c) {
-  return 2.0 * (thesis_objective(sigma, c) + 1.0 / (3.0 * c));
-}
+double thesis_l2_distance(double sigma, double c) { return 2.0 * (thesis_objective(sigma, c) + 1.0 / (3.0 * c)); }
 
 double thesis_optimal_sigma(double c) {
   require_positive(c, "C");
@@ -104,9 +98,7 @@ double l1_distance(double sigma, double c) {
   require_positive(c, "C");
   // h(x) = f₁(x) − f₂(x) on [0, C]; for x > C, h = −f₂. By symmetry G₁ = 2∫₀^∞|h|.
   const double norm = 1.0 / (kSqrt2Pi * sigma);
-  auto h = [&](double x) {
-    return (c - x) / (c * c) - norm * std::exp(-x * x / (2.0 * sigma * sigma));
-  };
+  auto h = [&](double x) { return (c - x) / (c * c) - norm * std::exp(-x * x / (2.0 * sigma * sigma)); };
   // Antiderivative of h on [0, C].
   auto big_h = [&](double x) { return (c * x - 0.5 * x * x) / (c * c) - normal_cdf(x, sigma); };
 
@@ -119,8 +111,8 @@ double l1_distance(double sigma, double c) {
     const double h1 = h(x1);
     if ((h0 < 0.0 && h1 > 0.0) || (h0 > 0.0 && h1 < 0.0)) {
       std::uintmax_t it = 200;
-      const auto r = boost::math::tools::toms748_solve(
-          h, x0, x1, h0, h1, boost::math::tools::eps_tolerance<double>(52), it);
+      const auto r =
+          boost::math::tools::toms748_solve(h, x0, x1, h0, h1, boost::math::tools::eps_tolerance<double>(52), it);
       knots.push_back(0.5 * (r.first + r.second));
     }
     x0 = x1;
@@ -140,8 +132,7 @@ double l1_optimal_sigma(double c) {
   return brent_minimum_sigma([c](double s) { return l1_distance(s, c); }, c);
 }
 
-QuantizationSigmaComparison compare_quantization_sigma(double c, double published_sigma,
-                                                       double published_l2) {
+QuantizationSigmaComparison compare_quantization_sigma(double c, double published_sigma, double published_l2) {
   QuantizationSigmaComparison r;
   r.c = c;
   r.variance = quantization_variance(c);

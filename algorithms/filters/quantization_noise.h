@@ -60,7 +60,6 @@ struct QuantizationSigmaComparison {
   double published_sigma = 0.0;  // as given
   double published_l2 = 0.0;     // as given
 };
-QuantizationSigmaComparison compare_quantization_sigma(double c, double published_sigma,
-                                                       double published_l2);
+QuantizationSigmaComparison compare_quantization_sigma(double c, double published_sigma, double published_l2);
 
 }  // namespace locbench

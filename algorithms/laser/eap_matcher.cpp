@@ -8,10 +8,10 @@
 #include <span>
 #include <vector>
 
-#include "core/errors.h"
 #include "algorithms/laser/eap_matcher_moments.h"
 #include "algorithms/laser/eap_matcher_points.h"
 #include "algorithms/laser/eap_matcher_segments.h"
+#include "core/errors.h"
 
 namespace locbench::laser {
 namespace {
@@ -28,17 +28,13 @@ constexpr std::size_t kMaskBits = 64;  // segments per branch-free band-test blo
 struct Hit {
   std::uint32_t segment;
   std::uint32_t point;  // index into the scan's valid points
-  bool operator<(const Hit& o) const {
-    return segment != o.segment ? segment < o.segment : point < o.point;
-  }
+  bool operator<(const Hit& o) const { return segment != o.segment ? segment < o.segment : point < o.point; }
 };
 
 struct Run {
   std::uint32_t segment, begin, end;  // points [begin, end)
-  Moments moments;                     // about the segment's midpoint
-  bool operator<(const Run& o) const {
-    return segment != o.segment ? segment < o.segment : begin < o.begin;
-  }
+  Moments moments;                    // about the segment's midpoint
+  bool operator<(const Run& o) const { return segment != o.segment ? segment < o.segment : begin < o.begin; }
 };
 
 // Buffers reused across calls, one set per thread (so one matcher can still be shared across
@@ -71,10 +67,16 @@ bool nearer(double d2, double best2) {
 // One match() call over the flat points and segments.
 class MatchPass {
  public:
-  MatchPass(const EapOptions& o, const EapSegmentTable& table, const Scan& scan,
-            const LineMap& map, double sensor_heading, Workspace& ws)
-      : o_(o), t_(table), scan_(scan), map_(map), p_(ws.points), ws_(ws),
-        sensor_heading_(sensor_heading), sin_max_direction_(std::sin(o.max_direction_error)) {}
+  MatchPass(const EapOptions& o, const EapSegmentTable& table, const Scan& scan, const LineMap& map,
+            double sensor_heading, Workspace& ws)
+      : o_(o),
+        t_(table),
+        scan_(scan),
+        map_(map),
+        p_(ws.points),
+        ws_(ws),
+        sensor_heading_(sensor_heading),
+        sin_max_direction_(std::sin(o.max_direction_error)) {}
 
   // Calls f(j) for each segment j whose ω1 holds point i, ascending j: the band test first
   // (branch-free over blocks of 64 segments, plain) or the grid cell's list (indexed).
@@ -133,8 +135,7 @@ class MatchPass {
     const RegionRule rule = o_.region;
     for (std::size_t first = 0; first < m; first += kMaskBits) {
       masks.assign(n, 0);
-      t_.band_masks(first, std::min(kMaskBits, m - first), p_.x.data(), p_.y.data(), n,
-                    masks.data());
+      t_.band_masks(first, std::min(kMaskBits, m - first), p_.x.data(), p_.y.data(), n, masks.data());
       for (std::size_t i = 0; i < n; ++i) {
         for (std::uint64_t mask = masks[i]; mask != 0; mask &= mask - 1) {
           const auto j = static_cast<std::uint32_t>(first + std::countr_zero(mask));
@@ -155,8 +156,7 @@ class MatchPass {
   // conditions 1–3 and ours) into one SegmentMatch. Two members are consecutive when every
   // valid point between them is deleted (`deleted` null: only adjacent points are). Accepted
   // points are marked in `deleted` when it is given.
-  void accept_runs(std::uint32_t segment, std::span<const std::uint32_t> members,
-                   std::vector<char>* deleted) {
+  void accept_runs(std::uint32_t segment, std::span<const std::uint32_t> members, std::vector<char>* deleted) {
     std::vector<std::uint32_t>& accepted = ws_.accepted;
     accepted.clear();
     Moments sum;
@@ -189,8 +189,7 @@ class MatchPass {
       std::uint32_t end = begin + 1;
       while (end < n && owner[end] == owner[begin]) ++end;
       Moments m;
-      if (owner[begin] != kNoSegment &&
-          accept_run(owner[begin], std::views::iota(begin, end), m)) {
+      if (owner[begin] != kNoSegment && accept_run(owner[begin], std::views::iota(begin, end), m)) {
         runs.push_back({owner[begin], begin, end, m});
       }
       begin = end;
@@ -291,8 +290,7 @@ class MatchPass {
     match.map_segment = segment;
     match.points.reserve(indices.size());
     for (const std::uint32_t i : indices) match.points.push_back(p_.point(i, scan_));
-    match.fit = detail::line_fit_from(m, a, ox, oy, ss, match.points.front().world,
-                                      match.points.back().world);
+    match.fit = detail::line_fit_from(m, a, ox, oy, ss, match.points.front().world, match.points.back().world);
     result_.matches.push_back(std::move(match));
   }
 
@@ -339,9 +337,8 @@ EapMatcher::EapMatcher(std::shared_ptr<const SegmentGridIndex> index, EapOptions
   validate(options_);
   if (!index_) throw UsageError("EapMatcher: the grid index is null");
   if (index_->d_limit() != options_.d_limit) {
-    throw UsageError("EapMatcher: the grid index was built for d_limit " +
-                     std::to_string(index_->d_limit()) + " m, the options say " +
-                     std::to_string(options_.d_limit) + " m");
+    throw UsageError("EapMatcher: the grid index was built for d_limit " + std::to_string(index_->d_limit()) +
+                     " m, the options say " + std::to_string(options_.d_limit) + " m");
   }
   auto table = std::make_shared<EapSegmentTable>();
   table->assign(index_->regions());
@@ -353,8 +350,8 @@ MatchResult EapMatcher::match(const Scan& scan, const LineMap& map, const Pose2&
     throw UsageError("EapMatcher: the pose estimate is not finite");
   }
   if (scan.bearings.size() != scan.ranges.size()) {
-    throw UsageError("EapMatcher: the scan has " + std::to_string(scan.ranges.size()) +
-                     " ranges but " + std::to_string(scan.bearings.size()) + " bearings");
+    throw UsageError("EapMatcher: the scan has " + std::to_string(scan.ranges.size()) + " ranges but " +
+                     std::to_string(scan.bearings.size()) + " bearings");
   }
   Workspace& ws = workspace();
   const EapSegmentTable* table = table_.get();
@@ -427,9 +424,8 @@ MatchResult EapMatcher::match(const Scan& scan, const LineMap& map, const Pose2&
     pass.for_each_region(i, index, [&](std::uint32_t j) { ws.hits.push_back({j, i}); });
   }
   std::sort(ws.hits.begin(), ws.hits.end());
-  for_each_group(ws.hits, ws.members, [&](std::uint32_t j, std::span<const std::uint32_t> pts) {
-    pass.accept_runs(j, pts, nullptr);
-  });
+  for_each_group(ws.hits, ws.members,
+                 [&](std::uint32_t j, std::span<const std::uint32_t> pts) { pass.accept_runs(j, pts, nullptr); });
   return pass.take_result();
 }
 

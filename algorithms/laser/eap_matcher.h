@@ -76,10 +76,10 @@ struct EapOptions {
   // with fewer than c_limit points is dropped. Removes an adjacent wall's points that a pose
   // error carries into the end-cap band (Tables 6.3/6.4 estimates 2 and 6).
   double trim_distance = 0.05;
-  HoughWeight weighting;      // g of 5.8/5.10/5.11; default g ≡ 1 as in the thesis
-  bool remove_claimed = true;                       // §5.3: delete matched points
+  HoughWeight weighting;       // g of 5.8/5.10/5.11; default g ≡ 1 as in the thesis
+  bool remove_claimed = true;  // §5.3: delete matched points
   ClaimOrder claim_order = ClaimOrder::kNearestSegment;
-  RegionRule region = RegionRule::kThesis;          // ω1 as published (equal to the stadium)
+  RegionRule region = RegionRule::kThesis;  // ω1 as published (equal to the stadium)
 };
 // Throws UsageError naming the first invalid field.
 void validate(const EapOptions& o);

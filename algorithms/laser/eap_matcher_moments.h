@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstddef>
 
-#include "core/angle.h"
 #include "algorithms/laser/line_fit.h"
+#include "core/angle.h"
 
 namespace locbench::laser::detail {
 
@@ -85,9 +85,8 @@ inline PrincipalAxis principal_axis(const Moments& m) {
 
 // The LineFit of line_fit.h from the moments about (ox, oy), their principal axis, the sum of
 // squared perpendicular residuals `ss`, and the first and last point (beam order).
-inline LineFit line_fit_from(const Moments& m, const PrincipalAxis& a, double ox, double oy,
-                             double ss, const Eigen::Vector2d& first,
-                             const Eigen::Vector2d& last) {
+inline LineFit line_fit_from(const Moments& m, const PrincipalAxis& a, double ox, double oy, double ss,
+                             const Eigen::Vector2d& first, const Eigen::Vector2d& last) {
   LineFit f;
   f.count = static_cast<std::size_t>(m.n);
   f.centroid = {ox + a.mean_x, oy + a.mean_y};

@@ -8,9 +8,9 @@
 #include <cstring>
 #include <vector>
 
+#include "algorithms/laser/scan_points.h"
 #include "core/pose2.h"
 #include "core/scan.h"
-#include "algorithms/laser/scan_points.h"
 
 namespace locbench::laser::detail {
 

@@ -8,8 +8,7 @@ namespace locbench::laser::detail {
 
 void EapSegmentTable::assign(std::span<const EapRegion> regions) {
   const std::size_t m = regions.size();
-  for (auto* v : {&ax_, &ay_, &nx_, &ny_, &bx_, &by_, &dx_, &dy_, &length_, &d3_squared_, &mx_,
-                  &my_}) {
+  for (auto* v : {&ax_, &ay_, &nx_, &ny_, &bx_, &by_, &dx_, &dy_, &length_, &d3_squared_, &mx_, &my_}) {
     v->resize(m);
   }
   source_.resize(m);

@@ -16,8 +16,8 @@
 #include <emmintrin.h>
 #endif
 
-#include "core/line_map.h"
 #include "algorithms/laser/eap_region.h"
+#include "core/line_map.h"
 
 namespace locbench::laser::detail {
 
@@ -52,9 +52,8 @@ class EapSegmentTable {
     const __m128d x = _mm_set1_pd(px), y = _mm_set1_pd(py), d = _mm_set1_pd(d_limit_);
     const __m128d sign = _mm_set1_pd(-0.0);
     for (; k + 2 <= count; k += 2) {
-      const __m128d h =
-          _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(nx + k), _mm_sub_pd(x, _mm_loadu_pd(ax + k))),
-                     _mm_mul_pd(_mm_loadu_pd(ny + k), _mm_sub_pd(y, _mm_loadu_pd(ay + k))));
+      const __m128d h = _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(nx + k), _mm_sub_pd(x, _mm_loadu_pd(ax + k))),
+                                   _mm_mul_pd(_mm_loadu_pd(ny + k), _mm_sub_pd(y, _mm_loadu_pd(ay + k))));
       const __m128d inside = _mm_cmple_pd(_mm_andnot_pd(sign, h), d);  // |h| ≤ d, NaN false
       mask |= static_cast<std::uint64_t>(_mm_movemask_pd(inside)) << k;
     }
@@ -69,8 +68,8 @@ class EapSegmentTable {
   // (px[i], py[i]), for j in [first, first + count), count ≤ 64. Segment-major, so the
   // segments' constants stay in registers while the points stream past (SSE2 where available:
   // two points per instruction, two segments per pass; the same IEEE operations as in_band).
-  void band_masks(std::size_t first, std::size_t count, const double* px, const double* py,
-                  std::size_t n, std::uint64_t* masks) const {
+  void band_masks(std::size_t first, std::size_t count, const double* px, const double* py, std::size_t n,
+                  std::uint64_t* masks) const {
     std::size_t k = 0;
 #if defined(__SSE2__)
     // Two segments per pass over the points: each pair of points is loaded once for both.
@@ -86,16 +85,13 @@ class EapSegmentTable {
       std::size_t i = 0;
       for (; i + 2 <= n; i += 2) {
         const __m128d x = _mm_loadu_pd(px + i), y = _mm_loadu_pd(py + i);
-        const __m128d h0 = _mm_add_pd(_mm_mul_pd(nx0, _mm_sub_pd(x, ax0)),
-                                      _mm_mul_pd(ny0, _mm_sub_pd(y, ay0)));
-        const __m128d h1 = _mm_add_pd(_mm_mul_pd(nx1, _mm_sub_pd(x, ax1)),
-                                      _mm_mul_pd(ny1, _mm_sub_pd(y, ay1)));
+        const __m128d h0 = _mm_add_pd(_mm_mul_pd(nx0, _mm_sub_pd(x, ax0)), _mm_mul_pd(ny0, _mm_sub_pd(y, ay0)));
+        const __m128d h1 = _mm_add_pd(_mm_mul_pd(nx1, _mm_sub_pd(x, ax1)), _mm_mul_pd(ny1, _mm_sub_pd(y, ay1)));
         const __m128i in0 = _mm_castpd_si128(_mm_cmple_pd(_mm_andnot_pd(sign, h0), d));
         const __m128i in1 = _mm_castpd_si128(_mm_cmple_pd(_mm_andnot_pd(sign, h1), d));
         auto* out = reinterpret_cast<__m128i*>(masks + i);
-        _mm_storeu_si128(out, _mm_or_si128(_mm_loadu_si128(out),
-                                           _mm_or_si128(_mm_and_si128(in0, bit0),
-                                                        _mm_and_si128(in1, bit1))));
+        _mm_storeu_si128(
+            out, _mm_or_si128(_mm_loadu_si128(out), _mm_or_si128(_mm_and_si128(in0, bit0), _mm_and_si128(in1, bit1))));
       }
       for (; i < n; ++i) {
         if (in_band(j, px[i], py[i])) masks[i] |= std::uint64_t{1} << k;
@@ -151,7 +147,7 @@ class EapSegmentTable {
   std::vector<double> d3_squared_;         // d3² = d_limit² + |P1P2|² (5.14)
   std::vector<double> mx_, my_;            // midpoint
   double d_limit_ = 0.0, d_limit_squared_ = 0.0;
-  std::vector<Segment> source_;            // the segments it was built from (built_from)
+  std::vector<Segment> source_;  // the segments it was built from (built_from)
 };
 
 }  // namespace locbench::laser::detail

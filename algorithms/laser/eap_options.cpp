@@ -2,16 +2,16 @@
 #include <cmath>
 #include <string>
 
+#include "algorithms/laser/eap_matcher.h"
 #include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
 #include "core/units.h"
-#include "algorithms/laser/eap_matcher.h"
 
 namespace locbench::laser {
 
-constexpr EnumNames<ClaimOrder, 2> kClaimOrders{{{ClaimOrder::kNearestSegment, "nearest_segment"},
-                                                 {ClaimOrder::kMapOrder, "map_order"}}};
+constexpr EnumNames<ClaimOrder, 2> kClaimOrders{
+    {{ClaimOrder::kNearestSegment, "nearest_segment"}, {ClaimOrder::kMapOrder, "map_order"}}};
 
 const char* to_string(ClaimOrder c) { return enum_name(kClaimOrders, c); }
 ClaimOrder claim_order_from_string(const std::string& s) { return enum_value(kClaimOrders, s, "claim_order must be"); }
@@ -28,8 +28,7 @@ void visit_fields(V& v, EapOptions& o) {
           "ours: drop the farthest point while beyond this, then refit (0 = off, the thesis)");
   v.nested("weighting", o.weighting, "g of 5.8/5.10/5.11 (HoughWeight)");
   v.flag("remove_claimed", o.remove_claimed, "§5.3: delete matched points");
-  v.choice("claim_order", o.claim_order, to_string, claim_order_from_string,
-           "\"nearest_segment\" or \"map_order\"");
+  v.choice("claim_order", o.claim_order, to_string, claim_order_from_string, "\"nearest_segment\" or \"map_order\"");
   v.choice("region", o.region, to_string, region_rule_from_string, "ω1: \"thesis\" or \"stadium\" (eap_region.h)");
 }
 

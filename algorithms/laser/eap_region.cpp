@@ -19,8 +19,7 @@ constexpr EnumNames<RegionRule, 2> kRegionRules{{{RegionRule::kThesis, "thesis"}
 const char* to_string(RegionRule r) { return enum_name(kRegionRules, r); }
 RegionRule region_rule_from_string(const std::string& s) { return enum_value(kRegionRules, s, "region rule must be"); }
 
-EapRegion::EapRegion(const Segment& segment, double d_limit)
-    : p1_(segment.p1), p2_(segment.p2), d_limit_(d_limit) {
+EapRegion::EapRegion(const Segment& segment, double d_limit) : p1_(segment.p1), p2_(segment.p2), d_limit_(d_limit) {
   if (!(std::isfinite(d_limit) && d_limit > 0.0)) {
     throw UsageError("EapRegion: d_limit must be finite and > 0");
   }

@@ -36,16 +36,16 @@ class EapRegion {
   // p ∈ ω1 under `rule`. Inline: this is the matcher's inner loop.
   bool contains(const Eigen::Vector2d& p, RegionRule rule) const {
     const Eigen::Vector2d q = p - p1_;
-    const double h = normal_.dot(q);                       // signed distance from the line
-    if (!(std::abs(h) <= d_limit_)) return false;          // ω2 (5.5); rejects NaN too
+    const double h = normal_.dot(q);               // signed distance from the line
+    if (!(std::abs(h) <= d_limit_)) return false;  // ω2 (5.5); rejects NaN too
     if (rule == RegionRule::kThesis) {
-      const double d1s = q.squaredNorm();                  // d1² (5.12)
-      const double d2s = (p - p2_).squaredNorm();          // d2² (5.13)
-      const bool in_omega3 =                               // (5.15–5.17) with d3² (5.14)
+      const double d1s = q.squaredNorm();          // d1² (5.12)
+      const double d2s = (p - p2_).squaredNorm();  // d2² (5.13)
+      const bool in_omega3 =                       // (5.15–5.17) with d3² (5.14)
           std::max(d1s, d2s) > d3_squared_ && std::min(d1s, d2s) > d_limit_squared_;
       return !in_omega3;
     }
-    const double t = direction_.dot(q);                    // position along P1→P2
+    const double t = direction_.dot(q);  // position along P1→P2
     if (t < 0.0) return q.squaredNorm() <= d_limit_squared_;
     if (t > length_) return (p - p2_).squaredNorm() <= d_limit_squared_;
     return true;
@@ -75,7 +75,7 @@ class EapRegion {
   double length_ = 0.0;
   double d_limit_ = 0.0;
   double d_limit_squared_ = 0.0;
-  double d3_squared_ = 0.0;    // d3² = d_limit² + |P1P2|² (5.14)
+  double d3_squared_ = 0.0;  // d3² = d_limit² + |P1P2|² (5.14)
 };
 
 }  // namespace locbench::laser

@@ -24,8 +24,7 @@ void visit_fields(V& v, HoughWeight& g) {
   v.choice("kind", g.kind, to_string, hough_weighting_from_string,
            "\"count\" (5.11), \"range\" (5.10) or \"range_incidence\" (5.8)");
   v.field("rho_min", g.rho_min, "m", positive(), "ρ_min of 5.8/5.10");
-  v.field("min_cos_incidence", g.min_cos_incidence, "", open_closed(0.0, 1.0),
-          "floor of |cos| in 5.8");
+  v.field("min_cos_incidence", g.min_cos_incidence, "", open_closed(0.0, 1.0), "floor of |cos| in 5.8");
 }
 
 void validate(const HoughWeight& g) { validate_fields(g, "HoughWeight"); }
@@ -39,13 +38,10 @@ void validate(const HoughOptions& o) {
 
 LOCBENCH_OPTIONS_JSON(HoughWeight)
 
-double hough_weight(const ScanPoint& p, double sensor_heading, double beta,
-                    const HoughWeight& g) {
+double hough_weight(const ScanPoint& p, double sensor_heading, double beta, const HoughWeight& g) {
   switch (g.kind) {
-    case HoughWeighting::kCount:
-      return 1.0;  // (5.11)
-    case HoughWeighting::kRange:
-      return p.range / g.rho_min;  // (5.10)
+    case HoughWeighting::kCount: return 1.0;                  // (5.11)
+    case HoughWeighting::kRange: return p.range / g.rho_min;  // (5.10)
     case HoughWeighting::kRangeIncidence: {
       // (5.8): |cos| floored, see the header.
       const double c = std::abs(std::cos(sensor_heading + p.bearing - beta));
@@ -55,15 +51,15 @@ double hough_weight(const ScanPoint& p, double sensor_heading, double beta,
   return 0.0;
 }
 
-double hough_score(std::span<const ScanPoint> points, double sensor_heading,
-                   const LineParams& line, const HoughOptions& o) {
+double hough_score(std::span<const ScanPoint> points, double sensor_heading, const LineParams& line,
+                   const HoughOptions& o) {
   validate(o);
   const double cb = std::cos(line.beta), sb = std::sin(line.beta);
   double c = 0.0;
   for (const ScanPoint& p : points) {
     const double x = p.world.x() * cb + p.world.y() * sb - line.rho;  // (5.4)
     if (rectangular_window(x, o.d_limit) == 0.0) continue;            // (5.7)
-    c += hough_weight(p, sensor_heading, line.beta, o.g);              // (5.6)
+    c += hough_weight(p, sensor_heading, line.beta, o.g);             // (5.6)
   }
   return c;
 }

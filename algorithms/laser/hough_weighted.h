@@ -17,8 +17,8 @@
 #include <span>
 #include <string>
 
-#include "core/segment.h"
 #include "algorithms/laser/scan_points.h"
+#include "core/segment.h"
 
 namespace locbench::laser {
 
@@ -46,16 +46,14 @@ struct HoughOptions {
 void validate(const HoughOptions& o);
 
 // w(x) (5.7).
-inline double rectangular_window(double x, double d_limit) {
-  return (x <= d_limit && x >= -d_limit) ? 1.0 : 0.0;
-}
+inline double rectangular_window(double x, double d_limit) { return (x <= d_limit && x >= -d_limit) ? 1.0 : 0.0; }
 
 // g of one point against a line of normal direction β (5.8, 5.10 or 1). `sensor_heading` is
 // the world heading of the sensor's x axis under the estimate (θ(k) + mount θ).
 double hough_weight(const ScanPoint& p, double sensor_heading, double beta, const HoughWeight& g);
 
 // c(ρ, β) over `points` (their `world` coordinates under the estimate) (5.6).
-double hough_score(std::span<const ScanPoint> points, double sensor_heading,
-                   const LineParams& line, const HoughOptions& o);
+double hough_score(std::span<const ScanPoint> points, double sensor_heading, const LineParams& line,
+                   const HoughOptions& o);
 
 }  // namespace locbench::laser

@@ -9,10 +9,10 @@
 namespace locbench::laser {
 
 struct LineFit {
-  LineParams line;                                    // ρ ≥ 0, β ∈ [-π, π)
+  LineParams line;  // ρ ≥ 0, β ∈ [-π, π)
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
   Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  // unit, along the line
-  double rms = 0.0;        // root-mean-square perpendicular residual [m]
+  double rms = 0.0;                                      // root-mean-square perpendicular residual [m]
   std::size_t count = 0;
   // The fitted segment: the first and last point projected onto the line.
   Segment segment() const { return {first, last}; }

@@ -12,11 +12,11 @@
 namespace locbench::laser {
 
 struct ScanPoint {
-  std::size_t beam = 0;    // index into Scan::ranges
-  double range = 0.0;      // [m]
-  double bearing = 0.0;    // [rad], sensor frame
-  Eigen::Vector2d robot;   // robot frame (eq. 5.2)
-  Eigen::Vector2d world;   // world frame under the pose estimate (eq. 5.3)
+  std::size_t beam = 0;   // index into Scan::ranges
+  double range = 0.0;     // [m]
+  double bearing = 0.0;   // [rad], sensor frame
+  Eigen::Vector2d robot;  // robot frame (eq. 5.2)
+  Eigen::Vector2d world;  // world frame under the pose estimate (eq. 5.3)
 };
 
 // The valid beams (Scan::valid) in beam order.
@@ -24,8 +24,7 @@ std::vector<ScanPoint> scan_points(const Scan& scan, const Pose2& robot_pose);
 
 // A pose's rotation and translation, computed once for all the points it maps (eq. 5.2–5.3).
 struct PointTransform {
-  explicit PointTransform(const Pose2& p)
-      : c(std::cos(p.theta)), s(std::sin(p.theta)), t(p.x, p.y) {}
+  explicit PointTransform(const Pose2& p) : c(std::cos(p.theta)), s(std::sin(p.theta)), t(p.x, p.y) {}
   Eigen::Vector2d operator()(const Eigen::Vector2d& q) const {
     return {t.x() + c * q.x() - s * q.y(), t.y() + s * q.x() + c * q.y()};
   }

@@ -12,16 +12,15 @@ namespace {
 
 constexpr std::size_t kMaxCells = std::size_t{1} << 24;
 
-double point_box_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& lo,
-                          const Eigen::Vector2d& hi) {
+double point_box_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
   const double dx = std::max({lo.x() - p.x(), 0.0, p.x() - hi.x()});
   const double dy = std::max({lo.y() - p.y(), 0.0, p.y() - hi.y()});
   return std::hypot(dx, dy);
 }
 
 // Liang–Barsky: does the segment a + t(b − a), t ∈ [0, 1], meet the box?
-bool segment_meets_box(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                       const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+bool segment_meets_box(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& lo,
+                       const Eigen::Vector2d& hi) {
   double t0 = 0.0, t1 = 1.0;
   const Eigen::Vector2d d = b - a;
   for (int k = 0; k < 2; ++k) {
@@ -40,14 +39,13 @@ bool segment_meets_box(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
 
 }  // namespace
 
-double segment_box_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                            const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+double segment_box_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& lo,
+                            const Eigen::Vector2d& hi) {
   if (segment_meets_box(a, b, lo, hi)) return 0.0;
   // Disjoint convex sets: the closest pair has an end point of the segment or a box corner.
   const Segment s{a, b};
   double d = std::min(point_box_distance(a, lo, hi), point_box_distance(b, lo, hi));
-  for (const Eigen::Vector2d& c :
-       {lo, hi, Eigen::Vector2d(lo.x(), hi.y()), Eigen::Vector2d(hi.x(), lo.y())}) {
+  for (const Eigen::Vector2d& c : {lo, hi, Eigen::Vector2d(lo.x(), hi.y()), Eigen::Vector2d(hi.x(), lo.y())}) {
     d = std::min(d, distance_to_segment(s, c));
   }
   return d;
@@ -62,8 +60,7 @@ void validate(const GridIndexOptions& o) {
   }
 }
 
-SegmentGridIndex::SegmentGridIndex(LineMap map, GridIndexOptions options)
-    : map_(std::move(map)), options_(options) {
+SegmentGridIndex::SegmentGridIndex(LineMap map, GridIndexOptions options) : map_(std::move(map)), options_(options) {
   validate(options_);
   const std::size_t m = map_.segments.size();
   if (m == 0) throw UsageError("SegmentGridIndex: the map has no segments");
@@ -126,12 +123,10 @@ SegmentGridIndex::SegmentGridIndex(LineMap map, GridIndexOptions options)
     const std::size_t y1 = cell_of(bhi.y(), origin_.y(), rows_);
     for (std::size_t cy = y0; cy <= y1; ++cy) {
       for (std::size_t cx = x0; cx <= x1; ++cx) {
-        const Eigen::Vector2d clo = origin_ + cell_ * Eigen::Vector2d(static_cast<double>(cx),
-                                                                      static_cast<double>(cy));
+        const Eigen::Vector2d clo = origin_ + cell_ * Eigen::Vector2d(static_cast<double>(cx), static_cast<double>(cy));
         const Eigen::Vector2d chi = clo + Eigen::Vector2d(cell_, cell_);
         if (segment_box_distance(s.p1, s.p2, clo, chi) <= r) {
-          pairs.emplace_back(static_cast<std::uint32_t>(cy * columns_ + cx),
-                             static_cast<std::uint32_t>(j));
+          pairs.emplace_back(static_cast<std::uint32_t>(cy * columns_ + cx), static_cast<std::uint32_t>(j));
         }
       }
     }

@@ -10,8 +10,8 @@
 #include <span>
 #include <vector>
 
-#include "core/line_map.h"
 #include "algorithms/laser/eap_region.h"
+#include "core/line_map.h"
 
 namespace locbench::laser {
 
@@ -66,7 +66,7 @@ class SegmentGridIndex {
 
 // Euclidean distance between the closed segment ab and the axis-aligned box [lo, hi]; 0 when
 // they touch or cross.
-double segment_box_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                            const Eigen::Vector2d& lo, const Eigen::Vector2d& hi);
+double segment_box_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& lo,
+                            const Eigen::Vector2d& hi);
 
 }  // namespace locbench::laser

@@ -6,18 +6,18 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/laser/line_fit.h"
+#include "algorithms/laser/scan_points.h"
 #include "core/line_map.h"
 #include "core/pose2.h"
 #include "core/scan.h"
-#include "algorithms/laser/line_fit.h"
-#include "algorithms/laser/scan_points.h"
 
 namespace locbench::laser {
 
 struct SegmentMatch {
-  std::size_t map_segment = 0;       // index into LineMap::segments
-  std::vector<ScanPoint> points;     // the assigned points, in beam order
-  LineFit fit;                       // least-squares line of points[i].world
+  std::size_t map_segment = 0;    // index into LineMap::segments
+  std::vector<ScanPoint> points;  // the assigned points, in beam order
+  LineFit fit;                    // least-squares line of points[i].world
 };
 
 struct MatchResult {
@@ -33,8 +33,7 @@ class SegmentMatcher {
  public:
   virtual ~SegmentMatcher() = default;
   virtual std::string name() const = 0;  // stable, e.g. "eap", "split_and_merge"
-  virtual MatchResult match(const Scan& scan, const LineMap& map,
-                            const Pose2& estimate) const = 0;
+  virtual MatchResult match(const Scan& scan, const LineMap& map, const Pose2& estimate) const = 0;
 };
 
 }  // namespace locbench::laser

@@ -9,9 +9,7 @@
 #include "core/option_fields.h"
 
 namespace locbench::pose_correction {
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 // EkfTrackerOptions' fields, stated once (the header explains each).
 template <class V>
@@ -28,10 +26,7 @@ void validate(const EkfTrackerOptions& o) { validate_fields(o, "EkfTrackerOption
 LOCBENCH_OPTIONS_JSON(EkfTrackerOptions)
 
 EkfTracker::EkfTracker(const EkfTrackerOptions& options, double wheelbase, const Pose2& start)
-    : options_(options),
-      wheelbase_(wheelbase),
-      x_(to_vector(start)),
-      p_(options.initial_covariance.asDiagonal()) {
+    : options_(options), wheelbase_(wheelbase), x_(to_vector(start)), p_(options.initial_covariance.asDiagonal()) {
   validate(options_);
   require_positive_wheelbase(wheelbase, "EkfTracker");
   if (!x_.allFinite()) throw UsageError("EkfTracker: the start pose is not finite");
@@ -92,13 +87,12 @@ TrackerUpdate EkfTracker::update(const PoseCorrection& correction) {
   return out;
 }
 
-TrackerUpdate EkfTracker::correct(std::span<const laser::SegmentMatch> matches,
-                                  const LineMap& map, const Pose2& sensor_mount) {
+TrackerUpdate EkfTracker::correct(std::span<const laser::SegmentMatch> matches, const LineMap& map,
+                                  const Pose2& sensor_mount) {
   return update(correct_pose(matches, map, pose(), sensor_mount, options_.correction));
 }
 
-TrackerUpdate EkfTracker::correct(const Scan& scan, const LineMap& map,
-                                  const laser::SegmentMatcher& matcher) {
+TrackerUpdate EkfTracker::correct(const Scan& scan, const LineMap& map, const laser::SegmentMatcher& matcher) {
   const laser::MatchResult m = matcher.match(scan, map, pose());
   return correct(m.matches, map, scan.sensor_pose);
 }

@@ -11,13 +11,13 @@
 #include <nlohmann/json.hpp>
 #include <span>
 
+#include "algorithms/laser/segment_match.h"
+#include "algorithms/pose_correction/pose_correction.h"
 #include "core/compass_ekf_model.h"
 #include "core/diff_drive_odometry.h"
 #include "core/line_map.h"
 #include "core/pose2.h"
 #include "core/scan.h"
-#include "algorithms/laser/segment_match.h"
-#include "algorithms/pose_correction/pose_correction.h"
 
 namespace locbench::pose_correction {
 
@@ -44,10 +44,10 @@ enum class TrackerUpdateKind { kNone, kHeading, kFull };
 
 struct TrackerUpdate {
   TrackerUpdateKind kind = TrackerUpdateKind::kNone;
-  bool gated_out = false;  // a correction existed but its NIS failed the gate
+  bool gated_out = false;                                // a correction existed but its NIS failed the gate
   Eigen::Vector3d innovation = Eigen::Vector3d::Zero();  // (Δx, Δy, Δθ); only Δθ when heading
-  double nis = 0.0;  // νᵀS⁻¹ν
-  int dof = 0;       // 3, 1 or 0
+  double nis = 0.0;                                      // νᵀS⁻¹ν
+  int dof = 0;                                           // 3, 1 or 0
   PoseCorrection correction;
 };
 
@@ -61,11 +61,9 @@ class EkfTracker {
   // The measurement update with a correction computed at the current (predicted) estimate.
   TrackerUpdate update(const PoseCorrection& correction);
   // Correction of `matches` at the current estimate, then update.
-  TrackerUpdate correct(std::span<const laser::SegmentMatch> matches, const LineMap& map,
-                        const Pose2& sensor_mount);
+  TrackerUpdate correct(std::span<const laser::SegmentMatch> matches, const LineMap& map, const Pose2& sensor_mount);
   // Matches `scan` against `map` at the current estimate with `matcher`, then corrects.
-  TrackerUpdate correct(const Scan& scan, const LineMap& map,
-                        const laser::SegmentMatcher& matcher);
+  TrackerUpdate correct(const Scan& scan, const LineMap& map, const laser::SegmentMatcher& matcher);
 
   Pose2 pose() const { return to_pose(x_); }
   const Vector3& mean() const { return x_; }

@@ -23,8 +23,7 @@ struct PointOnLine {
   double residual = 0.0;
 };
 
-std::vector<PointOnLine> points_on_lines(std::span<const laser::SegmentMatch> matches,
-                                         const LineMap& map) {
+std::vector<PointOnLine> points_on_lines(std::span<const laser::SegmentMatch> matches, const LineMap& map) {
   std::vector<PointOnLine> out;
   for (const auto& m : matches) {
     const Segment& segment = matched_segment(m, map, "iterated_point_to_line");
@@ -43,13 +42,11 @@ void trim(std::vector<PointOnLine>& pts, const Pose2& pose, double keep_fraction
                             pose.y + s * p.robot.x() + c * p.robot.y());  // = pose * p.robot
     p.residual = p.normal.dot(q) - p.rho;
   }
-  const auto keep =
-      static_cast<std::size_t>(std::ceil(keep_fraction * static_cast<double>(pts.size())));
+  const auto keep = static_cast<std::size_t>(std::ceil(keep_fraction * static_cast<double>(pts.size())));
   if (keep >= pts.size()) return;
-  std::nth_element(pts.begin(), pts.begin() + static_cast<std::ptrdiff_t>(keep), pts.end(),
-                   [](const PointOnLine& a, const PointOnLine& b) {
-                     return std::abs(a.residual) < std::abs(b.residual);
-                   });
+  std::nth_element(
+      pts.begin(), pts.begin() + static_cast<std::ptrdiff_t>(keep), pts.end(),
+      [](const PointOnLine& a, const PointOnLine& b) { return std::abs(a.residual) < std::abs(b.residual); });
   pts.resize(keep);
 }
 
@@ -103,7 +100,8 @@ void visit_fields(V& v, IteratedCorrectionOptions& o) {
   v.field("translation_tolerance", o.translation_tolerance, "m", positive(), "converged below this step");
   v.field("rotation_tolerance", o.rotation_tolerance, "rad", positive(), "converged below this step");
   v.field("keep_fraction", o.keep_fraction, "", open_closed(0.0, 1.0), "trimmed fraction of residuals kept");
-  v.field("degenerate_ratio", o.degenerate_ratio, "", closed_open(0.0, 1.0), "eigenvalue ratio of a degenerate direction");
+  v.field("degenerate_ratio", o.degenerate_ratio, "", closed_open(0.0, 1.0),
+          "eigenvalue ratio of a degenerate direction");
   v.field("min_points", o.min_points, "", at_least(3), "fewer matched points → no correction");
   v.field("min_point_sigma", o.min_point_sigma, "m", positive(), "σ floor of a point");
 }
@@ -121,8 +119,8 @@ struct Steps {
   std::vector<PointOnLine> all;
   double length = 0.0;
 };
-std::optional<Steps> gauss_newton(std::span<const laser::SegmentMatch> matches, const LineMap& map,
-                                  const Pose2& pose, const IteratedCorrectionOptions& options) {
+std::optional<Steps> gauss_newton(std::span<const laser::SegmentMatch> matches, const LineMap& map, const Pose2& pose,
+                                  const IteratedCorrectionOptions& options) {
   std::vector<PointOnLine> all = points_on_lines(matches, map);
   if (all.size() < static_cast<std::size_t>(options.min_points)) return std::nullopt;
   const double length = rms_range(all);
@@ -161,8 +159,7 @@ IteratedCorrection finish(Steps st, const IteratedCorrectionOptions& options) {
   const PoseObservability e = pose_observability(n.h, length, options.degenerate_ratio);
   const double dof = static_cast<double>(kept.size()) - 3.0;
   out.residual_rms = std::sqrt(n.ss / static_cast<double>(kept.size()));
-  const double s2 =
-      std::max(dof > 0.0 ? n.ss / dof : 0.0, options.min_point_sigma * options.min_point_sigma);
+  const double s2 = std::max(dof > 0.0 ? n.ss / dof : 0.0, options.min_point_sigma * options.min_point_sigma);
   Eigen::Matrix3d inv = Eigen::Matrix3d::Zero();
   for (std::size_t k = 0; k < 3; ++k) {
     if (!e.observable[k]) continue;
@@ -196,9 +193,8 @@ IteratedCorrection finish(Steps st, const IteratedCorrectionOptions& options) {
 
 }  // namespace
 
-IteratedCorrection solve_point_to_line(std::span<const laser::SegmentMatch> matches,
-                                       const LineMap& map, const Pose2& pose,
-                                       const IteratedCorrectionOptions& options) {
+IteratedCorrection solve_point_to_line(std::span<const laser::SegmentMatch> matches, const LineMap& map,
+                                       const Pose2& pose, const IteratedCorrectionOptions& options) {
   validate(options);
   std::optional<Steps> st = gauss_newton(matches, map, pose, options);
   if (!st) {
@@ -209,9 +205,8 @@ IteratedCorrection solve_point_to_line(std::span<const laser::SegmentMatch> matc
   return finish(std::move(*st), options);
 }
 
-IteratedCorrection iterated_point_to_line(const laser::SegmentMatcher& matcher, const Scan& scan,
-                                          const LineMap& map, const Pose2& estimate,
-                                          const IteratedCorrectionOptions& options) {
+IteratedCorrection iterated_point_to_line(const laser::SegmentMatcher& matcher, const Scan& scan, const LineMap& map,
+                                          const Pose2& estimate, const IteratedCorrectionOptions& options) {
   validate(options);
   require_finite_estimate(estimate, "iterated_point_to_line");
   IteratedCorrection out;

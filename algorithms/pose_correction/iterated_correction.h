@@ -22,17 +22,17 @@
 #include <span>
 #include <vector>
 
+#include "algorithms/laser/segment_match.h"
 #include "core/line_map.h"
 #include "core/pose2.h"
 #include "core/scan.h"
 #include "core/units.h"
-#include "algorithms/laser/segment_match.h"
 
 namespace locbench::pose_correction {
 
 struct IteratedCorrectionOptions {
-  int max_iterations = 20;  // outer: match + solve
-  int inner_steps = 3;      // Gauss–Newton steps per set of matches
+  int max_iterations = 20;              // outer: match + solve
+  int inner_steps = 3;                  // Gauss–Newton steps per set of matches
   double translation_tolerance = 1e-4;  // [m] an outer step below both tolerances stops
   double rotation_tolerance = 1e-5;     // [rad]
   double keep_fraction = 0.9;           // of the matched points, by |r|
@@ -41,8 +41,8 @@ struct IteratedCorrectionOptions {
   // through a few short lines (door frames): on the first 150 ACES relations 1e-4 gave 82.7 mm
   // mean translation error against odometry's 37.8 mm, 0.02 gives 39.4 mm (laser/real_logs).
   double degenerate_ratio = 0.02;
-  int min_points = 10;                  // fewer matched points → no correction
-  double min_point_sigma = mm(5.0);     // floor of s [m]
+  int min_points = 10;               // fewer matched points → no correction
+  double min_point_sigma = mm(5.0);  // floor of s [m]
 };
 void to_json(nlohmann::json& j, const IteratedCorrectionOptions& o);
 // Strict: unknown keys, wrong types or invalid values throw UsageError.
@@ -52,26 +52,24 @@ void validate(const IteratedCorrectionOptions& o);
 struct IteratedCorrection {
   Pose2 corrected;  // = estimate when !valid
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  bool valid = false;       // at least min_points matched points in every iteration
-  bool converged = false;   // the last outer step was below the tolerances
-  bool degenerate = false;  // some direction kept the estimate (parallel walls)
-  int iterations = 0;       // outer iterations run
-  std::size_t points_used = 0;    // after trimming, last iteration
-  std::size_t segments_used = 0;  // map lines with at least one kept point
-  double residual_rms = 0.0;      // [m], kept points
+  bool valid = false;                        // at least min_points matched points in every iteration
+  bool converged = false;                    // the last outer step was below the tolerances
+  bool degenerate = false;                   // some direction kept the estimate (parallel walls)
+  int iterations = 0;                        // outer iterations run
+  std::size_t points_used = 0;               // after trimming, last iteration
+  std::size_t segments_used = 0;             // map lines with at least one kept point
+  double residual_rms = 0.0;                 // [m], kept points
   std::vector<laser::SegmentMatch> matches;  // the last iteration's matches
 };
 
 // Iterates match + joint point-to-line solve from `estimate` (the robot pose in the map's
 // frame). Throws UsageError for invalid options or a non-finite estimate.
-IteratedCorrection iterated_point_to_line(const laser::SegmentMatcher& matcher, const Scan& scan,
-                                          const LineMap& map, const Pose2& estimate,
-                                          const IteratedCorrectionOptions& options = {});
+IteratedCorrection iterated_point_to_line(const laser::SegmentMatcher& matcher, const Scan& scan, const LineMap& map,
+                                          const Pose2& estimate, const IteratedCorrectionOptions& options = {});
 
 // One solve on fixed matches (the inner loop above): exposed for tests and for matches made
 // elsewhere. Points use their robot-frame coordinates under `pose`.
-IteratedCorrection solve_point_to_line(std::span<const laser::SegmentMatch> matches,
-                                       const LineMap& map, const Pose2& pose,
-                                       const IteratedCorrectionOptions& options = {});
+IteratedCorrection solve_point_to_line(std::span<const laser::SegmentMatch> matches, const LineMap& map,
+                                       const Pose2& pose, const IteratedCorrectionOptions& options = {});
 
 }  // namespace locbench::pose_correction

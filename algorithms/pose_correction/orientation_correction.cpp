@@ -23,12 +23,9 @@ double vertex_angle(const Eigen::Vector2d& at, const Eigen::Vector2d& u, const E
 
 const char* weighting_name(OrientationWeighting w) {
   switch (w) {
-    case OrientationWeighting::kThesis:
-      return "thesis";
-    case OrientationWeighting::kEqual:
-      return "equal";
-    case OrientationWeighting::kInverseVariance:
-      return "inverse_variance";
+    case OrientationWeighting::kThesis: return "thesis";
+    case OrientationWeighting::kEqual: return "equal";
+    case OrientationWeighting::kInverseVariance: return "inverse_variance";
   }
   return "thesis";
 }
@@ -37,8 +34,10 @@ OrientationWeighting weighting_from_name(const std::string& s) {
   if (s == "thesis") return OrientationWeighting::kThesis;
   if (s == "equal") return OrientationWeighting::kEqual;
   if (s == "inverse_variance") return OrientationWeighting::kInverseVariance;
-  throw UsageError("OrientationOptions.weighting: expected \"thesis\", \"equal\" or "
-                   "\"inverse_variance\", found \"" + s + "\"");
+  throw UsageError(
+      "OrientationOptions.weighting: expected \"thesis\", \"equal\" or "
+      "\"inverse_variance\", found \"" +
+      s + "\"");
 }
 
 }  // namespace
@@ -56,8 +55,7 @@ void validate(const OrientationOptions& o) { validate_fields(o, "OrientationOpti
 
 LOCBENCH_OPTIONS_JSON(OrientationOptions)
 
-SegmentOrientation segment_orientation(std::span<const Eigen::Vector2d> world_points,
-                                       const Segment& map_segment,
+SegmentOrientation segment_orientation(std::span<const Eigen::Vector2d> world_points, const Segment& map_segment,
                                        const OrientationOptions& options) {
   const std::size_t n = world_points.size();
   if (n < 2) throw UsageError("segment_orientation: needs at least 2 points");
@@ -103,14 +101,12 @@ SegmentOrientation segment_orientation(std::span<const Eigen::Vector2d> world_po
     ss_along += std::pow(dir.dot(q), 2);
   }
   const double sigma2 =
-      std::max(n > 2 ? ss_perp / static_cast<double>(n - 2) : 0.0,
-               options.min_point_sigma * options.min_point_sigma);
+      std::max(n > 2 ? ss_perp / static_cast<double>(n - 2) : 0.0, options.min_point_sigma * options.min_point_sigma);
   s.variance = sigma2 / ss_along;
   return s;
 }
 
-double thesis_weight(const Eigen::Vector2d& o, const Eigen::Vector2d& p1,
-                     const Eigen::Vector2d& p2) {
+double thesis_weight(const Eigen::Vector2d& o, const Eigen::Vector2d& p1, const Eigen::Vector2d& p2) {
   const Eigen::Vector2d d = p2 - p1;
   const double len = d.norm();
   if (!(len > 0.0)) return 0.0;
@@ -122,9 +118,8 @@ double thesis_weight(const Eigen::Vector2d& o, const Eigen::Vector2d& p1,
   return len / oh * std::cos(at_p1 - at_p2);     // eq. 6.18
 }
 
-OrientationCorrection correct_orientation(std::span<const laser::SegmentMatch> matches,
-                                          const LineMap& map, const Pose2& estimate,
-                                          const Pose2& sensor_mount,
+OrientationCorrection correct_orientation(std::span<const laser::SegmentMatch> matches, const LineMap& map,
+                                          const Pose2& estimate, const Pose2& sensor_mount,
                                           const OrientationOptions& options) {
   validate(options);
   const Eigen::Vector2d origin = (estimate * sensor_mount).translation();
@@ -150,20 +145,13 @@ OrientationCorrection correct_orientation(std::span<const laser::SegmentMatch> m
   double total = 0.0;
   for (auto& s : out.segments) {
     switch (options.weighting) {
-      case OrientationWeighting::kThesis:
-        s.weight = std::max(s.thesis_weight, 0.0);
-        break;
-      case OrientationWeighting::kEqual:
-        s.weight = 1.0;
-        break;
-      case OrientationWeighting::kInverseVariance:
-        s.weight = 1.0 / s.variance;
-        break;
+      case OrientationWeighting::kThesis: s.weight = std::max(s.thesis_weight, 0.0); break;
+      case OrientationWeighting::kEqual: s.weight = 1.0; break;
+      case OrientationWeighting::kInverseVariance: s.weight = 1.0 / s.variance; break;
     }
     total += s.weight;
   }
-  if (options.weighting == OrientationWeighting::kThesis && !(total > 0.0) &&
-      !out.segments.empty()) {
+  if (options.weighting == OrientationWeighting::kThesis && !(total > 0.0) && !out.segments.empty()) {
     // Every segment seen obliquely (all raw weights ≤ 0): fall back to equal weights (6.12)
     // rather than discard good data.
     out.equal_weight_fallback = true;

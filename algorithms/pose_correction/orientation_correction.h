@@ -15,10 +15,10 @@
 #include <span>
 #include <vector>
 
+#include "algorithms/laser/segment_match.h"
 #include "core/line_map.h"
 #include "core/pose2.h"
 #include "core/units.h"
-#include "algorithms/laser/segment_match.h"
 
 namespace locbench::pose_correction {
 
@@ -50,18 +50,17 @@ void validate(const OrientationOptions& o);
 struct SegmentOrientation {
   std::size_t map_segment = 0;
   std::size_t points = 0;
-  double delta = 0.0;         // Δθ_i = map angle − fitted angle, in [−π/2, π/2) [rad]
-  double variance = 0.0;      // of Δθ_i: σ²_⊥ / Σ(t − t̄)², σ_⊥ from the residuals [rad²]
-  bool near_vertical = false; // the 6.7–6.11 branch was taken
-  double thesis_weight = 0.0; // raw w_i of eq. 6.18 (may be negative or 0 when degenerate)
-  double weight = 0.0;        // normalised weight used in the combination (6.20)
+  double delta = 0.0;          // Δθ_i = map angle − fitted angle, in [−π/2, π/2) [rad]
+  double variance = 0.0;       // of Δθ_i: σ²_⊥ / Σ(t − t̄)², σ_⊥ from the residuals [rad²]
+  bool near_vertical = false;  // the 6.7–6.11 branch was taken
+  double thesis_weight = 0.0;  // raw w_i of eq. 6.18 (may be negative or 0 when degenerate)
+  double weight = 0.0;         // normalised weight used in the combination (6.20)
 };
 
 // Δθ_i of points (world frame, under the estimate) matched to `map_segment` (eq. 6.3–6.11).
 // Needs ≥ 2 points with distinct coordinates along the fitted axis (throws UsageError
 // otherwise). thesis_weight and weight are left 0.
-SegmentOrientation segment_orientation(std::span<const Eigen::Vector2d> world_points,
-                                       const Segment& map_segment,
+SegmentOrientation segment_orientation(std::span<const Eigen::Vector2d> world_points, const Segment& map_segment,
                                        const OrientationOptions& options);
 
 // Raw weight of eq. 6.18: w = |p1p2| / |oh| · cos(∠op1p2 − ∠op2p1), with o the scan origin,
@@ -73,13 +72,12 @@ SegmentOrientation segment_orientation(std::span<const Eigen::Vector2d> world_po
 // whole segment lies to one side of h and is seen obliquely. Returns 0 when |oh| < 1 µm or
 // p1 = p2 (degenerate: as |oh| → 0 the weight tends to −∞ with o beyond the segment's end and to
 // +∞ with o on the segment, neither of which a laser can see).
-double thesis_weight(const Eigen::Vector2d& o, const Eigen::Vector2d& p1,
-                     const Eigen::Vector2d& p2);
+double thesis_weight(const Eigen::Vector2d& o, const Eigen::Vector2d& p1, const Eigen::Vector2d& p2);
 
 struct OrientationCorrection {
-  bool fixed = false;    // at least one usable segment
-  double delta = 0.0;    // Δθ̂ to add to the estimate's heading [rad] (eq. 6.17)
-  double variance = 0.0; // Σ w_i² var(Δθ_i) with the normalised w_i [rad²]
+  bool fixed = false;     // at least one usable segment
+  double delta = 0.0;     // Δθ̂ to add to the estimate's heading [rad] (eq. 6.17)
+  double variance = 0.0;  // Σ w_i² var(Δθ_i) with the normalised w_i [rad²]
   // kThesis only: every raw weight was ≤ 0 (all segments seen obliquely), so equal weights
   // (6.12) were used instead of discarding the segments.
   bool equal_weight_fallback = false;
@@ -91,9 +89,8 @@ struct OrientationCorrection {
 // o in the weights is the scan origin, estimate ∘ sensor_mount (the robot centre when the
 // laser sits there, as in the thesis). Throws UsageError for a match naming a segment the map
 // does not have.
-OrientationCorrection correct_orientation(std::span<const laser::SegmentMatch> matches,
-                                          const LineMap& map, const Pose2& estimate,
-                                          const Pose2& sensor_mount,
+OrientationCorrection correct_orientation(std::span<const laser::SegmentMatch> matches, const LineMap& map,
+                                          const Pose2& estimate, const Pose2& sensor_mount,
                                           const OrientationOptions& options = {});
 
 }  // namespace locbench::pose_correction

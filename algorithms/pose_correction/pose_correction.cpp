@@ -22,9 +22,8 @@ void validate(const PoseCorrectionOptions& o) { validate_fields(o, "PoseCorrecti
 
 LOCBENCH_OPTIONS_JSON(PoseCorrectionOptions)
 
-PoseCorrection correct_pose(std::span<const laser::SegmentMatch> matches, const LineMap& map,
-                            const Pose2& estimate, const Pose2& sensor_mount,
-                            const PoseCorrectionOptions& options) {
+PoseCorrection correct_pose(std::span<const laser::SegmentMatch> matches, const LineMap& map, const Pose2& estimate,
+                            const Pose2& sensor_mount, const PoseCorrectionOptions& options) {
   validate(options);
   require_finite_estimate(estimate, "correct_pose");
   PoseCorrection out;
@@ -39,8 +38,7 @@ PoseCorrection correct_pose(std::span<const laser::SegmentMatch> matches, const 
     pose = Pose2{pose.x, pose.y, pose.theta + out.orientation.delta};
     out.position = correct_position(matches, map, pose, sensor_mount, options.position);
     out.position_fixed = out.position.fixed;
-    if (out.position.fixed) pose = Pose2{pose.x + out.position.delta.x(),
-                                          pose.y + out.position.delta.y(), pose.theta};
+    if (out.position.fixed) pose = Pose2{pose.x + out.position.delta.x(), pose.y + out.position.delta.y(), pose.theta};
   }
   out.corrected = pose;
   out.delta = {pose.x - estimate.x, pose.y - estimate.y, angle_diff(pose.theta, estimate.theta)};

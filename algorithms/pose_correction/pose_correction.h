@@ -12,11 +12,11 @@
 #include <nlohmann/json.hpp>
 #include <span>
 
-#include "core/line_map.h"
-#include "core/pose2.h"
 #include "algorithms/laser/segment_match.h"
 #include "algorithms/pose_correction/orientation_correction.h"
 #include "algorithms/pose_correction/position_correction.h"
+#include "core/line_map.h"
+#include "core/pose2.h"
 
 namespace locbench::pose_correction {
 
@@ -55,8 +55,7 @@ struct PoseCorrection {
 // robot frame; identity in the thesis). No usable segment → corrected = estimate, nothing fixed.
 // Throws UsageError for invalid options, a non-finite estimate or a match naming a segment the
 // map does not have.
-PoseCorrection correct_pose(std::span<const laser::SegmentMatch> matches, const LineMap& map,
-                            const Pose2& estimate, const Pose2& sensor_mount = Pose2::identity(),
-                            const PoseCorrectionOptions& options = {});
+PoseCorrection correct_pose(std::span<const laser::SegmentMatch> matches, const LineMap& map, const Pose2& estimate,
+                            const Pose2& sensor_mount = Pose2::identity(), const PoseCorrectionOptions& options = {});
 
 }  // namespace locbench::pose_correction

@@ -21,14 +21,14 @@ const char* method_name(PositionMethod m) {
 PositionMethod method_from_name(const std::string& s) {
   if (s == "point_to_line") return PositionMethod::kPointToLine;
   if (s == "point_to_point") return PositionMethod::kPointToPoint;
-  throw UsageError("PositionOptions.method: expected \"point_to_line\" or \"point_to_point\", "
-                   "found \"" + s + "\"");
+  throw UsageError(
+      "PositionOptions.method: expected \"point_to_line\" or \"point_to_point\", "
+      "found \"" +
+      s + "\"");
 }
 
 // Angle between two lines given their normal directions, in [0, π/2].
-double line_angle(double beta_a, double beta_b) {
-  return std::abs(0.5 * wrap_angle(2.0 * (beta_a - beta_b)));
-}
+double line_angle(double beta_a, double beta_b) { return std::abs(0.5 * wrap_angle(2.0 * (beta_a - beta_b))); }
 
 }  // namespace
 
@@ -36,7 +36,8 @@ double line_angle(double beta_a, double beta_b) {
 template <class V>
 void visit_fields(V& v, PositionOptions& o) {
   v.choice("method", o.method, method_name, method_from_name, "point-to-line or point-to-point");
-  v.field("min_angle_spread", o.min_angle_spread, "rad", open_closed(0.0, deg(90.0)), "spread of segment directions needed");
+  v.field("min_angle_spread", o.min_angle_spread, "rad", open_closed(0.0, deg(90.0)),
+          "spread of segment directions needed");
   v.field("max_incidence", o.max_incidence, "rad", open(0.0, deg(90.0)), "largest incidence of a point");
   v.field("min_points", o.min_points, "", at_least(1), "segments with fewer points are ignored");
   v.field("min_point_sigma", o.min_point_sigma, "m", positive(), "σ floor of a point");
@@ -46,9 +47,8 @@ void validate(const PositionOptions& o) { validate_fields(o, "PositionOptions");
 
 LOCBENCH_OPTIONS_JSON(PositionOptions)
 
-PositionNormalEquations position_normal_equations(std::span<const laser::SegmentMatch> matches,
-                                                  const LineMap& map, const Pose2& pose,
-                                                  const Pose2& sensor_mount,
+PositionNormalEquations position_normal_equations(std::span<const laser::SegmentMatch> matches, const LineMap& map,
+                                                  const Pose2& pose, const Pose2& sensor_mount,
                                                   const PositionOptions& options) {
   validate(options);
   const double beam_heading = pose.theta + sensor_mount.theta;
@@ -68,8 +68,7 @@ PositionNormalEquations position_normal_equations(std::span<const laser::Segment
       double w = 1.0;
       if (options.method == PositionMethod::kPointToPoint) {
         // θ_ij: angle between the beam and the line normal (6.34), capped.
-        const double cos_inc =
-            std::max(std::abs(std::cos(beam_heading + p.bearing - line.beta)), min_cos);
+        const double cos_inc = std::max(std::abs(std::cos(beam_heading + p.bearing - line.beta)), min_cos);
         w = 1.0 / (cos_inc * cos_inc);  // cos⁻² θ_ij (6.35)
       }
       eq.k1 += w * c * r;
@@ -95,11 +94,9 @@ PositionNormalEquations position_normal_equations(std::span<const laser::Segment
   return eq;
 }
 
-PositionCorrection correct_position(std::span<const laser::SegmentMatch> matches,
-                                    const LineMap& map, const Pose2& pose,
+PositionCorrection correct_position(std::span<const laser::SegmentMatch> matches, const LineMap& map, const Pose2& pose,
                                     const Pose2& sensor_mount, const PositionOptions& options) {
-  const PositionNormalEquations eq =
-      position_normal_equations(matches, map, pose, sensor_mount, options);
+  const PositionNormalEquations eq = position_normal_equations(matches, map, pose, sensor_mount, options);
   PositionCorrection out;
   out.angle_spread = eq.angle_spread;
   out.segments_used = eq.segments;
@@ -117,8 +114,8 @@ PositionCorrection correct_position(std::span<const laser::SegmentMatch> matches
   const double ss = std::max(eq.weighted_ss + out.delta.dot(Eigen::Vector2d(eq.k1, eq.k2)), 0.0);
   const double dof = static_cast<double>(eq.points) - 2.0;
   out.residual_sigma = dof > 0.0 ? std::sqrt(ss / dof) : 0.0;
-  const double s2 = std::max(out.residual_sigma * out.residual_sigma,
-                             options.min_point_sigma * options.min_point_sigma);
+  const double s2 =
+      std::max(out.residual_sigma * out.residual_sigma, options.min_point_sigma * options.min_point_sigma);
   out.covariance = s2 * a_inv;
   // Δ(θ) = −A⁻¹ k(θ) ⇒ ∂Δ/∂θ = −A⁻¹ ∂k/∂θ (weights held fixed).
   out.heading_sensitivity = -a_inv * eq.dk_dtheta;

@@ -22,10 +22,10 @@
 #include <nlohmann/json.hpp>
 #include <span>
 
+#include "algorithms/laser/segment_match.h"
 #include "core/line_map.h"
 #include "core/pose2.h"
 #include "core/units.h"
-#include "algorithms/laser/segment_match.h"
 
 namespace locbench::pose_correction {
 
@@ -57,11 +57,11 @@ void validate(const PositionOptions& o);
 
 // The sums of eq. 6.24–6.25 (k's) or 6.36 (l's) at Δ = 0, with w_ij = 1 or cos⁻² θ_ij.
 struct PositionNormalEquations {
-  double k1 = 0.0;  // Σ w cos β · r      (r = x cos β + y sin β − ρ, the signed residual)
-  double k2 = 0.0;  // Σ w sin β · r
-  double k3 = 0.0;  // Σ w cos² β
-  double k4 = 0.0;  // Σ w cos β sin β
-  double k5 = 0.0;  // Σ w sin² β
+  double k1 = 0.0;           // Σ w cos β · r      (r = x cos β + y sin β − ρ, the signed residual)
+  double k2 = 0.0;           // Σ w sin β · r
+  double k3 = 0.0;           // Σ w cos² β
+  double k4 = 0.0;           // Σ w cos β sin β
+  double k5 = 0.0;           // Σ w sin² β
   double weighted_ss = 0.0;  // Σ w r² at Δ = 0 [m²]
   // ∂(k1, k2)/∂θ: how the sums move when the heading of the re-projection changes [m/rad],
   // for the heading term of the covariance.
@@ -79,13 +79,12 @@ struct PositionNormalEquations {
 // pose ∘ sensor_mount at bearing + pose.θ + sensor_mount.θ. Segments with fewer than
 // options.min_points points are skipped. Throws UsageError for a match naming a segment the
 // map does not have.
-PositionNormalEquations position_normal_equations(std::span<const laser::SegmentMatch> matches,
-                                                  const LineMap& map, const Pose2& pose,
-                                                  const Pose2& sensor_mount,
+PositionNormalEquations position_normal_equations(std::span<const laser::SegmentMatch> matches, const LineMap& map,
+                                                  const Pose2& pose, const Pose2& sensor_mount,
                                                   const PositionOptions& options);
 
 struct PositionCorrection {
-  bool fixed = false;  // false: no segments, or all (nearly) parallel
+  bool fixed = false;                               // false: no segments, or all (nearly) parallel
   Eigen::Vector2d delta = Eigen::Vector2d::Zero();  // (Δx, Δy) [m]
   // Covariance of delta for a known heading: s² A⁻¹ with A the normal matrix and s² the
   // weighted residual variance Σ w r² / (N − 2) at the solution, floored at min_point_sigma².
@@ -99,8 +98,7 @@ struct PositionCorrection {
 };
 
 // Solves the normal equations (6.26 / 6.37) for the points re-projected with `pose`.
-PositionCorrection correct_position(std::span<const laser::SegmentMatch> matches,
-                                    const LineMap& map, const Pose2& pose,
+PositionCorrection correct_position(std::span<const laser::SegmentMatch> matches, const LineMap& map, const Pose2& pose,
                                     const Pose2& sensor_mount, const PositionOptions& options = {});
 
 }  // namespace locbench::pose_correction

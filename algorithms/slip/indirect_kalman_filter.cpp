@@ -83,8 +83,7 @@ void IndirectKalmanFilter::start_run() {
   p_.block<3, 3>(0, 0) = options_.initial_covariance.head<3>().asDiagonal();
 }
 
-IkfRunResult run_indirect_kf(std::span<const IkfRun> runs, const IndirectKfOptions& options,
-                             double wheelbase) {
+IkfRunResult run_indirect_kf(std::span<const IkfRun> runs, const IndirectKfOptions& options, double wheelbase) {
   IndirectKalmanFilter f(options, wheelbase);
   IkfRunResult r;
   for (const IkfRun& run : runs) {
@@ -108,20 +107,16 @@ IkfRunResult run_indirect_kf(std::span<const IkfRun> runs, const IndirectKfOptio
   return r;
 }
 
-IkfRunResult run_indirect_kf(std::span<const IkfSample> samples, double start_heading,
-                             const IndirectKfOptions& options, double wheelbase,
-                             const std::optional<Eigen::Vector2d>& end_position_error,
+IkfRunResult run_indirect_kf(std::span<const IkfSample> samples, double start_heading, const IndirectKfOptions& options,
+                             double wheelbase, const std::optional<Eigen::Vector2d>& end_position_error,
                              double end_position_variance) {
-  const IkfRun run{{samples.begin(), samples.end()}, start_heading, end_position_error,
-                   end_position_variance};
+  const IkfRun run{{samples.begin(), samples.end()}, start_heading, end_position_error, end_position_variance};
   return run_indirect_kf(std::span<const IkfRun>(&run, 1), options, wheelbase);
 }
 
-IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, double start_heading,
-                                          double wheelbase, double heading_variance,
-                                          const Eigen::Vector3d& values,
-                                          std::optional<double> end_position_variance,
-                                          double relative_tolerance) {
+IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, double start_heading, double wheelbase,
+                                          double heading_variance, const Eigen::Vector3d& values,
+                                          std::optional<double> end_position_variance, double relative_tolerance) {
   // Φ = ∂[δx, δy, δθ]/∂[S_R, S_L, δB], propagated with the F blocks from Φ(0) = 0.
   Eigen::Matrix3d phi = Eigen::Matrix3d::Zero();
   std::vector<Eigen::RowVector3d> rows;

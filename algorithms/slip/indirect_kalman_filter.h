@@ -45,8 +45,7 @@ struct IndirectKfOptions {
   // diag Q per sample (ours; the thesis gives none for the IKF): the floor noise of the
   // corridor preset, k = 0.005 √m at 62.5 mm per sample — var(w_d) = 2k²U/4 ≈ 1 mm² per axis,
   // var(w_θ) = 2k²U/B² ≈ (0.5°)² — and constant parameters.
-  Vector6 process_noise =
-      (Vector6() << 1e-6, 1e-6, deg(0.5) * deg(0.5), 0.0, 0.0, 0.0).finished();
+  Vector6 process_noise = (Vector6() << 1e-6, 1e-6, deg(0.5) * deg(0.5), 0.0, 0.0, 0.0).finished();
   double heading_variance = 2.0 * deg(1.0) * deg(1.0);  // R = 2 deg² (as the EKF) [rad²]
 };
 void to_json(nlohmann::json& j, const IndirectKfOptions& o);
@@ -106,9 +105,8 @@ struct IkfRunResult {
 // Runs the IKF over a run starting at heading `start_heading` (odometry integrates `u` with the
 // nominal wheelbase); `end_position_error` (reference − odometry at the end, ours) is applied
 // once at the end when given.
-IkfRunResult run_indirect_kf(std::span<const IkfSample> samples, double start_heading,
-                             const IndirectKfOptions& options, double wheelbase,
-                             const std::optional<Eigen::Vector2d>& end_position_error = {},
+IkfRunResult run_indirect_kf(std::span<const IkfSample> samples, double start_heading, const IndirectKfOptions& options,
+                             double wheelbase, const std::optional<Eigen::Vector2d>& end_position_error = {},
                              double end_position_variance = 0.0);
 
 // Several runs from known start poses, one filter: the parameters carry over from run to run
@@ -119,8 +117,7 @@ struct IkfRun {
   std::optional<Eigen::Vector2d> end_position_error;
   double end_position_variance = 0.0;
 };
-IkfRunResult run_indirect_kf(std::span<const IkfRun> runs, const IndirectKfOptions& options,
-                             double wheelbase);
+IkfRunResult run_indirect_kf(std::span<const IkfRun> runs, const IndirectKfOptions& options, double wheelbase);
 
 // What a run's measurements determine about [S_R, S_L, δB]: the sensitivity of each heading
 // measurement (and of the end position, if measured) to the parameters, propagated with
@@ -128,9 +125,8 @@ IkfRunResult run_indirect_kf(std::span<const IkfRun> runs, const IndirectKfOptio
 // with the heading variance (and end-position variance). Parameter names "S_R", "S_L", "dB".
 // `relative_tolerance` is on the Fisher-information eigenvalues (1e-6 ⇔ singular values of the
 // whitened Jacobian below 1e-3 of the largest count as zero).
-IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, double start_heading,
-                                          double wheelbase, double heading_variance,
-                                          const Eigen::Vector3d& values,
+IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, double start_heading, double wheelbase,
+                                          double heading_variance, const Eigen::Vector3d& values,
                                           std::optional<double> end_position_variance = {},
                                           double relative_tolerance = 1e-6);
 

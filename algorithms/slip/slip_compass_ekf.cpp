@@ -2,9 +2,9 @@
 
 #include <cmath>
 
+#include "algorithms/filters/compass_ekf.h"
 #include "core/angle.h"
 #include "core/errors.h"
-#include "algorithms/filters/compass_ekf.h"
 
 namespace locbench {
 
@@ -23,9 +23,8 @@ SlipEkfRun run_slip_ekf(std::span<const SlipSample> samples, std::optional<doubl
     gyro_detector.emplace(*gyro_model, g, wheelbase);
   }
   const Matrix3 q = options.process_noise.asDiagonal();
-  CompassEkf ekf([q](const Vector3&, const WheelDisplacement&, double) { return q; },
-                 options.compass_variance, options.initial_covariance.asDiagonal(), wheelbase,
-                 start);
+  CompassEkf ekf([q](const Vector3&, const WheelDisplacement&, double) { return q; }, options.compass_variance,
+                 options.initial_covariance.asDiagonal(), wheelbase, start);
   SlipEkfRun run;
   run.steps.reserve(samples.size());
   std::optional<double> previous_compass = initial_compass;
@@ -77,8 +76,7 @@ SlipEkfRun run_slip_ekf(std::span<const SlipSample> samples, std::optional<doubl
         step.source = HeadingSource::kPseudoGyro;
       } else {
         step.decision = SlipDecision{};
-        step.decision.status =
-            s.compass ? SampleStatus::kCompassDisturbed : SampleStatus::kNoSlip;
+        step.decision.status = s.compass ? SampleStatus::kCompassDisturbed : SampleStatus::kNoSlip;
         step.decision.theta_e = theta_e;
         step.decision.increment = body_increment(u, wheelbase);
         step.decision.wheels = u;

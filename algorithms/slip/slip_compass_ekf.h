@@ -17,8 +17,8 @@
 #include <span>
 #include <vector>
 
-#include "core/compass_ekf_model.h"
 #include "algorithms/slip/slip_detector.h"
+#include "core/compass_ekf_model.h"
 
 namespace locbench {
 
@@ -39,11 +39,11 @@ struct SlipEkfOptions {
   // Fixed Q (§3.6.1 "Q(k) = diag[6.33, 6.33, 2]", taken as mm², mm², deg² per sample) [SI].
   Vector3 process_noise{mm(1.0) * mm(1.0) * 6.33, mm(1.0) * mm(1.0) * 6.33, 2.0 * deg(1.0) * deg(1.0)};
   double compass_variance = 2.0 * deg(1.0) * deg(1.0);  // R = 2 deg² [rad²]
-  Vector3 initial_covariance = Vector3::Zero();          // P(0) = 0 (known start)
+  Vector3 initial_covariance = Vector3::Zero();         // P(0) = 0 (known start)
 };
 
 struct SlipEkfStep {
-  SlipDecision decision;  // status kNoSlip with θ_C = 0 when no increment was available
+  SlipDecision decision;       // status kNoSlip with θ_C = 0 when no increment was available
   bool had_increment = false;  // a reference increment (compass or gyro) was available
   bool compass_disturbed = false;
   HeadingSource source = HeadingSource::kNone;

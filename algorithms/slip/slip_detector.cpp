@@ -54,8 +54,7 @@ const char* to_string(SampleStatus s) {
   return "?";
 }
 
-bool compass_disturbed(const WheelDisplacement& u, double theta_c, double wheelbase,
-                       double margin) {
+bool compass_disturbed(const WheelDisplacement& u, double theta_c, double wheelbase, double margin) {
   const double a = -u.left / wheelbase, b = u.right / wheelbase;
   return theta_c > std::max(a, b) + margin || theta_c < std::min(a, b) - margin;
 }
@@ -66,15 +65,13 @@ SlipWheel slipped_wheel(double theta_c, double theta_e) {
   return SlipWheel::kNone;
 }
 
-BodyIncrement corrected_increment(const WheelDisplacement& u, double theta_c, double wheelbase,
-                                  SlipWheel wheel) {
+BodyIncrement corrected_increment(const WheelDisplacement& u, double theta_c, double wheelbase, SlipWheel wheel) {
   switch (wheel) {
     case SlipWheel::kLeft:  // (3.14–3.15): the left wheel really moved U_R − B tan θ_C
       return {0.5 * (2.0 * u.right - wheelbase * std::tan(theta_c)), theta_c};
     case SlipWheel::kRight:  // (3.16–3.17): the right wheel really moved U_L + B tan θ_C
       return {0.5 * (2.0 * u.left + wheelbase * std::tan(theta_c)), theta_c};
-    case SlipWheel::kNone:
-      break;
+    case SlipWheel::kNone: break;
   }
   return body_increment(u, wheelbase);  // (3.12–3.13)
 }
@@ -83,8 +80,7 @@ WheelDisplacement wheels_for(const BodyIncrement& b, double wheelbase) {
   return {b.distance - 0.5 * wheelbase * b.rotation, b.distance + 0.5 * wheelbase * b.rotation};
 }
 
-SlipDetector::SlipDetector(const SlipModel& model, const SlipDetectorOptions& options,
-                           double wheelbase)
+SlipDetector::SlipDetector(const SlipModel& model, const SlipDetectorOptions& options, double wheelbase)
     : model_(model), options_(options), wheelbase_(wheelbase) {
   validate(options_);
   if (!(model_.stddev > 0.0) || !std::isfinite(model_.mean)) {
@@ -102,12 +98,11 @@ SlipDecision SlipDetector::classify(const WheelDisplacement& u, double theta_c) 
   d.z_score = (d.delta_prime - model_.mean) / model_.stddev;
   d.increment = body_increment(u, wheelbase_);
   d.wheels = u;
-  if (options_.check_disturbance &&
-      compass_disturbed(u, theta_c, wheelbase_, options_.disturbance_margin)) {
+  if (options_.check_disturbance && compass_disturbed(u, theta_c, wheelbase_, options_.disturbance_margin)) {
     d.status = SampleStatus::kCompassDisturbed;  // rule 3: the compass cannot correct
     return d;
   }
-  if (std::abs(d.z_score) <= z_) return d;  // rule 5
+  if (std::abs(d.z_score) <= z_) return d;                // rule 5
   const SlipWheel w = slipped_wheel(theta_c, d.theta_e);  // rule 4, §3.3
   if (w == SlipWheel::kNone) return d;
   d.status = w == SlipWheel::kLeft ? SampleStatus::kLeftSlip : SampleStatus::kRightSlip;

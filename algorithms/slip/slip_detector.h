@@ -52,13 +52,11 @@ const char* to_string(SampleStatus s);
 
 // Rule 3: θ_C outside [min(−U_L/B, U_R/B), max(−U_L/B, U_R/B)] widened by `margin` (the
 // published interval assumes forward travel; the min/max keeps it valid backwards).
-bool compass_disturbed(const WheelDisplacement& u, double theta_c, double wheelbase,
-                       double margin = 0.0);
+bool compass_disturbed(const WheelDisplacement& u, double theta_c, double wheelbase, double margin = 0.0);
 // §3.3: θ_C > θ_E → left, θ_C < θ_E → right, equal → none.
 SlipWheel slipped_wheel(double theta_c, double theta_e);
 // ΔD, Δθ of a sample (3.12–3.13 for kNone, 3.14–3.15 left, 3.16–3.17 right).
-BodyIncrement corrected_increment(const WheelDisplacement& u, double theta_c, double wheelbase,
-                                  SlipWheel wheel);
+BodyIncrement corrected_increment(const WheelDisplacement& u, double theta_c, double wheelbase, SlipWheel wheel);
 // Wheel travel that reproduces an increment exactly: U_L = ΔD − BΔθ/2, U_R = ΔD + BΔθ/2 (to
 // feed filters that take wheel travel).
 WheelDisplacement wheels_for(const BodyIncrement& b, double wheelbase);
@@ -72,9 +70,7 @@ struct SlipDecision {
   BodyIncrement increment;   // corrected ΔD, Δθ (3.12–3.17; uncorrected when disturbed)
   WheelDisplacement wheels;  // travel reproducing `increment` exactly
 
-  bool slipped() const {
-    return status == SampleStatus::kLeftSlip || status == SampleStatus::kRightSlip;
-  }
+  bool slipped() const { return status == SampleStatus::kLeftSlip || status == SampleStatus::kRightSlip; }
 };
 
 class SlipDetector {

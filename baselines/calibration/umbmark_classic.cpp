@@ -22,12 +22,9 @@ Angles type_a_b(const UmbmarkCentroids& c, double side, UmbmarkAngleFormula f) {
   const Angles x{(c.cw.x() - c.ccw.x()) / k, (c.cw.x() + c.ccw.x()) / k};
   const Angles y{(c.cw.y() + c.ccw.y()) / k, (c.cw.y() - c.ccw.y()) / k};
   switch (f) {
-    case UmbmarkAngleFormula::kX:
-      return x;
-    case UmbmarkAngleFormula::kY:
-      return y;
-    case UmbmarkAngleFormula::kMean:
-      return {0.5 * (x.beta + y.beta), 0.5 * (x.alpha + y.alpha)};
+    case UmbmarkAngleFormula::kX: return x;
+    case UmbmarkAngleFormula::kY: return y;
+    case UmbmarkAngleFormula::kMean: return {0.5 * (x.beta + y.beta), 0.5 * (x.alpha + y.alpha)};
   }
   return x;
 }
@@ -69,8 +66,7 @@ ClassicUmbmarkResult classic_umbmark(const UmbmarkInput& in, const ClassicUmbmar
   r.c_R = 2.0 / (1.0 / r.E_d + 1.0);
   r.D_L = r.c_L * r.D_a;
   r.D_R = r.c_R * r.D_a;
-  r.corrected = {r.c_L * r.E_s * in.nominal.diameter_left,
-                 r.c_R * r.E_s * in.nominal.diameter_right, r.B_actual};
+  r.corrected = {r.c_L * r.E_s * in.nominal.diameter_left, r.c_R * r.E_s * in.nominal.diameter_right, r.B_actual};
   return r;
 }
 

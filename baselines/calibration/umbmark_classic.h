@@ -34,7 +34,6 @@ struct ClassicUmbmarkResult {
 
 // Throws std::invalid_argument for input check_umbmark_input rejects, or when the angles are
 // too large for 2.5/2.8 (|R| ≤ B/2 or α ≥ 90°).
-ClassicUmbmarkResult classic_umbmark(const UmbmarkInput& in,
-                                     const ClassicUmbmarkOptions& options = {});
+ClassicUmbmarkResult classic_umbmark(const UmbmarkInput& in, const ClassicUmbmarkOptions& options = {});
 
 }  // namespace locbench

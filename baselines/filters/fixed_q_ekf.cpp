@@ -29,8 +29,7 @@ FixedQEkf::FixedQEkf(const FixedQEkfOptions& options, double wheelbase, const Po
   require_positive_wheelbase(wheelbase, "FixedQEkf");
 }
 
-CompassFilterStep FixedQEkf::step(const WheelDisplacement& u,
-                                  std::optional<double> compass_heading) {
+CompassFilterStep FixedQEkf::step(const WheelDisplacement& u, std::optional<double> compass_heading) {
   return compass_ekf_step(x_, p_, u, wheelbase_, q_, compass_heading, r_);
 }
 

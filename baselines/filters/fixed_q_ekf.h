@@ -13,8 +13,7 @@ namespace locbench {
 
 struct FixedQEkfOptions {
   // diag Q [m², m², rad²] = diag(6.33 mm², 6.33 mm², 2 deg²) (§4.5).
-  Vector3 process_noise{mm(1.0) * mm(1.0) * 6.33, mm(1.0) * mm(1.0) * 6.33,
-                        2.0 * deg(1.0) * deg(1.0)};
+  Vector3 process_noise{mm(1.0) * mm(1.0) * 6.33, mm(1.0) * mm(1.0) * 6.33, 2.0 * deg(1.0) * deg(1.0)};
   double compass_variance = 2.0 * deg(1.0) * deg(1.0);  // R = 2 deg² [rad²]
   Vector3 initial_covariance = Vector3::Zero();         // diag P(0)
 };

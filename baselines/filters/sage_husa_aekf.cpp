@@ -54,8 +54,7 @@ SageHusaStep SageHusaAekf::step(const WheelDisplacement& u, std::optional<double
     p_ = p_pred;
     out.filter.record(x_, p_, nullptr);
   } else {
-    const CompassInnovation c =
-        compass_innovation(x_pred, p_pred, *compass_heading, r_var_, r_mean_);
+    const CompassInnovation c = compass_innovation(x_pred, p_pred, *compass_heading, r_var_, r_mean_);
     x_ = x_pred;
     p_ = p_pred;
     apply_compass_update(x_, p_, c);  // X̂(k/k), P(k)

@@ -25,8 +25,7 @@ namespace locbench {
 
 struct SageHusaOptions {
   // Q̂(0) = diag(6.33 mm², 6.33 mm², 2 deg²) [m², m², rad²] (§4.5).
-  Vector3 initial_process_noise{mm(1.0) * mm(1.0) * 6.33, mm(1.0) * mm(1.0) * 6.33,
-                                2.0 * deg(1.0) * deg(1.0)};
+  Vector3 initial_process_noise{mm(1.0) * mm(1.0) * 6.33, mm(1.0) * mm(1.0) * 6.33, 2.0 * deg(1.0) * deg(1.0)};
   double initial_measurement_noise = 2.0 * deg(1.0) * deg(1.0);  // R̂(0) = 2 deg² [rad²]
   Vector3 initial_process_mean = Vector3::Zero();                // q̂(0) = 0
   double initial_measurement_mean = 0.0;                         // r̂(0) = 0

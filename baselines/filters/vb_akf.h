@@ -21,15 +21,14 @@ namespace locbench {
 
 struct VbAkfOptions {
   // diag Q [m², m², rad²]: the published fixed Q (§4.5).
-  Vector3 process_noise{mm(1.0) * mm(1.0) * 6.33, mm(1.0) * mm(1.0) * 6.33,
-                        2.0 * deg(1.0) * deg(1.0)};
+  Vector3 process_noise{mm(1.0) * mm(1.0) * 6.33, mm(1.0) * mm(1.0) * 6.33, 2.0 * deg(1.0) * deg(1.0)};
   // Prior of the compass variance: β(0) = α(0) · initial_measurement_variance.
   double initial_measurement_variance = 2.0 * deg(1.0) * deg(1.0);  // 2 deg² [rad²]
   double initial_shape = 1.0;                                       // α(0) > 0
   // ρ: α and β shrink by ρ per sample; steady-state α = 1/(2(1 − ρ)), i.e. a memory of about
   // 1/(1 − ρ) compass readings (our choice: 100 readings = 25 s at 4 Hz).
   double forgetting = 0.99;
-  int iterations = 3;  // N fixed-point iterations per update (the paper: 2–3 suffice)
+  int iterations = 3;                            // N fixed-point iterations per update (the paper: 2–3 suffice)
   Vector3 initial_covariance = Vector3::Zero();  // diag P(0)
 };
 void to_json(nlohmann::json& j, const VbAkfOptions& o);

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "baselines/global/options_fields.h"
 #include "core/errors.h"
 #include "core/units.h"
-#include "baselines/global/options_fields.h"
 
 namespace locbench::global {
 
@@ -50,8 +50,7 @@ Pose2 GridMarkov::cell_pose(std::size_t i) const {
   const int iy = static_cast<int>((i / static_cast<std::size_t>(nx_)) % static_cast<std::size_t>(ny_));
   const int it = static_cast<int>(i / (static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_)));
   const double dt = 2.0 * kPi / nt_;
-  return {x0_ + (ix + 0.5) * options_.cell_size, y0_ + (iy + 0.5) * options_.cell_size,
-          -kPi + (it + 0.5) * dt};
+  return {x0_ + (ix + 0.5) * options_.cell_size, y0_ + (iy + 0.5) * options_.cell_size, -kPi + (it + 0.5) * dt};
 }
 
 bool GridMarkov::update(const Pose2& odometry, const Scan& scan) {
@@ -149,9 +148,12 @@ void GridMarkov::blur(double sxy, double st) {
               continue;
             }
             const double v = p * k[static_cast<std::size_t>(j + r)];
-            if (axis == 0) scratch_[index(q, iy, it)] += v;
-            else if (axis == 1) scratch_[index(ix, q, it)] += v;
-            else scratch_[index(ix, iy, q)] += v;
+            if (axis == 0)
+              scratch_[index(q, iy, it)] += v;
+            else if (axis == 1)
+              scratch_[index(ix, q, it)] += v;
+            else
+              scratch_[index(ix, iy, q)] += v;
           }
         }
       }
@@ -212,8 +214,7 @@ void GridMarkov::perception_update(const Scan& scan) {
 }
 
 Pose2 GridMarkov::estimate() const {
-  const std::size_t best =
-      static_cast<std::size_t>(std::max_element(belief_.begin(), belief_.end()) - belief_.begin());
+  const std::size_t best = static_cast<std::size_t>(std::max_element(belief_.begin(), belief_.end()) - belief_.begin());
   const int bx = static_cast<int>(best % static_cast<std::size_t>(nx_));
   const int by = static_cast<int>((best / static_cast<std::size_t>(nx_)) % static_cast<std::size_t>(ny_));
   const int bt = static_cast<int>(best / (static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_)));

@@ -18,22 +18,22 @@
 #include <optional>
 #include <vector>
 
-#include "core/line_map.h"
 #include "baselines/global/likelihood_field.h"
 #include "baselines/global/odometry_motion_model.h"
+#include "core/line_map.h"
 
 namespace locbench::global {
 
 struct GridMarkovOptions {
   OdometryMotionOptions motion;
   LikelihoodFieldOptions field;
-  double cell_size = 0.20;          // [m] (the slides: 0.15)
-  double angular_cell = 0.0872665;  // [rad] (5°; the slides: 1°)
-  double update_min_distance = 0.20;  // [m]: odometry accumulated between updates
+  double cell_size = 0.20;              // [m] (the slides: 0.15)
+  double angular_cell = 0.0872665;      // [rad] (5°; the slides: 1°)
+  double update_min_distance = 0.20;    // [m]: odometry accumulated between updates
   double update_min_angle = 0.1745329;  // [rad] (10°)
-  double prune_threshold = 1e-9;    // cells below this × the maximum are not moved
-  double uniform_mix = 1e-3;        // mass spread uniformly after each perception update
-  double max_cells = 5e7;           // refuse larger grids (memory)
+  double prune_threshold = 1e-9;        // cells below this × the maximum are not moved
+  double uniform_mix = 1e-3;            // mass spread uniformly after each perception update
+  double max_cells = 5e7;               // refuse larger grids (memory)
 };
 void to_json(nlohmann::json& j, const GridMarkovOptions& o);
 void from_json(const nlohmann::json& j, GridMarkovOptions& o);  // strict; UsageError
@@ -69,7 +69,8 @@ class GridMarkov {
  private:
   std::size_t index(int ix, int iy, int it) const {
     return (static_cast<std::size_t>(it) * static_cast<std::size_t>(ny_) + static_cast<std::size_t>(iy)) *
-               static_cast<std::size_t>(nx_) + static_cast<std::size_t>(ix);
+               static_cast<std::size_t>(nx_) +
+           static_cast<std::size_t>(ix);
   }
   void blur(double sigma_xy_cells, double sigma_theta_cells);
   void normalise();

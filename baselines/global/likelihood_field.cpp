@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "baselines/global/options_fields.h"
 #include "core/errors.h"
 #include "core/units.h"
-#include "baselines/global/options_fields.h"
 
 namespace locbench::global {
 
@@ -32,8 +32,7 @@ Bounds map_bounds(const LineMap& map) {
   return b;
 }
 
-LikelihoodField::LikelihoodField(const LineMap& map, const LikelihoodFieldOptions& options)
-    : options_(options) {
+LikelihoodField::LikelihoodField(const LineMap& map, const LikelihoodFieldOptions& options) : options_(options) {
   validate(options_);
   map_bounds_ = map_bounds(map);
   const double res = options_.resolution;
@@ -55,8 +54,8 @@ LikelihoodField::LikelihoodField(const LineMap& map, const LikelihoodFieldOption
     return Eigen::Vector2d(origin_x_ + (cx + 0.5) * res, origin_y_ + (cy + 0.5) * res);
   };
   const auto consider = [&](std::size_t cell, int cx, int cy, int seg) {
-    const float d = static_cast<float>(
-        distance_to_segment(map.segments[static_cast<std::size_t>(seg)], centre(cx, cy)));
+    const float d =
+        static_cast<float>(distance_to_segment(map.segments[static_cast<std::size_t>(seg)], centre(cx, cy)));
     if (d < dist[cell]) {
       dist[cell] = d;
       nearest[cell] = seg;
@@ -131,8 +130,7 @@ std::vector<Eigen::Vector2d> LikelihoodField::beam_endpoints(const Scan& scan) c
   return out;
 }
 
-double LikelihoodField::log_likelihood(const Pose2& robot,
-                                       const std::vector<Eigen::Vector2d>& endpoints) const {
+double LikelihoodField::log_likelihood(const Pose2& robot, const std::vector<Eigen::Vector2d>& endpoints) const {
   const double c = std::cos(robot.theta), s = std::sin(robot.theta);
   double sum = 0.0;
   for (const Eigen::Vector2d& p : endpoints) {

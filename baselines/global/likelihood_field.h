@@ -17,15 +17,15 @@
 namespace locbench::global {
 
 struct LikelihoodFieldOptions {
-  double resolution = 0.05;    // distance-grid cell [m]
-  double max_distance = 1.0;   // distances are clamped here [m]
-  double sigma_hit = 0.20;     // [m]: range noise plus map and pose discretisation (wide: a
-                               // peaked likelihood makes global localization converge early and wrong)
+  double resolution = 0.05;   // distance-grid cell [m]
+  double max_distance = 1.0;  // distances are clamped here [m]
+  double sigma_hit = 0.20;    // [m]: range noise plus map and pose discretisation (wide: a
+                              // peaked likelihood makes global localization converge early and wrong)
   double z_hit = 0.9;
   double z_random = 0.1;
-  double z_max = 8.0;          // range of the uniform random-return density [m]
-  double margin = 1.0;         // grid extends this far beyond the map's bounding box [m]
-  int beams = 20;              // beams used per scan, evenly spread over the valid ones
+  double z_max = 8.0;   // range of the uniform random-return density [m]
+  double margin = 1.0;  // grid extends this far beyond the map's bounding box [m]
+  int beams = 20;       // beams used per scan, evenly spread over the valid ones
 };
 void to_json(nlohmann::json& j, const LikelihoodFieldOptions& o);
 void from_json(const nlohmann::json& j, LikelihoodFieldOptions& o);  // strict; UsageError
@@ -51,8 +51,7 @@ class LikelihoodField {
     const int cx = static_cast<int>(std::floor((x - origin_x_) * inv_res_));
     const int cy = static_cast<int>(std::floor((y - origin_y_) * inv_res_));
     if (cx < 0 || cy < 0 || cx >= nx_ || cy >= ny_) return log_far_;
-    return log_p_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(nx_) +
-                  static_cast<std::size_t>(cx)];
+    return log_p_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(cx)];
   }
   // The end points of the beams used from `scan`, in the robot frame (mount applied).
   std::vector<Eigen::Vector2d> beam_endpoints(const Scan& scan) const;

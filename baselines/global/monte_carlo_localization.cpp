@@ -5,9 +5,9 @@
 #include <limits>
 #include <unordered_map>
 
+#include "baselines/global/options_fields.h"
 #include "core/errors.h"
 #include "core/units.h"
-#include "baselines/global/options_fields.h"
 
 namespace locbench::global {
 
@@ -28,8 +28,7 @@ std::size_t kld_sample_count(std::size_t k, double epsilon, double z) {
   return static_cast<std::size_t>(std::ceil(km1 / (2.0 * epsilon) * b * b * b));
 }
 
-std::vector<std::size_t> low_variance_resample(std::span<const double> weights, std::size_t m,
-                                               Rng& rng) {
+std::vector<std::size_t> low_variance_resample(std::span<const double> weights, std::size_t m, Rng& rng) {
   double total = 0.0;
   for (double w : weights) {
     if (!(std::isfinite(w) && w >= 0.0)) throw UsageError("low_variance_resample: bad weight");
@@ -50,8 +49,7 @@ std::vector<std::size_t> low_variance_resample(std::span<const double> weights, 
   return out;
 }
 
-MonteCarloLocalization::MonteCarloLocalization(const LineMap& map, const MclOptions& options,
-                                               std::uint64_t seed)
+MonteCarloLocalization::MonteCarloLocalization(const LineMap& map, const MclOptions& options, std::uint64_t seed)
     : options_((validate(options), options)), field_(map, options.field), rng_(seed) {
   init_global();
 }
@@ -72,8 +70,7 @@ void MonteCarloLocalization::init_global() {
 void MonteCarloLocalization::init_pose(const Pose2& pose, double sigma_xy, double sigma_theta) {
   particles_.assign(static_cast<std::size_t>(options_.max_particles), {});
   for (Particle& p : particles_) {
-    p = {Pose2(rng_.normal(pose.x, sigma_xy), rng_.normal(pose.y, sigma_xy),
-               rng_.normal(pose.theta, sigma_theta)),
+    p = {Pose2(rng_.normal(pose.x, sigma_xy), rng_.normal(pose.y, sigma_xy), rng_.normal(pose.theta, sigma_theta)),
          1.0};
   }
   last_odometry_.reset();
@@ -157,8 +154,7 @@ void MonteCarloLocalization::resample() {
     next.push_back({p, 1.0});
     if (options_.kld) {
       if (++bins[bin_key(p, options_.kld_bin)] == 1) {
-        bound = std::min(max_n, std::max(min_n, kld_sample_count(bins.size(), options_.kld_epsilon,
-                                                                   options_.kld_z)));
+        bound = std::min(max_n, std::max(min_n, kld_sample_count(bins.size(), options_.kld_epsilon, options_.kld_z)));
       }
       if (next.size() >= bound && next.size() >= min_n) break;
     }
@@ -194,8 +190,7 @@ void MonteCarloLocalization::compute_estimate() {
   for (const Particle& p : particles_) {
     const std::int64_t k = bin_key(p.pose, bin);
     const std::int64_t dt = std::abs(unpack(k, 40) - bt);
-    if (std::abs(unpack(k, 0) - bx) > 1 || std::abs(unpack(k, 20) - by) > 1 ||
-        std::min(dt, nt - dt) > 1) {
+    if (std::abs(unpack(k, 0) - bx) > 1 || std::abs(unpack(k, 20) - by) > 1 || std::min(dt, nt - dt) > 1) {
       continue;
     }
     sx += p.weight * p.pose.x;

@@ -23,10 +23,10 @@
 #include <span>
 #include <vector>
 
-#include "core/line_map.h"
-#include "core/rng.h"
 #include "baselines/global/likelihood_field.h"
 #include "baselines/global/odometry_motion_model.h"
+#include "core/line_map.h"
+#include "core/rng.h"
 
 namespace locbench::global {
 
@@ -36,14 +36,14 @@ struct MclOptions {
   int initial_particles = 5000;  // drawn uniformly for global localization
   int min_particles = 100;
   int max_particles = 5000;
-  bool kld = true;             // false: keep max_particles
-  double kld_epsilon = 0.05;   // ε, the K-L bound
-  double kld_z = 2.326;        // z_{1−δ}: upper 1 − δ standard normal quantile (δ = 0.01)
+  bool kld = true;                                 // false: keep max_particles
+  double kld_epsilon = 0.05;                       // ε, the K-L bound
+  double kld_z = 2.326;                            // z_{1−δ}: upper 1 − δ standard normal quantile (δ = 0.01)
   Eigen::Vector3d kld_bin{0.25, 0.25, 0.1745329};  // histogram bin (x, y, θ) [m, m, rad]
-  bool inject = true;          // augmented MCL
+  bool inject = true;                              // augmented MCL
   double alpha_slow = 0.001;
   double alpha_fast = 0.1;
-  double update_min_distance = 0.10;  // [m]
+  double update_min_distance = 0.10;    // [m]
   double update_min_angle = 0.0872665;  // [rad] (5°)
 };
 void to_json(nlohmann::json& j, const MclOptions& o);

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
+#include "baselines/global/options_fields.h"
 #include "core/angle.h"
 #include "core/errors.h"
-#include "baselines/global/options_fields.h"
 
 namespace locbench::global {
 
@@ -42,8 +42,7 @@ OdometryDelta delta_sigma(const OdometryDelta& d, const OdometryMotionOptions& o
   const double r1 = d.rot1 * d.rot1, t = d.trans * d.trans, r2 = d.rot2 * d.rot2;
   OdometryDelta s;
   s.rot1 = std::sqrt(o.alpha1 * r1 + o.alpha2 * t + o.min_rotation_sigma * o.min_rotation_sigma / 2.0);
-  s.trans = std::sqrt(o.alpha3 * t + o.alpha4 * (r1 + r2) +
-                      o.min_translation_sigma * o.min_translation_sigma);
+  s.trans = std::sqrt(o.alpha3 * t + o.alpha4 * (r1 + r2) + o.min_translation_sigma * o.min_translation_sigma);
   s.rot2 = std::sqrt(o.alpha1 * r2 + o.alpha2 * t + o.min_rotation_sigma * o.min_rotation_sigma / 2.0);
   return s;
 }

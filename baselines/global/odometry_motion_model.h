@@ -14,10 +14,10 @@
 namespace locbench::global {
 
 struct OdometryMotionOptions {
-  double alpha1 = 0.05;   // rotation noise from rotation [rad²/rad²]
-  double alpha2 = 0.01;   // rotation noise from translation [rad²/m²]
-  double alpha3 = 0.05;   // translation noise from translation [m²/m²]
-  double alpha4 = 0.005;  // translation noise from rotation [m²/rad²]
+  double alpha1 = 0.05;                 // rotation noise from rotation [rad²/rad²]
+  double alpha2 = 0.01;                 // rotation noise from translation [rad²/m²]
+  double alpha3 = 0.05;                 // translation noise from translation [m²/m²]
+  double alpha4 = 0.005;                // translation noise from rotation [m²/rad²]
   double min_translation_sigma = 0.01;  // [m] per update
   double min_rotation_sigma = 0.005;    // [rad] per update
 };
@@ -35,8 +35,7 @@ struct OdometryDelta {
 OdometryDelta odometry_delta(const Pose2& from, const Pose2& to);
 // Whether the odometry moved from `from` to `to` (δ = odometry_delta(from, to)) by less than
 // `min_distance` [m] and turned by less than `min_angle` [rad]: the filters skip such updates.
-bool moved_less_than(const OdometryDelta& d, const Pose2& from, const Pose2& to, double min_distance,
-                     double min_angle);
+bool moved_less_than(const OdometryDelta& d, const Pose2& from, const Pose2& to, double min_distance, double min_angle);
 // The pose reached from p by δ.
 Pose2 apply_delta(const Pose2& p, const OdometryDelta& d);
 // Standard deviations of (rot1, trans, rot2) for δ.

@@ -2,12 +2,12 @@
 // The global-localization options, each field stated once (name, unit, allowed range, meaning;
 // the struct headers explain the defaults). The visitors give JSON (options_json.cpp), the
 // range checks of each validate() and the docs table (core/option_fields.h).
-#include "core/option_fields.h"
-#include "core/units.h"
 #include "baselines/global/grid_markov.h"
 #include "baselines/global/likelihood_field.h"
 #include "baselines/global/monte_carlo_localization.h"
 #include "baselines/global/odometry_motion_model.h"
+#include "core/option_fields.h"
+#include "core/units.h"
 
 namespace locbench::global {
 

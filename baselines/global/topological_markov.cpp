@@ -18,14 +18,12 @@ void check_side(const SideModel& side, const std::string& node, const char* whic
   double sum = 0.0;
   for (const FeatureProbability& f : side) {
     if (!(f.probability >= 0.0 && f.probability <= 1.0)) {
-      throw UsageError("topological map: node " + node + " " + which +
-                       ": probability outside [0, 1]");
+      throw UsageError("topological map: node " + node + " " + which + ": probability outside [0, 1]");
     }
     sum += f.probability;
   }
   if (std::abs(sum - 1.0) > 1e-9) {
-    throw UsageError("topological map: node " + node + " " + which +
-                     ": feature probabilities must sum to 1");
+    throw UsageError("topological map: node " + node + " " + which + ": feature probabilities must sum to 1");
   }
 }
 }  // namespace
@@ -47,8 +45,8 @@ TopologicalMarkov::TopologicalMarkov(std::vector<TopologicalNode> nodes, const S
 
 void TopologicalMarkov::set_belief(std::vector<double> belief) {
   if (belief.size() != nodes_.size()) {
-    throw UsageError("topological Markov: belief has " + std::to_string(belief.size()) +
-                     " entries for " + std::to_string(nodes_.size()) + " nodes");
+    throw UsageError("topological Markov: belief has " + std::to_string(belief.size()) + " entries for " +
+                     std::to_string(nodes_.size()) + " nodes");
   }
   for (double p : belief) {
     if (!(std::isfinite(p) && p >= 0.0)) throw UsageError("topological Markov: negative belief");
@@ -62,8 +60,7 @@ void TopologicalMarkov::action_update(const std::vector<std::vector<double>>& tr
   std::vector<double> next(n, 0.0);
   for (std::size_t l = 0; l < n; ++l) {
     if (transition[l].size() != n) {
-      throw UsageError("topological Markov: transition row " + std::to_string(l) +
-                       " needs one column per node");
+      throw UsageError("topological Markov: transition row " + std::to_string(l) + " needs one column per node");
     }
     for (std::size_t lp = 0; lp < n; ++lp) {
       const double p = transition[l][lp];

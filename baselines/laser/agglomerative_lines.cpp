@@ -5,10 +5,10 @@
 #include <limits>
 #include <utility>
 
-#include "core/angle.h"
-#include "core/chi_square.h"
 #include "baselines/laser/extraction_steps.h"
 #include "baselines/laser/options_fields.h"
+#include "core/angle.h"
+#include "core/chi_square.h"
 
 namespace locbench::laser {
 namespace {
@@ -16,7 +16,6 @@ namespace {
 using detail::IndexRange;
 constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
 
 // A line in model space: (α, r) in the sensor frame with its covariance.
 struct ModelLine {
@@ -28,8 +27,7 @@ struct ModelLine {
 // (α, r) and covariance of a least-squares line through `pts`, each with isotropic noise σ:
 // var α = σ²/S_tt (S_tt the spread along the line), r = n(α)·c so
 // δr = n·δc + (n'·c)δα with n' = dn/dα: var r = σ²/N + (n'·c)² var α, cov = (n'·c) var α.
-ModelLine model_line(std::span<const Eigen::Vector2d> pts, double sigma, double floor_alpha,
-                     double floor_r) {
+ModelLine model_line(std::span<const Eigen::Vector2d> pts, double sigma, double floor_alpha, double floor_r) {
   const LineFit f = fit_line(pts);
   ModelLine m;
   m.alpha = f.line.beta;
@@ -44,8 +42,7 @@ ModelLine model_line(std::span<const Eigen::Vector2d> pts, double sigma, double 
   const double lever = n_prime.dot(f.centroid);
   m.c_aa = var_alpha + floor_alpha * floor_alpha;
   m.c_ar = std::isfinite(var_alpha) ? lever * var_alpha : 0.0;
-  m.c_rr = sigma * sigma / static_cast<double>(pts.size()) + lever * lever * var_alpha +
-           floor_r * floor_r;
+  m.c_rr = sigma * sigma / static_cast<double>(pts.size()) + lever * lever * var_alpha + floor_r * floor_r;
   return m;
 }
 
@@ -68,8 +65,13 @@ struct Cluster {
 class Clustering {
  public:
   Clustering(std::span<const Eigen::Vector2d> s, const AgglomerativeOptions& o, std::size_t& work)
-      : s_(s), o_(o), work_(work), next_(s.size(), kNone), win_lo_(s.size(), 0),
-        win_hi_(s.size(), 0), stamp_(s.size(), 0) {}
+      : s_(s),
+        o_(o),
+        work_(work),
+        next_(s.size(), kNone),
+        win_lo_(s.size(), 0),
+        win_hi_(s.size(), 0),
+        stamp_(s.size(), 0) {}
 
   // Step 2 for point i with window [lo, hi): seeds a cluster if the window is a line.
   void seed(std::size_t i, std::size_t lo, std::size_t hi, double residual_limit) {
@@ -156,8 +158,7 @@ class Clustering {
       if (stamp_[i] == generation_) scratch_.push_back(s_[i]);
     }
     work_ += 2 * (ca.hi - ca.lo);
-    ca.line = model_line(scratch_, o_.breakpoints.range_sigma, o_.model_sigma_alpha,
-                         o_.model_sigma_r);
+    ca.line = model_line(scratch_, o_.breakpoints.range_sigma, o_.model_sigma_alpha, o_.model_sigma_r);
   }
 
   // Only distances to the merged cluster `a` changed; `gone` no longer exists.
@@ -267,10 +268,8 @@ ExtractionResult agglomerative_lines(std::span<const ScanPoint> points, LineFram
       members.push_back(by_label[h++].second);
     }
     for (const IndexRange& piece : detail::contiguous_pieces(members, run_of, gap)) {
-      detail::append_if_accepted(points,
-                                 std::span<const std::size_t>(members).subspan(piece.begin,
-                                                                               piece.size()),
-                                 s, frame, options.acceptance, scratch, result.lines);
+      detail::append_if_accepted(points, std::span<const std::size_t>(members).subspan(piece.begin, piece.size()), s,
+                                 frame, options.acceptance, scratch, result.lines);
     }
     g = h;
   }

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.h"
 #include "baselines/laser/options_fields.h"
+#include "core/errors.h"
 
 namespace locbench::laser::detail {
 
@@ -26,8 +26,7 @@ bool is_breakpoint(const ScanPoint& a, const ScanPoint& b, const BreakpointOptio
   return (sensor_point(b) - sensor_point(a)).norm() > d_max;
 }
 
-std::vector<IndexRange> breakpoint_runs(std::span<const ScanPoint> points,
-                                        const BreakpointOptions& o) {
+std::vector<IndexRange> breakpoint_runs(std::span<const ScanPoint> points, const BreakpointOptions& o) {
   std::vector<IndexRange> runs;
   if (points.empty()) return runs;
   std::size_t begin = 0;
@@ -49,8 +48,7 @@ std::vector<std::size_t> run_index(const std::vector<IndexRange>& runs, std::siz
   return run_of;
 }
 
-std::vector<IndexRange> contiguous_pieces(std::span<const std::size_t> members,
-                                          std::span<const std::size_t> run_of,
+std::vector<IndexRange> contiguous_pieces(std::span<const std::size_t> members, std::span<const std::size_t> run_of,
                                           std::size_t max_gap_points) {
   std::vector<IndexRange> pieces;  // ranges into `members`
   if (members.empty()) return pieces;
@@ -66,13 +64,10 @@ std::vector<IndexRange> contiguous_pieces(std::span<const std::size_t> members,
   return pieces;
 }
 
-LineNormal::LineNormal(const LineParams& l)
-    : c(std::cos(l.beta)), s(std::sin(l.beta)), rho(l.rho) {}
+LineNormal::LineNormal(const LineParams& l) : c(std::cos(l.beta)), s(std::sin(l.beta)), rho(l.rho) {}
 
-std::optional<LineFit> accepted_fit(std::span<const std::size_t> indices,
-                                    std::span<const Eigen::Vector2d> sensor,
-                                    const LineAcceptance& accept,
-                                    std::vector<Eigen::Vector2d>& scratch) {
+std::optional<LineFit> accepted_fit(std::span<const std::size_t> indices, std::span<const Eigen::Vector2d> sensor,
+                                    const LineAcceptance& accept, std::vector<Eigen::Vector2d>& scratch) {
   if (indices.size() < accept.min_points || indices.size() < 2) return std::nullopt;
   scratch.clear();
   for (const std::size_t i : indices) scratch.push_back(sensor[i]);
@@ -82,9 +77,8 @@ std::optional<LineFit> accepted_fit(std::span<const std::size_t> indices,
 }
 
 bool append_if_accepted(std::span<const ScanPoint> points, std::span<const std::size_t> indices,
-                        std::span<const Eigen::Vector2d> sensor, LineFrame frame,
-                        const LineAcceptance& accept, std::vector<Eigen::Vector2d>& scratch,
-                        std::vector<ExtractedLine>& out) {
+                        std::span<const Eigen::Vector2d> sensor, LineFrame frame, const LineAcceptance& accept,
+                        std::vector<Eigen::Vector2d>& scratch, std::vector<ExtractedLine>& out) {
   if (!accepted_fit(indices, sensor, accept, scratch)) return false;
   ExtractedLine line;
   line.points.reserve(indices.size());

@@ -28,15 +28,13 @@ std::vector<Eigen::Vector2d> sensor_points(std::span<const ScanPoint> points);
 // Adaptive breakpoint test between consecutive points a (earlier) and b (see BreakpointOptions).
 bool is_breakpoint(const ScanPoint& a, const ScanPoint& b, const BreakpointOptions& o);
 // The runs of points between breakpoints, in order; together they cover every point.
-std::vector<IndexRange> breakpoint_runs(std::span<const ScanPoint> points,
-                                        const BreakpointOptions& o);
+std::vector<IndexRange> breakpoint_runs(std::span<const ScanPoint> points, const BreakpointOptions& o);
 // run_of[i] = index of the run that holds point i.
 std::vector<std::size_t> run_index(const std::vector<IndexRange>& runs, std::size_t count);
 
 // Splits ascending point indices into pieces that are contiguous in the scan: consecutive
 // members stay together when they are in the same run and skip at most `max_gap_points`.
-std::vector<IndexRange> contiguous_pieces(std::span<const std::size_t> members,
-                                          std::span<const std::size_t> run_of,
+std::vector<IndexRange> contiguous_pieces(std::span<const std::size_t> members, std::span<const std::size_t> run_of,
                                           std::size_t max_gap_points);
 
 // A line (ρ, β) with its normal's cosine and sine evaluated once, for inner loops.
@@ -50,18 +48,15 @@ struct LineNormal {
 
 // The sensor-frame least-squares line of sensor[indices] if it passes `accept` (count, and
 // first-to-last length), else nothing. `scratch` is reused storage.
-std::optional<LineFit> accepted_fit(std::span<const std::size_t> indices,
-                                    std::span<const Eigen::Vector2d> sensor,
-                                    const LineAcceptance& accept,
-                                    std::vector<Eigen::Vector2d>& scratch);
+std::optional<LineFit> accepted_fit(std::span<const std::size_t> indices, std::span<const Eigen::Vector2d> sensor,
+                                    const LineAcceptance& accept, std::vector<Eigen::Vector2d>& scratch);
 
 // Appends the line through points[indices] (ascending) to `out` when it passes `accept`
 // (count and first-to-last length measured on the sensor-frame points); the fit is made in
 // `frame`. `scratch` is reused storage. Returns whether it was accepted.
 bool append_if_accepted(std::span<const ScanPoint> points, std::span<const std::size_t> indices,
-                        std::span<const Eigen::Vector2d> sensor, LineFrame frame,
-                        const LineAcceptance& accept, std::vector<Eigen::Vector2d>& scratch,
-                        std::vector<ExtractedLine>& out);
+                        std::span<const Eigen::Vector2d> sensor, LineFrame frame, const LineAcceptance& accept,
+                        std::vector<Eigen::Vector2d>& scratch, std::vector<ExtractedLine>& out);
 
 // Orders lines by their first beam.
 void sort_by_first_beam(std::vector<ExtractedLine>& lines);

@@ -13,9 +13,9 @@
 #include <span>
 #include <vector>
 
-#include "core/units.h"
 #include "algorithms/laser/line_fit.h"
 #include "algorithms/laser/scan_points.h"
+#include "core/units.h"
 
 namespace locbench::laser {
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "core/angle.h"
 #include "baselines/laser/extraction_steps.h"
 #include "baselines/laser/options_fields.h"
+#include "core/angle.h"
 
 namespace locbench::laser {
 namespace {
@@ -17,8 +17,7 @@ LineParams about(const LineParams& l, const Eigen::Vector2d& pivot) {
 }
 
 // Cost of the pair when it passes the Δρ, Δβ gates, else nothing.
-std::optional<double> line_cost(const LineParams& a, const LineParams& b,
-                                const LineMatchOptions& o) {
+std::optional<double> line_cost(const LineParams& a, const LineParams& b, const LineMatchOptions& o) {
   std::optional<double> best;
   for (const bool flipped : {false, true}) {
     const double d_rho = std::abs(flipped ? a.rho + b.rho : a.rho - b.rho);
@@ -46,8 +45,7 @@ bool overlaps(const LineFit& fit, const Segment& seg, const LineMatchOptions& o)
 void validate(const LineMatchOptions& o) { validate_fields(o, "LineMatchOptions"); }
 
 LineToMapMatches match_lines_to_map(std::span<const ExtractedLine> lines, const LineMap& map,
-                                    const Eigen::Vector2d& pivot,
-                                    const LineMatchOptions& options) {
+                                    const Eigen::Vector2d& pivot, const LineMatchOptions& options) {
   validate(options);
   LineToMapMatches out;
   out.segment_of.assign(lines.size(), std::nullopt);

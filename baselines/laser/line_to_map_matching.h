@@ -20,10 +20,10 @@
 #include <span>
 #include <vector>
 
-#include "core/line_map.h"
-#include "core/units.h"
 #include "algorithms/laser/segment_match.h"
 #include "baselines/laser/line_extraction.h"
+#include "core/line_map.h"
+#include "core/units.h"
 
 namespace locbench::laser {
 
@@ -47,7 +47,6 @@ struct LineToMapMatches {
 
 // `lines` must have been fitted in the world frame.
 LineToMapMatches match_lines_to_map(std::span<const ExtractedLine> lines, const LineMap& map,
-                                    const Eigen::Vector2d& pivot,
-                                    const LineMatchOptions& options = {});
+                                    const Eigen::Vector2d& pivot, const LineMatchOptions& options = {});
 
 }  // namespace locbench::laser

@@ -2,9 +2,9 @@
 // The laser baselines' options, each field stated once (name, unit, allowed range, meaning;
 // the struct headers explain the defaults). The visitors give JSON (options_json.cpp), the
 // range checks of each validate() and the docs table (core/option_fields.h).
+#include "baselines/laser/extract_then_match.h"
 #include "core/option_fields.h"
 #include "core/units.h"
-#include "baselines/laser/extract_then_match.h"
 
 namespace locbench::laser {
 

@@ -36,11 +36,11 @@ struct PointCloud {
     return false;
   }
 };
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>,
-                                                   PointCloud, 2, std::size_t>;
+using KdTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>, PointCloud, 2, std::size_t>;
 
 struct Correspondence {
-  std::size_t current = 0;  // index into the current points
+  std::size_t current = 0;                              // index into the current points
   Eigen::Vector2d reference = Eigen::Vector2d::Zero();  // p_j1
   Eigen::Vector2d normal = Eigen::Vector2d::Zero();     // of the line j1–j2 (point-to-line)
   double error = 0.0;                                   // |e_i| under the current estimate
@@ -52,10 +52,9 @@ Eigen::Vector2d rotate(double theta, const Eigen::Vector2d& p) {
 }
 
 // Correspondences of the current points under `motion`, trimmed (step 2–3 of pl_icp.h).
-std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& ref,
-                                            const KdTree& tree,
-                                            const std::vector<Eigen::Vector2d>& cur,
-                                            const Pose2& motion, const PlIcpOptions& o) {
+std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& ref, const KdTree& tree,
+                                            const std::vector<Eigen::Vector2d>& cur, const Pose2& motion,
+                                            const PlIcpOptions& o) {
   std::vector<Correspondence> out;
   out.reserve(cur.size());
   const double max_d2 = o.max_correspondence_distance * o.max_correspondence_distance;
@@ -89,8 +88,7 @@ std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& 
         const auto half = static_cast<std::size_t>(o.line_points / 2);
         std::size_t lo = j1, hi = j1;
         while (j1 - lo < half && lo > 0 && (ref[lo - 1] - ref[lo]).norm() <= o.max_neighbour_gap) --lo;
-        while (hi - j1 < half && hi + 1 < ref.size() &&
-               (ref[hi + 1] - ref[hi]).norm() <= o.max_neighbour_gap) {
+        while (hi - j1 < half && hi + 1 < ref.size() && (ref[hi + 1] - ref[hi]).norm() <= o.max_neighbour_gap) {
           ++hi;
         }
         if (hi - lo + 1 >= 3) {
@@ -113,13 +111,10 @@ std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& 
     out.push_back(c);
   }
   // Keep the keep_fraction with the smallest errors.
-  const auto keep = static_cast<std::size_t>(
-      std::ceil(o.keep_fraction * static_cast<double>(out.size())));
+  const auto keep = static_cast<std::size_t>(std::ceil(o.keep_fraction * static_cast<double>(out.size())));
   if (keep < out.size()) {
     std::nth_element(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(keep), out.end(),
-                     [](const Correspondence& a, const Correspondence& b) {
-                       return a.error < b.error;
-                     });
+                     [](const Correspondence& a, const Correspondence& b) { return a.error < b.error; });
     out.resize(keep);
   }
   return out;
@@ -132,9 +127,8 @@ struct NormalEquations {
   std::size_t rows = 0;
 };
 
-NormalEquations normal_equations(const std::vector<Correspondence>& cs,
-                                 const std::vector<Eigen::Vector2d>& cur, const Pose2& motion,
-                                 IcpMetric metric) {
+NormalEquations normal_equations(const std::vector<Correspondence>& cs, const std::vector<Eigen::Vector2d>& cur,
+                                 const Pose2& motion, IcpMetric metric) {
   NormalEquations n;
   for (const Correspondence& c : cs) {
     const Eigen::Vector2d rq = rotate(motion.theta, cur[c.current]);
@@ -167,8 +161,7 @@ const char* to_string(IcpMetric m) { return kMetricNames[m == IcpMetric::kPointT
 IcpMetric icp_metric_from_string(const std::string& s) {
   if (s == "point_to_line") return IcpMetric::kPointToLine;
   if (s == "point_to_point") return IcpMetric::kPointToPoint;
-  throw UsageError("PlIcpOptions.metric: expected \"point_to_line\" or \"point_to_point\", found \"" +
-                   s + "\"");
+  throw UsageError("PlIcpOptions.metric: expected \"point_to_line\" or \"point_to_point\", found \"" + s + "\"");
 }
 
 // PlIcpOptions' fields, stated once (the header explains each).
@@ -176,13 +169,15 @@ template <class V>
 void visit_fields(V& v, PlIcpOptions& o) {
   v.choice("metric", o.metric, to_string, icp_metric_from_string, "point-to-line or point-to-point");
   v.field("max_iterations", o.max_iterations, "", at_least(1), "ICP iterations");
-  v.field("max_correspondence_distance", o.max_correspondence_distance, "m", positive(), "largest point-to-match distance");
+  v.field("max_correspondence_distance", o.max_correspondence_distance, "m", positive(),
+          "largest point-to-match distance");
   v.field("keep_fraction", o.keep_fraction, "", open_closed(0.0, 1.0), "trimmed fraction of correspondences kept");
   v.field("max_neighbour_gap", o.max_neighbour_gap, "m", positive(), "largest gap between a line's two points");
   v.field("line_points", o.line_points, "", at_least(2), "points of a reference line");
   v.field("translation_tolerance", o.translation_tolerance, "m", positive(), "converged below this step");
   v.field("rotation_tolerance", o.rotation_tolerance, "rad", positive(), "converged below this step");
-  v.field("degenerate_ratio", o.degenerate_ratio, "", closed_open(0.0, 1.0), "eigenvalue ratio of a degenerate direction");
+  v.field("degenerate_ratio", o.degenerate_ratio, "", closed_open(0.0, 1.0),
+          "eigenvalue ratio of a degenerate direction");
   v.field("min_correspondences", o.min_correspondences, "", at_least(3), "fewer → no correction");
   v.field("min_point_sigma", o.min_point_sigma, "m", positive(), "σ floor of a point");
 }
@@ -191,8 +186,7 @@ void validate(const PlIcpOptions& o) { validate_fields(o, "PlIcpOptions"); }
 
 LOCBENCH_OPTIONS_JSON(PlIcpOptions)
 
-PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& initial,
-                   const PlIcpOptions& options) {
+PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& initial, const PlIcpOptions& options) {
   validate(options);
   if (!std::isfinite(initial.x) || !std::isfinite(initial.y) || !std::isfinite(initial.theta)) {
     throw UsageError("pl_icp: the initial guess is not finite");
@@ -238,8 +232,7 @@ PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& init
   const PoseObservability obs = pose_observability(n.h, length, options.degenerate_ratio);
   const double dof = static_cast<double>(n.rows) - 3.0;
   out.residual_rms = std::sqrt(n.ss / static_cast<double>(std::max<std::size_t>(n.rows, 1)));
-  const double s2 = std::max(dof > 0.0 ? n.ss / dof : 0.0,
-                             options.min_point_sigma * options.min_point_sigma);
+  const double s2 = std::max(dof > 0.0 ? n.ss / dof : 0.0, options.min_point_sigma * options.min_point_sigma);
   Eigen::Matrix3d inv = Eigen::Matrix3d::Zero();
   for (int k = 0; k < 3; ++k) {
     if (obs.observable[static_cast<std::size_t>(k)]) {

@@ -90,7 +90,6 @@ struct PlIcpResult {
 // frame). Points go through each scan's sensor_pose into its robot frame. Throws UsageError for
 // invalid options or a non-finite initial guess; too few valid points or correspondences →
 // valid = false, motion = initial.
-PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& initial,
-                   const PlIcpOptions& options = {});
+PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& initial, const PlIcpOptions& options = {});
 
 }  // namespace locbench::laser

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
-#include <utility>
 #include <string>
+#include <utility>
 
-#include "core/angle.h"
 #include "baselines/laser/extraction_steps.h"
 #include "baselines/laser/options_fields.h"
+#include "core/angle.h"
 
 namespace locbench::laser {
 namespace {
@@ -96,8 +96,7 @@ struct Candidate {
 
 void validate(const RwhtOptions& o) { validate_fields(o, "RwhtOptions"); }
 
-RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame,
-                          const RwhtOptions& options) {
+RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame, const RwhtOptions& options) {
   validate(options);
   RwhtExtraction out;
   std::size_t& work = out.extraction.work;
@@ -111,11 +110,9 @@ RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame,
   // 1. vote
   double r_max = 0.0;
   for (const ScanPoint& p : points) r_max = std::max(r_max, p.range);
-  const double n_cells = std::ceil(2.0 * kPi / options.angle_bin) *
-                         (std::floor(r_max / options.range_bin) + 1.0);
-  detail::require(n_cells <= kMaxCells, "RwhtOptions: angle_bin and range_bin give " +
-                                            std::to_string(n_cells) + " cells (max " +
-                                            std::to_string(kMaxCells) + ")");
+  const double n_cells = std::ceil(2.0 * kPi / options.angle_bin) * (std::floor(r_max / options.range_bin) + 1.0);
+  detail::require(n_cells <= kMaxCells, "RwhtOptions: angle_bin and range_bin give " + std::to_string(n_cells) +
+                                            " cells (max " + std::to_string(kMaxCells) + ")");
   Accumulator acc(options.angle_bin, options.range_bin, r_max);
   out.cells = acc.n_alpha * acc.n_r;
   const double dphi = beam_spacing(points);
@@ -170,8 +167,7 @@ RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame,
     members.clear();
     const detail::LineNormal cell(peak.cell);
     for (std::size_t i = 0; i < n; ++i) {
-      const double band =
-          0.5 * acc.d_r + points[i].range * half_sin + 3.0 * options.breakpoints.range_sigma;
+      const double band = 0.5 * acc.d_r + points[i].range * half_sin + 3.0 * options.breakpoints.range_sigma;
       if (cell.distance(s[i]) <= band) {
         members.push_back(i);
       }
@@ -183,8 +179,7 @@ RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame,
     {
       const std::vector<IndexRange> pieces = detail::contiguous_pieces(members, run_of, gap);
       const IndexRange largest = *std::max_element(
-          pieces.begin(), pieces.end(),
-          [](const IndexRange& a, const IndexRange& b) { return a.size() < b.size(); });
+          pieces.begin(), pieces.end(), [](const IndexRange& a, const IndexRange& b) { return a.size() < b.size(); });
       members.erase(members.begin() + static_cast<std::ptrdiff_t>(largest.end), members.end());
       members.erase(members.begin(), members.begin() + static_cast<std::ptrdiff_t>(largest.begin));
     }
@@ -231,8 +226,7 @@ RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame,
     // A second peak of a line already found (its butterfly spreads over neighbouring cells).
     const LineParams line = fit_members();
     if (std::any_of(line_of.begin(), line_of.end(), [&](const LineParams& l) {
-          return std::abs(angle_diff(l.beta, line.beta)) < acc.d_alpha &&
-                 std::abs(l.rho - line.rho) < acc.d_r;
+          return std::abs(angle_diff(l.beta, line.beta)) < acc.d_alpha && std::abs(l.rho - line.rho) < acc.d_r;
         })) {
       continue;
     }
@@ -257,15 +251,13 @@ RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame,
       }
       work += n;
       const LineParams holder = scratch.size() >= 2 ? fit_line(scratch).line : line_of[owner[i]];
-      return !(detail::LineNormal(own).distance(s[i]) <
-               detail::LineNormal(holder).distance(s[i]));
+      return !(detail::LineNormal(own).distance(s[i]) < detail::LineNormal(holder).distance(s[i]));
     });
     all = members;
     bool produced = false;
     for (const IndexRange& piece : detail::contiguous_pieces(all, run_of, gap)) {
       const auto idx = std::span<const std::size_t>(all).subspan(piece.begin, piece.size());
-      const std::optional<LineFit> fit =
-          detail::accepted_fit(idx, s, options.acceptance, scratch);
+      const std::optional<LineFit> fit = detail::accepted_fit(idx, s, options.acceptance, scratch);
       if (!fit) continue;
       for (const std::size_t i : idx) owner[i] = line_of.size();
       line_of.push_back(fit->line);

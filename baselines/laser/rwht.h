@@ -36,12 +36,12 @@ namespace locbench::laser {
 struct RwhtOptions {
   BreakpointOptions breakpoints;  // contiguity of pieces; range_sigma widens the peak band
   LineAcceptance acceptance;
-  double angle_bin = deg(1.0);   // [rad]: the LMS 200's beam spacing
-  double range_bin = 0.05;       // [m]: ≈ the spread of a 4 m wall's votes at ½° off its α
-  double min_peak_votes = 0.2;   // [m] of range-weighted votes: acceptance.min_length
-  int nms_radius = 2;            // k, in bins, both axes (≥ 1)
-  double inlier_distance = 0.02; // [m] ≈ 4σ_r
-  int max_gap_points = 2;        // a line may skip this many points of its run (≥ 0)
+  double angle_bin = deg(1.0);    // [rad]: the LMS 200's beam spacing
+  double range_bin = 0.05;        // [m]: ≈ the spread of a 4 m wall's votes at ½° off its α
+  double min_peak_votes = 0.2;    // [m] of range-weighted votes: acceptance.min_length
+  int nms_radius = 2;             // k, in bins, both axes (≥ 1)
+  double inlier_distance = 0.02;  // [m] ≈ 4σ_r
+  int max_gap_points = 2;         // a line may skip this many points of its run (≥ 0)
 };
 
 // Throws UsageError naming the first invalid option.
@@ -59,7 +59,6 @@ struct RwhtExtraction {
   std::size_t cells = 0;               // N_α · N_r
 };
 
-RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame,
-                          const RwhtOptions& options = {});
+RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame, const RwhtOptions& options = {});
 
 }  // namespace locbench::laser

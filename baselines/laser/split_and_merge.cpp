@@ -43,8 +43,7 @@ std::size_t split_point(std::span<const Eigen::Vector2d> s, IndexRange r, std::s
 
 // Step 1 on one run: the leaves of the recursive split, in scan order.
 void split_run(std::span<const Eigen::Vector2d> s, IndexRange run, double split_distance,
-               std::vector<IndexRange>& stack, std::vector<IndexRange>& leaves,
-               std::size_t& work) {
+               std::vector<IndexRange>& stack, std::vector<IndexRange>& leaves, std::size_t& work) {
   stack.clear();
   stack.push_back(run);
   while (!stack.empty()) {
@@ -61,8 +60,8 @@ void split_run(std::span<const Eigen::Vector2d> s, IndexRange run, double split_
 }
 
 // Step 2: merges adjacent leaves of one run while their union stays within split_distance.
-void merge_collinear(std::span<const Eigen::Vector2d> s, double split_distance,
-                     std::vector<IndexRange>& sets, std::size_t& work) {
+void merge_collinear(std::span<const Eigen::Vector2d> s, double split_distance, std::vector<IndexRange>& sets,
+                     std::size_t& work) {
   std::size_t out = 0;
   for (std::size_t i = 1; i < sets.size(); ++i) {
     const IndexRange joined{sets[out].begin, sets[i].end};
@@ -78,8 +77,7 @@ void merge_collinear(std::span<const Eigen::Vector2d> s, double split_distance,
 // Step 3a: a boundary point goes to whichever of the two adjacent sets' lines (fitted
 // without it) is nearer. The split puts the farthest point on the left whichever wall it is on,
 // and near a corner a point of the other wall can be within split_distance of this one's line.
-void refine_boundaries(std::span<const Eigen::Vector2d> s, std::vector<IndexRange>& sets,
-                       std::size_t& work) {
+void refine_boundaries(std::span<const Eigen::Vector2d> s, std::vector<IndexRange>& sets, std::size_t& work) {
   const auto dist_to_fit = [&](std::size_t q, IndexRange r) {
     const LineFit f = fit_line(s.subspan(r.begin, r.size()));
     work += r.size() + 1;
@@ -128,8 +126,7 @@ ExtractionResult split_and_merge(std::span<const ScanPoint> points, LineFrame fr
     for (const IndexRange& set : sets) {  // step 3: refit and accept
       indices.resize(set.size());
       std::iota(indices.begin(), indices.end(), set.begin);
-      detail::append_if_accepted(points, indices, s, frame, options.acceptance, scratch,
-                                 result.lines);
+      detail::append_if_accepted(points, indices, s, frame, options.acceptance, scratch, result.lines);
     }
   }
   return result;

@@ -32,8 +32,8 @@ double validation_gate(double probability) {
   return chi_square_quantile(ChiSquareDof(2.0), probability);
 }
 
-LineFeatureKalmanLocalizer::LineFeatureKalmanLocalizer(const LineFeatureKalmanOptions& options,
-                                                       double wheelbase, const Pose2& start)
+LineFeatureKalmanLocalizer::LineFeatureKalmanLocalizer(const LineFeatureKalmanOptions& options, double wheelbase,
+                                                       const Pose2& start)
     : options_(options),
       wheelbase_(wheelbase),
       gate_(0.0),
@@ -62,15 +62,13 @@ LineUpdate LineFeatureKalmanLocalizer::associate(std::span<const LineObservation
   for (std::size_t j = 0; j < observations.size(); ++j) {
     const LineObservation& z = observations[j];
     if (!std::isfinite(z.alpha) || !std::isfinite(z.r) || !z.covariance.allFinite()) {
-      throw UsageError("LineFeatureKalmanLocalizer: observation " + std::to_string(j) +
-                       " is not finite");
+      throw UsageError("LineFeatureKalmanLocalizer: observation " + std::to_string(j) + " is not finite");
     }
     LinePair best;
     best.mahalanobis2 = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < predicted.size(); ++i) {
       const Eigen::Vector2d v = line_innovation(z, predicted[i]);
-      const Eigen::Matrix2d s =
-          predicted[i].jacobian * p_ * predicted[i].jacobian.transpose() + z.covariance;
+      const Eigen::Matrix2d s = predicted[i].jacobian * p_ * predicted[i].jacobian.transpose() + z.covariance;
       const Eigen::LDLT<Eigen::Matrix2d> ldlt(s);
       if (ldlt.info() != Eigen::Success || !(s.determinant() > 0.0)) continue;
       const double d2 = v.dot(ldlt.solve(v));
@@ -87,8 +85,7 @@ LineUpdate LineFeatureKalmanLocalizer::associate(std::span<const LineObservation
   return out;
 }
 
-LineUpdate LineFeatureKalmanLocalizer::update(std::span<const LineObservation> observations,
-                                              const LineMap& map) {
+LineUpdate LineFeatureKalmanLocalizer::update(std::span<const LineObservation> observations, const LineMap& map) {
   LineUpdate out = associate(observations, map);
   const auto m = static_cast<Eigen::Index>(out.pairs.size());
   if (m == 0) return out;

@@ -19,11 +19,11 @@
 #include <span>
 #include <vector>
 
+#include "baselines/localization/line_observation.h"
 #include "core/compass_ekf_model.h"
 #include "core/diff_drive_odometry.h"
 #include "core/line_map.h"
 #include "core/pose2.h"
-#include "baselines/localization/line_observation.h"
 
 namespace locbench::localization {
 
@@ -44,24 +44,23 @@ void validate(const LineFeatureKalmanOptions& o);
 double validation_gate(double probability);
 
 struct LinePair {
-  std::size_t observation = 0;  // index into the observations
-  std::size_t map_segment = 0;  // index into LineMap::segments
-  Eigen::Vector2d innovation = Eigen::Vector2d::Zero();  // v_ij
+  std::size_t observation = 0;                                      // index into the observations
+  std::size_t map_segment = 0;                                      // index into LineMap::segments
+  Eigen::Vector2d innovation = Eigen::Vector2d::Zero();             // v_ij
   Eigen::Matrix2d innovation_covariance = Eigen::Matrix2d::Zero();  // Σ_IN,ij
-  double mahalanobis2 = 0.0;  // v Σ_IN⁻¹ vᵀ
+  double mahalanobis2 = 0.0;                                        // v Σ_IN⁻¹ vᵀ
 };
 
 struct LineUpdate {
-  std::vector<LinePair> pairs;              // accepted, in observation order
-  std::vector<std::size_t> unmatched;       // observations no map line passed the gate for
-  double gate = 0.0;                        // g²
+  std::vector<LinePair> pairs;         // accepted, in observation order
+  std::vector<std::size_t> unmatched;  // observations no map line passed the gate for
+  double gate = 0.0;                   // g²
 };
 
 class LineFeatureKalmanLocalizer {
  public:
   // Throws UsageError for invalid options, wheelbase <= 0 or a non-finite start.
-  LineFeatureKalmanLocalizer(const LineFeatureKalmanOptions& options, double wheelbase,
-                             const Pose2& start);
+  LineFeatureKalmanLocalizer(const LineFeatureKalmanOptions& options, double wheelbase, const Pose2& start);
 
   // p̂(k+1|k) = f(p̂(k|k), u(k)) and its covariance.
   void predict(const WheelDisplacement& u);

@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "algorithms/laser/line_fit.h"
 #include "core/angle.h"
 #include "core/errors.h"
-#include "algorithms/laser/line_fit.h"
 
 namespace locbench::localization {
 
-LineObservation line_observation(std::span<const Eigen::Vector2d> robot_points,
-                                 double min_sigma) {
+LineObservation line_observation(std::span<const Eigen::Vector2d> robot_points, double min_sigma) {
   if (!(min_sigma > 0.0)) throw UsageError("line_observation: min_sigma must be > 0 m");
   if (robot_points.size() < 2) throw UsageError("line_observation: needs at least 2 points");
   const laser::LineFit fit = laser::fit_line(robot_points);
@@ -19,8 +18,7 @@ LineObservation line_observation(std::span<const Eigen::Vector2d> robot_points,
   for (const auto& p : robot_points) ss_along += std::pow(fit.direction.dot(p - fit.centroid), 2);
   if (!(ss_along > 0.0)) throw UsageError("line_observation: the points coincide");
   const double ss_perp = fit.rms * fit.rms * n;
-  const double sigma2 =
-      std::max(robot_points.size() > 2 ? ss_perp / (n - 2.0) : 0.0, min_sigma * min_sigma);
+  const double sigma2 = std::max(robot_points.size() > 2 ? ss_perp / (n - 2.0) : 0.0, min_sigma * min_sigma);
   LineObservation z;
   z.alpha = fit.line.beta;
   z.r = fit.line.rho;
@@ -32,8 +30,8 @@ LineObservation line_observation(std::span<const Eigen::Vector2d> robot_points,
   return z;
 }
 
-std::vector<LineObservation> line_observations(std::span<const laser::SegmentMatch> matches,
-                                               double min_sigma, int min_points) {
+std::vector<LineObservation> line_observations(std::span<const laser::SegmentMatch> matches, double min_sigma,
+                                               int min_points) {
   if (!(min_sigma > 0.0)) throw UsageError("line_observations: min_sigma must be > 0 m");
   std::vector<LineObservation> out;
   std::vector<Eigen::Vector2d> pts;

@@ -10,16 +10,16 @@
 #include <span>
 #include <vector>
 
+#include "algorithms/laser/segment_match.h"
 #include "core/pose2.h"
 #include "core/segment.h"
 #include "core/units.h"
-#include "algorithms/laser/segment_match.h"
 
 namespace locbench::localization {
 
 struct LineObservation {
-  double alpha = 0.0;  // normal direction [rad], robot frame
-  double r = 0.0;      // distance from the robot centre [m], ≥ 0
+  double alpha = 0.0;                                    // normal direction [rad], robot frame
+  double r = 0.0;                                        // distance from the robot centre [m], ≥ 0
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();  // Σ_R over (α, r)
 };
 
@@ -28,12 +28,11 @@ struct LineObservation {
 // var r = σ²/N + t_c² var α, cov(α, r) = t_c var α, where t is the coordinate along the line and
 // t_c the centroid's (r = nᵀc, ∂r/∂α = t_c). σ² = max(Σ residual²/(N − 2), min_sigma²).
 // Throws UsageError for fewer than 2 distinct points or min_sigma <= 0.
-LineObservation line_observation(std::span<const Eigen::Vector2d> robot_points,
-                                 double min_sigma = mm(5.0));
+LineObservation line_observation(std::span<const Eigen::Vector2d> robot_points, double min_sigma = mm(5.0));
 // One observation per match with at least `min_points` points (the map segment it was matched
 // to is ignored: the localizer associates by its validation gate).
-std::vector<LineObservation> line_observations(std::span<const laser::SegmentMatch> matches,
-                                               double min_sigma = mm(5.0), int min_points = 3);
+std::vector<LineObservation> line_observations(std::span<const laser::SegmentMatch> matches, double min_sigma = mm(5.0),
+                                               int min_points = 3);
 
 // h_i and ∇h_i of a map line (β, ρ) seen from `pose` (slides):
 //   h = [β − θ, ρ − (x cos β + y sin β)],  ∇h = [[0, 0, −1], [−cos β, −sin β, 0]].

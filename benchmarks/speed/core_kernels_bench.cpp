@@ -53,8 +53,8 @@ void BM_RayCastScan(benchmark::State& state) {
     }
   }
   state.SetComplexityN(state.range(0));
-  state.counters["beams"] = benchmark::Counter(181.0 * static_cast<double>(state.iterations()),
-                                               benchmark::Counter::kIsRate);
+  state.counters["beams"] =
+      benchmark::Counter(181.0 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_RayCastScan)->RangeMultiplier(4)->Range(16, 4096)->Complexity(benchmark::oN);
 

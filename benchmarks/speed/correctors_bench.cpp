@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "core/rng.h"
-#include "core/units.h"
 #include "baselines/laser/extract_then_match.h"
 #include "benchmarks/experiments/harness/laser_correctors.h"
+#include "core/rng.h"
+#include "core/units.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/log/data_root.h"
@@ -116,8 +116,7 @@ void BM_IntelReplay(benchmark::State& state, const std::string& corrector) {
   for (auto _ : state) {
     for (std::size_t i = 0; i + 1 < replay.scans.size(); ++i) {
       const LineMap lines = lines_of(replay.scans[i]);
-      benchmark::DoNotOptimize(c.front()->correct(replay.scans[i], lines, replay.scans[i + 1],
-                                                  replay.guesses[i]));
+      benchmark::DoNotOptimize(c.front()->correct(replay.scans[i], lines, replay.scans[i + 1], replay.guesses[i]));
     }
   }
   state.counters["scans"] = static_cast<double>(replay.scans.size());
@@ -142,16 +141,16 @@ void BM_Correct(benchmark::State& state, const std::string& corrector, bool real
 int register_all() {
   for (const char* name : {"eap_ch6_ls", "eap_iterated_pl", "pl_icp", "icp_point_to_point"}) {
     for (const bool real : {false, true}) {
-      benchmark::RegisterBenchmark(
-          ("BM_Correct/" + std::string(name) + (real ? "/intel" : "/sim")).c_str(),
-          [name = std::string(name), real](benchmark::State& s) { BM_Correct(s, name, real); })
+      benchmark::RegisterBenchmark(("BM_Correct/" + std::string(name) + (real ? "/intel" : "/sim")).c_str(),
+                                   [name = std::string(name), real](benchmark::State& s) { BM_Correct(s, name, real); })
           ->Unit(benchmark::kMicrosecond);
     }
   }
   for (const char* name : {"eap_ch6_ls", "eap_iterated_pl"}) {
-    benchmark::RegisterBenchmark(("BM_IntelReplay/" + std::string(name)).c_str(),
-                                 [name = std::string(name)](benchmark::State& s) { BM_IntelReplay(s, name); })
-        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BM_IntelReplay/" + std::string(name)).c_str(), [name = std::string(name)](
+                                                                                      benchmark::State& s) {
+      BM_IntelReplay(s, name);
+    })->Unit(benchmark::kMillisecond);
   }
   return 0;
 }

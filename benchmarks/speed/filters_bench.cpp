@@ -7,12 +7,12 @@
 #include <optional>
 #include <vector>
 
-#include "core/rng.h"
 #include "algorithms/filters/compass_ekf.h"
 #include "algorithms/filters/quantization_noise.h"
 #include "baselines/filters/fixed_q_ekf.h"
 #include "baselines/filters/sage_husa_aekf.h"
 #include "baselines/filters/vb_akf.h"
+#include "core/rng.h"
 
 namespace locbench {
 namespace {
@@ -48,9 +48,8 @@ void run_filter(benchmark::State& state, Make make) {
     for (const Sample& s : in) benchmark::DoNotOptimize(filter.step(s.u, s.compass));
   }
   state.SetItemsProcessed(state.iterations() * kSamples);
-  state.counters["step"] =
-      benchmark::Counter(static_cast<double>(state.iterations()) * kSamples,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["step"] = benchmark::Counter(static_cast<double>(state.iterations()) * kSamples,
+                                              benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 void BM_CompassEkfAdaptiveStep(benchmark::State& state) {

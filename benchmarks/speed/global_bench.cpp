@@ -15,10 +15,10 @@
 
 #include <memory>
 
-#include "core/units.h"
 #include "baselines/global/grid_markov.h"
 #include "baselines/global/monte_carlo_localization.h"
 #include "benchmarks/experiments/harness/global_harness.h"
+#include "core/units.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
@@ -102,9 +102,9 @@ void BM_Replay(benchmark::State& state) {
     benchmark::DoNotOptimize(loc->pose());
   }
   state.counters["scans"] = static_cast<double>(steps.size());
-  state.counters["per_scan_us"] = benchmark::Counter(
-      static_cast<double>(steps.size()) * 1e-6, benchmark::Counter::kIsIterationInvariantRate |
-                                                   benchmark::Counter::kInvert);
+  state.counters["per_scan_us"] =
+      benchmark::Counter(static_cast<double>(steps.size()) * 1e-6,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.counters["memory_bytes"] = static_cast<double>(memory);
 }
 BENCHMARK(BM_Replay)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);

@@ -22,11 +22,11 @@
 #include <string>
 #include <vector>
 
-#include "core/rng.h"
-#include "core/units.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/laser/segment_grid_index.h"
 #include "baselines/laser/extract_then_match.h"
+#include "core/rng.h"
+#include "core/units.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/scan_json_reader.h"
 #include "datasets/log/data_root.h"
@@ -82,9 +82,7 @@ void run(benchmark::State& state, const laser::SegmentMatcher& matcher, const Li
   state.counters["map_segments"] = static_cast<double>(map.segments.size());
 }
 
-void BM_Match_eap(benchmark::State& state) {
-  run(state, laser::EapMatcher(), world(static_cast<int>(state.range(1))));
-}
+void BM_Match_eap(benchmark::State& state) { run(state, laser::EapMatcher(), world(static_cast<int>(state.range(1)))); }
 void BM_Match_eap_indexed(benchmark::State& state) {
   const LineMap& map = world(static_cast<int>(state.range(1)));
   static std::map<int, std::shared_ptr<const laser::SegmentGridIndex>> indices;
@@ -188,8 +186,8 @@ const std::vector<Scan>* real_scans(const std::string& dataset) {
 void BM_RealScans(benchmark::State& state, const std::string& dataset, const std::string& method) {
   const std::vector<Scan>* scans = real_scans(dataset);
   if (!scans || scans->empty()) {
-    state.SkipWithError(("dataset " + dataset + " not found under " + data_root().string() +
-                         " (set LOCBENCH_DATA)").c_str());
+    state.SkipWithError(
+        ("dataset " + dataset + " not found under " + data_root().string() + " (set LOCBENCH_DATA)").c_str());
     return;
   }
   const laser::SplitAndMergeMatcher sm;
@@ -219,9 +217,8 @@ void BM_RealScans(benchmark::State& state, const std::string& dataset, const std
   state.counters["scans"] = static_cast<double>(scans->size());
   state.counters["beams"] = static_cast<double>(scans->front().ranges.size());
   state.counters["lines_per_scan"] = static_cast<double>(lines) / static_cast<double>(scans->size());
-  state.counters["per_scan"] = benchmark::Counter(
-      static_cast<double>(state.iterations() * scans->size()),
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["per_scan"] = benchmark::Counter(static_cast<double>(state.iterations() * scans->size()),
+                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 const bool kRealScanBenchmarks = [] {
@@ -229,9 +226,8 @@ const bool kRealScanBenchmarks = [] {
     for (const char* method : {"eap", "split_and_merge", "agglomerative", "rwht"}) {
       benchmark::RegisterBenchmark(
           (std::string("BM_RealScans/") + dataset + "/" + method).c_str(),
-          [d = std::string(dataset), m = std::string(method)](benchmark::State& st) {
-            BM_RealScans(st, d, m);
-          })->Unit(benchmark::kMicrosecond);
+          [d = std::string(dataset), m = std::string(method)](benchmark::State& st) { BM_RealScans(st, d, m); })
+          ->Unit(benchmark::kMicrosecond);
     }
   }
   return true;

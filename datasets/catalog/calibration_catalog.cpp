@@ -22,20 +22,17 @@ std::filesystem::path data_file(const std::filesystem::path& folder, const std::
 }  // namespace
 
 bool is_calibration_dataset(const DatasetEntry& entry) {
-  return entry.name == "censi_khepera" || entry.name == "grisetti_diffdrive" ||
-         entry.name == "stachniss_ls_calib";
+  return entry.name == "censi_khepera" || entry.name == "grisetti_diffdrive" || entry.name == "stachniss_ls_calib";
 }
 
 std::vector<std::string> calibration_dataset_parts(const DatasetEntry& entry) {
   if (entry.name == "censi_khepera") {
-    return {"lstraight", "lstraight_0", "lstraight_1", "lstraight_2",
-            "l90",       "l90_0",       "l90_1",       "l90_2"};
+    return {"lstraight", "lstraight_0", "lstraight_1", "lstraight_2", "l90", "l90_0", "l90_1", "l90_2"};
   }
   return {""};
 }
 
-CalibrationData load_catalog_calibration_data(const DatasetEntry& entry,
-                                              const std::filesystem::path& root,
+CalibrationData load_catalog_calibration_data(const DatasetEntry& entry, const std::filesystem::path& root,
                                               const std::string& part) {
   if (!is_calibration_dataset(entry)) {
     throw UsageError("dataset " + entry.name + " is not a calibration data set");
@@ -44,13 +41,11 @@ CalibrationData load_catalog_calibration_data(const DatasetEntry& entry,
   if (std::find(parts.begin(), parts.end(), part) == parts.end()) {
     std::string list;
     for (const auto& p : parts) list += (list.empty() ? "" : ", ") + p;
-    throw UsageError("dataset " + entry.name + ": unknown part \"" + part + "\" (parts: " + list +
-                     ")");
+    throw UsageError("dataset " + entry.name + ": unknown part \"" + part + "\" (parts: " + list + ")");
   }
   const std::filesystem::path folder = root / entry.path;
   if (!std::filesystem::exists(folder)) {
-    throw InputError(folder.string(), 0,
-                     "dataset " + entry.name + " not found (set LOCBENCH_DATA)");
+    throw InputError(folder.string(), 0, "dataset " + entry.name + " not found (set LOCBENCH_DATA)");
   }
   CalibrationData d;
   if (entry.name == "censi_khepera") {

@@ -16,26 +16,24 @@ const std::vector<DatasetEntry>& dataset_catalog() {
     e.push_back({"mit_csail", clf + "mit-csail.clf.gz", rel + "mit-csail.relations.gz",
                  "MIT CSAIL, 361 beams, odometry only in FLASER; Freiburg relations", ""});
     for (int r = 1; r <= 5; ++r) {
-      e.push_back({"mrclam6_robot" + std::to_string(r),
-                   "mrclam/MRCLAM_Dataset6#robot" + std::to_string(r), "",
+      e.push_back({"mrclam6_robot" + std::to_string(r), "mrclam/MRCLAM_Dataset6#robot" + std::to_string(r), "",
                    "UTIAS MRCLAM 6, iRobot Create " + std::to_string(r) +
                        ": velocity odometry, Vicon ground truth, landmark sightings",
                    ""});
     }
     // Not logs: wheel speeds or ticks with reference motions, read as calibration samples.
-    const std::string calib =
-        "load_catalog_calibration_data (calibration samples, not a log; calibration_catalog.h)";
+    const std::string calib = "load_catalog_calibration_data (calibration samples, not a log; calibration_catalog.h)";
     e.push_back({"censi_khepera", "calibration/censi_khepera", "",
                  "Khepera III wheel speeds + scan-matched motions (Censi et al. 2013)", calib});
     e.push_back({"grisetti_diffdrive", "calibration/grisetti_diffdrive", "",
                  "differential-drive ticks with relative reference motions", calib});
     e.push_back({"stachniss_ls_calib", "calibration/stachniss_ls_calib", "",
                  "odometry vs scan-matched relative motions", calib});
-    e.push_back({"breezyslam_mines", "wheel_ticks_lidar/breezyslam_mines", "",
-                 "wheel ticks + Hokuyo URG-04LX, no ground truth",
-                 "a scan-matching reference (not written: the log has no ground truth or compass to diagnose against)"});
-    e.push_back({"kam3k_queens", "laser_scans/kam3k_queens", "",
-                 "single 541-beam SICK scans of a hallway", "the laser issue (#5)"});
+    e.push_back(
+        {"breezyslam_mines", "wheel_ticks_lidar/breezyslam_mines", "", "wheel ticks + Hokuyo URG-04LX, no ground truth",
+         "a scan-matching reference (not written: the log has no ground truth or compass to diagnose against)"});
+    e.push_back({"kam3k_queens", "laser_scans/kam3k_queens", "", "single 541-beam SICK scans of a hallway",
+                 "the laser issue (#5)"});
     return e;
   }();
   return entries;
@@ -50,8 +48,7 @@ const DatasetEntry* find_dataset(const std::string& name) {
 
 Log load_catalog_dataset(const DatasetEntry& entry, const std::filesystem::path& root) {
   if (!entry.reader_pending.empty()) {
-    throw UsageError("dataset " + entry.name + ": no reader yet (arrives with " +
-                     entry.reader_pending + ")");
+    throw UsageError("dataset " + entry.name + ": no reader yet (arrives with " + entry.reader_pending + ")");
   }
   // An MRCLAM spec carries a "#robotN" suffix after the folder.
   const std::string spec = (root / entry.path).string();

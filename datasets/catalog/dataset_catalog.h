@@ -9,9 +9,9 @@
 namespace locbench {
 
 struct DatasetEntry {
-  std::string name;         // short stable name used in result keys, e.g. "aces"
-  std::string path;         // relative to the data root
-  std::string relations;    // relative path of reference relations, or empty
+  std::string name;       // short stable name used in result keys, e.g. "aces"
+  std::string path;       // relative to the data root
+  std::string relations;  // relative path of reference relations, or empty
   std::string description;
   // Empty when `load_catalog_dataset` can read it; otherwise what reads it (a function, or the
   // issue that brings its reader). The calibration data sets (censi_khepera, grisetti_diffdrive,

@@ -68,8 +68,7 @@ void distort_velocity_odometry(Log& log, double vscale, double wscale, double wb
 
 }  // namespace
 
-GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_t seed,
-                          const GeneratorOptions& o) {
+GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_t seed, const GeneratorOptions& o) {
   Rng rng = Rng::stream(seed, 0);
   Scenario s;
   s.name = "hidden_effects";
@@ -116,7 +115,8 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
     } else if (e.id == "encoder_quantization") {
       tick_step = static_cast<std::int64_t>(std::llround(m));
       if (tick_step < 2) throw UsageError("encoder_quantization: the step must be an integer ≥ 2 ticks");
-      g.truth["encoder_quantization.step_m"] = static_cast<double>(tick_step) * kPi * dn / s.robot.encoder.counts_per_wheel_rev();
+      g.truth["encoder_quantization.step_m"] =
+          static_cast<double>(tick_step) * kPi * dn / s.robot.encoder.counts_per_wheel_rev();
     } else if (e.id == "compass_quantization") {
       s.compass.resolution = 2.0 * kPi / std::round(2.0 * kPi / m);  // a divisor of 2π
       g.truth["compass_quantization.step_rad"] = s.compass.resolution;
@@ -126,7 +126,8 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
     } else if (e.id == "compass_disturbance") {
       DisturbanceZone z;
       z.shape = DisturbanceZone::Shape::kCircle;
-      z.center = s.motion.waypoints[static_cast<std::size_t>(rng.uniform(0.0, 0.999) * static_cast<double>(o.waypoints))];
+      z.center =
+          s.motion.waypoints[static_cast<std::size_t>(rng.uniform(0.0, 0.999) * static_cast<double>(o.waypoints))];
       z.radius = 1.5;
       z.bias = m;
       s.compass.zones.push_back(z);
@@ -153,8 +154,10 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
       wbias = m;
       g.truth["turn_rate_bias.bias_rad_s"] = m;
     } else if (e.id == "sensor_time_offset") {
-      if (o.velocity_odometry) s.odometry.timing.latency = m;
-      else s.encoders.timing.latency = m;
+      if (o.velocity_odometry)
+        s.odometry.timing.latency = m;
+      else
+        s.encoders.timing.latency = m;
       g.truth["sensor_time_offset.offset_s"] = m;
     }
   }
@@ -169,7 +172,9 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
   if (o.compass) log.params["compass_resolution"] = "0";
   if (tick_step > 1) {
     for (auto& e : log.encoders) {
-      auto q = [&](std::int64_t n) { return (n >= 0 ? n / tick_step : -((-n + tick_step - 1) / tick_step)) * tick_step; };
+      auto q = [&](std::int64_t n) {
+        return (n >= 0 ? n / tick_step : -((-n + tick_step - 1) / tick_step)) * tick_step;
+      };
       e.left = q(e.left);
       e.right = q(e.right);
     }
@@ -182,8 +187,9 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
   }
   Rng noise = Rng::stream(seed, 2);
   for (auto& t : log.truth) {
-    t.pose = Pose2(t.pose.x + noise.normal(0.0, o.reference_noise_xy), t.pose.y + noise.normal(0.0, o.reference_noise_xy),
-                   t.pose.theta + noise.normal(0.0, o.reference_noise_theta));
+    t.pose =
+        Pose2(t.pose.x + noise.normal(0.0, o.reference_noise_xy), t.pose.y + noise.normal(0.0, o.reference_noise_xy),
+              t.pose.theta + noise.normal(0.0, o.reference_noise_theta));
   }
   log.laser.clear();
   if (o.reference == GeneratedReference::kRelations) {
@@ -193,7 +199,8 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
     for (const auto& e : log.odometry) times.push_back(e.t);
     std::optional<double> t1;
     auto pose_at = [&](double t) -> std::optional<Pose2> {
-      auto it = std::lower_bound(log.truth.begin(), log.truth.end(), t, [](const TruePose& p, double v) { return p.t < v; });
+      auto it =
+          std::lower_bound(log.truth.begin(), log.truth.end(), t, [](const TruePose& p, double v) { return p.t < v; });
       if (it == log.truth.begin() || it == log.truth.end()) return std::nullopt;
       const auto& b = *it;
       const auto& a = *(it - 1);

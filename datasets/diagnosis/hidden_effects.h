@@ -27,12 +27,12 @@ enum class GeneratedReference {
 
 struct GeneratorOptions {
   GeneratedReference reference = GeneratedReference::kTruePose;
-  int waypoints = 16;             // random waypoints in a square of side `area`
-  double area = 8.0;              // [m]
+  int waypoints = 16;                   // random waypoints in a square of side `area`
+  double area = 8.0;                    // [m]
   double reference_noise_xy = 1e-3;     // TRUEPOS white noise [m] (a motion-capture system)
   double reference_noise_theta = 1e-3;  // [rad]
-  bool velocity_odometry = false;  // log ODOM (dead-reckoned pose) instead of ENCODER
-  bool compass = true;             // log a 10 Hz compass (continuous, σ = 0.2°, declared so)
+  bool velocity_odometry = false;       // log ODOM (dead-reckoned pose) instead of ENCODER
+  bool compass = true;                  // log a 10 Hz compass (continuous, σ = 0.2°, declared so)
 };
 
 struct GeneratedLog {

@@ -37,10 +37,11 @@ Pose2 integrate(const Pose2& p, double v, double w, double dt) {
 Log generate_physical_log(const PhysicalEffects& e, std::uint64_t seed, const PhysicalOptions& o) {
   if (!(o.duration > 1.0) || !(o.odom_rate_hz > 0.0) || !(o.truth_rate_hz > 0.0) || !(o.compass_rate_hz > 0.0) ||
       !(e.velocity_scale > 0.0) || !(e.turn_rate_scale > 0.0) || e.drive_tau < 0.0 || e.heavy_tail_dof < 0.0 ||
-      e.stall_rate < 0.0 || e.stall_duration < 0.0 ||
-      e.compass_step < 0.0 || e.compass_decimals < 0 || e.compass_decimals > 12) {
-    throw UsageError("physical log generator: duration > 1 s, positive rates and scales, τ ≥ 0, dof ≥ 0, "
-                     "compass step ≥ 0 and 0–12 decimals expected");
+      e.stall_rate < 0.0 || e.stall_duration < 0.0 || e.compass_step < 0.0 || e.compass_decimals < 0 ||
+      e.compass_decimals > 12) {
+    throw UsageError(
+        "physical log generator: duration > 1 s, positive rates and scales, τ ≥ 0, dof ≥ 0, "
+        "compass step ≥ 0 and 0–12 decimals expected");
   }
   Rng command_rng = Rng::stream(seed, 1), noise_rng = Rng::stream(seed, 2), sensor_rng = Rng::stream(seed, 3);
   Rng stall_rng = Rng::stream(seed, 4);
@@ -71,7 +72,8 @@ Log generate_physical_log(const PhysicalEffects& e, std::uint64_t seed, const Ph
       next_odom += odom_period;
     }
     if (t >= next_truth - 1e-12) {
-      const Pose2 noisy(truth.x + sensor_rng.normal(0.0, o.truth_noise_xy), truth.y + sensor_rng.normal(0.0, o.truth_noise_xy),
+      const Pose2 noisy(truth.x + sensor_rng.normal(0.0, o.truth_noise_xy),
+                        truth.y + sensor_rng.normal(0.0, o.truth_noise_xy),
                         wrap_angle(truth.theta + sensor_rng.normal(0.0, o.truth_noise_theta)));
       log.truth.push_back({t, noisy, Pose2()});
       next_truth += truth_period;

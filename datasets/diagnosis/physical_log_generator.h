@@ -21,27 +21,27 @@
 namespace locbench::sim {
 
 struct PhysicalEffects {
-  double velocity_scale = 1.0;        // true v = (velocity_scale + speed_slope·|v_cmd|)·v_drive
-  double speed_slope = 0.0;           // [s/m]
+  double velocity_scale = 1.0;  // true v = (velocity_scale + speed_slope·|v_cmd|)·v_drive
+  double speed_slope = 0.0;     // [s/m]
   double turn_rate_scale = 1.0;
   double drive_tau = 0.0;             // first-order drive response [s]; 0 = instantaneous
   double odometry_time_offset = 0.0;  // ODOM logged time − true time [s]
   double heavy_tail_dof = 0.0;        // process noise Student-t per 1 s block; 0 = normal
   // Drive stalls: episodes start at `stall_rate` per second and stop the robot's translation for
   // a duration drawn uniformly in [½, 3⁄2]·`stall_duration` (the diagnosis models a fixed one).
-  double stall_rate = 0.0;            // [1/s]
-  double stall_duration = 0.0;        // [s], mean
-  double compass_step = 0.0;          // compass lattice [rad]; 0 = continuous
+  double stall_rate = 0.0;              // [1/s]
+  double stall_duration = 0.0;          // [s], mean
+  double compass_step = 0.0;            // compass lattice [rad]; 0 = continuous
   double compass_lattice_offset = 0.0;  // [rad]
   int compass_decimals = 6;
 };
 
 struct PhysicalOptions {
-  double duration = 300.0;       // [s]
+  double duration = 300.0;  // [s]
   double odom_rate_hz = 10.0;
   double truth_rate_hz = 10.0;
-  double truth_noise_xy = 1e-3;     // [m]
-  double truth_noise_theta = 1e-3;  // [rad]
+  double truth_noise_xy = 1e-3;       // [m]
+  double truth_noise_theta = 1e-3;    // [rad]
   double process_noise_xy = 2e-3;     // 1σ displacement noise per √s [m/√s]
   double process_noise_theta = 2e-3;  // [rad/√s]
   bool compass = false;

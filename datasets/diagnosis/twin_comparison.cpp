@@ -41,9 +41,10 @@ std::vector<ComponentComparison> compare_twins(const Log& real, const Twin& twin
     for (int c = 0; c < 3; ++c) {
       const auto v = common_component(sets, c);
       if (v[0].size() < 5) {
-        throw InputError(real.source.empty() ? real.name : real.source, 0,
-                         fmt::format("only {} {} windows of the log are covered by its twins' reference; cannot compare them",
-                                     v[0].size(), window));
+        throw InputError(
+            real.source.empty() ? real.name : real.source, 0,
+            fmt::format("only {} {} windows of the log are covered by its twins' reference; cannot compare them",
+                        v[0].size(), window));
       }
       ComponentComparison o;
       o.window = window;

@@ -207,8 +207,9 @@ std::array<double, 3> fit_floor(const Scenario& s, const diagnosis::MotionData& 
     const auto v = common_component({&real, &rd, &rn}, c);
     const std::size_t n = v[0].size();
     if (n < 5) {
-      throw InputError(log_label(real_log),
-                       0, fmt::format("only {} windows of the twin line up with the log's reference; cannot fit its noise floor", n));
+      throw InputError(
+          log_label(real_log), 0,
+          fmt::format("only {} windows of the twin line up with the log's reference; cannot fit its noise floor", n));
     }
     std::vector<double> real_noise(n), other_noise(n);  // the log's and the other sources'
     for (std::size_t k = 0; k < n; ++k) {
@@ -220,7 +221,8 @@ std::array<double, 3> fit_floor(const Scenario& s, const diagnosis::MotionData& 
       // Student-t windows: their variance is infinite for dof ≤ 2 and, above, decided by a few
       // windows, so the spread is matched robustly — the 1.4826·MAD scale of the log's noise
       // less the other sources' (in quadrature), turned into the t scale with the same MAD.
-      const double spread = std::sqrt(std::max(std::pow(robust_sigma(real_noise), 2) - std::pow(robust_sigma(other_noise), 2), 0.0));
+      const double spread =
+          std::sqrt(std::max(std::pow(robust_sigma(real_noise), 2) - std::pow(robust_sigma(other_noise), 2), 0.0));
       floor = spread * normal_quantile(0.75) / student_t_critical(0.5, dof);  // t_{0.75, dof}
     } else {
       double real_ms = 0.0, noise_ms = 0.0;
@@ -261,9 +263,8 @@ Twin build_twin(const Log& log, const diagnosis::Diagnosis& d, const TwinOptions
   base.physics.trajectory_rate = 10.0;
   base.drive.pause = 0.0;
   if (const auto m = log.nominal_model()) {
-    const double cpr = log.params.count("robot_encoder_counts_per_rev")
-                           ? param_number(log, "robot_encoder_counts_per_rev")
-                           : 2000.0;
+    const double cpr =
+        log.params.count("robot_encoder_counts_per_rev") ? param_number(log, "robot_encoder_counts_per_rev") : 2000.0;
     base.robot.encoder = {1.0, cpr};
     base.robot.nominal = {m->meters_per_tick_left * cpr / kPi, m->meters_per_tick_right * cpr / kPi, m->wheelbase};
   } else {
@@ -315,16 +316,18 @@ Twin build_twin(const Log& log, const diagnosis::Diagnosis& d, const TwinOptions
         "Synthetic twin of {} under the {} model: its {} replayed ({} commands, logged time = twin time + {:.6f} s), "
         "reference as the log's ({}).",
         log_label(log), model, src.odometry, commands.size(), twin.time_origin, d.reference);
-    s.notes.push_back(fmt::format(
-        "noise floor per {:g} s window (moment-matched on windows paired with the log): σ_x = {:.4g} m, σ_y = {:.4g} m, "
-        "σ_θ = {:.4g} rad; the diagnosis's nominal floor: {:.4g} m, {:.4g} m, {:.4g} rad",
-        s.motion_noise.window, s.motion_noise.sigma_along, s.motion_noise.sigma_left, s.motion_noise.sigma_heading,
-        d.noise_sigma_x, d.noise_sigma_y, d.noise_sigma_theta));
+    s.notes.push_back(
+        fmt::format("noise floor per {:g} s window (moment-matched on windows paired with the log): σ_x = {:.4g} m, "
+                    "σ_y = {:.4g} m, "
+                    "σ_θ = {:.4g} rad; the diagnosis's nominal floor: {:.4g} m, {:.4g} m, {:.4g} rad",
+                    s.motion_noise.window, s.motion_noise.sigma_along, s.motion_noise.sigma_left,
+                    s.motion_noise.sigma_heading, d.noise_sigma_x, d.noise_sigma_y, d.noise_sigma_theta));
   };
   describe(base, "nominal");
   describe(extended, "extended");
   for (const auto& m : twin.causes) extended.notes.push_back(m.id + ": " + m.how);
-  if (twin.causes.empty()) extended.notes.push_back("the diagnosis kept no cause: the extended twin is the nominal one");
+  if (twin.causes.empty())
+    extended.notes.push_back("the diagnosis kept no cause: the extended twin is the nominal one");
   for (const auto& id : twin.not_simulated) {
     base.notes.push_back("kept cause not simulated by the extended twin: " + id);
   }

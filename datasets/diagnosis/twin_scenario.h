@@ -29,8 +29,8 @@
 // (ν ≤ 2) or decided by a few windows, so the spread is matched robustly instead: with
 // s(·) = 1.4826·MAD, s_c² = max(s(r_real − r_det)² − s(r_0 − r_det)², 0) and the t scale with that
 // MAD, σ_c = s_c · z_{0.75} / t_{0.75, ν}. (Moment matching with ν = 1.1 made MRCLAM robot 4's
-// extended twin 1.6× farther from the log than the nominal one.) The reference noise of a TRUEPOS reference is estimated from its second differences
-// (robust, 1.4826·MAD/√6) and simulated as truth.noise_xy / noise_theta.
+// extended twin 1.6× farther from the log than the nominal one.) The reference noise of a TRUEPOS reference is
+// estimated from its second differences (robust, 1.4826·MAD/√6) and simulated as truth.noise_xy / noise_theta.
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -57,8 +57,8 @@ struct CauseMapping {
 struct Twin {
   Scenario nominal;
   Scenario extended;
-  double time_origin = 0.0;  // logged time = twin time + time_origin
-  std::vector<CauseMapping> causes;   // every kept cause, in the diagnosis's order
+  double time_origin = 0.0;                // logged time = twin time + time_origin
+  std::vector<CauseMapping> causes;        // every kept cause, in the diagnosis's order
   std::vector<std::string> not_simulated;  // ids of kept causes the scenario cannot simulate
   // The nominal floor the diagnosis reported (σ_x, σ_y, σ_θ per noise_window_s), beside the
   // moment-matched floors of both twins: an independent check of the fit.

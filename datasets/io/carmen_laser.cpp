@@ -26,8 +26,8 @@ std::vector<double> carmen_bearings(std::size_t n, const CarmenLaserSetup& setup
 
 bool is_laser_param(std::string_view name) {
   return name == kParamLaserMaxRange || name == kParamRobotLaserMax || name == kParamLaserOffset ||
-         name == kParamLaserSideOffset || name == kParamLaserAngularOffset ||
-         name == kParamLaserFov || name == kParamLaserResolution;
+         name == kParamLaserSideOffset || name == kParamLaserAngularOffset || name == kParamLaserFov ||
+         name == kParamLaserResolution;
 }
 
 std::optional<std::string> laser_param_problem(std::string_view name, std::string_view value) {

@@ -34,8 +34,8 @@ class TimeOrder {
     if (line_ != 0 && t < last_) {
       std::string msg = "timestamp ";
       append_number(msg, t);
-      msg += " goes back in time: the previous " + std::string(ctx.record) + " record (line " +
-             std::to_string(line_) + ") has timestamp ";
+      msg += " goes back in time: the previous " + std::string(ctx.record) + " record (line " + std::to_string(line_) +
+             ") has timestamp ";
       append_number(msg, last_);
       msg += "; times must not decrease within a record type";
       fail_input(ctx, msg);
@@ -97,8 +97,8 @@ class CarmenParser {
  private:
   // Parses fields f[first .. first + names.size()) as numbers named `names`.
   template <std::size_t N>
-  std::array<double, N> numbers(Fields f, std::size_t first,
-                                const std::array<const char*, N>& names, const FieldContext& ctx) {
+  std::array<double, N> numbers(Fields f, std::size_t first, const std::array<const char*, N>& names,
+                                const FieldContext& ctx) {
     std::array<double, N> v{};
     for (std::size_t i = 0; i < N; ++i) v[i] = parse_finite(f[first + i], names[i], ctx);
     return v;
@@ -120,8 +120,7 @@ class CarmenParser {
 
   void truepos(Fields f, const FieldContext& ctx) {
     expect_field_count(f, 6 + kTrailer, ctx);
-    const auto v =
-        numbers<6>(f, 0, {"true_x", "true_y", "true_theta", "odom_x", "odom_y", "odom_theta"}, ctx);
+    const auto v = numbers<6>(f, 0, {"true_x", "true_y", "true_theta", "odom_x", "odom_y", "odom_theta"}, ctx);
     const double t = trailer(f, 6, ctx);
     truth_order_.check(t, ctx);
     log_.truth.push_back({t, Pose2(v[0], v[1], v[2]), Pose2(v[3], v[4], v[5])});
@@ -151,8 +150,8 @@ class CarmenParser {
     const auto beams = static_cast<std::size_t>(n);
     if (beams > f.size() || f.size() != 1 + beams + 6 + kTrailer) {
       const std::string expected = std::to_string(1 + beams + 6 + kTrailer);
-      fail_input(ctx, "expected 1 + n + 9 = " + expected + " fields after the tag for n = " +
-                          std::to_string(n) + " beams, found " + std::to_string(f.size()));
+      fail_input(ctx, "expected 1 + n + 9 = " + expected + " fields after the tag for n = " + std::to_string(n) +
+                          " beams, found " + std::to_string(f.size()));
     }
     LaserReading r;
     r.scan.ranges.resize(beams);
@@ -160,13 +159,11 @@ class CarmenParser {
       double v = 0.0;
       if (!try_parse_finite(f[1 + i], v) || v < 0.0) {
         fail_input(ctx, "range " + std::to_string(i + 1) + " of " + std::to_string(n) +
-                            ": expected a finite non-negative number [m], found " +
-                            quote_token(f[1 + i]));
+                            ": expected a finite non-negative number [m], found " + quote_token(f[1 + i]));
       }
       r.scan.ranges[i] = v;
     }
-    const auto v =
-        numbers<6>(f, 1 + beams, {"x", "y", "theta", "odom_x", "odom_y", "odom_theta"}, ctx);
+    const auto v = numbers<6>(f, 1 + beams, {"x", "y", "theta", "odom_x", "odom_y", "odom_theta"}, ctx);
     const double t = trailer(f, 1 + beams + 6, ctx);
     laser_order_.check(t, ctx);
     r.scan.timestamp = t;

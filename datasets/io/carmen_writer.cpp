@@ -16,14 +16,11 @@ namespace {
 
 constexpr double kBearingTolerance = 1e-9;  // [rad]
 
-[[noreturn]] void reject(const std::string& what) {
-  throw std::invalid_argument("write_carmen_log: " + what);
-}
+[[noreturn]] void reject(const std::string& what) { throw std::invalid_argument("write_carmen_log: " + what); }
 
 bool has_space(const std::string& s) {
-  return std::any_of(s.begin(), s.end(), [](char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-  });
+  return std::any_of(s.begin(), s.end(),
+                     [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; });
 }
 
 // A record's time.
@@ -44,8 +41,7 @@ void check_order(const Records& records, const char* type) {
 
 void check_finite(std::initializer_list<double> values, const char* type, std::size_t i) {
   for (const double v : values) {
-    if (!std::isfinite(v))
-      reject(std::string(type) + " " + std::to_string(i) + " has a non-finite value");
+    if (!std::isfinite(v)) reject(std::string(type) + " " + std::to_string(i) + " has a non-finite value");
   }
 }
 
@@ -55,8 +51,7 @@ void check_log(const Log& log) {
   check_order(log.compass, "COMPASS");
   check_order(log.truth, "TRUEPOS");
   check_order(log.laser, "FLASER");
-  for (std::size_t i = 0; i < log.encoders.size(); ++i)
-    check_finite({log.encoders[i].t}, "ENCODER", i);
+  for (std::size_t i = 0; i < log.encoders.size(); ++i) check_finite({log.encoders[i].t}, "ENCODER", i);
   for (std::size_t i = 0; i < log.odometry.size(); ++i) {
     const auto& r = log.odometry[i];
     check_finite({r.t, r.pose.x, r.pose.y, r.pose.theta, r.tv, r.rv}, "ODOM", i);
@@ -66,9 +61,8 @@ void check_log(const Log& log) {
   }
   for (std::size_t i = 0; i < log.truth.size(); ++i) {
     const auto& r = log.truth[i];
-    check_finite(
-        {r.t, r.pose.x, r.pose.y, r.pose.theta, r.odom_pose.x, r.odom_pose.y, r.odom_pose.theta},
-        "TRUEPOS", i);
+    check_finite({r.t, r.pose.x, r.pose.y, r.pose.theta, r.odom_pose.x, r.odom_pose.y, r.odom_pose.theta}, "TRUEPOS",
+                 i);
   }
   CarmenLaserSetup declared;
   try {
@@ -78,8 +72,7 @@ void check_log(const Log& log) {
   }
   for (std::size_t i = 0; i < log.laser.size(); ++i) {
     const auto& r = log.laser[i];
-    check_finite({r.scan.timestamp, r.pose.x, r.pose.y, r.pose.theta, r.odom_pose.x, r.odom_pose.y,
-                  r.odom_pose.theta},
+    check_finite({r.scan.timestamp, r.pose.x, r.pose.y, r.pose.theta, r.odom_pose.x, r.odom_pose.y, r.odom_pose.theta},
                  "FLASER", i);
     if (r.scan.ranges.empty()) reject("FLASER " + std::to_string(i) + " has no ranges");
     for (const double v : r.scan.ranges) {
@@ -123,9 +116,8 @@ std::map<std::string, std::string> params_for(const Log& log) {
       reject("FLASER scans must share one max range and sensor pose (they are PARAM records)");
     }
   }
-  if (!std::isfinite(first.max_range) || !(first.max_range > 0.0) ||
-      !std::isfinite(first.sensor_pose.x) || !std::isfinite(first.sensor_pose.y) ||
-      !std::isfinite(first.sensor_pose.theta)) {
+  if (!std::isfinite(first.max_range) || !(first.max_range > 0.0) || !std::isfinite(first.sensor_pose.x) ||
+      !std::isfinite(first.sensor_pose.y) || !std::isfinite(first.sensor_pose.theta)) {
     reject("FLASER max range must be finite and positive, and the sensor pose finite");
   }
   auto set = [&](std::string_view name, double value) {
@@ -200,9 +192,7 @@ class Formatter {
 
 // One record type as written: its tag and fields in CARMEN's order (ODOM's accel is not kept).
 void write_record(const EncoderReading& r, Formatter& out) { out.fields("ENCODER", r.left, r.right); }
-void write_record(const OdometryReading& r, Formatter& out) {
-  out.fields("ODOM", r.pose, r.tv, r.rv, 0.0);
-}
+void write_record(const OdometryReading& r, Formatter& out) { out.fields("ODOM", r.pose, r.tv, r.rv, 0.0); }
 void write_record(const CompassReading& r, Formatter& out) { out.fields("COMPASS", r.heading); }
 void write_record(const TruePose& r, Formatter& out) { out.fields("TRUEPOS", r.pose, r.odom_pose); }
 void write_record(const LaserReading& r, Formatter& out) {
@@ -222,8 +212,7 @@ void format(const Log& log, const std::map<std::string, std::string>& params, Fo
     std::function<void()> write;
   };
   std::vector<Entry> entries;
-  entries.reserve(log.encoders.size() + log.odometry.size() + log.compass.size() +
-                  log.truth.size() + log.laser.size());
+  entries.reserve(log.encoders.size() + log.odometry.size() + log.compass.size() + log.truth.size() + log.laser.size());
   const auto add = [&](const auto& records) {
     for (const auto& r : records) {
       entries.push_back({time_of(r), [&r, &out] {
@@ -237,8 +226,7 @@ void format(const Log& log, const std::map<std::string, std::string>& params, Fo
   add(log.compass);
   add(log.truth);
   add(log.laser);
-  std::stable_sort(entries.begin(), entries.end(),
-                   [](const Entry& a, const Entry& b) { return a.t < b.t; });
+  std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.t < b.t; });
   for (const Entry& e : entries) e.write();
   out.flush();
 }

@@ -49,15 +49,13 @@ CensiPublishedResult read_text(LineReader& reader) {
   }
   for (int i = 0; i < 6; ++i) {
     if (!(r.covariance(i, i) > 0.0)) {
-      throw InputError(file, first,
-                       "\"covariance\": diagonal entry " + std::to_string(i) + " must be > 0");
+      throw InputError(file, first, "\"covariance\": diagonal entry " + std::to_string(i) + " must be > 0");
     }
     for (int k = 0; k < i; ++k) {
       const double a = r.covariance(i, k), b = r.covariance(k, i);
       if (std::abs(a - b) > 1e-6 * std::max(std::abs(a), std::abs(b)) + 1e-300) {
         throw InputError(file, first,
-                         "\"covariance\": not symmetric at (" + std::to_string(i) + ", " +
-                             std::to_string(k) + ")");
+                         "\"covariance\": not symmetric at (" + std::to_string(i) + ", " + std::to_string(k) + ")");
       }
     }
   }

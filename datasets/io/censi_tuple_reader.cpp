@@ -9,9 +9,7 @@
 namespace locbench {
 namespace {
 
-bool blank(std::string_view line) {
-  return line.find_first_not_of(" \t\r\v\f") == std::string_view::npos;
-}
+bool blank(std::string_view line) { return line.find_first_not_of(" \t\r\v\f") == std::string_view::npos; }
 
 // Splits a line into its top-level JSON values: each ends where the bracket depth returns to
 // zero outside strings. Unbalanced text is returned as is, for the parser to report.
@@ -84,8 +82,7 @@ std::vector<WheelSpeedTuple> read_censi_tuples(const std::filesystem::path& path
   return read_lines_of(path, read_tuple_lines);
 }
 
-std::vector<WheelSpeedTuple> parse_censi_tuples(std::string_view text,
-                                                const std::string& source_name) {
+std::vector<WheelSpeedTuple> parse_censi_tuples(std::string_view text, const std::string& source_name) {
   return read_lines_of(text, source_name, read_tuple_lines);
 }
 

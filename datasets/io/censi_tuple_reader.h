@@ -20,7 +20,6 @@ namespace locbench {
 std::vector<WheelSpeedTuple> read_censi_tuples(const std::filesystem::path& path);
 
 // The same for text in memory; `source_name` stands for the file name in errors.
-std::vector<WheelSpeedTuple> parse_censi_tuples(std::string_view text,
-                                                const std::string& source_name);
+std::vector<WheelSpeedTuple> parse_censi_tuples(std::string_view text, const std::string& source_name);
 
 }  // namespace locbench

@@ -30,10 +30,8 @@ void for_each_data_line(LineReader& reader, std::size_t field_count, OnRow on_ro
 // The same for N numeric columns named `names`: on_row(values, ctx), every value parsed as a
 // finite number.
 template <std::size_t N, typename OnRow>
-void for_each_numeric_row(LineReader& reader, const std::array<const char*, N>& names,
-                          OnRow on_row) {
-  for_each_data_line(reader, N, [&](const std::vector<std::string_view>& fields,
-                                    const FieldContext& ctx) {
+void for_each_numeric_row(LineReader& reader, const std::array<const char*, N>& names, OnRow on_row) {
+  for_each_data_line(reader, N, [&](const std::vector<std::string_view>& fields, const FieldContext& ctx) {
     std::array<double, N> v{};
     for (std::size_t i = 0; i < N; ++i) v[i] = parse_finite(fields[i], names[i], ctx);
     on_row(v, ctx);

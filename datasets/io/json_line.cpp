@@ -19,14 +19,13 @@ std::string type_name(const nlohmann::json& v) {
 
 }  // namespace
 
-nlohmann::json parse_json_value(std::string_view text, const std::string& file,
-                                std::size_t first_line) {
+nlohmann::json parse_json_value(std::string_view text, const std::string& file, std::size_t first_line) {
   try {
     return nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
     const std::size_t end = std::min<std::size_t>(e.byte, text.size());
-    const auto breaks = static_cast<std::size_t>(
-        std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
+    const auto breaks =
+        static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
     // nlohmann's message starts with "[json.exception.parse_error.101] parse error at ...".
     std::string what = e.what();
     const auto pos = what.find("] ");
@@ -40,15 +39,13 @@ nlohmann::json parse_json_value(std::string_view text, const std::string& file,
   }
 }
 
-double json_finite(const nlohmann::json& obj, const char* key, const std::string& file,
-                   std::size_t line) {
+double json_finite(const nlohmann::json& obj, const char* key, const std::string& file, std::size_t line) {
   const auto it = obj.find(key);
   if (it == obj.end()) {
     throw InputError(file, line, std::string("missing key \"") + key + "\"");
   }
   if (!it->is_number()) {
-    throw InputError(file, line,
-                     std::string("\"") + key + "\": expected a number, found " + type_name(*it));
+    throw InputError(file, line, std::string("\"") + key + "\": expected a number, found " + type_name(*it));
   }
   const double v = it->get<double>();
   if (!std::isfinite(v)) {
@@ -57,25 +54,23 @@ double json_finite(const nlohmann::json& obj, const char* key, const std::string
   return v;
 }
 
-void json_finite_array(const nlohmann::json& obj, const char* key, double* out, std::size_t n,
-                       const std::string& file, std::size_t line) {
+void json_finite_array(const nlohmann::json& obj, const char* key, double* out, std::size_t n, const std::string& file,
+                       std::size_t line) {
   const auto it = obj.find(key);
   if (it == obj.end()) {
     throw InputError(file, line, std::string("missing key \"") + key + "\"");
   }
   if (!it->is_array() || it->size() != n) {
-    throw InputError(
-        file, line,
-        std::string("\"") + key + "\": expected an array of " + std::to_string(n) +
-            " numbers, found " +
-            (it->is_array() ? "an array of " + std::to_string(it->size()) : type_name(*it)));
+    throw InputError(file, line,
+                     std::string("\"") + key + "\": expected an array of " + std::to_string(n) + " numbers, found " +
+                         (it->is_array() ? "an array of " + std::to_string(it->size()) : type_name(*it)));
   }
   for (std::size_t i = 0; i < n; ++i) {
     const auto& v = (*it)[i];
     if (!v.is_number() || !std::isfinite(v.get<double>())) {
-      throw InputError(file, line,
-                       std::string("\"") + key + "\"[" + std::to_string(i) +
-                           "]: expected a finite number, found " + type_name(v));
+      throw InputError(
+          file, line,
+          std::string("\"") + key + "\"[" + std::to_string(i) + "]: expected a finite number, found " + type_name(v));
     }
     out[i] = v.get<double>();
   }

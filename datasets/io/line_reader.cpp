@@ -17,8 +17,7 @@ bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' |
 
 }  // namespace
 
-LineReader::LineReader(const std::filesystem::path& path)
-    : source_(path.string()), from_file_(true) {
+LineReader::LineReader(const std::filesystem::path& path) : source_(path.string()), from_file_(true) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) {
     throw InputError(source_, 0, "cannot open: no such file");
@@ -30,15 +29,12 @@ LineReader::LineReader(const std::filesystem::path& path)
   file_ = gzopen(source_.c_str(), "rb");
   if (file_ == nullptr) {
     const int err = errno;
-    throw InputError(
-        source_, 0,
-        std::string("cannot open: ") + (err != 0 ? std::strerror(err) : "out of memory"));
+    throw InputError(source_, 0, std::string("cannot open: ") + (err != 0 ? std::strerror(err) : "out of memory"));
   }
   gzbuffer(file_, static_cast<unsigned>(kChunk));
 }
 
-LineReader::LineReader(std::string_view text, std::string source_name)
-    : source_(std::move(source_name)), text_(text) {}
+LineReader::LineReader(std::string_view text, std::string source_name) : source_(std::move(source_name)), text_(text) {}
 
 LineReader::~LineReader() {
   if (file_ != nullptr) gzclose_r(file_);

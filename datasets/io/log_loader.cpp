@@ -36,8 +36,7 @@ std::optional<int> robot_suffix(const std::string& spec, std::size_t hash) {
   if (suffix.rfind("robot", 0) != 0) return std::nullopt;
   std::int64_t n = 0;
   const std::string_view digits = std::string_view(suffix).substr(5);
-  if (digits.empty() || digits[0] == '+' || digits[0] == '-' || !try_parse_int64(digits, n) ||
-      n < 1 || n > 1000) {
+  if (digits.empty() || digits[0] == '+' || digits[0] == '-' || !try_parse_int64(digits, n) || n < 1 || n > 1000) {
     return std::nullopt;
   }
   return static_cast<int>(n);
@@ -73,16 +72,13 @@ Log load_log(const std::string& spec) {
   }
   if (std::filesystem::is_directory(path, ec)) {
     if (!looks_like_mrclam(path)) {
-      throw InputError(
-          path.string(), 0,
-          std::string("not an MRCLAM dataset folder: no RobotN_Odometry.dat (") + kAccepted + ")");
+      throw InputError(path.string(), 0,
+                       std::string("not an MRCLAM dataset folder: no RobotN_Odometry.dat (") + kAccepted + ")");
     }
     return read_mrclam_robot(path, robot);
   }
   if (has_robot) {
-    throw InputError(
-        spec, 0,
-        std::string("a #robotN suffix needs an MRCLAM dataset folder (") + kAccepted + ")");
+    throw InputError(spec, 0, std::string("a #robotN suffix needs an MRCLAM dataset folder (") + kAccepted + ")");
   }
   const std::string ext = format_extension(path);
   if (ext == ".clf" || ext == ".log" || ext == ".carmen") return read_carmen_log(path);

@@ -13,8 +13,7 @@ inline constexpr std::string_view kParamMrclamRobot = "mrclam_robot";  // robot 
 // Barcodes.dat, "barcode" when that file is absent and the raw barcodes are kept.
 inline constexpr std::string_view kParamMrclamMeasurementIds = "mrclam_measurement_ids";
 // Number of measurements dropped because their barcode is not in Barcodes.dat.
-inline constexpr std::string_view kParamMrclamUnknownBarcodes =
-    "mrclam_unknown_barcode_measurements";
+inline constexpr std::string_view kParamMrclamUnknownBarcodes = "mrclam_unknown_barcode_measurements";
 
 // Reads RobotN_Odometry.dat, RobotN_Groundtruth.dat and RobotN_Measurement.dat (each plain or
 // .gz, all required; Barcodes.dat optional) from `folder`:

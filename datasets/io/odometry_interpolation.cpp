@@ -12,15 +12,14 @@ std::optional<Pose2> interpolate(const Records& records, double t, TimeOf time_o
   if (records.empty() || !(t >= time_of(records.front())) || !(t <= time_of(records.back()))) {
     return std::nullopt;
   }
-  const auto it = std::lower_bound(records.begin(), records.end(), t,
-                                   [&](const auto& r, double v) { return time_of(r) < v; });
+  const auto it =
+      std::lower_bound(records.begin(), records.end(), t, [&](const auto& r, double v) { return time_of(r) < v; });
   if (time_of(*it) == t || it == records.begin()) return pose_of(*it);
   const Pose2& a = pose_of(*(it - 1));
   const Pose2& b = pose_of(*it);
   const double ta = time_of(*(it - 1));
   const double s = (t - ta) / (time_of(*it) - ta);
-  return Pose2(a.x + s * (b.x - a.x), a.y + s * (b.y - a.y),
-               a.theta + s * angle_diff(b.theta, a.theta));
+  return Pose2(a.x + s * (b.x - a.x), a.y + s * (b.y - a.y), a.theta + s * angle_diff(b.theta, a.theta));
 }
 
 }  // namespace
@@ -50,8 +49,7 @@ std::optional<Pose2> interpolate_odometry(const Log& log, double t) {
 
 std::optional<Pose2> interpolate_truth(const Log& log, double t) {
   return interpolate(
-      log.truth, t, [](const TruePose& r) { return r.t; },
-      [](const TruePose& r) -> const Pose2& { return r.pose; });
+      log.truth, t, [](const TruePose& r) { return r.t; }, [](const TruePose& r) -> const Pose2& { return r.pose; });
 }
 
 }  // namespace locbench

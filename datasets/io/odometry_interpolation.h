@@ -2,9 +2,9 @@
 // Odometry and ground-truth poses of a log at arbitrary times, by interpolation.
 #include <optional>
 
+#include "core/log.h"
 #include "core/pose2.h"
 #include "core/trajectory.h"
-#include "core/log.h"
 
 namespace locbench {
 

@@ -8,8 +8,7 @@ namespace locbench {
 namespace {
 
 std::vector<Relation> read_relation_lines(LineReader& reader) {
-  static constexpr std::array<const char*, 8> kNames = {"t1", "t2",   "x",     "y",
-                                                        "z",  "roll", "pitch", "yaw"};
+  static constexpr std::array<const char*, 8> kNames = {"t1", "t2", "x", "y", "z", "roll", "pitch", "yaw"};
   std::vector<Relation> out;
   for_each_numeric_row(reader, kNames, [&](const std::array<double, 8>& v, const FieldContext&) {
     out.push_back({v[0], v[1], Pose2(v[2], v[3], v[7])});

@@ -14,8 +14,7 @@ std::string format_relations(const std::vector<Relation>& relations) {
     const Relation& r = relations[i];
     for (const double v : {r.t1, r.t2, r.delta.x, r.delta.y, r.delta.theta}) {
       if (!std::isfinite(v)) {
-        throw std::invalid_argument("write_relations: relation " + std::to_string(i) +
-                                    " has a non-finite value");
+        throw std::invalid_argument("write_relations: relation " + std::to_string(i) + " has a non-finite value");
       }
     }
     append_row(out, {r.t1, r.t2, r.delta.x, r.delta.y, 0.0, 0.0, 0.0, r.delta.theta});

@@ -11,11 +11,9 @@ namespace {
 
 // The rows of a whitespace-separated numeric file with N columns named `names`.
 template <std::size_t N>
-std::vector<std::array<double, N>> read_rows(LineReader& reader,
-                                             const std::array<const char*, N>& names) {
+std::vector<std::array<double, N>> read_rows(LineReader& reader, const std::array<const char*, N>& names) {
   std::vector<std::array<double, N>> rows;
-  for_each_numeric_row(reader, names,
-                       [&](const std::array<double, N>& v, const FieldContext&) { rows.push_back(v); });
+  for_each_numeric_row(reader, names, [&](const std::array<double, N>& v, const FieldContext&) { rows.push_back(v); });
   return rows;
 }
 
@@ -48,8 +46,8 @@ std::vector<TickMotion> tick_rows(LineReader& reader) {
 
 }  // namespace
 
-std::vector<RelativeMotionPair> read_relative_motion_pairs(
-    const std::filesystem::path& odometry_path, const std::filesystem::path& reference_path) {
+std::vector<RelativeMotionPair> read_relative_motion_pairs(const std::filesystem::path& odometry_path,
+                                                           const std::filesystem::path& reference_path) {
   LineReader odometry(odometry_path);
   LineReader reference(reference_path);
   return pair_rows(odometry, reference);

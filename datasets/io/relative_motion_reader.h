@@ -15,8 +15,8 @@ namespace locbench {
 // Reads the two files (plain or gzip) row by row into pairs. '#' comments and blank lines are
 // skipped; every other line must hold exactly three finite numbers. Throws InputError naming the
 // file and line of a malformed row, and naming both files when their row counts differ.
-std::vector<RelativeMotionPair> read_relative_motion_pairs(
-    const std::filesystem::path& odometry_path, const std::filesystem::path& reference_path);
+std::vector<RelativeMotionPair> read_relative_motion_pairs(const std::filesystem::path& odometry_path,
+                                                           const std::filesystem::path& reference_path);
 
 // The same for texts in memory; the names stand for the file names in errors.
 std::vector<RelativeMotionPair> parse_relative_motion_pairs(std::string_view odometry_text,

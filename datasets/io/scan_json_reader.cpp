@@ -40,16 +40,17 @@ Scan read_scan_json(const std::filesystem::path& path) {
   s.ranges = numbers(j, "ranges", file);
   if (j.contains("bearings")) {
     s.bearings = numbers(j, "bearings", file);
-  } else if (j.contains("angle_min") && j.contains("angle_increment") &&
-             j.at("angle_min").is_number() && j.at("angle_increment").is_number()) {
+  } else if (j.contains("angle_min") && j.contains("angle_increment") && j.at("angle_min").is_number() &&
+             j.at("angle_increment").is_number()) {
     const double a0 = j.at("angle_min").get<double>(), da = j.at("angle_increment").get<double>();
     for (std::size_t i = 0; i < s.ranges.size(); ++i) s.bearings.push_back(a0 + da * static_cast<double>(i));
   } else {
     throw InputError(file, 0, "\"bearings\" or \"angle_min\" and \"angle_increment\"");
   }
   if (s.bearings.size() != s.ranges.size()) {
-    throw InputError(file, 0, "as many bearings as ranges (" + std::to_string(s.bearings.size()) +
-                                  " bearings, " + std::to_string(s.ranges.size()) + " ranges)");
+    throw InputError(file, 0,
+                     "as many bearings as ranges (" + std::to_string(s.bearings.size()) + " bearings, " +
+                         std::to_string(s.ranges.size()) + " ranges)");
   }
   if (j.contains("range_max")) {
     if (!j.at("range_max").is_number()) throw InputError(file, 0, "a number \"range_max\"");

@@ -14,8 +14,7 @@ namespace locbench {
 
 bool has_gz_suffix(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
-  return ext.size() == 3 && ext[0] == '.' && (ext[1] == 'g' || ext[1] == 'G') &&
-         (ext[2] == 'z' || ext[2] == 'Z');
+  return ext.size() == 3 && ext[0] == '.' && (ext[1] == 'g' || ext[1] == 'G') && (ext[2] == 'z' || ext[2] == 'Z');
 }
 
 TextWriter::TextWriter(const std::filesystem::path& path)
@@ -27,8 +26,7 @@ TextWriter::TextWriter(const std::filesystem::path& path)
   if (file_ == nullptr) {
     const int err = errno;
     throw InputError(path_, 0,
-                     std::string("cannot open for writing: ") +
-                         (err != 0 ? std::strerror(err) : "out of memory"));
+                     std::string("cannot open for writing: ") + (err != 0 ? std::strerror(err) : "out of memory"));
   }
   gzbuffer(file_, 1u << 18);
 }
@@ -43,9 +41,7 @@ void TextWriter::write(std::string_view text) {
     if (gzwrite(file_, text.data(), static_cast<unsigned>(n)) != static_cast<int>(n)) {
       int errnum = Z_OK;
       const char* msg = gzerror(file_, &errnum);
-      throw InputError(
-          path_, 0,
-          std::string("write error: ") + (errnum == Z_ERRNO ? std::strerror(errno) : msg));
+      throw InputError(path_, 0, std::string("write error: ") + (errnum == Z_ERRNO ? std::strerror(errno) : msg));
     }
     text.remove_prefix(n);
   }
@@ -56,9 +52,9 @@ void TextWriter::close() {
   const int rc = gzclose_w(file_);
   file_ = nullptr;
   if (rc != Z_OK) {
-    throw InputError(path_, 0,
-                     rc == Z_ERRNO ? std::string("write error: ") + std::strerror(errno)
-                                   : std::string("write error on close"));
+    throw InputError(
+        path_, 0,
+        rc == Z_ERRNO ? std::string("write error: ") + std::strerror(errno) : std::string("write error on close"));
   }
   output_->commit();
 }

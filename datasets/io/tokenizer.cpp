@@ -19,9 +19,7 @@ std::string_view strip_plus(std::string_view token) {
   return token;
 }
 
-std::string field_prefix(std::string_view field) {
-  return field.empty() ? std::string() : std::string(field) + ": ";
-}
+std::string field_prefix(std::string_view field) { return field.empty() ? std::string() : std::string(field) + ": "; }
 
 }  // namespace
 
@@ -105,8 +103,7 @@ std::int64_t parse_int64(std::string_view token, std::string_view field, const F
   return v;
 }
 
-void expect_field_count(std::span<const std::string_view> fields, std::size_t expected,
-                        const FieldContext& ctx) {
+void expect_field_count(std::span<const std::string_view> fields, std::size_t expected, const FieldContext& ctx) {
   if (fields.size() != expected) {
     fail_input(ctx, "expected " + std::to_string(expected) +
                         (ctx.record.empty() ? " fields, found " : " fields after the tag, found ") +

@@ -38,7 +38,6 @@ bool try_parse_finite(std::string_view token, double& value);
 bool try_parse_int64(std::string_view token, std::int64_t& value);
 
 // Throws unless `fields` (the tokens after the record tag) has exactly `expected` entries.
-void expect_field_count(std::span<const std::string_view> fields, std::size_t expected,
-                        const FieldContext& ctx);
+void expect_field_count(std::span<const std::string_view> fields, std::size_t expected, const FieldContext& ctx);
 
 }  // namespace locbench

@@ -12,8 +12,7 @@ namespace {
 constexpr double kNormTolerance = 1e-3;
 
 Trajectory read_tum_lines(LineReader& reader) {
-  static constexpr std::array<const char*, 8> kNames = {"timestamp", "x",  "y",  "z",
-                                                        "qx",        "qy", "qz", "qw"};
+  static constexpr std::array<const char*, 8> kNames = {"timestamp", "x", "y", "z", "qx", "qy", "qz", "qw"};
   std::vector<StampedPose> poses;
   for_each_numeric_row(reader, kNames, [&](const std::array<double, 8>& v, const FieldContext& ctx) {
     const double qx = v[4], qy = v[5], qz = v[6], qw = v[7];

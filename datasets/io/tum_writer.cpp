@@ -13,14 +13,12 @@ std::string format_tum(const Trajectory& trajectory) {
   const auto& poses = trajectory.poses();
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const StampedPose& p = poses[i];
-    if (!std::isfinite(p.t) || !std::isfinite(p.pose.x) || !std::isfinite(p.pose.y) ||
-        !std::isfinite(p.pose.theta)) {
-      throw std::invalid_argument("write_tum: pose " + std::to_string(i) +
-                                  " has a non-finite value");
+    if (!std::isfinite(p.t) || !std::isfinite(p.pose.x) || !std::isfinite(p.pose.y) || !std::isfinite(p.pose.theta)) {
+      throw std::invalid_argument("write_tum: pose " + std::to_string(i) + " has a non-finite value");
     }
     // Planar pose: z = 0 and the quaternion of a rotation about z, (0, 0, sin θ/2, cos θ/2).
-    append_row(out, {p.t, p.pose.x, p.pose.y, 0.0, 0.0, 0.0, std::sin(0.5 * p.pose.theta),
-                     std::cos(0.5 * p.pose.theta)});
+    append_row(out,
+               {p.t, p.pose.x, p.pose.y, 0.0, 0.0, 0.0, std::sin(0.5 * p.pose.theta), std::cos(0.5 * p.pose.theta)});
   }
   return out;
 }

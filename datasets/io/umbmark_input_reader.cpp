@@ -31,8 +31,7 @@ std::string type_name(const json& v) {
 }
 
 bool names_non_finite(std::string w) {
-  std::transform(w.begin(), w.end(), w.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(w.begin(), w.end(), w.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (!w.empty() && (w[0] == '-' || w[0] == '+')) w.erase(0, 1);
   return w == "nan" || w == "inf" || w == "infinity";
 }
@@ -40,8 +39,7 @@ bool names_non_finite(std::string w) {
 // The required, unit-checked fields of one object of the file, on the strict reader.
 class Fields {
  public:
-  Fields(const json& j, std::string path, const std::string& source,
-         std::initializer_list<const char*> keys)
+  Fields(const json& j, std::string path, const std::string& source, std::initializer_list<const char*> keys)
       : r_(j, std::move(path), source) {
     r_.allow_only(keys);
   }
@@ -99,10 +97,9 @@ UmbmarkInput umbmark_input_from_json(const json& j, const std::string& source) {
 
   const json& nom = r.reader().required("nominal");
   Fields n(nom, "nominal", source,
-           {"wheel_diameter_m", "wheel_diameter_left_m", "wheel_diameter_right_m", "wheelbase_m",
-            "gear_ratio", "counts_per_rev"});
-  const bool per_wheel =
-      nom.contains("wheel_diameter_left_m") || nom.contains("wheel_diameter_right_m");
+           {"wheel_diameter_m", "wheel_diameter_left_m", "wheel_diameter_right_m", "wheelbase_m", "gear_ratio",
+            "counts_per_rev"});
+  const bool per_wheel = nom.contains("wheel_diameter_left_m") || nom.contains("wheel_diameter_right_m");
   if (per_wheel && nom.contains("wheel_diameter_m")) {
     r.fail("nominal",
            "give either wheel_diameter_m or wheel_diameter_left_m and "
@@ -123,8 +120,7 @@ UmbmarkInput umbmark_input_from_json(const json& j, const std::string& source) {
     in.tape_measure_scale = r.positive("tape_measure_scale");
     if (in.tape_measure_scale < 0.5 || in.tape_measure_scale > 2.0) {
       r.fail("tape_measure_scale",
-             fmt::format("{} is not a plausible E_s = D_a/D_n (a ratio near 1, e.g. 1.003)",
-                         in.tape_measure_scale));
+             fmt::format("{} is not a plausible E_s = D_a/D_n (a ratio near 1, e.g. 1.003)", in.tape_measure_scale));
     }
   }
 
@@ -132,9 +128,8 @@ UmbmarkInput umbmark_input_from_json(const json& j, const std::string& source) {
   in.leg_ticks_left = legs.count("left");
   in.leg_ticks_right = legs.count("right");
   const RobotParams robot{in.nominal, in.nominal, in.encoder};
-  for (const auto& [key, ticks, diameter] :
-       {std::tuple{"left", in.leg_ticks_left, in.nominal.diameter_left},
-        std::tuple{"right", in.leg_ticks_right, in.nominal.diameter_right}}) {
+  for (const auto& [key, ticks, diameter] : {std::tuple{"left", in.leg_ticks_left, in.nominal.diameter_left},
+                                             std::tuple{"right", in.leg_ticks_right, in.nominal.diameter_right}}) {
     const double c = robot.meters_per_tick(diameter);
     const double travel = static_cast<double>(ticks) * c;
     if (std::abs(travel / in.side_length - 1.0) > kLegTolerance) {
@@ -169,8 +164,8 @@ UmbmarkInput umbmark_input_from_json(const json& j, const std::string& source) {
       const double e = run.number(key, " in metres");
       if (std::abs(e) > in.side_length) {
         run.fail(key, fmt::format("{} is longer than the side ({} m): looks like millimetres; "
-                              "expected metres",
-                              e, in.side_length));
+                                  "expected metres",
+                                  e, in.side_length));
       }
       (key[0] == 'x' ? ret.x_error : ret.y_error) = e;
     }

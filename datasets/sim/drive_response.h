@@ -22,8 +22,8 @@ struct DriveResponse {
   double stall_duration = 0.0;   // [s] each
 
   bool is_identity() const {
-    return time_constant == 0.0 && velocity_scale == 1.0 && speed_slope == 0.0 &&
-           turn_rate_scale == 1.0 && turn_rate_bias == 0.0 && stall_rate == 0.0;
+    return time_constant == 0.0 && velocity_scale == 1.0 && speed_slope == 0.0 && turn_rate_scale == 1.0 &&
+           turn_rate_bias == 0.0 && stall_rate == 0.0;
   }
 };
 

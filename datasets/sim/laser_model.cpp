@@ -8,24 +8,20 @@ LaserModel::LaserModel(const LaserConfig& c, const LineMap& world, Rng rng)
     : config_(c),
       world_(world),
       rng_(rng),
-      bearings_(even_bearings(static_cast<std::size_t>(c.beams), c.first_bearing, c.last_bearing)) {
-}
+      bearings_(even_bearings(static_cast<std::size_t>(c.beams), c.first_bearing, c.last_bearing)) {}
 
 std::vector<double> LaserModel::true_ranges(const Pose2& robot) const {
   const Pose2 sensor = robot * config_.mount;
   std::vector<double> r(bearings_.size(), config_.max_range);
   for (std::size_t i = 0; i < bearings_.size(); ++i) {
-    if (const auto hit =
-            world_.ray_cast(sensor.translation(), sensor.theta + bearings_[i], config_.max_range)) {
+    if (const auto hit = world_.ray_cast(sensor.translation(), sensor.theta + bearings_[i], config_.max_range)) {
       r[i] = hit->range;
     }
   }
   return r;
 }
 
-Scan LaserModel::measure(const Pose2& robot, double timestamp) {
-  return measure_labelled(robot, timestamp).scan;
-}
+Scan LaserModel::measure(const Pose2& robot, double timestamp) { return measure_labelled(robot, timestamp).scan; }
 
 LabelledScan LaserModel::measure_labelled(const Pose2& robot, double timestamp) {
   LabelledScan out;

@@ -20,20 +20,15 @@ void add_leg(std::vector<Instruction>& p, Instruction leg, double pause) {
   p.push_back(make(Instruction::Kind::kPause, pause));
 }
 
-std::int64_t count(double travel, double meters_per_tick) {
-  return std::llround(travel / meters_per_tick);
-}
+std::int64_t count(double travel, double meters_per_tick) { return std::llround(travel / meters_per_tick); }
 
 }  // namespace
 
-std::vector<Instruction> build_program(const MotionConfig& motion, const DriveConfig& drive,
-                                       const Pose2& start) {
+std::vector<Instruction> build_program(const MotionConfig& motion, const DriveConfig& drive, const Pose2& start) {
   using K = Instruction::Kind;
   std::vector<Instruction> p;
   switch (motion.kind) {
-    case MotionKind::kStraight:
-      add_leg(p, make(K::kStraight, motion.distance), drive.pause);
-      break;
+    case MotionKind::kStraight: add_leg(p, make(K::kStraight, motion.distance), drive.pause); break;
     case MotionKind::kUmbmark: {
       bool first = true;
       for (Direction dir : {Direction::kClockwise, Direction::kCounterClockwise}) {
@@ -68,8 +63,7 @@ std::vector<Instruction> build_program(const MotionConfig& motion, const DriveCo
         add_leg(p, go, drive.pause);
       }
       break;
-    case MotionKind::kReplay:
-      break;  // no legs: the simulator follows motion.commands (replay_wheel_speeds)
+    case MotionKind::kReplay: break;  // no legs: the simulator follows motion.commands (replay_wheel_speeds)
   }
   return p;
 }
@@ -87,8 +81,7 @@ Instruction resolve(const Instruction& in, const Pose2& belief) {
 
 WheelTicks straight_ticks(double distance, const NominalModel& m, bool equal_wheel_ticks) {
   if (equal_wheel_ticks) {
-    const std::int64_t n =
-        count(distance, 0.5 * (m.meters_per_tick_left + m.meters_per_tick_right));
+    const std::int64_t n = count(distance, 0.5 * (m.meters_per_tick_left + m.meters_per_tick_right));
     return {n, n};
   }
   return {count(distance, m.meters_per_tick_left), count(distance, m.meters_per_tick_right)};
@@ -121,16 +114,14 @@ Leg plan_leg(const Instruction& in, const NominalModel& m, const DriveConfig& dr
     return leg;  // not a leg
   }
   const double travel_left = std::abs(static_cast<double>(leg.ticks.left)) * m.meters_per_tick_left;
-  const double travel_right =
-      std::abs(static_cast<double>(leg.ticks.right)) * m.meters_per_tick_right;
+  const double travel_right = std::abs(static_cast<double>(leg.ticks.right)) * m.meters_per_tick_right;
   if (leg.ticks.left == 0 && leg.ticks.right == 0) return Leg{};
   if (leg.phase == MotionPhase::kStraight) {
     duration = std::max(travel_left, travel_right) / drive.speed;
   } else {
     duration = (travel_left + travel_right) / m.wheelbase / drive.turn_rate;
   }
-  leg.steps =
-      std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(duration / step - 1e-6)));
+  leg.steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(duration / step - 1e-6)));
   leg.wheel_speed = 0.5 * (travel_left + travel_right) / (static_cast<double>(leg.steps) * step);
   return leg;
 }
@@ -145,8 +136,8 @@ MotionPhase replay_phase(const WheelSpeeds& u) {
 }
 
 std::size_t replay_command_index(const std::vector<ReplayCommand>& commands, double t) {
-  const auto it = std::upper_bound(commands.begin(), commands.end(), t,
-                                   [](double v, const ReplayCommand& c) { return v < c.t; });
+  const auto it =
+      std::upper_bound(commands.begin(), commands.end(), t, [](double v, const ReplayCommand& c) { return v < c.t; });
   return static_cast<std::size_t>(it - commands.begin());
 }
 

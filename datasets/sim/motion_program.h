@@ -39,8 +39,7 @@ struct Instruction {
 // The instruction list for a scenario's motion: a straight leg; the UMBmark square (`runs` CW
 // then `runs` CCW, each run: 4 × [side, pause, ∓90° turn, pause], the robot reset to the start
 // before every run but the first); or the waypoint path. A pause follows every leg.
-std::vector<Instruction> build_program(const MotionConfig& motion, const DriveConfig& drive,
-                                       const Pose2& start);
+std::vector<Instruction> build_program(const MotionConfig& motion, const DriveConfig& drive, const Pose2& start);
 
 // kTurnToward / kDriveTo → kTurn / kStraight computed from the robot's belief; others unchanged.
 Instruction resolve(const Instruction& in, const Pose2& belief);

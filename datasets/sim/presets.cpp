@@ -97,8 +97,7 @@ Scenario umbmark_trilobot() {
   // Uncalibrated: equal nominal wheels.
   Scenario s = trilobot_with_compass({mm(88.5), mm(88.5), mm(198.0)});
   s.name = "umbmark_trilobot";
-  s.description =
-      "Trilobot UMBmark: 1.6 m square at 120 mm/s, 5 CW + 5 CCW, uncalibrated, turn slip (ch. 2)";
+  s.description = "Trilobot UMBmark: 1.6 m square at 120 mm/s, 5 CW + 5 CCW, uncalibrated, turn slip (ch. 2)";
   s.drive.speed = 0.12;
   s.drive.turn_rate = deg(30.0);
   s.motion.kind = MotionKind::kUmbmark;
@@ -111,13 +110,11 @@ Scenario umbmark_trilobot() {
 Scenario umbmark_borenstein() {
   Scenario s;
   s.name = "umbmark_borenstein";
-  s.description =
-      "LabMate-like UMBmark: 4 m square, 5 CW + 5 CCW, fine encoders, E_d = 1.0025, E_b = 1.01";
+  s.description = "LabMate-like UMBmark: 4 m square, 5 CW + 5 CCW, fine encoders, E_d = 1.0025, E_b = 1.01";
   // 2048-count encoders behind a 43.8:1 gear: 89702 counts per revolution of a 150 mm wheel
   // (5.25 µm per tick). True wheels keep the nominal mean: D_R/D_L = 1.0025.
   s.robot.nominal = {mm(150.0), mm(150.0), mm(340.0)};
-  s.robot.actual = {mm(150.0 * (1.0 - 0.0025 / 2.0025)), mm(150.0 * (1.0 + 0.0025 / 2.0025)),
-                    mm(343.4)};
+  s.robot.actual = {mm(150.0 * (1.0 - 0.0025 / 2.0025)), mm(150.0 * (1.0 + 0.0025 / 2.0025)), mm(343.4)};
   s.robot.encoder = {43.8, 2048.0};
   s.drive.speed = 0.2;
   s.drive.turn_rate = deg(30.0);
@@ -133,8 +130,7 @@ Scenario umbmark_borenstein() {
 Scenario room_laser() {
   Scenario s = pioneer_with_laser();
   s.name = "room_laser";
-  s.description =
-      "Pioneer 2-DXe + LMS 200 in the 8 m room from (2.0, 1.0, 46°), 200 mm/s, ~65 s (ch. 5/6)";
+  s.description = "Pioneer 2-DXe + LMS 200 in the 8 m room from (2.0, 1.0, 46°), 200 mm/s, ~65 s (ch. 5/6)";
   s.world.kind = WorldKind::kRoom;
   s.start = Pose2(2.0, 1.0, deg(46.0));
   s.motion.kind = MotionKind::kWaypoints;
@@ -145,8 +141,7 @@ Scenario room_laser() {
 Scenario corridor_laser() {
   Scenario s = pioneer_with_laser();
   s.name = "corridor_laser";
-  s.description =
-      "Pioneer 2-DXe + LMS 200, 10 m straight at 200 mm/s in a 1.8 m corridor (ch. 6, Table 6.5)";
+  s.description = "Pioneer 2-DXe + LMS 200, 10 m straight at 200 mm/s in a 1.8 m corridor (ch. 6, Table 6.5)";
   s.world.kind = WorldKind::kCorridor;
   s.world.corridor_length = 12.0;
   s.world.corridor_width = 1.8;

@@ -18,12 +18,8 @@ namespace {
 void require(bool ok, const std::string& field, const char* rule) {
   if (!ok) throw UsageError("scenario: " + field + " must be " + rule);
 }
-void positive(double v, const std::string& field) {
-  require(std::isfinite(v) && v > 0.0, field, "> 0");
-}
-void non_negative(double v, const std::string& field) {
-  require(std::isfinite(v) && v >= 0.0, field, ">= 0");
-}
+void positive(double v, const std::string& field) { require(std::isfinite(v) && v > 0.0, field, "> 0"); }
+void non_negative(double v, const std::string& field) { require(std::isfinite(v) && v >= 0.0, field, ">= 0"); }
 void probability(double v, const std::string& field) {
   require(std::isfinite(v) && v >= 0.0 && v <= 1.0, field, "in [0, 1]");
 }
@@ -50,8 +46,7 @@ void check_slip(const SlipProfile& p, SlipRateUnit unit, const std::string& fiel
 void validate_replay(const Scenario& s) {
   const auto& c = s.motion.commands;
   require(c.size() >= 2, "motion.commands", "at least 2 commands");
-  const double latency =
-      s.odometry.timing.enabled ? s.odometry.timing.latency : s.encoders.timing.latency;
+  const double latency = s.odometry.timing.enabled ? s.odometry.timing.latency : s.encoders.timing.latency;
   for (std::size_t i = 0; i < c.size(); ++i) {
     const std::string at = "motion.commands[" + std::to_string(i) + "]";
     finite(c[i].t, at + "[0]");
@@ -86,19 +81,13 @@ void validate(const Scenario& s) {
   non_negative(s.drive.pause, "drive.pause");
 
   switch (s.motion.kind) {
-    case MotionKind::kStraight:
-      finite(s.motion.distance, "motion.distance");
-      break;
+    case MotionKind::kStraight: finite(s.motion.distance, "motion.distance"); break;
     case MotionKind::kUmbmark:
       positive(s.motion.side, "motion.side");
       require(s.motion.runs >= 1, "motion.runs", ">= 1");
       break;
-    case MotionKind::kWaypoints:
-      require(!s.motion.waypoints.empty(), "motion.waypoints", "non-empty");
-      break;
-    case MotionKind::kReplay:
-      validate_replay(s);
-      break;
+    case MotionKind::kWaypoints: require(!s.motion.waypoints.empty(), "motion.waypoints", "non-empty"); break;
+    case MotionKind::kReplay: validate_replay(s); break;
   }
 
   positive(s.physics.step, "physics.step");
@@ -119,8 +108,7 @@ void validate(const Scenario& s) {
   finite(s.compass.bias, "compass.bias");
   for (const auto& z : s.compass.zones) {
     finite(z.bias, "compass.zones[].bias");
-    if (z.shape == DisturbanceZone::Shape::kCircle)
-      non_negative(z.radius, "compass.zones[].radius");
+    if (z.shape == DisturbanceZone::Shape::kCircle) non_negative(z.radius, "compass.zones[].radius");
   }
 
   check_timing(s.laser.timing, "laser");

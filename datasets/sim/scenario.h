@@ -95,7 +95,7 @@ struct FloorNoiseConfig {
 
 enum class SlipRateUnit {
   kPerSample,  // probability of a slip event per encoder sample interval
-  kPerMetre,  // expected events per metre of wheel travel: p = 1 − exp(−rate · d) per interval
+  kPerMetre,   // expected events per metre of wheel travel: p = 1 − exp(−rate · d) per interval
 };
 
 // A slip event: one wheel (left or right, equally likely) loses the fraction f ~ U[min, max]
@@ -118,8 +118,7 @@ struct SensorTiming {
   bool enabled = false;
   double rate = 10.0;    // [Hz]
   double latency = 0.0;  // logged time − true measurement time [s]
-  double jitter =
-      0.0;  // std-dev of each measurement instant around k/rate, clipped to ±0.45/rate [s]
+  double jitter = 0.0;   // std-dev of each measurement instant around k/rate, clipped to ±0.45/rate [s]
 };
 
 struct EncoderConfig {

@@ -9,11 +9,11 @@
 #include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/input_limits.h"
-#include "datasets/sim/motion_program.h"
 #include "core/json_file.h"
 #include "core/json_options.h"
-#include "datasets/sim/scenario_fields.h"
+#include "datasets/sim/motion_program.h"
 #include "datasets/sim/presets.h"
+#include "datasets/sim/scenario_fields.h"
 
 namespace locbench::sim {
 
@@ -44,8 +44,7 @@ constexpr EnumNames<DisturbanceZone::Shape, 2> kZoneShapes{{
 }};
 
 template <typename E, std::size_t N>
-void read_enum(StrictJsonReader& o, const char* key,
-               const EnumNames<E, N>& table, E& out) {
+void read_enum(StrictJsonReader& o, const char* key, const EnumNames<E, N>& table, E& out) {
   if (!o.has(key)) {
     o.raw(key);
     return;
@@ -110,8 +109,7 @@ void read_world(StrictJsonReader o, WorldConfig& w) {
     w.segments.clear();
     for (std::size_t i = 0; i < segs->size(); ++i) {
       Eigen::Vector4d s;
-      read_numbers((*segs)[i], s.data(), 4, o.path_of("segments") + "[" + std::to_string(i) + "]",
-                   o.source());
+      read_numbers((*segs)[i], s.data(), 4, o.path_of("segments") + "[" + std::to_string(i) + "]", o.source());
       w.segments.push_back(s);
     }
   }
@@ -128,8 +126,7 @@ void read_motion(StrictJsonReader o, MotionConfig& m) {
     m.waypoints.clear();
     for (std::size_t i = 0; i < wps->size(); ++i) {
       Eigen::Vector2d p;
-      read_numbers((*wps)[i], p.data(), 2, o.path_of("waypoints") + "[" + std::to_string(i) + "]",
-                   o.source());
+      read_numbers((*wps)[i], p.data(), 2, o.path_of("waypoints") + "[" + std::to_string(i) + "]", o.source());
       m.waypoints.push_back(p);
     }
   }
@@ -155,8 +152,7 @@ void read_compass(StrictJsonReader o, CompassConfig& c) {
     if (!zones->is_array()) o.fail("zones", "expected an array, found " + json_type_name(*zones));
     c.zones.clear();
     for (std::size_t i = 0; i < zones->size(); ++i) {
-      c.zones.push_back(
-          read_zone((*zones)[i], o.path_of("zones") + "[" + std::to_string(i) + "]", o.source()));
+      c.zones.push_back(read_zone((*zones)[i], o.path_of("zones") + "[" + std::to_string(i) + "]", o.source()));
     }
   }
   o.finish();
@@ -194,10 +190,8 @@ json to_json(const Scenario& s) {
   for (const auto& z : s.compass.zones) zones.push_back(zone_json(z));
 
   json compass = fields_to_json(s.compass.timing);
-  compass.update({{"resolution", s.compass.resolution},
-                  {"noise", s.compass.noise},
-                  {"bias", s.compass.bias},
-                  {"zones", zones}});
+  compass.update(
+      {{"resolution", s.compass.resolution}, {"noise", s.compass.noise}, {"bias", s.compass.bias}, {"zones", zones}});
   json laser = fields_to_json(s.laser.timing);
   laser.update({{"beams", s.laser.beams},
                 {"first_bearing", s.laser.first_bearing},
@@ -223,9 +217,7 @@ json to_json(const Scenario& s) {
       {"robot",
        {{"nominal", fields_to_json(s.robot.nominal)},
         {"actual", fields_to_json(s.robot.actual)},
-        {"encoder",
-         {{"gear_ratio", s.robot.encoder.gear_ratio},
-          {"counts_per_rev", s.robot.encoder.counts_per_rev}}}}},
+        {"encoder", {{"gear_ratio", s.robot.encoder.gear_ratio}, {"counts_per_rev", s.robot.encoder.counts_per_rev}}}}},
       {"drive",
        {{"speed", s.drive.speed},
         {"turn_rate", s.drive.turn_rate},
@@ -288,11 +280,13 @@ void check_scenario_limits(const Scenario& s, const std::string& source) {
       default: break;
     }
   }
-  check(duration, limits::kSimDuration, source, "the motion's duration (legs / drive.speed, turns / drive.turn_rate, pauses)");
+  check(duration, limits::kSimDuration, source,
+        "the motion's duration (legs / drive.speed, turns / drive.turn_rate, pauses)");
   check(duration / s.physics.step, limits::kSimPhysicsSteps, source, "duration / physics.step");
-  const std::pair<const char*, const SensorTiming*> sensors[] = {
-      {"encoders.rate", &s.encoders.timing}, {"odometry.rate", &s.odometry.timing},
-      {"compass.rate", &s.compass.timing}, {"laser.rate", &s.laser.timing}};
+  const std::pair<const char*, const SensorTiming*> sensors[] = {{"encoders.rate", &s.encoders.timing},
+                                                                 {"odometry.rate", &s.odometry.timing},
+                                                                 {"compass.rate", &s.compass.timing},
+                                                                 {"laser.rate", &s.laser.timing}};
   for (const auto& [key, t] : sensors) {
     if (t->enabled) check(duration * t->rate, limits::kSimRecords, source, std::string("duration x ") + key);
   }
@@ -364,8 +358,7 @@ Scenario scenario_from_json(const json& j, const std::string& source) {
     read_group(slip.object("turn"), s.slip.turn);
     slip.finish();
   }
-  for (auto [key, timing] :
-       {std::pair{"encoders", &s.encoders.timing}, std::pair{"odometry", &s.odometry.timing}}) {
+  for (auto [key, timing] : {std::pair{"encoders", &s.encoders.timing}, std::pair{"odometry", &s.odometry.timing}}) {
     StrictJsonReader o = top.object(key);
     read_fields(o, *timing);
     o.finish();
@@ -402,8 +395,7 @@ Scenario scenario_from_json(const json& j, const std::string& source) {
 Scenario load_scenario(const std::filesystem::path& path) {
   Scenario s = scenario_from_json(read_json_file(path.string()), path.string());
   // A relative world.file is relative to the scenario file's folder, not the working directory.
-  if (s.world.kind == WorldKind::kFile && std::filesystem::path(s.world.file).is_relative() &&
-      path.has_parent_path()) {
+  if (s.world.kind == WorldKind::kFile && std::filesystem::path(s.world.file).is_relative() && path.has_parent_path()) {
     s.world.file = (path.parent_path() / s.world.file).lexically_normal().string();
   }
   return s;

@@ -8,8 +8,7 @@ namespace locbench::sim {
 
 SensorClock::SensorClock(const SensorTiming& timing, double step, Rng rng)
     : enabled_(timing.enabled), rate_(timing.rate), jitter_(timing.jitter), step_(step), rng_(rng) {
-  next_ =
-      enabled_ ? std::max<std::int64_t>(0, instant(0)) : std::numeric_limits<std::int64_t>::max();
+  next_ = enabled_ ? std::max<std::int64_t>(0, instant(0)) : std::numeric_limits<std::int64_t>::max();
 }
 
 std::int64_t SensorClock::instant(std::int64_t k) {

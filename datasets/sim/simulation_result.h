@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "core/line_map.h"
+#include "core/log.h"
 #include "core/pose2.h"
 #include "core/robot_params.h"
 #include "core/trajectory.h"
-#include "core/log.h"
 #include "datasets/sim/motion_program.h"
 #include "datasets/sim/scenario.h"
 #include "datasets/sim/slip_model.h"
@@ -25,8 +25,8 @@ struct TrajectoryPoint {
 // The true state at each encoder sample instant (the slip/noise sample grid; see README).
 // Cumulative values since the start; per-sample values are differences of consecutive ones.
 struct WheelSample {
-  double t = 0.0;  // true measurement time [s] (the ENCODER record is logged at t + latency)
-  Pose2 pose;      // true pose
+  double t = 0.0;               // true measurement time [s] (the ENCODER record is logged at t + latency)
+  Pose2 pose;                   // true pose
   std::int64_t count_left = 0;  // encoder counts as reported
   std::int64_t count_right = 0;
   double rim_left = 0.0;  // rim travel [m] (what the encoder measures, before quantization)

@@ -18,9 +18,7 @@
 namespace locbench::sim {
 namespace {
 
-Rng stream(std::uint64_t seed, NoiseStream s) {
-  return Rng::stream(seed, static_cast<std::uint64_t>(s));
-}
+Rng stream(std::uint64_t seed, NoiseStream s) { return Rng::stream(seed, static_cast<std::uint64_t>(s)); }
 
 SensorTiming every(double rate) { return SensorTiming{true, rate, 0.0, 0.0}; }
 
@@ -42,8 +40,7 @@ class Simulation {
         robot_(s.robot.params()),
         nominal_(robot_.nominal_model()),
         program_(build_program(s.motion, s.drive, s.start)),
-        floor_(s.floor, stream(seed, NoiseStream::kFloorLeft),
-               stream(seed, NoiseStream::kFloorRight)),
+        floor_(s.floor, stream(seed, NoiseStream::kFloorLeft), stream(seed, NoiseStream::kFloorRight)),
         slip_(s.slip, stream(seed, NoiseStream::kSlip)),
         compass_(s.compass, stream(seed, NoiseStream::kCompass)),
         motion_noise_(s.motion_noise, stream(seed, NoiseStream::kMotionNoise)),
@@ -103,8 +100,8 @@ class Simulation {
           const ReplayCommand& c = cmds[next - 1];
           const double span = cmds[next].t - c.t;
           const double dth = c.omega * span, mid = logged.theta + 0.5 * dth;
-          logged = Pose2(logged.x + c.v * span * std::cos(mid), logged.y + c.v * span * std::sin(mid),
-                         logged.theta + dth);
+          logged =
+              Pose2(logged.x + c.v * span * std::cos(mid), logged.y + c.v * span * std::sin(mid), logged.theta + dth);
         }
         if (odom) result_.log.odometry.push_back({cmds[next].t, logged, cmds[next].v, cmds[next].omega});
         if (sc_.encoders.timing.enabled) {
@@ -301,9 +298,8 @@ class Simulation {
     Log& log = result_.log;
     if (grid_.next_step() == n_) {
       if (active_) close_slip_event(t);
-      result_.wheel_samples.push_back({t, truth_, left_.count(), right_.count(), left_.rim(),
-                                       right_.rim(), left_.ground, right_.ground, left_.slip,
-                                       right_.slip});
+      result_.wheel_samples.push_back({t, truth_, left_.count(), right_.count(), left_.rim(), right_.rim(),
+                                       left_.ground, right_.ground, left_.slip, right_.slip});
       if (sc_.encoders.timing.enabled && !replay_) {
         log.encoders.push_back({t + sc_.encoders.timing.latency, left_.count(), right_.count()});
       }

@@ -11,8 +11,7 @@ double SlipModel::probability(MotionPhase phase, double wheel_speed, double dura
   return 1.0 - std::exp(-p.rate * wheel_speed * duration);
 }
 
-std::optional<ActiveSlip> SlipModel::start_interval(MotionPhase phase, double wheel_speed,
-                                                    double duration) {
+std::optional<ActiveSlip> SlipModel::start_interval(MotionPhase phase, double wheel_speed, double duration) {
   const double p = probability(phase, wheel_speed, duration);
   if (p <= 0.0 || !rng_.bernoulli(p)) return std::nullopt;
   const SlipProfile& prof = phase == MotionPhase::kStraight ? config_.straight : config_.turn;

@@ -23,8 +23,7 @@ struct Wheel {
 
 // The residual of one sample: true rim travel minus the travel the counts say, under the true
 // metres per tick (e_k − e_{k+1} of eq. 4.13, in metres).
-inline double quantization_residual(double rim_travel, std::int64_t count_increment,
-                                    double meters_per_tick) {
+inline double quantization_residual(double rim_travel, std::int64_t count_increment, double meters_per_tick) {
   return rim_travel - static_cast<double>(count_increment) * meters_per_tick;
 }
 

@@ -13,8 +13,7 @@ Segment seg(double x1, double y1, double x2, double y2) {
   return Segment{Eigen::Vector2d(x1, y1), Eigen::Vector2d(x2, y2)};
 }
 
-LineMap from_rows(std::string name, const std::vector<Eigen::Vector4d>& rows,
-                  const std::string& source) {
+LineMap from_rows(std::string name, const std::vector<Eigen::Vector4d>& rows, const std::string& source) {
   LineMap m;
   m.name = std::move(name);
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -68,8 +67,7 @@ LineMap random_room(Rng& rng, const RandomRoomOptions& o) {
     if (!clear) continue;
     boxes.push_back(box);
     const double x0 = box.min.x(), y0 = box.min.y(), x1 = box.max.x(), y1 = box.max.y();
-    for (const Segment& s : {seg(x0, y0, x1, y0), seg(x1, y0, x1, y1), seg(x1, y1, x0, y1),
-                             seg(x0, y1, x0, y0)}) {
+    for (const Segment& s : {seg(x0, y0, x1, y0), seg(x1, y0, x1, y1), seg(x1, y1, x0, y1), seg(x0, y1, x0, y0)}) {
       m.segments.push_back(s);
     }
     ++b;
@@ -139,8 +137,7 @@ LineMap corridor_world(double length, double width) {
   const double h = 0.5 * width;
   LineMap m;
   m.name = "corridor";
-  m.segments = {seg(0, -h, length, -h), seg(length, -h, length, h), seg(length, h, 0, h),
-                seg(0, h, 0, -h)};
+  m.segments = {seg(0, -h, length, -h), seg(length, -h, length, h), seg(length, h, 0, h), seg(0, h, 0, -h)};
   return m;
 }
 
@@ -169,16 +166,11 @@ LineMap load_world(const std::filesystem::path& path) {
 
 LineMap build_world(const WorldConfig& w) {
   switch (w.kind) {
-    case WorldKind::kNone:
-      return LineMap{"none", {}};
-    case WorldKind::kRoom:
-      return room_world();
-    case WorldKind::kCorridor:
-      return corridor_world(w.corridor_length, w.corridor_width);
-    case WorldKind::kFile:
-      return load_world(w.file);
-    case WorldKind::kInline:
-      return from_rows("inline", w.segments, "<scenario world.segments>");
+    case WorldKind::kNone: return LineMap{"none", {}};
+    case WorldKind::kRoom: return room_world();
+    case WorldKind::kCorridor: return corridor_world(w.corridor_length, w.corridor_width);
+    case WorldKind::kFile: return load_world(w.file);
+    case WorldKind::kInline: return from_rows("inline", w.segments, "<scenario world.segments>");
   }
   return {};
 }

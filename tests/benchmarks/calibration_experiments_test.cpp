@@ -27,7 +27,7 @@ TEST(CalibrationUmbmarkTrilobot, CalibrationLowersEmaxSystAndPutsTable2_1BesideO
   const double before = find_result(r, "uncalibrated/sim_umbmark_trilobot/e_max_syst").summary.mean;
   const double classic = find_result(r, "umbmark_classic/sim_umbmark_trilobot/e_max_syst").summary.mean;
   const double improved = find_result(r, "umbmark_improved/sim_umbmark_trilobot/e_max_syst").summary.mean;
-  EXPECT_GT(before, 0.4);             // hundreds of mm uncalibrated, as in Table 2.1
+  EXPECT_GT(before, 0.4);  // hundreds of mm uncalibrated, as in Table 2.1
   EXPECT_LT(classic, 0.6 * before);
   EXPECT_LT(improved, 0.6 * before);
   ASSERT_EQ(r.published.size(), 3u);  // before / UMBmark / improved columns
@@ -80,8 +80,8 @@ TEST(NoiseTables, ReportsEveryFilterWithTablesBesideOursAndConsistency) {
 TEST(QuantizationSigma, PutsTheExactOptimumBesideThePublishedFiveMillimetres) {
   const auto r = run("noise/quantization_sigma", 1);
   EXPECT_NEAR(find_result(r, "quantization_model/c_12_64mm/l2_optimal_sigma").summary.mean, 5.518, 1e-3);
-  EXPECT_NEAR(find_result(r, "quantization_model/c_12_64mm/moment_matched_sigma").summary.mean,
-              12.64 / std::sqrt(6.0), 1e-9);
+  EXPECT_NEAR(find_result(r, "quantization_model/c_12_64mm/moment_matched_sigma").summary.mean, 12.64 / std::sqrt(6.0),
+              1e-9);
   EXPECT_EQ(r.published[0].rows[0].published, 5.00);
 }
 

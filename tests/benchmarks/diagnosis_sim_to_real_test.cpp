@@ -51,8 +51,9 @@ TEST(DiagnosisSimToReal, ComparesMrclamRobot2WithBothTwins) {
       const double de = find(r, std::string("extended_twin/mrclam6_robot2/ks_distance_") + w + "_" + c).summary.mean;
       EXPECT_GT(dn, 0.0);
       EXPECT_LE(dn, 1.0);
-      EXPECT_NEAR(find(r, std::string("extended_vs_nominal/mrclam6_robot2/ks_distance_ratio_") + w + "_" + c).summary.mean,
-                  de / dn, 1e-12);
+      EXPECT_NEAR(
+          find(r, std::string("extended_vs_nominal/mrclam6_robot2/ks_distance_ratio_") + w + "_" + c).summary.mean,
+          de / dn, 1e-12);
     }
     // Two estimates of the nominal model's noise floor, made two ways, agree within 25%.
     const double twin = find(r, std::string("nominal_twin/mrclam6_robot2/noise_floor_sigma_") + c).summary.mean;

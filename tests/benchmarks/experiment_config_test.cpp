@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/experiment_options.h"
+#include "core/errors.h"
 
 namespace locbench::experiments {
 namespace {
@@ -104,13 +104,10 @@ TEST(ExperimentOptions, RejectUnknownKeysWrongTypesAndRangesNamingTheKey) {
       << usage_error_of({{"runz", 3}});
   EXPECT_NE(usage_error_of({{"runs", 2.5}}).find("exp.runs: expected an integer"), std::string::npos);
   EXPECT_NE(usage_error_of({{"runs", 0}}).find("exp.runs: expected ≥ 1"), std::string::npos);
-  EXPECT_NE(usage_error_of({{"sizes_m", {1.0, "two"}}}).find("exp.sizes_m[1]: expected a number"),
-            std::string::npos);
-  EXPECT_NE(usage_error_of({{"sizes_m", {1.0, -2.0}}}).find("exp.sizes_m: expected each > 0 m"),
-            std::string::npos);
+  EXPECT_NE(usage_error_of({{"sizes_m", {1.0, "two"}}}).find("exp.sizes_m[1]: expected a number"), std::string::npos);
+  EXPECT_NE(usage_error_of({{"sizes_m", {1.0, -2.0}}}).find("exp.sizes_m: expected each > 0 m"), std::string::npos);
   EXPECT_NE(usage_error_of({{"names", "a"}}).find("exp.names: expected an array"), std::string::npos);
-  EXPECT_NE(usage_error_of({{"path", {{1.0}}}}).find("exp.path[0]: expected an array of 2 numbers"),
-            std::string::npos);
+  EXPECT_NE(usage_error_of({{"path", {{1.0}}}}).find("exp.path[0]: expected an array of 2 numbers"), std::string::npos);
   const std::string item = usage_error_of({{"items", {{{"name", "y"}, {"weight", -1.0}}}}});
   EXPECT_NE(item.find("exp.items[0]: ItemOptions.weight: expected > 0 kg"), std::string::npos) << item;
   const std::string nested = usage_error_of({{"main", {{"colour", 1}}}});

@@ -9,8 +9,7 @@
 namespace locbench::experiments::test_support {
 
 // The result named `name` (method/dataset/variant); std::runtime_error if there is none.
-inline const reports::MetricResult& find_result(const reports::ExperimentResults& r,
-                                                const std::string& name) {
+inline const reports::MetricResult& find_result(const reports::ExperimentResults& r, const std::string& name) {
   for (const auto& m : r.results) {
     if (m.name() == name) return m;
   }

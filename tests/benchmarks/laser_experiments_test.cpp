@@ -8,8 +8,8 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "datasets/log/data_root.h"
 #include "reports/report_json.h"
-#include "tests/test_data.h"
 #include "tests/benchmarks/experiment_test_support.h"
+#include "tests/test_data.h"
 
 namespace locbench::experiments {
 namespace {
@@ -34,8 +34,8 @@ TEST(LaserExperiments, MatcherAccuracyScoresEveryMatcherInEveryWorldAndCondition
   const auto m = run(*e, 3);
   for (const char* matcher : {"eap", "split_and_merge", "agglomerative", "rwht"}) {
     for (const char* world : {"room", "random_room"}) {
-      for (const char* cond : {"thesis_setting", "large_pose_error", "range_noise_30mm",
-                               "clutter", "dropouts_spurious"}) {
+      for (const char* cond :
+           {"thesis_setting", "large_pose_error", "range_noise_30mm", "clutter", "dropouts_spurious"}) {
         const std::string key = std::string(matcher) + "/" + world + "_" + cond;
         ASSERT_TRUE(m.count(key + "/segment_recall")) << key;
         ASSERT_TRUE(m.count(key + "/point_precision")) << key;
@@ -76,9 +76,8 @@ TEST(LaserExperiments, Table62HeadingIsFixedAtEveryDLimitWithOurChecksButNotWith
   for (int d = 50; d <= 400; d += 25) {
     const std::string ds = "room_dlimit_" + std::to_string(d) + "mm";
     worst_ours = std::max(worst_ours, std::abs(m.at("eap_weighted_ls/" + ds + "/heading_error_after").summary.mean));
-    worst_thesis = std::max(
-        worst_thesis,
-        std::abs(m.at("eap_thesis_rules_weighted_ls/" + ds + "/heading_error_after").summary.mean));
+    worst_thesis = std::max(worst_thesis,
+                            std::abs(m.at("eap_thesis_rules_weighted_ls/" + ds + "/heading_error_after").summary.mean));
   }
   EXPECT_LT(worst_ours, 0.5);    // deg, from −3°
   EXPECT_GT(worst_thesis, 2.0);  // a wrong face's points ruin the weighted LS
@@ -119,8 +118,7 @@ TEST(LaserExperiments, RwhtPeakErrorGrowsWithTheBinsButTheRefitDoesNot) {
     return m.at(std::string("rwht/") + ds + "/" + what).summary.mean;
   };
   EXPECT_GT(v("room_a4deg_r20cm", "peak_rho_error"), 5 * v("room_a0_25deg_r1_25cm", "peak_rho_error"));
-  EXPECT_NEAR(v("room_a4deg_r20cm", "refit_rho_error"), v("room_a0_25deg_r1_25cm", "refit_rho_error"),
-              0.001);
+  EXPECT_NEAR(v("room_a4deg_r20cm", "refit_rho_error"), v("room_a0_25deg_r1_25cm", "refit_rho_error"), 0.001);
   EXPECT_GT(v("room_a0_25deg_r1_25cm", "cells"), 200 * v("room_a4deg_r20cm", "cells"));
 }
 
@@ -146,8 +144,7 @@ TEST(LaserExperiments, RealLogsImproveOdometryHeadingOnIntel) {
   // PL-ICP: heading 95% interval entirely below odometry's, translation mean below too.
   EXPECT_LT(m.at("pl_icp/intel/rpe_rotation").summary.ci95_high,
             m.at("odometry_raw/intel/rpe_rotation").summary.ci95_low);
-  EXPECT_LT(m.at("pl_icp/intel/rpe_translation").summary.mean,
-            m.at("odometry_raw/intel/rpe_translation").summary.mean);
+  EXPECT_LT(m.at("pl_icp/intel/rpe_translation").summary.mean, m.at("odometry_raw/intel/rpe_translation").summary.mean);
 }
 
 TEST(LaserExperiments, RealLogsSkipWithAReasonWhenTheDataAreAbsent) {

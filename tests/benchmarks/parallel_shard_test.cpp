@@ -2,9 +2,9 @@
 // merged (the records pass through the shard file's JSON text, as on a batch system).
 #include <gtest/gtest.h>
 
-#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/shard.h"
+#include "core/errors.h"
 #include "reports/report_json.h"
 #include "reports/shard_report.h"
 
@@ -18,8 +18,8 @@ struct Case {
 };
 
 // The experiments with different structures: one task per run (corridor, chapter-4 tables),
-// runs × resolutions (sweep) or × cases (identifiability), shared calibration runs in the setup (compass EKF), and a summary
-// step that needs every run's records and re-runs in parallel (indirect KF). Kept small.
+// runs × resolutions (sweep) or × cases (identifiability), shared calibration runs in the setup (compass EKF), and a
+// summary step that needs every run's records and re-runs in parallel (indirect KF). Kept small.
 const Case kCases[] = {
     {"odometry/sim_corridor", 4, nlohmann::json::object()},
     {"noise/tables_4_1_4_2", 3, nlohmann::json::object()},
@@ -27,7 +27,8 @@ const Case kCases[] = {
     {"slip/compass_ekf_table_3_2", 3, {{"calibration_runs", 1}}},
     {"slip/indirect_kf_tables_3_3_3_4", 3, {{"calibration_runs", 1}}},
     // runs × cases with its own seed numbering, (case + 1)·1000 + run.
-    {"calibration/identifiability", 1,
+    {"calibration/identifiability",
+     1,
      {{"cases",
        {{{"name", "E_d_1.005"}, {"E_d", 1.005}, {"E_b", 1.0}, {"E_o", 1.0}},
         {{"name", "all"}, {"E_d", 1.005}, {"E_b", 1.02}, {"E_o", 0.99}}}}}},
@@ -40,9 +41,7 @@ class ParallelAndShards : public ::testing::TestWithParam<Case> {
     if (!e) throw std::runtime_error(std::string("no experiment ") + GetParam().experiment);
     return *e;
   }
-  nlohmann::json config() const {
-    return merge_config(experiment().default_config(), GetParam().overrides);
-  }
+  nlohmann::json config() const { return merge_config(experiment().default_config(), GetParam().overrides); }
   RunOptions options(int threads) const {
     RunOptions o;
     o.seed = 17;
@@ -73,12 +72,10 @@ TEST_P(ParallelAndShards, ThreeShardsMergedEqualTheSingleRun) {
     const auto got = e.run_tasks(config(), options(2), mine);
     for (std::size_t i = 0; i < mine.size(); ++i) s.records.push_back({mine[i], got[i]});
     // Through the file's text and back.
-    const auto back =
-        reports::shard_report_from_json(nlohmann::json::parse(reports::to_json(s).dump()), "shard");
+    const auto back = reports::shard_report_from_json(nlohmann::json::parse(reports::to_json(s).dump()), "shard");
     for (const auto& r : back.records) records[static_cast<std::size_t>(r.task)] = r.record;
   }
-  const nlohmann::json merged =
-      reports::results_to_json(e.summarise_records(config(), options(1), records));
+  const nlohmann::json merged = reports::results_to_json(e.summarise_records(config(), options(1), records));
   EXPECT_EQ(merged, single);
 }
 

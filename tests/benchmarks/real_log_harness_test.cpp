@@ -9,8 +9,8 @@
 #include <fstream>
 #include <map>
 
-#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
+#include "core/errors.h"
 #include "tests/benchmarks/small_real_log.h"
 #include "tests/test_data.h"
 
@@ -39,9 +39,8 @@ TEST(RealLogSpecs, TakeCatalogNamesAndUserFiles) {
   ScratchDir dir;
   const auto files = write_small_real_log(dir.path());
   const auto specs = real_log_specs(
-      nlohmann::json::array({"aces", {{"name", "mine"},
-                                       {"log", files.log.string()},
-                                       {"relations", files.relations.string()}}}),
+      nlohmann::json::array(
+          {"aces", {{"name", "mine"}, {"log", files.log.string()}, {"relations", files.relations.string()}}}),
       "x");
   ASSERT_EQ(specs.size(), 2u);
   EXPECT_TRUE(specs[0].from_catalog);
@@ -58,17 +57,18 @@ TEST(RealLogSpecs, RejectUnknownNamesKeysDuplicatesAndMissingFiles) {
   EXPECT_THROW(real_log_specs({"no_such_dataset"}, "x"), UsageError);
   EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "a"}, {"log", log}, {"relation", "r"}}}), "x"),
                UsageError);
-  EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "a"}, {"log", log}},
-                                                     {{"name", "a"}, {"log", log}}}),
-                              "x"),
-               UsageError);
+  EXPECT_THROW(
+      real_log_specs(nlohmann::json::array({{{"name", "a"}, {"log", log}}, {{"name", "a"}, {"log", log}}}), "x"),
+      UsageError);
   EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"log", log}}}), "x"), UsageError);
-  EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "a"}, {"log", (dir.path() / "absent.clf").string()}}}), "x"),
-               InputError);
-  EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "a"}, {"log", log},
-                                                      {"relations", (dir.path() / "absent.relations").string()}}}),
-                              "x"),
-               InputError);
+  EXPECT_THROW(
+      real_log_specs(nlohmann::json::array({{{"name", "a"}, {"log", (dir.path() / "absent.clf").string()}}}), "x"),
+      InputError);
+  EXPECT_THROW(
+      real_log_specs(nlohmann::json::array(
+                         {{{"name", "a"}, {"log", log}, {"relations", (dir.path() / "absent.relations").string()}}}),
+                     "x"),
+      InputError);
   EXPECT_THROW(real_log_specs(nlohmann::json::array({42}), "x"), UsageError);
 }
 
@@ -92,13 +92,11 @@ TEST(RealLogSpecs, CliFlagsBecomeOneDatasetNamedAfterTheLog) {
 TEST(RealLogExperiments, LaserRealLogsCorrectsAUsersLog) {
   ScratchDir dir;
   const auto files = write_small_real_log(dir.path());
-  const auto r = run_on("laser/real_logs",
-                        {{"datasets", {{{"name", "mine"},
-                                        {"log", files.log.string()},
-                                        {"relations", files.relations.string()}}}},
-                         {"matchers", {"eap"}},
-                         {"correctors", {"pl_icp", "eap_iterated_pl", "icp_point_to_point",
-                                         "eap_ch6_inverse_variance"}}});
+  const auto r =
+      run_on("laser/real_logs",
+             {{"datasets", {{{"name", "mine"}, {"log", files.log.string()}, {"relations", files.relations.string()}}}},
+              {"matchers", {"eap"}},
+              {"correctors", {"pl_icp", "eap_iterated_pl", "icp_point_to_point", "eap_ch6_inverse_variance"}}});
   ASSERT_TRUE(r.cases.empty()) << r.cases.front().reason;
   ASSERT_EQ(r.datasets.size(), 1u);
   EXPECT_EQ(r.datasets[0].name, "mine");
@@ -139,7 +137,7 @@ TEST(RealLogExperiments, LaserRealLogsCorrectsAUsersLog) {
     EXPECT_EQ(p.kind, "scan_pair");
     ASSERT_GE(p.series.size(), 4u);
     EXPECT_EQ(p.series[0].name, "first scan");
-    EXPECT_EQ(p.series[0].x.size(), 181u);  // every beam of the room hits a wall
+    EXPECT_EQ(p.series[0].x.size(), 181u);    // every beam of the room hits a wall
     EXPECT_EQ(p.series[1].x.size() % 2, 0u);  // lines as point pairs
   }
   EXPECT_NE(pairs[0].title.find("before"), std::string::npos);
@@ -175,9 +173,8 @@ TEST(RealLogExperiments, GlobalRealLogsBuildsItsMapOnTheScanMatchedPath) {
 TEST(RealLogExperiments, OdometryAndNoiseRealLogsReadAUsersLog) {
   ScratchDir dir;
   const auto files = write_small_real_log(dir.path());
-  const nlohmann::json datasets = {{"datasets", {{{"name", "mine"},
-                                                  {"log", files.log.string()},
-                                                  {"relations", files.relations.string()}}}}};
+  const nlohmann::json datasets = {
+      {"datasets", {{{"name", "mine"}, {"log", files.log.string()}, {"relations", files.relations.string()}}}}};
   const auto odo = by_name(run_on("odometry/real_logs", datasets));
   EXPECT_EQ(odo.at("odometry_raw/mine/rpe_rotation").summary.n, files.relation_count);
   EXPECT_NEAR(odo.at("odometry_raw/mine/rpe_rotation").summary.mean, deg(1.5), deg(0.01));
@@ -189,9 +186,9 @@ TEST(RealLogExperiments, AMalformedRelationsFileIsAnInputError) {
   ScratchDir dir;
   const auto files = write_small_real_log(dir.path());
   std::ofstream(files.relations, std::ios::app) << "100.0 100.5 oops\n";
-  EXPECT_THROW(run_on("odometry/real_logs", {{"datasets", {{{"name", "mine"},
-                                                            {"log", files.log.string()},
-                                                            {"relations", files.relations.string()}}}}}),
+  EXPECT_THROW(run_on("odometry/real_logs",
+                      {{"datasets",
+                        {{{"name", "mine"}, {"log", files.log.string()}, {"relations", files.relations.string()}}}}}),
                InputError);
 }
 

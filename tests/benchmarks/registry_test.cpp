@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <memory>
-#include <stdexcept>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -22,8 +22,7 @@ std::vector<std::string> registered_names() {
 
 // "topic/name" of every benchmarks/experiments/<topic>/<name>.cpp outside framework/ and harness/.
 std::set<std::string> experiment_files() {
-  const std::filesystem::path root =
-      std::filesystem::path(LOCBENCH_SOURCE_DIR) / "benchmarks" / "experiments";
+  const std::filesystem::path root = std::filesystem::path(LOCBENCH_SOURCE_DIR) / "benchmarks" / "experiments";
   std::set<std::string> names;
   for (const auto& topic : std::filesystem::directory_iterator(root)) {
     const std::string t = topic.path().filename().string();
@@ -60,9 +59,7 @@ class Named final : public Experiment {
  public:
   explicit Named(std::string name) : Experiment({.name = std::move(name), .description = "test"}) {}
   nlohmann::json default_config() const override { return nlohmann::json::object(); }
-  reports::ExperimentResults run(const nlohmann::json&, const RunOptions&) const override {
-    return {};
-  }
+  reports::ExperimentResults run(const nlohmann::json&, const RunOptions&) const override { return {}; }
 };
 
 ExperimentFactory named(const std::string& name) {
@@ -94,8 +91,8 @@ TEST(Registry, LeavesOnlyTheSlowSimulationsAndTheGlobalRealLogsOutOfTheDefaultSu
   for (const auto& e : all_experiments()) {
     if (!e->in_default_suite()) outside.push_back(e->name());
   }
-  EXPECT_EQ(outside, (std::vector<std::string>{"diagnosis/false_alarms", "diagnosis/power",
-                                               "global/real_logs", "global/sim"}));
+  EXPECT_EQ(outside,
+            (std::vector<std::string>{"diagnosis/false_alarms", "diagnosis/power", "global/real_logs", "global/sim"}));
 }
 
 }  // namespace

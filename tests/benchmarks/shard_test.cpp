@@ -5,8 +5,8 @@
 #include <atomic>
 #include <stdexcept>
 
-#include "core/errors.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
+#include "core/errors.h"
 
 namespace locbench::experiments {
 namespace {

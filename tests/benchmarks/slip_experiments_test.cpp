@@ -27,14 +27,14 @@ void dump(const reports::ExperimentResults& r) {
   if (!std::getenv("LOCBENCH_SLIP_VERBOSE")) return;
   for (const auto& m : r.results) {
     std::cout << m.name() << " mean " << m.summary.mean << " sd " << m.summary.stddev
-              << (m.identifiable ? (*m.identifiable ? " identifiable" : " NOT identifiable") : "")
-              << " " << m.note << "\n";
+              << (m.identifiable ? (*m.identifiable ? " identifiable" : " NOT identifiable") : "") << " " << m.note
+              << "\n";
   }
   for (const auto& t : r.published) {
     std::cout << t.source << " / " << t.quantity << " [" << t.unit << "]\n";
     for (const auto& row : t.rows) {
-      std::cout << "  " << row.label << ": published " << (row.published ? *row.published : NAN)
-                << " ours " << (row.ours ? *row.ours : NAN) << "\n";
+      std::cout << "  " << row.label << ": published " << (row.published ? *row.published : NAN) << " ours "
+                << (row.ours ? *row.ours : NAN) << "\n";
     }
   }
   for (const auto& n : r.notes) std::cout << "NOTE " << n << "\n";
@@ -66,11 +66,10 @@ TEST(SlipExperiments, CompassEkfTable32) {
   dump(r);
   EXPECT_EQ(r.seeds.size(), 2u);
   const auto n = names(r);
-  for (const char* want :
-       {"ekf_no_slip_correction/sim_corridor/final_position_error",
-        "ekf_slip_correction/sim_corridor/final_position_error",
-        "slip_detector/sim_corridor/precision", "slip_detector/sim_corridor/recall",
-        "ekf_slip_correction_latched_gyro/sim_corridor_disturbed/final_position_error"}) {
+  for (const char* want : {"ekf_no_slip_correction/sim_corridor/final_position_error",
+                           "ekf_slip_correction/sim_corridor/final_position_error",
+                           "slip_detector/sim_corridor/precision", "slip_detector/sim_corridor/recall",
+                           "ekf_slip_correction_latched_gyro/sim_corridor_disturbed/final_position_error"}) {
     EXPECT_TRUE(n.contains(want)) << want;
   }
   ASSERT_EQ(r.published.size(), 2u);

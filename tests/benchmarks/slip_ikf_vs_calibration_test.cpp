@@ -25,8 +25,8 @@ TEST(IkfVsCalibration, EveryMethodIsJudgedOnTheSameRobotAndWhatStraightRunsCanno
   o.runs = 2;
   const auto r = e->run(e->default_config(), o);
   const auto m = by_name(r);
-  for (const char* method : {"umbmark_classic", "umbmark_improved", "ikf_umbmark_squares",
-                             "ikf_straight_heading_only", "ikf_straight_end_position"}) {
+  for (const char* method : {"umbmark_classic", "umbmark_improved", "ikf_umbmark_squares", "ikf_straight_heading_only",
+                             "ikf_straight_end_position"}) {
     for (const char* p : {"E_d_error", "E_b_error", "E_o_error"}) {
       ASSERT_TRUE(m.count(std::string(method) + "/sim_trilobot/" + p)) << method << " " << p;
     }

@@ -9,12 +9,12 @@
 #include <string>
 
 #include "core/line_map.h"
+#include "core/log.h"
 #include "core/pose2.h"
 #include "core/scan.h"
 #include "core/units.h"
 #include "datasets/io/carmen_writer.h"
 #include "datasets/io/relations_writer.h"
-#include "core/log.h"
 
 namespace locbench::testing {
 
@@ -26,9 +26,8 @@ struct SmallRealLog {
 inline LineMap small_room() {
   LineMap m;
   m.name = "small_room";
-  const double r[][4] = {{0, 0, 7, 0},     {7, 0, 7, 5},       {7, 5, 0, 5},      {0, 5, 0, 0},
-                         {3.0, 2.0, 3.6, 2.0}, {3.6, 2.0, 3.6, 2.6}, {3.6, 2.6, 3.0, 2.6},
-                         {3.0, 2.6, 3.0, 2.0}};
+  const double r[][4] = {{0, 0, 7, 0},         {7, 0, 7, 5},         {7, 5, 0, 5},         {0, 5, 0, 0},
+                         {3.0, 2.0, 3.6, 2.0}, {3.6, 2.0, 3.6, 2.6}, {3.6, 2.6, 3.0, 2.6}, {3.0, 2.6, 3.0, 2.0}};
   for (const auto& s : r) m.segments.push_back({{s[0], s[1]}, {s[2], s[3]}});
   return m;
 }
@@ -47,8 +46,7 @@ inline Scan small_room_scan(const LineMap& room, const Pose2& pose, double t, st
 }
 
 // Writes <dir>/small.clf and <dir>/small.relations.
-inline SmallRealLog write_small_real_log(const std::filesystem::path& dir, int scans = 24,
-                                         unsigned seed = 7) {
+inline SmallRealLog write_small_real_log(const std::filesystem::path& dir, int scans = 24, unsigned seed = 7) {
   const LineMap room = small_room();
   std::mt19937_64 rng(seed);
   Log log;

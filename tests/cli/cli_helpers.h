@@ -27,9 +27,7 @@ inline Outcome run_shell(const std::string& command) {
   return o;
 }
 
-inline Outcome run_locbench(const std::string& args) {
-  return run_shell(std::string(LOCBENCH_EXE) + " " + args);
-}
+inline Outcome run_locbench(const std::string& args) { return run_shell(std::string(LOCBENCH_EXE) + " " + args); }
 
 inline nlohmann::json read_json(const std::string& path) {
   std::ifstream in(path);

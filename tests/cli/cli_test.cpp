@@ -36,8 +36,7 @@ TEST(Cli, UnknownVerbOrOptionIsAUsageErrorWithExitCode2) {
 TEST(Cli, RunningAnUnknownExperimentExitsWith2AndSaysSo) {
   const Outcome o = run_locbench("run no/such_experiment");
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_NE(o.output.find("no experiment named \"no/such_experiment\""), std::string::npos)
-      << o.output;
+  EXPECT_NE(o.output.find("no experiment named \"no/such_experiment\""), std::string::npos) << o.output;
 }
 
 TEST(Cli, ListNamesTheExperimentsAndScenarios) {
@@ -55,8 +54,8 @@ TEST(Cli, SimulateWritesALogThatReadsBack) {
   testing::ScratchDir dir;
   const auto log_path = dir.file("corridor.clf.gz");
   const auto tum_path = dir.file("truth.tum");
-  const Outcome o = run_locbench("simulate corridor --seed 3 -o " + log_path.string() +
-                                 " --truth-tum " + tum_path.string());
+  const Outcome o =
+      run_locbench("simulate corridor --seed 3 -o " + log_path.string() + " --truth-tum " + tum_path.string());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const Log log = read_carmen_log(log_path);
   EXPECT_GT(log.encoders.size(), 100u);
@@ -68,16 +67,14 @@ TEST(Cli, SimulateWritesALogThatReadsBack) {
 TEST(Cli, SimulateRejectsAMalformedScenarioFileWithExitCode2) {
   testing::ScratchDir dir;
   std::ofstream(dir.file("bad.json")) << "{\"robot\": {\"no_such_key\": 1}}";
-  const Outcome o = run_locbench("simulate " + dir.file("bad.json").string() + " -o " +
-                                 dir.file("x.clf").string());
+  const Outcome o = run_locbench("simulate " + dir.file("bad.json").string() + " -o " + dir.file("x.clf").string());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("no_such_key"), std::string::npos) << o.output;
 }
 
 TEST(Cli, RunWritesASchemaValidReportForTheSimulatedSmokeExperiment) {
   testing::ScratchDir dir;
-  const Outcome o = run_locbench("run odometry/sim_corridor --runs 3 --seed 5 --out " +
-                                 dir.path().string());
+  const Outcome o = run_locbench("run odometry/sim_corridor --runs 3 --seed 5 --out " + dir.path().string());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto path = dir.file("odometry/sim_corridor.json");
   ASSERT_TRUE(std::filesystem::exists(path)) << o.output;
@@ -117,16 +114,15 @@ TEST(Cli, RunOnRealLogsWritesAValidReport) {
 TEST(Cli, ABadConfigurationFileExitsWith2) {
   testing::ScratchDir dir;
   std::ofstream(dir.file("c.json")) << "{\"odometry/sim_corridor\": {\"runz\": 3}}";
-  const Outcome o = run_locbench("run odometry/sim_corridor --config " +
-                                 dir.file("c.json").string() + " --out " + dir.path().string());
+  const Outcome o = run_locbench("run odometry/sim_corridor --config " + dir.file("c.json").string() + " --out " +
+                                 dir.path().string());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("runz"), std::string::npos) << o.output;
 }
 
 TEST(Cli, GatePassesOnTheBaselineAndFailsWithExitCode1OnAWorsenedResult) {
   testing::ScratchDir dir;
-  ASSERT_EQ(run_locbench("run odometry/sim_corridor --runs 3 --out " + (dir.path() / "base").string())
-                .exit_code, 0);
+  ASSERT_EQ(run_locbench("run odometry/sim_corridor --runs 3 --out " + (dir.path() / "base").string()).exit_code, 0);
   const std::string base = (dir.path() / "base").string();
   const Outcome same = run_locbench("gate " + base + " --baseline " + base);
   EXPECT_EQ(same.exit_code, 0) << same.output;
@@ -147,9 +143,9 @@ TEST(Cli, GatePassesOnTheBaselineAndFailsWithExitCode1OnAWorsenedResult) {
   }
   std::filesystem::create_directories(dir.path() / "worse");
   std::ofstream(dir.path() / "worse/sim_corridor.json") << j.dump();
-  const Outcome worse = run_locbench("gate " + (dir.path() / "worse").string() + " --baseline " +
-                                     base + " --markdown " + dir.file("gate.md").string() +
-                                     " --json " + dir.file("gate.json").string());
+  const Outcome worse =
+      run_locbench("gate " + (dir.path() / "worse").string() + " --baseline " + base + " --markdown " +
+                   dir.file("gate.md").string() + " --json " + dir.file("gate.json").string());
   EXPECT_EQ(worse.exit_code, 1) << worse.output;
   EXPECT_NE(worse.output.find("regressed"), std::string::npos) << worse.output;
   EXPECT_TRUE(std::filesystem::exists(dir.file("gate.md")));
@@ -159,15 +155,17 @@ TEST(Cli, GatePassesOnTheBaselineAndFailsWithExitCode1OnAWorsenedResult) {
 
 TEST(Cli, SetOverridesAFilterOptionAndRejectsAnUnknownOne) {
   testing::ScratchDir dir;
-  const Outcome ok = run_locbench("run noise/tables_4_1_4_2 --runs 1 --set "
-                                  "filters.sage_husa_aekf.forgetting=0.95 --out " +
-                                  dir.path().string());
+  const Outcome ok = run_locbench(
+      "run noise/tables_4_1_4_2 --runs 1 --set "
+      "filters.sage_husa_aekf.forgetting=0.95 --out " +
+      dir.path().string());
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
   const auto r = reports::read_report(dir.file("noise/tables_4_1_4_2.json"));
   EXPECT_EQ(r.body.configuration["filters"]["sage_husa_aekf"]["forgetting"], 0.95);
-  const Outcome bad = run_locbench("run noise/tables_4_1_4_2 --runs 1 --set "
-                                   "filters.sage_husa_aekf.forgettin=0.95 --out " +
-                                   dir.path().string());
+  const Outcome bad = run_locbench(
+      "run noise/tables_4_1_4_2 --runs 1 --set "
+      "filters.sage_husa_aekf.forgettin=0.95 --out " +
+      dir.path().string());
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("forgettin"), std::string::npos) << bad.output;
 }
@@ -182,8 +180,8 @@ TEST(Cli, CalibrateRejectsAMalformedUmbmarkInputWithExitCode2) {
 
 TEST(Cli, CalibrateClassicUmbmarkOnTheExampleWritesAValidReport) {
   testing::ScratchDir dir;
-  const Outcome o = run_locbench("calibrate umbmark-classic examples/umbmark_trilobot.json --report " +
-                                 dir.file("c.json").string());
+  const Outcome o =
+      run_locbench("calibrate umbmark-classic examples/umbmark_trilobot.json --report " + dir.file("c.json").string());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto r = reports::read_report(dir.file("c.json"));
   EXPECT_TRUE(reports::validate_report_json(reports::to_json(r)).empty());

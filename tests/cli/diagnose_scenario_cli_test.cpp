@@ -69,8 +69,8 @@ TEST_F(DiagnoseScenarioCli, RefusesToOverwriteItsInputOrWriteWhereItCannot) {
   EXPECT_NE(missing.output.find("cannot create the folder"), std::string::npos) << missing.output;
   EXPECT_EQ(fs::file_size(log_), before);
 
-  const Outcome histogram = run_locbench("diagnose examples/table_3_1_histogram.json --scenario " +
-                                         (dir_ / "h.json").string());
+  const Outcome histogram =
+      run_locbench("diagnose examples/table_3_1_histogram.json --scenario " + (dir_ / "h.json").string());
   EXPECT_EQ(histogram.exit_code, 2) << histogram.output;
   EXPECT_NE(histogram.output.find("no motion to replay"), std::string::npos) << histogram.output;
 }

@@ -6,8 +6,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <ostream>
 #include <fstream>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -19,14 +19,19 @@ namespace {
 
 struct HostileCase {
   HostileCase(std::string n, std::string s, std::string a, int e, std::string m, std::string p = "")
-      : name(std::move(n)), setup(std::move(s)), args(std::move(a)), exit_code(e), message(std::move(m)), prefix(std::move(p)) {}
+      : name(std::move(n)),
+        setup(std::move(s)),
+        args(std::move(a)),
+        exit_code(e),
+        message(std::move(m)),
+        prefix(std::move(p)) {}
   std::string name;
   // Shell commands run in the scratch folder before the case ({exe}, {src}, {d} substituted).
   std::string setup;
   std::string args;  // locbench's arguments ({d}: the scratch folder, {src}: the source tree)
   int exit_code;
   std::string message;  // a substring of stdout + stderr
-  std::string prefix;  // shell words before the command (an environment, a lock holder)
+  std::string prefix;   // shell words before the command (an environment, a lock holder)
 };
 
 // A residual histogram with `bins` 1° bins centred on 0 and `filled` of them holding counts of
@@ -50,7 +55,8 @@ std::string file(const std::string& name, const std::string& text) {
 // A short simulated log with ENCODER, TRUEPOS, COMPASS and FLASER records (1 m straight; too
 // short for `diagnose`, which wants 40 windows, enough for everything checked before that).
 const std::string kShortLog =
-    file("short.json", R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1.0}, "laser": {"enabled": true}})") +
+    file("short.json",
+         R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1.0}, "laser": {"enabled": true}})") +
     "{exe} simulate '{d}/short.json' --seed 3 -o '{d}/l.clf' >/dev/null 2>&1\n";
 // A valid report (classic UMBmark on the example data).
 const std::string kReport =
@@ -58,7 +64,8 @@ const std::string kReport =
 // The report claimed by `run --seed S` of experiment E: seeds and a run command line.
 std::string run_report(const std::string& to, const std::string& seed, const std::string& experiment,
                        const std::string& revision = "") {
-  return kReport + "sed -e 's/\"seeds\": \\[\\]/\"seeds\": [" + seed + "]/' -e 's|\"command_line\": \"[^\"]*\"|\"command_line\": \"locbench run --seed " + seed +
+  return kReport + "sed -e 's/\"seeds\": \\[\\]/\"seeds\": [" + seed +
+         "]/' -e 's|\"command_line\": \"[^\"]*\"|\"command_line\": \"locbench run --seed " + seed +
          "\"|' -e 's|calibrate/umbmark_classic|" + experiment + "|' " +
          (revision.empty() ? "" : "-e 's|\"git_revision\": \"[^\"]*\"|\"git_revision\": \"" + revision + "\"|' ") +
          "'{d}/r.json' > '" + to + "'\n";
@@ -67,31 +74,43 @@ std::string run_report(const std::string& to, const std::string& seed, const std
 const std::vector<HostileCase>& cases() {
   static const std::vector<HostileCase> all = {
       // 1. The histogram crash, the superlinear fits, counts validation.
-      {"histogram_10000_bins_does_not_crash", file("h.json", histogram(10000, 10)), "diagnose {d}/h.json", 0, "verdict:"},
-      {"histogram_200_filled_bins_in_seconds", file("h.json", histogram(200, 200)), "diagnose {d}/h.json", 0, "verdict:"},
-      {"histogram_count_1e18", file("h.json", histogram(20, 10, "1e18")), "diagnose {d}/h.json", 2, "exceeds the limit"},
-      {"histogram_all_in_one_bin", file("h.json", R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[0,0,900,0,0]})"),
+      {"histogram_10000_bins_does_not_crash", file("h.json", histogram(10000, 10)), "diagnose {d}/h.json", 0,
+       "verdict:"},
+      {"histogram_200_filled_bins_in_seconds", file("h.json", histogram(200, 200)), "diagnose {d}/h.json", 0,
+       "verdict:"},
+      {"histogram_count_1e18", file("h.json", histogram(20, 10, "1e18")), "diagnose {d}/h.json", 2,
+       "exceeds the limit"},
+      {"histogram_all_in_one_bin",
+       file("h.json", R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[0,0,900,0,0]})"),
        "diagnose {d}/h.json", 2, "at least 3 bins"},
-      {"histogram_fractional_count", file("h.json", histogram(20, 10, "3.5")), "diagnose {d}/h.json", 2, "whole number"},
+      {"histogram_fractional_count", file("h.json", histogram(20, 10, "3.5")), "diagnose {d}/h.json", 2,
+       "whole number"},
       {"histogram_1e400", file("h.json", histogram(20, 10, "1e400")), "diagnose {d}/h.json", 2, "number overflow"},
       {"histogram_is_a_folder", "mkdir '{d}/h.json'", "diagnose {d}/h.json", 2, "is a folder"},
       {"histogram_too_many_bins",
-       "awk 'BEGIN{printf \"{\\\"residual\\\": \\\"r\\\", \\\"unit\\\": \\\"deg\\\", \\\"edges\\\": [0\"; for(i=1;i<=100001;i++) printf \",%d\", i; "
-       "printf \"], \\\"counts\\\": [9\"; for(i=1;i<100001;i++) printf \",9\"; print \"]}\"}' > '{d}/h.json'", "diagnose {d}/h.json", 2, "exceeds the limit 100000"},
+       "awk 'BEGIN{printf \"{\\\"residual\\\": \\\"r\\\", \\\"unit\\\": \\\"deg\\\", \\\"edges\\\": [0\"; "
+       "for(i=1;i<=100001;i++) printf \",%d\", i; "
+       "printf \"], \\\"counts\\\": [9\"; for(i=1;i<100001;i++) printf \",9\"; print \"]}\"}' > '{d}/h.json'",
+       "diagnose {d}/h.json", 2, "exceeds the limit 100000"},
       // 2. Limits checked before work.
       {"simulate_1e9_beams", file("s.json", R"({"preset": "corridor", "laser": {"beams": 1000000000}})"),
        "simulate {d}/s.json -o {d}/o.clf", 2, "laser.beams"},
-      {"simulate_waypoint_1e308", file("s.json", R"({"preset": "corridor", "motion": {"kind": "waypoints", "waypoints": [[1e308, 1e308]]}})"),
+      {"simulate_waypoint_1e308",
+       file("s.json", R"({"preset": "corridor", "motion": {"kind": "waypoints", "waypoints": [[1e308, 1e308]]}})"),
        "simulate {d}/s.json -o {d}/o.clf", 2, "motion.waypoints[0]"},
-      {"simulate_1e8_runs", file("s.json", R"({"preset": "corridor", "motion": {"kind": "umbmark", "runs": 100000000}})"),
+      {"simulate_1e8_runs",
+       file("s.json", R"({"preset": "corridor", "motion": {"kind": "umbmark", "runs": 100000000}})"),
        "simulate {d}/s.json -o {d}/o.clf", 2, "motion.runs"},
       {"simulate_crawling_speed", file("s.json", R"({"preset": "corridor", "drive": {"speed": 1e-9}})"),
        "simulate {d}/s.json -o {d}/o.clf", 2, "duration"},
-      {"run_set_runs_1e8", "", "run odometry/sim_corridor --set runs=100000000 --out {d}/out", 2, "exceeds the limit 100000"},
+      {"run_set_runs_1e8", "", "run odometry/sim_corridor --set runs=100000000 --out {d}/out", 2,
+       "exceeds the limit 100000"},
       {"run_runs_0", "", "run odometry/sim_corridor --runs 0 --out {d}/out", 2, "not in range 1 to 100000"},
       {"match_20000_beam_scan",
-       kShortLog + "awk 'BEGIN{printf \"FLASER 20000\"; for(i=0;i<20000;i++) printf \" 1.0\"; print \" 0 0 0 0 0 0 1.0 h 1.0\"}' > '{d}/big.clf'",
-       "match --map {src}/examples/room_map.json --log {d}/big.clf --matcher agglomerative", 2, "exceeds the limit 10000"},
+       kShortLog + "awk 'BEGIN{printf \"FLASER 20000\"; for(i=0;i<20000;i++) printf \" 1.0\"; print \" 0 0 0 0 0 0 1.0 "
+                   "h 1.0\"}' > '{d}/big.clf'",
+       "match --map {src}/examples/room_map.json --log {d}/big.clf --matcher agglomerative", 2,
+       "exceeds the limit 10000"},
       // 3. Outputs never overwrite inputs.
       {"calibrate_report_onto_input", "cp '{src}/examples/umbmark_trilobot.json' '{d}/m.json'",
        "calibrate umbmark-classic {d}/m.json --report {d}/m.json", 2, "would overwrite the input"},
@@ -103,105 +122,137 @@ const std::vector<HostileCase>& cases() {
        "diagnose {d}/l.clf --report {d}/link.clf", 2, "would overwrite the input"},
       {"match_tum_onto_log", kShortLog, "match --map {src}/examples/room_map.json --log {d}/l.clf --tum {d}/l.clf", 2,
        "would overwrite the input"},
-      {"localize_tum_onto_log", kShortLog, "localize --map {src}/examples/room_map.json --log {d}/l.clf --tum {d}/l.clf", 2,
-       "would overwrite the input"},
+      {"localize_tum_onto_log", kShortLog,
+       "localize --map {src}/examples/room_map.json --log {d}/l.clf --tum {d}/l.clf", 2, "would overwrite the input"},
       {"simulate_onto_scenario", file("s.json", R"({"preset": "corridor"})"), "simulate {d}/s.json -o {d}/s.json", 2,
        "would overwrite the input"},
-      {"simulate_log_and_truth_same_file", "", "simulate corridor -o {d}/a.clf --truth-tum {d}/a.clf", 2, "name the same file"},
+      {"simulate_log_and_truth_same_file", "", "simulate corridor -o {d}/a.clf --truth-tum {d}/a.clf", 2,
+       "name the same file"},
       {"gate_json_into_input_folder", "mkdir -p '{d}/X' && " + kReport + "cp '{d}/r.json' '{d}/X/a.json'",
        "gate {d}/X --baseline {d}/X --json {d}/X/a.json", 2, "lies in the input folder"},
       // 4. Write failures are errors.
       {"gate_json_disk_full", kReport, "gate {d}/r.json --baseline {d}/r.json --json /dev/full", 2, "No space left"},
-      {"gate_markdown_disk_full", kReport, "gate {d}/r.json --baseline {d}/r.json --markdown /dev/full", 2, "No space left"},
-      {"diagnose_report_disk_full", "", "diagnose {src}/examples/table_3_1_histogram.json --report /dev/full", 2, "No space left"},
+      {"gate_markdown_disk_full", kReport, "gate {d}/r.json --baseline {d}/r.json --markdown /dev/full", 2,
+       "No space left"},
+      {"diagnose_report_disk_full", "", "diagnose {src}/examples/table_3_1_histogram.json --report /dev/full", 2,
+       "No space left"},
       {"simulate_disk_full", "", "simulate corridor -o /dev/full", 2, "/dev/full"},
       // 6. A folder in use is refused; mixed runs do not pass a gate.
       {"run_into_a_locked_folder", "mkdir -p '{d}/out' && touch '{d}/out/.locbench.lock'",
        "run odometry/sim_corridor --runs 1 --out {d}/out", 2, "in use", "flock '{d}/out/.locbench.lock'"},
-      {"gate_mixed_seeds", "mkdir -p '{d}/cur' && " + run_report("{d}/cur/a.json", "1", "calibrate/a") + run_report("{d}/cur/b.json", "2", "calibrate/b"),
+      {"gate_mixed_seeds",
+       "mkdir -p '{d}/cur' && " + run_report("{d}/cur/a.json", "1", "calibrate/a") +
+           run_report("{d}/cur/b.json", "2", "calibrate/b"),
        "gate {d}/cur --baseline {d}/cur", 2, "mix runs"},
       {"gate_mixed_revisions",
-       "mkdir -p '{d}/cur' && " + run_report("{d}/cur/a.json", "1", "calibrate/a", "aaaa") + run_report("{d}/cur/b.json", "1", "calibrate/b", "bbbb"),
+       "mkdir -p '{d}/cur' && " + run_report("{d}/cur/a.json", "1", "calibrate/a", "aaaa") +
+           run_report("{d}/cur/b.json", "1", "calibrate/b", "bbbb"),
        "gate {d}/cur --baseline {d}/cur", 2, "git revision"},
-      {"gate_mixed_seeds_allowed", "mkdir -p '{d}/cur' && " + run_report("{d}/cur/a.json", "1", "calibrate/a") + run_report("{d}/cur/b.json", "2", "calibrate/b"),
+      {"gate_mixed_seeds_allowed",
+       "mkdir -p '{d}/cur' && " + run_report("{d}/cur/a.json", "1", "calibrate/a") +
+           run_report("{d}/cur/b.json", "2", "calibrate/b"),
        "gate {d}/cur --baseline {d}/cur --allow-mixed", 0, "gate: PASSED"},
       // 7. No "internal error": file, key or line, and what was expected.
-      {"scenario_1e400", file("s.json", R"({"preset": "corridor", "drive": {"speed": 1e400}})"), "simulate {d}/s.json -o {d}/o.clf", 2,
-       "number overflow"},
-      {"map_1e400", kShortLog + file("m.json", R"({"segments": [[0, 0, 1e400, 1]]})"), "match --map {d}/m.json --log {d}/l.clf", 2,
-       "number overflow"},
-      {"rules_1e400", kReport + file("rules.json", R"({"accuracy": [{"match": "*", "max_relative_worsening": 1e400}]})"),
+      {"scenario_1e400", file("s.json", R"({"preset": "corridor", "drive": {"speed": 1e400}})"),
+       "simulate {d}/s.json -o {d}/o.clf", 2, "number overflow"},
+      {"map_1e400", kShortLog + file("m.json", R"({"segments": [[0, 0, 1e400, 1]]})"),
+       "match --map {d}/m.json --log {d}/l.clf", 2, "number overflow"},
+      {"rules_1e400",
+       kReport + file("rules.json", R"({"accuracy": [{"match": "*", "max_relative_worsening": 1e400}]})"),
        "gate {d}/r.json --baseline {d}/r.json --rules {d}/rules.json", 2, "rules.json"},
-      {"report_1e400", kReport + "sed -i 's/\"mean\": [-0-9.e]*/\"mean\": 1e400/' '{d}/r.json'", "gate {d}/r.json --baseline {d}/r.json", 2,
-       "number overflow"},
-      {"shard_1e400", "mkdir -p '{d}/s' && echo '{\"schema\": 1e400}' > '{d}/s/x.shard-1-of-1.json'", "merge {d}/s -o {d}/m", 2, "number overflow"},
+      {"report_1e400", kReport + "sed -i 's/\"mean\": [-0-9.e]*/\"mean\": 1e400/' '{d}/r.json'",
+       "gate {d}/r.json --baseline {d}/r.json", 2, "number overflow"},
+      {"shard_1e400", "mkdir -p '{d}/s' && echo '{\"schema\": 1e400}' > '{d}/s/x.shard-1-of-1.json'",
+       "merge {d}/s -o {d}/m", 2, "number overflow"},
       {"options_1e400", kShortLog + file("o.json", R"({"mcl": {"particles": 1e400}})"),
        "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2, "o.json"},
-      {"config_1e400", file("c.json", R"({"odometry/sim_corridor": {"runs": 1e400}})"), "run odometry/sim_corridor --config {d}/c.json --out {d}/out",
-       2, "c.json"},
+      {"config_1e400", file("c.json", R"({"odometry/sim_corridor": {"runs": 1e400}})"),
+       "run odometry/sim_corridor --config {d}/c.json --out {d}/out", 2, "c.json"},
       {"set_1e400", "", "run odometry/sim_corridor --set runs=1e400 --out {d}/out", 2, "--set"},
-      {"options_is_a_folder", kShortLog + "mkdir '{d}/o.json'", "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json",
-       2, "is a folder"},
-      {"config_is_a_folder", "mkdir '{d}/c.json'", "run odometry/sim_corridor --config {d}/c.json --out {d}/out", 2, "is a folder"},
-      {"rules_is_a_folder", kReport + "mkdir '{d}/rules.json'", "gate {d}/r.json --baseline {d}/r.json --rules {d}/rules.json", 2, "is a folder"},
-      {"false_alarm_1e_minus_300", "", "diagnose {src}/examples/table_3_1_histogram.json --false-alarm 1e-300", 2, "--false-alarm"},
-      {"wheelbase_1e_minus_320", kShortLog + "sed -i 's/^PARAM robot_wheelbase .*/PARAM robot_wheelbase 1e-320/' '{d}/l.clf'", "diagnose {d}/l.clf", 2,
-       "robot_wheelbase"},
+      {"options_is_a_folder", kShortLog + "mkdir '{d}/o.json'",
+       "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2, "is a folder"},
+      {"config_is_a_folder", "mkdir '{d}/c.json'", "run odometry/sim_corridor --config {d}/c.json --out {d}/out", 2,
+       "is a folder"},
+      {"rules_is_a_folder", kReport + "mkdir '{d}/rules.json'",
+       "gate {d}/r.json --baseline {d}/r.json --rules {d}/rules.json", 2, "is a folder"},
+      {"false_alarm_1e_minus_300", "", "diagnose {src}/examples/table_3_1_histogram.json --false-alarm 1e-300", 2,
+       "--false-alarm"},
+      {"wheelbase_1e_minus_320",
+       kShortLog + "sed -i 's/^PARAM robot_wheelbase .*/PARAM robot_wheelbase 1e-320/' '{d}/l.clf'",
+       "diagnose {d}/l.clf", 2, "robot_wheelbase"},
       {"encoder_ticks_int64_min_diagnose",
-       kShortLog + "awk '/^ENCODER/ && !done {$2=\"-9223372036854775808\"; done=1} {print}' '{d}/l.clf' > '{d}/m.clf'", "diagnose {d}/m.clf", 2,
-       "64-bit"},
+       kShortLog + "awk '/^ENCODER/ && !done {$2=\"-9223372036854775808\"; done=1} {print}' '{d}/l.clf' > '{d}/m.clf'",
+       "diagnose {d}/m.clf", 2, "64-bit"},
       {"encoder_ticks_int64_min_calibrate",
-       kShortLog + "awk '/^ENCODER/ && !done {$2=\"-9223372036854775808\"; done=1} {print}' '{d}/l.clf' > '{d}/m.clf'", "calibrate ml {d}/m.clf", 2,
-       "64-bit"},
+       kShortLog + "awk '/^ENCODER/ && !done {$2=\"-9223372036854775808\"; done=1} {print}' '{d}/l.clf' > '{d}/m.clf'",
+       "calibrate ml {d}/m.clf", 2, "64-bit"},
       {"shard_value_of_wrong_type",
        "mkdir -p '{d}/s' && {exe} run slip/normality_table_3_1 --shard 1/1 --out '{d}/s' >/dev/null 2>&1 && "
        "sed -i 's/\"tasks\": *\\([0-9]*\\)/\"tasks\": \"\\1\"/' '{d}/s/slip/normality_table_3_1.shard-1-of-1.json'",
        "merge {d}/s -o {d}/m", 2, "not a valid shard"},
       {"shard_1e12_tasks",
        "mkdir -p '{d}/s' && {exe} run slip/normality_table_3_1 --shard 1/1 --out '{d}/s' >/dev/null 2>&1 && "
-       "sed -i 's/\"tasks\": *\\([0-9]*\\)/\"tasks\": 1000000000000/' '{d}/s/slip/normality_table_3_1.shard-1-of-1.json'",
+       "sed -i 's/\"tasks\": *\\([0-9]*\\)/\"tasks\": 1000000000000/' "
+       "'{d}/s/slip/normality_table_3_1.shard-1-of-1.json'",
        "merge {d}/s -o {d}/m", 2, "not a valid shard"},
       {"run_out_onto_a_file", "touch '{d}/f'", "run odometry/sim_corridor --runs 1 --out {d}/f", 2, "not a folder"},
-      {"report_gnuplot_temp_unwritable", "{exe} run odometry/sim_corridor --runs 1 --out '{d}/o' >/dev/null 2>&1", "report {d}/o -o {d}/p.html", 2,
-       "temporary folder",
-       "TMPDIR='{d}/no/such/tmp'"},
+      {"report_gnuplot_temp_unwritable", "{exe} run odometry/sim_corridor --runs 1 --out '{d}/o' >/dev/null 2>&1",
+       "report {d}/o -o {d}/p.html", 2, "temporary folder", "TMPDIR='{d}/no/such/tmp'"},
       // 8. The README's example works.
-      {"readme_simulate_then_diagnose", "{exe} simulate corridor --seed 7 -o '{d}/c.clf.gz' >/dev/null 2>&1", "diagnose {d}/c.clf.gz", 0,
-       "verdict:"},
+      {"readme_simulate_then_diagnose", "{exe} simulate corridor --seed 7 -o '{d}/c.clf.gz' >/dev/null 2>&1",
+       "diagnose {d}/c.clf.gz", 0, "verdict:"},
       // 9. Garbage is refused.
-      {"calibrate_wheelbase_nan", kShortLog + "sed -i 's/^PARAM robot_wheelbase .*/PARAM robot_wheelbase nan/' '{d}/l.clf'",
+      {"calibrate_wheelbase_nan",
+       kShortLog + "sed -i 's/^PARAM robot_wheelbase .*/PARAM robot_wheelbase nan/' '{d}/l.clf'",
        "calibrate ml {d}/l.clf", 2, "robot_wheelbase"},
-      {"calibrate_wheelbase_zero", kShortLog + "sed -i 's/^PARAM robot_wheelbase .*/PARAM robot_wheelbase 0/' '{d}/l.clf'",
+      {"calibrate_wheelbase_zero",
+       kShortLog + "sed -i 's/^PARAM robot_wheelbase .*/PARAM robot_wheelbase 0/' '{d}/l.clf'",
        "calibrate ml {d}/l.clf", 2, "robot_wheelbase"},
-      {"calibrate_wheelbase_negative", kShortLog + "sed -i 's/^PARAM robot_wheelbase .*/PARAM robot_wheelbase -0.3/' '{d}/l.clf'",
+      {"calibrate_wheelbase_negative",
+       kShortLog + "sed -i 's/^PARAM robot_wheelbase .*/PARAM robot_wheelbase -0.3/' '{d}/l.clf'",
        "calibrate ml {d}/l.clf", 2, "robot_wheelbase"},
       {"calibrate_denormal_meters_per_tick",
-       kShortLog + "sed -i 's/^PARAM robot_meters_per_tick_left .*/PARAM robot_meters_per_tick_left 1e-310/' '{d}/l.clf'",
+       kShortLog +
+           "sed -i 's/^PARAM robot_meters_per_tick_left .*/PARAM robot_meters_per_tick_left 1e-310/' '{d}/l.clf'",
        "calibrate ml {d}/l.clf", 2, "robot_meters_per_tick_left"},
-      {"calibrate_all_equal_timestamps", kShortLog + "awk '/^ENCODER/ {$4=\"5\"; $6=\"5\"} {print}' '{d}/l.clf' > '{d}/eq.clf'",
+      {"calibrate_all_equal_timestamps",
+       kShortLog + "awk '/^ENCODER/ {$4=\"5\"; $6=\"5\"} {print}' '{d}/l.clf' > '{d}/eq.clf'",
        "calibrate ml {d}/eq.clf", 2, "same time"},
-      {"run_with_an_empty_data_folder_fails", "mkdir -p '{d}/data'", "run odometry/real_logs --data {d}/data --out {d}/out", 2,
-       "skipped for missing data"},
-      {"run_skipping_missing_data_by_name", "mkdir -p '{d}/data'", "run odometry/real_logs --data {d}/data --skip-missing all --out {d}/out",
-       0, "wrote"},
+      {"run_with_an_empty_data_folder_fails", "mkdir -p '{d}/data'",
+       "run odometry/real_logs --data {d}/data --out {d}/out", 2, "skipped for missing data"},
+      {"run_skipping_missing_data_by_name", "mkdir -p '{d}/data'",
+       "run odometry/real_logs --data {d}/data --skip-missing all --out {d}/out", 0, "wrote"},
       {"run_with_missing_data_folder", "", "run odometry/real_logs --data /typo --out {d}/out", 2, "--data"},
-      {"odometry_real_logs_with_a_missing_users_log", "", "run odometry/real_logs --log {d}/absent.clf --out {d}/out", 2, "absent.clf"},
-      {"laser_real_logs_with_a_missing_users_log", "", "run laser/real_logs --log {d}/absent.clf --out {d}/out", 2, "absent.clf"},
-      {"diagnosis_real_logs_with_a_missing_users_log", "", "run diagnosis/real_logs --log {d}/absent.clf --out {d}/out", 2, "absent.clf"},
-      {"diagnosis_sim_to_real_with_a_missing_users_log", "", "run diagnosis/sim_to_real --log {d}/absent.clf --out {d}/out", 2, "absent.clf"},
-      {"global_real_logs_with_a_missing_users_log", "", "run global/real_logs --log {d}/absent.clf --out {d}/out", 2, "absent.clf"},
-      {"noise_real_logs_with_a_missing_users_log", "", "run noise/real_logs --log {d}/absent.clf --out {d}/out", 2, "absent.clf"},
-      {"gate_schema_invalid_report", kReport + "sed -i 's/\"better\": \"[a-z_]*\"/\"better\": \"sideways\"/' '{d}/r.json'",
+      {"odometry_real_logs_with_a_missing_users_log", "", "run odometry/real_logs --log {d}/absent.clf --out {d}/out",
+       2, "absent.clf"},
+      {"laser_real_logs_with_a_missing_users_log", "", "run laser/real_logs --log {d}/absent.clf --out {d}/out", 2,
+       "absent.clf"},
+      {"diagnosis_real_logs_with_a_missing_users_log", "", "run diagnosis/real_logs --log {d}/absent.clf --out {d}/out",
+       2, "absent.clf"},
+      {"diagnosis_sim_to_real_with_a_missing_users_log", "",
+       "run diagnosis/sim_to_real --log {d}/absent.clf --out {d}/out", 2, "absent.clf"},
+      {"global_real_logs_with_a_missing_users_log", "", "run global/real_logs --log {d}/absent.clf --out {d}/out", 2,
+       "absent.clf"},
+      {"noise_real_logs_with_a_missing_users_log", "", "run noise/real_logs --log {d}/absent.clf --out {d}/out", 2,
+       "absent.clf"},
+      {"gate_schema_invalid_report",
+       kReport + "sed -i 's/\"better\": \"[a-z_]*\"/\"better\": \"sideways\"/' '{d}/r.json'",
        "gate {d}/r.json --baseline {d}/r.json", 2, "not a valid locbench report"},
-      {"gate_empty_baseline", kReport + "sed -e ':a;N;$!ba' -e 's/\"results\": \\[.*\\],\\n  \"schema\"/\"results\": [],\\n  \"schema\"/' '{d}/r.json' > '{d}/empty.json'",
+      {"gate_empty_baseline",
+       kReport + "sed -e ':a;N;$!ba' -e 's/\"results\": \\[.*\\],\\n  \"schema\"/\"results\": [],\\n  \"schema\"/' "
+                 "'{d}/r.json' > '{d}/empty.json'",
        "gate {d}/r.json --baseline {d}/empty.json", 2, "holds no results"},
-      {"gate_empty_rules", kReport + file("rules.json", R"({"accuracy": []})"), "gate {d}/r.json --baseline {d}/r.json --rules {d}/rules.json", 2,
-       "checks nothing"},
-      {"gate_rule_without_results", kReport + file("rules.json", R"({"accuracy": [{"match": "odometry/real_logs:*"}]})"),
+      {"gate_empty_rules", kReport + file("rules.json", R"({"accuracy": []})"),
+       "gate {d}/r.json --baseline {d}/r.json --rules {d}/rules.json", 2, "checks nothing"},
+      {"gate_rule_without_results",
+       kReport + file("rules.json", R"({"accuracy": [{"match": "odometry/real_logs:*"}]})"),
        "gate {d}/r.json --baseline {d}/r.json --rules {d}/rules.json", 1, "no current result matches this rule"},
-      {"gz_log_with_trailing_garbage", kShortLog + "gzip -c '{d}/l.clf' > '{d}/g.clf.gz' && printf 'GARBAGE' >> '{d}/g.clf.gz'",
+      {"gz_log_with_trailing_garbage",
+       kShortLog + "gzip -c '{d}/l.clf' > '{d}/g.clf.gz' && printf 'GARBAGE' >> '{d}/g.clf.gz'",
        "diagnose {d}/g.clf.gz", 2, "trailing garbage"},
-      {"gz_log_of_two_members_is_fine", kShortLog + "head -n 5 '{d}/l.clf' | gzip -c > '{d}/g.clf.gz' && tail -n +6 '{d}/l.clf' | gzip -c >> '{d}/g.clf.gz'",
+      {"gz_log_of_two_members_is_fine",
+       kShortLog +
+           "head -n 5 '{d}/l.clf' | gzip -c > '{d}/g.clf.gz' && tail -n +6 '{d}/l.clf' | gzip -c >> '{d}/g.clf.gz'",
        "calibrate ml {d}/g.clf.gz", 0, "converged"},
       {"map_from_log_nan", kShortLog, "localize --map-from-log nan --log {d}/l.clf", 2, "--map-from-log"},
       // 10. Messages that say what is wrong.
@@ -212,7 +263,9 @@ const std::vector<HostileCase>& cases() {
       {"missing_scenario_file", "", "simulate {d}/x.json -o {d}/o.clf", 2, "no such scenario file"},
       {"world_file_relative_to_the_scenario",
        "mkdir -p '{d}/sub' && cp '{src}/examples/room_map.json' '{d}/sub/room.json' && " +
-           file("sub/s.json", R"({"preset": "corridor", "world": {"kind": "file", "file": "room.json"}, "motion": {"kind": "straight", "distance": 0.5}})"),
+           file(
+               "sub/s.json",
+               R"({"preset": "corridor", "world": {"kind": "file", "file": "room.json"}, "motion": {"kind": "straight", "distance": 0.5}})"),
        "simulate {d}/sub/s.json -o {d}/o.clf", 0, "wrote"},
   };
   return all;
@@ -221,7 +274,8 @@ const std::vector<HostileCase>& cases() {
 class Hostile : public ::testing::TestWithParam<HostileCase> {};
 
 std::string substitute(std::string s, const std::string& key, const std::string& value) {
-  for (std::size_t p = s.find(key); p != std::string::npos; p = s.find(key, p + value.size())) s.replace(p, key.size(), value);
+  for (std::size_t p = s.find(key); p != std::string::npos; p = s.find(key, p + value.size()))
+    s.replace(p, key.size(), value);
   return s;
 }
 

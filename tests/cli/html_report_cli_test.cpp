@@ -33,15 +33,15 @@ Rendered render(const std::filesystem::path& html, const std::filesystem::path& 
   const std::string flags =
       "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
       "--disable-background-networking --disable-component-update --disable-sync "
-      "--enable-logging=stderr --v=0 --user-data-dir=" + profile.string();
+      "--enable-logging=stderr --v=0 --user-data-dir=" +
+      profile.string();
   const auto dom = profile.string() + ".dom";
   const auto log = profile.string() + ".log";
-  const std::string what = screenshot.empty()
-                               ? "--dump-dom"
-                               : "--screenshot=" + screenshot + " --window-size=1280,4000";
+  const std::string what =
+      screenshot.empty() ? "--dump-dom" : "--screenshot=" + screenshot + " --window-size=1280,4000";
   Rendered r;
-  r.exit_code = run_shell("chromium " + flags + " " + what + " file://" +
-                          std::filesystem::absolute(html).string() + " > " + dom + " 2> " + log)
+  r.exit_code = run_shell("chromium " + flags + " " + what + " file://" + std::filesystem::absolute(html).string() +
+                          " > " + dom + " 2> " + log)
                     .exit_code;
   r.dom = testing::file_contents(dom);
   r.log = testing::file_contents(log);
@@ -54,8 +54,7 @@ std::vector<std::string> problems(const std::string& log) {
   std::istringstream in(log);
   for (std::string line; std::getline(in, line);) {
     const bool console = line.find("CONSOLE") != std::string::npos;
-    const bool error = line.find(":ERROR:") != std::string::npos &&
-                       line.find(":ERROR:dbus/") == std::string::npos;
+    const bool error = line.find(":ERROR:") != std::string::npos && line.find(":ERROR:dbus/") == std::string::npos;
     if (console || error) out.push_back(line);
   }
   return out;
@@ -94,8 +93,7 @@ class HtmlReport : public ::testing::Test {
 
 TEST_F(HtmlReport, RendersInChromiumWithItsChartsTablesAndNoConsoleErrors) {
   const std::string reports = (dir.path() / "reports").string();
-  ASSERT_EQ(run_locbench("run odometry/sim_corridor noise/tables_4_1_4_2 --runs 5 --out " + reports)
-                .exit_code, 0);
+  ASSERT_EQ(run_locbench("run odometry/sim_corridor noise/tables_4_1_4_2 --runs 5 --out " + reports).exit_code, 0);
   const std::filesystem::path artifacts(LOCBENCH_ARTIFACT_DIR);
   std::filesystem::create_directories(artifacts);
   const auto html = artifacts / "report.html";
@@ -149,9 +147,9 @@ std::size_t most_moves(const std::string& svg) { return most_in_one_path(svg, 'M
 TEST_F(HtmlReport, DrawsTheWorstRelationsOfAUsersLogAsScanPairs) {
   const auto files = testing::write_small_real_log(dir.path());
   const std::string reports = (dir.path() / "reports").string();
-  const Outcome run = run_locbench("run laser/real_logs --log " + files.log.string() + " --relations " +
-                                   files.relations.string() + " --set 'matchers=[\"eap\"]' --set draw_worst=2 --out " +
-                                   reports);
+  const Outcome run =
+      run_locbench("run laser/real_logs --log " + files.log.string() + " --relations " + files.relations.string() +
+                   " --set 'matchers=[\"eap\"]' --set draw_worst=2 --out " + reports);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const auto html = dir.file("relations.html");
   const Outcome o = run_locbench("report " + reports + " -o " + html.string());
@@ -253,9 +251,8 @@ TEST_F(HtmlReport, TheConsoleCheckCatchesAPageThatLogsAnError) {
 TEST(ReportCommand, WithoutGnuplotExitsWith2AndSaysWhatToInstall) {
   testing::ScratchDir dir;
   ASSERT_EQ(run_locbench("run slip/normality_table_3_1 --out " + dir.path().string()).exit_code, 0);
-  const Outcome o = testing::run_shell("LOCBENCH_GNUPLOT=/nonexistent/gnuplot " +
-                                       std::string(LOCBENCH_EXE) + " report " +
-                                       dir.path().string() + " -o " + dir.file("r.html").string());
+  const Outcome o = testing::run_shell("LOCBENCH_GNUPLOT=/nonexistent/gnuplot " + std::string(LOCBENCH_EXE) +
+                                       " report " + dir.path().string() + " -o " + dir.file("r.html").string());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("gnuplot-nox"), std::string::npos) << o.output;
   EXPECT_FALSE(std::filesystem::exists(dir.file("r.html")));
@@ -263,11 +260,9 @@ TEST(ReportCommand, WithoutGnuplotExitsWith2AndSaysWhatToInstall) {
 
 TEST(ReportCommand, RefusesAShardAndSaysToMergeFirst) {
   testing::ScratchDir dir;
-  ASSERT_EQ(run_locbench("run slip/normality_table_3_1 --shard 1/1 --out " + dir.path().string())
-                .exit_code, 0);
-  const Outcome o = run_locbench("report " +
-                                 dir.file("slip/normality_table_3_1.shard-1-of-1.json").string() +
-                                 " -o " + dir.file("r.html").string());
+  ASSERT_EQ(run_locbench("run slip/normality_table_3_1 --shard 1/1 --out " + dir.path().string()).exit_code, 0);
+  const Outcome o = run_locbench("report " + dir.file("slip/normality_table_3_1.shard-1-of-1.json").string() + " -o " +
+                                 dir.file("r.html").string());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("locbench merge"), std::string::npos) << o.output;
 }

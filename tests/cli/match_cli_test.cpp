@@ -21,8 +21,8 @@ TEST(MatchCli, MatchesEveryScanOfASimulatedRoomLogAndWritesAValidReportAndTum) {
   const std::string log = dir.file("room.clf").string();
   ASSERT_EQ(run_locbench("simulate room_laser --seed 2 -o " + log).exit_code, 0);
   const std::string report = dir.file("match.json").string(), tum = dir.file("c.tum").string();
-  const Outcome o = run_locbench("match --map " + room_map() + " --log " + log +
-                                 " --report " + report + " --tum " + tum);
+  const Outcome o =
+      run_locbench("match --map " + room_map() + " --log " + log + " --report " + report + " --tum " + tum);
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto j = testing::read_json(report);
   EXPECT_TRUE(reports::validate_report_json(j).empty());

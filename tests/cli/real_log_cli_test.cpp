@@ -27,8 +27,8 @@ const reports::MetricResult* find(const reports::Report& r, const std::string& n
 TEST(RealLogCli, OdometryAndLaserRealLogsRunOnAUsersLogAndRelations) {
   ScratchDir dir;
   const auto files = testing::write_small_real_log(dir.path());
-  const std::string args = " --log " + files.log.string() + " --relations " +
-                           files.relations.string() + " -o " + (dir.path() / "out").string();
+  const std::string args = " --log " + files.log.string() + " --relations " + files.relations.string() + " -o " +
+                           (dir.path() / "out").string();
   Outcome o = run_locbench("run odometry/real_logs" + args);
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto odo = reports::read_report(dir.path() / "out/odometry/real_logs.json");
@@ -102,11 +102,10 @@ TEST(RealLogCli, AConfigFileNamesTheUsersFiles) {
   ScratchDir dir;
   const auto files = testing::write_small_real_log(dir.path());
   const auto config = dir.path() / "config.json";
-  std::ofstream(config) << R"({"odometry/real_logs": {"datasets": [{"name": "mine", "log": ")"
-                        << files.log.string() << R"(", "relations": ")" << files.relations.string()
-                        << R"("}]}})";
-  const Outcome o = run_locbench("run odometry/real_logs --config " + config.string() + " -o " +
-                                 (dir.path() / "out").string());
+  std::ofstream(config) << R"({"odometry/real_logs": {"datasets": [{"name": "mine", "log": ")" << files.log.string()
+                        << R"(", "relations": ")" << files.relations.string() << R"("}]}})";
+  const Outcome o =
+      run_locbench("run odometry/real_logs --config " + config.string() + " -o " + (dir.path() / "out").string());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto r = reports::read_report(dir.path() / "out/odometry/real_logs.json");
   EXPECT_NE(find(r, "odometry_raw/mine/rpe_translation"), nullptr);
@@ -126,8 +125,8 @@ TEST(RealLogCli, MissingOrMalformedFilesExitWith2AndNameTheFile) {
   EXPECT_NE(o.output.find("absent.relations"), std::string::npos) << o.output;
 
   std::ofstream(files.relations, std::ios::app) << "1 2 three\n";
-  o = run_locbench("run odometry/real_logs --log " + files.log.string() + " --relations " +
-                   files.relations.string() + out);
+  o = run_locbench("run odometry/real_logs --log " + files.log.string() + " --relations " + files.relations.string() +
+                   out);
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.output.find("small.relations"), std::string::npos) << o.output;
 

@@ -23,8 +23,7 @@ using testing::run_shell;
 void expect_same_results(const std::filesystem::path& a, const std::filesystem::path& b) {
   const nlohmann::json x = read_json(a.string());
   const nlohmann::json y = read_json(b.string());
-  for (const char* key : {"experiment", "seeds", "datasets", "configuration", "published",
-                          "cases", "notes", "plots"}) {
+  for (const char* key : {"experiment", "seeds", "datasets", "configuration", "published", "cases", "notes", "plots"}) {
     EXPECT_EQ(x.value(key, nlohmann::json()), y.value(key, nlohmann::json())) << key << " of " << a;
   }
   ASSERT_EQ(x["results"].size(), y["results"].size()) << a;
@@ -43,9 +42,8 @@ class ShardMerge : public ::testing::Test {
   // Shards K = 1…n of `what` into shards/K.
   void make_shards(const std::string& what, int n, const std::string& extra = "") {
     for (int k = 1; k <= n; ++k) {
-      const Outcome o = run_locbench("run " + what + " --shard " + std::to_string(k) + "/" +
-                                     std::to_string(n) + " " + extra + " --out " +
-                                     at("shards/" + std::to_string(k)));
+      const Outcome o = run_locbench("run " + what + " --shard " + std::to_string(k) + "/" + std::to_string(n) + " " +
+                                     extra + " --out " + at("shards/" + std::to_string(k)));
       ASSERT_EQ(o.exit_code, 0) << o.output;
     }
   }
@@ -94,8 +92,7 @@ TEST_F(ShardMerge, RefusesShardsThatDoNotBelongTogether) {
   expect_refused(one, "shard 2/2 is missing");
   expect_refused(one + " " + one, "given twice");
   const auto other = [&](const std::string& name, const std::string& args) {
-    const Outcome o = run_locbench("run odometry/sim_corridor " + args + " --shard 2/2 --out " +
-                                   at(name));
+    const Outcome o = run_locbench("run odometry/sim_corridor " + args + " --shard 2/2 --out " + at(name));
     EXPECT_EQ(o.exit_code, 0) << o.output;
     return at(name + "/odometry/sim_corridor.shard-2-of-2.json");
   };
@@ -124,8 +121,8 @@ TEST_F(ShardMerge, RefusesShardsThatDoNotBelongTogether) {
 
 TEST_F(ShardMerge, RunRejectsAShardOutsideOneToN) {
   for (const char* bad : {"3/2", "0/2", "1-2"}) {
-    const Outcome o = run_locbench(std::string("run odometry/sim_corridor --runs 1 --shard ") +
-                                   bad + " --out " + at("x"));
+    const Outcome o =
+        run_locbench(std::string("run odometry/sim_corridor --runs 1 --shard ") + bad + " --out " + at("x"));
     EXPECT_EQ(o.exit_code, 2) << bad << ": " << o.output;
   }
 }
@@ -142,11 +139,10 @@ TEST_F(ShardMerge, RunRecordsItsThreadCountInTheContextButNotInTheResults) {
 TEST_F(ShardMerge, TheSlurmArrayRecipeMergesToTheSingleMachineReport) {
   const std::string script = std::string(LOCBENCH_SOURCE_DIR) + "/docs/slurm_array.sh";
   for (int id = 0; id < 3; ++id) {
-    const Outcome o = run_shell(
-        "SLURM_ARRAY_TASK_ID=" + std::to_string(id) +
-        " SLURM_ARRAY_TASK_COUNT=3 SLURM_ARRAY_TASK_MIN=0 SLURM_CPUS_PER_TASK=2 LOCBENCH=" +
-        LOCBENCH_EXE + " EXPERIMENTS=odometry/sim_corridor RUNS=4 SEED=5 SHARD_DIR=" +
-        at("shards") + " bash " + script);
+    const Outcome o =
+        run_shell("SLURM_ARRAY_TASK_ID=" + std::to_string(id) +
+                  " SLURM_ARRAY_TASK_COUNT=3 SLURM_ARRAY_TASK_MIN=0 SLURM_CPUS_PER_TASK=2 LOCBENCH=" + LOCBENCH_EXE +
+                  " EXPERIMENTS=odometry/sim_corridor RUNS=4 SEED=5 SHARD_DIR=" + at("shards") + " bash " + script);
     ASSERT_EQ(o.exit_code, 0) << o.output;
   }
   EXPECT_TRUE(std::filesystem::exists(at("shards/3/odometry/sim_corridor.shard-3-of-3.json")));
@@ -170,14 +166,13 @@ TEST_F(ShardMerge, TheGnuParallelRecipeMergesToTheSingleMachineReport) {
       continue;
     }
     const std::string tag = fallback.empty() ? "parallel" : "xargs";
-    const Outcome o = run_shell(
-        "LOCBENCH_NO_PARALLEL=" + fallback + " LOCBENCH=" + LOCBENCH_EXE +
-        " N=3 EXPERIMENTS=odometry/sim_corridor RUNS=4 SEED=3 SHARD_DIR=" + at(tag + "/shards") +
-        " OUT=" + at(tag + "/merged") + " bash " + script + " < /dev/null");
+    const Outcome o =
+        run_shell("LOCBENCH_NO_PARALLEL=" + fallback + " LOCBENCH=" + LOCBENCH_EXE +
+                  " N=3 EXPERIMENTS=odometry/sim_corridor RUNS=4 SEED=3 SHARD_DIR=" + at(tag + "/shards") +
+                  " OUT=" + at(tag + "/merged") + " bash " + script + " < /dev/null");
     ASSERT_EQ(o.exit_code, 0) << o.output;
     EXPECT_EQ(o.output.find("xargs -P") != std::string::npos, !fallback.empty()) << o.output;
-    expect_same_results(at(tag + "/merged/odometry/sim_corridor.json"),
-                        at("single/odometry/sim_corridor.json"));
+    expect_same_results(at(tag + "/merged/odometry/sim_corridor.json"), at("single/odometry/sim_corridor.json"));
   }
 }
 

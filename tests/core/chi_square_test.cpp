@@ -23,7 +23,8 @@ TEST(ChiSquare, QuantilesMatchTheTable) {
 TEST(ChiSquare, UpperQuantileAndTailAreInverse) {
   EXPECT_NEAR(chi_square_upper_quantile(ChiSquareDof(1.0), 1e-3), 10.827566, 1e-6);
   EXPECT_NEAR(chi_square_upper_tail(ChiSquareDof(1.0), 3.841459), 0.05, 1e-7);
-  EXPECT_NEAR(chi_square_upper_tail(ChiSquareDof(4.0), chi_square_upper_quantile(ChiSquareDof(4.0), 1e-12)), 1e-12, 1e-20);
+  EXPECT_NEAR(chi_square_upper_tail(ChiSquareDof(4.0), chi_square_upper_quantile(ChiSquareDof(4.0), 1e-12)), 1e-12,
+              1e-20);
   EXPECT_EQ(chi_square_upper_tail(ChiSquareDof(2.0), 0.0), 1.0);
 }
 

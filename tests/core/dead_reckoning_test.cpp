@@ -21,8 +21,7 @@ TEST(DeadReckonEncoders, IntegratesTickIncrementsWithTheModel) {
 }
 
 TEST(DeadReckonVelocities, HoldsEachVelocityOverItsInterval) {
-  const std::vector<OdometryReading> o{{0.0, {}, 1.0, 0.0}, {2.0, {}, 0.0, kPi / 2},
-                                       {3.0, {}, 0.0, 0.0}};
+  const std::vector<OdometryReading> o{{0.0, {}, 1.0, 0.0}, {2.0, {}, 0.0, kPi / 2}, {3.0, {}, 0.0, 0.0}};
   const Trajectory t = dead_reckon_velocities(o, Pose2());
   EXPECT_THAT(t.poses()[1].pose, IsNearlyPose(Pose2(2, 0, 0), 1e-12));
   EXPECT_THAT(t.poses()[2].pose, IsNearlyPose(Pose2(2, 0, kPi / 2), 1e-12));

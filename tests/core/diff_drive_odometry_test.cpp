@@ -38,8 +38,7 @@ TEST(ExactArcStep, AQuarterCircleOfRadiusOneEndsOnTheCircle) {
 }
 
 TEST(ExactArcStep, AgreesWithTheMidpointStepOnAStraightLineAndTurningOnTheSpot) {
-  EXPECT_THAT(exact_arc_step(Pose2(1.0, 2.0, deg(90)), {0.1, 0.1}, kB),
-              IsNearlyPose(Pose2(1.0, 2.1, deg(90)), 1e-12));
+  EXPECT_THAT(exact_arc_step(Pose2(1.0, 2.0, deg(90)), {0.1, 0.1}, kB), IsNearlyPose(Pose2(1.0, 2.1, deg(90)), 1e-12));
   const double u = kB * kPi / 4.0;
   EXPECT_THAT(exact_arc_step(Pose2(), {-u, u}, kB), IsNearlyPose(Pose2(0.0, 0.0, deg(90)), 1e-12));
 }

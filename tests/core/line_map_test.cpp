@@ -8,9 +8,7 @@ namespace locbench {
 namespace {
 
 LineMap unit_box(double side) {
-  return {"box",
-          {{{0, 0}, {side, 0}}, {{side, 0}, {side, side}}, {{side, side}, {0, side}},
-           {{0, side}, {0, 0}}}};
+  return {"box", {{{0, 0}, {side, 0}}, {{side, 0}, {side, side}}, {{side, side}, {0, side}}, {{0, side}, {0, 0}}}};
 }
 
 TEST(RayCast, HitsTheNearestWallAtTheAnalyticRange) {

@@ -81,8 +81,7 @@ TEST(OptionFields, FromJsonReadsPresentKeysAndKeepsDefaultsForAbsentOnes) {
 TEST(OptionFields, AnUnknownKeyIsRejectedByNameWithTheKnownKeys) {
   EXPECT_EQ(error_of({{"radios", 1.0}}),
             "Outer.radios: unknown key (expected one of: radius, tries, points, strict, shape, inner)");
-  EXPECT_EQ(error_of({{"inner", {{"gian", 1.0}}}}),
-            "Outer.inner: Inner.gian: unknown key (expected one of: gain)");
+  EXPECT_EQ(error_of({{"inner", {{"gian", 1.0}}}}), "Outer.inner: Inner.gian: unknown key (expected one of: gain)");
 }
 
 TEST(OptionFields, AWrongTypeNamesTheKeyAndWhatWasExpected) {
@@ -97,8 +96,7 @@ TEST(OptionFields, AnOutOfRangeValueNamesTheKeyTheRangeAndTheUnit) {
   EXPECT_EQ(error_of({{"radius", 0.0}}), "Outer.radius: expected > 0 m, got 0.0");
   EXPECT_EQ(error_of({{"tries", 0}}), "Outer.tries: expected ≥ 1, got 0");
   EXPECT_EQ(error_of({{"points", 1}}), "Outer.points: expected ≥ 2, got 1");
-  EXPECT_EQ(error_of({{"inner", {{"gain", 1.5}}}}),
-            "Outer.inner: Inner.gain: expected a number in [0, 1], got 1.5");
+  EXPECT_EQ(error_of({{"inner", {{"gain", 1.5}}}}), "Outer.inner: Inner.gain: expected a number in [0, 1], got 1.5");
   Outer o;
   o.radius = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(validate(o), UsageError);
@@ -138,7 +136,8 @@ TEST(JsonFile, SyntaxErrorsNaNAndOverflowNameTheSourceAndLine) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message("{\n\"a\": NaN}").rfind("x.json:2: 'NaN' is not a JSON number", 0), 0u) << message("{\n\"a\": NaN}");
+  EXPECT_EQ(message("{\n\"a\": NaN}").rfind("x.json:2: 'NaN' is not a JSON number", 0), 0u)
+      << message("{\n\"a\": NaN}");
   EXPECT_EQ(message("{\n\n\"a\": 1e400}").rfind("x.json:3: '1e400' is not a finite number (number overflow", 0), 0u)
       << message("{\n\n\"a\": 1e400}");
   EXPECT_EQ(message("{\"a\": 1,}").rfind("x.json:1: invalid JSON", 0), 0u) << message("{\"a\": 1,}");

@@ -27,9 +27,7 @@ TEST(Pose2, BetweenGivesTheMotionInTheFirstFrame) {
   EXPECT_THAT(a * between(a, b), IsNearlyPose(b, 1e-12));
 }
 
-TEST(Pose2, ConstructorWrapsTheHeading) {
-  EXPECT_NEAR(Pose2(0, 0, deg(270)).theta, deg(-90), 1e-12);
-}
+TEST(Pose2, ConstructorWrapsTheHeading) { EXPECT_NEAR(Pose2(0, 0, deg(270)).theta, deg(-90), 1e-12); }
 
 TEST(Pose2, MapsPointsToTheParentFrame) {
   const Pose2 a(2.0, 1.0, deg(90));

@@ -23,7 +23,7 @@ TEST(Rng, NormalHasUnitVarianceAndZeroMean) {
   Rng r(7);
   std::vector<double> v(200000);
   for (double& x : v) x = r.normal();
-  EXPECT_NEAR(mean(v), 0.0, 0.01);                 // 4.5 standard errors
+  EXPECT_NEAR(mean(v), 0.0, 0.01);  // 4.5 standard errors
   EXPECT_NEAR(central_moment(v, 2), 1.0, 0.01);
   EXPECT_NEAR(central_moment(v, 4), 3.0, 0.06);
 }

@@ -40,8 +40,8 @@ TEST(NormalityTest, Table31ReproducesThePublishedDigits) {
   EXPECT_FALSE(r.reject_kurtosis);
   EXPECT_TRUE(r.normal);
   EXPECT_NEAR(r.p1, 2.0 * (1.0 - 0.557868), 1e-4);  // Φ(0.14556) = 0.557868
-  EXPECT_GT(r.p2, 0.05);  // = α/2: accepted exactly because p2 > α/2
-  EXPECT_LT(r.p2, 0.1);   // (the usual single-test rule at α = 0.1 would reject on kurtosis)
+  EXPECT_GT(r.p2, 0.05);                            // = α/2: accepted exactly because p2 > α/2
+  EXPECT_LT(r.p2, 0.1);                             // (the usual single-test rule at α = 0.1 would reject on kurtosis)
 }
 
 TEST(NormalityTest, BinnedEqualsRawSamples) {

@@ -52,7 +52,8 @@ MomentTestRates rejection_rates_on_normal_samples(int n, int samples) {
   const double z_one_sided = normal_quantile(0.995);  // 2.576: one-sided 0.5%, two-sided 1%
   const double nd = n;
   const double mean_b2 = 3.0 - 6.0 / (nd + 1.0);
-  const double sd_b2 = std::sqrt(24.0 * nd * (nd - 2.0) * (nd - 3.0) / ((nd + 1.0) * (nd + 1.0) * (nd + 3.0) * (nd + 5.0)));
+  const double sd_b2 =
+      std::sqrt(24.0 * nd * (nd - 2.0) * (nd - 3.0) / ((nd + 1.0) * (nd + 1.0) * (nd + 3.0) * (nd + 5.0)));
   MomentTestRates r;
   std::vector<double> v(static_cast<std::size_t>(n));
   for (int k = 0; k < samples; ++k) {
@@ -108,9 +109,7 @@ TEST(Summarize, OfOneValueHasAZeroWidthInterval) {
   EXPECT_DOUBLE_EQ(s.ci95_high, 4.2);
 }
 
-TEST(Summarize, RejectsAnEmptySample) {
-  EXPECT_THROW(summarize(std::vector<double>{}), std::invalid_argument);
-}
+TEST(Summarize, RejectsAnEmptySample) { EXPECT_THROW(summarize(std::vector<double>{}), std::invalid_argument); }
 
 }  // namespace
 }  // namespace locbench

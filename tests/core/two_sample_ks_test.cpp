@@ -51,8 +51,8 @@ TEST(TwoSampleKs, SamplesOfOneDistributionAreRarelyRejectedAndShiftedOnesAre) {
     rejected_same += ks_two_sample(a, b).p_value < 0.05 ? 1 : 0;
     rejected_shifted += ks_two_sample(a, c).p_value < 0.05 ? 1 : 0;
   }
-  EXPECT_LE(rejected_same, 12);      // ≈ 5 expected at the 5% level
-  EXPECT_GE(rejected_shifted, 90);   // a half-σ shift with 200 per sample: power ≈ 0.99
+  EXPECT_LE(rejected_same, 12);     // ≈ 5 expected at the 5% level
+  EXPECT_GE(rejected_shifted, 90);  // a half-σ shift with 200 per sample: power ≈ 0.99
 }
 
 TEST(TwoSampleKs, NonFiniteValuesAreLeftOutAndEmptySamplesGiveNoEvidence) {

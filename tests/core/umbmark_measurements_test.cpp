@@ -15,8 +15,7 @@ constexpr auto kCcw = UmbmarkDirection::kCounterClockwise;
 
 // Two CW and three CCW return errors [m].
 std::vector<UmbmarkReturn> five_runs() {
-  return {{kCw, 0.30, -0.10}, {kCcw, -0.10, 0.20}, {kCw, 0.50, -0.30}, {kCcw, -0.30, 0.40},
-          {kCcw, -0.20, 0.30}};
+  return {{kCw, 0.30, -0.10}, {kCcw, -0.10, 0.20}, {kCw, 0.50, -0.30}, {kCcw, -0.30, 0.40}, {kCcw, -0.20, 0.30}};
 }
 
 TEST(UmbmarkCentroids, AreTheMeanReturnErrorPerDirectionAndEMaxSystIsTheLongerOne) {

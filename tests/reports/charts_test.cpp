@@ -71,8 +71,8 @@ TEST(MetricHistograms, DrawsErrorsOverMonteCarloRunsGroupedByDatasetAndVariant) 
   r.results.push_back(make_metric("a", "sim", "final_position_error", "m", "monte_carlo_runs", five));
   r.results.push_back(make_metric("b", "sim", "final_position_error", "m", "monte_carlo_runs", five));
   r.results.push_back(make_metric("a", "sim", "nees_time_average", "", "time_steps", five));
-  r.results.push_back(make_metric("a", "sim", "ape_rmse_error", "m", "monte_carlo_runs",
-                                  std::vector<double>{1, 2}));  // too few values
+  r.results.push_back(
+      make_metric("a", "sim", "ape_rmse_error", "m", "monte_carlo_runs", std::vector<double>{1, 2}));  // too few values
   const auto plots = metric_histograms(r);
   ASSERT_EQ(plots.size(), 1u);
   EXPECT_EQ(plots[0].kind, "histogram");
@@ -83,8 +83,10 @@ TEST(MetricHistograms, DrawsErrorsOverMonteCarloRunsGroupedByDatasetAndVariant) 
 }
 
 Plot trajectory(double width, double height) {
-  return {"t", "trajectory", "title's", "x", "m", "y", "m",
-          {{"truth", {0, width}, {0, height}}, {"odometry_nominal", {0, width}, {0, 0.9 * height}}},
+  return {"t",       "trajectory",
+          "title's", "x",
+          "m",       "y",
+          "m",       {{"truth", {0, width}, {0, height}}, {"odometry_nominal", {0, width}, {0, 0.9 * height}}},
           ""};
 }
 
@@ -104,8 +106,8 @@ TEST(PlotScript, DrawsAPlaneTrajectoryToScaleButNotACorridor) {
 }
 
 TEST(SamplePlot, KeepsKindLabelsSamplesAndNoteAndLeavesTheYUnitEmpty) {
-  const Plot p = sample_plot("cdf", "fraction of samples", "c", "errors", "final error", "mm",
-                             {{"a", {}, {3.0, 1.0}}}, "run 0");
+  const Plot p =
+      sample_plot("cdf", "fraction of samples", "c", "errors", "final error", "mm", {{"a", {}, {3.0, 1.0}}}, "run 0");
   EXPECT_EQ(p.kind, "cdf");
   EXPECT_EQ(p.y_label, "fraction of samples");
   EXPECT_EQ(p.y_unit, "");
@@ -122,8 +124,7 @@ TEST(SamplePlot, KeepsKindLabelsSamplesAndNoteAndLeavesTheYUnitEmpty) {
 }
 
 TEST(PlotScript, DrawsAHistogramAsBoxesOfTheBinnedCounts) {
-  const Plot p = histogram_plot("h", "errors", "final error", "m",
-                                {{"a", {}, {0.0, 0.0, 1.0, 1.0, 1.0}}}, "");
+  const Plot p = histogram_plot("h", "errors", "final error", "m", {{"a", {}, {0.0, 0.0, 1.0, 1.0, 1.0}}}, "");
   const std::string s = plot_script(p);
   EXPECT_NE(s.find("with boxes"), std::string::npos);
   EXPECT_NE(s.find("set boxwidth 0.2 absolute"), std::string::npos) << s;  // 5 bins over [0, 1]

@@ -27,9 +27,7 @@ TEST(Checksum, OfAFolderChangesWhenAFileChanges) {
   EXPECT_NE(file_checksum(dir.path()), before);
 }
 
-TEST(Checksum, OfAMissingFileIsAnInputError) {
-  EXPECT_THROW(file_checksum("/nonexistent/file"), InputError);
-}
+TEST(Checksum, OfAMissingFileIsAnInputError) { EXPECT_THROW(file_checksum("/nonexistent/file"), InputError); }
 
 }  // namespace
 }  // namespace locbench::reports

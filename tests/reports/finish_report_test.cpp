@@ -169,8 +169,8 @@ TEST(FinishReport, ADiagnosisViolatingItsSchemaIsABugAndNothingIsWritten) {
   nlohmann::json d = empty_diagnosis();
   d.erase("verdict");
   std::ostringstream log;
-  const std::string e = logic_error_of(
-      [&] { finish_report(d, ReportTail("diagnose", "locbench diagnose", dir.file("d.json")), log); });
+  const std::string e =
+      logic_error_of([&] { finish_report(d, ReportTail("diagnose", "locbench diagnose", dir.file("d.json")), log); });
   EXPECT_EQ(e.rfind("diagnose produced a report that violates reports/diagnosis.schema.json: ", 0), 0u) << e;
   EXPECT_FALSE(std::filesystem::exists(dir.file("d.json")));
 }

@@ -23,8 +23,8 @@ GateInput from_report(const Report& r, const testing::ScratchDir& dir, const std
 Report with_values(std::vector<double> values) {
   Report r = testing::sample_report();
   r.body.results.clear();
-  r.body.results.push_back(make_metric("odometry_nominal", "sim_corridor", "final_position_error", "m",
-                                  "monte_carlo_runs", values));
+  r.body.results.push_back(
+      make_metric("odometry_nominal", "sim_corridor", "final_position_error", "m", "monte_carlo_runs", values));
   return r;
 }
 
@@ -71,8 +71,8 @@ TEST(Gate, HigherIsBetterResultsRegressWhenTheyFall) {
   a.body.results[0].better = "higher";
   Report b = with_values({0.5, 0.5, 0.5});
   b.body.results[0].better = "higher";
-  const GateVerdict v = evaluate_gate(from_report(a, dir, "a.json"), from_report(b, dir, "b.json"),
-                                      default_gate_rules());
+  const GateVerdict v =
+      evaluate_gate(from_report(a, dir, "a.json"), from_report(b, dir, "b.json"), default_gate_rules());
   EXPECT_EQ(row(v, kKey).status, "regressed");
 }
 
@@ -81,29 +81,31 @@ TEST(Gate, AMissingResultFailsUnlessItsDatasetWasSkipped) {
   const GateInput base = from_report(with_values({0.1, 0.1, 0.1}), dir, "a.json");
   Report none = testing::sample_report();
   none.body.results.clear();
-  const GateVerdict missing = evaluate_gate(base, from_report(none, dir, "b.json"),
-                                            default_gate_rules());
+  const GateVerdict missing = evaluate_gate(base, from_report(none, dir, "b.json"), default_gate_rules());
   EXPECT_FALSE(missing.passed());
   EXPECT_EQ(row(missing, kKey).status, "missing");
   none.body.cases.push_back({"odometry/sim_corridor", "skipped", "dataset absent"});
-  const GateVerdict skipped = evaluate_gate(base, from_report(none, dir, "c.json"),
-                                            default_gate_rules());
+  const GateVerdict skipped = evaluate_gate(base, from_report(none, dir, "c.json"), default_gate_rules());
   EXPECT_TRUE(skipped.passed());
   EXPECT_EQ(row(skipped, kKey).status, "skipped");
 }
 
 // Google Benchmark JSON with `reps` repetitions of two kernels.
-void write_bench(const std::filesystem::path& p, const std::vector<double>& fast,
-                 const std::vector<double>& slow) {
-  nlohmann::json j = {{"context", {{"library_build_type", "release"}}},
-                      {"benchmarks", nlohmann::json::array()}};
+void write_bench(const std::filesystem::path& p, const std::vector<double>& fast, const std::vector<double>& slow) {
+  nlohmann::json j = {{"context", {{"library_build_type", "release"}}}, {"benchmarks", nlohmann::json::array()}};
   for (std::size_t i = 0; i < fast.size(); ++i) {
-    j["benchmarks"].push_back({{"name", "BM_Fast"}, {"run_name", "BM_Fast"},
-                               {"run_type", "iteration"}, {"real_time", fast[i]},
-                               {"cpu_time", fast[i]}, {"time_unit", "us"}});
-    j["benchmarks"].push_back({{"name", "BM_Slow"}, {"run_name", "BM_Slow"},
-                               {"run_type", "iteration"}, {"real_time", slow[i]},
-                               {"cpu_time", slow[i]}, {"time_unit", "us"}});
+    j["benchmarks"].push_back({{"name", "BM_Fast"},
+                               {"run_name", "BM_Fast"},
+                               {"run_type", "iteration"},
+                               {"real_time", fast[i]},
+                               {"cpu_time", fast[i]},
+                               {"time_unit", "us"}});
+    j["benchmarks"].push_back({{"name", "BM_Slow"},
+                               {"run_name", "BM_Slow"},
+                               {"run_type", "iteration"},
+                               {"real_time", slow[i]},
+                               {"cpu_time", slow[i]},
+                               {"time_unit", "us"}});
   }
   std::ofstream(p) << j.dump();
 }
@@ -149,8 +151,7 @@ TEST(Gate, ARatioAboveItsCeilingFailsEvenWithoutABaseline) {
   testing::ScratchDir dir;
   write_bench(dir.file("now.json"), {90}, {100});
   GateInput empty;
-  const GateVerdict v =
-      evaluate_gate(empty, load_gate_input({dir.file("now.json").string()}), ratio_rules());
+  const GateVerdict v = evaluate_gate(empty, load_gate_input({dir.file("now.json").string()}), ratio_rules());
   EXPECT_EQ(v.ratios[0].status, "regressed");  // 0.9 > ceiling 0.8
 }
 
@@ -160,11 +161,20 @@ TEST(Gate, ARatioWhoseBenchmarkSkippedForMissingDataFails) {
   // BM_Fast skipped (SkipWithError, as the real-scan kernels do without LOCBENCH_DATA): Google
   // Benchmark still writes a row, with error_occurred and a zero time.
   nlohmann::json j = {{"benchmarks", nlohmann::json::array()}};
-  j["benchmarks"].push_back({{"name", "BM_Fast"}, {"run_name", "BM_Fast"}, {"run_type", "iteration"},
-                             {"error_occurred", true}, {"error_message", "intel log not found"},
-                             {"real_time", 0.0}, {"cpu_time", 0.0}, {"time_unit", "us"}});
-  j["benchmarks"].push_back({{"name", "BM_Slow"}, {"run_name", "BM_Slow"}, {"run_type", "iteration"},
-                             {"real_time", 100.0}, {"cpu_time", 100.0}, {"time_unit", "us"}});
+  j["benchmarks"].push_back({{"name", "BM_Fast"},
+                             {"run_name", "BM_Fast"},
+                             {"run_type", "iteration"},
+                             {"error_occurred", true},
+                             {"error_message", "intel log not found"},
+                             {"real_time", 0.0},
+                             {"cpu_time", 0.0},
+                             {"time_unit", "us"}});
+  j["benchmarks"].push_back({{"name", "BM_Slow"},
+                             {"run_name", "BM_Slow"},
+                             {"run_type", "iteration"},
+                             {"real_time", 100.0},
+                             {"cpu_time", 100.0},
+                             {"time_unit", "us"}});
   std::ofstream(dir.file("now.json")) << j.dump();
   const GateVerdict v = evaluate_gate(load_gate_input({dir.file("base.json").string()}),
                                       load_gate_input({dir.file("now.json").string()}), ratio_rules());
@@ -181,7 +191,8 @@ TEST(GateRules, RejectAnUnknownKeyByItsPath) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("rules.accuracy[0].max_relativ: unknown key (expected one of: "),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("max_relative_worsening"), std::string::npos) << e.what();
   }
 }

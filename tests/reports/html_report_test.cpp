@@ -22,10 +22,10 @@ struct StubRenderer {
 Report report_with_chart() {
   Report r = testing::sample_report();
   r.body.notes.push_back("a <finding> & its reason");
-  r.body.plots.push_back({"trajectories_run_0", "trajectory", "Trajectories", "x", "m", "y", "m",
-                          {{"truth", {0, 1}, {0, 1}}}, "run 0"});
-  r.body.results.push_back(make_metric("odometry_nominal", "sim_corridor", "ape_rmse_error", "m",
-                                       "monte_carlo_runs", std::vector<double>{1, 2, 3, 4, 5}));
+  r.body.plots.push_back(
+      {"trajectories_run_0", "trajectory", "Trajectories", "x", "m", "y", "m", {{"truth", {0, 1}, {0, 1}}}, "run 0"});
+  r.body.results.push_back(make_metric("odometry_nominal", "sim_corridor", "ape_rmse_error", "m", "monte_carlo_runs",
+                                       std::vector<double>{1, 2, 3, 4, 5}));
   return r;
 }
 

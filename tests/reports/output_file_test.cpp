@@ -60,7 +60,8 @@ TEST(OutputFile, AFullDiskIsAnInputErrorNamingThePath) {
 
 TEST(OutputFile, AFolderIsNotAFileToWrite) {
   testing::ScratchDir dir;
-  EXPECT_NE(input_error_message([&] { write_file_atomically(dir.path(), "x"); }).find("is a folder"), std::string::npos);
+  EXPECT_NE(input_error_message([&] { write_file_atomically(dir.path(), "x"); }).find("is a folder"),
+            std::string::npos);
 }
 
 TEST(OutputFile, AnOutputThatIsAnInputIsRefused) {
@@ -68,11 +69,17 @@ TEST(OutputFile, AnOutputThatIsAnInputIsRefused) {
   std::ofstream(dir.file("in.clf")) << "x";
   std::filesystem::create_symlink(dir.file("in.clf"), dir.file("link.clf"));
   const std::string in = dir.file("in.clf").string();
-  EXPECT_NE(input_error_message([&] { check_outputs({in}, {{"--report", in}}); }).find("would overwrite the input"), std::string::npos);
-  EXPECT_NE(input_error_message([&] { check_outputs({in}, {{"--report", dir.file("link.clf").string()}}); }).find("would overwrite"),
+  EXPECT_NE(input_error_message([&] {
+              check_outputs({in}, {{"--report", in}});
+            }).find("would overwrite the input"),
             std::string::npos);
-  EXPECT_NE(input_error_message([&] { check_outputs({in}, {{"--report", dir.path().string() + "/./sub/../in.clf"}}); })
-                .find("would overwrite"),
+  EXPECT_NE(input_error_message([&] {
+              check_outputs({in}, {{"--report", dir.file("link.clf").string()}});
+            }).find("would overwrite"),
+            std::string::npos);
+  EXPECT_NE(input_error_message([&] {
+              check_outputs({in}, {{"--report", dir.path().string() + "/./sub/../in.clf"}});
+            }).find("would overwrite"),
             std::string::npos);
   EXPECT_NE(input_error_message([&] {
               check_outputs({}, {{"-o", dir.file("a").string()}, {"--truth-tum", dir.file("a").string()}});
@@ -84,10 +91,14 @@ TEST(OutputFile, AnOutputThatIsAnInputIsRefused) {
 TEST(OutputFile, AnOutputInsideAnInputFolderIsRefusedOnlyForTheFilesItReads) {
   testing::ScratchDir dir;
   const std::string folder = dir.path().string();
-  EXPECT_NE(input_error_message([&] { check_outputs({folder}, {{"--json", dir.file("gate.json").string()}}, ".json"); })
-                .find("lies in the input folder"),
+  EXPECT_NE(input_error_message([&] {
+              check_outputs({folder}, {{"--json", dir.file("gate.json").string()}}, ".json");
+            }).find("lies in the input folder"),
             std::string::npos);
-  EXPECT_EQ(input_error_message([&] { check_outputs({folder}, {{"-o", dir.file("report.html").string()}}, ".json"); }), "");
+  EXPECT_EQ(input_error_message([&] {
+              check_outputs({folder}, {{"-o", dir.file("report.html").string()}}, ".json");
+            }),
+            "");
 }
 
 TEST(OutputFile, ASecondLockOnAnOutputFolderIsRefused) {

@@ -80,9 +80,7 @@ TEST(ReportJson, ReadingAWrongSchemaNamesTheFileAndTheExpectation) {
 TEST(ReportJson, ReadingTruncatedJsonIsAnInputError) {
   testing::ScratchDir dir;
   const auto path = dir.file("r.json");
-  {
-    std::ofstream(path) << to_json(testing::sample_report()).dump().substr(0, 100);
-  }
+  { std::ofstream(path) << to_json(testing::sample_report()).dump().substr(0, 100); }
   EXPECT_THROW(read_report(path), InputError);
 }
 
@@ -101,8 +99,13 @@ TEST(ReportJson, PlotsThreadsAndShardsRoundTripAndValidate) {
   Report r = testing::sample_report();
   r.provenance.threads = 3;
   r.provenance.shards = 4;
-  r.body.plots.push_back({"error_vs_distance", "error_vs_distance", "Error", "distance travelled",
-                          "m", "position error", "m",
+  r.body.plots.push_back({"error_vs_distance",
+                          "error_vs_distance",
+                          "Error",
+                          "distance travelled",
+                          "m",
+                          "position error",
+                          "m",
                           {{"odometry_nominal", {0.0, 0.25, 0.5}, {0.0, 0.01, 0.03}}},
                           "mean over 3 runs"});
   const nlohmann::json j = to_json(r);
@@ -149,9 +152,11 @@ TEST(ReportJson, FindingsFieldsRoundTripAndAreOptional) {
   c.relative_tolerance = 0.01;
   c.tolerance_basis = "printed digits";
   r.body.published = {c};
-  r.body.diagnoses = {{"log1", "TRUEPOS", {{"velocity_scale", {{"scale", 1.02, 1.01, 1.03}},
-                                            FindingGain{"translation_rms", 0.2, 0.1}, true}},
-                       "one cause"}};
+  r.body.diagnoses = {
+      {"log1",
+       "TRUEPOS",
+       {{"velocity_scale", {{"scale", 1.02, 1.01, 1.03}}, FindingGain{"translation_rms", 0.2, 0.1}, true}},
+       "one cause"}};
   const Report back = report_from_json(to_json(r), "mem");
   ASSERT_EQ(back.body.published.size(), 1u);
   const PublishedComparison& b = back.body.published[0];

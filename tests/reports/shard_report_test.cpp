@@ -29,8 +29,7 @@ ShardReport sample_shard() {
   s.index = 2;
   s.count = 3;
   s.tasks = 5;
-  s.records = {{1, {{"error", 0.1 + 0.2}, {"nees", {1.0, kNaN, kInf}}}},
-               {4, {{"error", 1e-300}, {"nees", {-kInf}}}}};
+  s.records = {{1, {{"error", 0.1 + 0.2}, {"nees", {1.0, kNaN, kInf}}}}, {4, {{"error", 1e-300}, {"nees", {-kInf}}}}};
   return s;
 }
 

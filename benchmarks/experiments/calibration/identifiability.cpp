@@ -7,14 +7,14 @@
 
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
+#include "baselines/calibration/umbmark_classic.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/scenario_option.h"
 #include "core/errors.h"
 #include "core/rng.h"
 #include "core/statistics.h"
-#include "baselines/calibration/umbmark_classic.h"
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
@@ -25,14 +25,14 @@ namespace locbench::experiments::calibration_identifiability {
 
 const ExperimentInfo kInfo{
     .name = "calibration/identifiability",
-    .description = "UMBmark identifiability on simulated robots: E_d, E_b, E_o swept alone and together; "
-                   "estimates of classic and improved UMBmark against the truth, with Fisher findings",
-    .reading = {
-        "Read the E_o_0.99 and E_o_1.01 cases: the improved method's E_o estimate does not follow "
-        "the true E_o (its error is ≈ −(E_o − 1)), because the square's return errors see E_b and "
-        "E_o only through the turn angle E_o/E_b and the logged leg counts are commanded, not "
-        "measured; the E_o error lands on E_b instead. E_d is determined by every design. A "
-        "tape-measured leg length would determine E_o (see the notes of the E_o results)."}};
+    .description =
+        "UMBmark identifiability on simulated robots: E_d, E_b, E_o swept alone and together; "
+        "estimates of classic and improved UMBmark against the truth, with Fisher findings",
+    .reading = {"Read the E_o_0.99 and E_o_1.01 cases: the improved method's E_o estimate does not follow "
+                "the true E_o (its error is ≈ −(E_o − 1)), because the square's return errors see E_b and "
+                "E_o only through the turn angle E_o/E_b and the logged leg counts are commanded, not "
+                "measured; the E_o error lands on E_b instead. E_d is determined by every design. A "
+                "tape-measured leg length would determine E_o (see the notes of the E_o results)."}};
 
 struct IdentifiabilityCase {
   std::string name;
@@ -107,8 +107,7 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Options, Id
     return Rng::derive_seed(plan.seed, (c + 1) * 1000 + k);
   }
 
-  nlohmann::json run_task(const IdentifiabilitySetup& u, const McPlan& plan,
-                          int task) const override {
+  nlohmann::json run_task(const IdentifiabilitySetup& u, const McPlan& plan, int task) const override {
     const IdentifiabilityCase& cs = u.cases[static_cast<std::size_t>(task / plan.runs)];
     sim::Scenario s = u.base;
     s.robot.actual = true_geometry(u.base.robot.nominal, cs.truth);
@@ -116,15 +115,14 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Options, Id
     const UmbmarkInput in = sim::umbmark_input(s, r.umbmark_runs, 1.0);  // no tape
     const ClassicUmbmarkResult cl = classic_umbmark(in);
     const ImprovedUmbmarkResult im = improved_umbmark(in);
-    return {{"estimates", {{cl.E_d, cl.E_b, cl.E_s}, {im.E_d, im.E_b, im.E_o}}},
-            {"run_sigma", cl.centroids.run_sigma}};
+    return {{"estimates", {{cl.E_d, cl.E_b, cl.E_s}, {im.E_d, im.E_b, im.E_o}}}, {"run_sigma", cl.centroids.run_sigma}};
   }
 
   reports::ExperimentResults summarise(const IdentifiabilitySetup& u, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
     reports::ExperimentResults out = start_results(u.configuration);
-    out.datasets.push_back({"sim/" + u.base.name, "simulated",
-                            reports::text_checksum(out.configuration["scenario"].dump()), 0, 0.0});
+    out.datasets.push_back(
+        {"sim/" + u.base.name, "simulated", reports::text_checksum(out.configuration["scenario"].dump()), 0, 0.0});
     UmbmarkIdentifiabilityOptions idopt;
     idopt.runs_per_direction = u.base.motion.runs;
     for (std::size_t c = 0; c < u.cases.size(); ++c) {
@@ -144,11 +142,10 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Options, Id
       }
       idopt.run_sigma = mean(sigma);
       const UmbmarkDesignFinding f[2] = {
-          analyze_umbmark_design(UmbmarkDesign::kSquare, UmbmarkParameterSet::kClassic,
-                                 s.robot.nominal, s.robot.encoder, s.motion.side, {}, idopt),
-          analyze_umbmark_design(UmbmarkDesign::kSquareWithLegTicks,
-                                 UmbmarkParameterSet::kImproved, s.robot.nominal, s.robot.encoder,
-                                 s.motion.side, {}, idopt)};
+          analyze_umbmark_design(UmbmarkDesign::kSquare, UmbmarkParameterSet::kClassic, s.robot.nominal,
+                                 s.robot.encoder, s.motion.side, {}, idopt),
+          analyze_umbmark_design(UmbmarkDesign::kSquareWithLegTicks, UmbmarkParameterSet::kImproved, s.robot.nominal,
+                                 s.robot.encoder, s.motion.side, {}, idopt)};
       const char* methods[2] = {"umbmark_classic", "umbmark_improved"};
       const char* params[3] = {"E_d", "E_b", "E_o"};
       const double true_values[3] = {cs.truth.E_d, cs.truth.E_b, cs.truth.E_o};
@@ -158,8 +155,7 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Options, Id
           std::vector<double> err;
           for (double v : est[m][p]) err.push_back(v - true_values[p]);
           reports::MetricResult r =
-              reports::make_metric(methods[m], cs.name, std::string(params[p]) + "_error", "",
-                                   "monte_carlo_runs", err);
+              reports::make_metric(methods[m], cs.name, std::string(params[p]) + "_error", "", "monte_carlo_runs", err);
           r.better = "closer_to_zero";
           for (const ParameterFinding& pf : f[m].report.parameters) {
             if (pf.name != params[p]) continue;

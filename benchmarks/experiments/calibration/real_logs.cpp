@@ -12,28 +12,26 @@
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/held_out_evaluation.h"
 #include "algorithms/calibration/ml_calibration.h"
-#include "core/errors.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "datasets/catalog/calibration_catalog.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
+#include "core/errors.h"
+#include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/censi_results_reader.h"
 #include "reports/checksum.h"
 
 namespace locbench::experiments::calibration_real_logs {
 
-const ExperimentInfo kInfo{
-    .name = "calibration/real_logs",
-    .description = "ML odometry calibration on real data: Censi's Khepera sets beside the published "
-                   "solutions; Freiburg and MRCLAM calibrated on one half, evaluated on the other"};
+const ExperimentInfo kInfo{.name = "calibration/real_logs",
+                           .description =
+                               "ML odometry calibration on real data: Censi's Khepera sets beside the published "
+                               "solutions; Freiburg and MRCLAM calibrated on one half, evaluated on the other"};
 
-reports::MetricResult one_value(const std::string& method, const std::string& dataset,
-                                const std::string& variant, const std::string& unit,
-                                double value) {
-  return reports::make_metric(method, dataset, variant, unit, "held_out_rmse",
-                              std::vector<double>{value});
+reports::MetricResult one_value(const std::string& method, const std::string& dataset, const std::string& variant,
+                                const std::string& unit, double value) {
+  return reports::make_metric(method, dataset, variant, unit, "held_out_rmse", std::vector<double>{value});
 }
 
 struct Options {
@@ -41,8 +39,8 @@ struct Options {
                                           "l90",       "l90_0",       "l90_1",       "l90_2"};
   nlohmann::json relations_logs = freiburg_logs();
   double relation_max_duration_s = 10.0;
-  nlohmann::json velocity_logs = {"mrclam6_robot1", "mrclam6_robot2", "mrclam6_robot3",
-                                  "mrclam6_robot4", "mrclam6_robot5"};
+  nlohmann::json velocity_logs = {"mrclam6_robot1", "mrclam6_robot2", "mrclam6_robot3", "mrclam6_robot4",
+                                  "mrclam6_robot5"};
   double velocity_time_offset_s = 0.25;
   double training_fraction = 0.5;
 };
@@ -50,8 +48,7 @@ template <class V>
 void visit_fields(V& v, Options& o) {
   v.field("censi_parts", o.censi_parts, "", Range{}, "Censi's Khepera sets");
   v.field("relations_logs", o.relations_logs, "", Range{}, "logs calibrated on their relations");
-  v.field("relation_max_duration_s", o.relation_max_duration_s, "s", positive(),
-          "longest relation used as a sample");
+  v.field("relation_max_duration_s", o.relation_max_duration_s, "s", positive(), "longest relation used as a sample");
   v.field("velocity_logs", o.velocity_logs, "", Range{}, "logs calibrated on velocities and truth");
   v.field("velocity_time_offset_s", o.velocity_time_offset_s, "s", any_finite(),
           "odometry time offset of the velocity logs");
@@ -77,8 +74,7 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
     int agree = 0, compared = 0;
     for (const std::string& part : parts) {
       progress();
-      const std::filesystem::path results =
-          options.data_root / censi->path / (part + "_results.json");
+      const std::filesystem::path results = options.data_root / censi->path / (part + "_results.json");
       if (!std::filesystem::exists(results)) {
         // The case name ends in the results' dataset key, so gates know these were skipped.
         out.cases.push_back({"calibration/censi_" + reports::key_part(part), "skipped",
@@ -99,14 +95,14 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
                                    pub.sensor_x,      pub.sensor_y,       pub.sensor_theta};
       const char* names[6] = {"r_L", "r_R", "b", "sensor_x", "sensor_y", "sensor_theta"};
       const char* units[6] = {"m", "m", "m", "m", "m", "rad"};
-      reports::PublishedComparison t{"Censi et al. 2013, " + part + "_results.json",
-                                     "calibrated parameters", "m, rad", {}, ""};
+      reports::PublishedComparison t{
+          "Censi et al. 2013, " + part + "_results.json", "calibrated parameters", "m, rad", {}, ""};
       std::string worst;
       double worst_ratio = 0.0;
       for (int i = 0; i < 6; ++i) {
         const CalibratedParameter& p = r.parameter(names[i]);
-        reports::MetricResult m = reports::make_estimate("ml", ds, names[i], units[i], p.value,
-                                                         p.standard_error, r.samples_used);
+        reports::MetricResult m =
+            reports::make_estimate("ml", ds, names[i], units[i], p.value, p.standard_error, r.samples_used);
         m.identifiable = p.identifiable;
         if (!p.identifiable) m.note = p.reason;
         out.results.push_back(std::move(m));
@@ -131,40 +127,38 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
       out.published.push_back(std::move(t));
     }
     if (compared > 0) {
-      out.notes.push_back(fmt::format(
-          "Censi's Khepera data: {} of {} parameter estimates agree with the published solutions "
-          "within 2·√(σ_pub² + σ_ours²).",
-          agree, compared));
+      out.notes.push_back(
+          fmt::format("Censi's Khepera data: {} of {} parameter estimates agree with the published solutions "
+                      "within 2·√(σ_pub² + σ_ours²).",
+                      agree, compared));
     }
 
-    auto held_out = [&](const std::string& name, const CalibrationData& d,
-                        const MlCalibrationOptions& o, const std::string& path) {
+    auto held_out = [&](const std::string& name, const CalibrationData& d, const MlCalibrationOptions& o,
+                        const std::string& path) {
       const HeldOutEvaluation h = evaluate_held_out(d, o, fraction);
       const std::string ds = reports::key_part(name);
-      out.datasets.push_back({ds, path, reports::file_checksum(path.substr(0, path.find('#'))),
-                              d.samples.size(), 0.0});
+      out.datasets.push_back({ds, path, reports::file_checksum(path.substr(0, path.find('#'))), d.samples.size(), 0.0});
       for (const CalibratedParameter& p : h.calibration.parameters) {
-        reports::MetricResult m = reports::make_estimate("ml_first_half", ds, p.name, "", p.value,
-                                                         p.standard_error,
+        reports::MetricResult m = reports::make_estimate("ml_first_half", ds, p.name, "", p.value, p.standard_error,
                                                          h.calibration.samples_used);
         m.identifiable = p.identifiable;
         if (!p.identifiable) m.note = p.reason;
         out.results.push_back(std::move(m));
       }
-      out.results.push_back(one_value("odometry_nominal", ds, "held_out_rpe_translation_rmse", "m",
-                                      h.nominal_translation.rmse));
-      out.results.push_back(one_value("odometry_calibrated", ds, "held_out_rpe_translation_rmse",
-                                      "m", h.calibrated_translation.rmse));
-      out.results.push_back(one_value("odometry_nominal", ds, "held_out_rpe_rotation_rmse", "rad",
-                                      h.nominal_rotation.rmse));
-      out.results.push_back(one_value("odometry_calibrated", ds, "held_out_rpe_rotation_rmse",
-                                      "rad", h.calibrated_rotation.rmse));
-      out.notes.push_back(fmt::format(
-          "{}: calibrated on {} samples, evaluated on {}: translation RMSE {:.4g} → {:.4g} m "
-          "({:+.1f}%), rotation RMSE {:.4g} → {:.4g} rad ({:+.1f}%).",
-          name, h.training_samples, h.evaluation_samples, h.nominal_translation.rmse,
-          h.calibrated_translation.rmse, -100 * h.translation_rmse_reduction,
-          h.nominal_rotation.rmse, h.calibrated_rotation.rmse, -100 * h.rotation_rmse_reduction));
+      out.results.push_back(
+          one_value("odometry_nominal", ds, "held_out_rpe_translation_rmse", "m", h.nominal_translation.rmse));
+      out.results.push_back(
+          one_value("odometry_calibrated", ds, "held_out_rpe_translation_rmse", "m", h.calibrated_translation.rmse));
+      out.results.push_back(
+          one_value("odometry_nominal", ds, "held_out_rpe_rotation_rmse", "rad", h.nominal_rotation.rmse));
+      out.results.push_back(
+          one_value("odometry_calibrated", ds, "held_out_rpe_rotation_rmse", "rad", h.calibrated_rotation.rmse));
+      out.notes.push_back(
+          fmt::format("{}: calibrated on {} samples, evaluated on {}: translation RMSE {:.4g} → {:.4g} m "
+                      "({:+.1f}%), rotation RMSE {:.4g} → {:.4g} rad ({:+.1f}%).",
+                      name, h.training_samples, h.evaluation_samples, h.nominal_translation.rmse,
+                      h.calibrated_translation.rmse, -100 * h.translation_rmse_reduction, h.nominal_rotation.rmse,
+                      h.calibrated_rotation.rmse, -100 * h.rotation_rmse_reduction));
     };
     // Calibrates on each log of `specs` that loads; a missing catalog log is a skipped case.
     auto each_loaded = [&](const std::vector<RealLogSpec>& specs, const MlCalibrationOptions& o,
@@ -174,8 +168,8 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
         LoadedRealLog loaded = load_real_log(spec, options.data_root);
         if (loaded.status == "failed") throw InputError(loaded.dataset.path, 0, loaded.reason);
         if (loaded.status != "ok") {
-          out.cases.push_back({"calibration/" + spec.name, loaded.status,
-                               "dataset not found at " + loaded.dataset.path});
+          out.cases.push_back(
+              {"calibration/" + spec.name, loaded.status, "dataset not found at " + loaded.dataset.path});
           continue;
         }
         held_out(spec.name, samples_of(loaded.log), o, loaded.dataset.path);

@@ -1,5 +1,5 @@
-// Experiment calibration/umbmark_borenstein: UMBmark, classic and improved, on a LabMate-like robot on Borenstein & Feng's 4 m square.
-// The experiment is harness/calibration_umbmark.h, shared with the other robot.
+// Experiment calibration/umbmark_borenstein: UMBmark, classic and improved, on a LabMate-like robot on Borenstein &
+// Feng's 4 m square. The experiment is harness/calibration_umbmark.h, shared with the other robot.
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/calibration_umbmark.h"
 

@@ -18,8 +18,9 @@ namespace locbench::experiments::diagnosis_false_alarms {
 
 const ExperimentInfo kInfo{
     .name = "diagnosis/false_alarms",
-    .description = "False alarms of the diagnosis on logs with nothing hidden, from the window-model generator and from the "
-                   "physical generator (goal ≤ 1% per log)",
+    .description =
+        "False alarms of the diagnosis on logs with nothing hidden, from the window-model generator and from the "
+        "physical generator (goal ≤ 1% per log)",
     .in_default_suite = false};  // 400 diagnoses; `locbench run diagnosis/false_alarms`
 
 struct Options {
@@ -87,14 +88,14 @@ class DiagnosisFalseAlarms final : public MonteCarloExperiment<Options, FalseAla
         for (const auto& id : r.at("unexplained")) ++what["unexplained " + id.get<std::string>()];
       }
       if (alarm.empty()) continue;
-      out.results.push_back(reports::make_metric("diagnose", std::string(generator) + "_null_logs", "false_alarm_rate", "",
-                                                 "logs", alarm));
+      out.results.push_back(reports::make_metric("diagnose", std::string(generator) + "_null_logs", "false_alarm_rate",
+                                                 "", "logs", alarm));
       double n = 0.0;
       for (double a : alarm) n += a;
       std::string detail;
       for (const auto& [k, v] : what) detail += fmt::format("{}{} ×{}", detail.empty() ? "" : ", ", k, v);
-      out.notes.push_back(fmt::format("{} generator: {} false alarm(s) in {} null logs ({:.2f}%; goal ≤ 1%){}", generator, n,
-                                      alarm.size(), 100.0 * n / static_cast<double>(alarm.size()),
+      out.notes.push_back(fmt::format("{} generator: {} false alarm(s) in {} null logs ({:.2f}%; goal ≤ 1%){}",
+                                      generator, n, alarm.size(), 100.0 * n / static_cast<double>(alarm.size()),
                                       detail.empty() ? "" : ": " + detail));
     }
     return out;

@@ -10,18 +10,19 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
+#include "core/units.h"
 #include "datasets/diagnosis/hidden_effects.h"
 
 namespace locbench::experiments::diagnosis_power {
 
 const ExperimentInfo kInfo{
     .name = "diagnosis/power",
-    .description = "Hidden effects in simulated logs: detection power against effect size, interval coverage, "
-                   "held-out gain, and the false-alarm rate on logs with nothing hidden",
+    .description =
+        "Hidden effects in simulated logs: detection power against effect size, interval coverage, "
+        "held-out gain, and the false-alarm rate on logs with nothing hidden",
     .in_default_suite = false};  // ~1 min on 2 cores; `locbench run diagnosis`
 
 struct PowerCase {
@@ -150,7 +151,8 @@ class DiagnosisPower final : public MonteCarloExperiment<Options, PowerSetup> {
     if (!fa.empty()) {
       auto m = reports::make_metric("diagnose", "null_logs", "false_alarm_rate", "", "logs", fa);
       out.results.push_back(m);
-      out.results.push_back(reports::make_metric("diagnose", "null_logs", "false_detection_rate", "", "logs", fa_detect));
+      out.results.push_back(
+          reports::make_metric("diagnose", "null_logs", "false_detection_rate", "", "logs", fa_detect));
     }
     std::map<std::string, reports::Plot> plots;
     std::vector<std::string> limits;
@@ -158,7 +160,8 @@ class DiagnosisPower final : public MonteCarloExperiment<Options, PowerSetup> {
     for (std::size_t c = 0; c < s.cases.size(); ++c) {
       std::vector<double> det, first, cov, gain;
       for (int k = 0; k < plan.runs; ++k) {
-        const auto& r = records[static_cast<std::size_t>(s.null_runs) + c * static_cast<std::size_t>(plan.runs) + static_cast<std::size_t>(k)];
+        const auto& r = records[static_cast<std::size_t>(s.null_runs) + c * static_cast<std::size_t>(plan.runs) +
+                                static_cast<std::size_t>(k)];
         det.push_back(r.at("detected").get<bool>() ? 1.0 : 0.0);
         first.push_back(r.at("first").get<bool>() ? 1.0 : 0.0);
         if (r.at("detected").get<bool>()) {
@@ -183,31 +186,42 @@ class DiagnosisPower final : public MonteCarloExperiment<Options, PowerSetup> {
       p /= static_cast<double>(det.size());
       power_of[pc.id].push_back({pc.magnitude, p});
     }
-    reports::Plot plot{"power_curves", "error_vs_distance", "Detection power against effect size",
-                       "effect size (log10 of the magnitude)", "", "power", "", {}, ""};
+    reports::Plot plot{"power_curves",
+                       "error_vs_distance",
+                       "Detection power against effect size",
+                       "effect size (log10 of the magnitude)",
+                       "",
+                       "power",
+                       "",
+                       {},
+                       ""};
     for (const auto& [id, pts] : power_of) {
       reports::PlotSeries series{id, {}, {}};
       std::optional<double> limit;
       for (std::size_t i = pts.size(); i-- > 0;) {
-        if (pts[i].second >= 0.9) limit = pts[i].first;
-        else break;
+        if (pts[i].second >= 0.9)
+          limit = pts[i].first;
+        else
+          break;
       }
       for (const auto& [m, p] : pts) {
         series.x.push_back(std::log10(std::abs(m)));
         series.y.push_back(p);
       }
       plot.series.push_back(series);
-      limits.push_back(limit ? fmt::format("{} ≥ {:.3g}", id, *limit) : fmt::format("{}: power < 0.9 on the whole grid", id));
+      limits.push_back(limit ? fmt::format("{} ≥ {:.3g}", id, *limit)
+                             : fmt::format("{}: power < 0.9 on the whole grid", id));
     }
-    plot.note = fmt::format("{} logs per magnitude; magnitude units per cause in datasets/diagnosis/hidden_effects.cpp", plan.runs);
+    plot.note = fmt::format("{} logs per magnitude; magnitude units per cause in datasets/diagnosis/hidden_effects.cpp",
+                            plan.runs);
     out.plots.push_back(plot);
     double far = 0.0;
     for (double v : fa) far += v;
-    out.notes.push_back(fmt::format(
-        "False alarms on {} logs with nothing hidden: {} (rate {:.3f}); the stated level is {} per channel "
-        "(odometry, compass) for causes, and the same level spread over the residual battery for "
-        "unexplained structure.",
-        fa.size(), far, fa.empty() ? 0.0 : far / static_cast<double>(fa.size()), s.options.false_alarm));
+    out.notes.push_back(
+        fmt::format("False alarms on {} logs with nothing hidden: {} (rate {:.3f}); the stated level is {} per channel "
+                    "(odometry, compass) for causes, and the same level spread over the residual battery for "
+                    "unexplained structure.",
+                    fa.size(), far, fa.empty() ? 0.0 : far / static_cast<double>(fa.size()), s.options.false_alarm));
     std::string lim = "Measured detection limits (power ≥ 0.9 from this magnitude up): ";
     for (std::size_t i = 0; i < limits.size(); ++i) lim += (i ? "; " : "") + limits[i];
     out.notes.push_back(lim + ".");

@@ -11,23 +11,24 @@
 #include <cmath>
 #include <optional>
 
-#include "core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "algorithms/diagnosis/scale_checks.h"
 #include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/options_experiment.h"
+#include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/diagnosis_plots.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
+#include "core/errors.h"
 #include "reports/checksum.h"
 
 namespace locbench::experiments::diagnosis_real_logs {
 
 const ExperimentInfo kInfo{
     .name = "diagnosis/real_logs",
-    .description = "What the nominal odometry model gets wrong on real logs (Freiburg relations, MRCLAM Vicon) and "
-                   "on the thesis's Table 3.1 histogram: named causes, fitted parameters, held-out gain"};
+    .description =
+        "What the nominal odometry model gets wrong on real logs (Freiburg relations, MRCLAM Vicon) and "
+        "on the thesis's Table 3.1 histogram: named causes, fitted parameters, held-out gain"};
 
 struct Options {
   nlohmann::json datasets = freiburg_and_mrclam_logs();
@@ -71,20 +72,24 @@ class DiagnosisRealLogs final : public OptionsExperiment<Options> {
           const double se = (p.hi - p.lo) / (2.0 * 1.959963984540054);
           out.results.push_back(reports::make_estimate("diagnose", ds, c.id + "." + p.name, "", p.value,
                                                        std::isfinite(se) ? se : 0.0, n));
-          params += fmt::format("{}{} = {:.5g} [{:.5g}, {:.5g}]", params.empty() ? "" : ", ", p.name, p.value, p.lo, p.hi);
+          params +=
+              fmt::format("{}{} = {:.5g} [{:.5g}, {:.5g}]", params.empty() ? "" : ", ", p.name, p.value, p.lo, p.hi);
         }
         std::string gain;
         if (!c.gains.empty()) {
           const auto& g = c.gains.front();
-          gain = fmt::format("; held-out {} {:.4g} → {:.4g} ({:+.1f}%)", g.metric, g.before, g.after, 100.0 * g.relative());
-          out.results.push_back(reports::make_estimate("diagnose", ds, c.id + ".gain_relative", "", g.relative(), 0.0, n));
+          gain = fmt::format("; held-out {} {:.4g} → {:.4g} ({:+.1f}%)", g.metric, g.before, g.after,
+                             100.0 * g.relative());
+          out.results.push_back(
+              reports::make_estimate("diagnose", ds, c.id + ".gain_relative", "", g.relative(), 0.0, n));
         }
         found += fmt::format("\n  - {} ({}{}){}", c.id, params, c.identifiable ? "" : ", confounded", gain);
       }
       std::string unexplained;
       for (const auto& u : d.unexplained) {
-        unexplained += fmt::format("{}{} of {} against {} (p = {:.2g}, strength {:.3g}: {})", unexplained.empty() ? "" : "; ",
-                                   u.test, u.residual, u.variable.empty() ? "-" : u.variable, u.p_value, u.strength, u.reason);
+        unexplained +=
+            fmt::format("{}{} of {} against {} (p = {:.2g}, strength {:.3g}: {})", unexplained.empty() ? "" : "; ",
+                        u.test, u.residual, u.variable.empty() ? "-" : u.variable, u.p_value, u.strength, u.reason);
       }
       out.notes.push_back(fmt::format("{} — reference: {}. {}{}{}", ds, d.reference, d.verdict,
                                       found.empty() ? "" : "\n  Causes:" + found,
@@ -133,17 +138,23 @@ class DiagnosisRealLogs final : public OptionsExperiment<Options> {
         out.datasets.push_back(*outcomes[i].dataset);
         record(*outcomes[i].diagnosis, names[i], outcomes[i].samples);
         for (auto& p : outcomes[i].plots) out.plots.push_back(std::move(p));
-        if (const auto& c = outcomes[i].checks; c && outcomes[i].diagnosis->reference.find("compass heading") == std::string::npos) {
+        if (const auto& c = outcomes[i].checks;
+            c && outcomes[i].diagnosis->reference.find("compass heading") == std::string::npos) {
           const std::size_t n = outcomes[i].samples;
-          out.results.push_back(reports::make_estimate("check", names[i], "path_length_ratio", "", c->path_length_ratio, 0.0, n));
-          out.results.push_back(reports::make_estimate("check", names[i], "ls_velocity_scale", "", c->ls_velocity_scale, 0.0, n));
-          out.results.push_back(reports::make_estimate("check", names[i], "ls_turn_rate_scale", "", c->ls_turn_scale, 0.0, n));
-          out.results.push_back(reports::make_estimate("check", names[i], "median_window_ratio", "", c->median_window_ratio, 0.0, n));
-          out.notes.push_back(fmt::format("{} — independent checks over the same {} windows (algorithms/diagnosis/scale_checks.h): "
-                                          "path-length ratio {:.3f}, least-squares velocity scale {:.3f}, least-squares "
-                                          "turn-rate scale {:.3f}, median window ratio {:.3f}",
-                                          names[i], c->windows, c->path_length_ratio, c->ls_velocity_scale, c->ls_turn_scale,
-                                          c->median_window_ratio));
+          out.results.push_back(
+              reports::make_estimate("check", names[i], "path_length_ratio", "", c->path_length_ratio, 0.0, n));
+          out.results.push_back(
+              reports::make_estimate("check", names[i], "ls_velocity_scale", "", c->ls_velocity_scale, 0.0, n));
+          out.results.push_back(
+              reports::make_estimate("check", names[i], "ls_turn_rate_scale", "", c->ls_turn_scale, 0.0, n));
+          out.results.push_back(
+              reports::make_estimate("check", names[i], "median_window_ratio", "", c->median_window_ratio, 0.0, n));
+          out.notes.push_back(
+              fmt::format("{} — independent checks over the same {} windows (algorithms/diagnosis/scale_checks.h): "
+                          "path-length ratio {:.3f}, least-squares velocity scale {:.3f}, least-squares "
+                          "turn-rate scale {:.3f}, median window ratio {:.3f}",
+                          names[i], c->windows, c->path_length_ratio, c->ls_velocity_scale, c->ls_turn_scale,
+                          c->median_window_ratio));
           // The distance scale the checks measure: velocity_scale's, or with drive stalls kept the
           // mean distance scale they imply (the speed when moving is not what a path length sees).
           const auto& kept = outcomes[i].diagnosis->detected;
@@ -152,9 +163,12 @@ class DiagnosisRealLogs final : public OptionsExperiment<Options> {
             if (!cause.detected || cause.parameters.empty()) continue;
             if (cause.id == "drive_stall" && cause.extra.contains("mean_distance_scale")) {
               const double m = cause.extra["mean_distance_scale"].get<double>();
-              out.results.push_back(reports::make_estimate("diagnose", names[i], "drive_stall.mean_distance_scale", "", m, 0.0, n));
-              if (auto why = diagnosis::scale_disagreement(names[i], m, m, m, *c, 0.02, "mean distance scale of drive_stall");
-                  !why.empty()) out.notes.push_back(why);
+              out.results.push_back(
+                  reports::make_estimate("diagnose", names[i], "drive_stall.mean_distance_scale", "", m, 0.0, n));
+              if (auto why =
+                      diagnosis::scale_disagreement(names[i], m, m, m, *c, 0.02, "mean distance scale of drive_stall");
+                  !why.empty())
+                out.notes.push_back(why);
             } else if (cause.id == "velocity_scale" && !stalls) {
               const auto& p = cause.parameters.front();
               if (auto why = diagnosis::scale_disagreement(names[i], p.value, p.lo, p.hi, *c); !why.empty()) {

@@ -21,13 +21,13 @@
 #include <limits>
 #include <optional>
 
-#include "core/errors.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/options_experiment.h"
+#include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
+#include "core/errors.h"
 #include "datasets/diagnosis/twin_comparison.h"
 #include "datasets/io/odometry_interpolation.h"
 
@@ -35,9 +35,10 @@ namespace locbench::experiments::diagnosis_sim_to_real {
 
 const ExperimentInfo kInfo{
     .name = "diagnosis/sim_to_real",
-    .description = "The diagnosis run back through the simulator: each real log's synthetic twin (its odometry replayed, truth "
-                   "simulated) under the nominal and under the extended model, compared with the log by the Kolmogorov–Smirnov "
-                   "distance of the window residuals (1 s and 10 s windows; relations on Freiburg), per component"};
+    .description =
+        "The diagnosis run back through the simulator: each real log's synthetic twin (its odometry replayed, truth "
+        "simulated) under the nominal and under the extended model, compared with the log by the Kolmogorov–Smirnov "
+        "distance of the window residuals (1 s and 10 s windows; relations on Freiburg), per component"};
 
 // The records of `log` with time in [from, to] (relations: both ends inside).
 Log restrict_log(const Log& log, double from, double to) {
@@ -46,11 +47,16 @@ Log restrict_log(const Log& log, double from, double to) {
   out.source = log.source;
   out.params = log.params;
   const auto in = [&](double t) { return t >= from && t <= to; };
-  for (const auto& r : log.encoders) if (in(r.t)) out.encoders.push_back(r);
-  for (const auto& r : log.odometry) if (in(r.t)) out.odometry.push_back(r);
-  for (const auto& r : log.compass) if (in(r.t)) out.compass.push_back(r);
-  for (const auto& r : log.truth) if (in(r.t)) out.truth.push_back(r);
-  for (const auto& r : log.relations) if (in(r.t1) && in(r.t2)) out.relations.push_back(r);
+  for (const auto& r : log.encoders)
+    if (in(r.t)) out.encoders.push_back(r);
+  for (const auto& r : log.odometry)
+    if (in(r.t)) out.odometry.push_back(r);
+  for (const auto& r : log.compass)
+    if (in(r.t)) out.compass.push_back(r);
+  for (const auto& r : log.truth)
+    if (in(r.t)) out.truth.push_back(r);
+  for (const auto& r : log.relations)
+    if (in(r.t1) && in(r.t2)) out.relations.push_back(r);
   // Logs without ODOM (mit-csail) carry their odometry in the FLASER records; keep those poses
   // only (the twin does not simulate scans).
   if (log.odometry.empty() && log.encoders.empty()) {
@@ -164,16 +170,20 @@ class DiagnosisSimToReal final : public OptionsExperiment<Options> {
         const std::string v = c.window + "_" + c.component;
         const std::size_t n = c.real.size();
         out.results.push_back(reports::make_estimate("nominal_twin", ds, "ks_distance_" + v, "", c.nominal.d, 0.0, n));
-        out.results.push_back(reports::make_estimate("extended_twin", ds, "ks_distance_" + v, "", c.extended.d, 0.0, n));
-        out.results.push_back(reports::make_estimate("nominal_twin", ds, "ks_p_value_" + v, "", c.nominal.p_value, 0.0, n));
-        out.results.push_back(reports::make_estimate("extended_twin", ds, "ks_p_value_" + v, "", c.extended.p_value, 0.0, n));
-        out.results.push_back(reports::make_estimate("extended_vs_nominal", ds, "ks_distance_ratio_" + v, "", c.ratio(), 0.0, n));
+        out.results.push_back(
+            reports::make_estimate("extended_twin", ds, "ks_distance_" + v, "", c.extended.d, 0.0, n));
+        out.results.push_back(
+            reports::make_estimate("nominal_twin", ds, "ks_p_value_" + v, "", c.nominal.p_value, 0.0, n));
+        out.results.push_back(
+            reports::make_estimate("extended_twin", ds, "ks_p_value_" + v, "", c.extended.p_value, 0.0, n));
+        out.results.push_back(
+            reports::make_estimate("extended_vs_nominal", ds, "ks_distance_ratio_" + v, "", c.ratio(), 0.0, n));
         halved += c.ratio() <= goal ? 1 : 0;
         sum_nom += c.nominal.d;
         sum_ext += c.extended.d;
-        table += fmt::format("\n  {:<9} {:<5} D nominal {:.3f} (p {:.2g}), extended {:.3f} (p {:.2g}), ratio {:.2f}{}", c.window,
-                             c.component, c.nominal.d, c.nominal.p_value, c.extended.d, c.extended.p_value, c.ratio(),
-                             c.ratio() <= goal ? "" : "  ← not halved");
+        table += fmt::format("\n  {:<9} {:<5} D nominal {:.3f} (p {:.2g}), extended {:.3f} (p {:.2g}), ratio {:.2f}{}",
+                             c.window, c.component, c.nominal.d, c.nominal.p_value, c.extended.d, c.extended.p_value,
+                             c.ratio(), c.ratio() <= goal ? "" : "  ← not halved");
       }
       // The noise floors: moment-matched per twin, and the diagnosis's own ML fit of the nominal one
       // (an independent estimate of the same quantity as the nominal twin's).
@@ -184,37 +194,45 @@ class DiagnosisSimToReal final : public OptionsExperiment<Options> {
       const std::array<double, 3> extended_floor{efl.sigma_along, efl.sigma_left, efl.sigma_heading};
       for (std::size_t k = 0; k < 3; ++k) {
         const std::string v = std::string("noise_floor_sigma_") + comps[k].first;
-        out.results.push_back(reports::make_estimate("nominal_twin", ds, v, comps[k].second, nominal_floor[k], 0.0, o.windows));
-        out.results.push_back(reports::make_estimate("extended_twin", ds, v, comps[k].second, extended_floor[k], 0.0, o.windows));
+        out.results.push_back(
+            reports::make_estimate("nominal_twin", ds, v, comps[k].second, nominal_floor[k], 0.0, o.windows));
+        out.results.push_back(
+            reports::make_estimate("extended_twin", ds, v, comps[k].second, extended_floor[k], 0.0, o.windows));
         out.results.push_back(
             reports::make_estimate("diagnosis_ml", ds, v, comps[k].second, o.twin.diagnosis_floor[k], 0.0, o.windows));
       }
       const double overall = sum_nom > 0.0 ? sum_ext / sum_nom : 1.0;
-      out.results.push_back(reports::make_estimate("extended_vs_nominal", ds, "ks_distance_ratio_mean", "", overall, 0.0,
-                                                   o.windows));
+      out.results.push_back(
+          reports::make_estimate("extended_vs_nominal", ds, "ks_distance_ratio_mean", "", overall, 0.0, o.windows));
       std::string causes;
       for (const auto& m : o.twin.causes) causes += fmt::format("\n  - {}: {}", m.id, m.how);
       if (causes.empty()) causes = "\n  - none kept: the extended twin equals the nominal one";
       const bool is_mrclam = ds.rfind("mrclam", 0) == 0;
       if (is_mrclam) {
         ++mrclam;
-        if (halved == o.cells.size()) ++mrclam_halved;
-        else missed.push_back(fmt::format("{} ({} of {} distances halved, mean ratio {:.2f})", ds, halved, o.cells.size(), overall));
+        if (halved == o.cells.size())
+          ++mrclam_halved;
+        else
+          missed.push_back(
+              fmt::format("{} ({} of {} distances halved, mean ratio {:.2f})", ds, halved, o.cells.size(), overall));
       }
       const auto& nf = o.twin.nominal.motion_noise;
       const auto& ef = o.twin.extended.motion_noise;
       out.notes.push_back(fmt::format(
           "{} — reference: {}; {} paired {} windows. Extended twin's causes:{}{}\n  Noise floor per {:g} s window "
-          "(moment-matched): nominal σ = ({:.3g} m, {:.3g} m, {:.3g} rad), extended σ = ({:.3g} m, {:.3g} m, {:.3g} rad); "
+          "(moment-matched): nominal σ = ({:.3g} m, {:.3g} m, {:.3g} rad), extended σ = ({:.3g} m, {:.3g} m, {:.3g} "
+          "rad); "
           "the diagnosis's own nominal floor ({:.3g} m, {:.3g} m, {:.3g} rad).\n  KS distance of the residual "
           "distributions, real vs twin:{}\n  Mean ratio {:.2f}: {} ({} of {} distances halved).",
           ds, o.reference, o.windows, o.cells.empty() ? "" : o.cells.front().window, causes,
-          o.twin.not_simulated.empty() ? "" : "\n  NOT simulated: " + fmt::format("{}", fmt::join(o.twin.not_simulated, ", ")),
+          o.twin.not_simulated.empty()
+              ? ""
+              : "\n  NOT simulated: " + fmt::format("{}", fmt::join(o.twin.not_simulated, ", ")),
           nf.window, nf.sigma_along, nf.sigma_left, nf.sigma_heading, ef.sigma_along, ef.sigma_left, ef.sigma_heading,
           o.twin.diagnosis_floor[0], o.twin.diagnosis_floor[1], o.twin.diagnosis_floor[2], table, overall,
-          o.twin.causes.empty()              ? "no cause kept, so nothing to gain: both twins are the same"
-          : halved == o.cells.size()         ? "the extended model halves every distance of the nominal one"
-                                             : "the extended model does NOT halve every distance of the nominal one",
+          o.twin.causes.empty()      ? "no cause kept, so nothing to gain: both twins are the same"
+          : halved == o.cells.size() ? "the extended model halves every distance of the nominal one"
+                                     : "the extended model does NOT halve every distance of the nominal one",
           halved, o.cells.size()));
       for (const auto& c : o.cells) {
         if (c.window == "10s") continue;  // one chart per component at the short windows (relations on Freiburg)
@@ -225,19 +243,22 @@ class DiagnosisSimToReal final : public OptionsExperiment<Options> {
         p.x_label = c.component + " residual (reference − nominal odometry)";
         p.x_unit = c.component == "theta" ? "rad" : "m";
         p.y_label = "cumulative fraction";
-        p.series = {{"real log", {}, c.real}, {"nominal twin", {}, c.nominal_twin}, {"extended twin", {}, c.extended_twin}};
-        p.note = fmt::format("KS D nominal {:.3f}, extended {:.3f} (ratio {:.2f})", c.nominal.d, c.extended.d, c.ratio());
+        p.series = {
+            {"real log", {}, c.real}, {"nominal twin", {}, c.nominal_twin}, {"extended twin", {}, c.extended_twin}};
+        p.note =
+            fmt::format("KS D nominal {:.3f}, extended {:.3f} (ratio {:.2f})", c.nominal.d, c.extended.d, c.ratio());
         out.plots.push_back(std::move(p));
       }
     }
     if (mrclam > 0) {
-      out.notes.push_back(mrclam_halved == mrclam
-                              ? fmt::format("Goal met: on all {} MRCLAM robots the extended model at least halves every "
-                                            "KS distance of the nominal one.",
-                                            mrclam)
-                              : fmt::format("Goal NOT met on {} of {} MRCLAM robots (the extended model should halve every "
-                                            "KS distance of the nominal one): {}.",
-                                            mrclam - mrclam_halved, mrclam, fmt::format("{}", fmt::join(missed, "; "))));
+      out.notes.push_back(
+          mrclam_halved == mrclam
+              ? fmt::format("Goal met: on all {} MRCLAM robots the extended model at least halves every "
+                            "KS distance of the nominal one.",
+                            mrclam)
+              : fmt::format("Goal NOT met on {} of {} MRCLAM robots (the extended model should halve every "
+                            "KS distance of the nominal one): {}.",
+                            mrclam - mrclam_halved, mrclam, fmt::format("{}", fmt::join(missed, "; "))));
     }
     if (out.datasets.empty()) {
       out.notes.push_back("No real log was found (set LOCBENCH_DATA to the datasets folder): nothing was compared.");

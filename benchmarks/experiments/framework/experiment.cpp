@@ -24,8 +24,7 @@ reports::ExperimentResults Experiment::start_results(const nlohmann::json& confi
 
 int Experiment::task_count(const nlohmann::json&, const RunOptions&) const { return 1; }
 
-std::vector<nlohmann::json> Experiment::run_tasks(const nlohmann::json& config,
-                                                  const RunOptions& options,
+std::vector<nlohmann::json> Experiment::run_tasks(const nlohmann::json& config, const RunOptions& options,
                                                   const std::vector<int>& tasks) const {
   std::vector<nlohmann::json> records;
   for (int t : tasks) {
@@ -35,14 +34,13 @@ std::vector<nlohmann::json> Experiment::run_tasks(const nlohmann::json& config,
   return records;
 }
 
-reports::ExperimentResults Experiment::summarise_records(
-    const nlohmann::json&, const RunOptions&, const std::vector<nlohmann::json>& records) const {
+reports::ExperimentResults Experiment::summarise_records(const nlohmann::json&, const RunOptions&,
+                                                         const std::vector<nlohmann::json>& records) const {
   if (records.size() != 1) throw std::logic_error(name() + ": expected the record of its one task");
   return reports::results_from_json(records.front(), name() + " (shard record)");
 }
 
-nlohmann::json merge_config(const nlohmann::json& defaults, const nlohmann::json& overrides,
-                            const std::string& path) {
+nlohmann::json merge_config(const nlohmann::json& defaults, const nlohmann::json& overrides, const std::string& path) {
   if (!overrides.is_object()) throw UsageError("configuration" + path + ": expected an object");
   nlohmann::json out = defaults;
   for (const auto& [key, value] : overrides.items()) {
@@ -54,8 +52,8 @@ nlohmann::json merge_config(const nlohmann::json& defaults, const nlohmann::json
     } else if (d.is_number() && value.is_number()) {
       out[key] = value;
     } else if (d.type() != value.type() && !d.is_null()) {
-      throw UsageError("configuration: option " + where.substr(1) + " expects a " +
-                       std::string(d.type_name()) + ", got a " + value.type_name());
+      throw UsageError("configuration: option " + where.substr(1) + " expects a " + std::string(d.type_name()) +
+                       ", got a " + value.type_name());
     } else {
       out[key] = value;
     }

@@ -17,10 +17,10 @@ namespace locbench::experiments {
 
 struct RunOptions {
   std::uint64_t seed = 1;
-  std::optional<int> runs;                  // Monte-Carlo runs; the experiment's default if unset
-  std::filesystem::path data_root;          // real datasets (LOCBENCH_DATA)
-  std::function<void(double)> progress;     // fraction done in [0, 1]; may be empty
-  int threads = 1;                          // worker threads (results never depend on it)
+  std::optional<int> runs;               // Monte-Carlo runs; the experiment's default if unset
+  std::filesystem::path data_root;       // real datasets (LOCBENCH_DATA)
+  std::function<void(double)> progress;  // fraction done in [0, 1]; may be empty
+  int threads = 1;                       // worker threads (results never depend on it)
   void report_progress(double f) const {
     if (progress) progress(f);
   }
@@ -28,8 +28,8 @@ struct RunOptions {
 
 // What an experiment is called and says it does: stated once, given to the base class.
 struct ExperimentInfo {
-  std::string name;         // stable, e.g. "odometry/sim_corridor"; also the report's file stem
-  std::string description;  // one line for `locbench list` and the report
+  std::string name;              // stable, e.g. "odometry/sim_corridor"; also the report's file stem
+  std::string description;       // one line for `locbench list` and the report
   bool in_default_suite = true;  // part of the suite `locbench run` runs with no argument
   // How to read the results, whatever the run found: the report's first notes, before those the
   // run adds (what it measured, what it could not).
@@ -45,8 +45,7 @@ class Experiment {
   bool in_default_suite() const { return info_.in_default_suite; }
   // Every option with its default; a user's configuration is merged over it.
   virtual nlohmann::json default_config() const = 0;
-  virtual reports::ExperimentResults run(const nlohmann::json& config,
-                                         const RunOptions& options) const = 0;
+  virtual reports::ExperimentResults run(const nlohmann::json& config, const RunOptions& options) const = 0;
 
   // The results' head: this experiment's name, description, reading notes and the configuration
   // it ran with; the caller adds what it measured.
@@ -61,13 +60,11 @@ class Experiment {
   virtual int task_count(const nlohmann::json& config, const RunOptions& options) const;
   // The records of `tasks` (ascending, each < task_count), in that order, canonical (as read
   // back from their JSON text: reports::canonical_record).
-  virtual std::vector<nlohmann::json> run_tasks(const nlohmann::json& config,
-                                                const RunOptions& options,
+  virtual std::vector<nlohmann::json> run_tasks(const nlohmann::json& config, const RunOptions& options,
                                                 const std::vector<int>& tasks) const;
   // The results from every task's record, records[i] being task i's.
-  virtual reports::ExperimentResults summarise_records(
-      const nlohmann::json& config, const RunOptions& options,
-      const std::vector<nlohmann::json>& records) const;
+  virtual reports::ExperimentResults summarise_records(const nlohmann::json& config, const RunOptions& options,
+                                                       const std::vector<nlohmann::json>& records) const;
 
  private:
   ExperimentInfo info_;

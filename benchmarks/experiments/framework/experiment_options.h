@@ -119,8 +119,7 @@ class FromJson : public option_fields::FromJson {
         r_.fail(std::string(name) + "[" + std::to_string(i) + "]",
                 "expected " + list_item_expected<T>() + ", found " + json_type_name(item));
       }
-      if constexpr (std::is_class_v<T> && !std::is_same_v<T, std::string> &&
-                    !option_fields::IsVector<T>::value) {
+      if constexpr (std::is_class_v<T> && !std::is_same_v<T, std::string> && !option_fields::IsVector<T>::value) {
         T x;
         try {
           from_json(item, x);  // the item's own options (LOCBENCH_EXPERIMENT_OPTIONS)
@@ -157,14 +156,12 @@ class Validate : public option_fields::Validate {
   explicit Validate(std::string what) : option_fields::Validate(what), what_(std::move(what)) {}
   using option_fields::Validate::field;
   template <class T>
-  void field(const char* name, const std::vector<T>& value, const char* unit, Range range,
-             const char*) {
+  void field(const char* name, const std::vector<T>& value, const char* unit, Range range, const char*) {
     if constexpr (std::is_arithmetic_v<T>) {
       for (const T x : value) {
         if (!range.contains(static_cast<double>(x))) {
           throw UsageError(what_ + "." + name + ": expected each " + range.text() +
-                           (*unit ? std::string(" ") + unit : std::string()) + ", got " +
-                           nlohmann::json(value).dump());
+                           (*unit ? std::string(" ") + unit : std::string()) + ", got " + nlohmann::json(value).dump());
         }
       }
     }
@@ -181,8 +178,7 @@ class Describe : public option_fields::Describe {
  public:
   using option_fields::Describe::field;
   template <class T>
-  void field(const char* name, const std::vector<T>& value, const char* unit, Range range,
-             const char* meaning) {
+  void field(const char* name, const std::vector<T>& value, const char* unit, Range range, const char* meaning) {
     std::string allowed = "list; each item " + list_item_expected<T>();
     if constexpr (std::is_arithmetic_v<T>) allowed += ", " + range.text();
     rows_.push_back({name, unit, list_json(value).dump(), allowed, meaning});
@@ -268,11 +264,11 @@ std::vector<FieldDoc> describe_options(const O& defaults = O{}) {
 // to_json, from_json (strict, then the range checks) and validate of an options struct of an
 // experiment from its visit_fields; use in the struct's namespace, after visit_fields (nested
 // options of an experiment's configuration reach them by ADL). Inline: a header may hold them.
-#define LOCBENCH_EXPERIMENT_OPTIONS(Options)                                                     \
-  [[maybe_unused]] inline void to_json(nlohmann::json& j, const Options& o) {                         \
-    j = ::locbench::experiments::options_json(o);                                                \
-  }                                                                                              \
-  [[maybe_unused]] inline void from_json(const nlohmann::json& j, Options& o) {                       \
-    ::locbench::experiments::read_options_into(j, o, #Options);                                  \
-  }                                                                                              \
+#define LOCBENCH_EXPERIMENT_OPTIONS(Options)                                    \
+  [[maybe_unused]] inline void to_json(nlohmann::json& j, const Options& o) {   \
+    j = ::locbench::experiments::options_json(o);                               \
+  }                                                                             \
+  [[maybe_unused]] inline void from_json(const nlohmann::json& j, Options& o) { \
+    ::locbench::experiments::read_options_into(j, o, #Options);                 \
+  }                                                                             \
   [[maybe_unused]] inline void validate(const Options& o) { ::locbench::experiments::validate_options(o, #Options); }

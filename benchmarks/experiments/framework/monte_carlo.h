@@ -13,11 +13,11 @@
 #include <mutex>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/rng.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/experiment_options.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
+#include "core/errors.h"
+#include "core/rng.h"
 #include "reports/shard_report.h"
 
 namespace locbench::experiments {
@@ -27,11 +27,9 @@ struct McPlan {
   std::uint64_t seed = 1;  // base seed
   int runs = 1;            // Monte-Carlo runs: --runs, else the configuration's "runs" (≥ 1)
   std::filesystem::path data_root;
-  int threads = 1;         // for parallel_tasks inside summarise; never changes a result
+  int threads = 1;  // for parallel_tasks inside summarise; never changes a result
   // The seed of Monte-Carlo run k (recorded in the report's seeds).
-  std::uint64_t run_seed(int k) const {
-    return Rng::derive_seed(seed, static_cast<std::uint64_t>(k));
-  }
+  std::uint64_t run_seed(int k) const { return Rng::derive_seed(seed, static_cast<std::uint64_t>(k)); }
 };
 
 template <typename Options, typename Setup>
@@ -50,8 +48,7 @@ class MonteCarloExperiment : public Experiment {
   virtual reports::ExperimentResults summarise(const Setup& setup, const McPlan& plan,
                                                const std::vector<nlohmann::json>& records) const = 0;
 
-  reports::ExperimentResults run(const nlohmann::json& config,
-                                 const RunOptions& options) const final {
+  reports::ExperimentResults run(const nlohmann::json& config, const RunOptions& options) const final {
     const Options o = read(config);
     const McPlan p = plan(o, options);
     const Setup s = setup(o, p);
@@ -77,8 +74,7 @@ class MonteCarloExperiment : public Experiment {
     const int n = tasks(s, p);
     for (int t : which) {
       if (t < 0 || t >= n) {
-        throw UsageError(name() + ": task " + std::to_string(t) + " outside 0…" +
-                         std::to_string(n - 1));
+        throw UsageError(name() + ": task " + std::to_string(t) + " outside 0…" + std::to_string(n - 1));
       }
     }
     std::vector<nlohmann::json> records = records_of(s, p, options, which);
@@ -86,15 +82,14 @@ class MonteCarloExperiment : public Experiment {
     return records;
   }
 
-  reports::ExperimentResults summarise_records(
-      const nlohmann::json& config, const RunOptions& options,
-      const std::vector<nlohmann::json>& records) const final {
+  reports::ExperimentResults summarise_records(const nlohmann::json& config, const RunOptions& options,
+                                               const std::vector<nlohmann::json>& records) const final {
     const Options o = read(config);
     const McPlan p = plan(o, options);
     const Setup s = setup(o, p);
     if (static_cast<int>(records.size()) != tasks(s, p)) {
-      throw UsageError(name() + ": " + std::to_string(records.size()) + " records for " +
-                       std::to_string(tasks(s, p)) + " tasks");
+      throw UsageError(name() + ": " + std::to_string(records.size()) + " records for " + std::to_string(tasks(s, p)) +
+                       " tasks");
     }
     return summarise(s, p, records);
   }
@@ -120,8 +115,7 @@ class MonteCarloExperiment : public Experiment {
     return p;
   }
   // Runs `tasks` on options.threads threads; records by position, canonical.
-  std::vector<nlohmann::json> records_of(const Setup& s, const McPlan& p,
-                                         const RunOptions& options,
+  std::vector<nlohmann::json> records_of(const Setup& s, const McPlan& p, const RunOptions& options,
                                          const std::vector<int>& which) const {
     std::vector<nlohmann::json> records(which.size());
     std::atomic<std::size_t> done{0};

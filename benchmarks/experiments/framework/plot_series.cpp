@@ -1,16 +1,15 @@
 #include "benchmarks/experiments/framework/plot_series.h"
 
 #include <algorithm>
-#include <utility>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "core/units.h"
 
 namespace locbench::experiments {
 
-reports::PlotSeries trajectory_series(const std::string& name, const Trajectory& t,
-                                      std::size_t max_points) {
+reports::PlotSeries trajectory_series(const std::string& name, const Trajectory& t, std::size_t max_points) {
   reports::PlotSeries s;
   s.name = name;
   const auto& poses = t.poses();
@@ -42,8 +41,7 @@ std::vector<double> error_at_distances(const Trajectory& truth, const Trajectory
   std::size_t next = 0;
   for (std::size_t i = 0; i < poses.size() && next < distances.size(); ++i) {
     if (i > 0) {
-      travelled += std::hypot(poses[i].pose.x - poses[i - 1].pose.x,
-                              poses[i].pose.y - poses[i - 1].pose.y);
+      travelled += std::hypot(poses[i].pose.x - poses[i - 1].pose.x, poses[i].pose.y - poses[i - 1].pose.y);
     }
     while (next < distances.size() && travelled >= distances[next]) {
       if (const auto e = estimate.pose_at(poses[i].t)) {
@@ -97,7 +95,7 @@ reports::PlotSeries cdf_samples(const std::string& name, std::vector<double> val
 
 reports::Plot error_cdf_plot(std::string name, std::string title, std::string x_label, std::string x_unit,
                              std::vector<reports::PlotSeries> samples, std::string note) {
-  return {std::move(name),    "cdf", std::move(title),   std::move(x_label), std::move(x_unit),
+  return {std::move(name),       "cdf", std::move(title),   std::move(x_label), std::move(x_unit),
           "fraction of samples", "",    std::move(samples), std::move(note)};
 }
 
@@ -125,8 +123,8 @@ std::vector<reports::Plot> relative_pose_error_cdfs(const std::string& dataset, 
   return plots;
 }
 
-reports::PlotSeries binned_means(const std::string& name, const std::vector<double>& x,
-                                 const std::vector<double>& y, std::size_t bins) {
+reports::PlotSeries binned_means(const std::string& name, const std::vector<double>& x, const std::vector<double>& y,
+                                 std::size_t bins) {
   reports::PlotSeries s;
   s.name = name;
   std::vector<std::pair<double, double>> xy;

@@ -10,8 +10,7 @@
 namespace locbench::experiments {
 
 // The (x, y) path of a trajectory, thinned to at most `max_points` poses (first and last kept).
-reports::PlotSeries trajectory_series(const std::string& name, const Trajectory& t,
-                                      std::size_t max_points = 400);
+reports::PlotSeries trajectory_series(const std::string& name, const Trajectory& t, std::size_t max_points = 400);
 
 // Distances 0, step, 2·step, … ≤ total [m].
 std::vector<double> distance_grid(double total, double step);
@@ -51,7 +50,7 @@ std::vector<reports::Plot> relative_pose_error_cdfs(const std::string& dataset, 
 
 // Binned means of y against x: the finite pairs sorted by x, cut into `bins` bins of equal count;
 // per bin the mean x and mean y (a bin needs at least 3 pairs).
-reports::PlotSeries binned_means(const std::string& name, const std::vector<double>& x,
-                                 const std::vector<double>& y, std::size_t bins = 12);
+reports::PlotSeries binned_means(const std::string& name, const std::vector<double>& x, const std::vector<double>& y,
+                                 std::size_t bins = 12);
 
 }  // namespace locbench::experiments

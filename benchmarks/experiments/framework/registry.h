@@ -10,9 +10,10 @@
 //
 // The name and description are data (ExperimentInfo), stated once, at the top of the file. The file's own types
 // and the registrar live in a namespace named after the file (<topic>_<name>), not an anonymous
-// one, so that files batched into one unity-build unit never define the same name twice. It runs while the program loads and
-// stores a factory; no experiment is constructed then. all_experiments() (experiment.h) makes each one once, on first use, sorted by name, so the
-// order never depends on the link order. The experiments are compiled into an OBJECT library
+// one, so that files batched into one unity-build unit never define the same name twice. It runs while the program
+// loads and stores a factory; no experiment is constructed then. all_experiments() (experiment.h) makes each one once,
+// on first use, sorted by name, so the order never depends on the link order. The experiments are compiled into an
+// OBJECT library
 // (../CMakeLists.txt), which puts every registrar into the program: from a static library the
 // linker would drop the files nothing refers to.
 #include <functional>

@@ -13,20 +13,21 @@
 #include <cmath>
 #include <limits>
 
-#include "core/errors.h"
-#include "core/statistics.h"
+#include "baselines/laser/pl_icp.h"
+#include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/global_harness.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
-#include "baselines/laser/pl_icp.h"
+#include "core/errors.h"
+#include "core/statistics.h"
 
 namespace locbench::experiments::global_real_logs {
 
 const ExperimentInfo kInfo{
     .name = "global/real_logs",
-    .description = "MCL and grid Markov from an unknown start vs the Kalman trackers on real Freiburg scans "
-                   "(ACES, Intel, MIT CSAIL) against a line map built from each log's own first window",
+    .description =
+        "MCL and grid Markov from an unknown start vs the Kalman trackers on real Freiburg scans "
+        "(ACES, Intel, MIT CSAIL) against a line map built from each log's own first window",
     .in_default_suite = false};
 
 using global::ScanStep;
@@ -56,10 +57,9 @@ struct Record {
   // [method]: 1/0 and time/distance (−1 when not applicable), tracking RMS (−1 when not converged by mid-window)
   std::vector<double> converged, time, distance, rms_position, rms_heading, recovered, recovery_time, memory;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, status, reason, path, checksum, records, steps, segments,
-                                   duration, kidnap_distance, converged, time, distance, rms_position,
-                                   rms_heading, recovered, recovery_time, memory, odometry_drift,
-                                   travelled, end_error, within)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, status, reason, path, checksum, records, steps, segments, duration,
+                                   kidnap_distance, converged, time, distance, rms_position, rms_heading, recovered,
+                                   recovery_time, memory, odometry_drift, travelled, end_error, within)
 
 // The scan-matched path of a window: PL-ICP of each scan against the previous one from the
 // odometry's relative motion (the odometry's step when PL-ICP has too few correspondences),
@@ -127,8 +127,8 @@ class GlobalRealLogs final : public MonteCarloExperiment<Options, Setup> {
     s.map_every = o.map_every;
     s.map_poses = o.map_poses;
     if (s.map_poses != "scan_matched" && s.map_poses != "odometry") {
-      throw UsageError(name() + ": map_poses: expected \"scan_matched\" or \"odometry\", found \"" +
-                       s.map_poses + "\"");
+      throw UsageError(name() + ": map_poses: expected \"scan_matched\" or \"odometry\", found \"" + s.map_poses +
+                       "\"");
     }
     s.configuration = recorded(o, plan);
     return s;
@@ -256,26 +256,24 @@ class GlobalRealLogs final : public MonteCarloExperiment<Options, Setup> {
           if (r.recovery_time[m] >= 0) x.recovery_time.push_back(r.recovery_time[m]);
         }
         global::add_method_metrics(out, method, ds, x);
-        line += fmt::format(" {}: success {:.0f}%{}, tracking RMS {}, recovery {:.0f}% (within the "
-                            "criterion in {:.0f}% of the first half, {:.2f} m off at its end);",
-                            method, 100.0 * mean(x.converged),
-                            x.time_to_convergence.empty()
-                                ? ""
-                                : fmt::format(" after {:.1f} s", mean(x.time_to_convergence)),
-                            x.rms_position.empty() ? "—" : fmt::format("{:.0f} mm", 1e3 * mean(x.rms_position)),
-                            100.0 * mean(x.recovered), 100.0 * mean(within), mean(end));
+        line += fmt::format(
+            " {}: success {:.0f}%{}, tracking RMS {}, recovery {:.0f}% (within the "
+            "criterion in {:.0f}% of the first half, {:.2f} m off at its end);",
+            method, 100.0 * mean(x.converged),
+            x.time_to_convergence.empty() ? "" : fmt::format(" after {:.1f} s", mean(x.time_to_convergence)),
+            x.rms_position.empty() ? "—" : fmt::format("{:.0f} mm", 1e3 * mean(x.rms_position)),
+            100.0 * mean(x.recovered), 100.0 * mean(within), mean(end));
       }
       out.notes.push_back(line);
     }
-    out.notes.push_back(
-        s.map_poses == "odometry"
-            ? "Reference = odometry, map = lines of the log's own scans placed by that odometry: "
-              "the errors measure agreement with the map's frame, not absolute accuracy; a map "
-              "built from the same scans flatters every method equally."
-            : "Reference = the window's scan-matched path (PL-ICP of each scan against the previous "
-              "one, chained from the first odometry pose), map = lines of every map_every-th scan "
-              "placed by that path: the errors measure agreement with the map's frame, not "
-              "absolute accuracy; a map built from the same scans flatters every method equally.");
+    out.notes.push_back(s.map_poses == "odometry"
+                            ? "Reference = odometry, map = lines of the log's own scans placed by that odometry: "
+                              "the errors measure agreement with the map's frame, not absolute accuracy; a map "
+                              "built from the same scans flatters every method equally."
+                            : "Reference = the window's scan-matched path (PL-ICP of each scan against the previous "
+                              "one, chained from the first odometry pose), map = lines of every map_every-th scan "
+                              "placed by that path: the errors measure agreement with the map's frame, not "
+                              "absolute accuracy; a map built from the same scans flatters every method equally.");
     return out;
   }
 };

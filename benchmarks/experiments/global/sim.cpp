@@ -15,12 +15,12 @@
 #include <cmath>
 #include <limits>
 
+#include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/global_harness.h"
 #include "core/errors.h"
 #include "core/statistics.h"
 #include "core/units.h"
-#include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/global_harness.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/worlds.h"
@@ -30,15 +30,15 @@ namespace locbench::experiments::global_sim {
 
 const ExperimentInfo kInfo{
     .name = "global/sim",
-    .description = "Global localization (MCL, grid Markov) from an unknown start, tracking once converged "
-                   "and kidnap recovery, against the chapter-6 EKF and the line-feature Kalman localizer "
-                   "started at the truth; simulated room, corridor and random rooms",
+    .description =
+        "Global localization (MCL, grid Markov) from an unknown start, tracking once converged "
+        "and kidnap recovery, against the chapter-6 EKF and the line-feature Kalman localizer "
+        "started at the truth; simulated room, corridor and random rooms",
     .in_default_suite = false,  // ~1 min in Release
-    .reading = {
-        "The Kalman trackers start at the true pose (they cannot localize globally), so their "
-        "'success' is that they stayed converged; after the kidnapping their linearised update "
-        "matches the scan against the wrong part of the map. Tracking RMS counts only runs that "
-        "had converged by the middle of the first tour (n in each result)."}};
+    .reading = {"The Kalman trackers start at the true pose (they cannot localize globally), so their "
+                "'success' is that they stayed converged; after the kidnapping their linearised update "
+                "matches the scan against the wrong part of the map. Tracking RMS counts only runs that "
+                "had converged by the middle of the first tour (n in each result)."}};
 
 using global::ScanStep;
 
@@ -55,20 +55,19 @@ struct Setup {
 };
 
 struct MethodRecord {
-  double converged = 0.0;  // 1/0, first tour
+  double converged = 0.0;                                                     // 1/0, first tour
   double time_to_convergence = std::numeric_limits<double>::quiet_NaN();      // [s]
   double distance_to_convergence = std::numeric_limits<double>::quiet_NaN();  // [m]
-  double rms_position = std::numeric_limits<double>::quiet_NaN();  // second half of tour 1 [m]
-  double rms_heading = std::numeric_limits<double>::quiet_NaN();   // [rad]
-  double recovered = 0.0;  // 1/0 after the kidnapping
-  double recovery_time = std::numeric_limits<double>::quiet_NaN();      // [s]
-  double recovery_distance = std::numeric_limits<double>::quiet_NaN();  // [m]
+  double rms_position = std::numeric_limits<double>::quiet_NaN();             // second half of tour 1 [m]
+  double rms_heading = std::numeric_limits<double>::quiet_NaN();              // [rad]
+  double recovered = 0.0;                                                     // 1/0 after the kidnapping
+  double recovery_time = std::numeric_limits<double>::quiet_NaN();            // [s]
+  double recovery_distance = std::numeric_limits<double>::quiet_NaN();        // [m]
   double memory_bytes = 0.0;
   double hypotheses = 0.0;  // at the end
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(MethodRecord, converged, time_to_convergence,
-                                   distance_to_convergence, rms_position, rms_heading, recovered,
-                                   recovery_time, recovery_distance, memory_bytes, hypotheses)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(MethodRecord, converged, time_to_convergence, distance_to_convergence, rms_position,
+                                   rms_heading, recovered, recovery_time, recovery_distance, memory_bytes, hypotheses)
 
 struct Record {
   int world = 0;
@@ -76,8 +75,7 @@ struct Record {
   double duration = 0.0, kidnap_distance = 0.0;
   std::vector<MethodRecord> methods;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, world, steps_first, steps, segments, duration,
-                                   kidnap_distance, methods)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, world, steps_first, steps, segments, duration, kidnap_distance, methods)
 
 // JSON records cannot hold NaN: encode "not applicable" as null.
 nlohmann::json encode(const Record& r) {
@@ -267,9 +265,9 @@ class GlobalSim final : public MonteCarloExperiment<Options, Setup> {
         }
         global::add_method_metrics(out, method, ds, samples);
         if (!hyp.empty()) {
-          reports::MetricResult h = reports::make_metric(
-              method, ds, global_method && method == "mcl" ? "particles_at_end" : "hypotheses", "",
-              "monte_carlo_runs", hyp);
+          reports::MetricResult h =
+              reports::make_metric(method, ds, global_method && method == "mcl" ? "particles_at_end" : "hypotheses", "",
+                                   "monte_carlo_runs", hyp);
           h.better = "stable";
           out.results.push_back(std::move(h));
         }
@@ -288,14 +286,12 @@ class GlobalSim final : public MonteCarloExperiment<Options, Setup> {
     for (int w = 0; w < kWorldCount; ++w) {
       std::string line = fmt::format("{} ({} runs):", kWorlds[w], plan.runs);
       for (const auto& m : s.methods) {
-        line += fmt::format(" {}: success {:.0f}%, converged after {:.1f} s / {:.1f} m, tracking RMS {:.0f} mm, "
-                            "kidnap recovery {:.0f}% ({:.1f} s);",
-                            m, 100.0 * mean_of(m, w, &MethodRecord::converged),
-                            mean_of(m, w, &MethodRecord::time_to_convergence),
-                            mean_of(m, w, &MethodRecord::distance_to_convergence),
-                            to_mm(mean_of(m, w, &MethodRecord::rms_position)),
-                            100.0 * mean_of(m, w, &MethodRecord::recovered),
-                            mean_of(m, w, &MethodRecord::recovery_time));
+        line += fmt::format(
+            " {}: success {:.0f}%, converged after {:.1f} s / {:.1f} m, tracking RMS {:.0f} mm, "
+            "kidnap recovery {:.0f}% ({:.1f} s);",
+            m, 100.0 * mean_of(m, w, &MethodRecord::converged), mean_of(m, w, &MethodRecord::time_to_convergence),
+            mean_of(m, w, &MethodRecord::distance_to_convergence), to_mm(mean_of(m, w, &MethodRecord::rms_position)),
+            100.0 * mean_of(m, w, &MethodRecord::recovered), mean_of(m, w, &MethodRecord::recovery_time));
       }
       out.notes.push_back(line);
     }

@@ -12,11 +12,11 @@
 
 namespace locbench::experiments::global_topological_example {
 
-const ExperimentInfo kInfo{
-    .name = "global/topological_example",
-    .description = "Markov localization on the slides' topological map (Dervish sensor table): prior "
-                   "1.0 / 0.2, action 1-2 → 2 and 2-3 → 3, 3-4, 4, observation 'open hallway left, open "
-                   "door right' → 0.324 at node 2 and 0.018 at node 4 (18 : 1)"};
+const ExperimentInfo kInfo{.name = "global/topological_example",
+                           .description =
+                               "Markov localization on the slides' topological map (Dervish sensor table): prior "
+                               "1.0 / 0.2, action 1-2 → 2 and 2-3 → 3, 3-4, 4, observation 'open hallway left, open "
+                               "door right' → 0.324 at node 2 and 0.018 at node 4 (18 : 1)"};
 
 using namespace locbench::global;
 
@@ -44,8 +44,12 @@ class GlobalTopological final : public OptionsExperiment<Options> {
     const double open = o.door_open_probability;
     const SideModel wall = {{Feature::kWall, 1.0}}, hall = {{Feature::kOpenHallway, 1.0}};
     const SideModel door = {{Feature::kClosedDoor, 1.0 - open}, {Feature::kOpenDoor, open}};
-    TopologicalMarkov m({{"1-2", wall, wall}, {"2", hall, door}, {"2-3", wall, wall},
-                         {"3", wall, wall}, {"3-4", wall, wall}, {"4", hall, hall}},
+    TopologicalMarkov m({{"1-2", wall, wall},
+                         {"2", hall, door},
+                         {"2-3", wall, wall},
+                         {"3", wall, wall},
+                         {"3-4", wall, wall},
+                         {"4", hall, hall}},
                         dervish_sensor_table(), {o.normalise});
     m.set_belief({p12, 0.0, p23, 0.0, 0.0, 0.0});
     std::vector<std::vector<double>> t(6, std::vector<double>(6, 0.0));
@@ -59,8 +63,8 @@ class GlobalTopological final : public OptionsExperiment<Options> {
 
     const nlohmann::json config = options_json(o);
     reports::ExperimentResults out = start_results(config);
-    out.datasets.push_back({"slides/dervish_topological", "slides (transcribed)",
-                            reports::text_checksum(config.dump()), 6, 0.0});
+    out.datasets.push_back(
+        {"slides/dervish_topological", "slides (transcribed)", reports::text_checksum(config.dump()), 6, 0.0});
     const auto add = [&](const char* variant, double v) {
       out.results.push_back(reports::make_estimate("topological_markov", "dervish", variant, "", v, 0.0, 1));
     };
@@ -73,18 +77,24 @@ class GlobalTopological final : public OptionsExperiment<Options> {
     p.source = "slides, Markov localization case study 1 (topological map, Dervish)";
     p.quantity = "sensor likelihoods p(i|l) and unnormalised posteriors";
     p.unit = "";
-    p.rows = {{"p(i|2)", 0.324, l2},       {"p(i|3)", 0.0, l3},          {"p(i|3-4)", 0.0, l34},
-              {"p(i|4)", 0.09, l4},        {"p_t(2)", 0.324, b2},        {"p_t(4)", 0.018, b4},
+    p.rows = {{"p(i|2)", 0.324, l2},
+              {"p(i|3)", 0.0, l3},
+              {"p(i|3-4)", 0.0, l34},
+              {"p(i|4)", 0.09, l4},
+              {"p_t(2)", 0.324, b2},
+              {"p_t(4)", 0.018, b4},
               {"p_t(2) : p_t(4)", 18.0, b2 / b4}};
-    p.note = "The slides label the first posterior line p_t(1|o_t, i); the node it computes is 2 "
-             "(the only one 1-2 can reach). Not normalised, as on the slides.";
+    p.note =
+        "The slides label the first posterior line p_t(1|o_t, i); the node it computes is 2 "
+        "(the only one 1-2 can reach). Not normalised, as on the slides.";
     p.claim = "after 'open hallway left, open door right' the robot is at node 2 with odds 18 : 1 over node 4";
     p.tolerance = 5e-4;
     p.tolerance_basis = "half a unit in the slides' last printed digit (0.001)";
     out.published.push_back(std::move(p));
-    out.notes.push_back(fmt::format("p(i|2) = {:.3f}, p(i|4) = {:.3f}; posteriors {:.3f} at node 2 and "
-                                    "{:.3f} at node 4, {:.1f} : 1 (slides: 0.324, 0.018, 18 : 1).",
-                                    l2, l4, b2, b4, b2 / b4));
+    out.notes.push_back(
+        fmt::format("p(i|2) = {:.3f}, p(i|4) = {:.3f}; posteriors {:.3f} at node 2 and "
+                    "{:.3f} at node 4, {:.1f} : 1 (slides: 0.324, 0.018, 18 : 1).",
+                    l2, l4, b2, b4, b2 / b4));
     return out;
   }
 };

@@ -55,13 +55,12 @@ struct UmbmarkRecord {
   std::size_t records = 0;
   double duration = 0.0;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(UmbmarkRecord, e_max_after, validation_position,
-                                   validation_heading, parameter_error, run_sigma, records,
-                                   duration)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(UmbmarkRecord, e_max_after, validation_position, validation_heading, parameter_error,
+                                   run_sigma, records, duration)
 
 // Parameter errors against the truth, each flagged with what the square can identify.
-void add_parameter_results(reports::ExperimentResults& out, const std::string& dataset,
-                           const sim::Scenario& scenario, const Samples& s) {
+void add_parameter_results(reports::ExperimentResults& out, const std::string& dataset, const sim::Scenario& scenario,
+                           const Samples& s) {
   // The Fisher analysis is taken at the nominal robot (E = 1), where the methods linearise and
   // the square's null direction is exact; with the runs' own scatter as measurement noise.
   const UmbmarkErrorParams at_nominal{};
@@ -70,19 +69,16 @@ void add_parameter_results(reports::ExperimentResults& out, const std::string& d
   idopt.runs_per_direction = scenario.motion.runs;
   const UmbmarkDesignFinding findings[kMethods] = {
       {},
-      analyze_umbmark_design(UmbmarkDesign::kSquare, UmbmarkParameterSet::kClassic,
-                             scenario.robot.nominal, scenario.robot.encoder, scenario.motion.side,
-                             at_nominal, idopt),
-      analyze_umbmark_design(UmbmarkDesign::kSquareWithLegTicks, UmbmarkParameterSet::kImproved,
-                             scenario.robot.nominal, scenario.robot.encoder, scenario.motion.side,
-                             at_nominal, idopt)};
+      analyze_umbmark_design(UmbmarkDesign::kSquare, UmbmarkParameterSet::kClassic, scenario.robot.nominal,
+                             scenario.robot.encoder, scenario.motion.side, at_nominal, idopt),
+      analyze_umbmark_design(UmbmarkDesign::kSquareWithLegTicks, UmbmarkParameterSet::kImproved, scenario.robot.nominal,
+                             scenario.robot.encoder, scenario.motion.side, at_nominal, idopt)};
   const char* names[3] = {"E_d", "E_b", "E_o"};
   for (int m = 1; m < kMethods; ++m) {
     const std::vector<double>* errs[3] = {&s.E_d_error[m], &s.E_b_error[m], &s.E_o_error[m]};
     for (int p = 0; p < 3; ++p) {
-      reports::MetricResult r = reports::make_metric(
-          kMethodNames[m], dataset, std::string(names[p]) + "_error", "", "monte_carlo_runs",
-          *errs[p]);
+      reports::MetricResult r = reports::make_metric(kMethodNames[m], dataset, std::string(names[p]) + "_error", "",
+                                                     "monte_carlo_runs", *errs[p]);
       r.better = "closer_to_zero";
       if (m == 1 && p == 2) {
         r.note = "input, not estimated: classic UMBmark takes E_s from a tape measurement";
@@ -100,18 +96,17 @@ void add_parameter_results(reports::ExperimentResults& out, const std::string& d
       out.results.push_back(std::move(r));
     }
     const IdentifiabilityReport& rep = findings[m].report;
-    out.notes.push_back(fmt::format(
-        "{} — design: {}; parameters: {}. Fisher information rank {} of {}, condition number "
-        "{:.3g}, per-run σ {:.3f} m (from the runs' scatter).",
-        kMethodNames[m], to_string(findings[m].design), to_string(findings[m].parameter_set),
-        rep.rank, rep.parameter_count, rep.condition_number, idopt.run_sigma));
+    out.notes.push_back(
+        fmt::format("{} — design: {}; parameters: {}. Fisher information rank {} of {}, condition number "
+                    "{:.3g}, per-run σ {:.3f} m (from the runs' scatter).",
+                    kMethodNames[m], to_string(findings[m].design), to_string(findings[m].parameter_set), rep.rank,
+                    rep.parameter_count, rep.condition_number, idopt.run_sigma));
   }
 }
 
 // Table 2.1 (Trilobot, 1.6 m square, E_max,syst in mm: before / UMBmark / improved).
 void add_table_2_1(reports::ExperimentResults& out, const std::vector<std::array<double, 3>>& rows) {
-  const double published[5][3] = {
-      {670, 158, 117}, {722, 185, 141}, {650, 151, 109}, {773, 221, 179}, {748, 202, 159}};
+  const double published[5][3] = {{670, 158, 117}, {722, 185, 141}, {650, 151, 109}, {773, 221, 179}, {748, 202, 159}};
   const char* columns[3] = {"before", "UMBmark", "improved"};
   for (int c = 0; c < 3; ++c) {
     reports::PublishedComparison t;
@@ -145,8 +140,8 @@ void add_table_2_1(reports::ExperimentResults& out, const std::vector<std::array
       "by the rounding of the leg counts. Applying a tape E_s to runs that were not "
       "E_s-compensated puts the E_s error on the turns twice and makes classic look worse — a "
       "plausible reason for the thesis's gap.",
-      pub[0], pub[1], pub[0] / pub[1], pub[2], pub[0] / pub[2], rows.size(), ours[0], ours[1],
-      ours[0] / ours[1], ours[2], ours[0] / ours[2],
+      pub[0], pub[1], pub[0] / pub[1], pub[2], pub[0] / pub[2], rows.size(), ours[0], ours[1], ours[0] / ours[1],
+      ours[2], ours[0] / ours[2],
       ours[2] < ours[1] ? "As in the thesis, improved ends below classic."
                         : "Unlike the thesis, improved does not end below classic here.");
   for (auto& t : out.published) t.note = note;
@@ -190,8 +185,8 @@ UmbmarkSetup CalibrationUmbmark::setup(const UmbmarkOptions& o, const McPlan& pl
   // no E_s turn error and the calibration takes E_s = 1 relative to that nominal model. An
   // inaccurate tape leaves a relative error on it.
   if (o.effects.tape_measure) {
-    const double e_s = error_params(scenario.robot.nominal, scenario.robot.actual).E_o *
-                       (1.0 + o.effects.tape_measure_relative_error);
+    const double e_s =
+        error_params(scenario.robot.nominal, scenario.robot.actual).E_o * (1.0 + o.effects.tape_measure_relative_error);
     scenario.robot.nominal.diameter_left *= e_s;
     scenario.robot.nominal.diameter_right *= e_s;
   }
@@ -202,8 +197,7 @@ UmbmarkSetup CalibrationUmbmark::setup(const UmbmarkOptions& o, const McPlan& pl
   return u;
 }
 
-nlohmann::json CalibrationUmbmark::run_task(const UmbmarkSetup& u, const McPlan& plan,
-                                            int k) const {
+nlohmann::json CalibrationUmbmark::run_task(const UmbmarkSetup& u, const McPlan& plan, int k) const {
   const sim::Scenario& scenario = u.scenario;
   const std::uint64_t seed = plan.run_seed(k);
   const sim::SimulationResult before = sim::simulate(scenario, seed);
@@ -215,11 +209,9 @@ nlohmann::json CalibrationUmbmark::run_task(const UmbmarkSetup& u, const McPlan&
   r.run_sigma = classic.centroids.run_sigma;
   r.records = before.log.record_count();
   r.duration = before.duration;
-  const WheelGeometry corrected[kMethods] = {scenario.robot.nominal, classic.corrected,
-                                             improved.corrected};
-  const double estimates[kMethods][3] = {{1.0, 1.0, 1.0},
-                                         {classic.E_d, classic.E_b, classic.E_s},
-                                         {improved.E_d, improved.E_b, improved.E_o}};
+  const WheelGeometry corrected[kMethods] = {scenario.robot.nominal, classic.corrected, improved.corrected};
+  const double estimates[kMethods][3] = {
+      {1.0, 1.0, 1.0}, {classic.E_d, classic.E_b, classic.E_s}, {improved.E_d, improved.E_b, improved.E_o}};
   for (int m = 0; m < kMethods; ++m) {
     sim::Scenario again = scenario;
     again.robot.nominal = corrected[m];
@@ -228,18 +220,16 @@ nlohmann::json CalibrationUmbmark::run_task(const UmbmarkSetup& u, const McPlan&
     sim::Scenario check = again;
     check.motion.kind = sim::MotionKind::kWaypoints;
     check.motion.waypoints = u.validation;
-    const auto [pos, head] =
-        final_dead_reckoning_error(sim::simulate(check, Rng::derive_seed(seed, 2)));
+    const auto [pos, head] = final_dead_reckoning_error(sim::simulate(check, Rng::derive_seed(seed, 2)));
     r.validation_position[m] = pos;
     r.validation_heading[m] = head;
-    r.parameter_error[m] = {estimates[m][0] - truth.E_d, estimates[m][1] - truth.E_b,
-                            estimates[m][2] - truth.E_o};
+    r.parameter_error[m] = {estimates[m][0] - truth.E_d, estimates[m][1] - truth.E_b, estimates[m][2] - truth.E_o};
   }
   return r;
 }
 
-reports::ExperimentResults CalibrationUmbmark::summarise(
-    const UmbmarkSetup& u, const McPlan& plan, const std::vector<nlohmann::json>& records) const {
+reports::ExperimentResults CalibrationUmbmark::summarise(const UmbmarkSetup& u, const McPlan& plan,
+                                                         const std::vector<nlohmann::json>& records) const {
   reports::ExperimentResults out = start_results(u.configuration);
   Samples s;
   std::vector<std::array<double, 3>> table_rows;  // E_max,syst before / classic / improved
@@ -262,16 +252,15 @@ reports::ExperimentResults CalibrationUmbmark::summarise(
   const auto first = records.front().get<UmbmarkRecord>();
   const std::string dataset = "sim_" + preset_;
   out.datasets.push_back({"sim/" + u.scenario.name, "simulated",
-                          reports::text_checksum(out.configuration["scenario"].dump()),
-                          first.records, first.duration});
+                          reports::text_checksum(out.configuration["scenario"].dump()), first.records, first.duration});
   for (int m = 0; m < kMethods; ++m) {
     const std::string method = kMethodNames[m];
-    out.results.push_back(reports::make_metric(method, dataset, "e_max_syst", "m",
-                                               "monte_carlo_runs", s.e_max_after[m]));
-    out.results.push_back(reports::make_metric(method, dataset, "validation_final_position_error",
-                                               "m", "monte_carlo_runs", s.validation_position[m]));
-    out.results.push_back(reports::make_metric(method, dataset, "validation_final_heading_error",
-                                               "rad", "monte_carlo_runs", s.validation_heading[m]));
+    out.results.push_back(
+        reports::make_metric(method, dataset, "e_max_syst", "m", "monte_carlo_runs", s.e_max_after[m]));
+    out.results.push_back(reports::make_metric(method, dataset, "validation_final_position_error", "m",
+                                               "monte_carlo_runs", s.validation_position[m]));
+    out.results.push_back(reports::make_metric(method, dataset, "validation_final_heading_error", "rad",
+                                               "monte_carlo_runs", s.validation_heading[m]));
   }
   add_parameter_results(out, dataset, u.scenario, s);
   if (preset_ == "umbmark_trilobot") add_table_2_1(out, table_rows);

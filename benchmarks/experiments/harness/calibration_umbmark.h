@@ -41,8 +41,7 @@ void visit_fields(V& v, UmbmarkEffects& e) {
   v.flag("tape_measure", e.tape_measure, "E_s measured with a tape and compensated before the runs");
   v.field("tape_measure_relative_error", e.tape_measure_relative_error, "", any_finite(),
           "relative error of that tape measurement");
-  v.flag("wheels_driven_independently", e.wheels_driven_independently,
-         "wheels not driven by equal tick counts");
+  v.flag("wheels_driven_independently", e.wheels_driven_independently, "wheels not driven by equal tick counts");
 }
 LOCBENCH_EXPERIMENT_OPTIONS(UmbmarkEffects)
 

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <limits>
 
-#include "core/units.h"
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/odometry_model.h"
 #include "benchmarks/experiments/framework/plot_series.h"
+#include "core/units.h"
 
 namespace locbench::experiments {
 namespace {
@@ -45,8 +45,10 @@ std::vector<double> covariate(const MotionData& d, const std::string& name) {
     rate[i] = T > 0.0 ? (name == "speed" ? w[i].distance : w[i].turn) / T : std::numeric_limits<double>::quiet_NaN();
   }
   for (std::size_t i = 0; i < w.size(); ++i) {
-    if (name == "speed" || name == "turn_rate") out[i] = rate[i];
-    else if (name == "signed_distance") out[i] = w[i].signed_distance;
+    if (name == "speed" || name == "turn_rate")
+      out[i] = rate[i];
+    else if (name == "signed_distance")
+      out[i] = w[i].signed_distance;
     else if (name == "turn_rate_change" && i > 0 && i + 1 < w.size()) {
       const double T = w[i + 1].t0 - w[i - 1].t0;  // neighbours' turn rates, centred difference
       const double r0 = w[i - 1].turn / (w[i - 1].t1 - w[i - 1].t0), r1 = w[i + 1].turn / (w[i + 1].t1 - w[i + 1].t0);
@@ -100,7 +102,8 @@ reports::DiagnosedLog diagnosed_log(const std::string& log, const diagnosis::Dia
     k.id = c.id;
     k.identifiable = c.identifiable;
     for (const auto& p : c.parameters) k.parameters.push_back({p.name, p.value, p.lo, p.hi});
-    if (!c.gains.empty()) k.gain = reports::FindingGain{c.gains.front().metric, c.gains.front().before, c.gains.front().after};
+    if (!c.gains.empty())
+      k.gain = reports::FindingGain{c.gains.front().metric, c.gains.front().before, c.gains.front().after};
     out.causes.push_back(std::move(k));
   }
   return out;
@@ -134,24 +137,26 @@ std::vector<reports::Plot> diagnosis_plots(const std::string& ds, const MotionDa
     };
     const bool rate = rv.covariate == "turn_rate" || rv.covariate == "turn_rate_change";
     std::vector<double> xs = x;
-    if (rate) for (double& e : xs) e = to_deg(e);
+    if (rate)
+      for (double& e : xs) e = to_deg(e);
     reports::Plot p = plot(reports::key_part(ds + "_residual_" + c.id), "binned",
                            fmt::format("{}: {} residual against {}, before and after {}", ds,
                                        heading ? "heading" : "along-track", rv.covariate, c.id),
                            rv.covariate,
-                           rv.covariate == "speed" ? "m/s" : rv.covariate == "turn_rate" ? "deg/s"
-                           : rv.covariate == "turn_rate_change" ? "deg/s²" : "m",
+                           rv.covariate == "speed"              ? "m/s"
+                           : rv.covariate == "turn_rate"        ? "deg/s"
+                           : rv.covariate == "turn_rate_change" ? "deg/s²"
+                                                                : "m",
                            heading ? "heading residual (reference − prediction), mean per bin"
                                    : "along-track residual (reference − prediction), mean per bin",
                            heading ? "deg" : "mm",
                            fmt::format("{} windows in {} equal-count bins; the nominal model vs the nominal model "
                                        "with {} alone at its fitted values",
                                        data.windows.size(), options.bins, c.id));
-    p.series.push_back(binned_means("nominal model", xs, scaled(residual_component(data, nominal, rv.component)),
-                                    options.bins));
-    p.series.push_back(binned_means("with " + c.id, xs,
-                                    scaled(residual_component(data, with_cause(nominal, c), rv.component)),
-                                    options.bins));
+    p.series.push_back(
+        binned_means("nominal model", xs, scaled(residual_component(data, nominal, rv.component)), options.bins));
+    p.series.push_back(binned_means(
+        "with " + c.id, xs, scaled(residual_component(data, with_cause(nominal, c), rv.component)), options.bins));
     out.push_back(std::move(p));
   }
   // The time-offset profile (timed references: relations carry no time to shift).
@@ -159,8 +164,8 @@ std::vector<reports::Plot> diagnosis_plots(const std::string& ds, const MotionDa
     reports::PlotSeries dev{"deviance 2·(NLL − min)", {}, {}};
     std::vector<double> nll;
     for (std::size_t i = 0; i < options.offset_points; ++i) {
-      const double o = -options.offset_range +
-                       2.0 * options.offset_range * static_cast<double>(i) / static_cast<double>(options.offset_points - 1);
+      const double o = -options.offset_range + 2.0 * options.offset_range * static_cast<double>(i) /
+                                                   static_cast<double>(options.offset_points - 1);
       OdometryModel m = all;
       m.time_offset = o;
       dev.x.push_back(to_mm(o));  // s → ms, the same factor
@@ -168,9 +173,8 @@ std::vector<reports::Plot> diagnosis_plots(const std::string& ds, const MotionDa
     }
     const double lo = *std::min_element(nll.begin(), nll.end());
     for (double v : nll) dev.y.push_back(2.0 * (v - lo));
-    reports::Plot p = plot(reports::key_part(ds + "_offset_profile"), "profile",
-                           ds + ": time-offset profile", "odometry time − reference time", "ms",
-                           "deviance 2·(NLL − min)", "",
+    reports::Plot p = plot(reports::key_part(ds + "_offset_profile"), "profile", ds + ": time-offset profile",
+                           "odometry time − reference time", "ms", "deviance 2·(NLL − min)", "",
                            fmt::format("{} offsets over ±{:.0f} ms, the other parameters held at the kept causes' "
                                        "values{}; the diagnosis's 95% interval is where its re-fitted profile "
                                        "crosses 3.84",
@@ -210,9 +214,9 @@ std::vector<reports::Plot> diagnosis_plots(const std::string& ds, const MotionDa
     out.push_back(std::move(p));
   }
   if (!hn.empty()) {
-    reports::Plot p = plot(reports::key_part(ds + "_heading_error_cdf"), "cdf", ds + ": per-window heading error",
-                           "|heading error|", "deg", "fraction of windows", "",
-                           fmt::format("{} windows of {:.3g} s", hn.size(), d.noise_window_s));
+    reports::Plot p =
+        plot(reports::key_part(ds + "_heading_error_cdf"), "cdf", ds + ": per-window heading error", "|heading error|",
+             "deg", "fraction of windows", "", fmt::format("{} windows of {:.3g} s", hn.size(), d.noise_window_s));
     p.series.push_back(cdf_samples("nominal model", hn, options.cdf_points));
     p.series.push_back(cdf_samples(after, hk, options.cdf_points));
     out.push_back(std::move(p));

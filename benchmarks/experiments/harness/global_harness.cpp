@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "core/diff_drive_odometry.h"
-#include "core/errors.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/pose_correction/ekf_tracker.h"
 #include "baselines/global/grid_markov.h"
@@ -12,6 +10,8 @@
 #include "baselines/laser/options_json.h"
 #include "baselines/localization/line_feature_kalman_localizer.h"
 #include "baselines/localization/line_observation.h"
+#include "core/diff_drive_odometry.h"
+#include "core/errors.h"
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments::global {
@@ -59,8 +59,7 @@ WheelDisplacement wheels_between(const Pose2& a, const Pose2& b, double wheelbas
 
 class MclLocalizer final : public Localizer {
  public:
-  MclLocalizer(const LineMap& map, const locbench::global::MclOptions& o, std::uint64_t seed)
-      : mcl_(map, o, seed) {}
+  MclLocalizer(const LineMap& map, const locbench::global::MclOptions& o, std::uint64_t seed) : mcl_(map, o, seed) {}
   void step(const ScanStep& s) override { mcl_.update(s.odometry, *s.scan); }
   Pose2 pose() const override { return mcl_.estimate(); }
   std::size_t memory_bytes() const override { return mcl_.memory_bytes(); }
@@ -88,7 +87,8 @@ class GridLocalizer final : public Localizer {
 class EkfEapLocalizer final : public Localizer {
  public:
   EkfEapLocalizer(const LineMap& map, const nlohmann::json& o, const Pose2& start, double wheelbase)
-      : map_(map), eap_(o.at("eap").get<laser::EapOptions>()),
+      : map_(map),
+        eap_(o.at("eap").get<laser::EapOptions>()),
         ekf_(o.at("tracker").get<pose_correction::EkfTrackerOptions>(), wheelbase, start),
         wheelbase_(wheelbase) {}
   void step(const ScanStep& s) override {
@@ -111,7 +111,8 @@ class EkfEapLocalizer final : public Localizer {
 class LineKalmanLocalizer final : public Localizer {
  public:
   LineKalmanLocalizer(const LineMap& map, const nlohmann::json& o, const Pose2& start, double wheelbase)
-      : map_(map), sm_(o.at("split_and_merge").get<laser::SplitAndMergeMatcherOptions>()),
+      : map_(map),
+        sm_(o.at("split_and_merge").get<laser::SplitAndMergeMatcherOptions>()),
         kf_(o.at("line_kalman").get<localization::LineFeatureKalmanOptions>(), wheelbase, start),
         wheelbase_(wheelbase) {}
   void step(const ScanStep& s) override {
@@ -154,8 +155,7 @@ nlohmann::json default_method_options() {
           {"wheelbase", 0.33}};
 }
 
-std::unique_ptr<Localizer> make_localizer(const std::string& name, const LineMap& map,
-                                          const nlohmann::json& options,
+std::unique_ptr<Localizer> make_localizer(const std::string& name, const LineMap& map, const nlohmann::json& options,
                                           const std::optional<Pose2>& start, std::uint64_t seed) {
   if (name == "mcl") {
     locbench::global::MclOptions o;
@@ -178,8 +178,7 @@ std::unique_ptr<Localizer> make_localizer(const std::string& name, const LineMap
   return std::make_unique<LineKalmanLocalizer>(map, options.at("kalman_line_features"), *start, b);
 }
 
-std::vector<Pose2> run_localizer(Localizer& l, const std::vector<ScanStep>& steps, std::size_t begin,
-                                 std::size_t end) {
+std::vector<Pose2> run_localizer(Localizer& l, const std::vector<ScanStep>& steps, std::size_t begin, std::size_t end) {
   std::vector<Pose2> out;
   out.reserve(end - begin);
   for (std::size_t i = begin; i < end; ++i) {
@@ -190,8 +189,7 @@ std::vector<Pose2> run_localizer(Localizer& l, const std::vector<ScanStep>& step
 }
 
 std::optional<std::size_t> converged_from(const std::vector<Pose2>& est, const std::vector<ScanStep>& steps,
-                                          std::size_t begin, std::size_t end,
-                                          const ConvergenceCriterion& c) {
+                                          std::size_t begin, std::size_t end, const ConvergenceCriterion& c) {
   std::optional<std::size_t> from;
   for (std::size_t i = begin; i < end; ++i) {
     const Pose2& r = *steps[i].reference;
@@ -206,21 +204,19 @@ std::optional<std::size_t> converged_from(const std::vector<Pose2>& est, const s
   return from;
 }
 
-TrackingRms tracking_rms(const std::vector<Pose2>& est, const std::vector<ScanStep>& steps,
-                         std::size_t begin, std::size_t end) {
+TrackingRms tracking_rms(const std::vector<Pose2>& est, const std::vector<ScanStep>& steps, std::size_t begin,
+                         std::size_t end) {
   double sp = 0.0, sh = 0.0;
   for (std::size_t i = begin; i < end; ++i) {
     sp += std::pow(translation_distance(est[i], *steps[i].reference), 2);
     sh += std::pow(angle_diff(est[i].theta, steps[i].reference->theta), 2);
   }
-  return {std::sqrt(sp / static_cast<double>(end - begin)),
-          std::sqrt(sh / static_cast<double>(end - begin))};
+  return {std::sqrt(sp / static_cast<double>(end - begin)), std::sqrt(sh / static_cast<double>(end - begin))};
 }
 
-void add_method_metrics(reports::ExperimentResults& out, const std::string& method,
-                        const std::string& dataset, const MethodRunSamples& s) {
-  const auto metric = [&](const char* variant, const char* unit, const std::vector<double>& v,
-                          const char* better) {
+void add_method_metrics(reports::ExperimentResults& out, const std::string& method, const std::string& dataset,
+                        const MethodRunSamples& s) {
+  const auto metric = [&](const char* variant, const char* unit, const std::vector<double>& v, const char* better) {
     if (v.empty()) return;
     reports::MetricResult r = reports::make_metric(method, dataset, variant, unit, "monte_carlo_runs", v);
     r.better = better;

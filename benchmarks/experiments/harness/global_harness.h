@@ -11,18 +11,18 @@
 #include <vector>
 
 #include "core/line_map.h"
+#include "core/log.h"
 #include "core/option_fields.h"
 #include "core/pose2.h"
 #include "core/scan.h"
-#include "core/log.h"
 #include "reports/report.h"
 
 namespace locbench::experiments::global {
 
 struct ScanStep {
   double t = 0.0;
-  Pose2 odometry;                // odometry pose at the scan (odometry frame)
-  const Scan* scan = nullptr;    // points into the log (or a copy kept by the caller)
+  Pose2 odometry;                  // odometry pose at the scan (odometry frame)
+  const Scan* scan = nullptr;      // points into the log (or a copy kept by the caller)
   std::optional<Pose2> reference;  // truth (simulated) or the map frame's reference pose
 };
 
@@ -56,13 +56,11 @@ class Localizer {
 // "kalman_line_features": {"split_and_merge", "line_kalman"}, "wheelbase": 0.33}.
 nlohmann::json default_method_options();
 // UsageError for an unknown name or bad options; a tracker without `start` is a UsageError.
-std::unique_ptr<Localizer> make_localizer(const std::string& name, const LineMap& map,
-                                          const nlohmann::json& options,
+std::unique_ptr<Localizer> make_localizer(const std::string& name, const LineMap& map, const nlohmann::json& options,
                                           const std::optional<Pose2>& start, std::uint64_t seed);
 
 // Estimated pose at every step.
-std::vector<Pose2> run_localizer(Localizer& l, const std::vector<ScanStep>& steps, std::size_t begin,
-                                 std::size_t end);
+std::vector<Pose2> run_localizer(Localizer& l, const std::vector<ScanStep>& steps, std::size_t begin, std::size_t end);
 
 struct ConvergenceCriterion {
   double position = 0.5;  // [m]
@@ -100,8 +98,8 @@ struct TrackingRms {
   double position = 0.0;
   double heading = 0.0;
 };
-TrackingRms tracking_rms(const std::vector<Pose2>& est, const std::vector<ScanStep>& steps,
-                         std::size_t begin, std::size_t end);
+TrackingRms tracking_rms(const std::vector<Pose2>& est, const std::vector<ScanStep>& steps, std::size_t begin,
+                         std::size_t end);
 
 // One method's samples over the runs (a value per run that has it).
 struct MethodRunSamples {
@@ -112,8 +110,8 @@ struct MethodRunSamples {
 };
 // Adds the method's results over Monte-Carlo runs to `out` (convergence only for the global
 // methods; a metric without samples is left out).
-void add_method_metrics(reports::ExperimentResults& out, const std::string& method,
-                        const std::string& dataset, const MethodRunSamples& s);
+void add_method_metrics(reports::ExperimentResults& out, const std::string& method, const std::string& dataset,
+                        const MethodRunSamples& s);
 
 // A line map from the log's own scans: split-and-merge lines of every `every`-th scan in
 // [t0, t1], placed with the odometry pose at the scan (the map's frame is the odometry's).

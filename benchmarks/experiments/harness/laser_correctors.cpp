@@ -3,18 +3,17 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "core/angle.h"
-#include "core/errors.h"
 #include "algorithms/pose_correction/iterated_correction.h"
 #include "algorithms/pose_correction/pose_correction.h"
 #include "baselines/laser/pl_icp.h"
 #include "benchmarks/experiments/harness/laser_matchers.h"
+#include "core/angle.h"
+#include "core/errors.h"
 
 namespace locbench::experiments {
 namespace {
 
 using pose_correction::PoseCorrectionOptions;
-
 
 // The diagnostics of a chapter-6 correction (laser_correctors.h).
 void diagnose(const pose_correction::PoseCorrection& c, ScanPairCorrection& out) {
@@ -37,9 +36,12 @@ void diagnose(const pose_correction::PoseCorrection& c, ScanPairCorrection& out)
 class Chapter6 final : public ScanPairCorrector {
  public:
   enum class Mode { kOneShot, kHeadingOnly, kRematched };
-  Chapter6(std::string name, std::unique_ptr<laser::SegmentMatcher> matcher,
-           PoseCorrectionOptions options, Mode mode, int rematch_iterations)
-      : name_(std::move(name)), matcher_(std::move(matcher)), options_(options), mode_(mode),
+  Chapter6(std::string name, std::unique_ptr<laser::SegmentMatcher> matcher, PoseCorrectionOptions options, Mode mode,
+           int rematch_iterations)
+      : name_(std::move(name)),
+        matcher_(std::move(matcher)),
+        options_(options),
+        mode_(mode),
         rematch_(rematch_iterations) {}
   std::string name() const override { return name_; }
   ScanPairCorrection correct(const Scan&, const LineMap& map, const Scan& second,
@@ -159,14 +161,12 @@ std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vecto
   const int rematch = o.value("rematch_iterations", 10);
   if (rematch < 1) throw UsageError("rematch_iterations: must be >= 1");
   std::vector<std::unique_ptr<ScanPairCorrector>> out;
-  const auto matcher = [&](const std::string& m) {
-    return std::move(make_matchers({m}, matcher_options).front());
-  };
+  const auto matcher = [&](const std::string& m) { return std::move(make_matchers({m}, matcher_options).front()); };
   const std::string suffix = "_ch6_ls";
   for (const std::string& name : which) {
     if (name.size() > suffix.size() && name.ends_with(suffix)) {
-      out.push_back(std::make_unique<Chapter6>(name, matcher(name.substr(0, name.size() - suffix.size())),
-                                               ch6, Chapter6::Mode::kOneShot, 1));
+      out.push_back(std::make_unique<Chapter6>(name, matcher(name.substr(0, name.size() - suffix.size())), ch6,
+                                               Chapter6::Mode::kOneShot, 1));
     } else if (name == "eap_ch6_rematched") {
       out.push_back(std::make_unique<Chapter6>(name, matcher("eap"), ch6, Chapter6::Mode::kRematched, rematch));
     } else if (name == "eap_ch6_heading_only") {

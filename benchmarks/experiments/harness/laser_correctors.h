@@ -30,7 +30,7 @@
 namespace locbench::experiments {
 
 struct ScanPairCorrection {
-  Pose2 motion;                 // corrected second-scan robot pose in the first robot frame
+  Pose2 motion;  // corrected second-scan robot pose in the first robot frame
   bool heading_fixed = false;
   bool position_fixed = false;  // false: the position is the odometry's (or unobservable)
   std::size_t matched_points = 0;
@@ -48,8 +48,8 @@ class ScanPairCorrector {
  public:
   virtual ~ScanPairCorrector() = default;
   virtual std::string name() const = 0;
-  virtual ScanPairCorrection correct(const Scan& first, const LineMap& first_lines,
-                                     const Scan& second, const Pose2& odometry) const = 0;
+  virtual ScanPairCorrection correct(const Scan& first, const LineMap& first_lines, const Scan& second,
+                                     const Pose2& odometry) const = 0;
 };
 
 // Every corrector option with its defaults:

@@ -1,10 +1,10 @@
 #include "benchmarks/experiments/harness/laser_matchers.h"
 
-#include "core/errors.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/laser/segment_grid_index.h"
 #include "baselines/laser/extract_then_match.h"
 #include "baselines/laser/options_json.h"
+#include "core/errors.h"
 
 namespace locbench::experiments {
 namespace {
@@ -27,8 +27,8 @@ nlohmann::json default_matcher_options() {
   return j;
 }
 
-std::vector<std::unique_ptr<laser::SegmentMatcher>> make_matchers(
-    const std::vector<std::string>& which, const nlohmann::json& options, const LineMap* map) {
+std::vector<std::unique_ptr<laser::SegmentMatcher>> make_matchers(const std::vector<std::string>& which,
+                                                                  const nlohmann::json& options, const LineMap* map) {
   std::vector<std::unique_ptr<laser::SegmentMatcher>> out;
   for (const std::string& name : which) {
     if (name == "eap") {
@@ -38,8 +38,7 @@ std::vector<std::unique_ptr<laser::SegmentMatcher>> make_matchers(
       const auto o = options_of<laser::EapOptions>(options, "eap");
       laser::GridIndexOptions g;
       g.d_limit = o.d_limit;
-      out.push_back(std::make_unique<laser::EapMatcher>(
-          std::make_shared<const laser::SegmentGridIndex>(*map, g), o));
+      out.push_back(std::make_unique<laser::EapMatcher>(std::make_shared<const laser::SegmentGridIndex>(*map, g), o));
     } else if (name == "split_and_merge") {
       out.push_back(std::make_unique<laser::SplitAndMergeMatcher>(
           options_of<laser::SplitAndMergeMatcherOptions>(options, "split_and_merge")));
@@ -47,8 +46,7 @@ std::vector<std::unique_ptr<laser::SegmentMatcher>> make_matchers(
       out.push_back(std::make_unique<laser::AgglomerativeMatcher>(
           options_of<laser::AgglomerativeMatcherOptions>(options, "agglomerative")));
     } else if (name == "rwht") {
-      out.push_back(std::make_unique<laser::RwhtMatcher>(
-          options_of<laser::RwhtMatcherOptions>(options, "rwht")));
+      out.push_back(std::make_unique<laser::RwhtMatcher>(options_of<laser::RwhtMatcherOptions>(options, "rwht")));
     } else {
       throw UsageError("unknown matcher '" + name +
                        "' (known: eap, eap_indexed, split_and_merge, agglomerative, rwht)");

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/line_map.h"
 #include "algorithms/laser/segment_match.h"
+#include "core/line_map.h"
 
 namespace locbench::experiments {
 
@@ -18,8 +18,8 @@ nlohmann::json default_matcher_options();
 // The matchers named in `which` (in that order) with options from `options`; "eap_indexed" is
 // the EAP matcher with a grid index built for `map` (required for it). UsageError for an unknown
 // name.
-std::vector<std::unique_ptr<laser::SegmentMatcher>> make_matchers(
-    const std::vector<std::string>& which, const nlohmann::json& options,
-    const LineMap* map = nullptr);
+std::vector<std::unique_ptr<laser::SegmentMatcher>> make_matchers(const std::vector<std::string>& which,
+                                                                  const nlohmann::json& options,
+                                                                  const LineMap* map = nullptr);
 
 }  // namespace locbench::experiments

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/angle.h"
 #include "algorithms/laser/line_fit.h"
+#include "core/angle.h"
 
 namespace locbench::experiments {
 
@@ -11,17 +11,14 @@ double MatchScore::segment_recall() const {
   return detectable == 0 ? 1.0 : static_cast<double>(detected) / static_cast<double>(detectable);
 }
 double MatchScore::point_precision() const {
-  return points_assigned == 0 ? 1.0
-                              : static_cast<double>(points_correct) / static_cast<double>(points_assigned);
+  return points_assigned == 0 ? 1.0 : static_cast<double>(points_correct) / static_cast<double>(points_assigned);
 }
 double MatchScore::point_recall() const {
-  return points_on_map == 0 ? 1.0
-                            : static_cast<double>(points_correct) / static_cast<double>(points_on_map);
+  return points_on_map == 0 ? 1.0 : static_cast<double>(points_correct) / static_cast<double>(points_on_map);
 }
 
-MatchScore score_match(const laser::MatchResult& result, const LineMap& map,
-                       const std::vector<int>& labels, const Scan& scan, const Pose2& truth,
-                       std::size_t min_points, double min_extent) {
+MatchScore score_match(const laser::MatchResult& result, const LineMap& map, const std::vector<int>& labels,
+                       const Scan& scan, const Pose2& truth, std::size_t min_points, double min_extent) {
   MatchScore s;
   const std::size_t m = map.segments.size();
   // Detectable: enough beams on the segment, far enough apart (the matchers' acceptance rule).

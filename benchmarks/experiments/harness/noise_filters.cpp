@@ -7,13 +7,13 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/dead_reckoning.h"
 #include "algorithms/filters/compass_ekf.h"
 #include "algorithms/filters/compass_odometry_input.h"
 #include "algorithms/filters/consistency.h"
 #include "baselines/filters/fixed_q_ekf.h"
 #include "baselines/filters/sage_husa_aekf.h"
 #include "baselines/filters/vb_akf.h"
+#include "core/dead_reckoning.h"
 #include "datasets/sim/scenario_json.h"
 
 namespace locbench::experiments {
@@ -27,12 +27,10 @@ nlohmann::json default_filter_options(const Eigen::Vector3d& initial_covariance)
   sage.initial_covariance = initial_covariance;
   VbAkfOptions vb;
   vb.initial_covariance = initial_covariance;
-  return {{"fixed_q_ekf", fixed}, {"adaptive_model_ekf", adaptive}, {"sage_husa_aekf", sage},
-          {"vb_akf", vb}};
+  return {{"fixed_q_ekf", fixed}, {"adaptive_model_ekf", adaptive}, {"sage_husa_aekf", sage}, {"vb_akf", vb}};
 }
 
-FilterRun run_noise_filters(const sim::SimulationResult& result,
-                            const nlohmann::json& filter_options) {
+FilterRun run_noise_filters(const sim::SimulationResult& result, const nlohmann::json& filter_options) {
   const auto model = result.log.nominal_model();
   if (!model || result.log.encoders.size() < 2) throw std::logic_error("run without encoders");
   const Trajectory truth = sim::true_trajectory(result);
@@ -107,27 +105,24 @@ std::vector<std::vector<double>> common_length(std::vector<std::vector<double>> 
   return v;
 }
 
-void add_filter_results(reports::ExperimentResults& out, const std::string& dataset,
-                        const FilterSamples& s) {
+void add_filter_results(reports::ExperimentResults& out, const std::string& dataset, const FilterSamples& s) {
   for (int f = 0; f < kNoiseFilters; ++f) {
     const std::string& m = kNoiseFilterNames[f];
-    out.results.push_back(reports::make_metric(m, dataset, "final_position_error", "m",
-                                               "monte_carlo_runs", s.final_error[f]));
-    out.results.push_back(reports::make_metric(m, dataset, "final_heading_error", "rad",
-                                               "monte_carlo_runs", s.heading_error[f]));
+    out.results.push_back(
+        reports::make_metric(m, dataset, "final_position_error", "m", "monte_carlo_runs", s.final_error[f]));
+    out.results.push_back(
+        reports::make_metric(m, dataset, "final_heading_error", "rad", "monte_carlo_runs", s.heading_error[f]));
     const ConsistencySummary nees = summarize_consistency(common_length(s.nees[f]), 3);
     const ConsistencySummary nis = summarize_consistency(common_length(s.nis[f]), 1);
-    out.results.push_back(reports::make_metric(m, dataset, "nees_time_average", "", "time_steps",
-                                               nees.average, false));
-    out.results.push_back(reports::make_metric(m, dataset, "nis_time_average", "", "time_steps",
-                                               nis.average, false));
-    out.notes.push_back(fmt::format(
-        "{} on {}: average NEES inside its 95% χ² band [{:.2f}, {:.2f}] (3 dof, {} runs) at "
-        "{:.0f}% of steps ({:.0f}% above: over-confident, {:.0f}% below: conservative); NIS "
-        "inside [{:.2f}, {:.2f}] at {:.0f}% of updates.",
-        m, dataset, nees.bounds.lower, nees.bounds.upper, nees.runs, 100 * nees.fraction_inside,
-        100 * nees.fraction_above, 100 * nees.fraction_below, nis.bounds.lower, nis.bounds.upper,
-        100 * nis.fraction_inside));
+    out.results.push_back(reports::make_metric(m, dataset, "nees_time_average", "", "time_steps", nees.average, false));
+    out.results.push_back(reports::make_metric(m, dataset, "nis_time_average", "", "time_steps", nis.average, false));
+    out.notes.push_back(
+        fmt::format("{} on {}: average NEES inside its 95% χ² band [{:.2f}, {:.2f}] (3 dof, {} runs) at "
+                    "{:.0f}% of steps ({:.0f}% above: over-confident, {:.0f}% below: conservative); NIS "
+                    "inside [{:.2f}, {:.2f}] at {:.0f}% of updates.",
+                    m, dataset, nees.bounds.lower, nees.bounds.upper, nees.runs, 100 * nees.fraction_inside,
+                    100 * nees.fraction_above, 100 * nees.fraction_below, nis.bounds.lower, nis.bounds.upper,
+                    100 * nis.fraction_inside));
   }
 }
 

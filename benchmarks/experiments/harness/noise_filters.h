@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/trajectory.h"
-#include "core/units.h"
 #include "benchmarks/experiments/framework/experiment_options.h"
 #include "benchmarks/experiments/harness/scenario_option.h"
+#include "core/trajectory.h"
+#include "core/units.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario.h"
 #include "datasets/sim/simulation_result.h"
@@ -21,8 +21,8 @@ namespace locbench::experiments {
 
 inline constexpr int kNoiseFilters = 4;
 // Result-name spellings, in the order of FilterRun::final_position_error.
-inline const std::array<std::string, kNoiseFilters> kNoiseFilterNames = {
-    "fixed_q_ekf", "adaptive_model_ekf", "sage_husa_aekf", "vb_akf"};
+inline const std::array<std::string, kNoiseFilters> kNoiseFilterNames = {"fixed_q_ekf", "adaptive_model_ekf",
+                                                                         "sage_husa_aekf", "vb_akf"};
 
 struct FilterRun {
   std::array<double, kNoiseFilters> final_position_error{};  // [m]
@@ -42,8 +42,7 @@ struct FilterRun {
 nlohmann::json default_filter_options(const Eigen::Vector3d& initial_covariance);
 
 // Runs the four filters with `filter_options` (as above; strict: unknown keys are a UsageError).
-FilterRun run_noise_filters(const sim::SimulationResult& result,
-                            const nlohmann::json& filter_options);
+FilterRun run_noise_filters(const sim::SimulationResult& result, const nlohmann::json& filter_options);
 
 // P(0) = diag(1 mm², 1 mm², 0.3°²): the thesis starts from P(0) = 0, which makes the NEES of
 // the first samples undefined; the effect on the final error is below a millimetre.
@@ -66,8 +65,7 @@ struct FilterRecord {
   std::size_t records = 0;
   double duration = 0.0;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FilterRecord, final_error, heading_error, nees, nis, records,
-                                   duration)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FilterRecord, final_error, heading_error, nees, nis, records, duration)
 
 FilterRecord record_of(const FilterRun& r, const sim::SimulationResult& sim);
 void collect(const FilterRecord& r, FilterSamples& s);
@@ -77,8 +75,7 @@ std::vector<std::vector<double>> common_length(std::vector<std::vector<double>> 
 
 // Per filter: final position and heading error, time-averaged NEES and NIS, and a note on
 // their χ² bands.
-void add_filter_results(reports::ExperimentResults& out, const std::string& dataset,
-                        const FilterSamples& s);
+void add_filter_results(reports::ExperimentResults& out, const std::string& dataset, const FilterSamples& s);
 
 // The options the filter experiments share: simulated corridor runs filtered by the four
 // filters (noise/tables_4_1_4_2, noise/encoder_resolution_sweep).

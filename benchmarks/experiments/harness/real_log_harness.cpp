@@ -22,9 +22,9 @@ std::string string_field(const nlohmann::json& item, const char* key, const std:
 
 void require_file(const std::string& path, const char* what) {
   if (!std::filesystem::is_regular_file(path)) {
-    throw InputError(path, 0, std::string("cannot open the ") + what +
-                                  (std::filesystem::exists(path) ? " (not a regular file)"
-                                                                 : " (no such file)"));
+    throw InputError(path, 0,
+                     std::string("cannot open the ") + what +
+                         (std::filesystem::exists(path) ? " (not a regular file)" : " (no such file)"));
   }
 }
 
@@ -33,11 +33,11 @@ std::string file_of(const std::string& spec) { return spec.substr(0, spec.find('
 
 }  // namespace
 
-std::vector<RealLogSpec> real_log_specs(const nlohmann::json& datasets,
-                                        const std::string& experiment) {
+std::vector<RealLogSpec> real_log_specs(const nlohmann::json& datasets, const std::string& experiment) {
   if (!datasets.is_array()) {
-    throw UsageError(experiment + ": datasets: expected an array of catalog names or "
-                                  "{\"name\", \"log\", \"relations\", \"ground_truth\"} objects");
+    throw UsageError(experiment +
+                     ": datasets: expected an array of catalog names or "
+                     "{\"name\", \"log\", \"relations\", \"ground_truth\"} objects");
   }
   std::vector<RealLogSpec> out;
   std::set<std::string> names;
@@ -51,8 +51,7 @@ std::vector<RealLogSpec> real_log_specs(const nlohmann::json& datasets,
       for (const auto& [key, value] : item.items()) {
         (void)value;
         if (key != "name" && key != "log" && key != "relations" && key != "ground_truth") {
-          throw UsageError(where + ": unknown key \"" + key +
-                           "\" (expected name, log, relations, ground_truth)");
+          throw UsageError(where + ": unknown key \"" + key + "\" (expected name, log, relations, ground_truth)");
         }
       }
       s.name = string_field(item, "name", where);
@@ -64,13 +63,11 @@ std::vector<RealLogSpec> real_log_specs(const nlohmann::json& datasets,
         throw UsageError(where + ": relations or ground_truth given without a \"log\"");
       }
     } else {
-      throw UsageError(where + ": expected a catalog name or an object, found a " +
-                       std::string(item.type_name()));
+      throw UsageError(where + ": expected a catalog name or an object, found a " + std::string(item.type_name()));
     }
     if (s.name.empty()) throw UsageError(where + ": needs a \"name\" (the key of its results)");
     if (s.from_catalog && !find_dataset(s.name)) {
-      throw UsageError(where + ": unknown dataset \"" + s.name +
-                       "\" (see `locbench list`, or give a \"log\" file)");
+      throw UsageError(where + ": unknown dataset \"" + s.name + "\" (see `locbench list`, or give a \"log\" file)");
     }
     if (!s.from_catalog) {
       require_file(file_of(s.log), "log");
@@ -135,10 +132,10 @@ LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path
   return out;
 }
 
-void for_each_real_log(const std::vector<RealLogSpec>& specs, const RunOptions& options,
-                       const std::string& case_prefix, reports::ExperimentResults& out,
-                       const std::function<void(const RealLogSpec&, const LoadedRealLog&,
-                                                reports::ExperimentResults&)>& run) {
+void for_each_real_log(
+    const std::vector<RealLogSpec>& specs, const RunOptions& options, const std::string& case_prefix,
+    reports::ExperimentResults& out,
+    const std::function<void(const RealLogSpec&, const LoadedRealLog&, reports::ExperimentResults&)>& run) {
   for (std::size_t i = 0; i < specs.size(); ++i) {
     options.report_progress(static_cast<double>(i) / static_cast<double>(specs.size()));
     const LoadedRealLog loaded = load_real_log(specs[i], options.data_root);
@@ -152,8 +149,7 @@ void for_each_real_log(const std::vector<RealLogSpec>& specs, const RunOptions& 
   options.report_progress(1.0);
 }
 
-std::optional<nlohmann::json> real_log_cli_override(const std::string& log,
-                                                    const std::string& relations,
+std::optional<nlohmann::json> real_log_cli_override(const std::string& log, const std::string& relations,
                                                     const std::string& ground_truth) {
   if (log.empty()) return std::nullopt;
   std::string name = std::filesystem::path(file_of(log)).filename().string();
@@ -166,8 +162,7 @@ std::optional<nlohmann::json> real_log_cli_override(const std::string& log,
 }
 
 bool takes_real_logs(const nlohmann::json& default_config) {
-  return default_config.is_object() && default_config.contains("datasets") &&
-         default_config.at("datasets").is_array();
+  return default_config.is_object() && default_config.contains("datasets") && default_config.at("datasets").is_array();
 }
 
 }  // namespace locbench::experiments

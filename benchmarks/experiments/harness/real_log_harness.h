@@ -64,15 +64,14 @@ LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path
 // The loop of a non-Monte-Carlo real-data experiment: for each spec, report progress, load it,
 // turn skipped/failed into a case "<case_prefix>/<name>" of `out`, else add its DatasetRef to
 // out.datasets and call `run(spec, loaded, out)`.
-void for_each_real_log(const std::vector<RealLogSpec>& specs, const RunOptions& options,
-                       const std::string& case_prefix, reports::ExperimentResults& out,
-                       const std::function<void(const RealLogSpec&, const LoadedRealLog&,
-                                                reports::ExperimentResults&)>& run);
+void for_each_real_log(
+    const std::vector<RealLogSpec>& specs, const RunOptions& options, const std::string& case_prefix,
+    reports::ExperimentResults& out,
+    const std::function<void(const RealLogSpec&, const LoadedRealLog&, reports::ExperimentResults&)>& run);
 
 // The configuration override `locbench run --log/--relations/--ground-truth` applies:
 // {"datasets": [{"name": <log file name without extensions>, "log": …, …}]}. Empty log → nullopt.
-std::optional<nlohmann::json> real_log_cli_override(const std::string& log,
-                                                    const std::string& relations,
+std::optional<nlohmann::json> real_log_cli_override(const std::string& log, const std::string& relations,
                                                     const std::string& ground_truth);
 
 // True when an experiment's configuration takes real-log dataset specs (has "datasets").

@@ -34,8 +34,8 @@ DrawnSeries map_lines(const LineMap& lines) {
 }
 
 // Each matched point (robot frame, placed by `pose`) joined to its foot on its map line.
-DrawnSeries match_links(std::string name, const std::vector<laser::SegmentMatch>& matches,
-                        const LineMap& lines, const Pose2& pose) {
+DrawnSeries match_links(std::string name, const std::vector<laser::SegmentMatch>& matches, const LineMap& lines,
+                        const Pose2& pose) {
   DrawnSeries s{std::move(name), {}, {}};
   for (const auto& m : matches) {
     if (m.map_segment >= lines.segments.size()) continue;
@@ -51,13 +51,12 @@ DrawnSeries match_links(std::string name, const std::vector<laser::SegmentMatch>
 
 }  // namespace
 
-DrawnRelation draw_relation(const Scan& first, const LineMap& first_lines, const Scan& second,
-                            const Pose2& odometry, const Pose2& reference,
-                            const nlohmann::json& corrector_options) {
+DrawnRelation draw_relation(const Scan& first, const LineMap& first_lines, const Scan& second, const Pose2& odometry,
+                            const Pose2& reference, const nlohmann::json& corrector_options) {
   const nlohmann::json defaults = default_corrector_options();
   const nlohmann::json& o = corrector_options.is_null() ? defaults : corrector_options;
-  const auto eap = std::move(
-      make_matchers({"eap"}, o.value("matcher_options", defaults.at("matcher_options"))).front());
+  const auto eap =
+      std::move(make_matchers({"eap"}, o.value("matcher_options", defaults.at("matcher_options"))).front());
   pose_correction::PoseCorrectionOptions ch6;
   if (o.contains("ch6")) from_json(o.at("ch6"), ch6);
   pose_correction::IteratedCorrectionOptions iterated;
@@ -80,8 +79,8 @@ DrawnRelation draw_relation(const Scan& first, const LineMap& first_lines, const
               match_links("EAP matches", at_odometry.matches, first_lines, odometry)};
   Pose2 one_shot = odometry;
   if (!first_lines.segments.empty()) {
-    one_shot = pose_correction::correct_pose(at_odometry.matches, first_lines, odometry,
-                                             second.sensor_pose, ch6).corrected;
+    one_shot =
+        pose_correction::correct_pose(at_odometry.matches, first_lines, odometry, second.sensor_pose, ch6).corrected;
   }
   error(one_shot, d.one_shot_translation, d.one_shot_rotation);
 
@@ -97,7 +96,9 @@ DrawnRelation draw_relation(const Scan& first, const LineMap& first_lines, const
   }
   d.iterated_points = points_of(last);
   error(after, d.iterated_translation, d.iterated_rotation);
-  d.after = {first_points, lines, scan_points("second scan, eap_ch6_ls", second, one_shot),
+  d.after = {first_points,
+             lines,
+             scan_points("second scan, eap_ch6_ls", second, one_shot),
              scan_points("second scan, eap_iterated_pl", second, after),
              scan_points("second scan, reference motion", second, reference),
              match_links("eap_iterated_pl matches", last, first_lines, after)};

@@ -32,17 +32,15 @@ struct DrawnRelation {
   double iterated_translation = 0.0, iterated_rotation = 0.0;
   std::size_t one_shot_points = 0, iterated_points = 0;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DrawnRelation, before, after, odometry_translation,
-                                   odometry_rotation, one_shot_translation, one_shot_rotation,
-                                   iterated_translation, iterated_rotation, one_shot_points,
-                                   iterated_points)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DrawnRelation, before, after, odometry_translation, odometry_rotation,
+                                   one_shot_translation, one_shot_rotation, iterated_translation, iterated_rotation,
+                                   one_shot_points, iterated_points)
 
 // Draws the relation (first, second) whose odometry motion is `odometry` and reference motion
 // `reference`; `first_lines` are the first scan's lines; `corrector_options` as
 // laser_correctors.h's default_corrector_options() (its "matcher_options".eap, "ch6" and
 // "iterated").
-DrawnRelation draw_relation(const Scan& first, const LineMap& first_lines, const Scan& second,
-                            const Pose2& odometry, const Pose2& reference,
-                            const nlohmann::json& corrector_options);
+DrawnRelation draw_relation(const Scan& first, const LineMap& first_lines, const Scan& second, const Pose2& odometry,
+                            const Pose2& reference, const nlohmann::json& corrector_options);
 
 }  // namespace locbench::experiments

@@ -10,8 +10,6 @@
 namespace locbench::experiments {
 
 inline nlohmann::json scenario_json(const sim::Scenario& s) { return sim::to_json(s); }
-inline sim::Scenario scenario_option(const nlohmann::json& j) {
-  return sim::scenario_from_json(j, "<configuration>");
-}
+inline sim::Scenario scenario_option(const nlohmann::json& j) { return sim::scenario_from_json(j, "<configuration>"); }
 
 }  // namespace locbench::experiments

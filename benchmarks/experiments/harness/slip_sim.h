@@ -9,11 +9,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/angle.h"
-#include "core/rng.h"
-#include "core/diff_drive_odometry.h"
 #include "algorithms/slip/indirect_kalman_filter.h"
 #include "algorithms/slip/slip_compass_ekf.h"
+#include "core/angle.h"
+#include "core/diff_drive_odometry.h"
+#include "core/rng.h"
 #include "datasets/sim/simulation_result.h"
 #include "datasets/sim/simulator.h"
 
@@ -22,21 +22,20 @@ namespace locbench::experiments::slip_sim {
 // A simple rate gyro (ours; the simulator has none): per encoder sample of length dt,
 // θ_G = true heading increment + bias·dt + N(0, (noise_density)²·dt).
 struct GyroConfig {
-  double bias = deg(0.05);           // [rad/s]
-  double noise_density = deg(0.1);   // [rad/√s]
+  double bias = deg(0.05);          // [rad/s]
+  double noise_density = deg(0.1);  // [rad/√s]
 };
 
 struct RunData {
-  std::vector<SlipSample> samples;         // one per encoder interval k−1 → k (k ≥ 1)
-  std::optional<double> initial_compass;   // reading nearest the first encoder sample
-  std::vector<Pose2> truth;                // true pose at each encoder sample (size = samples + 1)
-  double wheelbase = 0.0;                  // of the model used for the wheel travel
+  std::vector<SlipSample> samples;        // one per encoder interval k−1 → k (k ≥ 1)
+  std::optional<double> initial_compass;  // reading nearest the first encoder sample
+  std::vector<Pose2> truth;               // true pose at each encoder sample (size = samples + 1)
+  double wheelbase = 0.0;                 // of the model used for the wheel travel
 };
 
 inline std::optional<double> nearest_compass(const Log& log, double t, double max_offset) {
   const auto& c = log.compass;
-  const auto it = std::lower_bound(c.begin(), c.end(), t,
-                                   [](const CompassReading& r, double v) { return r.t < v; });
+  const auto it = std::lower_bound(c.begin(), c.end(), t, [](const CompassReading& r, double v) { return r.t < v; });
   std::optional<double> best;
   double best_dt = max_offset;
   if (it != c.end() && std::abs(it->t - t) <= best_dt) {
@@ -119,23 +118,21 @@ inline void collect_delta_prime(const RunData& d, bool use_gyro, std::vector<dou
 // the simulator has a slip event with `sample == j` on the same wheel; a detection at an event's
 // interval naming the other wheel counts as a false positive and as "wrong wheel".
 struct DetectionScore {
-  std::size_t true_events = 0;       // events on intervals where the robot moved
+  std::size_t true_events = 0;  // events on intervals where the robot moved
   std::size_t detections = 0;
   std::size_t true_positives = 0;
   std::size_t wrong_wheel = 0;
-  std::size_t large_events = 0;      // events losing ≥ `large` metres
+  std::size_t large_events = 0;  // events losing ≥ `large` metres
   std::size_t large_detected = 0;
 };
-inline DetectionScore score_detections(const SlipEkfRun& run, const sim::SimulationResult& r,
-                                       double large) {
+inline DetectionScore score_detections(const SlipEkfRun& run, const sim::SimulationResult& r, double large) {
   DetectionScore s;
   for (const auto& e : r.slips) {
     if (e.sample >= run.steps.size() || e.lost == 0.0) continue;
     ++s.true_events;
     const bool is_large = std::abs(e.lost) >= large;
     if (is_large) ++s.large_events;
-    const SampleStatus want =
-        e.wheel == sim::Side::kLeft ? SampleStatus::kLeftSlip : SampleStatus::kRightSlip;
+    const SampleStatus want = e.wheel == sim::Side::kLeft ? SampleStatus::kLeftSlip : SampleStatus::kRightSlip;
     const SampleStatus got = run.steps[e.sample].decision.status;
     if (got == want) {
       ++s.true_positives;

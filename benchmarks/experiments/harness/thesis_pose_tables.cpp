@@ -18,8 +18,8 @@ Scan thesis_scan(std::uint64_t seed, const LineMap& room) {
   return laser.measure(kThesisPose, 0.0);
 }
 
-Outcome correct_from(const Scan& scan, const LineMap& room, const Pose2& estimate,
-                     const laser::EapOptions& eap, pose_correction::PositionMethod method) {
+Outcome correct_from(const Scan& scan, const LineMap& room, const Pose2& estimate, const laser::EapOptions& eap,
+                     pose_correction::PositionMethod method) {
   const laser::EapMatcher matcher(eap);
   const laser::MatchResult m = matcher.match(scan, room, estimate);
   pose_correction::PoseCorrectionOptions o;
@@ -30,8 +30,7 @@ Outcome correct_from(const Scan& scan, const LineMap& room, const Pose2& estimat
   out.matched_segments = static_cast<double>(m.matches.size());
   out.heading_error_deg = to_deg(angle_diff(c.corrected.theta, kThesisPose.theta));
   out.position_error_mm =
-      c.position_fixed ? to_mm(std::hypot(c.corrected.x - kThesisPose.x, c.corrected.y - kThesisPose.y))
-                       : std::nan("");
+      c.position_fixed ? to_mm(std::hypot(c.corrected.x - kThesisPose.x, c.corrected.y - kThesisPose.y)) : std::nan("");
   return out;
 }
 
@@ -60,26 +59,23 @@ nlohmann::json ThesisTableExperiment::run_task(const Setup& s, const McPlan& pla
   return Record{row_values(s, thesis_scan(plan.run_seed(k), room), room)};
 }
 
-reports::ExperimentResults ThesisTableExperiment::summarise(
-    const Setup& s, const McPlan& plan, const std::vector<nlohmann::json>& records) const {
+reports::ExperimentResults ThesisTableExperiment::summarise(const Setup& s, const McPlan& plan,
+                                                            const std::vector<nlohmann::json>& records) const {
   const auto recs = records_of(records);
   reports::ExperimentResults out = start(s, plan, recs.size());
   tabulate(recs, out);
   return out;
 }
 
-reports::ExperimentResults ThesisTableExperiment::start(const Setup& s, const McPlan& plan,
-                                                        std::size_t runs) const {
+reports::ExperimentResults ThesisTableExperiment::start(const Setup& s, const McPlan& plan, std::size_t runs) const {
   reports::ExperimentResults out = start_results(s.configuration);
   for (std::size_t k = 0; k < runs; ++k) out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
   out.datasets.push_back({"sim/room_laser", "simulated",
-                          reports::text_checksum(sim::to_json(sim::preset("room_laser")).dump()),
-                          runs, 0.0});
+                          reports::text_checksum(sim::to_json(sim::preset("room_laser")).dump()), runs, 0.0});
   return out;
 }
 
-std::vector<double> ThesisTableExperiment::column(const std::vector<Record>& recs,
-                                                  std::size_t width, std::size_t row,
+std::vector<double> ThesisTableExperiment::column(const std::vector<Record>& recs, std::size_t width, std::size_t row,
                                                   std::size_t col) {
   std::vector<double> v;
   for (const Record& r : recs) v.push_back(r.values[row * width + col]);
@@ -92,9 +88,8 @@ std::vector<Record> ThesisTableExperiment::records_of(const std::vector<nlohmann
   return r;
 }
 
-void ThesisTableExperiment::add(reports::ExperimentResults& out, const std::string& method,
-                                const std::string& ds, const std::string& variant,
-                                const std::string& unit, std::vector<double> v,
+void ThesisTableExperiment::add(reports::ExperimentResults& out, const std::string& method, const std::string& ds,
+                                const std::string& variant, const std::string& unit, std::vector<double> v,
                                 const char* better) {
   std::vector<double> f;
   for (double x : v) {

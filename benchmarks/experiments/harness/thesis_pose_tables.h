@@ -15,13 +15,13 @@
 #include <utility>
 #include <vector>
 
+#include "algorithms/laser/eap_matcher.h"
+#include "algorithms/pose_correction/pose_correction.h"
+#include "benchmarks/experiments/framework/monte_carlo.h"
 #include "core/line_map.h"
 #include "core/pose2.h"
 #include "core/scan.h"
 #include "core/units.h"
-#include "algorithms/laser/eap_matcher.h"
-#include "algorithms/pose_correction/pose_correction.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
 
 namespace locbench::experiments::thesis_pose {
 
@@ -31,14 +31,14 @@ inline const Pose2 kThesisPose(2.0, 1.0, deg(46.0));
 Scan thesis_scan(std::uint64_t seed, const LineMap& room);
 
 struct Outcome {
-  double heading_error_deg = 0.0;   // E_o², signed [deg]
-  double position_error_mm = 0.0;   // E_p² [mm]; NaN when the position was not fixed
+  double heading_error_deg = 0.0;  // E_o², signed [deg]
+  double position_error_mm = 0.0;  // E_p² [mm]; NaN when the position was not fixed
   double matched_segments = 0.0;
 };
 
 // EAP match of `scan` under `estimate`, then heading and position correction by `method`.
-Outcome correct_from(const Scan& scan, const LineMap& room, const Pose2& estimate,
-                     const laser::EapOptions& eap, pose_correction::PositionMethod method);
+Outcome correct_from(const Scan& scan, const LineMap& room, const Pose2& estimate, const laser::EapOptions& eap,
+                     pose_correction::PositionMethod method);
 
 // E_p¹: the estimate's position error [mm].
 double e_p1_mm(const Pose2& estimate);
@@ -83,8 +83,8 @@ class ThesisTableExperiment : public MonteCarloExperiment<TableOptions, Setup> {
   virtual void tabulate(const std::vector<Record>& recs, reports::ExperimentResults& out) const = 0;
   reports::ExperimentResults start(const Setup& s, const McPlan& plan, std::size_t runs) const;
   // Metric over runs from column `col` of rows of width `width`, row `row`.
-  static std::vector<double> column(const std::vector<Record>& recs, std::size_t width,
-                                    std::size_t row, std::size_t col);
+  static std::vector<double> column(const std::vector<Record>& recs, std::size_t width, std::size_t row,
+                                    std::size_t col);
   static std::vector<Record> records_of(const std::vector<nlohmann::json>& j);
   static void add(reports::ExperimentResults& out, const std::string& method, const std::string& ds,
                   const std::string& variant, const std::string& unit, std::vector<double> v,

@@ -10,13 +10,13 @@
 
 #include <cmath>
 
-#include "core/errors.h"
-#include "core/statistics.h"
-#include "core/units.h"
+#include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/laser_matchers.h"
 #include "benchmarks/experiments/harness/laser_scan_truth.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
+#include "core/errors.h"
+#include "core/statistics.h"
+#include "core/units.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
@@ -25,22 +25,21 @@ namespace locbench::experiments::laser_matcher_accuracy {
 
 const ExperimentInfo kInfo{
     .name = "laser/matcher_accuracy",
-    .description = "EAP vs split-and-merge, agglomerative and RWHT matchers on the 8 m room and random "
-                   "rooms: segment detection, line errors, point precision/recall under pose error, "
-                   "range noise, clutter and dropouts (Monte-Carlo)",
-    .reading = {
-        "Detectable = a map segment hit by ≥ 5 beams spanning > 0.2 m (the matchers' own "
-        "acceptance rule). Δρ, Δβ: the matched points placed with the TRUE pose and refitted, "
-        "against the map line, so they measure extraction and assignment, not the pose error. "
-        "A systematic range offset (+15 mm, the LMS 200 datasheet) shows up in Δρ of every "
-        "method alike. `work` counts each method's inner-loop tests (not comparable across "
-        "methods; time is measured by locbench_speed)."}};
+    .description =
+        "EAP vs split-and-merge, agglomerative and RWHT matchers on the 8 m room and random "
+        "rooms: segment detection, line errors, point precision/recall under pose error, "
+        "range noise, clutter and dropouts (Monte-Carlo)",
+    .reading = {"Detectable = a map segment hit by ≥ 5 beams spanning > 0.2 m (the matchers' own "
+                "acceptance rule). Δρ, Δβ: the matched points placed with the TRUE pose and refitted, "
+                "against the map line, so they measure extraction and assignment, not the pose error. "
+                "A systematic range offset (+15 mm, the LMS 200 datasheet) shows up in Δρ of every "
+                "method alike. `work` counts each method's inner-loop tests (not comparable across "
+                "methods; time is measured by locbench_speed)."}};
 
 const char* const kWorlds[] = {"room", "random_room"};
 constexpr int kWorldCount = 2;
-const char* const kMetricNames[] = {"segment_recall", "false_matches", "rho_error_rms",
-                                    "beta_error_rms", "point_precision", "point_recall",
-                                    "work"};
+const char* const kMetricNames[] = {"segment_recall",  "false_matches", "rho_error_rms", "beta_error_rms",
+                                    "point_precision", "point_recall",  "work"};
 const char* const kMetricUnits[] = {"", "", "m", "rad", "", "", ""};
 const char* const kMetricBetter[] = {"higher", "lower", "lower", "lower", "higher", "higher", "lower"};
 constexpr int kMetrics = 7;
@@ -53,7 +52,7 @@ struct Condition {
   double range_offset = 0.0;    // [m]
   double dropout = 0.0;
   double spurious = 0.0;
-  int clutter = 0;              // segments in the world but not in the map
+  int clutter = 0;  // segments in the world but not in the map
 };
 
 // A condition as configured (units as named; Condition holds them in SI).
@@ -106,12 +105,11 @@ struct Options {
   std::vector<std::string> matchers = {"eap", "split_and_merge", "agglomerative", "rwht"};
   nlohmann::json matcher_options = default_matcher_options();
   // §5.4 / Table 6.2's estimate, then one change each.
-  std::vector<ConditionOptions> conditions = {
-      {"thesis_setting", 0.1414, 3.0, 5.0, 15.0, 0.0, 0.0, 0},
-      {"large_pose_error", 0.3, 8.0, 5.0, 15.0, 0.0, 0.0, 0},
-      {"range_noise_30mm", 0.1414, 3.0, 30.0, 0.0, 0.0, 0.0, 0},
-      {"clutter", 0.1414, 3.0, 5.0, 15.0, 0.0, 0.0, 8},
-      {"dropouts_spurious", 0.1414, 3.0, 5.0, 15.0, 0.2, 0.05, 0}};
+  std::vector<ConditionOptions> conditions = {{"thesis_setting", 0.1414, 3.0, 5.0, 15.0, 0.0, 0.0, 0},
+                                              {"large_pose_error", 0.3, 8.0, 5.0, 15.0, 0.0, 0.0, 0},
+                                              {"range_noise_30mm", 0.1414, 3.0, 30.0, 0.0, 0.0, 0.0, 0},
+                                              {"clutter", 0.1414, 3.0, 5.0, 15.0, 0.0, 0.0, 8},
+                                              {"dropouts_spurious", 0.1414, 3.0, 5.0, 15.0, 0.2, 0.05, 0}};
   RandomRoomOptions random_room;
 };
 template <class V>
@@ -184,8 +182,7 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
     for (int w = 0; w < kWorldCount; ++w) {
       for (std::size_t c = 0; c < s.conditions.size(); ++c) {
         const Condition& cond = s.conditions[c];
-        const std::uint64_t case_seed =
-            Rng::derive_seed(plan.run_seed(k), 100 * static_cast<std::uint64_t>(w) + c);
+        const std::uint64_t case_seed = Rng::derive_seed(plan.run_seed(k), 100 * static_cast<std::uint64_t>(w) + c);
         Rng rng(case_seed);
         LineMap map = w == 0 ? sim::room_world() : sim::random_room(rng, s.random_room);
         const Pose2 truth = random_free_pose(map, rng);
@@ -207,15 +204,13 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
         const double dir = rng.uniform(-kPi, kPi);
         const double sign = rng.uniform() < 0.5 ? -1.0 : 1.0;
         const Pose2 estimate(truth.x + cond.position_error * std::cos(dir),
-                             truth.y + cond.position_error * std::sin(dir),
-                             truth.theta + sign * cond.heading_error);
+                             truth.y + cond.position_error * std::sin(dir), truth.theta + sign * cond.heading_error);
         for (const auto& matcher : matchers) {
           const laser::MatchResult r = matcher->match(scan.scan, map, estimate);
           const MatchScore sc = score_match(r, map, scan.segment, scan.scan, truth);
-          rec.values.insert(rec.values.end(),
-                            {sc.segment_recall(), static_cast<double>(sc.false_matches),
-                             rms(sc.rho_errors), rms(sc.beta_errors), sc.point_precision(),
-                             sc.point_recall(), static_cast<double>(r.work)});
+          rec.values.insert(rec.values.end(), {sc.segment_recall(), static_cast<double>(sc.false_matches),
+                                               rms(sc.rho_errors), rms(sc.beta_errors), sc.point_precision(),
+                                               sc.point_recall(), static_cast<double>(r.work)});
         }
       }
     }
@@ -233,22 +228,21 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
     }
     out.datasets.push_back({"sim/room", "simulated", reports::text_checksum("room_world"), 1, 0.0});
     out.datasets.push_back({"sim/random_room", "simulated",
-                            reports::text_checksum(s.configuration.at("random_room").dump()),
-                            records.size(), 0.0});
+                            reports::text_checksum(s.configuration.at("random_room").dump()), records.size(), 0.0});
     for (int w = 0; w < kWorldCount; ++w) {
       for (std::size_t c = 0; c < nc; ++c) {
         const std::string ds = std::string(kWorlds[w]) + "_" + reports::key_part(s.conditions[c].name);
         for (std::size_t m = 0; m < nm; ++m) {
           for (int q = 0; q < kMetrics; ++q) {
-            const std::size_t at = ((static_cast<std::size_t>(w) * nc + c) * nm + m) * kMetrics +
-                                   static_cast<std::size_t>(q);
+            const std::size_t at =
+                ((static_cast<std::size_t>(w) * nc + c) * nm + m) * kMetrics + static_cast<std::size_t>(q);
             std::vector<double> v;
             for (const Record& r : recs) {
               if (std::isfinite(r.values[at])) v.push_back(r.values[at]);
             }
             if (v.empty()) continue;
-            reports::MetricResult metric = reports::make_metric(
-                s.matchers[m], ds, kMetricNames[q], kMetricUnits[q], "monte_carlo_runs", v);
+            reports::MetricResult metric =
+                reports::make_metric(s.matchers[m], ds, kMetricNames[q], kMetricUnits[q], "monte_carlo_runs", v);
             metric.better = kMetricBetter[q];
             out.results.push_back(std::move(metric));
           }
@@ -265,9 +259,8 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
         if (std::isfinite(r.values[at + 2])) rho_v.push_back(r.values[at + 2]);
         prec_v.push_back(r.values[at + 4]);
       }
-      line += fmt::format(" {} recall {:.2f}, |Δρ| rms {:.1f} mm, point precision {:.3f};",
-                          s.matchers[m], mean(rec_v), rho_v.empty() ? NAN : 1e3 * mean(rho_v),
-                          mean(prec_v));
+      line += fmt::format(" {} recall {:.2f}, |Δρ| rms {:.1f} mm, point precision {:.3f};", s.matchers[m], mean(rec_v),
+                          rho_v.empty() ? NAN : 1e3 * mean(rho_v), mean(prec_v));
     }
     out.notes.push_back(line);
     return out;

@@ -15,40 +15,40 @@
 #include <numeric>
 #include <optional>
 
-#include "core/errors.h"
-#include "core/statistics.h"
 #include "baselines/laser/extract_then_match.h"
-#include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/laser_correctors.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/plot_series.h"
+#include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/laser_correctors.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "benchmarks/experiments/harness/real_scan_pairs.h"
 #include "benchmarks/experiments/harness/relation_drawing.h"
+#include "core/errors.h"
+#include "core/statistics.h"
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments::laser_real_logs {
 
 const ExperimentInfo kInfo{
     .name = "laser/real_logs",
-    .description = "Scan-to-previous-scan correction on real logs (Freiburg ACES, Intel, MIT CSAIL, or "
-                   "--log/--relations): relative-pose error of the thesis's matchers + chapter-6 least "
-                   "squares, EAP + iterated point-to-line, PL-ICP and point-to-point ICP against the "
-                   ".relations, beside raw odometry",
-    .reading = {
-        "The map of each pair for the *_ch6_ls and eap_* correctors is the split-and-merge lines "
-        "of the first scan (one extractor for all matchers, so that only the matching differs); "
-        "pl_icp and icp_point_to_point use the first scan's points. Every corrector starts from "
-        "the odometry's relative motion. *_ch6_ls = one pass of chapter 6 (weighted-LS heading, "
-        "point-to-point position; heading-only when the matched lines are parallel)."}};
+    .description =
+        "Scan-to-previous-scan correction on real logs (Freiburg ACES, Intel, MIT CSAIL, or "
+        "--log/--relations): relative-pose error of the thesis's matchers + chapter-6 least "
+        "squares, EAP + iterated point-to-line, PL-ICP and point-to-point ICP against the "
+        ".relations, beside raw odometry",
+    .reading = {"The map of each pair for the *_ch6_ls and eap_* correctors is the split-and-merge lines "
+                "of the first scan (one extractor for all matchers, so that only the matching differs); "
+                "pl_icp and icp_point_to_point use the first scan's points. Every corrector starts from "
+                "the odometry's relative motion. *_ch6_ls = one pass of chapter 6 (weighted-LS heading, "
+                "point-to-point position; heading-only when the matched lines are parallel)."}};
 
 struct Options {
   int runs = 1;  // not Monte-Carlo: one task per dataset
   nlohmann::json datasets = freiburg_logs();
   std::vector<std::string> matchers = {"eap", "split_and_merge", "agglomerative", "rwht"};
-  std::vector<std::string> correctors = {"eap_ch6_rematched", "eap_ch6_heading_only",
-                                         "eap_ch6_inverse_variance", "eap_iterated_pl",
-                                         "pl_icp", "icp_point_to_point"};
+  std::vector<std::string> correctors = {
+      "eap_ch6_rematched", "eap_ch6_heading_only", "eap_ch6_inverse_variance", "eap_iterated_pl", "pl_icp",
+      "icp_point_to_point"};
   nlohmann::json corrector_options = default_corrector_options();
   std::string beam_angles = "log";
   nlohmann::json laser_mount = nullptr;
@@ -110,14 +110,14 @@ struct Record {
   std::vector<DrawnRelation> drawn;
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, status, reason, path, checksum, records, duration, relations, t1, t2, lines,
-                                   translation, rotation, position_fixed, matched_points, length_error,
-                                   moved, information_ratio, heading_spread, reference_length, drawn_index, drawn)
+                                   translation, rotation, position_fixed, matched_points, length_error, moved,
+                                   information_ratio, heading_spread, reference_length, drawn_index, drawn)
 
 std::string interval(std::span<const double> v, double scale, int digits) {
   if (v.empty()) return "none";
   const Summary s = summarize(v);
-  return fmt::format("{:.{}f} [{:.{}f}, {:.{}f}]", scale * s.mean, digits, scale * s.ci95_low,
-                     digits, scale * s.ci95_high, digits);
+  return fmt::format("{:.{}f} [{:.{}f}, {:.{}f}]", scale * s.mean, digits, scale * s.ci95_low, digits,
+                     scale * s.ci95_high, digits);
 }
 
 std::vector<double> subset(const std::vector<double>& v, const std::vector<bool>& keep) {
@@ -144,8 +144,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     make_correctors(s.methods, s.corrector_options);  // validates names and options
     s.beam_angles = o.beam_angles;
     if (s.beam_angles != "log" && s.beam_angles != "bag") {
-      throw UsageError(name() + ": beam_angles: expected \"log\" or \"bag\", found \"" +
-                       s.beam_angles + "\"");
+      throw UsageError(name() + ": beam_angles: expected \"log\" or \"bag\", found \"" + s.beam_angles + "\"");
     }
     if (const auto& m = o.laser_mount; !m.is_null()) {
       if (!m.is_array() || m.size() != 3 || !m[0].is_number() || !m[1].is_number() || !m[2].is_number()) {
@@ -160,9 +159,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     s.configuration = options_json(o);
     return s;
   }
-  int tasks(const Setup& s, const McPlan&) const override {
-    return static_cast<int>(s.datasets.size());
-  }
+  int tasks(const Setup& s, const McPlan&) const override { return static_cast<int>(s.datasets.size()); }
 
   nlohmann::json run_task(const Setup& s, const McPlan& plan, int task) const override {
     Record rec;
@@ -245,17 +242,15 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     std::vector<std::size_t> order(rec.relations);
     std::iota(order.begin(), order.end(), 0);
     const std::size_t k = std::min(s.draw_worst, order.size());
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(k), order.end(),
-                      [&](std::size_t x, std::size_t y) {
-                        return rec.translation[worst_of][x] > rec.translation[worst_of][y];
-                      });
+    std::partial_sort(
+        order.begin(), order.begin() + static_cast<std::ptrdiff_t>(k), order.end(),
+        [&](std::size_t x, std::size_t y) { return rec.translation[worst_of][x] > rec.translation[worst_of][y]; });
     for (std::size_t i = 0; i < k; ++i) {
       const Pair& p = pairs[order[i]];
       const Scan& first = log.laser[p.first].scan;
       rec.drawn_index.push_back(order[i]);
-      rec.drawn.push_back(draw_relation(first, lines_as_map(extractor.extract_lines(first)),
-                                        log.laser[p.second].scan, p.odometry, p.reference,
-                                        s.corrector_options));
+      rec.drawn.push_back(draw_relation(first, lines_as_map(extractor.extract_lines(first)), log.laser[p.second].scan,
+                                        p.odometry, p.reference, s.corrector_options));
     }
     return rec;
   }
@@ -275,12 +270,10 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
       std::string line = fmt::format("{} ({} relations), mean RPE [95% CI], mm / deg:", ds, r.relations);
       for (std::size_t m = 0; m <= s.methods.size(); ++m) {
         const std::string method = m == 0 ? "odometry_raw" : s.methods[m - 1];
-        out.results.push_back(reports::make_metric(method, ds, "rpe_translation", "m",
-                                                   "freiburg_relations", r.translation[m],
-                                                   s.per_relation_values));
-        out.results.push_back(reports::make_metric(method, ds, "rpe_rotation", "rad",
-                                                   "freiburg_relations", r.rotation[m],
-                                                   s.per_relation_values));
+        out.results.push_back(reports::make_metric(method, ds, "rpe_translation", "m", "freiburg_relations",
+                                                   r.translation[m], s.per_relation_values));
+        out.results.push_back(reports::make_metric(method, ds, "rpe_rotation", "rad", "freiburg_relations",
+                                                   r.rotation[m], s.per_relation_values));
         line += fmt::format(" {} {} / {}", method, interval(r.translation[m], 1e3, 1),
                             interval(r.rotation[m], to_deg(1.0), 2));
         if (m > 0) {
@@ -318,8 +311,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
         ds, interval(r.reference_length, 1e3, 0));
     for (std::size_t m = 0; m <= s.methods.size(); ++m) {
       const std::string method = m == 0 ? "odometry_raw" : s.methods[m - 1];
-      text += fmt::format(" {} {} / {:.1f};", method, interval(r.length_error[m], 1e3, 1),
-                          1e3 * mean(r.moved[m]));
+      text += fmt::format(" {} {} / {:.1f};", method, interval(r.length_error[m], 1e3, 1), 1e3 * mean(r.moved[m]));
     }
     return text;
   }
@@ -328,8 +320,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
   // odometry) as metrics, and whether the corrector beats odometry in heading (the 95% intervals
   // of the two means separated) and is no worse in translation (the paired difference's 95%
   // interval reaches 0 or below).
-  static std::string verdict(const Setup& s, const Record& r, const std::string& ds,
-                             reports::ExperimentResults& out) {
+  static std::string verdict(const Setup& s, const Record& r, const std::string& ds, reports::ExperimentResults& out) {
     std::string text = fmt::format(
         "{} against odometry (paired differences over {} relations, mean [95% CI], mm / deg; "
         "heading beaten = the 95% intervals of the means separated; translation better / WORSE = "
@@ -343,10 +334,10 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
         dr[i] = r.rotation[m][i] - r.rotation[0][i];
       }
       const std::string& method = s.methods[m - 1];
-      out.results.push_back(reports::make_metric(method, ds, "rpe_translation_minus_odometry", "m",
-                                                 "freiburg_relations", dt, false));
-      out.results.push_back(reports::make_metric(method, ds, "rpe_rotation_minus_odometry", "rad",
-                                                 "freiburg_relations", dr, false));
+      out.results.push_back(
+          reports::make_metric(method, ds, "rpe_translation_minus_odometry", "m", "freiburg_relations", dt, false));
+      out.results.push_back(
+          reports::make_metric(method, ds, "rpe_rotation_minus_odometry", "rad", "freiburg_relations", dr, false));
       const Summary t = summarize(r.translation[m]), rot = summarize(r.rotation[m]);
       const Summary pt = summarize(dt);
       const bool heading = rot.ci95_high < orot.ci95_low;
@@ -358,17 +349,15 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
       } else if (pt.ci95_low > 0.0) {
         translation = "worse by the paired interval only (the intervals of the means overlap)";
       }
-      text += fmt::format(" {}: Δ {} / {} — heading {}, translation {};", method,
-                          interval(dt, 1e3, 1), interval(dr, to_deg(1.0), 2),
-                          heading ? "beaten" : "NOT beaten", translation);
+      text += fmt::format(" {}: Δ {} / {} — heading {}, translation {};", method, interval(dt, 1e3, 1),
+                          interval(dr, to_deg(1.0), 2), heading ? "beaten" : "NOT beaten", translation);
     }
     return text;
   }
 
   // The k-th drawn relation as two "scan_pair" plots: before (odometry + the EAP matches the
   // one-shot solve uses) and after (one-shot, iterated and reference placements).
-  static std::vector<reports::Plot> relation_plots(const std::string& ds, const Record& r,
-                                                   std::size_t k) {
+  static std::vector<reports::Plot> relation_plots(const std::string& ds, const Record& r, std::size_t k) {
     const DrawnRelation& d = r.drawn[k];
     const std::size_t i = r.drawn_index[k];
     const auto plot = [&](const char* stage, std::string title, const std::vector<DrawnSeries>& ss) {
@@ -381,20 +370,21 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
       p.y_label = "y";
       p.y_unit = "m";
       for (const DrawnSeries& s : ss) p.series.push_back({s.name, s.x, s.y});
-      p.note = fmt::format("{}: relation {:.3f} → {:.3f} s, {:.0f} lines in the first scan, worst "
-                           "{} of eap_ch6_ls by translation error",
-                           ds, r.t1[i], r.t2[i], r.lines[i], k + 1);
+      p.note = fmt::format(
+          "{}: relation {:.3f} → {:.3f} s, {:.0f} lines in the first scan, worst "
+          "{} of eap_ch6_ls by translation error",
+          ds, r.t1[i], r.t2[i], r.lines[i], k + 1);
       return p;
     };
-    return {plot("before", fmt::format("{} #{} before: odometry {:.0f} mm / {:.2f}°, {} EAP-matched points",
-                                       ds, k + 1, 1e3 * d.odometry_translation,
-                                       to_deg(d.odometry_rotation), d.one_shot_points),
+    return {plot("before",
+                 fmt::format("{} #{} before: odometry {:.0f} mm / {:.2f}°, {} EAP-matched points", ds, k + 1,
+                             1e3 * d.odometry_translation, to_deg(d.odometry_rotation), d.one_shot_points),
                  d.before),
-            plot("after", fmt::format("{} #{} after: eap_ch6_ls {:.0f} mm / {:.2f}°, eap_iterated_pl "
-                                      "{:.0f} mm / {:.2f}°",
-                                      ds, k + 1, 1e3 * d.one_shot_translation,
-                                      to_deg(d.one_shot_rotation), 1e3 * d.iterated_translation,
-                                      to_deg(d.iterated_rotation)),
+            plot("after",
+                 fmt::format("{} #{} after: eap_ch6_ls {:.0f} mm / {:.2f}°, eap_iterated_pl "
+                             "{:.0f} mm / {:.2f}°",
+                             ds, k + 1, 1e3 * d.one_shot_translation, to_deg(d.one_shot_rotation),
+                             1e3 * d.iterated_translation, to_deg(d.iterated_rotation)),
                  d.after)};
   }
 
@@ -418,10 +408,8 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
         "relation (means); position fixed in {:.0f}% — there its translation error is {} mm "
         "(odometry {} mm on the same relations), heading-only elsewhere: {} mm (odometry {} mm).",
         ds, mean(r.lines), mean(r.matched_points[e]), 100.0 * mean(r.position_fixed[e]),
-        interval(subset(r.translation[e], fixed), 1e3, 1),
-        interval(subset(r.translation[0], fixed), 1e3, 1),
-        interval(subset(r.translation[e], not_fixed), 1e3, 1),
-        interval(subset(r.translation[0], not_fixed), 1e3, 1));
+        interval(subset(r.translation[e], fixed), 1e3, 1), interval(subset(r.translation[0], fixed), 1e3, 1),
+        interval(subset(r.translation[e], not_fixed), 1e3, 1), interval(subset(r.translation[0], not_fixed), 1e3, 1));
     // Why: the position fixes whose normal matrix is nearly singular, and the headings whose
     // segments disagree.
     std::vector<bool> weak(r.relations), strong(r.relations), spread(r.relations), agree(r.relations);
@@ -440,14 +428,12 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
         "{} mm (odometry {} mm); the other {}: {} mm (odometry {} mm). Headings whose matched "
         "segments disagree (weighted spread of Δθ_i > {:.0f}°): {} — heading error {}° (odometry "
         "{}°); the other {}: {}° (odometry {}°).",
-        kWeakPosition, count(weak), count(weak) + count(strong),
-        interval(subset(r.translation[e], weak), 1e3, 1), interval(subset(r.translation[0], weak), 1e3, 1),
-        count(strong), interval(subset(r.translation[e], strong), 1e3, 1),
-        interval(subset(r.translation[0], strong), 1e3, 1), to_deg(kHeadingSpread), count(spread),
-        interval(subset(r.rotation[e], spread), to_deg(1.0), 2),
+        kWeakPosition, count(weak), count(weak) + count(strong), interval(subset(r.translation[e], weak), 1e3, 1),
+        interval(subset(r.translation[0], weak), 1e3, 1), count(strong),
+        interval(subset(r.translation[e], strong), 1e3, 1), interval(subset(r.translation[0], strong), 1e3, 1),
+        to_deg(kHeadingSpread), count(spread), interval(subset(r.rotation[e], spread), to_deg(1.0), 2),
         interval(subset(r.rotation[0], spread), to_deg(1.0), 2), count(agree),
-        interval(subset(r.rotation[e], agree), to_deg(1.0), 2),
-        interval(subset(r.rotation[0], agree), to_deg(1.0), 2));
+        interval(subset(r.rotation[e], agree), to_deg(1.0), 2), interval(subset(r.rotation[0], agree), to_deg(1.0), 2));
     if (const auto ivw = index("eap_ch6_inverse_variance")) {
       out += fmt::format(
           " The same EAP matches and one pass with the segments' headings weighted by their "
@@ -459,11 +445,11 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     // The worst relations of the one-shot solve, with the other correctors on them.
     std::vector<std::size_t> order(r.relations);
     std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return r.translation[e][a] > r.translation[e][b];
-    });
-    out += " Worst relations (t1 → t2: lines, matched points, error mm / deg of odometry, "
-           "eap_ch6_ls";
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return r.translation[e][a] > r.translation[e][b]; });
+    out +=
+        " Worst relations (t1 → t2: lines, matched points, error mm / deg of odometry, "
+        "eap_ch6_ls";
     const auto iterated = index("eap_iterated_pl");
     const auto pl = index("pl_icp");
     if (iterated) out += ", eap_iterated_pl";
@@ -471,9 +457,9 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     out += "):";
     for (std::size_t k = 0; k < std::min<std::size_t>(5, order.size()); ++k) {
       const std::size_t i = order[k];
-      out += fmt::format(" {:.3f} → {:.3f}: {:.0f}, {:.0f}, {:.0f}/{:.2f}, {:.0f}/{:.2f}", r.t1[i],
-                         r.t2[i], r.lines[i], r.matched_points[e][i], 1e3 * r.translation[0][i],
-                         to_deg(r.rotation[0][i]), 1e3 * r.translation[e][i], to_deg(r.rotation[e][i]));
+      out += fmt::format(" {:.3f} → {:.3f}: {:.0f}, {:.0f}, {:.0f}/{:.2f}, {:.0f}/{:.2f}", r.t1[i], r.t2[i], r.lines[i],
+                         r.matched_points[e][i], 1e3 * r.translation[0][i], to_deg(r.rotation[0][i]),
+                         1e3 * r.translation[e][i], to_deg(r.rotation[e][i]));
       for (const auto& m : {iterated, pl}) {
         if (m) out += fmt::format(", {:.0f}/{:.2f}", 1e3 * r.translation[*m][i], to_deg(r.rotation[*m][i]));
       }

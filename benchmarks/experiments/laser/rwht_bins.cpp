@@ -11,12 +11,12 @@
 #include <cmath>
 #include <map>
 
-#include "core/statistics.h"
-#include "core/units.h"
 #include "baselines/laser/rwht.h"
+#include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/laser_scan_truth.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
+#include "core/statistics.h"
+#include "core/units.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
 #include "reports/checksum.h"
@@ -25,19 +25,19 @@ namespace locbench::experiments::laser_rwht_bins {
 
 const ExperimentInfo kInfo{
     .name = "laser/rwht_bins",
-    .description = "RWHT accuracy against cost across angle and range bin sizes (room, thesis pose): "
-                   "peak-cell and refitted line errors, segments found, accumulator cells, work",
-    .reading = {
-        "The thesis's claim holds for the Hough estimate itself (the peak cell's line is off by "
-        "about half a bin), but after the least-squares refit of each peak's points the line "
-        "errors no longer depend on the bins, as long as a peak still gathers the wall's points: "
-        "the bins then set only the cost (cells grow as 1/(Δα·Δr)) and, when too coarse, which "
-        "walls are found."}};
+    .description =
+        "RWHT accuracy against cost across angle and range bin sizes (room, thesis pose): "
+        "peak-cell and refitted line errors, segments found, accumulator cells, work",
+    .reading = {"The thesis's claim holds for the Hough estimate itself (the peak cell's line is off by "
+                "about half a bin), but after the least-squares refit of each peak's points the line "
+                "errors no longer depend on the bins, as long as a peak still gathers the wall's points: "
+                "the bins then set only the cost (cells grow as 1/(Δα·Δr)) and, when too coarse, which "
+                "walls are found."}};
 
 const Pose2 kPose(2.0, 1.0, deg(46.0));
 constexpr int kValues = 7;  // per bin pair: peak |Δρ|, |Δβ|, refit |Δρ|, |Δβ|, recall, cells, work
-const char* const kNames[kValues] = {"peak_rho_error", "peak_beta_error", "refit_rho_error",
-                                     "refit_beta_error", "segment_recall", "cells", "work"};
+const char* const kNames[kValues] = {
+    "peak_rho_error", "peak_beta_error", "refit_rho_error", "refit_beta_error", "segment_recall", "cells", "work"};
 const char* const kUnits[kValues] = {"m", "rad", "m", "rad", "", "", ""};
 const char* const kBetter[kValues] = {"lower", "lower", "lower", "lower", "higher", "lower", "lower"};
 
@@ -135,8 +135,7 @@ class LaserRwhtBins final : public MonteCarloExperiment<Options, Setup> {
         for (bool f : found) detected += f;
         const double recall = score.detectable ? static_cast<double>(detected) / score.detectable : 1.0;
         const auto avg = [](const std::vector<double>& v) { return v.empty() ? std::nan("") : mean(v); };
-        rec.values.insert(rec.values.end(), {avg(pr), avg(pb), avg(fr), avg(fb), recall,
-                                             static_cast<double>(x.cells),
+        rec.values.insert(rec.values.end(), {avg(pr), avg(pb), avg(fr), avg(fb), recall, static_cast<double>(x.cells),
                                              static_cast<double>(x.extraction.work)});
       }
     }
@@ -151,8 +150,7 @@ class LaserRwhtBins final : public MonteCarloExperiment<Options, Setup> {
       out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
       recs.push_back(records[k].get<Record>());
     }
-    out.datasets.push_back({"sim/room", "simulated", reports::text_checksum("room_world"),
-                            records.size(), 0.0});
+    out.datasets.push_back({"sim/room", "simulated", reports::text_checksum("room_world"), records.size(), 0.0});
     std::size_t at = 0;
     std::string line = "Mean over runs (peak cell → refit, |Δρ| mm / |Δβ|°; cells):";
     for (double ab : s.angle_bins) {
@@ -166,13 +164,12 @@ class LaserRwhtBins final : public MonteCarloExperiment<Options, Setup> {
           }
           m[q] = v.empty() ? std::nan("") : mean(v);
           if (v.empty()) continue;
-          reports::MetricResult metric =
-              reports::make_metric("rwht", ds, kNames[q], kUnits[q], "monte_carlo_runs", v);
+          reports::MetricResult metric = reports::make_metric("rwht", ds, kNames[q], kUnits[q], "monte_carlo_runs", v);
           metric.better = kBetter[q];
           out.results.push_back(std::move(metric));
         }
-        line += fmt::format(" {}°×{} cm: {:.1f}/{:.2f} → {:.1f}/{:.2f}, {:.0f};", to_deg(ab),
-                            100 * rb, to_mm(m[0]), to_deg(m[1]), to_mm(m[2]), to_deg(m[3]), m[5]);
+        line += fmt::format(" {}°×{} cm: {:.1f}/{:.2f} → {:.1f}/{:.2f}, {:.0f};", to_deg(ab), 100 * rb, to_mm(m[0]),
+                            to_deg(m[1]), to_mm(m[2]), to_deg(m[3]), m[5]);
       }
     }
     out.notes.push_back(line);

@@ -11,10 +11,10 @@
 
 namespace locbench::experiments::thesis_pose::laser_table_6_1 {
 
-const ExperimentInfo kInfo{
-    .name = "laser/table_6_1",
-    .description = "Point-to-line vs point-to-point position correction at the thesis pose, estimate "
-                   "(2100, 1100) mm, heading error −5…5° (Table 6.1)"};
+const ExperimentInfo kInfo{.name = "laser/table_6_1",
+                           .description =
+                               "Point-to-line vs point-to-point position correction at the thesis pose, estimate "
+                               "(2100, 1100) mm, heading error −5…5° (Table 6.1)"};
 
 constexpr double kTable61[11][2] = {{56.12, 56.17}, {68.41, 60.72}, {60.18, 63.74}, {39.18, 27.35},
                                     {23.25, 9.02},  {32.47, 20.97}, {27.29, 4.65},  {35.94, 16.82},
@@ -29,8 +29,7 @@ class Table61 final : public ThesisTableExperiment {
       const Pose2 est(2.1, 1.1, kThesisPose.theta + deg(e));
       const Outcome pl = correct_from(scan, room, est, s.eap, pose_correction::PositionMethod::kPointToLine);
       const Outcome pp = correct_from(scan, room, est, s.eap, pose_correction::PositionMethod::kPointToPoint);
-      r.insert(r.end(), {pl.position_error_mm, pp.position_error_mm,
-                        pp.heading_error_deg});
+      r.insert(r.end(), {pl.position_error_mm, pp.position_error_mm, pp.heading_error_deg});
     }
     return r;
   }
@@ -46,8 +45,7 @@ class Table61 final : public ThesisTableExperiment {
       const std::string ds = fmt::format("room_eo1_{}{}deg", e < 0 ? "m" : "", std::abs(e));
       add(out, "point_to_line", ds, "position_error_after", "mm", column(recs, 3, row, 0));
       add(out, "point_to_point", ds, "position_error_after", "mm", column(recs, 3, row, 1));
-      add(out, "weighted_ls_heading", ds, "heading_error_after", "deg", column(recs, 3, row, 2),
-          "closer_to_zero");
+      add(out, "weighted_ls_heading", ds, "heading_error_after", "deg", column(recs, 3, row, 2), "closer_to_zero");
       const double a = finite_mean(column(recs, 3, row, 0)).first;
       const double b = finite_mean(column(recs, 3, row, 1)).first;
       pl.rows.push_back({fmt::format("E_o¹ = {}°", e), kTable61[row][0], a});
@@ -66,9 +64,8 @@ class Table61 final : public ThesisTableExperiment {
         "10 mm: two standard deviations of the LMS 200 range noise (σ = 5 mm); the scan is ours";
     out.published.push_back(std::move(pl));
     out.published.push_back(std::move(pp));
-    out.notes.push_back(fmt::format(
-        "Point-to-point beats point-to-line in {} of 11 rows here (thesis: {} of 11).", pp_wins,
-        pp_wins_published));
+    out.notes.push_back(fmt::format("Point-to-point beats point-to-line in {} of 11 rows here (thesis: {} of 11).",
+                                    pp_wins, pp_wins_published));
   }
 };
 

@@ -8,27 +8,27 @@
 #include <cmath>
 #include <optional>
 
-#include "core/statistics.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/thesis_pose_tables.h"
+#include "core/statistics.h"
 #include "datasets/sim/worlds.h"
 
 namespace locbench::experiments::thesis_pose::laser_table_6_2 {
 
-const ExperimentInfo kInfo{
-    .name = "laser/table_6_2",
-    .description = "The d_limit sweep 50…400 mm at the thesis pose, estimate (2100, 1100, 43°): matched "
-                   "segments, heading and position error after correction (Table 6.2)"};
+const ExperimentInfo kInfo{.name = "laser/table_6_2",
+                           .description =
+                               "The d_limit sweep 50…400 mm at the thesis pose, estimate (2100, 1100, 43°): matched "
+                               "segments, heading and position error after correction (Table 6.2)"};
 
 struct Row62 {
   int d_limit_mm;
   double segments, eo2;
   std::optional<double> ep2;
 };
-const Row62 kTable62[] = {{50, 2, -0.13, {}},     {75, 3, 0.09, {}},       {100, 3, 0.01, {}},
-                          {125, 3, -0.19, {}},    {150, 5, 0.07, 54.34},   {175, 5, -0.01, 56.61},
-                          {200, 6, 0.20, 70.13},  {225, 7, -1.20, 33.70},  {250, 8, -1.26, 39.46},
-                          {275, 8, -1.54, 62.75}, {300, 10, -2.32, 62.30}, {325, 10, -2.18, 50.37},
+const Row62 kTable62[] = {{50, 2, -0.13, {}},      {75, 3, 0.09, {}},        {100, 3, 0.01, {}},
+                          {125, 3, -0.19, {}},     {150, 5, 0.07, 54.34},    {175, 5, -0.01, 56.61},
+                          {200, 6, 0.20, 70.13},   {225, 7, -1.20, 33.70},   {250, 8, -1.26, 39.46},
+                          {275, 8, -1.54, 62.75},  {300, 10, -2.32, 62.30},  {325, 10, -2.18, 50.37},
                           {350, 10, -2.16, 40.26}, {375, 11, -4.22, 208.66}, {400, 12, -4.68, 212.80}};
 constexpr std::size_t kRows62 = std::size(kTable62);
 
@@ -47,8 +47,8 @@ class Table62 final : public ThesisTableExperiment {
       t.max_direction_error = 0.0;
       t.trim_distance = 0.0;
       const Outcome u = correct_from(scan, room, est, t, pose_correction::PositionMethod::kPointToPoint);
-      r.insert(r.end(), {c.matched_segments, c.heading_error_deg, c.position_error_mm,
-                        u.matched_segments, u.heading_error_deg, u.position_error_mm});
+      r.insert(r.end(), {c.matched_segments, c.heading_error_deg, c.position_error_mm, u.matched_segments,
+                         u.heading_error_deg, u.position_error_mm});
     }
     return r;
   }
@@ -57,8 +57,9 @@ class Table62 final : public ThesisTableExperiment {
     seg.source = eo.source = ep.source = "thesis Table 6.2";
     seg.quantity = "matched segments by d_limit (mean over runs)";
     eo.quantity = "heading error after correction E_o² by d_limit (mean over runs)";
-    ep.quantity = "position error after correction E_p² by d_limit (mean over the runs where the "
-                  "position was fixed; the thesis's × = not fixed)";
+    ep.quantity =
+        "position error after correction E_p² by d_limit (mean over the runs where the "
+        "position was fixed; the thesis's × = not fixed)";
     seg.unit = "";
     eo.unit = "deg";
     ep.unit = "mm";
@@ -68,14 +69,12 @@ class Table62 final : public ThesisTableExperiment {
       const std::string ds = fmt::format("room_dlimit_{}mm", row.d_limit_mm);
       const std::string label = fmt::format("d_limit = {} mm", row.d_limit_mm);
       add(out, "eap", ds, "matched_segments", "", column(recs, 6, i, 0), "stable");
-      add(out, "eap_weighted_ls", ds, "heading_error_after", "deg", column(recs, 6, i, 1),
-          "closer_to_zero");
+      add(out, "eap_weighted_ls", ds, "heading_error_after", "deg", column(recs, 6, i, 1), "closer_to_zero");
       add(out, "eap_point_to_point", ds, "position_error_after", "mm", column(recs, 6, i, 2));
       add(out, "eap_thesis_rules", ds, "matched_segments", "", column(recs, 6, i, 3), "stable");
-      add(out, "eap_thesis_rules_weighted_ls", ds, "heading_error_after", "deg",
-          column(recs, 6, i, 4), "closer_to_zero");
-      add(out, "eap_thesis_rules_point_to_point", ds, "position_error_after", "mm",
-          column(recs, 6, i, 5));
+      add(out, "eap_thesis_rules_weighted_ls", ds, "heading_error_after", "deg", column(recs, 6, i, 4),
+          "closer_to_zero");
+      add(out, "eap_thesis_rules_point_to_point", ds, "position_error_after", "mm", column(recs, 6, i, 5));
       thesis_rules_heading.push_back(std::abs(finite_mean(column(recs, 6, i, 4)).first));
       seg.rows.push_back({label, row.segments, finite_mean(column(recs, 6, i, 0)).first});
       eo.rows.push_back({label, row.eo2, finite_mean(column(recs, 6, i, 1)).first});
@@ -107,8 +106,7 @@ class Table62 final : public ThesisTableExperiment {
         "|E_o²| over the sweep is {:.2f}° (worst {:.2f}°), because a 3° heading error carries "
         "a neighbouring face's points into a short segment's band and the weighted LS takes "
         "their −87° or −18° as evidence (results eap_thesis_rules_*).",
-        mean(thesis_rules_heading),
-        *std::max_element(thesis_rules_heading.begin(), thesis_rules_heading.end())));
+        mean(thesis_rules_heading), *std::max_element(thesis_rules_heading.begin(), thesis_rules_heading.end())));
   }
 };
 

@@ -13,33 +13,32 @@
 
 #include <cmath>
 
-#include "core/diff_drive_odometry.h"
-#include "core/statistics.h"
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/pose_correction/ekf_tracker.h"
 #include "baselines/laser/extract_then_match.h"
 #include "baselines/laser/options_json.h"
 #include "baselines/localization/line_feature_kalman_localizer.h"
 #include "baselines/localization/line_observation.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/scenario_option.h"
-#include "reports/findings.h"
+#include "core/diff_drive_odometry.h"
+#include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "reports/checksum.h"
+#include "reports/findings.h"
 
 namespace locbench::experiments::laser_tracking_table_6_5 {
 
-const ExperimentInfo kInfo{
-    .name = "laser/tracking_table_6_5",
-    .description = "Corridor tracking, 200 mm/s, 5 Hz, 10 m (Table 6.5): chapter-6 EKF with EAP or "
-                   "split-and-merge matches vs the slides' line-feature Kalman localizer vs odometry"};
+const ExperimentInfo kInfo{.name = "laser/tracking_table_6_5",
+                           .description =
+                               "Corridor tracking, 200 mm/s, 5 Hz, 10 m (Table 6.5): chapter-6 EKF with EAP or "
+                               "split-and-merge matches vs the slides' line-feature Kalman localizer vs odometry"};
 
 enum Method { kOdometry, kEkfEap, kEkfSplitMerge, kLineKalman, kMethods };
-const char* const kMethodNames[kMethods] = {"odometry", "ekf_eap", "ekf_split_and_merge",
-                                            "kalman_line_features"};
+const char* const kMethodNames[kMethods] = {"odometry", "ekf_eap", "ekf_split_and_merge", "kalman_line_features"};
 constexpr double kTable65[10] = {62.07, 55.48, 71.42, 66.24, 48.69, 81.46, 70.28, 53.48, 67.69, 53.43};
 
 sim::Scenario corridor_at_5_hz() {
@@ -77,18 +76,17 @@ struct Setup {
 };
 
 struct Record {
-  std::vector<double> final_position_error;  // [method] [m]
-  std::vector<double> final_heading_error;   // [method] [rad]
-  std::vector<double> rms_position_error;    // [method] over the scans [m]
+  std::vector<double> final_position_error;          // [method] [m]
+  std::vector<double> final_heading_error;           // [method] [rad]
+  std::vector<double> rms_position_error;            // [method] over the scans [m]
   double full_updates = 0.0, heading_updates = 0.0;  // ekf_eap
   std::size_t records = 0;
   double duration = 0.0;
   // Run 0 only: x and y of the truth and of each method at every scan (for the report's chart).
   std::vector<std::vector<double>> path_x, path_y;  // [truth, method…][scan]
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, final_position_error, final_heading_error,
-                                   rms_position_error, full_updates, heading_updates, records,
-                                   duration, path_x, path_y)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, final_position_error, final_heading_error, rms_position_error, full_updates,
+                                   heading_updates, records, duration, path_x, path_y)
 
 class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
  public:
@@ -186,16 +184,15 @@ class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
       heading.push_back(r.heading_updates);
     }
     out.datasets.push_back({"sim/" + s.scenario.name, "simulated",
-                            reports::text_checksum(sim::to_json(s.scenario).dump()), first.records,
-                            first.duration});
+                            reports::text_checksum(sim::to_json(s.scenario).dump()), first.records, first.duration});
     const std::string ds = "sim_" + s.scenario.name;
     for (int m = 0; m < kMethods; ++m) {
-      out.results.push_back(reports::make_metric(kMethodNames[m], ds, "final_position_error", "m",
-                                                 "monte_carlo_runs", fin[m]));
-      out.results.push_back(reports::make_metric(kMethodNames[m], ds, "final_heading_error", "rad",
-                                                 "monte_carlo_runs", head[m]));
-      out.results.push_back(reports::make_metric(kMethodNames[m], ds, "rms_position_error", "m",
-                                                 "monte_carlo_runs", rms[m]));
+      out.results.push_back(
+          reports::make_metric(kMethodNames[m], ds, "final_position_error", "m", "monte_carlo_runs", fin[m]));
+      out.results.push_back(
+          reports::make_metric(kMethodNames[m], ds, "final_heading_error", "rad", "monte_carlo_runs", head[m]));
+      out.results.push_back(
+          reports::make_metric(kMethodNames[m], ds, "rms_position_error", "m", "monte_carlo_runs", rms[m]));
     }
     reports::Plot plot;
     plot.name = "trajectories_run_0";
@@ -206,8 +203,7 @@ class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
     plot.x_unit = plot.y_unit = "m";
     plot.note = "run 0 of " + std::to_string(records.size());
     for (int m = 0; m <= kMethods; ++m) {
-      plot.series.push_back({m == 0 ? "truth" : kMethodNames[m - 1],
-                             first.path_x[static_cast<std::size_t>(m)],
+      plot.series.push_back({m == 0 ? "truth" : kMethodNames[m - 1], first.path_x[static_cast<std::size_t>(m)],
                              first.path_y[static_cast<std::size_t>(m)]});
     }
     out.plots.push_back(std::move(plot));
@@ -226,19 +222,19 @@ class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
     t.rows.push_back({"mean", pub, to_mm(mean(fin[kEkfEap]))});
     t.claim = "the chapter-6 EKF with EAP matches tracks the 10 m corridor to about 63 mm (E_error)";
     reports::compare_means_only(t, std::vector<double>(std::begin(kTable65), std::end(kTable65)));
-    t.note = "Runs are not paired with the thesis's. The thesis steered the robot along the "
-             "corridor with the EKF's estimate; ours drives open-loop with the odometry's belief. "
-             "In a corridor the walls fix heading and lateral position only; along-track position "
-             "comes from the end wall once it is within the laser's 8 m (first ~2 m heading-only "
-             "updates).";
+    t.note =
+        "Runs are not paired with the thesis's. The thesis steered the robot along the "
+        "corridor with the EKF's estimate; ours drives open-loop with the odometry's belief. "
+        "In a corridor the walls fix heading and lateral position only; along-track position "
+        "comes from the end wall once it is within the laser's 8 m (first ~2 m heading-only "
+        "updates).";
     out.published.push_back(std::move(t));
-    out.notes.push_back(fmt::format(
-        "Final position error (mean over {} runs): odometry {:.0f} mm, ekf_eap {:.1f} mm, "
-        "ekf_split_and_merge {:.1f} mm, kalman_line_features {:.1f} mm. ekf_eap made {:.0f} full "
-        "and {:.0f} heading-only updates per run.",
-        records.size(), to_mm(mean(fin[kOdometry])), to_mm(mean(fin[kEkfEap])),
-        to_mm(mean(fin[kEkfSplitMerge])), to_mm(mean(fin[kLineKalman])), mean(full),
-        mean(heading)));
+    out.notes.push_back(
+        fmt::format("Final position error (mean over {} runs): odometry {:.0f} mm, ekf_eap {:.1f} mm, "
+                    "ekf_split_and_merge {:.1f} mm, kalman_line_features {:.1f} mm. ekf_eap made {:.0f} full "
+                    "and {:.0f} heading-only updates per run.",
+                    records.size(), to_mm(mean(fin[kOdometry])), to_mm(mean(fin[kEkfEap])),
+                    to_mm(mean(fin[kEkfSplitMerge])), to_mm(mean(fin[kLineKalman])), mean(full), mean(heading)));
     return out;
   }
 };

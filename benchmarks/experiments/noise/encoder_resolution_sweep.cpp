@@ -5,10 +5,10 @@
 
 #include <vector>
 
-#include "core/errors.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/noise_filters.h"
+#include "core/errors.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
@@ -16,13 +16,13 @@
 
 namespace locbench::experiments::noise_encoder_resolution_sweep {
 
-const ExperimentInfo kInfo{
-    .name = "noise/encoder_resolution_sweep",
-    .description = "The four compass-aided filters from Pioneer-like (0.0152 mm/tick) to Trilobot-like "
-                   "(12.64 mm/tick) encoders: final error and NEES consistency"};
+const ExperimentInfo kInfo{.name = "noise/encoder_resolution_sweep",
+                           .description =
+                               "The four compass-aided filters from Pioneer-like (0.0152 mm/tick) to Trilobot-like "
+                               "(12.64 mm/tick) encoders: final error and NEES consistency"};
 
 struct SweepSetup {
-  std::vector<double> resolutions;      // [m per tick]
+  std::vector<double> resolutions;       // [m per tick]
   std::vector<sim::Scenario> scenarios;  // one per resolution
   nlohmann::json filters;
   nlohmann::json configuration;
@@ -74,14 +74,10 @@ class EncoderResolutionSweep final : public MonteCarloExperiment<Options, SweepS
       FilterSamples fs;
       for (int k = 0; k < plan.runs; ++k) {
         out.seeds.push_back(plan.run_seed(k));
-        collect(records[i * static_cast<std::size_t>(plan.runs) + static_cast<std::size_t>(k)]
-                    .get<FilterRecord>(),
-                fs);
+        collect(records[i * static_cast<std::size_t>(plan.runs) + static_cast<std::size_t>(k)].get<FilterRecord>(), fs);
       }
-      const std::string key =
-          reports::key_part(fmt::format("sim_corridor_{:.4g}mm_per_tick", u.resolutions[i] * 1e3));
-      out.datasets.push_back({key, "simulated",
-                              reports::text_checksum(sim::to_json(u.scenarios[i]).dump()), 0, 0.0});
+      const std::string key = reports::key_part(fmt::format("sim_corridor_{:.4g}mm_per_tick", u.resolutions[i] * 1e3));
+      out.datasets.push_back({key, "simulated", reports::text_checksum(sim::to_json(u.scenarios[i]).dump()), 0, 0.0});
       add_filter_results(out, key, fs);
     }
     return out;

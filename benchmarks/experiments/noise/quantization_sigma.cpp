@@ -5,17 +5,17 @@
 
 #include <vector>
 
-#include "core/errors.h"
 #include "algorithms/filters/quantization_noise.h"
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
+#include "core/errors.h"
 
 namespace locbench::experiments::noise_quantization_sigma {
 
-const ExperimentInfo kInfo{
-    .name = "noise/quantization_sigma",
-    .description = "Gaussian stand-in of the encoder quantization error (eq. 4.27–4.35): exact L2-optimal "
-                   "σ and moment-matched σ = C/√6 beside the published σ = 5.00 mm"};
+const ExperimentInfo kInfo{.name = "noise/quantization_sigma",
+                           .description =
+                               "Gaussian stand-in of the encoder quantization error (eq. 4.27–4.35): exact L2-optimal "
+                               "σ and moment-matched σ = C/√6 beside the published σ = 5.00 mm"};
 
 struct Options {
   std::vector<double> resolutions_mm = {12.64, 12.70};
@@ -46,8 +46,8 @@ class QuantizationSigma final : public OptionsExperiment<Options> {
       const QuantizationSigmaComparison q = compare_quantization_sigma(cs[i], ps[i], pg[i]);
       const std::string key = reports::key_part(fmt::format("c_{:.2f}mm", cs[i]));
       auto one = [&](const std::string& v, const std::string& unit, double x) {
-        out.results.push_back(reports::make_metric("quantization_model", key, v, unit, "closed_form",
-                                                   std::vector<double>{x}));
+        out.results.push_back(
+            reports::make_metric("quantization_model", key, v, unit, "closed_form", std::vector<double>{x}));
       };
       one("l2_optimal_sigma", "mm", q.l2_optimal_sigma);
       one("moment_matched_sigma", "mm", q.moment_matched_sigma);
@@ -58,7 +58,8 @@ class QuantizationSigma final : public OptionsExperiment<Options> {
       one("thesis_G2_at_published_sigma", "1/mm", q.thesis_l2_at_published);
       t.rows.push_back({fmt::format("σ, C = {:.2f} mm (exact L2 optimum)", cs[i]), ps[i], q.l2_optimal_sigma});
       t.rows.push_back({fmt::format("σ, C = {:.2f} mm (thesis's formula 4.35)", cs[i]), ps[i], q.thesis_optimal_sigma});
-      t.rows.push_back({fmt::format("G2, C = {:.2f} mm (thesis's formula at σ = 5.00)", cs[i]), pg[i], q.thesis_l2_at_published});
+      t.rows.push_back(
+          {fmt::format("G2, C = {:.2f} mm (thesis's formula at σ = 5.00)", cs[i]), pg[i], q.thesis_l2_at_published});
       // Verdict inputs: the exact optimum (Brent) checked by the closed form (Lambert W); σ rows
       // within 0.05 mm, G2 rows within half a unit of the printed 4th decimal.
       t.rows[t.rows.size() - 3].check = l2_optimal_sigma_closed_form(cs[i]);

@@ -8,34 +8,34 @@
 
 #include <cmath>
 
-#include "core/dead_reckoning.h"
-#include "core/diff_drive_odometry.h"
-#include "core/errors.h"
-#include "core/statistics.h"
-#include "core/trajectory_error.h"
 #include "algorithms/filters/consistency.h"
 #include "algorithms/filters/odometry_noise_model.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
+#include "core/dead_reckoning.h"
+#include "core/diff_drive_odometry.h"
+#include "core/errors.h"
+#include "core/statistics.h"
+#include "core/trajectory_error.h"
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments::noise_real_logs {
 
 const ExperimentInfo kInfo{
     .name = "noise/real_logs",
-    .description = "Consistency (NEES) of the odometry noise models on real odometry: Freiburg against "
-                   ".relations, MRCLAM against Vicon windows (no compass in any real log)",
-    .reading = {
-        "Not evaluable on real data: the compass-aided filters (fixed-Q EKF, adaptive model, "
-        "Sage–Husa AEKF, VB-AKF) and the slip detector — none of our real logs has a compass; "
-        "the encoder-quantization model — the real logs carry odometry poses or velocities, not "
-        "ticks (BreezySLAM's ticks have no reference). Here the models' prediction covariance is "
-        "checked against reference relative motions only. Read the medians: the adaptive model's "
-        "Q (eq. 4.43–4.44) is diagonal with var(w_d)·cos²(θ) and var(w_d)·sin²(θ), so for motion "
-        "along a world axis it has no lateral variance; such relations get a near-singular "
-        "covariance and an enormous NEES, which dominates the means."}};
+    .description =
+        "Consistency (NEES) of the odometry noise models on real odometry: Freiburg against "
+        ".relations, MRCLAM against Vicon windows (no compass in any real log)",
+    .reading = {"Not evaluable on real data: the compass-aided filters (fixed-Q EKF, adaptive model, "
+                "Sage–Husa AEKF, VB-AKF) and the slip detector — none of our real logs has a compass; "
+                "the encoder-quantization model — the real logs carry odometry poses or velocities, not "
+                "ticks (BreezySLAM's ticks have no reference). Here the models' prediction covariance is "
+                "checked against reference relative motions only. Read the medians: the adaptive model's "
+                "Q (eq. 4.43–4.44) is diagonal with var(w_d)·cos²(θ) and var(w_d)·sin²(θ), so for motion "
+                "along a world axis it has no lateral variance; such relations get a near-singular "
+                "covariance and an enormous NEES, which dominates the means."}};
 
 enum class Model { kAdaptive, kFixedQ };
 
@@ -59,8 +59,8 @@ std::optional<double> relation_nees(const Trajectory& odom, const Relation& r, M
     const double dD = std::hypot(d.x, d.y) * (d.x < 0 ? -1.0 : 1.0);
     const WheelDisplacement u{dD - 0.5 * track * d.theta, dD + 0.5 * track * d.theta};
     const Matrix3 F = odometry_jacobian_pose(x, u, track);
-    const Matrix3 Q = model == Model::kAdaptive ? adaptive_process_noise(adaptive, x.theta, u, track)
-                                                : Matrix3(fixed_q.asDiagonal());
+    const Matrix3 Q =
+        model == Model::kAdaptive ? adaptive_process_noise(adaptive, x.theta, u, track) : Matrix3(fixed_q.asDiagonal());
     P = F * P * F.transpose() + Q;
     x = odometry_step(x, u, track);
   }
@@ -90,8 +90,7 @@ struct Options {
 template <class V>
 void visit_fields(V& v, Options& o) {
   v.field("datasets", o.datasets, "", Range{}, "catalog names or user files (real_log_harness.h)");
-  v.field("relation_max_duration_s", o.relation_max_duration_s, "s", positive(),
-          "longest Freiburg relation evaluated");
+  v.field("relation_max_duration_s", o.relation_max_duration_s, "s", positive(), "longest Freiburg relation evaluated");
   v.field("mrclam_window_s", o.mrclam_window_s, "s", positive(), "ground-truth window on MRCLAM");
   v.field("virtual_track_m", o.virtual_track_m, "m", positive(),
           "track of the virtual differential drive the odometry is split into");
@@ -110,43 +109,42 @@ class NoiseRealLogs final : public OptionsExperiment<Options> {
     const auto specs = real_log_specs(c.datasets, name());
     const ChiSquareInterval band = average_chi_square_interval(3, 1, 0.95);
     for_each_real_log(specs, options, "noise", out,
-                      [&](const RealLogSpec& spec, const LoadedRealLog& loaded,
-                          reports::ExperimentResults& res) {
-      const std::string& ds = spec.name;
-      const Log& log = loaded.log;
-      const Trajectory odom = odometry_trajectory(log);
-      std::vector<Relation> rel;
-      if (!log.relations.empty()) {
-        for (const Relation& r : log.relations) {
-          if (r.t2 - r.t1 <= c.relation_max_duration_s) rel.push_back(r);
-        }
-      } else {
-        Trajectory truth;
-        for (const TruePose& p : log.truth) truth.push_back({p.t, p.pose});
-        rel = window_relations(truth, c.mrclam_window_s);
-      }
-      const char* model_names[2] = {"adaptive_noise_model", "fixed_q"};
-      for (int m = 0; m < 2; ++m) {
-        std::vector<double> nees;
-        std::size_t inside = 0;
-        for (const Relation& r : rel) {
-          const auto v = relation_nees(odom, r, m == 0 ? Model::kAdaptive : Model::kFixedQ,
-                                       adaptive, c.fixed_q_diag, c.virtual_track_m);
-          if (!v || !std::isfinite(*v)) continue;
-          nees.push_back(*v);
-          if (band.contains(*v)) ++inside;
-        }
-        if (nees.empty()) continue;
-        res.results.push_back(reports::make_metric(model_names[m], ds, "relation_nees", "",
-                                                   "reference_relations", nees, false));
-        res.notes.push_back(fmt::format(
-            "{} on {}: mean NEES {:.3g} (3 for a consistent model), median {:.3g}; {:.0f}% of {} "
-            "relations inside the 95% band [{:.3g}, {:.3g}].",
-            model_names[m], ds, mean(nees), quantile(nees, 0.5),
-            100.0 * static_cast<double>(inside) / static_cast<double>(nees.size()), nees.size(),
-            band.lower, band.upper));
-      }
-    });
+                      [&](const RealLogSpec& spec, const LoadedRealLog& loaded, reports::ExperimentResults& res) {
+                        const std::string& ds = spec.name;
+                        const Log& log = loaded.log;
+                        const Trajectory odom = odometry_trajectory(log);
+                        std::vector<Relation> rel;
+                        if (!log.relations.empty()) {
+                          for (const Relation& r : log.relations) {
+                            if (r.t2 - r.t1 <= c.relation_max_duration_s) rel.push_back(r);
+                          }
+                        } else {
+                          Trajectory truth;
+                          for (const TruePose& p : log.truth) truth.push_back({p.t, p.pose});
+                          rel = window_relations(truth, c.mrclam_window_s);
+                        }
+                        const char* model_names[2] = {"adaptive_noise_model", "fixed_q"};
+                        for (int m = 0; m < 2; ++m) {
+                          std::vector<double> nees;
+                          std::size_t inside = 0;
+                          for (const Relation& r : rel) {
+                            const auto v = relation_nees(odom, r, m == 0 ? Model::kAdaptive : Model::kFixedQ, adaptive,
+                                                         c.fixed_q_diag, c.virtual_track_m);
+                            if (!v || !std::isfinite(*v)) continue;
+                            nees.push_back(*v);
+                            if (band.contains(*v)) ++inside;
+                          }
+                          if (nees.empty()) continue;
+                          res.results.push_back(reports::make_metric(model_names[m], ds, "relation_nees", "",
+                                                                     "reference_relations", nees, false));
+                          res.notes.push_back(fmt::format(
+                              "{} on {}: mean NEES {:.3g} (3 for a consistent model), median {:.3g}; {:.0f}% of {} "
+                              "relations inside the 95% band [{:.3g}, {:.3g}].",
+                              model_names[m], ds, mean(nees), quantile(nees, 0.5),
+                              100.0 * static_cast<double>(inside) / static_cast<double>(nees.size()), nees.size(),
+                              band.lower, band.upper));
+                        }
+                      });
     return out;
   }
 };

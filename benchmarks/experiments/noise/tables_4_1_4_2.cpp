@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "core/statistics.h"
 #include "algorithms/filters/consistency.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/plot_series.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/noise_filters.h"
+#include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
@@ -21,10 +21,10 @@
 
 namespace locbench::experiments::noise_tables_4_1_4_2 {
 
-const ExperimentInfo kInfo{
-    .name = "noise/tables_4_1_4_2",
-    .description = "Fixed-Q EKF vs adaptive noise model vs Sage–Husa AEKF vs VB-AKF on simulated Trilobot "
-                   "corridor runs: final error (Tables 4.1/4.2), spread, NEES/NIS consistency"};
+const ExperimentInfo kInfo{.name = "noise/tables_4_1_4_2",
+                           .description =
+                               "Fixed-Q EKF vs adaptive noise model vs Sage–Husa AEKF vs VB-AKF on simulated Trilobot "
+                               "corridor runs: final error (Tables 4.1/4.2), spread, NEES/NIS consistency"};
 
 // Error against distance travelled is sampled every kDistanceStep metres of the true path.
 constexpr double kDistanceStep = 0.25;  // [m]
@@ -42,21 +42,31 @@ struct NoiseSetup {
 };
 
 // Trajectories of run 0 and the mean error against distance travelled, for the report's charts.
-void add_plots(reports::ExperimentResults& out, const McPlan& plan,
-               const std::vector<nlohmann::json>& records) {
-  reports::Plot traj{"trajectories_run_0", "trajectory",
-                     "Trajectories of run 0: truth, odometry and the four filters", "x", "m", "y",
-                     "m", {}, "Monte-Carlo run 0 (seed " + std::to_string(plan.run_seed(0)) + ")"};
+void add_plots(reports::ExperimentResults& out, const McPlan& plan, const std::vector<nlohmann::json>& records) {
+  reports::Plot traj{"trajectories_run_0",
+                     "trajectory",
+                     "Trajectories of run 0: truth, odometry and the four filters",
+                     "x",
+                     "m",
+                     "y",
+                     "m",
+                     {},
+                     "Monte-Carlo run 0 (seed " + std::to_string(plan.run_seed(0)) + ")"};
   for (const auto& j : records.front().at("trajectories")) {
-    traj.series.push_back({j.at("name").get<std::string>(), j.at("x").get<std::vector<double>>(),
-                           j.at("y").get<std::vector<double>>()});
+    traj.series.push_back(
+        {j.at("name").get<std::string>(), j.at("x").get<std::vector<double>>(), j.at("y").get<std::vector<double>>()});
   }
   out.plots.push_back(std::move(traj));
-  reports::Plot dist{"error_vs_distance", "error_vs_distance",
-                     "Position error against distance travelled (mean over runs)",
-                     "distance travelled", "m", "position error", "m", {},
-                     fmt::format("mean over {} Monte-Carlo runs, every {:g} m of the true path",
-                                 records.size(), kDistanceStep)};
+  reports::Plot dist{
+      "error_vs_distance",
+      "error_vs_distance",
+      "Position error against distance travelled (mean over runs)",
+      "distance travelled",
+      "m",
+      "position error",
+      "m",
+      {},
+      fmt::format("mean over {} Monte-Carlo runs, every {:g} m of the true path", records.size(), kDistanceStep)};
   std::vector<std::string> names(kNoiseFilterNames.begin(), kNoiseFilterNames.end());
   names.push_back("odometry_nominal");
   for (std::size_t f = 0; f < names.size(); ++f) {
@@ -66,8 +76,8 @@ void add_plots(reports::ExperimentResults& out, const McPlan& plan,
       runs.push_back(r.at("error_at_distance").at(f).get<std::vector<double>>());
       longest = std::max(longest, runs.back().size());
     }
-    dist.series.push_back(mean_over_runs(
-        names[f], distance_grid(kDistanceStep * static_cast<double>(longest), kDistanceStep), runs));
+    dist.series.push_back(
+        mean_over_runs(names[f], distance_grid(kDistanceStep * static_cast<double>(longest), kDistanceStep), runs));
   }
   out.plots.push_back(std::move(dist));
 }
@@ -118,15 +128,13 @@ class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {
       collect(r, s);
     }
     const std::string dataset = "sim_" + scenario.name;
-    out.datasets.push_back({"sim/" + scenario.name, "simulated",
-                            reports::text_checksum(sim::to_json(scenario).dump()), records_count,
-                            duration});
+    out.datasets.push_back({"sim/" + scenario.name, "simulated", reports::text_checksum(sim::to_json(scenario).dump()),
+                            records_count, duration});
     add_filter_results(out, dataset, s);
     add_plots(out, plan, records);
     // Tables 4.1/4.2: final error [mm], AEKF / fixed Q / adaptive, 10 runs.
-    const double published[10][3] = {{64, 100, 91}, {236, 81, 74}, {306, 101, 94}, {106, 57, 45},
-                                      {25, 60, 47},  {145, 50, 38}, {256, 90, 83}, {284, 89, 73},
-                                      {77, 70, 58},  {82, 64, 43}};
+    const double published[10][3] = {{64, 100, 91}, {236, 81, 74}, {306, 101, 94}, {106, 57, 45}, {25, 60, 47},
+                                     {145, 50, 38}, {256, 90, 83}, {284, 89, 73},  {77, 70, 58},  {82, 64, 43}};
     const int ours_index[3] = {2, 0, 1};  // sage_husa, fixed_q, adaptive
     const char* columns[3] = {"Sage–Husa AEKF", "fixed-Q EKF", "adaptive model"};
     double pub_mean[3] = {0, 0, 0};
@@ -135,8 +143,7 @@ class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {
     }
     const double ours_mean[3] = {mean(s.final_error[2]) * 1e3, mean(s.final_error[0]) * 1e3,
                                  mean(s.final_error[1]) * 1e3};
-    const double ours_sd[3] = {sample_stddev(s.final_error[2]) * 1e3,
-                               sample_stddev(s.final_error[0]) * 1e3,
+    const double ours_sd[3] = {sample_stddev(s.final_error[2]) * 1e3, sample_stddev(s.final_error[0]) * 1e3,
                                sample_stddev(s.final_error[1]) * 1e3};
     double pub_sd[3];
     for (int c = 0; c < 3; ++c) {
@@ -153,12 +160,11 @@ class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {
         "thesis){}. The adaptive model's time-averaged NEES is {:.2f} against the band [{:.2f}, "
         "{:.2f}]{}. The true robot and floor of the thesis are unknown, so the rows are not "
         "comparable one by one.",
-        pub_mean[0], pub_sd[0], pub_mean[1], pub_sd[1], pub_mean[2], pub_sd[2],
-        100 * (1 - pub_mean[2] / pub_mean[1]), runs, ours_mean[0], ours_sd[0], ours_mean[1],
-        ours_sd[1], ours_mean[2], ours_sd[2], 100 * (ours_mean[2] / ours_mean[1] - 1),
-        ours_sd[0] / ours_sd[1], pub_sd[0] / pub_sd[1],
-        ours_sd[0] > 2 * ours_sd[1] ? ": the AEKF's instability reproduces" : "",
-        adaptive_nees.time_average, adaptive_nees.bounds.lower, adaptive_nees.bounds.upper,
+        pub_mean[0], pub_sd[0], pub_mean[1], pub_sd[1], pub_mean[2], pub_sd[2], 100 * (1 - pub_mean[2] / pub_mean[1]),
+        runs, ours_mean[0], ours_sd[0], ours_mean[1], ours_sd[1], ours_mean[2], ours_sd[2],
+        100 * (ours_mean[2] / ours_mean[1] - 1), ours_sd[0] / ours_sd[1], pub_sd[0] / pub_sd[1],
+        ours_sd[0] > 2 * ours_sd[1] ? ": the AEKF's instability reproduces" : "", adaptive_nees.time_average,
+        adaptive_nees.bounds.lower, adaptive_nees.bounds.upper,
         adaptive_nees.time_average < adaptive_nees.bounds.lower
             ? ": its Q is conservative here (encoder quantization errors are anti-correlated "
               "sample to sample, which a white-noise model over-counts)"

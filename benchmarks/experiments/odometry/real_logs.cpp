@@ -6,22 +6,22 @@
 
 #include <cmath>
 
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/options_experiment.h"
+#include "benchmarks/experiments/framework/plot_series.h"
+#include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "core/errors.h"
 #include "core/trajectory_error.h"
 #include "core/units.h"
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/plot_series.h"
-#include "benchmarks/experiments/framework/options_experiment.h"
-#include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments::odometry_real_logs {
 
-const ExperimentInfo kInfo{
-    .name = "odometry/real_logs",
-    .description = "Raw odometry error on real logs: relative-motion error on the Freiburg relations "
-                   "and velocity dead reckoning against MRCLAM Vicon ground truth over fixed windows"};
+const ExperimentInfo kInfo{.name = "odometry/real_logs",
+                           .description =
+                               "Raw odometry error on real logs: relative-motion error on the Freiburg relations "
+                               "and velocity dead reckoning against MRCLAM Vicon ground truth over fixed windows"};
 
 Trajectory truth_trajectory(const Log& log) {
   Trajectory t;
@@ -38,8 +38,7 @@ template <class V>
 void visit_fields(V& v, Options& o) {
   v.field("datasets", o.datasets, "", Range{}, "catalog names or user files (real_log_harness.h)");
   v.field("mrclam_window_s", o.mrclam_window_s, "s", positive(), "ground-truth window on MRCLAM");
-  v.field("local_relation_max_dt_s", o.local_relation_max_dt_s, "s", positive(),
-          "longest relation counted as local");
+  v.field("local_relation_max_dt_s", o.local_relation_max_dt_s, "s", positive(), "longest relation counted as local");
 }
 
 class OdometryRealLogs final : public OptionsExperiment<Options> {
@@ -49,49 +48,48 @@ class OdometryRealLogs final : public OptionsExperiment<Options> {
     reports::ExperimentResults out = start_results(options_json(c));
     const auto specs = real_log_specs(c.datasets, name());
     for_each_real_log(specs, options, "odometry", out,
-                      [&](const RealLogSpec& spec, const LoadedRealLog& loaded,
-                          reports::ExperimentResults& res) {
-      const std::string& dataset = spec.name;
-      const Log& log = loaded.log;
-      const Trajectory odom = odometry_trajectory(log);
-      std::vector<Relation> reference = log.relations;
-      std::string method = "odometry_raw", over = "freiburg_relations";
-      std::string suffix;
-      if (reference.empty() && !log.truth.empty()) {
-        reference = window_relations(truth_trajectory(log), c.mrclam_window_s);
-        method = "odometry_velocity";
-        over = "ground_truth_windows";
-        suffix = "_" + std::to_string(static_cast<int>(std::lround(c.mrclam_window_s))) + "s";
-      }
-      const PoseErrors err = relation_error(odom, reference);
-      if (err.translation.empty()) {
-        res.cases.push_back({"odometry/" + dataset, "failed",
-                             "no reference relation falls inside the odometry's time span"});
-        return;
-      }
-      res.results.push_back(reports::make_metric(method, dataset, "rpe" + suffix + "_translation",
-                                                 "m", over, err.translation, false));
-      res.results.push_back(reports::make_metric(method, dataset, "rpe" + suffix + "_rotation",
-                                                 "rad", over, err.rotation, false));
-      for (reports::Plot& p : relative_pose_error_cdfs(dataset, "odometry", {method}, {err.translation},
-                                                       {err.rotation},
-                                                       fmt::format("{} relations ({})", err.translation.size(), over))) {
-        res.plots.push_back(std::move(p));
-      }
-      if (method != "odometry_raw") return;
-      // Freiburg relations mix local motions with loop closures minutes apart; the local
-      // ones (t2 − t1 ≤ local_relation_max_dt_s) show odometry's short-range quality.
-      std::vector<Relation> local;
-      for (const Relation& r : reference) {
-        if (r.t2 - r.t1 <= c.local_relation_max_dt_s) local.push_back(r);
-      }
-      const PoseErrors local_err = relation_error(odom, local);
-      if (local_err.translation.empty()) return;
-      res.results.push_back(reports::make_metric(method, dataset, "rpe_local_translation", "m",
-                                                 over, local_err.translation, false));
-      res.results.push_back(reports::make_metric(method, dataset, "rpe_local_rotation", "rad",
-                                                 over, local_err.rotation, false));
-    });
+                      [&](const RealLogSpec& spec, const LoadedRealLog& loaded, reports::ExperimentResults& res) {
+                        const std::string& dataset = spec.name;
+                        const Log& log = loaded.log;
+                        const Trajectory odom = odometry_trajectory(log);
+                        std::vector<Relation> reference = log.relations;
+                        std::string method = "odometry_raw", over = "freiburg_relations";
+                        std::string suffix;
+                        if (reference.empty() && !log.truth.empty()) {
+                          reference = window_relations(truth_trajectory(log), c.mrclam_window_s);
+                          method = "odometry_velocity";
+                          over = "ground_truth_windows";
+                          suffix = "_" + std::to_string(static_cast<int>(std::lround(c.mrclam_window_s))) + "s";
+                        }
+                        const PoseErrors err = relation_error(odom, reference);
+                        if (err.translation.empty()) {
+                          res.cases.push_back({"odometry/" + dataset, "failed",
+                                               "no reference relation falls inside the odometry's time span"});
+                          return;
+                        }
+                        res.results.push_back(reports::make_metric(method, dataset, "rpe" + suffix + "_translation",
+                                                                   "m", over, err.translation, false));
+                        res.results.push_back(reports::make_metric(method, dataset, "rpe" + suffix + "_rotation", "rad",
+                                                                   over, err.rotation, false));
+                        for (reports::Plot& p :
+                             relative_pose_error_cdfs(dataset, "odometry", {method}, {err.translation}, {err.rotation},
+                                                      fmt::format("{} relations ({})", err.translation.size(), over))) {
+                          res.plots.push_back(std::move(p));
+                        }
+                        if (method != "odometry_raw") return;
+                        // Freiburg relations mix local motions with loop closures minutes apart; the local
+                        // ones (t2 − t1 ≤ local_relation_max_dt_s) show odometry's short-range quality.
+                        std::vector<Relation> local;
+                        for (const Relation& r : reference) {
+                          if (r.t2 - r.t1 <= c.local_relation_max_dt_s) local.push_back(r);
+                        }
+                        const PoseErrors local_err = relation_error(odom, local);
+                        if (local_err.translation.empty()) return;
+                        res.results.push_back(reports::make_metric(method, dataset, "rpe_local_translation", "m", over,
+                                                                   local_err.translation, false));
+                        res.results.push_back(reports::make_metric(method, dataset, "rpe_local_rotation", "rad", over,
+                                                                   local_err.rotation, false));
+                      });
     return out;
   }
 };

@@ -9,15 +9,15 @@
 #include <array>
 #include <cmath>
 
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/monte_carlo.h"
+#include "benchmarks/experiments/framework/plot_series.h"
+#include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/scenario_option.h"
 #include "core/dead_reckoning.h"
 #include "core/errors.h"
 #include "core/rng.h"
 #include "core/trajectory_error.h"
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/plot_series.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
@@ -25,10 +25,10 @@
 
 namespace locbench::experiments::odometry_sim_corridor {
 
-const ExperimentInfo kInfo{
-    .name = "odometry/sim_corridor",
-    .description = "Dead-reckoning error of simulated 10 m corridor runs (Trilobot-like, Monte-Carlo): "
-                   "nominal model vs true geometry"};
+const ExperimentInfo kInfo{.name = "odometry/sim_corridor",
+                           .description =
+                               "Dead-reckoning error of simulated 10 m corridor runs (Trilobot-like, Monte-Carlo): "
+                               "nominal model vs true geometry"};
 
 struct RunErrors {
   double final_position = 0.0;  // [m]
@@ -76,23 +76,18 @@ struct CorridorRecord {
   double duration = 0.0;
   nlohmann::json trajectories;  // run 0 only: [PlotSeries as JSON]
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(CorridorRecord, final_position, final_heading, ape_rmse,
-                                   error_at_distance, records, duration, trajectories)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(CorridorRecord, final_position, final_heading, ape_rmse, error_at_distance, records,
+                                   duration, trajectories)
 
-nlohmann::json series_json(const reports::PlotSeries& s) {
-  return {{"name", s.name}, {"x", s.x}, {"y", s.y}};
-}
+nlohmann::json series_json(const reports::PlotSeries& s) { return {{"name", s.name}, {"x", s.x}, {"y", s.y}}; }
 reports::PlotSeries series_from(const nlohmann::json& j) {
-  return {j.at("name").get<std::string>(), j.at("x").get<std::vector<double>>(),
-          j.at("y").get<std::vector<double>>()};
+  return {j.at("name").get<std::string>(), j.at("x").get<std::vector<double>>(), j.at("y").get<std::vector<double>>()};
 }
 
 class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorSetup> {
  public:
   using MonteCarloExperiment::MonteCarloExperiment;
-  CorridorSetup setup(const Options& o, const McPlan& plan) const override {
-    return {o.scenario, recorded(o, plan)};
-  }
+  CorridorSetup setup(const Options& o, const McPlan& plan) const override { return {o.scenario, recorded(o, plan)}; }
 
   nlohmann::json run_task(const CorridorSetup& s, const McPlan& plan, int k) const override {
     const sim::SimulationResult sim = sim::simulate(s.scenario, plan.run_seed(k));
@@ -102,9 +97,8 @@ class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorS
     // The robot knows its start pose; dead reckoning starts at the first ENCODER sample.
     const auto start = truth.pose_at(sim.log.encoders.front().t);
     if (!start) throw std::logic_error("first encoder sample outside the true trajectory");
-    const Trajectory models[2] = {
-        dead_reckon_encoders(sim.log.encoders, *nominal, *start),
-        dead_reckon_encoders(sim.log.encoders, sim.robot.actual_model(), *start)};
+    const Trajectory models[2] = {dead_reckon_encoders(sim.log.encoders, *nominal, *start),
+                                  dead_reckon_encoders(sim.log.encoders, sim.robot.actual_model(), *start)};
     CorridorRecord r;
     const std::vector<double> grid = distance_grid(truth.path_length(), kDistanceStep);
     for (int m = 0; m < 2; ++m) {
@@ -144,27 +138,36 @@ class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorS
     }
     // Records and duration of the last run (all runs of the scenario are alike).
     out.datasets.push_back({"sim/" + s.scenario.name, "simulated",
-                            reports::text_checksum(out.configuration["scenario"].dump()),
-                            r.records, r.duration});
+                            reports::text_checksum(out.configuration["scenario"].dump()), r.records, r.duration});
     const std::string dataset = "sim_" + s.scenario.name;
     for (int m = 0; m < 2; ++m) {
-      out.results.push_back(reports::make_metric(kMethods[m], dataset, "final_position_error", "m",
-                                                 "monte_carlo_runs", pos[m]));
-      out.results.push_back(reports::make_metric(kMethods[m], dataset, "final_heading_error",
-                                                 "rad", "monte_carlo_runs", head[m]));
-      out.results.push_back(reports::make_metric(kMethods[m], dataset, "ape_rmse", "m",
-                                                 "monte_carlo_runs", ape[m]));
+      out.results.push_back(
+          reports::make_metric(kMethods[m], dataset, "final_position_error", "m", "monte_carlo_runs", pos[m]));
+      out.results.push_back(
+          reports::make_metric(kMethods[m], dataset, "final_heading_error", "rad", "monte_carlo_runs", head[m]));
+      out.results.push_back(reports::make_metric(kMethods[m], dataset, "ape_rmse", "m", "monte_carlo_runs", ape[m]));
     }
-    reports::Plot traj{"trajectories_run_0", "trajectory", "Trajectories of run 0: truth and dead reckoning",
-                       "x", "m", "y", "m", {}, "Monte-Carlo run 0 (seed " +
-                       std::to_string(plan.run_seed(0)) + ")"};
+    reports::Plot traj{"trajectories_run_0",
+                       "trajectory",
+                       "Trajectories of run 0: truth and dead reckoning",
+                       "x",
+                       "m",
+                       "y",
+                       "m",
+                       {},
+                       "Monte-Carlo run 0 (seed " + std::to_string(plan.run_seed(0)) + ")"};
     for (const auto& j : records.front().get<CorridorRecord>().trajectories) {
       traj.series.push_back(series_from(j));
     }
     out.plots.push_back(std::move(traj));
-    reports::Plot dist{"error_vs_distance", "error_vs_distance",
+    reports::Plot dist{"error_vs_distance",
+                       "error_vs_distance",
                        "Position error against distance travelled (mean over runs)",
-                       "distance travelled", "m", "position error", "m", {},
+                       "distance travelled",
+                       "m",
+                       "position error",
+                       "m",
+                       {},
                        "mean over " + std::to_string(records.size()) + " Monte-Carlo runs, every " +
                            fmt::format("{:g}", kDistanceStep) + " m of the true path"};
     const std::vector<double> grid = distance_grid(kDistanceStep * static_cast<double>(longest), kDistanceStep);

@@ -10,48 +10,46 @@
 
 #include <cmath>
 
-#include "core/errors.h"
-#include "core/rng.h"
-#include "core/statistics.h"
 #include "algorithms/slip/slip_compass_ekf.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/slip_sim.h"
 #include "benchmarks/experiments/harness/scenario_option.h"
-#include "reports/findings.h"
+#include "benchmarks/experiments/harness/slip_sim.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "reports/checksum.h"
+#include "reports/findings.h"
 
 namespace locbench::experiments::slip_compass_ekf_table_3_2 {
 
 const ExperimentInfo kInfo{
     .name = "slip/compass_ekf_table_3_2",
-    .description = "Compass EKF without/with wheel-slip correction on simulated Trilobot corridor runs "
-                   "(Table 3.2), slip-detection precision/recall, gyro fallback in a disturbed zone",
-    .reading = {
-        "The first EKF's pseudo-measurement Z = θ̂(k−1) + θ_E(k) equals its own prediction, so "
-        "its innovation is always zero: it is dead reckoning with the encoders, as the thesis's "
-        "own Table 3.2 column implies. The gain of the second EKF comes mostly from the absolute "
-        "compass heading, not from the slip correction of ΔD and Δθ.",
-        "Disturbed runs: a 30° zone bias over x ∈ [4, 6] m. Rule 3 flags only the samples where "
-        "the bias switches on or off; in between the increments look normal while the absolute "
-        "heading is 30° off, so the published rule alone lets the biased heading into the EKF. "
-        "'latched' keeps the compass disturbed while the summed unexplained jumps exceed the "
-        "tolerance and uses Z = θ̂(k−1) + θ_E(k); 'latched_gyro' uses a simulated gyro "
-        "(ours: bias and white noise from the configuration) for the slip rule and "
-        "Z = θ̂(k−1) + θ_G(k) there."}};
+    .description =
+        "Compass EKF without/with wheel-slip correction on simulated Trilobot corridor runs "
+        "(Table 3.2), slip-detection precision/recall, gyro fallback in a disturbed zone",
+    .reading = {"The first EKF's pseudo-measurement Z = θ̂(k−1) + θ_E(k) equals its own prediction, so "
+                "its innovation is always zero: it is dead reckoning with the encoders, as the thesis's "
+                "own Table 3.2 column implies. The gain of the second EKF comes mostly from the absolute "
+                "compass heading, not from the slip correction of ΔD and Δθ.",
+                "Disturbed runs: a 30° zone bias over x ∈ [4, 6] m. Rule 3 flags only the samples where "
+                "the bias switches on or off; in between the increments look normal while the absolute "
+                "heading is 30° off, so the published rule alone lets the biased heading into the EKF. "
+                "'latched' keeps the compass disturbed while the summed unexplained jumps exceed the "
+                "tolerance and uses Z = θ̂(k−1) + θ_E(k); 'latched_gyro' uses a simulated gyro "
+                "(ours: bias and white noise from the configuration) for the slip rule and "
+                "Z = θ̂(k−1) + θ_G(k) there."}};
 
 constexpr double kPublishedWithout[10] = {580.49, 550.62, 467.74, 406.29, 464.62,
                                           847.33, 575.97, 641.25, 574.05, 484.07};
-constexpr double kPublishedWith[10] = {75.95, 73.89, 89.96, 63.98, 62.05,
-                                       75.73, 68.25, 51.07, 65.05, 79.98};
+constexpr double kPublishedWith[10] = {75.95, 73.89, 89.96, 63.98, 62.05, 75.73, 68.25, 51.07, 65.05, 79.98};
 
 const char* const kDisturbedMethods[4] = {"ekf_no_slip_correction", "ekf_slip_correction",
-                                          "ekf_slip_correction_latched",
-                                          "ekf_slip_correction_latched_gyro"};
+                                          "ekf_slip_correction_latched", "ekf_slip_correction_latched_gyro"};
 
 struct GyroOptions {
   double bias_deg_per_s = 0.05;
@@ -104,7 +102,7 @@ struct CompassSetup {
   sim::Scenario scenario;
   sim::Scenario disturbed;  // with the compass disturbance zone
   SlipEkfOptions ekf_opt;
-  double large = 0.0;       // [m] a "large" slip
+  double large = 0.0;  // [m] a "large" slip
   slip_sim::GyroConfig gyro;
   int cal_runs = 4;
   slip_sim::CalibratedModels cal;
@@ -143,11 +141,11 @@ class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> 
     const slip_sim::RunData d = slip_sim::run_data(r, *r.log.nominal_model(), {}, nullptr);
     SlipEkfOptions o = u.ekf_opt;
     o.correct_slip = false;
-    const SlipEkfRun without = run_slip_ekf(d.samples, d.initial_compass, compass_model, {}, o,
-                                            d.wheelbase, d.truth.front());
+    const SlipEkfRun without =
+        run_slip_ekf(d.samples, d.initial_compass, compass_model, {}, o, d.wheelbase, d.truth.front());
     o.correct_slip = true;
-    const SlipEkfRun with = run_slip_ekf(d.samples, d.initial_compass, compass_model, {}, o,
-                                         d.wheelbase, d.truth.front());
+    const SlipEkfRun with =
+        run_slip_ekf(d.samples, d.initial_compass, compass_model, {}, o, d.wheelbase, d.truth.front());
     const slip_sim::DetectionScore sc = slip_sim::score_detections(with, r, u.large);
     nlohmann::json rec = {{"error_without", slip_sim::final_position_error(without, d)},
                           {"error_with", slip_sim::final_position_error(with, d)},
@@ -168,8 +166,8 @@ class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> 
       od.correct_slip = m > 0;
       od.latch_disturbance = m >= 2;
       od.gyro_fallback = m == 3;
-      const SlipEkfRun run = run_slip_ekf(dd.samples, dd.initial_compass, compass_model,
-                                          gyro_model, od, dd.wheelbase, dd.truth.front());
+      const SlipEkfRun run =
+          run_slip_ekf(dd.samples, dd.initial_compass, compass_model, gyro_model, od, dd.wheelbase, dd.truth.front());
       rec["error_disturbed"].push_back(slip_sim::final_position_error(run, dd));
     }
     return rec;
@@ -205,58 +203,59 @@ class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> 
       total_det += sc.detections;
       total_large += sc.large_events;
       total_large_tp += sc.large_detected;
-      if (sc.detections > 0) precision.push_back(static_cast<double>(sc.true_positives) / static_cast<double>(sc.detections));
+      if (sc.detections > 0)
+        precision.push_back(static_cast<double>(sc.true_positives) / static_cast<double>(sc.detections));
       if (sc.true_events > 0) {
         recall.push_back(static_cast<double>(sc.true_positives) / static_cast<double>(sc.true_events));
         wrong_wheel.push_back(static_cast<double>(sc.wrong_wheel) / static_cast<double>(sc.true_events));
       }
-      if (sc.large_events > 0) recall_large.push_back(static_cast<double>(sc.large_detected) / static_cast<double>(sc.large_events));
+      if (sc.large_events > 0)
+        recall_large.push_back(static_cast<double>(sc.large_detected) / static_cast<double>(sc.large_events));
       for (int m = 0; m < 4; ++m) err_dist[m].push_back(rec.at("error_disturbed").at(m).get<double>());
     }
     const nlohmann::json& first = records.front();
     const auto first_records = first.at("records").get<std::size_t>();
     const auto first_duration = first.at("duration").get<double>();
     out.datasets.push_back({"sim/" + scenario.name, "simulated",
-                            reports::text_checksum(out.configuration["scenario"].dump()),
-                            first_records, first_duration});
+                            reports::text_checksum(out.configuration["scenario"].dump()), first_records,
+                            first_duration});
     out.datasets.push_back({"sim/" + scenario.name + "_disturbed", "simulated",
-                            reports::text_checksum(sim::to_json(u.disturbed).dump()),
-                            first_records, first_duration});
+                            reports::text_checksum(sim::to_json(u.disturbed).dump()), first_records, first_duration});
     const std::string ds = "sim_" + scenario.name;
-    out.results.push_back(reports::make_metric("ekf_no_slip_correction", ds, "final_position_error",
-                                               "m", "monte_carlo_runs", err_without));
-    out.results.push_back(reports::make_metric("ekf_slip_correction", ds, "final_position_error",
-                                               "m", "monte_carlo_runs", err_with));
+    out.results.push_back(reports::make_metric("ekf_no_slip_correction", ds, "final_position_error", "m",
+                                               "monte_carlo_runs", err_without));
+    out.results.push_back(
+        reports::make_metric("ekf_slip_correction", ds, "final_position_error", "m", "monte_carlo_runs", err_with));
     auto higher = [&](const std::string& variant, const std::vector<double>& v) {
-      reports::MetricResult m = reports::make_metric("slip_detector", ds, variant, "",
-                                                     "monte_carlo_runs", v);
+      reports::MetricResult m = reports::make_metric("slip_detector", ds, variant, "", "monte_carlo_runs", v);
       m.better = "higher";
       out.results.push_back(std::move(m));
     };
     higher("precision", precision);
     higher("recall", recall);
     higher("recall_large_slips", recall_large);
-    out.results.push_back(reports::make_metric("slip_detector", ds, "wrong_wheel_rate", "",
-                                               "monte_carlo_runs", wrong_wheel));
+    out.results.push_back(
+        reports::make_metric("slip_detector", ds, "wrong_wheel_rate", "", "monte_carlo_runs", wrong_wheel));
     for (int m = 0; m < 4; ++m) {
-      out.results.push_back(reports::make_metric(kDisturbedMethods[m], ds + "_disturbed",
-                                                 "final_position_error", "m", "monte_carlo_runs",
-                                                 err_dist[m]));
+      out.results.push_back(reports::make_metric(kDisturbedMethods[m], ds + "_disturbed", "final_position_error", "m",
+                                                 "monte_carlo_runs", err_dist[m]));
     }
     add_tables(out, err_without, err_with);
-    const auto pct = [](std::size_t a, std::size_t b) { return b ? 100.0 * static_cast<double>(a) / static_cast<double>(b) : 0.0; };
-    out.notes.push_back(fmt::format(
-        "Slip model from {} calibration runs ({} samples): μ = {:.3f}°, σ = {:.3f}° (thesis, real "
-        "Trilobot: μ = 0.37°, σ = 1.54°); threshold |Δθ' − μ|/σ > {:.3f}. Gyro: μ = {:.3f}°, σ = {:.3f}°.",
-        cal_runs, cal.samples, to_deg(compass_model.mean), to_deg(compass_model.stddev),
-        slip_threshold(ekf_opt.detector.probability), to_deg(gyro_model.mean), to_deg(gyro_model.stddev)));
-    out.notes.push_back(fmt::format(
-        "Matching rule: a detection at sample interval j (encoder samples j → j+1) is a true "
-        "positive iff the simulator logged a slip event on that interval on the same wheel. Pooled "
-        "over runs: {} events, {} detections, {} true positives — precision {:.1f}%, recall "
-        "{:.1f}%; events losing ≥ {:.0f} mm: {} of {} found ({:.1f}%).",
-        total_events, total_det, total_tp, pct(total_tp, total_det), pct(total_tp, total_events),
-        to_mm(large), total_large_tp, total_large, pct(total_large_tp, total_large)));
+    const auto pct = [](std::size_t a, std::size_t b) {
+      return b ? 100.0 * static_cast<double>(a) / static_cast<double>(b) : 0.0;
+    };
+    out.notes.push_back(
+        fmt::format("Slip model from {} calibration runs ({} samples): μ = {:.3f}°, σ = {:.3f}° (thesis, real "
+                    "Trilobot: μ = 0.37°, σ = 1.54°); threshold |Δθ' − μ|/σ > {:.3f}. Gyro: μ = {:.3f}°, σ = {:.3f}°.",
+                    cal_runs, cal.samples, to_deg(compass_model.mean), to_deg(compass_model.stddev),
+                    slip_threshold(ekf_opt.detector.probability), to_deg(gyro_model.mean), to_deg(gyro_model.stddev)));
+    out.notes.push_back(
+        fmt::format("Matching rule: a detection at sample interval j (encoder samples j → j+1) is a true "
+                    "positive iff the simulator logged a slip event on that interval on the same wheel. Pooled "
+                    "over runs: {} events, {} detections, {} true positives — precision {:.1f}%, recall "
+                    "{:.1f}%; events losing ≥ {:.0f} mm: {} of {} found ({:.1f}%).",
+                    total_events, total_det, total_tp, pct(total_tp, total_det), pct(total_tp, total_events),
+                    to_mm(large), total_large_tp, total_large, pct(total_large_tp, total_large)));
     return out;
   }
 

@@ -15,15 +15,15 @@
 
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
-#include "core/diff_drive_odometry.h"
-#include "core/errors.h"
 #include "algorithms/slip/indirect_kalman_filter.h"
 #include "baselines/calibration/umbmark_classic.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/harness/slip_sim.h"
+#include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/calibration_umbmark.h"
 #include "benchmarks/experiments/harness/scenario_option.h"
+#include "benchmarks/experiments/harness/slip_sim.h"
+#include "core/diff_drive_odometry.h"
+#include "core/errors.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
@@ -34,23 +34,23 @@ namespace locbench::experiments::slip_ikf_vs_calibration {
 
 const ExperimentInfo kInfo{
     .name = "slip/ikf_vs_calibration",
-    .description = "Indirect Kalman filter (compass) vs classic and improved UMBmark on the same simulated "
-                   "Trilobot: parameter estimates and validation-path error of each corrected model",
-    .reading = {
-        "What each can determine (algorithms/calibration/README.md, algorithms/slip/README.md): "
-        "closed squares fix E_d and one combination of E_b and E_o whether read by UMBmark's "
-        "return errors or by the IKF's compass headings and end points (a closed loop returns to "
-        "its start whatever the common scale); straight runs with headings fix only S_R − S_L; "
-        "a measured end position of a straight run adds the common scale E_o but never E_b. "
-        "The IKF is linearised about zero error: with the uncalibrated model's 0.85% right-wheel "
-        "error its estimates are biased by ~(error)² (tests/algorithms/slip).",
-        "Not compared: the ML calibration of algorithms/calibration (it needs relative-motion "
-        "measurements such as scan matching, which these runs do not produce)."}};
+    .description =
+        "Indirect Kalman filter (compass) vs classic and improved UMBmark on the same simulated "
+        "Trilobot: parameter estimates and validation-path error of each corrected model",
+    .reading = {"What each can determine (algorithms/calibration/README.md, algorithms/slip/README.md): "
+                "closed squares fix E_d and one combination of E_b and E_o whether read by UMBmark's "
+                "return errors or by the IKF's compass headings and end points (a closed loop returns to "
+                "its start whatever the common scale); straight runs with headings fix only S_R − S_L; "
+                "a measured end position of a straight run adds the common scale E_o but never E_b. "
+                "The IKF is linearised about zero error: with the uncalibrated model's 0.85% right-wheel "
+                "error its estimates are biased by ~(error)² (tests/algorithms/slip).",
+                "Not compared: the ML calibration of algorithms/calibration (it needs relative-motion "
+                "measurements such as scan matching, which these runs do not produce)."}};
 
 enum Method { kUncalibrated, kClassic, kImproved, kIkfSquares, kIkfStraight, kIkfStraightEnd, kTrue, kMethods };
 const char* const kMethodNames[kMethods] = {
-    "uncalibrated",           "umbmark_classic",           "umbmark_improved",
-    "ikf_umbmark_squares",    "ikf_straight_heading_only", "ikf_straight_end_position",
+    "uncalibrated",        "umbmark_classic",           "umbmark_improved",
+    "ikf_umbmark_squares", "ikf_straight_heading_only", "ikf_straight_end_position",
     "true_geometry"};
 const char* const kParams[3] = {"E_d", "E_b", "E_o"};
 
@@ -71,8 +71,7 @@ void visit_fields(V& v, Options& o) {
   v.coded("squares", o.squares, scenario_json, scenario_option, "the UMBmark squares (datasets/sim)");
   v.coded("straight", o.straight, scenario_json, scenario_option, "the straight runs (its robot is the squares')");
   v.nested("ikf", o.ikf, "the indirect Kalman filter (indirect_kalman_filter.h)");
-  v.field("end_position_sigma_mm", o.end_position_sigma_mm, "mm", positive(),
-          "σ of each run's measured end position");
+  v.field("end_position_sigma_mm", o.end_position_sigma_mm, "mm", positive(), "σ of each run's measured end position");
   v.flag("tape_measure", o.tape_measure, "E_s measured with a tape before the runs");
   v.field("validation_waypoints", o.validation_waypoints, "m", any_finite(), "the validation path, [x, y] each");
 }
@@ -96,14 +95,12 @@ struct Record {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, estimate, validation_error, records, duration)
 
 WheelGeometry corrected(const WheelGeometry& n, const IkfRunResult& r) {
-  return {n.diameter_left * (1.0 + r.s_left), n.diameter_right * (1.0 + r.s_right),
-          n.wheelbase + r.delta_b};
+  return {n.diameter_left * (1.0 + r.s_left), n.diameter_right * (1.0 + r.s_right), n.wheelbase + r.delta_b};
 }
 
 // The IKF over the ten squares: per UMBmark run, the encoder intervals inside it, the compass
 // heading after each, and the run's end position error (measured on the floor, as UMBmark does).
-IkfRunResult ikf_on_squares(const sim::SimulationResult& r, const NominalModel& model,
-                            const Setup& s) {
+IkfRunResult ikf_on_squares(const sim::SimulationResult& r, const NominalModel& model, const Setup& s) {
   const slip_sim::RunData d = slip_sim::run_data(r, model, {}, nullptr);
   const auto& enc = r.log.encoders;
   std::vector<IkfRun> runs;
@@ -163,8 +160,7 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
     const UmbmarkErrorParams truth = error_params(nominal, s.squares.robot.actual);
 
     const sim::SimulationResult sq = sim::simulate(s.squares, Rng::derive_seed(seed, 0));
-    const UmbmarkInput input =
-        sim::umbmark_input(s.squares, sq.umbmark_runs, s.tape_measure ? truth.E_o : 1.0);
+    const UmbmarkInput input = sim::umbmark_input(s.squares, sq.umbmark_runs, s.tape_measure ? truth.E_o : 1.0);
     const ClassicUmbmarkResult classic = classic_umbmark(input, {});
     const ImprovedUmbmarkResult improved = improved_umbmark(input, {});
     const IkfRunResult on_squares = ikf_on_squares(sq, model, s);
@@ -174,15 +170,17 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
     const slip_sim::IkfRun ikf = slip_sim::ikf_run(d);
     IndirectKfOptions frozen = s.ikf;
     frozen.initial_covariance(5) = 0.0;
-    const IkfRunResult heading_only =
-        run_indirect_kf(ikf.samples, d.truth.front().theta, s.ikf, model.wheelbase);
+    const IkfRunResult heading_only = run_indirect_kf(ikf.samples, d.truth.front().theta, s.ikf, model.wheelbase);
     const IkfRunResult with_end =
-        run_indirect_kf(ikf.samples, d.truth.front().theta, frozen, model.wheelbase, ikf.end_error,
-                        s.end_variance);
+        run_indirect_kf(ikf.samples, d.truth.front().theta, frozen, model.wheelbase, ikf.end_error, s.end_variance);
 
-    const WheelGeometry geometry[kMethods] = {
-        nominal, classic.corrected, improved.corrected, corrected(nominal, on_squares),
-        corrected(nominal, heading_only), corrected(nominal, with_end), s.squares.robot.actual};
+    const WheelGeometry geometry[kMethods] = {nominal,
+                                              classic.corrected,
+                                              improved.corrected,
+                                              corrected(nominal, on_squares),
+                                              corrected(nominal, heading_only),
+                                              corrected(nominal, with_end),
+                                              s.squares.robot.actual};
     Record rec;
     rec.records = sq.log.record_count();
     rec.duration = sq.duration;
@@ -216,24 +214,22 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
     }
     const Record first = records.front().get<Record>();
     out.datasets.push_back({"sim/" + s.squares.name + "+" + s.straight.name, "simulated",
-                            reports::text_checksum(s.configuration.dump()), first.records,
-                            first.duration});
+                            reports::text_checksum(s.configuration.dump()), first.records, first.duration});
     const std::string ds = "sim_trilobot";
     for (int m = kClassic; m < kTrue; ++m) {
       for (int p = 0; p < 3; ++p) {
         std::vector<double> err;
         for (double v : est[m][p]) err.push_back(v - true_values[p]);
-        reports::MetricResult r = reports::make_metric(kMethodNames[m], ds,
-                                                       std::string(kParams[p]) + "_error", "",
-                                                       "monte_carlo_runs", err);
+        reports::MetricResult r =
+            reports::make_metric(kMethodNames[m], ds, std::string(kParams[p]) + "_error", "", "monte_carlo_runs", err);
         r.better = "closer_to_zero";
         r.note = fmt::format("estimate − truth (true {} = {:.6f})", kParams[p], true_values[p]);
         out.results.push_back(std::move(r));
       }
     }
     for (int m = 0; m < kMethods; ++m) {
-      out.results.push_back(reports::make_metric(kMethodNames[m], ds, "validation_position_error",
-                                                 "m", "monte_carlo_runs", val[m]));
+      out.results.push_back(
+          reports::make_metric(kMethodNames[m], ds, "validation_position_error", "m", "monte_carlo_runs", val[m]));
     }
 
     // No published counterpart: the thesis never compares the IKF with UMBmark.
@@ -244,13 +240,13 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
       }
       out.notes.push_back(line);
     }
-    out.notes.push_back(fmt::format(
-        "Validation dead-reckoning error (mean over {} runs): uncalibrated {:.0f} mm, classic "
-        "UMBmark {:.0f} mm, improved {:.0f} mm, IKF on the squares {:.0f} mm, IKF straight "
-        "heading-only {:.0f} mm, IKF straight + end position {:.0f} mm, true geometry {:.0f} mm.",
-        records.size(), 1e3 * mean(val[kUncalibrated]), 1e3 * mean(val[kClassic]),
-        1e3 * mean(val[kImproved]), 1e3 * mean(val[kIkfSquares]), 1e3 * mean(val[kIkfStraight]),
-        1e3 * mean(val[kIkfStraightEnd]), 1e3 * mean(val[kTrue])));
+    out.notes.push_back(
+        fmt::format("Validation dead-reckoning error (mean over {} runs): uncalibrated {:.0f} mm, classic "
+                    "UMBmark {:.0f} mm, improved {:.0f} mm, IKF on the squares {:.0f} mm, IKF straight "
+                    "heading-only {:.0f} mm, IKF straight + end position {:.0f} mm, true geometry {:.0f} mm.",
+                    records.size(), 1e3 * mean(val[kUncalibrated]), 1e3 * mean(val[kClassic]),
+                    1e3 * mean(val[kImproved]), 1e3 * mean(val[kIkfSquares]), 1e3 * mean(val[kIkfStraight]),
+                    1e3 * mean(val[kIkfStraightEnd]), 1e3 * mean(val[kTrue])));
     if (mean(val[kTrue]) > std::min(mean(val[kClassic]), mean(val[kIkfSquares]))) {
       out.notes.push_back(
           "The true geometry is not the best model for dead reckoning here: the on-the-spot turns "

@@ -11,42 +11,41 @@
 #include <array>
 #include <cmath>
 
-#include "core/errors.h"
-#include "core/rng.h"
-#include "core/statistics.h"
 #include "algorithms/slip/indirect_kalman_filter.h"
 #include "algorithms/slip/slip_compass_ekf.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/slip_sim.h"
 #include "benchmarks/experiments/harness/scenario_option.h"
-#include "reports/findings.h"
+#include "benchmarks/experiments/harness/slip_sim.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "reports/checksum.h"
+#include "reports/findings.h"
 
 namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4 {
 
 const ExperimentInfo kInfo{
     .name = "slip/indirect_kf_tables_3_3_3_4",
-    .description = "Indirect Kalman filter for S_L, S_R, δB on simulated straight corridor runs "
-                   "(Tables 3.3/3.4): estimates, identifiability, error after correcting the diameters",
-    .reading = {
-        "Finding (ours): with 12.64 mm ticks the per-sample odometry heading swings by ±1 tick "
-        "(±3.7°) while the true heading does not; Z = compass − odometry contains that swing, and "
-        "the δB regressor Σ(U_L − U_R)/B² is exactly −θ_odometry/B (the S_R + S_L regressor is "
-        "θ_odometry/2), so the heading-only IKF fits the quantization swing with a large δB and a "
-        "negative common scale. Its 'corrected' model is worse than the nominal one; the "
-        "end-position variant holds δB at 0 and is not affected.",
-        "The δθ row of F uses the nominal B and the odometry heading; the transition is the 6×6 "
-        "of eq. 3.20–3.23 (the printed eq. 3.25 repeats the S_L row). Measurement sign: "
-        "Z = compass heading − odometry heading, which with D' = D(1 + S) makes S > 0 for a wheel "
-        "larger than nominal (see algorithms/slip/indirect_kalman_filter.h)."}};
+    .description =
+        "Indirect Kalman filter for S_L, S_R, δB on simulated straight corridor runs "
+        "(Tables 3.3/3.4): estimates, identifiability, error after correcting the diameters",
+    .reading = {"Finding (ours): with 12.64 mm ticks the per-sample odometry heading swings by ±1 tick "
+                "(±3.7°) while the true heading does not; Z = compass − odometry contains that swing, and "
+                "the δB regressor Σ(U_L − U_R)/B² is exactly −θ_odometry/B (the S_R + S_L regressor is "
+                "θ_odometry/2), so the heading-only IKF fits the quantization swing with a large δB and a "
+                "negative common scale. Its 'corrected' model is worse than the nominal one; the "
+                "end-position variant holds δB at 0 and is not affected.",
+                "The δθ row of F uses the nominal B and the odometry heading; the transition is the 6×6 "
+                "of eq. 3.20–3.23 (the printed eq. 3.25 repeats the S_L row). Measurement sign: "
+                "Z = compass heading − odometry heading, which with D' = D(1 + S) makes S > 0 for a wheel "
+                "larger than nominal (see algorithms/slip/indirect_kalman_filter.h)."}};
 
-constexpr double kPublishedImprovement[10] = {16.34, 43.15, 24.80, 16.74, 46.67,
-                                              25.55, 22.51, 65.75, 53.27, 21.12};
+constexpr double kPublishedImprovement[10] = {16.34, 43.15, 24.80, 16.74, 46.67, 25.55, 22.51, 65.75, 53.27, 21.12};
 constexpr int kVariants = 2;
 const char* const kVariantNames[kVariants] = {"ikf_heading_only", "ikf_heading_end_position"};
 const char* const kParamNames[3] = {"S_R", "S_L", "dB"};
@@ -93,8 +92,7 @@ void visit_fields(V& v, Options& o) {
   v.coded("scenario", o.scenario, scenario_json, scenario_option, "the simulated corridor run (datasets/sim)");
   v.nested("detector", o.detector, "the slip detector (slip_detector.h)");
   v.nested("ikf", o.ikf, "the indirect Kalman filter (indirect_kalman_filter.h)");
-  v.field("end_position_sigma_mm", o.end_position_sigma_mm, "mm", positive(),
-          "σ of each run's measured end position");
+  v.field("end_position_sigma_mm", o.end_position_sigma_mm, "mm", positive(), "σ of each run's measured end position");
   v.flag("slip_corrected_travel", o.slip_corrected_travel, "feed the IKF the slip-corrected travel");
 }
 
@@ -105,7 +103,7 @@ struct IkfSetup {
   bool corrected_travel = false;
   double end_var = 0.0;  // [m²] variance of the measured end position
   double end_sigma_mm = 0.0;
-  SlipModel model;       // μ, σ of Δθ' from the calibration runs
+  SlipModel model;  // μ, σ of Δθ' from the calibration runs
   nlohmann::json configuration;
 };
 
@@ -131,8 +129,7 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
     const double b = nominal.wheelbase;
     const sim::SimulationResult sim = sim::simulate(u.scenario, plan.run_seed(k));
     const slip_sim::RunData d = slip_sim::run_data(sim, nominal, {}, nullptr);
-    const SlipEkfRun ekf = run_slip_ekf(d.samples, d.initial_compass, u.model, {}, u.ekf_opt, b,
-                                        d.truth.front());
+    const SlipEkfRun ekf = run_slip_ekf(d.samples, d.initial_compass, u.model, {}, u.ekf_opt, b, d.truth.front());
     // IKF input: slip-corrected travel (eq. 3.25 note), compass heading where trusted.
     std::vector<IkfSample> s;
     Pose2 odo = d.truth.front();
@@ -148,9 +145,8 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
     // position is used; the thesis's variant estimates all three.
     IndirectKfOptions frozen = u.ikf_opt;
     frozen.initial_covariance(5) = 0.0;
-    const IkfRunResult r[kVariants] = {
-        run_indirect_kf(s, d.truth.front().theta, u.ikf_opt, b),
-        run_indirect_kf(s, d.truth.front().theta, frozen, b, end_err, u.end_var)};
+    const IkfRunResult r[kVariants] = {run_indirect_kf(s, d.truth.front().theta, u.ikf_opt, b),
+                                       run_indirect_kf(s, d.truth.front().theta, frozen, b, end_err, u.end_var)};
     nlohmann::json rec = {{"records", sim.log.record_count()}, {"duration", sim.duration}};
     for (int v = 0; v < kVariants; ++v) {
       rec["estimates"].push_back({r[v].s_right, r[v].s_left, r[v].delta_b});
@@ -199,8 +195,8 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
       const sim::SimulationResult sim = sim::simulate(scenario, plan.run_seed(static_cast<int>(k)));
       for (int m = 0; m < 4; ++m) {
         const slip_sim::RunData d = slip_sim::run_data(sim, models[m], {}, nullptr);
-        const SlipEkfRun r = run_slip_ekf(d.samples, d.initial_compass, u.model, {}, u.ekf_opt,
-                                          models[m].wheelbase, d.truth.front());
+        const SlipEkfRun r =
+            run_slip_ekf(d.samples, d.initial_compass, u.model, {}, u.ekf_opt, models[m].wheelbase, d.truth.front());
         per_run[k][static_cast<std::size_t>(m)] = slip_sim::final_position_error(r, d);
       }
     });
@@ -226,10 +222,9 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
         ikf_identifiability(square, 0.0, b, ikf_opt.heading_variance, at_truth, end_var, 1e-10)};
 
     out.configuration["scenario"] = sim::to_json(scenario);
-    out.datasets.push_back({"sim/" + scenario.name, "simulated",
-                            reports::text_checksum(out.configuration["scenario"].dump()),
-                            records.front().at("records").get<std::size_t>(),
-                            records.front().at("duration").get<double>()});
+    out.datasets.push_back(
+        {"sim/" + scenario.name, "simulated", reports::text_checksum(out.configuration["scenario"].dump()),
+         records.front().at("records").get<std::size_t>(), records.front().at("duration").get<double>()});
     const std::string ds = "sim_" + scenario.name;
     const char* remedy[3] = {
         "a straight run's headings fix only S_R − S_L; the common scale needs a distance "
@@ -241,9 +236,8 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
         "diameter scale (scaling D_L, D_R, B together leaves every heading unchanged)"};
     for (int v = 0; v < kVariants; ++v) {
       for (int p = 0; p < 3; ++p) {
-        reports::MetricResult m = reports::make_metric(kVariantNames[v], ds, kParamNames[p],
-                                                       p == 2 ? "m" : "", "monte_carlo_runs",
-                                                       est[v][p]);
+        reports::MetricResult m = reports::make_metric(kVariantNames[v], ds, kParamNames[p], p == 2 ? "m" : "",
+                                                       "monte_carlo_runs", est[v][p]);
         m.better = "stable";  // estimates: any change is a change of method
         const ParameterFinding& f = id_straight[v].parameters[static_cast<std::size_t>(p)];
         m.identifiable = f.identifiable;
@@ -256,11 +250,11 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
       }
     }
     for (int m = 0; m < 4; ++m) {
-      out.results.push_back(reports::make_metric(model_names[m], ds, "final_position_error", "m",
-                                                 "monte_carlo_runs", err[m]));
+      out.results.push_back(
+          reports::make_metric(model_names[m], ds, "final_position_error", "m", "monte_carlo_runs", err[m]));
       if (m > 0) {
-        reports::MetricResult r = reports::make_metric(model_names[m], ds, "error_reduction",
-                                                       "%", "monte_carlo_runs", improvement[m]);
+        reports::MetricResult r =
+            reports::make_metric(model_names[m], ds, "error_reduction", "%", "monte_carlo_runs", improvement[m]);
         r.better = "higher";
         out.results.push_back(std::move(r));
       }
@@ -289,8 +283,7 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
         "thesis's equal S_L ≈ S_R ≈ 0.0036 cannot come from headings on straight runs; how its "
         "filter reached them is not recoverable from the text. Its δB = −0.000036 is in mm "
         "(B' = 197.929964 mm), i.e. no correction.",
-        true_values[0] - true_values[1], describe(id_straight[0]),
-        u.end_sigma_mm, describe(id_straight[1]));
+        true_values[0] - true_values[1], describe(id_straight[0]), u.end_sigma_mm, describe(id_straight[1]));
     t33.claim = "the IKF estimates S_L ≈ S_R ≈ 0.0036 and δB ≈ 0 from the compass heading on straight runs";
     t33.tolerance = 0.0005;
     t33.tolerance_basis = "0.0005 (1/mm, or mm for δB): a seventh of the true S, well above the runs' scatter";
@@ -301,8 +294,8 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
     t34.quantity = "final-error reduction of the slip-corrected EKF after correcting D_L, D_R, B";
     t34.unit = "%";
     for (std::size_t i = 0; i < 10; ++i) {
-      reports::PublishedRow row{fmt::format("run {} (heading + end position)", i + 1),
-                                kPublishedImprovement[i], std::nullopt};
+      reports::PublishedRow row{fmt::format("run {} (heading + end position)", i + 1), kPublishedImprovement[i],
+                                std::nullopt};
       if (i < improvement[2].size()) row.ours = improvement[2][i];
       t34.rows.push_back(row);
     }
@@ -312,7 +305,8 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
     t34.rows.push_back({"mean (heading only)", pub_mean, mean(improvement[1])});
     t34.rows.push_back({"mean (true geometry, oracle)", std::nullopt, mean(improvement[3])});
     t34.claim = "correcting D_L, D_R, B with the IKF's estimates cuts the final error by 34% on average";
-    reports::compare_means_only(t34, std::vector<double>(std::begin(kPublishedImprovement), std::end(kPublishedImprovement)));
+    reports::compare_means_only(
+        t34, std::vector<double>(std::begin(kPublishedImprovement), std::end(kPublishedImprovement)));
     t34.note =
         "Same logs re-processed with the corrected model (common random numbers); runs are not "
         "paired with the thesis's. Heading-only estimates barely change the diameters, so they "
@@ -321,23 +315,23 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
         "reduction the thesis reports.";
     out.published.push_back(std::move(t34));
 
-    out.notes.push_back(fmt::format(
-        "Identifiability of [S_R, S_L, δB] from the IKF's stacked measurement Jacobian "
-        "(analyze_identifiability), commanded paths: straight {} m, headings only: {}; straight + "
-        "end position: {}; L-shaped path (2 m, 90° turn, 2 m), headings only: {}; L + end position: "
-        "{}. So straight runs determine S_R − S_L (and, with a distance reference, S_L and S_R) "
-        "but never δB; a path with turns plus a distance reference determines all three.",
-        scenario.motion.distance, describe(id_straight[0]), describe(id_straight[1]),
-        describe(id_square[0]), describe(id_square[1])));
-    out.notes.push_back(fmt::format(
-        "IKF input: {}. With 12.64 mm ticks a sample's θ_E swings by one tick (3.7°) and the next "
-        "sample swings back (the counts are cumulative, so the errors telescope). The slip rule "
-        "picks exactly the extreme swings (at 95% about 5% of slip-free samples, and on this "
-        "preset most detections are such false alarms) and replaces θ_E by θ_C, leaving the "
-        "returning swing uncorrected: the 'corrected' dead reckoning drifts by metres over 10 m. "
-        "Harmless inside the compass EKF (the compass heading is absolute), fatal for the IKF's "
-        "odometry heading; set slip_corrected_travel = true to see it.",
-        u.corrected_travel ? "slip-corrected travel (as the thesis)" : "raw encoder travel (default)"));
+    out.notes.push_back(
+        fmt::format("Identifiability of [S_R, S_L, δB] from the IKF's stacked measurement Jacobian "
+                    "(analyze_identifiability), commanded paths: straight {} m, headings only: {}; straight + "
+                    "end position: {}; L-shaped path (2 m, 90° turn, 2 m), headings only: {}; L + end position: "
+                    "{}. So straight runs determine S_R − S_L (and, with a distance reference, S_L and S_R) "
+                    "but never δB; a path with turns plus a distance reference determines all three.",
+                    scenario.motion.distance, describe(id_straight[0]), describe(id_straight[1]),
+                    describe(id_square[0]), describe(id_square[1])));
+    out.notes.push_back(
+        fmt::format("IKF input: {}. With 12.64 mm ticks a sample's θ_E swings by one tick (3.7°) and the next "
+                    "sample swings back (the counts are cumulative, so the errors telescope). The slip rule "
+                    "picks exactly the extreme swings (at 95% about 5% of slip-free samples, and on this "
+                    "preset most detections are such false alarms) and replaces θ_E by θ_C, leaving the "
+                    "returning swing uncorrected: the 'corrected' dead reckoning drifts by metres over 10 m. "
+                    "Harmless inside the compass EKF (the compass heading is absolute), fatal for the IKF's "
+                    "odometry heading; set slip_corrected_travel = true to see it.",
+                    u.corrected_travel ? "slip-corrected travel (as the thesis)" : "raw encoder travel (default)"));
     return out;
   }
 };

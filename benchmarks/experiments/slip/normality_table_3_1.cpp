@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "core/skewness_kurtosis_normality.h"
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
+#include "core/skewness_kurtosis_normality.h"
 #include "reports/checksum.h"
 
 namespace locbench::experiments::slip_normality_table_3_1 {
@@ -16,11 +16,10 @@ namespace locbench::experiments::slip_normality_table_3_1 {
 const ExperimentInfo kInfo{
     .name = "slip/normality_table_3_1",
     .description = "Skewness–kurtosis normality test on the thesis's 809-sample Δθ' histogram (Table 3.1)",
-    .reading = {
-        "A caution the thesis does not make: the histogram is far from smooth (counts 177, 20, "
-        "419, 11, 139 alternate), as expected when Δθ' is a difference of two quantized "
-        "increments (encoder ≈ 3.7° per tick over the 198 mm wheelbase, compass 2°); the "
-        "moment test only looks at skewness and kurtosis and does not see this."}};
+    .reading = {"A caution the thesis does not make: the histogram is far from smooth (counts 177, 20, "
+                "419, 11, 139 alternate), as expected when Δθ' is a difference of two quantized "
+                "increments (encoder ≈ 3.7° per tick over the 198 mm wheelbase, compass 2°); the "
+                "moment test only looks at skewness and kurtosis and does not see this."}};
 
 struct Options {
   double alpha = 0.1;
@@ -45,27 +44,29 @@ class SlipNormality final : public OptionsExperiment<Options> {
     const double alpha = o.alpha;
     const NormalityTestResult r = skewness_kurtosis_test_binned(mid, counts, alpha);
     options.report_progress(1.0);
-    out.datasets.push_back({"thesis_table_3_1", "thesis Table 3.1 (transcribed)",
-                            reports::text_checksum(config.dump()), counts.size(), 0.0});
+    out.datasets.push_back({"thesis_table_3_1", "thesis Table 3.1 (transcribed)", reports::text_checksum(config.dump()),
+                            counts.size(), 0.0});
 
     const std::string method = "skewness_kurtosis_test", ds = "thesis_table_3_1";
-    const std::pair<const char*, double> stats[] = {
-        {"B2", r.b2}, {"B3", r.b3}, {"B4", r.b4}, {"g1", r.g1}, {"g2", r.g2},
-        {"u1", r.u1}, {"u2", r.u2}, {"p1", r.p1}, {"p2", r.p2}, {"mean", r.mean},
-        {"stddev", r.stddev}};
+    const std::pair<const char*, double> stats[] = {{"B2", r.b2}, {"B3", r.b3},     {"B4", r.b4},        {"g1", r.g1},
+                                                    {"g2", r.g2}, {"u1", r.u1},     {"u2", r.u2},        {"p1", r.p1},
+                                                    {"p2", r.p2}, {"mean", r.mean}, {"stddev", r.stddev}};
     for (const auto& [label, v] : stats) {
-      out.results.push_back(reports::make_estimate(method, ds, label, "", v, 0.0,
-                                                   static_cast<std::size_t>(r.n)));
+      out.results.push_back(reports::make_estimate(method, ds, label, "", v, 0.0, static_cast<std::size_t>(r.n)));
     }
 
     reports::PublishedComparison t;
     t.source = "thesis Table 3.1";
     t.quantity = "skewness–kurtosis test statistics of Δθ' (degrees; B_k in deg^k)";
     t.unit = "deg^k / 1";
-    t.rows = {{"B2", 2.36482, r.b2},           {"B3", -0.04542, r.b3},
-              {"B4", 18.41878, r.b4},          {"g1", -0.01249, r.g1},
-              {"g2", 3.29355, r.g2},           {"|u1|", 0.14557, std::abs(r.u1)},
-              {"|u2|", 1.76361, std::abs(r.u2)}, {"mu [deg]", 0.37, r.mean},
+    t.rows = {{"B2", 2.36482, r.b2},
+              {"B3", -0.04542, r.b3},
+              {"B4", 18.41878, r.b4},
+              {"g1", -0.01249, r.g1},
+              {"g2", 3.29355, r.g2},
+              {"|u1|", 0.14557, std::abs(r.u1)},
+              {"|u2|", 1.76361, std::abs(r.u2)},
+              {"mu [deg]", 0.37, r.mean},
               {"sigma [deg]", 1.54, r.stddev}};
     t.note = fmt::format(
         "Computed, as the thesis says, from the bin mid-points weighted by the counts (the raw "
@@ -83,10 +84,10 @@ class SlipNormality final : public OptionsExperiment<Options> {
     t.relative_tolerance = 0.001;
     t.tolerance_basis = "the printed precision: μ and σ to 0.01°, the statistics to 5 significant digits";
     out.published.push_back(std::move(t));
-    out.notes.push_back(fmt::format(
-        "n = {}, σ1 = {:.5f}, μ2 = {:.5f}, σ2 = {:.5f} (thesis: 0.08580, 2.99259, 0.17065); "
-        "normality {}.",
-        r.n, r.sigma1, r.mu2, r.sigma2, r.normal ? "accepted" : "rejected"));
+    out.notes.push_back(
+        fmt::format("n = {}, σ1 = {:.5f}, μ2 = {:.5f}, σ2 = {:.5f} (thesis: 0.08580, 2.99259, 0.17065); "
+                    "normality {}.",
+                    r.n, r.sigma1, r.mu2, r.sigma2, r.normal ? "accepted" : "rejected"));
     return out;
   }
 };

@@ -128,8 +128,7 @@ TEST(CalibrationData, RelationSamplesReproduceTheOdometryBetweenTheRelationTimes
   EXPECT_EQ(d.samples[3].increments.size(), 15u);
   const ModelParameters p = nominal_parameters(d);
   auto odom = [](double t) { return on_circle(0.2, 0.1, t); };
-  EXPECT_LT(pose_gap(predict_reference(d, d.samples[3], p), between(odom(12.0), odom(13.5))),
-            1e-12);
+  EXPECT_LT(pose_gap(predict_reference(d, d.samples[3], p), between(odom(12.0), odom(13.5))), 1e-12);
   EXPECT_LT(pose_gap(predict_reference(d, d.samples[1], p), between(odom(5.05), odom(7.43))), 1e-3);
   // The reversed relation is turned around: from 8 s to 9 s.
   EXPECT_NEAR(d.samples[2].reference.x, Pose2(-0.2, 0.0, -0.1).inverse().x, 1e-15);

@@ -19,9 +19,7 @@ namespace {
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Jacobian = Eigen::Matrix<double, 3, Eigen::Dynamic>;
 
-double uniform(std::mt19937& rng, double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(rng);
-}
+double uniform(std::mt19937& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
 
 // Data of `kind` with a nominal parameter set; the model's parameters are drawn around it.
 CalibrationData data_of(OdometryInputKind kind, bool sensor) {
@@ -31,24 +29,17 @@ CalibrationData data_of(OdometryInputKind kind, bool sensor) {
   d.meters_per_tick_left = 1.0e-3;
   d.meters_per_tick_right = 1.1e-3;
   switch (kind) {
-    case OdometryInputKind::kWheelTicks:
-      d.nominal = Eigen::Vector3d(1.0, 1.0, 0.5);
-      break;
-    case OdometryInputKind::kWheelAngles:
-      d.nominal = Eigen::Vector3d(0.04, 0.04, 0.3);
-      break;
+    case OdometryInputKind::kWheelTicks: d.nominal = Eigen::Vector3d(1.0, 1.0, 0.5); break;
+    case OdometryInputKind::kWheelAngles: d.nominal = Eigen::Vector3d(0.04, 0.04, 0.3); break;
     case OdometryInputKind::kBodyIncrements:
-    case OdometryInputKind::kVelocityIntegrals:
-      d.nominal = Eigen::Vector3d(1.0, 1.0, 0.0);
-      break;
+    case OdometryInputKind::kVelocityIntegrals: d.nominal = Eigen::Vector3d(1.0, 1.0, 0.0); break;
   }
   return d;
 }
 
 ModelParameters random_parameters(const CalibrationData& d, std::mt19937& rng) {
   ModelParameters p;
-  const bool wheels = d.kind == OdometryInputKind::kWheelTicks ||
-                      d.kind == OdometryInputKind::kWheelAngles;
+  const bool wheels = d.kind == OdometryInputKind::kWheelTicks || d.kind == OdometryInputKind::kWheelAngles;
   for (int j = 0; j < 2; ++j) p.odometry(j) = d.nominal(j) * uniform(rng, 0.9, 1.1);
   p.odometry(2) = wheels ? d.nominal(2) * uniform(rng, 0.9, 1.1) : uniform(rng, -0.05, 0.05);
   p.sensor = Pose2(uniform(rng, -0.3, 0.3), uniform(rng, -0.3, 0.3), uniform(rng, -3.0, 3.0));
@@ -57,19 +48,14 @@ ModelParameters random_parameters(const CalibrationData& d, std::mt19937& rng) {
 
 // 1–8 increments of up to ~0.3 m and ~0.5 rad each; with probability ½ one of them turns by only
 // 1e-5 rad under `p` (the series branch of the arc terms).
-CalibrationSample random_sample(const CalibrationData& d, const ModelParameters& p,
-                                std::mt19937& rng) {
+CalibrationSample random_sample(const CalibrationData& d, const ModelParameters& p, std::mt19937& rng) {
   CalibrationSample s;
   const int n = std::uniform_int_distribution<int>(1, 8)(rng);
   for (int k = 0; k < n; ++k) {
     OdometryIncrement inc;
     switch (d.kind) {
-      case OdometryInputKind::kWheelTicks:
-        inc = {uniform(rng, -100.0, 300.0), uniform(rng, -100.0, 300.0), 0.1};
-        break;
-      case OdometryInputKind::kWheelAngles:
-        inc = {uniform(rng, -2.0, 8.0), uniform(rng, -2.0, 8.0), 0.1};
-        break;
+      case OdometryInputKind::kWheelTicks: inc = {uniform(rng, -100.0, 300.0), uniform(rng, -100.0, 300.0), 0.1}; break;
+      case OdometryInputKind::kWheelAngles: inc = {uniform(rng, -2.0, 8.0), uniform(rng, -2.0, 8.0), 0.1}; break;
       case OdometryInputKind::kBodyIncrements:
       case OdometryInputKind::kVelocityIntegrals:
         inc = {uniform(rng, -0.1, 0.3), uniform(rng, -0.5, 0.5), uniform(rng, 0.05, 0.2)};
@@ -83,24 +69,17 @@ CalibrationSample random_sample(const CalibrationData& d, const ModelParameters&
     const double tiny = 1e-5;
     switch (d.kind) {
       case OdometryInputKind::kWheelTicks:  // Δθ = (q₁c_R·n_R − q₀c_L·n_L)/B
-        inc.second = (tiny * q(2) + q(0) * d.meters_per_tick_left * inc.first) /
-                     (q(1) * d.meters_per_tick_right);
+        inc.second = (tiny * q(2) + q(0) * d.meters_per_tick_left * inc.first) / (q(1) * d.meters_per_tick_right);
         break;
-      case OdometryInputKind::kWheelAngles:
-        inc.second = (tiny * q(2) + q(0) * inc.first) / q(1);
-        break;
-      case OdometryInputKind::kBodyIncrements:
-        inc.second = (tiny - q(2) * inc.first) / q(1);
-        break;
-      case OdometryInputKind::kVelocityIntegrals:
-        inc.second = (tiny - q(2) * inc.dt) / q(1);
-        break;
+      case OdometryInputKind::kWheelAngles: inc.second = (tiny * q(2) + q(0) * inc.first) / q(1); break;
+      case OdometryInputKind::kBodyIncrements: inc.second = (tiny - q(2) * inc.first) / q(1); break;
+      case OdometryInputKind::kVelocityIntegrals: inc.second = (tiny - q(2) * inc.dt) / q(1); break;
     }
   }
   // A reference near the prediction: the angle residual stays far from the ±π wrap.
   const Pose2 e = predict_reference(d, s, p);
-  s.reference = Pose2(e.x + uniform(rng, -0.05, 0.05), e.y + uniform(rng, -0.05, 0.05),
-                      e.theta + uniform(rng, -0.1, 0.1));
+  s.reference =
+      Pose2(e.x + uniform(rng, -0.05, 0.05), e.y + uniform(rng, -0.05, 0.05), e.theta + uniform(rng, -0.1, 0.1));
   return s;
 }
 
@@ -135,9 +114,8 @@ double worst_column_error(const Jacobian& exact, const Jacobian& numeric) {
 
 TEST(CalibrationModelJacobian, MatchesHighAccuracyNumericDerivativesForEveryInputKind) {
   std::mt19937 rng(20261125);
-  for (OdometryInputKind kind :
-       {OdometryInputKind::kWheelTicks, OdometryInputKind::kWheelAngles,
-        OdometryInputKind::kBodyIncrements, OdometryInputKind::kVelocityIntegrals}) {
+  for (OdometryInputKind kind : {OdometryInputKind::kWheelTicks, OdometryInputKind::kWheelAngles,
+                                 OdometryInputKind::kBodyIncrements, OdometryInputKind::kVelocityIntegrals}) {
     for (bool sensor : {false, true}) {
       const CalibrationData d = data_of(kind, sensor);
       double worst = 0.0;
@@ -149,9 +127,7 @@ TEST(CalibrationModelJacobian, MatchesHighAccuracyNumericDerivativesForEveryInpu
         const Eigen::Vector3d r = reference_residual(d, s, p);
         for (int c = 0; c < 3; ++c) EXPECT_EQ(rj.residual(c), r(c));
         const Jacobian numeric = numeric_jacobian(
-            [&](const Eigen::VectorXd& v) {
-              return reference_residual(d, s, ModelParameters::from_vector(v));
-            },
+            [&](const Eigen::VectorXd& v) { return reference_residual(d, s, ModelParameters::from_vector(v)); },
             p.vector());
         worst = std::max(worst, worst_column_error(rj.jacobian, numeric));
         if (!sensor) {

@@ -28,8 +28,7 @@ CalibrationSample one(double a, double b, double dt = 0.0) {
 TEST(CalibrationModel, ParametersAreNamedPerInputKind) {
   EXPECT_EQ(odometry_parameter_names(OdometryInputKind::kWheelTicks)[2], "wheelbase");
   EXPECT_EQ(odometry_parameter_names(OdometryInputKind::kWheelAngles)[0], "r_L");
-  EXPECT_EQ(odometry_parameter_names(OdometryInputKind::kBodyIncrements)[2],
-            "rotation_per_distance");
+  EXPECT_EQ(odometry_parameter_names(OdometryInputKind::kBodyIncrements)[2], "rotation_per_distance");
   EXPECT_EQ(odometry_parameter_names(OdometryInputKind::kVelocityIntegrals)[1], "rv_scale");
   EXPECT_EQ(sensor_parameter_names()[2], "sensor_theta");
 }
@@ -122,8 +121,7 @@ TEST(CalibrationModel, WheelNoiseOfAStraightStepPropagatesToTheHandComputedCovar
   // At Δθ = 0: ∂x/∂ΔD = 1, ∂y/∂Δθ = ΔD/2 = 0.5, ∂θ/∂Δθ = 1 → var(x) = 0.5, var(y) = 2,
   // cov(y, θ) = 4, var(θ) = 8.
   const CalibrationData d = ticks_data(1e-3, 0.5);
-  const NoiseShape n =
-      odometry_noise_shape(d, one(1000, 1000), nominal_parameters(d), /*virtual_track=*/1.0);
+  const NoiseShape n = odometry_noise_shape(d, one(1000, 1000), nominal_parameters(d), /*virtual_track=*/1.0);
   EXPECT_NEAR(n.per_k2(0, 0), 0.5, 1e-12);
   EXPECT_NEAR(n.per_k2(1, 1), 2.0, 1e-12);
   EXPECT_NEAR(n.per_k2(1, 2), 4.0, 1e-12);

@@ -23,8 +23,7 @@ TEST(Identifiability, ARatioOnlyModelLeavesBothParametersUndeterminedAndNamesThe
   // Measurements depend on p − q only (linearised ratio): the direction (1, 1) is free.
   Eigen::MatrixXd J(3, 2);
   J << 1, -1, 2, -2, -1, 1;
-  const auto r = analyze_identifiability(J, Eigen::MatrixXd::Identity(3, 3), {"E_b", "E_o"},
-                                         Eigen::Vector2d(1.0, 1.0));
+  const auto r = analyze_identifiability(J, Eigen::MatrixXd::Identity(3, 3), {"E_b", "E_o"}, Eigen::Vector2d(1.0, 1.0));
   EXPECT_EQ(r.rank, 1);
   EXPECT_FALSE(r.parameters[0].identifiable);
   EXPECT_FALSE(r.parameters[1].identifiable);
@@ -38,8 +37,7 @@ TEST(Identifiability, ARatioOnlyModelLeavesBothParametersUndeterminedAndNamesThe
 TEST(Identifiability, AParameterThatNoMeasurementTouchesIsTheOnlyUndeterminedOne) {
   Eigen::MatrixXd J(2, 3);
   J << 1, 0, 0, 0, 1, 0;
-  const auto r = analyze_identifiability(J, Eigen::MatrixXd::Identity(2, 2), {"a", "b", "c"},
-                                         Eigen::Vector3d(0, 0, 0));
+  const auto r = analyze_identifiability(J, Eigen::MatrixXd::Identity(2, 2), {"a", "b", "c"}, Eigen::Vector3d(0, 0, 0));
   EXPECT_TRUE(r.parameters[0].identifiable);
   EXPECT_TRUE(r.parameters[1].identifiable);
   EXPECT_FALSE(r.parameters[2].identifiable);

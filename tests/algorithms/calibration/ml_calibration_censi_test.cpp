@@ -32,16 +32,15 @@ class CensiKhepera : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CensiKhepera, AgreesWithThePublishedSolutionWithinTheCombinedUncertainty) {
   LOCBENCH_REQUIRE_DATA("calibration/censi_khepera/" + GetParam() + "_results.json");
-  const CalibrationData data =
-      load_catalog_calibration_data(censi_entry(), data_root(), GetParam());
-  const CensiPublishedResult pub = read_censi_results(data_root() / "calibration/censi_khepera" /
-                                                      (GetParam() + "_results.json"));
+  const CalibrationData data = load_catalog_calibration_data(censi_entry(), data_root(), GetParam());
+  const CensiPublishedResult pub =
+      read_censi_results(data_root() / "calibration/censi_khepera" / (GetParam() + "_results.json"));
   const MlCalibrationResult r = calibrate_ml(data, censi_options());
   const double published[6] = {pub.left_radius(), pub.right_radius(), pub.axle,
                                pub.sensor_x,      pub.sensor_y,       pub.sensor_theta};
   const char* names[6] = {"r_L", "r_R", "b", "sensor_x", "sensor_y", "sensor_theta"};
-  fmt::print("{}: {} samples, {} rejected, noise σ = ({:.3g} m, {:.3g} m, {:.3g} rad)\n",
-             GetParam(), r.samples_used, r.samples_rejected, r.noise(0), r.noise(1), r.noise(2));
+  fmt::print("{}: {} samples, {} rejected, noise σ = ({:.3g} m, {:.3g} m, {:.3g} rad)\n", GetParam(), r.samples_used,
+             r.samples_rejected, r.noise(0), r.noise(1), r.noise(2));
   for (int i = 0; i < 6; ++i) {
     const CalibratedParameter& p = r.parameter(names[i]);
     const double sp = pub.standard_error(i);
@@ -65,8 +64,7 @@ TEST_P(CensiKhepera, AgreesWithThePublishedSolutionWithinTheCombinedUncertainty)
 TEST(CensiKheperaUncertainty, PublishedL90UncertaintyComesFromResidualsAfterOneRejectionRound) {
   LOCBENCH_REQUIRE_DATA("calibration/censi_khepera/l90_0_results.json");
   const CalibrationData data = load_catalog_calibration_data(censi_entry(), data_root(), "l90_0");
-  const CensiPublishedResult pub =
-      read_censi_results(data_root() / "calibration/censi_khepera/l90_0_results.json");
+  const CensiPublishedResult pub = read_censi_results(data_root() / "calibration/censi_khepera/l90_0_results.json");
   MlCalibrationOptions o = censi_options();
   o.outliers.iterations = 1;
   const MlCalibrationResult one_round = calibrate_ml(data, o);
@@ -83,8 +81,8 @@ TEST(CensiKheperaUncertainty, PublishedL90UncertaintyComesFromResidualsAfterOneR
 }
 
 INSTANTIATE_TEST_SUITE_P(Parts, CensiKhepera,
-                         ::testing::Values("lstraight", "lstraight_0", "lstraight_1", "lstraight_2",
-                                           "l90", "l90_0", "l90_1", "l90_2"));
+                         ::testing::Values("lstraight", "lstraight_0", "lstraight_1", "lstraight_2", "l90", "l90_0",
+                                           "l90_1", "l90_2"));
 
 }  // namespace
 }  // namespace locbench

@@ -27,11 +27,11 @@ sim::Scenario pioneer(sim::MotionKind motion) {
 }
 
 void print(const MlCalibrationResult& r) {
-  fmt::print("rank {} of {}, condition {:.3g}\n", r.identifiability.rank,
-             r.identifiability.parameter_count, r.identifiability.condition_number);
+  fmt::print("rank {} of {}, condition {:.3g}\n", r.identifiability.rank, r.identifiability.parameter_count,
+             r.identifiability.condition_number);
   for (const auto& p : r.parameters) {
-    fmt::print("  {:<12} {:.6f} ± {:.3g} (closed form {:.6f})  identifiable: {}  {}\n", p.name,
-               p.value, p.standard_error, p.closed_form, p.identifiable, p.reason);
+    fmt::print("  {:<12} {:.6f} ± {:.3g} (closed form {:.6f})  identifiable: {}  {}\n", p.name, p.value,
+               p.standard_error, p.closed_form, p.identifiable, p.reason);
   }
 }
 

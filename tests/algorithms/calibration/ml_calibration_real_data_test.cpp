@@ -26,12 +26,11 @@ const DatasetEntry& entry(const std::string& name) {
 }
 
 void print(const MlCalibrationResult& r) {
-  fmt::print("  {} samples used, {} rejected; residual RMS {:.4g} m, {:.4g} rad; χ²/dof {:.3f}\n",
-             r.samples_used, r.samples_rejected, r.residual_rms_translation,
-             r.residual_rms_rotation, r.chi2_per_dof);
+  fmt::print("  {} samples used, {} rejected; residual RMS {:.4g} m, {:.4g} rad; χ²/dof {:.3f}\n", r.samples_used,
+             r.samples_rejected, r.residual_rms_translation, r.residual_rms_rotation, r.chi2_per_dof);
   for (const CalibratedParameter& p : r.parameters) {
-    fmt::print("    {:<22} {:+.6f} ± {:.6f}  (closed form {:+.6f}, nominal {:+.6f})\n", p.name,
-               p.value, p.standard_error, p.closed_form, p.nominal);
+    fmt::print("    {:<22} {:+.6f} ± {:.6f}  (closed form {:+.6f}, nominal {:+.6f})\n", p.name, p.value,
+               p.standard_error, p.closed_form, p.nominal);
   }
 }
 
@@ -79,8 +78,7 @@ TEST(CalibrationCatalog, NamesTheCalibrationDataSetsAndTheirParts) {
   EXPECT_EQ(parts[7], "l90_2");
   EXPECT_EQ(calibration_dataset_parts(entry("grisetti_diffdrive")), std::vector<std::string>{""});
   EXPECT_THROW(load_catalog_calibration_data(entry("aces"), data_root()), UsageError);
-  EXPECT_THROW(load_catalog_calibration_data(entry("censi_khepera"), data_root(), "l45"),
-               UsageError);
+  EXPECT_THROW(load_catalog_calibration_data(entry("censi_khepera"), data_root(), "l45"), UsageError);
   try {
     load_catalog_dataset(entry("censi_khepera"), data_root());
     ADD_FAILURE() << "a calibration data set loaded as a log";
@@ -95,8 +93,7 @@ TEST(CalibrationCatalog, LoadsEveryCensiPartWithItsSampleCount) {
       {"lstraight", 4396}, {"lstraight_0", 1466}, {"lstraight_1", 1465}, {"lstraight_2", 1465},
       {"l90", 3295},       {"l90_0", 1099},       {"l90_1", 1098},       {"l90_2", 1098}};
   for (const auto& [part, n] : counts) {
-    const CalibrationData d =
-        load_catalog_calibration_data(entry("censi_khepera"), data_root(), part);
+    const CalibrationData d = load_catalog_calibration_data(entry("censi_khepera"), data_root(), part);
     EXPECT_EQ(d.samples.size(), n) << part;
     EXPECT_NE(d.source.find(part + ".tuple"), std::string::npos) << d.source;
   }
@@ -111,8 +108,8 @@ TEST(MlCalibrationRealData, StachnissOdometryCalibratesAndFitsItsScanMatchedMoti
   expect_sound(r);
   const auto before = rmse(d, nominal_parameters(d));
   const auto after = rmse(d, r.estimate);
-  fmt::print("  relation error RMSE nominal → calibrated: {:.5g} → {:.5g} m, {:.5g} → {:.5g} rad\n",
-             before.first, after.first, before.second, after.second);
+  fmt::print("  relation error RMSE nominal → calibrated: {:.5g} → {:.5g} m, {:.5g} → {:.5g} rad\n", before.first,
+             after.first, before.second, after.second);
   EXPECT_LT(after.second, before.second);
   EXPECT_LE(after.first, before.first * 1.001);
 }
@@ -126,8 +123,8 @@ TEST(MlCalibrationRealData, GrisettiTicksCalibrateAndFitTheirReferenceMuchBetter
   expect_sound(r);
   const auto before = rmse(d, nominal_parameters(d));
   const auto after = rmse(d, r.estimate);
-  fmt::print("  relation error RMSE nominal → calibrated: {:.5g} → {:.5g} m, {:.5g} → {:.5g} rad\n",
-             before.first, after.first, before.second, after.second);
+  fmt::print("  relation error RMSE nominal → calibrated: {:.5g} → {:.5g} m, {:.5g} → {:.5g} rad\n", before.first,
+             after.first, before.second, after.second);
   // The nominal model is a guess (1 m per tick unit, B = 1 m): the calibration halves the errors.
   EXPECT_LT(after.first, 0.7 * before.first);
   EXPECT_LT(after.second, 0.7 * before.second);

@@ -32,8 +32,7 @@ sim::Scenario loop_scenario() {
   s.robot.actual = {mm(192.8), mm(194.1), mm(334.0)};
   s.start = Pose2(0.0, 0.0, 0.0);
   s.motion.kind = sim::MotionKind::kWaypoints;
-  s.motion.waypoints = {{3, 0}, {3, 3}, {0, 3}, {0, 0}, {0, 3}, {3, 3},
-                        {3, 0}, {0, 0}, {2, 1}, {1, 2}, {3, 3}, {0, 0}};
+  s.motion.waypoints = {{3, 0}, {3, 3}, {0, 3}, {0, 0}, {0, 3}, {3, 3}, {3, 0}, {0, 0}, {2, 1}, {1, 2}, {3, 3}, {0, 0}};
   s.encoders.timing = {true, 10.0, 0.0, 0.0};
   s.truth.rate = 10.0;
   return s;
@@ -50,13 +49,12 @@ TEST(MlCalibrationSim, RecoversWheelScalesAndWheelbaseWithinThreeStandardErrors)
   const CalibrationData data = calibration_data_from_encoders(sim.log);
   const MlCalibrationResult r = calibrate_ml(data);
   const Eigen::Vector3d truth = true_parameters(sim.robot);
-  fmt::print("{} samples; noise k = {:.4g} √m, σ_t = {:.3g} m, σ_r = {:.3g} rad; χ²/dof = {:.3f}\n",
-             r.samples_used, r.noise(0), r.noise(1), r.noise(2), r.chi2_per_dof);
+  fmt::print("{} samples; noise k = {:.4g} √m, σ_t = {:.3g} m, σ_r = {:.3g} rad; χ²/dof = {:.3f}\n", r.samples_used,
+             r.noise(0), r.noise(1), r.noise(2), r.chi2_per_dof);
   for (int i = 0; i < 3; ++i) {
     const CalibratedParameter& p = r.parameters[static_cast<std::size_t>(i)];
-    fmt::print("  {:<12} {:.6f} ± {:.6f}  true {:.6f}  nominal {:.6f}  ({:+.2f} σ)\n", p.name,
-               p.value, p.standard_error, truth(i), p.nominal,
-               (p.value - truth(i)) / p.standard_error);
+    fmt::print("  {:<12} {:.6f} ± {:.6f}  true {:.6f}  nominal {:.6f}  ({:+.2f} σ)\n", p.name, p.value,
+               p.standard_error, truth(i), p.nominal, (p.value - truth(i)) / p.standard_error);
     EXPECT_TRUE(p.identifiable) << p.name;
     EXPECT_LE(std::abs(p.value - truth(i)), 3.0 * p.standard_error) << p.name;
   }
@@ -71,20 +69,18 @@ TEST(MlCalibrationSim, WithASensorFrameReferenceAlsoRecoversTheMountingPose) {
   ASSERT_TRUE(data.sensor_reference);
   Rng rng(2024);
   for (CalibrationSample& s : data.samples) {
-    s.reference =
-        s.reference * Pose2(rng.normal(0.0, 1e-3), rng.normal(0.0, 1e-3), rng.normal(0.0, 1e-3));
+    s.reference = s.reference * Pose2(rng.normal(0.0, 1e-3), rng.normal(0.0, 1e-3), rng.normal(0.0, 1e-3));
   }
   const MlCalibrationResult r = calibrate_ml(data);
   const Eigen::Vector3d odo = true_parameters(sim.robot);
   const double truth[6] = {odo(0), odo(1), odo(2), mount.x, mount.y, mount.theta};
-  fmt::print("{} samples; noise k = {:.4g} √m, σ_t = {:.3g} m, σ_r = {:.3g} rad; χ²/dof = {:.3f}\n",
-             r.samples_used, r.noise(0), r.noise(1), r.noise(2), r.chi2_per_dof);
+  fmt::print("{} samples; noise k = {:.4g} √m, σ_t = {:.3g} m, σ_r = {:.3g} rad; χ²/dof = {:.3f}\n", r.samples_used,
+             r.noise(0), r.noise(1), r.noise(2), r.chi2_per_dof);
   ASSERT_EQ(r.parameters.size(), 6u);
   for (int i = 0; i < 6; ++i) {
     const CalibratedParameter& p = r.parameters[static_cast<std::size_t>(i)];
-    fmt::print("  {:<12} {:+.6f} ± {:.6f}  true {:+.6f}  closed form {:+.6f}  ({:+.2f} σ)\n",
-               p.name, p.value, p.standard_error, truth[i], p.closed_form,
-               (p.value - truth[i]) / p.standard_error);
+    fmt::print("  {:<12} {:+.6f} ± {:.6f}  true {:+.6f}  closed form {:+.6f}  ({:+.2f} σ)\n", p.name, p.value,
+               p.standard_error, truth[i], p.closed_form, (p.value - truth[i]) / p.standard_error);
     EXPECT_TRUE(p.identifiable) << p.name;
     EXPECT_LE(std::abs(p.value - truth[i]), 3.0 * p.standard_error) << p.name;
   }

@@ -17,9 +17,8 @@ namespace {
 
 // `n` samples of 1–3 increments mixing straight runs, arcs and turns on the spot, with
 // references predicted from `truth` and then disturbed by white noise of σ = (σ_xy, σ_xy, σ_θ).
-CalibrationData synthetic(OdometryInputKind kind, const ModelParameters& truth, int n,
-                          double sigma_xy, double sigma_theta, std::uint64_t seed,
-                          bool sensor = false) {
+CalibrationData synthetic(OdometryInputKind kind, const ModelParameters& truth, int n, double sigma_xy,
+                          double sigma_theta, std::uint64_t seed, bool sensor = false) {
   CalibrationData d;
   d.kind = kind;
   d.sensor_reference = sensor;
@@ -28,11 +27,8 @@ CalibrationData synthetic(OdometryInputKind kind, const ModelParameters& truth, 
       d.meters_per_tick_left = d.meters_per_tick_right = 1e-4;
       d.nominal = Eigen::Vector3d(1.0, 1.0, 0.33);
       break;
-    case OdometryInputKind::kWheelAngles:
-      d.nominal = Eigen::Vector3d(0.021, 0.021, 0.09);
-      break;
-    default:
-      d.nominal = Eigen::Vector3d(1.0, 1.0, 0.0);
+    case OdometryInputKind::kWheelAngles: d.nominal = Eigen::Vector3d(0.021, 0.021, 0.09); break;
+    default: d.nominal = Eigen::Vector3d(1.0, 1.0, 0.0);
   }
   Rng rng(seed);
   for (int i = 0; i < n; ++i) {
@@ -44,20 +40,16 @@ CalibrationData synthetic(OdometryInputKind kind, const ModelParameters& truth, 
       const double dt = rng.uniform(0.2, 1.0);
       switch (kind) {
         case OdometryInputKind::kWheelTicks:
-          s.increments.push_back(
-              {(forward - 0.165 * turn) / 1e-4, (forward + 0.165 * turn) / 1e-4, dt});
+          s.increments.push_back({(forward - 0.165 * turn) / 1e-4, (forward + 0.165 * turn) / 1e-4, dt});
           break;
         case OdometryInputKind::kWheelAngles:
-          s.increments.push_back(
-              {(forward - 0.045 * turn) / 0.021, (forward + 0.045 * turn) / 0.021, dt});
+          s.increments.push_back({(forward - 0.045 * turn) / 0.021, (forward + 0.045 * turn) / 0.021, dt});
           break;
-        default:
-          s.increments.push_back({forward, turn, dt});
+        default: s.increments.push_back({forward, turn, dt});
       }
     }
-    s.reference =
-        predict_reference(d, s, truth) *
-        Pose2(rng.normal(0.0, sigma_xy), rng.normal(0.0, sigma_xy), rng.normal(0.0, sigma_theta));
+    s.reference = predict_reference(d, s, truth) *
+                  Pose2(rng.normal(0.0, sigma_xy), rng.normal(0.0, sigma_xy), rng.normal(0.0, sigma_theta));
     d.samples.push_back(std::move(s));
   }
   return d;
@@ -84,8 +76,7 @@ void expect_recovers(const MlCalibrationResult& r, const ModelParameters& truth,
 
 TEST(MlCalibration, NoiseFreeTicksGiveTheTrueScalesAndWheelbase) {
   const ModelParameters truth = params(0.995, 1.004, 0.335);
-  const auto r =
-      calibrate_ml(synthetic(OdometryInputKind::kWheelTicks, truth, 60, 0, 0, 1), per_component());
+  const auto r = calibrate_ml(synthetic(OdometryInputKind::kWheelTicks, truth, 60, 0, 0, 1), per_component());
   expect_recovers(r, truth, 1e-9);
   ASSERT_EQ(r.parameters.size(), 3u);
   EXPECT_EQ(r.parameters[0].name, "left_scale");
@@ -96,8 +87,7 @@ TEST(MlCalibration, NoiseFreeTicksGiveTheTrueScalesAndWheelbase) {
 TEST(MlCalibration, NoiseFreeWheelAnglesWithASensorGiveRadiiAxleAndMount) {
   const ModelParameters truth = params(0.0207, 0.0209, 0.088, Pose2(-0.006, 0.002, -1.55));
   const auto r =
-      calibrate_ml(synthetic(OdometryInputKind::kWheelAngles, truth, 80, 0, 0, 2, /*sensor=*/true),
-                   per_component());
+      calibrate_ml(synthetic(OdometryInputKind::kWheelAngles, truth, 80, 0, 0, 2, /*sensor=*/true), per_component());
   expect_recovers(r, truth, 1e-9);
   ASSERT_EQ(r.parameters.size(), 6u);
   EXPECT_EQ(r.parameters[5].name, "sensor_theta");
@@ -110,20 +100,17 @@ TEST(MlCalibration, NoiseFreeBodyAndVelocityIncrementsGiveScalesAndTheThirdTermW
   const ModelParameters body = params(1.02, 0.97, 0.004);
   MlCalibrationOptions o = per_component();
   o.estimate_rotation_per_distance = true;
-  expect_recovers(calibrate_ml(synthetic(OdometryInputKind::kBodyIncrements, body, 60, 0, 0, 3), o),
-                  body, 1e-9);
+  expect_recovers(calibrate_ml(synthetic(OdometryInputKind::kBodyIncrements, body, 60, 0, 0, 3), o), body, 1e-9);
   const ModelParameters vel = params(0.96, 1.05, -0.003);
   o.estimate_rotation_rate_bias = true;
-  const auto r =
-      calibrate_ml(synthetic(OdometryInputKind::kVelocityIntegrals, vel, 60, 0, 0, 4), o);
+  const auto r = calibrate_ml(synthetic(OdometryInputKind::kVelocityIntegrals, vel, 60, 0, 0, 4), o);
   expect_recovers(r, vel, 1e-9);
   EXPECT_EQ(r.parameters[2].name, "rv_bias");
 }
 
 TEST(MlCalibration, WithoutTheOptionTheThirdBodyTermStaysAtItsNominalZero) {
-  const auto r = calibrate_ml(
-      synthetic(OdometryInputKind::kBodyIncrements, params(1.02, 0.97, 0.0), 40, 0, 0, 5),
-      per_component());
+  const auto r = calibrate_ml(synthetic(OdometryInputKind::kBodyIncrements, params(1.02, 0.97, 0.0), 40, 0, 0, 5),
+                              per_component());
   EXPECT_EQ(r.parameters.size(), 2u);
   EXPECT_EQ(r.estimate.odometry(2), 0.0);
   EXPECT_THROW(r.parameter("rotation_per_distance"), std::out_of_range);
@@ -132,15 +119,13 @@ TEST(MlCalibration, WithoutTheOptionTheThirdBodyTermStaysAtItsNominalZero) {
 TEST(MlCalibration, PerComponentNoiseIsEstimatedFromTheResiduals) {
   // 2 mm and 5 mrad of reference noise on 400 samples: σ estimates within 10 %.
   const ModelParameters truth = params(0.995, 1.004, 0.335);
-  const auto r = calibrate_ml(synthetic(OdometryInputKind::kWheelTicks, truth, 400, 2e-3, 5e-3, 6),
-                              per_component());
+  const auto r = calibrate_ml(synthetic(OdometryInputKind::kWheelTicks, truth, 400, 2e-3, 5e-3, 6), per_component());
   EXPECT_NEAR(r.noise(0), 2e-3, 2e-4);
   EXPECT_NEAR(r.noise(1), 2e-3, 2e-4);
   EXPECT_NEAR(r.noise(2), 5e-3, 5e-4);
   EXPECT_NEAR(r.chi2_per_dof, 1.0, 0.05);
   for (const auto& p : r.parameters) {
-    EXPECT_LE(std::abs(p.value - truth.odometry(&p - &r.parameters[0])), 4.0 * p.standard_error)
-        << p.name;
+    EXPECT_LE(std::abs(p.value - truth.odometry(&p - &r.parameters[0])), 4.0 * p.standard_error) << p.name;
   }
   // The covariance is symmetric positive definite and its diagonal gives the standard errors.
   const Eigen::LLT<Eigen::MatrixXd> llt(r.covariance);
@@ -151,8 +136,8 @@ TEST(MlCalibration, PerComponentNoiseIsEstimatedFromTheResiduals) {
 TEST(MlCalibration, FixedParametersKeepTheirNominalValues) {
   MlCalibrationOptions o = per_component();
   o.fixed = {"wheelbase"};
-  const auto r = calibrate_ml(
-      synthetic(OdometryInputKind::kWheelTicks, params(0.995, 1.004, 0.335), 60, 1e-3, 1e-3, 7), o);
+  const auto r =
+      calibrate_ml(synthetic(OdometryInputKind::kWheelTicks, params(0.995, 1.004, 0.335), 60, 1e-3, 1e-3, 7), o);
   EXPECT_EQ(r.parameters.size(), 2u);
   EXPECT_EQ(r.estimate.odometry(2), 0.33);
 }
@@ -178,8 +163,7 @@ TEST(MlCalibration, CensiOutlierRejectionDropsGrossOutliers) {
 TEST(MlCalibration, RejectsUnusableInput) {
   CalibrationData empty;
   EXPECT_THROW(calibrate_ml(empty), std::invalid_argument);
-  CalibrationData d =
-      synthetic(OdometryInputKind::kWheelTicks, params(1, 1, 0.33), 10, 1e-3, 1e-3, 9);
+  CalibrationData d = synthetic(OdometryInputKind::kWheelTicks, params(1, 1, 0.33), 10, 1e-3, 1e-3, 9);
   MlCalibrationOptions o;
   o.fixed = {"no_such_parameter"};
   EXPECT_THROW(calibrate_ml(d, o), std::invalid_argument);
@@ -196,8 +180,7 @@ TEST(HeldOutEvaluation, CalibratedOdometryBeatsTheNominalOnTheHeldOutHalf) {
   // Rotation 5 % short and translation 3 % long: after calibration the held-out relation errors
   // shrink to the reference noise.
   const ModelParameters truth = params(1.03, 1.05, 0.0);
-  const CalibrationData d =
-      synthetic(OdometryInputKind::kBodyIncrements, truth, 200, 1e-3, 1e-3, 10);
+  const CalibrationData d = synthetic(OdometryInputKind::kBodyIncrements, truth, 200, 1e-3, 1e-3, 10);
   const HeldOutEvaluation h = evaluate_held_out(d, per_component());
   EXPECT_EQ(h.training_samples, 100u);
   EXPECT_EQ(h.evaluation_samples, 100u);

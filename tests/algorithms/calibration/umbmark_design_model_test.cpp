@@ -78,8 +78,8 @@ TEST(UmbmarkDesignModel, PredictsTheNoiseFreeSimulatorReturnErrors) {
     s.slip.turn.rate = 0.0;
     s.motion.runs = 1;
     const auto r = sim::simulate(s, 1);
-    const auto p = predict_umbmark(s.robot.nominal, s.robot.encoder, s.motion.side,
-                                   error_params(s.robot.nominal, s.robot.actual));
+    const auto p =
+        predict_umbmark(s.robot.nominal, s.robot.encoder, s.motion.side, error_params(s.robot.nominal, s.robot.actual));
     const double tol = std::string(name) == "umbmark_borenstein" ? 1e-9 : 2e-3;
     ASSERT_EQ(r.umbmark_runs.size(), 2u);
     EXPECT_NEAR(r.umbmark_runs[0].error.x(), p.cw.x(), tol) << name;
@@ -104,8 +104,7 @@ TEST(UmbmarkDesignModel, TrilobotCommandsWholeTicks) {
 
 // ---- identifiability ----
 
-UmbmarkDesignFinding labmate(UmbmarkDesign d, UmbmarkParameterSet set,
-                             const UmbmarkErrorParams& at = {}) {
+UmbmarkDesignFinding labmate(UmbmarkDesign d, UmbmarkParameterSet set, const UmbmarkErrorParams& at = {}) {
   return analyze_umbmark_design(d, set, kLabmate, kLabmateEncoder, kSide, at);
 }
 
@@ -149,8 +148,7 @@ TEST(UmbmarkIdentifiability, AwayFromTheNominalRobotEoIsFormallyDeterminedButUse
   // only by the scale of the (small) true path: F has rank 3 but condition number ~4e7 and
   // se(E_b) = se(E_o) ≈ 0.22 — twenty times the 1% effects UMBmark corrects. Reported as not
   // identifiable; the test fails if E_o were reported identifiable from the square alone.
-  const auto f =
-      labmate(UmbmarkDesign::kSquare, UmbmarkParameterSet::kImproved, {1.0025, 1.01, 1.0});
+  const auto f = labmate(UmbmarkDesign::kSquare, UmbmarkParameterSet::kImproved, {1.0025, 1.01, 1.0});
   EXPECT_EQ(f.report.rank, 3);
   EXPECT_GT(f.report.condition_number, 1e7);
   EXPECT_GT(f.report.parameters[2].standard_error, 0.1);
@@ -198,8 +196,8 @@ TEST(UmbmarkIdentifiability, ClassicParametersAreIdentifiableOnceEoIsKnown) {
 TEST(UmbmarkIdentifiability, RejectsNonPositiveSigmas) {
   UmbmarkIdentifiabilityOptions o;
   o.run_sigma = 0.0;
-  EXPECT_THROW(analyze_umbmark_design(UmbmarkDesign::kSquare, UmbmarkParameterSet::kImproved,
-                                      kLabmate, kLabmateEncoder, kSide, {}, o),
+  EXPECT_THROW(analyze_umbmark_design(UmbmarkDesign::kSquare, UmbmarkParameterSet::kImproved, kLabmate, kLabmateEncoder,
+                                      kSide, {}, o),
                std::invalid_argument);
 }
 

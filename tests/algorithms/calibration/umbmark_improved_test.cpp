@@ -78,8 +78,7 @@ TEST(ImprovedUmbmark, EoIsTheSideOverTheCommandedCountsNotAMeasurement) {
     UmbmarkInput in = labmate_case();
     in.runs[1].x_error = x_ccw;
     const auto r = improved_umbmark(in);
-    EXPECT_NEAR(r.E_o, rounding * (r.beta / 2.0) / std::sin(r.beta / 2.0), 1e-12)
-        << "x_ccw " << x_ccw;
+    EXPECT_NEAR(r.E_o, rounding * (r.beta / 2.0) / std::sin(r.beta / 2.0), 1e-12) << "x_ccw " << x_ccw;
   }
 }
 

@@ -15,9 +15,9 @@
 
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
+#include "baselines/calibration/umbmark_classic.h"
 #include "core/statistics.h"
 #include "core/units.h"
-#include "baselines/calibration/umbmark_classic.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/umbmark_input.h"
@@ -34,9 +34,7 @@ sim::Scenario scenario(const char* name, bool slip) {
   return s;
 }
 
-UmbmarkErrorParams truth_of(const sim::Scenario& s) {
-  return error_params(s.robot.nominal, s.robot.actual);
-}
+UmbmarkErrorParams truth_of(const sim::Scenario& s) { return error_params(s.robot.nominal, s.robot.actual); }
 
 // The UMBmark input of a simulated experiment. No tape measurement: E_s = 1 (the runs were not
 // E_s-compensated, see ClassicPutsAnUncompensatedTapeScaleOnTheTurns below).
@@ -46,8 +44,7 @@ UmbmarkInput experiment(const sim::Scenario& s, std::uint64_t seed) {
 
 // The same experiment from the noise-free model: the methods' deterministic expectation.
 UmbmarkInput noise_free(const sim::Scenario& s, const UmbmarkErrorParams& e) {
-  const auto p = predict_umbmark(s.robot.nominal, s.robot.encoder, s.motion.side, e,
-                                 {true, s.drive.equal_wheel_ticks});
+  const auto p = predict_umbmark(s.robot.nominal, s.robot.encoder, s.motion.side, e, {true, s.drive.equal_wheel_ticks});
   UmbmarkInput in = sim::umbmark_input(s, {}, 1.0);
   in.runs = {{UmbmarkDirection::kClockwise, p.cw.x(), p.cw.y()},
              {UmbmarkDirection::kCounterClockwise, p.ccw.x(), p.ccw.y()}};
@@ -81,22 +78,19 @@ MonteCarlo monte_carlo(const sim::Scenario& s, int seeds, bool rerun_square,
     mc.before.push_back(c.centroids.e_max_syst);
     mc.run_sigma.push_back(c.centroids.run_sigma);
     if (rerun_square) {  // an independent seed for the re-run
-      mc.after_classic.push_back(
-          rerun(s, c.corrected, 1000u + static_cast<std::uint64_t>(seed)).e_max_syst);
-      mc.after_improved.push_back(
-          rerun(s, i.corrected, 1000u + static_cast<std::uint64_t>(seed)).e_max_syst);
+      mc.after_classic.push_back(rerun(s, c.corrected, 1000u + static_cast<std::uint64_t>(seed)).e_max_syst);
+      mc.after_improved.push_back(rerun(s, i.corrected, 1000u + static_cast<std::uint64_t>(seed)).e_max_syst);
     }
   }
   return mc;
 }
 
 // |mean(v) − expected| ≤ 3.5·sd/√n + slack.
-void expect_mean_near(const std::vector<double>& v, double expected, double slack,
-                      const char* what) {
+void expect_mean_near(const std::vector<double>& v, double expected, double slack, const char* what) {
   const double n = static_cast<double>(v.size());
   const double bound = 3.5 * sample_stddev(v) / std::sqrt(n) + slack;
-  EXPECT_NEAR(mean(v), expected, bound)
-      << what << ": Monte-Carlo mean " << mean(v) << " ± " << sample_stddev(v) / std::sqrt(n);
+  EXPECT_NEAR(mean(v), expected, bound) << what << ": Monte-Carlo mean " << mean(v) << " ± "
+                                        << sample_stddev(v) / std::sqrt(n);
 }
 
 TEST(UmbmarkSimulated, NoiseFreeBorensteinSquareShowsTheClosedFormsFirstOrderBias) {
@@ -145,8 +139,8 @@ TEST(UmbmarkSimulated, BorensteinMonteCarloRecoversEdAndEbWithinTheirStatedUncer
   UmbmarkIdentifiabilityOptions o;
   o.run_sigma = mean(mc.run_sigma);
   o.model = {true, false};
-  const auto f = analyze_umbmark_design(UmbmarkDesign::kSquare, UmbmarkParameterSet::kClassic,
-                                        s.robot.nominal, s.robot.encoder, s.motion.side, truth, o);
+  const auto f = analyze_umbmark_design(UmbmarkDesign::kSquare, UmbmarkParameterSet::kClassic, s.robot.nominal,
+                                        s.robot.encoder, s.motion.side, truth, o);
   for (const auto& [v, se] : {std::pair{&mc.classic_E_d, f.report.parameters[0].standard_error},
                               std::pair{&mc.classic_E_b, f.report.parameters[1].standard_error}}) {
     EXPECT_GT(sample_stddev(*v), 0.5 * se);
@@ -168,8 +162,7 @@ TEST(UmbmarkSimulated, BorensteinWithTurnSlipPutsTheMeanSlipLossOnEb) {
   sim::Scenario s = scenario("umbmark_borenstein", true);
   s.slip.turn = {0.2, 0.05, 0.15};
   const UmbmarkErrorParams truth = truth_of(s);
-  const double tau =
-      predict_umbmark(s.robot.nominal, s.robot.encoder, s.motion.side, truth).turn_angle;
+  const double tau = predict_umbmark(s.robot.nominal, s.robot.encoder, s.motion.side, truth).turn_angle;
   std::vector<double> residual_E_b, residual_E_d, before, after, eff;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
     const auto r = sim::simulate(s, seed);
@@ -178,8 +171,7 @@ TEST(UmbmarkSimulated, BorensteinWithTurnSlipPutsTheMeanSlipLossOnEb) {
       if (e.phase == sim::MotionPhase::kTurn) lost += std::abs(e.lost);
     }
     UmbmarkErrorParams effective = truth;
-    effective.E_b =
-        truth.E_b * tau / (tau - lost / s.robot.actual.wheelbase / (8.0 * s.motion.runs));
+    effective.E_b = truth.E_b * tau / (tau - lost / s.robot.actual.wheelbase / (8.0 * s.motion.runs));
     eff.push_back(effective.E_b);
     const auto c = classic_umbmark(sim::umbmark_input(s, r.umbmark_runs, 1.0));
     const auto expected = classic_umbmark(noise_free(s, effective));
@@ -245,9 +237,9 @@ UmbmarkCentroids path_closure(const std::vector<sim::UmbmarkRun>& runs) {
   std::vector<UmbmarkReturn> out;
   for (const auto& r : runs) {
     const Pose2 d = between(r.start, r.true_end);
-    out.push_back({r.direction == sim::Direction::kClockwise ? UmbmarkDirection::kClockwise
-                                                             : UmbmarkDirection::kCounterClockwise,
-                   d.x, d.y});
+    out.push_back(
+        {r.direction == sim::Direction::kClockwise ? UmbmarkDirection::kClockwise : UmbmarkDirection::kCounterClockwise,
+         d.x, d.y});
   }
   return umbmark_centroids(out);
 }
@@ -264,8 +256,8 @@ struct TypeAB {
 // Classic UMBmark (mean angle formula) on run `seed` of `s`, its return errors added to
 // `before`; then the runs again (seed 1000 + seed) with its one conversion factor
 // {D_a, D_a, B_actual}, added to `after`. Returns the calibration.
-ClassicUmbmarkResult calibrate_with_one_factor(const sim::Scenario& s, std::uint64_t seed,
-                                               TypeAB& before, TypeAB& after) {
+ClassicUmbmarkResult calibrate_with_one_factor(const sim::Scenario& s, std::uint64_t seed, TypeAB& before,
+                                               TypeAB& after) {
   const auto c = classic_umbmark(experiment(s, seed), {UmbmarkAngleFormula::kMean});
   before.add(c.centroids, s.motion.side);
   sim::Scenario a = s;
@@ -296,8 +288,7 @@ TEST(UmbmarkSimulated, WithEqualWheelTicksOnlyTypeACanBeCompensated) {
     odometry.add(umbmark_centroids(sim::umbmark_returns(runs)), s.motion.side);
     path.add(path_closure(runs), s.motion.side);
     independent.robot.nominal = c.corrected;
-    independent_path.add(path_closure(sim::simulate(independent, 1000 + seed).umbmark_runs),
-                         s.motion.side);
+    independent_path.add(path_closure(sim::simulate(independent, 1000 + seed).umbmark_runs), s.motion.side);
   }
   const double beta0 = mean(before.beta), alpha0 = mean(before.alpha);
   EXPECT_NEAR(beta0, deg(1.68), deg(0.2));
@@ -321,9 +312,8 @@ TEST(UmbmarkSimulated, TrilobotWithEqualWheelTicksKeepsItsTypeBError) {
   }
   EXPECT_GT(mean(before.beta), deg(1.5));
   const double n = static_cast<double>(before.beta.size());
-  EXPECT_NEAR(
-      mean(after.beta), mean(before.beta),
-      3.5 * std::hypot(sample_stddev(after.beta), sample_stddev(before.beta)) / std::sqrt(n));
+  EXPECT_NEAR(mean(after.beta), mean(before.beta),
+              3.5 * std::hypot(sample_stddev(after.beta), sample_stddev(before.beta)) / std::sqrt(n));
 }
 
 TEST(UmbmarkSimulated, ClassicPutsAnUncompensatedTapeScaleOnTheTurns) {
@@ -346,9 +336,7 @@ TEST(UmbmarkSimulated, ClassicPutsAnUncompensatedTapeScaleOnTheTurns) {
   in.runs = {{UmbmarkDirection::kClockwise, p.cw.x(), p.cw.y()},
              {UmbmarkDirection::kCounterClockwise, p.ccw.x(), p.ccw.y()}};
   auto turn_after = [&](const WheelGeometry& corrected) {
-    return to_deg(
-        predict_umbmark(corrected, encoder, 4.0, error_params(corrected, actual), {false, false})
-            .turn_angle);
+    return to_deg(predict_umbmark(corrected, encoder, 4.0, error_params(corrected, actual), {false, false}).turn_angle);
   };
   in.tape_measure_scale = 0.99;
   const auto with_tape = classic_umbmark(in, {UmbmarkAngleFormula::kMean});
@@ -356,8 +344,7 @@ TEST(UmbmarkSimulated, ClassicPutsAnUncompensatedTapeScaleOnTheTurns) {
   EXPECT_NEAR(turn_after(with_tape.corrected), 90.0 / 0.99, 0.03);
   in.tape_measure_scale = 1.0;
   EXPECT_NEAR(turn_after(classic_umbmark(in, {UmbmarkAngleFormula::kMean}).corrected), 90.0, 0.03);
-  EXPECT_NEAR(turn_after(improved_umbmark(in, {UmbmarkAngleFormula::kMean, 0.0}).corrected), 90.0,
-              0.03);
+  EXPECT_NEAR(turn_after(improved_umbmark(in, {UmbmarkAngleFormula::kMean, 0.0}).corrected), 90.0, 0.03);
 }
 
 }  // namespace

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
+#include "core/units.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "tests/algorithms/diagnosis/diagnosis_test_helpers.h"
 
@@ -16,10 +16,10 @@ namespace locbench::diagnosis {
 namespace {
 
 using sim::GeneratedLog;
+using sim::HiddenEffect;
 using test_support::detected;
 using test_support::find_cause;
 using test_support::summary;
-using sim::HiddenEffect;
 
 // The true value is in the interval, or within `tolerance` (relative to the value's size) of it.
 void expect_covers(const Diagnosis& d, const GeneratedLog& g, const std::string& key, double tolerance) {
@@ -60,8 +60,8 @@ TEST(DiagnoseHiddenEffects, NullLogsDetectNothing) {
 struct Case {
   std::string id;
   double magnitude;
-  std::string key;     // parameter compared with the truth
-  double tolerance;    // relative slack beyond the interval
+  std::string key;   // parameter compared with the truth
+  double tolerance;  // relative slack beyond the interval
   bool velocity = false;
   int waypoints = 16;
 };

@@ -5,9 +5,9 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "algorithms/diagnosis/diagnosis.h"
 #include "core/errors.h"
 #include "core/units.h"
-#include "algorithms/diagnosis/diagnosis.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "tests/input_error_message.h"
 #include "tests/options_error_message.h"
@@ -62,8 +62,9 @@ TEST(DiagnoseInput, MalformedHistogramsNameWhatWasExpected) {
             std::string::npos);
   EXPECT_NE(err(R"({"residual": "r", "unit": "furlong", "edges": [0,1,2,3,4,5], "counts": [9,9,9,9,9]})").find("unit"),
             std::string::npos);
-  EXPECT_NE(err(R"({"residual": "r", "unit": "deg", "edges": [0,1,2,3,4,5], "counts": [9,9,-9,9,9]})").find("counts[2]"),
-            std::string::npos);
+  EXPECT_NE(
+      err(R"({"residual": "r", "unit": "deg", "edges": [0,1,2,3,4,5], "counts": [9,9,-9,9,9]})").find("counts[2]"),
+      std::string::npos);
   EXPECT_NE(err(R"({"residual": "r", "unit": "deg", "edges": [0,1,1,3,4,5], "counts": [9,9,9,9,9]})").find("edges[2]"),
             std::string::npos);
   EXPECT_NE(err(R"({"residual": "r", "unit": "deg", "edges": [0,1,2,3,4,5], "counts": [1,1,1,1,1]})").find("too few"),
@@ -83,8 +84,9 @@ TEST(DiagnosisOptions, WrongTypesUnknownKeysAndOutOfRangeValuesAreNamed) {
   EXPECT_EQ(err({{"false_alarm", "1%"}}), "DiagnosisOptions.false_alarm: expected a number, found string");
   EXPECT_EQ(err({{"false_alarm", 0.5}}), "DiagnosisOptions.false_alarm: expected a number in (0, 0.5), got 0.5");
   EXPECT_EQ(err({{"holdout_block", 0}}), "DiagnosisOptions.holdout_block: expected ≥ 1, got 0");
-  EXPECT_EQ(err({{"window", 1.0}}).rfind("DiagnosisOptions.window: unknown key (expected one of: false_alarm, window_s,", 0),
-            0u);
+  EXPECT_EQ(
+      err({{"window", 1.0}}).rfind("DiagnosisOptions.window: unknown key (expected one of: false_alarm, window_s,", 0),
+      0u);
   DiagnosisOptions o;
   from_json({{"window_s", 2.0}, {"rpe_chain", 5}}, o);
   EXPECT_EQ(o.windows.duration, 2.0);

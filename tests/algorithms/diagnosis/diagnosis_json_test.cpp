@@ -29,7 +29,8 @@ TEST(DiagnosisJson, AReportOfAnOffsetLogIsValidAndCarriesTheOffsetWithItsInterva
     found = true;
     EXPECT_TRUE(c["detected"].get<bool>());
     EXPECT_NEAR(c["parameters"]["offset_s"]["value"].get<double>(), -0.2, 0.02);
-    EXPECT_LT(c["parameters"]["offset_s"]["ci95"][0].get<double>(), c["parameters"]["offset_s"]["ci95"][1].get<double>());
+    EXPECT_LT(c["parameters"]["offset_s"]["ci95"][0].get<double>(),
+              c["parameters"]["offset_s"]["ci95"][1].get<double>());
   }
   EXPECT_TRUE(found);
   EXPECT_GT(j["noise_floor"]["sigma_x_m"].get<double>(), 0.0);
@@ -52,7 +53,8 @@ TEST(DiagnosisJson, NonFiniteNumbersBecomeNullAndUnexplainedStructureCarriesItsR
   d.nominal_model = {{"odometry", "encoder"}, {"noise", "white"}};
   d.verdict = "v";
   Cause c{"velocity_scale", "odometry", false};
-  c.parameters.push_back({"scale", 1.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()});
+  c.parameters.push_back(
+      {"scale", 1.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()});
   d.causes.push_back(c);
   d.unexplained.push_back({"bias", "along_track", "", 7.3, 1e-12, 0.3, "velocity_scale would account for it, but …"});
   const nlohmann::json j = to_json(d);

@@ -7,9 +7,9 @@
 
 #include <cmath>
 
-#include "core/units.h"
 #include "algorithms/diagnosis/diagnosis.h"
 #include "algorithms/diagnosis/scale_checks.h"
+#include "core/units.h"
 #include "datasets/diagnosis/physical_log_generator.h"
 #include "tests/algorithms/diagnosis/diagnosis_test_helpers.h"
 
@@ -99,7 +99,8 @@ TEST(DiagnosePhysicalLogs, HeavyTailedProcessNoiseIsNamedAndBiasesNoScale) {
   o.process_noise_theta = 6e-3;
   const Diagnosis d = diagnose(e, 16, o);
   ASSERT_TRUE(detected(d, "heavy_tailed_noise")) << summary(d);
-  for (const char* mean : {"velocity_scale", "turn_rate_scale", "turn_rate_bias", "sensor_time_offset", "drive_response"}) {
+  for (const char* mean :
+       {"velocity_scale", "turn_rate_scale", "turn_rate_bias", "sensor_time_offset", "drive_response"}) {
     EXPECT_FALSE(detected(d, mean)) << mean << "\n" << summary(d);
   }
   EXPECT_TRUE(d.unexplained.empty()) << summary(d);
@@ -119,7 +120,8 @@ TEST(DiagnosePhysicalLogs, StallsAreNamedDriveStallWithTheMeanDistanceScaleOfThe
   EXPECT_NEAR(parameter(d, "drive_stall", "duration_s").value, 0.4, 0.15) << summary(d);
   const Cause* c = find_cause(d, "drive_stall");
   double offset = 0.0;
-  if (const Cause* o = find_cause(d, "sensor_time_offset"); o != nullptr && o->detected) offset = o->parameters[0].value;
+  if (const Cause* o = find_cause(d, "sensor_time_offset"); o != nullptr && o->detected)
+    offset = o->parameters[0].value;
   const ScaleChecks checks = scale_checks(build_motion_data(log, {}), offset);
   EXPECT_NEAR(c->extra.at("mean_distance_scale").get<double>(), checks.path_length_ratio, 0.02) << summary(d);
   EXPECT_FALSE(detected(d, "velocity_scale")) << summary(d);

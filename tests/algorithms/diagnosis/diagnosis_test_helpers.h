@@ -23,10 +23,13 @@ inline std::string summary(const Diagnosis& d) {
   std::string s = "detected:";
   for (const auto& id : d.detected) s += " " + id;
   for (const auto& c : d.causes) {
-    s += "\n  " + c.id + (c.detected ? " [D]" : "") + " LR=" + std::to_string(c.value) + " thr=" + std::to_string(c.threshold);
-    for (const auto& p : c.parameters) s += " " + p.name + "=" + std::to_string(p.value) + "[" + std::to_string(p.lo) + "," + std::to_string(p.hi) + "]";
+    s += "\n  " + c.id + (c.detected ? " [D]" : "") + " LR=" + std::to_string(c.value) +
+         " thr=" + std::to_string(c.threshold);
+    for (const auto& p : c.parameters)
+      s += " " + p.name + "=" + std::to_string(p.value) + "[" + std::to_string(p.lo) + "," + std::to_string(p.hi) + "]";
   }
-  for (const auto& u : d.unexplained) s += "\n  unexplained " + u.test + " " + u.residual + " " + u.variable + " (" + u.reason + ")";
+  for (const auto& u : d.unexplained)
+    s += "\n  unexplained " + u.test + " " + u.residual + " " + u.variable + " (" + u.reason + ")";
   return s + "\n  verdict: " + d.verdict;
 }
 

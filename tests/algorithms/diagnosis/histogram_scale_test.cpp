@@ -5,9 +5,9 @@
 #include <chrono>
 #include <cmath>
 
+#include "algorithms/diagnosis/diagnosis.h"
 #include "core/errors.h"
 #include "core/units.h"
-#include "algorithms/diagnosis/diagnosis.h"
 
 namespace locbench::diagnosis {
 namespace {
@@ -70,10 +70,13 @@ TEST(HistogramScale, CountsMustBeWholeBoundedAndSpread) {
     }
     return std::string();
   };
-  EXPECT_NE(err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[9,9,3.5,9,9]})").find("counts[2]"), std::string::npos);
-  EXPECT_NE(err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[9,9,1e18,9,9]})").find("limit"), std::string::npos);
-  EXPECT_NE(err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[0,0,900,0,0]})").find("at least 3 bins"),
+  EXPECT_NE(err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[9,9,3.5,9,9]})").find("counts[2]"),
             std::string::npos);
+  EXPECT_NE(err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[9,9,1e18,9,9]})").find("limit"),
+            std::string::npos);
+  EXPECT_NE(
+      err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[0,0,900,0,0]})").find("at least 3 bins"),
+      std::string::npos);
   EXPECT_NE(err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,1e300],"counts":[9,9,9,9,9]})").find("edges[5]"),
             std::string::npos);
 }

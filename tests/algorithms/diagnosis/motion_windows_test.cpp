@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <random>
 
@@ -87,7 +87,8 @@ TEST(MotionWindows, TheSteppingTruthInterpolatorEqualsTheBinarySearchBitForBit) 
   }
   EXPECT_GT(inside, 350);
   // A time stamp shared by two records gives the first of them, as lower_bound does.
-  const auto repeated = std::adjacent_find(truth.begin(), truth.end(), [](const TruePose& a, const TruePose& b) { return a.t == b.t; });
+  const auto repeated =
+      std::adjacent_find(truth.begin(), truth.end(), [](const TruePose& a, const TruePose& b) { return a.t == b.t; });
   ASSERT_NE(repeated, truth.end());
   EXPECT_EQ(TruthInterpolator(truth).at(repeated->t)->x, interpolate_truth(truth, repeated->t)->x);
 }

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <string>
 
-#include "core/rng.h"
 #include "algorithms/diagnosis/odometry_battery.h"
+#include "core/rng.h"
 
 namespace locbench::diagnosis {
 namespace {

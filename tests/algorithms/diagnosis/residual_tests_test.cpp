@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "core/rng.h"
 #include "algorithms/diagnosis/ml_fit.h"
 #include "algorithms/diagnosis/residual_tests.h"
+#include "core/rng.h"
 
 namespace locbench::diagnosis {
 namespace {

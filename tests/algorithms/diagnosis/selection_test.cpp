@@ -27,7 +27,10 @@ TEST(ForwardSelection, CausesEnterByLargestMarginAndStopWhenNoneClearsItsThresho
 
 TEST(ForwardSelection, AnInadmissibleCandidateNeverEntersHoweverLargeItsRatio) {
   const Selection s = forward_select(
-      1, 100.0, [](std::size_t) { return 3.84; }, [](const std::vector<std::size_t>&) { return SelectionFit{0.0, false}; });
+      1, 100.0, [](std::size_t) { return 3.84; },
+      [](const std::vector<std::size_t>&) {
+        return SelectionFit{0.0, false};
+      });
   EXPECT_TRUE(s.entered.empty());
   EXPECT_FALSE(s.evidence[0].admissible);
 }

@@ -73,8 +73,8 @@ TEST(CompassEkf, WithoutACompassReadingItOnlyPredicts) {
 
 TEST(CompassEkf, ProcessNoiseIsPluggableAndScalable) {
   const Matrix3 fixed = Vector3(1e-6, 1e-6, 1e-4).asDiagonal();
-  CompassEkf custom([&](const Vector3&, const WheelDisplacement&, double) { return fixed; }, kR,
-                    Matrix3::Zero(), 0.2, Pose2());
+  CompassEkf custom([&](const Vector3&, const WheelDisplacement&, double) { return fixed; }, kR, Matrix3::Zero(), 0.2,
+                    Pose2());
   const CompassFilterStep a = custom.step({0.0, 0.0}, std::nullopt);
   EXPECT_TRUE(a.covariance.isApprox(fixed, 1e-15));
 
@@ -82,8 +82,7 @@ TEST(CompassEkf, ProcessNoiseIsPluggableAndScalable) {
   o.process_noise_scale = 0.25;
   CompassEkf scaled(o, 0.2, Pose2());
   const CompassFilterStep b = scaled.step({0.06, 0.065}, std::nullopt);
-  EXPECT_TRUE(b.covariance.isApprox(0.25 * adaptive_process_noise(o.noise, 0.0, {0.06, 0.065}, 0.2),
-                                    1e-14));
+  EXPECT_TRUE(b.covariance.isApprox(0.25 * adaptive_process_noise(o.noise, 0.0, {0.06, 0.065}, 0.2), 1e-14));
 }
 
 TEST(CompassEkf, OptionsJsonRoundTripAndValidation) {
@@ -103,8 +102,7 @@ TEST(CompassEkf, OptionsJsonRoundTripAndValidation) {
   EXPECT_NEAR(CompassEkfOptions{}.compass_variance, kR, 1e-18);
   EXPECT_THROW((nlohmann::json{{"noise", {{"kk", 1}}}}.get<CompassEkfOptions>()), UsageError);
   EXPECT_THROW((nlohmann::json{{"compass_variance", 0.0}}.get<CompassEkfOptions>()), UsageError);
-  EXPECT_THROW((nlohmann::json{{"initial_covariance", {1, 2}}}.get<CompassEkfOptions>()),
-               UsageError);
+  EXPECT_THROW((nlohmann::json{{"initial_covariance", {1, 2}}}.get<CompassEkfOptions>()), UsageError);
   EXPECT_THROW((nlohmann::json{{"R", 1.0}}.get<CompassEkfOptions>()), UsageError);
   EXPECT_THROW(CompassEkf(CompassEkfOptions{}, 0.0, Pose2()), UsageError);
 }

@@ -7,12 +7,10 @@ namespace {
 
 TEST(CompassOdometryInput, PairsEachSampleWithTheNearestUnusedCompassReading) {
   const NominalModel m{0.01, 0.02, 0.2};
-  const std::vector<EncoderReading> enc{
-      {0.0, 0, 0}, {0.25, 5, 4}, {0.5, 10, 8}, {0.75, 12, 9}, {1.0, 12, 9}};
+  const std::vector<EncoderReading> enc{{0.0, 0, 0}, {0.25, 5, 4}, {0.5, 10, 8}, {0.75, 12, 9}, {1.0, 12, 9}};
   // 0.26 belongs to the sample at 0.25; nothing near 0.5; 0.70 and 0.78 both near 0.75: the
   // nearer one (0.78) is taken; 0.98 goes to 1.0.
-  const std::vector<CompassReading> cmp{
-      {0.01, 0.0}, {0.26, 0.1}, {0.70, 0.2}, {0.78, 0.3}, {0.98, 0.4}};
+  const std::vector<CompassReading> cmp{{0.01, 0.0}, {0.26, 0.1}, {0.70, 0.2}, {0.78, 0.3}, {0.98, 0.4}};
   const auto s = pair_encoder_compass(enc, cmp, m, 0.1);
   ASSERT_EQ(s.size(), 4u);
   EXPECT_DOUBLE_EQ(s[0].t, 0.25);

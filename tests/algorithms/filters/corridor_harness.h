@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/compass_ekf_model.h"
 #include "algorithms/filters/compass_odometry_input.h"
 #include "algorithms/filters/consistency.h"
 #include "algorithms/filters/quantization_noise.h"
+#include "core/compass_ekf_model.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 
@@ -67,8 +67,7 @@ RunTrace run_filter(const sim::SimulationResult& res, Make make, std::size_t max
   for (std::size_t k = 0; k < steps.size() && k < max_steps; ++k) {
     const auto out = filter.step(steps[k].u, steps[k].compass);
     const CompassFilterStep& f = filter_part(out);
-    t.nees.push_back(
-        pose_nees(res.wheel_samples[steps[k].encoder_index].pose, f.mean, f.covariance));
+    t.nees.push_back(pose_nees(res.wheel_samples[steps[k].encoder_index].pose, f.mean, f.covariance));
     if (f.updated) t.nis.push_back(nis(f.innovation, f.innovation_variance));
     last = f.mean;
     last_index = steps[k].encoder_index;
@@ -84,8 +83,7 @@ struct MonteCarlo {
   std::vector<double> final_errors;
 };
 
-inline std::vector<sim::SimulationResult> simulate_runs(const sim::Scenario& scenario, int runs,
-                                                        std::uint64_t seed0) {
+inline std::vector<sim::SimulationResult> simulate_runs(const sim::Scenario& scenario, int runs, std::uint64_t seed0) {
   std::vector<sim::SimulationResult> out;
   for (int r = 0; r < runs; ++r) {
     out.push_back(sim::simulate(scenario, seed0 + static_cast<std::uint64_t>(r)));
@@ -95,8 +93,7 @@ inline std::vector<sim::SimulationResult> simulate_runs(const sim::Scenario& sce
 
 // NEES and NIS series over the runs, cut to `steps` samples (and to the shortest run).
 template <class Make>
-MonteCarlo monte_carlo(const std::vector<sim::SimulationResult>& runs, std::size_t steps,
-                       Make make) {
+MonteCarlo monte_carlo(const std::vector<sim::SimulationResult>& runs, std::size_t steps, Make make) {
   std::vector<std::vector<double>> nees, nis_runs;
   MonteCarlo mc;
   for (const auto& res : runs) {

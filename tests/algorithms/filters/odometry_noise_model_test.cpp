@@ -4,8 +4,8 @@
 
 #include <Eigen/LU>
 
-#include "core/errors.h"
 #include "algorithms/filters/quantization_noise.h"
+#include "core/errors.h"
 
 namespace locbench {
 namespace {
@@ -45,8 +45,7 @@ TEST(OdometryNoiseModel, StandingStillLeavesOnlyTheQuantizationTerm) {
   EXPECT_NEAR(n.distance, (9e-6 + 16e-6) / 4.0, 1e-18);
   EXPECT_NEAR(n.rotation, (9e-6 + 16e-6) / 0.04, 1e-15);
   // Backward travel counts by its magnitude.
-  EXPECT_DOUBLE_EQ(increment_noise(o, {-0.05, -0.06}, 0.2).distance,
-                   increment_noise(o, {0.05, 0.06}, 0.2).distance);
+  EXPECT_DOUBLE_EQ(increment_noise(o, {-0.05, -0.06}, 0.2).distance, increment_noise(o, {0.05, 0.06}, 0.2).distance);
 }
 
 TEST(OdometryNoiseModel, SigmaFromTheQuantizationModel) {

@@ -13,11 +13,11 @@
 #include <memory>
 #include <string>
 
+#include "algorithms/laser/eap_matcher.h"
+#include "baselines/laser/extract_then_match.h"
 #include "core/angle.h"
 #include "core/errors.h"
 #include "core/units.h"
-#include "algorithms/laser/eap_matcher.h"
-#include "baselines/laser/extract_then_match.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/log/data_root.h"
 #include "eap_test_helpers.h"
@@ -31,18 +31,16 @@ constexpr double kFitTolerance = 1e-9;  // [m] and [rad]
 
 // Largest differences between the two implementations' fits over a test.
 struct FitDifference {
-  double position = 0.0;   // ρ, centroid, first, last, rms [m]
-  double angle = 0.0;      // β, direction [rad]
+  double position = 0.0;  // ρ, centroid, first, last, rms [m]
+  double angle = 0.0;     // β, direction [rad]
   std::size_t matches = 0, points = 0;
   void print(const std::string& what) const {
     std::cout << "[ " << what << " ] " << matches << " matches, " << points
-              << " points identical; largest fit difference " << position << " m, " << angle
-              << " rad\n";
+              << " points identical; largest fit difference " << position << " m, " << angle << " rad\n";
   }
 };
 
-void expect_same(const MatchResult& old_r, const MatchResult& new_r, const std::string& what,
-                 FitDifference& diff) {
+void expect_same(const MatchResult& old_r, const MatchResult& new_r, const std::string& what, FitDifference& diff) {
   EXPECT_EQ(old_r.work, new_r.work) << what;
   ASSERT_EQ(old_r.matches.size(), new_r.matches.size()) << what;
   for (std::size_t k = 0; k < old_r.matches.size(); ++k) {
@@ -60,12 +58,11 @@ void expect_same(const MatchResult& old_r, const MatchResult& new_r, const std::
       EXPECT_EQ(p.world, q.world) << what;
     }
     EXPECT_EQ(a.fit.count, b.fit.count) << what;
-    const double dpos = std::max({std::abs(a.fit.line.rho - b.fit.line.rho),
-                                  (a.fit.centroid - b.fit.centroid).norm(),
-                                  (a.fit.first - b.fit.first).norm(),
-                                  (a.fit.last - b.fit.last).norm(), std::abs(a.fit.rms - b.fit.rms)});
-    const double dang = std::max(std::abs(angle_diff(a.fit.line.beta, b.fit.line.beta)),
-                                 (a.fit.direction - b.fit.direction).norm());
+    const double dpos = std::max({std::abs(a.fit.line.rho - b.fit.line.rho), (a.fit.centroid - b.fit.centroid).norm(),
+                                  (a.fit.first - b.fit.first).norm(), (a.fit.last - b.fit.last).norm(),
+                                  std::abs(a.fit.rms - b.fit.rms)});
+    const double dang =
+        std::max(std::abs(angle_diff(a.fit.line.beta, b.fit.line.beta)), (a.fit.direction - b.fit.direction).norm());
     EXPECT_LT(dpos, kFitTolerance) << what << ", segment " << a.map_segment;
     EXPECT_LT(dang, kFitTolerance) << what << ", segment " << a.map_segment;
     diff.position = std::max(diff.position, dpos);
@@ -93,18 +90,16 @@ std::vector<EapOptions> option_variants() {
 
 // Matches one scan with every option variant, plain and indexed, old and new.
 void compare_all(const Scan& scan, const LineMap& map, const Pose2& estimate,
-                 const std::shared_ptr<const SegmentGridIndex>& index, const std::string& what,
-                 FitDifference& diff) {
+                 const std::shared_ptr<const SegmentGridIndex>& index, const std::string& what, FitDifference& diff) {
   const std::vector<EapOptions> variants = option_variants();
   for (std::size_t v = 0; v < variants.size(); ++v) {
     const EapOptions& o = variants[v];
     const std::string label = what + ", options " + std::to_string(v);
-    expect_same(legacy::LegacyEapMatcher(o).match(scan, map, estimate),
-                EapMatcher(o).match(scan, map, estimate), label + ", plain", diff);
+    expect_same(legacy::LegacyEapMatcher(o).match(scan, map, estimate), EapMatcher(o).match(scan, map, estimate),
+                label + ", plain", diff);
     if (index) {
       expect_same(legacy::LegacyEapMatcher(index, o).match(scan, index->map(), estimate),
-                  EapMatcher(index, o).match(scan, index->map(), estimate), label + ", indexed",
-                  diff);
+                  EapMatcher(index, o).match(scan, index->map(), estimate), label + ", indexed", diff);
     }
   }
 }
@@ -136,8 +131,7 @@ TEST(EapEquivalence, RoomFromTheThesisPoseAndFromATable6_2EstimateGivesTheOldMat
     const Scan scan = test::simulated_scan(index->map(), truth, mm(5.0), seed);
     compare_all(scan, index->map(), truth, index, "room, seed " + std::to_string(seed), diff);
     const Pose2 estimate(truth.x + 0.1, truth.y + 0.1, truth.theta - deg(3.0));
-    compare_all(scan, index->map(), estimate, index, "room off, seed " + std::to_string(seed),
-                diff);
+    compare_all(scan, index->map(), estimate, index, "room off, seed " + std::to_string(seed), diff);
   }
   diff.print("room");
   EXPECT_GT(diff.matches, 300u);
@@ -149,12 +143,10 @@ TEST(EapEquivalence, RandomMapsAndPosesGiveTheOldMatchesForEveryOption) {
   RuleCoverage coverage;
   for (int map_k = 0; map_k < 8; ++map_k) {
     const double size = rng.uniform(6.0, 25.0);
-    const LineMap map =
-        test::random_map(static_cast<std::size_t>(rng.uniform(5.0, 150.0)), size, rng);
+    const LineMap map = test::random_map(static_cast<std::size_t>(rng.uniform(5.0, 150.0)), size, rng);
     const auto index = std::make_shared<const SegmentGridIndex>(map);
     for (int pose_k = 0; pose_k < 3; ++pose_k) {
-      const Pose2 truth(rng.uniform(1.0, size - 1.0), rng.uniform(1.0, size - 1.0),
-                        rng.uniform(-kPi, kPi));
+      const Pose2 truth(rng.uniform(1.0, size - 1.0), rng.uniform(1.0, size - 1.0), rng.uniform(-kPi, kPi));
       const Pose2 estimate(truth.x + rng.uniform(-0.15, 0.15), truth.y + rng.uniform(-0.15, 0.15),
                            truth.theta + rng.uniform(deg(-5.0), deg(5.0)));
       const auto seed = static_cast<std::uint64_t>(rng.uniform() * 1e6);
@@ -165,8 +157,8 @@ TEST(EapEquivalence, RandomMapsAndPosesGiveTheOldMatchesForEveryOption) {
     }
   }
   diff.print("random maps");
-  std::cout << "[ random maps ] scans where the direction check changed the matches: "
-            << coverage.direction << ", where the trim did: " << coverage.trim << "\n";
+  std::cout << "[ random maps ] scans where the direction check changed the matches: " << coverage.direction
+            << ", where the trim did: " << coverage.trim << "\n";
   EXPECT_GT(diff.matches, 300u);
   EXPECT_GT(coverage.direction + coverage.trim, 0u);
 }
@@ -229,16 +221,16 @@ void compare_on_log(const std::string& dataset) {
                       EapMatcher(variants[v]).match(scan, *map, estimate), what, diff);
         }
         expect_same(legacy::LegacyEapMatcher(index).match(scan, index->map(), estimate),
-                    EapMatcher(index).match(scan, index->map(), estimate), what + " indexed",
-                    diff);
+                    EapMatcher(index).match(scan, index->map(), estimate), what + " indexed", diff);
         coverage.count(scan, *map, estimate);
         if (map != &lines[i]) break;  // the neighbour's lines: from the scan's own pose only
       }
     }
   }
   diff.print(dataset + ", first " + std::to_string(count) + " scans");
-  std::cout << "[ " << dataset << " ] cases (scan, map, estimate) where the direction check changed the result: "
-            << coverage.direction << ", where the trim did: " << coverage.trim << "\n";
+  std::cout << "[ " << dataset
+            << " ] cases (scan, map, estimate) where the direction check changed the result: " << coverage.direction
+            << ", where the trim did: " << coverage.trim << "\n";
   EXPECT_GT(diff.matches, 1000u);
 }
 
@@ -263,8 +255,7 @@ TEST(EapEquivalence, ErrorsAreTheOldOnes) {
   const legacy::LegacyEapMatcher old;
   EXPECT_EQ(message([&] { fresh.match(mismatched, sim::room_world(), {}); }),
             message([&] { old.match(mismatched, sim::room_world(), {}); }));
-  EXPECT_EQ(message([&] { fresh.match(scan, degenerate, {}); }),
-            message([&] { old.match(scan, degenerate, {}); }));
+  EXPECT_EQ(message([&] { fresh.match(scan, degenerate, {}); }), message([&] { old.match(scan, degenerate, {}); }));
   EXPECT_EQ(message([&] { fresh.match(scan, degenerate, {}); }),
             "EapMatcher: map segment 0: EapRegion: segment must have finite, non-zero length");
 }

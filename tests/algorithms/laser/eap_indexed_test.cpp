@@ -4,9 +4,9 @@
 #include <iostream>
 #include <memory>
 
+#include "algorithms/laser/eap_matcher.h"
 #include "core/errors.h"
 #include "core/units.h"
-#include "algorithms/laser/eap_matcher.h"
 #include "eap_test_helpers.h"
 
 namespace locbench::laser {
@@ -41,10 +41,9 @@ struct Poses {
   Pose2 truth, estimate;
 };
 Poses random_poses(double size, Rng& rng) {
-  const Pose2 t(rng.uniform(1.0, size - 1.0), rng.uniform(1.0, size - 1.0),
-                rng.uniform(-kPi, kPi));
-  return {t, Pose2(t.x + rng.uniform(-0.1, 0.1), t.y + rng.uniform(-0.1, 0.1),
-                   t.theta + rng.uniform(deg(-3.0), deg(3.0)))};
+  const Pose2 t(rng.uniform(1.0, size - 1.0), rng.uniform(1.0, size - 1.0), rng.uniform(-kPi, kPi));
+  return {
+      t, Pose2(t.x + rng.uniform(-0.1, 0.1), t.y + rng.uniform(-0.1, 0.1), t.theta + rng.uniform(deg(-3.0), deg(3.0)))};
 }
 
 TEST(EapIndexed, RoomAtThesisPoseGivesThePlainMatchesWithFewerTests) {
@@ -87,8 +86,7 @@ TEST(EapIndexed, RandomMapsAndPosesGiveThePlainMatches) {
 
 TEST(EapIndexed, TenThousandSegmentMapGivesThePlainMatchesWithFlatWork) {
   Rng rng(10000);
-  const auto idx =
-      std::make_shared<const SegmentGridIndex>(test::random_map(10000, 300.0, rng));
+  const auto idx = std::make_shared<const SegmentGridIndex>(test::random_map(10000, 300.0, rng));
   const Poses p = random_poses(300.0, rng);
   // Simulated against the segments within reach of the 8 m beams only (same ranges, and
   // 100× cheaper to ray-cast than the whole map).
@@ -106,14 +104,12 @@ TEST(EapIndexed, TenThousandSegmentMapGivesThePlainMatchesWithFlatWork) {
     EXPECT_GE(plain.matches.size(), 2u);  // a random clutter of short segments: few long runs
     // Each point is tested against the few segments near it, not against 10 000.
     EXPECT_LT(fast.work, 5 * points);
-    std::cout << "[ 10 000 segments, " << near.segments.size() << " within 8.5 m ] "
-              << to_string(o.claim_order) << ": " << plain.matches.size()
-              << " matches; membership tests per point: plain "
-              << double(plain.work) / double(points) << ", indexed "
-              << double(fast.work) / double(points) << "\n";
+    std::cout << "[ 10 000 segments, " << near.segments.size() << " within 8.5 m ] " << to_string(o.claim_order) << ": "
+              << plain.matches.size() << " matches; membership tests per point: plain "
+              << double(plain.work) / double(points) << ", indexed " << double(fast.work) / double(points) << "\n";
   }
-  std::cout << "[ 10 000 segments ] grid " << idx->columns() << " × " << idx->rows()
-            << " cells of " << idx->cell_size() << " m, " << idx->entries() << " entries\n";
+  std::cout << "[ 10 000 segments ] grid " << idx->columns() << " × " << idx->rows() << " cells of " << idx->cell_size()
+            << " m, " << idx->entries() << " entries\n";
 }
 
 TEST(EapIndexed, RejectsAnotherMapANullIndexAndADifferentDLimit) {

@@ -53,8 +53,8 @@ TEST(EapMatcher, NoiseFreeRoomScanAtThesisPoseMatchesExactlyTheVisibleSegmentsWi
 // The segments the matcher can still find when the estimate is wrong: those with a run of ≥ 5
 // consecutive beams (noise-free, by ray casting) spanning > 0.2 m whose points, mapped through
 // the estimate, stay inside the segment's ω1.
-std::set<std::size_t> reachable_segments(const LineMap& world, const Pose2& truth,
-                                         const Pose2& estimate, double d_limit) {
+std::set<std::size_t> reachable_segments(const LineMap& world, const Pose2& truth, const Pose2& estimate,
+                                         double d_limit) {
   const Scan scan = test::simulated_scan(world, truth);
   const auto hit = test::hit_segments(world, truth);
   std::set<std::size_t> out;
@@ -119,8 +119,7 @@ TEST(EapMatcher, NoisyScanWithEstimateOffByTenCentimetresAndMinusThreeDegreesMat
       EXPECT_GE(own * 3, m.points.size() * 2) << "segment " << m.map_segment;
       if (own * 10 < m.points.size() * 9) continue;
       // The fitted lines are the map's seen through the estimate: turned by its −3° error.
-      const double dbeta =
-          test::signed_beta_error(m.fit.line, room.segments[m.map_segment].line());
+      const double dbeta = test::signed_beta_error(m.fit.line, room.segments[m.map_segment].line());
       EXPECT_NEAR(dbeta, deg(-3.0), deg(2.0)) << "seed " << seed << " segment " << m.map_segment;
     }
   }
@@ -145,9 +144,9 @@ TEST(EapMatcher, MatchedSegmentCountGrowsWithDLimitAsInTable6_2) {
     std::cout << "  " << to_mm(o.d_limit) << ": " << nearest.back() << " / "
               << EapMatcher(o).match(scan, room, estimate).matches.size() << "\n";
   }
-  EXPECT_EQ(nearest.front(), 3u);   // 50 mm
-  EXPECT_EQ(nearest[6], 7u);        // 200 mm
-  EXPECT_EQ(nearest.back(), 9u);    // 400 mm: every visible segment
+  EXPECT_EQ(nearest.front(), 3u);  // 50 mm
+  EXPECT_EQ(nearest[6], 7u);       // 200 mm
+  EXPECT_EQ(nearest.back(), 9u);   // 400 mm: every visible segment
 }
 
 TEST(EapMatcher, RunAcrossAShortSegmentIsRefusedByTheDirectionCheckOnly) {
@@ -188,12 +187,10 @@ TEST(EapMatcher, TrimmingDropsPointsOfAnotherSurfaceThatFellIntoTheBand) {
 TEST(EapMatcher, RunOfFourPointsIsRejectedAndFiveAccepted) {
   const LineMap map = wall_map();
   EapMatcher eap;
-  const MatchResult four = eap.match(
-      scan_through({on_wall(-0.3), on_wall(-0.1), on_wall(0.1), on_wall(0.3)}), map, {});
+  const MatchResult four = eap.match(scan_through({on_wall(-0.3), on_wall(-0.1), on_wall(0.1), on_wall(0.3)}), map, {});
   EXPECT_TRUE(four.matches.empty());  // 4 < C_limit = 5, though 0.6 m long
-  const MatchResult five = eap.match(
-      scan_through({on_wall(-0.3), on_wall(-0.1), on_wall(0.1), on_wall(0.3), on_wall(0.5)}),
-      map, {});
+  const MatchResult five =
+      eap.match(scan_through({on_wall(-0.3), on_wall(-0.1), on_wall(0.1), on_wall(0.3), on_wall(0.5)}), map, {});
   ASSERT_EQ(five.matches.size(), 1u);
   EXPECT_EQ(five.matches[0].points.size(), 5u);
   EXPECT_NEAR(five.matches[0].fit.line.rho, 2.0, 1e-12);
@@ -203,16 +200,15 @@ TEST(EapMatcher, RunSpanningLessThanMinExtentIsRejected) {
   const LineMap map = wall_map();
   EapMatcher eap;
   // Five points 0.04 m apart: 0.16 m first to last < 0.2 m.
-  std::vector<Eigen::Vector2d> pts{on_wall(0.0), on_wall(0.04), on_wall(0.08), on_wall(0.12),
-                                   on_wall(0.16)};
+  std::vector<Eigen::Vector2d> pts{on_wall(0.0), on_wall(0.04), on_wall(0.08), on_wall(0.12), on_wall(0.16)};
   EXPECT_TRUE(eap.match(scan_through(pts), map, {}).matches.empty());
   pts.push_back(on_wall(0.25));  // six points over 0.25 m
   EXPECT_EQ(eap.match(scan_through(pts), map, {}).matches.size(), 1u);
 }
 
 TEST(EapMatcher, InvalidBeamsBetweenPointsDoNotBreakARun) {
-  const Scan s = scan_through({on_wall(-0.4), on_wall(-0.2), invalid_beam(), invalid_beam(),
-                               on_wall(0.0), on_wall(0.2), on_wall(0.4)});
+  const Scan s = scan_through(
+      {on_wall(-0.4), on_wall(-0.2), invalid_beam(), invalid_beam(), on_wall(0.0), on_wall(0.2), on_wall(0.4)});
   ASSERT_EQ(valid_beams(s), 5u);
   const MatchResult r = EapMatcher().match(s, wall_map(), {});
   ASSERT_EQ(r.matches.size(), 1u);
@@ -223,8 +219,7 @@ TEST(EapMatcher, InvalidBeamsBetweenPointsDoNotBreakARun) {
 TEST(EapMatcher, AValidPointOffTheWallBreaksTheRun) {
   // 3 + 2 points around a return from something 1 m in front of the wall: two short runs.
   const MatchResult broken = EapMatcher().match(
-      scan_through({on_wall(-0.4), on_wall(-0.2), on_wall(0.0), off_wall(0.05), on_wall(0.2),
-                    on_wall(0.4)}),
+      scan_through({on_wall(-0.4), on_wall(-0.2), on_wall(0.0), off_wall(0.05), on_wall(0.2), on_wall(0.4)}),
       wall_map(), {});
   EXPECT_TRUE(broken.matches.empty());
   // 5 + 5: both runs accepted, reported as one match of the segment with one fit.
@@ -311,9 +306,8 @@ TEST(EapMatcher, WorkCountsMembershipTests) {
   o.claim_order = ClaimOrder::kMapOrder;
   const MatchResult thesis_loop = EapMatcher(o).match(scan, room, pose);
   EXPECT_LT(thesis_loop.work, plain.work);  // deleted points are not tested again
-  std::cout << "[ room, thesis pose ] valid points " << n << ", membership tests: all pairs "
-            << plain.work << ", thesis loop (map order, deleting) " << thesis_loop.work
-            << " (thesis: 1093)\n";
+  std::cout << "[ room, thesis pose ] valid points " << n << ", membership tests: all pairs " << plain.work
+            << ", thesis loop (map order, deleting) " << thesis_loop.work << " (thesis: 1093)\n";
 }
 
 TEST(EapMatcher, MapOrderBiasesTheRoomFitsAndLosesAFaceWhereNearestSegmentDoesNot) {
@@ -348,8 +342,7 @@ TEST(EapMatcher, RangeWeightingLetsFourDistantPointsReachCLimit) {
 }
 
 TEST(EapMatcher, EmptyMapOrScanGivesNoMatches) {
-  const MatchResult none = EapMatcher().match(test::simulated_scan(sim::room_world(), {2, 1, 0}),
-                                              LineMap{}, {2, 1, 0});
+  const MatchResult none = EapMatcher().match(test::simulated_scan(sim::room_world(), {2, 1, 0}), LineMap{}, {2, 1, 0});
   EXPECT_TRUE(none.matches.empty());
   EXPECT_EQ(none.work, 0u);
   EXPECT_TRUE(EapMatcher().match(Scan{}, wall_map(), {}).matches.empty());

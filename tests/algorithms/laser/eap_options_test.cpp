@@ -5,8 +5,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/errors.h"
 #include "algorithms/laser/eap_matcher.h"
+#include "core/errors.h"
 #include "tests/options_error_message.h"
 
 namespace locbench::laser {
@@ -47,7 +47,8 @@ TEST(EapOptions, TheReadmeTableIsTheOneTheFieldsGive) {
   std::ostringstream text;
   text << in.rdbuf();
   EXPECT_NE(text.str().find(eap_options_table()), std::string::npos)
-      << "algorithms/laser/README.md should hold this table:\n" << eap_options_table();
+      << "algorithms/laser/README.md should hold this table:\n"
+      << eap_options_table();
 }
 
 }  // namespace

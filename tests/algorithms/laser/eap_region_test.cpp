@@ -14,12 +14,8 @@ namespace {
 const Segment kWall{{0.0, 0.0}, {2.0, 0.0}};
 constexpr double kD = 0.2;
 
-bool in_thesis(const EapRegion& r, double x, double y) {
-  return r.contains({x, y}, RegionRule::kThesis);
-}
-bool in_stadium(const EapRegion& r, double x, double y) {
-  return r.contains({x, y}, RegionRule::kStadium);
-}
+bool in_thesis(const EapRegion& r, double x, double y) { return r.contains({x, y}, RegionRule::kThesis); }
+bool in_stadium(const EapRegion& r, double x, double y) { return r.contains({x, y}, RegionRule::kStadium); }
 
 TEST(EapRegion, PointsInTheBandBetweenTheEndsAreMembers) {
   const EapRegion r(kWall, kD);
@@ -28,7 +24,7 @@ TEST(EapRegion, PointsInTheBandBetweenTheEndsAreMembers) {
     EXPECT_TRUE(r.contains({1.0, 0.19}, rule));
     EXPECT_TRUE(r.contains({0.0, -0.19}, rule));
     EXPECT_TRUE(r.contains({2.0, 0.19}, rule));
-    EXPECT_FALSE(r.contains({1.0, 0.21}, rule));   // outside ω2 (5.5)
+    EXPECT_FALSE(r.contains({1.0, 0.21}, rule));  // outside ω2 (5.5)
     EXPECT_FALSE(r.contains({1.0, -0.25}, rule));
   }
 }
@@ -71,7 +67,7 @@ TEST(EapRegion, ShortSegmentShorterThanDLimitIsAStadiumToo) {
   EXPECT_TRUE(in_thesis(r, 0.25, 0.1));     // d2 = √(0.0225 + 0.01) = 0.180
   EXPECT_FALSE(in_thesis(r, -0.15, 0.15));  // d1 = 0.2121, d2 = 0.2915 > d3
   EXPECT_FALSE(in_stadium(r, -0.15, 0.15));
-  EXPECT_TRUE(in_thesis(r, 0.05, -0.2));    // on the band's edge, between the ends
+  EXPECT_TRUE(in_thesis(r, 0.05, -0.2));  // on the band's edge, between the ends
 }
 
 TEST(EapRegion, ThesisRuleEqualsStadiumOnRandomPointsNearRandomSegments) {
@@ -106,8 +102,8 @@ TEST(EapRegion, ThesisRuleEqualsStadiumOnRandomPointsNearRandomSegments) {
 
 TEST(EapRegion, DistanceToSegmentIsTheCoreDistance) {
   const EapRegion r(kWall, kD);
-  for (const Eigen::Vector2d& p : {Eigen::Vector2d(1, 0.1), Eigen::Vector2d(-1, 1),
-                                  Eigen::Vector2d(3, -1), Eigen::Vector2d(2, 0)}) {
+  for (const Eigen::Vector2d& p :
+       {Eigen::Vector2d(1, 0.1), Eigen::Vector2d(-1, 1), Eigen::Vector2d(3, -1), Eigen::Vector2d(2, 0)}) {
     EXPECT_NEAR(r.distance_to_segment(p), distance_to_segment(kWall, p), 1e-15);
   }
 }

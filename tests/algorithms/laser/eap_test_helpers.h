@@ -6,12 +6,12 @@
 #include <set>
 #include <vector>
 
+#include "algorithms/laser/segment_match.h"
 #include "core/angle.h"
 #include "core/line_map.h"
 #include "core/rng.h"
 #include "core/scan.h"
 #include "core/units.h"
-#include "algorithms/laser/segment_match.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
 
@@ -21,8 +21,8 @@ namespace locbench::laser::test {
 inline Pose2 thesis_pose() { return {2.0, 1.0, deg(46.0)}; }
 
 // An LMS 200-like scan (181 beams, −90°…90°, 8 m) of `world` from `truth`.
-inline Scan simulated_scan(const LineMap& world, const Pose2& truth, double noise = 0.0,
-                           std::uint64_t seed = 1, double dropout = 0.0) {
+inline Scan simulated_scan(const LineMap& world, const Pose2& truth, double noise = 0.0, std::uint64_t seed = 1,
+                           double dropout = 0.0) {
   sim::LaserConfig c;
   c.noise = noise;
   c.dropout = dropout;
@@ -52,8 +52,7 @@ inline Eigen::Vector2d invalid_beam() { return {std::nan(""), std::nan("")}; }
 // the thesis's acceptance rule applied to the ground truth instead of to ω1.
 inline std::set<std::size_t> visible_segments(const LineMap& world, const Pose2& truth) {
   sim::LaserConfig c;
-  const auto bearings = even_bearings(static_cast<std::size_t>(c.beams), c.first_bearing,
-                                      c.last_bearing);
+  const auto bearings = even_bearings(static_cast<std::size_t>(c.beams), c.first_bearing, c.last_bearing);
   struct Hit {
     std::size_t segment;
     Eigen::Vector2d point;
@@ -62,8 +61,7 @@ inline std::set<std::size_t> visible_segments(const LineMap& world, const Pose2&
   for (double b : bearings) {
     const double a = truth.theta + b;
     if (const auto h = world.ray_cast(truth.translation(), a, c.max_range)) {
-      hits.push_back({h->segment, truth.translation() + h->range * Eigen::Vector2d(std::cos(a),
-                                                                                  std::sin(a))});
+      hits.push_back({h->segment, truth.translation() + h->range * Eigen::Vector2d(std::cos(a), std::sin(a))});
     }
   }
   std::set<std::size_t> out;
@@ -84,8 +82,7 @@ inline std::set<std::size_t> visible_segments(const LineMap& world, const Pose2&
 inline std::vector<std::size_t> hit_segments(const LineMap& world, const Pose2& truth) {
   sim::LaserConfig c;
   std::vector<std::size_t> out;
-  for (double b : even_bearings(static_cast<std::size_t>(c.beams), c.first_bearing,
-                                c.last_bearing)) {
+  for (double b : even_bearings(static_cast<std::size_t>(c.beams), c.first_bearing, c.last_bearing)) {
     const auto h = world.ray_cast(truth.translation(), truth.theta + b, c.max_range);
     out.push_back(h ? h->segment : static_cast<std::size_t>(-1));
   }

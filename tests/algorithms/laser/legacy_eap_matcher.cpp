@@ -17,18 +17,15 @@ constexpr std::uint32_t kNoSegment = static_cast<std::uint32_t>(-1);
 struct Hit {
   std::uint32_t segment;
   std::uint32_t point;  // index into the scan's valid points
-  bool operator<(const Hit& o) const {
-    return segment != o.segment ? segment < o.segment : point < o.point;
-  }
+  bool operator<(const Hit& o) const { return segment != o.segment ? segment < o.segment : point < o.point; }
 };
 
 // One match() call: the scan's points, the regions, the options and the output.
 class MatchPass {
  public:
-  MatchPass(const EapOptions& o, std::vector<ScanPoint> points, std::span<const EapRegion> regions,
-            const LineMap& map, double sensor_heading)
-      : o_(o), points_(std::move(points)), regions_(regions), map_(map),
-        sensor_heading_(sensor_heading) {
+  MatchPass(const EapOptions& o, std::vector<ScanPoint> points, std::span<const EapRegion> regions, const LineMap& map,
+            double sensor_heading)
+      : o_(o), points_(std::move(points)), regions_(regions), map_(map), sensor_heading_(sensor_heading) {
     world_.reserve(points_.size());
     accepted_.reserve(points_.size());
   }
@@ -48,8 +45,7 @@ class MatchPass {
   // members are consecutive when every valid point between them is deleted (`deleted` may be
   // null: nothing deleted, so only adjacent points are consecutive). Accepted points are marked
   // in `deleted` when it is given.
-  void accept_runs(std::uint32_t segment, std::span<const std::uint32_t> members,
-                   std::vector<char>* deleted) {
+  void accept_runs(std::uint32_t segment, std::span<const std::uint32_t> members, std::vector<char>* deleted) {
     accepted_.clear();
     std::size_t begin = 0;
     while (begin < members.size()) {
@@ -71,9 +67,7 @@ class MatchPass {
   void accept_owned_runs(std::span<const std::uint32_t> owner) {
     struct Run {
       std::uint32_t segment, begin, end;
-      bool operator<(const Run& o) const {
-        return segment != o.segment ? segment < o.segment : begin < o.begin;
-      }
+      bool operator<(const Run& o) const { return segment != o.segment ? segment < o.segment : begin < o.begin; }
     };
     std::vector<Run> runs;
     std::uint32_t begin = 0;
@@ -206,14 +200,13 @@ bool same_segments(const LineMap& a, const LineMap& b) {
 
 }  // namespace
 
-MatchResult LegacyEapMatcher::match(const Scan& scan, const LineMap& map,
-                                    const Pose2& estimate) const {
+MatchResult LegacyEapMatcher::match(const Scan& scan, const LineMap& map, const Pose2& estimate) const {
   if (!(std::isfinite(estimate.x) && std::isfinite(estimate.y) && std::isfinite(estimate.theta))) {
     throw UsageError("EapMatcher: the pose estimate is not finite");
   }
   if (scan.bearings.size() != scan.ranges.size()) {
-    throw UsageError("EapMatcher: the scan has " + std::to_string(scan.ranges.size()) +
-                     " ranges but " + std::to_string(scan.bearings.size()) + " bearings");
+    throw UsageError("EapMatcher: the scan has " + std::to_string(scan.ranges.size()) + " ranges but " +
+                     std::to_string(scan.bearings.size()) + " bearings");
   }
   const std::size_t m = map.segments.size();
   // Regions and each point's candidate segments: all of them (plain) or its grid cell's.
@@ -240,8 +233,7 @@ MatchResult LegacyEapMatcher::match(const Scan& scan, const LineMap& map,
     std::iota(all_segments.begin(), all_segments.end(), std::uint32_t{0});
   }
 
-  MatchPass pass(options_, scan_points(scan, estimate), regions, map,
-                 estimate.theta + scan.sensor_pose.theta);
+  MatchPass pass(options_, scan_points(scan, estimate), regions, map, estimate.theta + scan.sensor_pose.theta);
   const std::size_t n = pass.size();
   const auto candidates = [&](std::size_t i) -> std::span<const std::uint32_t> {
     if (index_) return index_->candidates(pass.world(i));
@@ -309,9 +301,8 @@ MatchResult LegacyEapMatcher::match(const Scan& scan, const LineMap& map,
     }
   }
   std::sort(hits.begin(), hits.end());
-  for_each_group(hits, members, [&](std::uint32_t j, std::span<const std::uint32_t> pts) {
-    pass.accept_runs(j, pts, nullptr);
-  });
+  for_each_group(hits, members,
+                 [&](std::uint32_t j, std::span<const std::uint32_t> pts) { pass.accept_runs(j, pts, nullptr); });
   return pass.take_result();
 }
 

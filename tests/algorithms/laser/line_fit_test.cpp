@@ -6,8 +6,8 @@
 #include <numbers>
 #include <vector>
 
-#include "core/scan.h"
 #include "algorithms/laser/scan_points.h"
+#include "core/scan.h"
 
 namespace locbench::laser {
 namespace {

@@ -19,8 +19,8 @@ bool lists(const SegmentGridIndex& idx, const Eigen::Vector2d& p, std::uint32_t 
 
 TEST(SegmentBoxDistance, HandMadeCases) {
   const Eigen::Vector2d lo(0, 0), hi(1, 1);
-  EXPECT_EQ(segment_box_distance({-1, 0.5}, {2, 0.5}, lo, hi), 0.0);     // crosses
-  EXPECT_EQ(segment_box_distance({0.2, 0.2}, {0.3, 0.3}, lo, hi), 0.0);  // inside
+  EXPECT_EQ(segment_box_distance({-1, 0.5}, {2, 0.5}, lo, hi), 0.0);         // crosses
+  EXPECT_EQ(segment_box_distance({0.2, 0.2}, {0.3, 0.3}, lo, hi), 0.0);      // inside
   EXPECT_DOUBLE_EQ(segment_box_distance({-1, 1.5}, {2, 1.5}, lo, hi), 0.5);  // above
   // A diagonal passing the corner (1, 1) at distance √2/2 · 0.5.
   EXPECT_NEAR(segment_box_distance({1.5, 1.0}, {1.0, 1.5}, lo, hi), std::sqrt(0.125), 1e-15);
@@ -31,11 +31,11 @@ TEST(SegmentGridIndex, RoomCellsListTheWallsNearThemAndNothingFarAway) {
   const SegmentGridIndex idx(sim::room_world());
   // Automatic: √(8.4² m² / (16 · 14)) = 0.561 m over the room inflated by d_limit.
   EXPECT_NEAR(idx.cell_size(), 0.5613, 1e-3);
-  EXPECT_TRUE(lists(idx, {4.0, 0.1}, 0));           // near the bottom wall
-  EXPECT_FALSE(lists(idx, {4.0, 0.1}, 2));          // the top wall is 7.9 m away
-  EXPECT_TRUE(lists(idx, {4.0, 5.0}, 10));          // B's left face x = 4
-  EXPECT_TRUE(idx.candidates({3.0, 3.0}).empty());  // open floor
-  EXPECT_TRUE(idx.candidates({-1.0, 3.0}).empty()); // outside the grid
+  EXPECT_TRUE(lists(idx, {4.0, 0.1}, 0));            // near the bottom wall
+  EXPECT_FALSE(lists(idx, {4.0, 0.1}, 2));           // the top wall is 7.9 m away
+  EXPECT_TRUE(lists(idx, {4.0, 5.0}, 10));           // B's left face x = 4
+  EXPECT_TRUE(idx.candidates({3.0, 3.0}).empty());   // open floor
+  EXPECT_TRUE(idx.candidates({-1.0, 3.0}).empty());  // outside the grid
   EXPECT_TRUE(idx.candidates({std::nan(""), 3.0}).empty());
 }
 

@@ -54,8 +54,7 @@ TEST(EkfTracker, PredictionIsTheCoreOdometryStepAndCovariancePropagation) {
   const Pose2 expected = odometry_step(start, u, 0.33);
   EXPECT_NEAR(t.pose().x, expected.x, 1e-15);
   EXPECT_NEAR(t.pose().theta, expected.theta, 1e-15);
-  const Matrix3d p = propagate_covariance(Vector3d(1e-4, 2e-4, 1e-3).asDiagonal(), start, u,
-                                          0.33, o.wheel_noise);
+  const Matrix3d p = propagate_covariance(Vector3d(1e-4, 2e-4, 1e-3).asDiagonal(), start, u, 0.33, o.wheel_noise);
   EXPECT_TRUE(t.covariance().isApprox(p, 1e-12));
 }
 
@@ -116,8 +115,7 @@ TEST(EkfTracker, OptionalGateRejectsAnImplausibleCorrection) {
   EXPECT_EQ(u.kind, TrackerUpdateKind::kNone);
   EXPECT_EQ(t.pose().x, 0.0);
   // A plausible one passes.
-  EXPECT_EQ(t.update(full({0.01, 0.0, 0.0}, Vector3d(1e-4, 1e-4, 1e-4).asDiagonal())).kind,
-            TrackerUpdateKind::kFull);
+  EXPECT_EQ(t.update(full({0.01, 0.0, 0.0}, Vector3d(1e-4, 1e-4, 1e-4).asDiagonal())).kind, TrackerUpdateKind::kFull);
 }
 
 TEST(EkfTracker, RejectsInvalidConstruction) {
@@ -125,8 +123,7 @@ TEST(EkfTracker, RejectsInvalidConstruction) {
   EkfTrackerOptions o;
   o.gate_probability = 1.0;
   EXPECT_THROW(EkfTracker(o, 0.33, Pose2{}), UsageError);
-  EXPECT_THROW((nlohmann::json{{"wheel_noise_k_left", -1.0}}.get<EkfTrackerOptions>()),
-               UsageError);
+  EXPECT_THROW((nlohmann::json{{"wheel_noise_k_left", -1.0}}.get<EkfTrackerOptions>()), UsageError);
   const nlohmann::json j = EkfTrackerOptions{};
   EXPECT_EQ(j.get<EkfTrackerOptions>().wheel_noise.k_left, EkfTrackerOptions{}.wheel_noise.k_left);
 }
@@ -149,8 +146,7 @@ TEST(EkfTracker, CorrectsFromAScanThroughAMatcherAtThePredictedPose) {
   // its error, true pose (2.0, 1.0, 46°), one noisy scan of the room.
   const LineMap room = sim::room_world();
   const Pose2 truth{2.0, 1.0, deg(46.0)};
-  EkfTracker t(with_p0({0.1 * 0.1, 0.1 * 0.1, std::pow(deg(5.0), 2)}), 0.33,
-               Pose2{2.1, 1.1, deg(41.0)});
+  EkfTracker t(with_p0({0.1 * 0.1, 0.1 * 0.1, std::pow(deg(5.0), 2)}), 0.33, Pose2{2.1, 1.1, deg(41.0)});
   Rng rng(13);
   const auto scan = test::ray_cast_scan(room, truth, &rng);
   const TrackerUpdate u = t.correct(scan.scan, room, OracleMatcher(scan));
@@ -194,8 +190,7 @@ CorridorRun run_corridor(std::uint64_t seed) {
     const TrackerUpdate u = ekf.correct(matches, corridor, scan.scan.sensor_pose);
     if (u.kind == TrackerUpdateKind::kHeading) ++out.heading_updates;
     if (u.kind == TrackerUpdateKind::kFull) ++out.full_updates;
-    const Vector3d e{truth.x - ekf.mean()(0), truth.y - ekf.mean()(1),
-                     angle_diff(truth.theta, ekf.mean()(2))};
+    const Vector3d e{truth.x - ekf.mean()(0), truth.y - ekf.mean()(1), angle_diff(truth.theta, ekf.mean()(2))};
     const Eigen::LLT<Matrix3d> llt(ekf.covariance());
     if (llt.info() == Eigen::Success) out.nees.push_back(e.dot(llt.solve(e)));
   }
@@ -210,8 +205,8 @@ TEST(EkfTrackerCorridor, EndsCloserToTheTruthThanOdometryAndStaysConsistent) {
   std::size_t nees_n = 0, nees_high = 0;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     const CorridorRun r = run_corridor(seed);
-    EXPECT_GT(r.heading_updates, 50) << seed;  // x < 4 m: side walls only
-    EXPECT_GT(r.full_updates, 100) << seed;    // the end wall within 8 m
+    EXPECT_GT(r.heading_updates, 50) << seed;   // x < 4 m: side walls only
+    EXPECT_GT(r.full_updates, 100) << seed;     // the end wall within 8 m
     EXPECT_GT(r.odometry_error, 0.05) << seed;  // 0.08–0.58 m over seeds 1–5
     EXPECT_LT(r.ekf_error, 0.2 * r.odometry_error) << seed;
     EXPECT_LT(r.ekf_error, mm(20.0)) << seed;

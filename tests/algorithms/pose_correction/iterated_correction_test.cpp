@@ -6,12 +6,12 @@
 
 #include <cmath>
 
+#include "algorithms/laser/eap_matcher.h"
+#include "algorithms/pose_correction/pose_correction.h"
 #include "core/angle.h"
 #include "core/errors.h"
 #include "core/rng.h"
 #include "core/units.h"
-#include "algorithms/laser/eap_matcher.h"
-#include "algorithms/pose_correction/pose_correction.h"
 #include "datasets/sim/worlds.h"
 #include "tests/algorithms/pose_correction/ray_cast_matches.h"
 

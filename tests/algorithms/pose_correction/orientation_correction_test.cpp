@@ -17,8 +17,8 @@ namespace {
 using Eigen::Vector2d;
 
 // World points of the segment a→b as seen from `truth` but re-projected under `estimate`.
-std::vector<Vector2d> seen_under(const Pose2& truth, const Pose2& estimate, const Vector2d& a,
-                                 const Vector2d& b, int n) {
+std::vector<Vector2d> seen_under(const Pose2& truth, const Pose2& estimate, const Vector2d& a, const Vector2d& b,
+                                 int n) {
   std::vector<Vector2d> out;
   for (const auto& r : test::robot_points_on(truth, a, b, n)) out.push_back(estimate * r);
   return out;
@@ -95,8 +95,7 @@ TEST(ThesisWeight, MatchesTheClosedFormAndTurnsNegativeForObliqueViews) {
   for (int k = 0; k < 200; ++k) {
     const double d = rng.uniform(0.1, 5.0), a = rng.uniform(-5.0, 5.0), b = rng.uniform(-5.0, 5.0);
     if (std::abs(b - a) < 1e-3) continue;
-    const double closed = std::abs(b - a) / d * (d * d - a * b) /
-                          (std::hypot(d, a) * std::hypot(d, b));
+    const double closed = std::abs(b - a) / d * (d * d - a * b) / (std::hypot(d, a) * std::hypot(d, b));
     EXPECT_NEAR(thesis_weight({0, 0}, {a, d}, {b, d}), closed, 1e-9 * (1 + std::abs(closed)));
   }
   // Segment entirely to one side of h with ab > d²: a = 1, b = 3, d = 1 → w = 2·(1 − 3)/(√2√10).
@@ -146,8 +145,7 @@ TEST(CorrectOrientation, WeightedCombinationIsTheNormalisedWeightedMean) {
   const Pose2 est = Pose2::identity();
   const auto a = test::robot_points_on(Pose2{0, 0, deg(-2.0)}, {-1, 1}, {1, 1}, 11);
   const auto b = test::robot_points_on(Pose2{0, 0, deg(-4.0)}, {2, -1}, {2, 1}, 11);
-  const std::vector<laser::SegmentMatch> matches{test::hand_match(0, a, est),
-                                                 test::hand_match(1, b, est)};
+  const std::vector<laser::SegmentMatch> matches{test::hand_match(0, a, est), test::hand_match(1, b, est)};
   const OrientationCorrection c = correct_orientation(matches, map, est, Pose2::identity());
   ASSERT_TRUE(c.fixed);
   ASSERT_EQ(c.segments.size(), 2u);
@@ -159,13 +157,11 @@ TEST(CorrectOrientation, WeightedCombinationIsTheNormalisedWeightedMean) {
   EXPECT_TRUE(c.segments[1].near_vertical);
   EXPECT_NEAR(c.delta, deg(-8.0 / 3.0), 1e-9);  // (2·(−2°) + 1·(−4°)) / 3
   // var = Σ w_i² var_i.
-  EXPECT_NEAR(c.variance,
-              4.0 / 9.0 * c.segments[0].variance + 1.0 / 9.0 * c.segments[1].variance, 1e-15);
+  EXPECT_NEAR(c.variance, 4.0 / 9.0 * c.segments[0].variance + 1.0 / 9.0 * c.segments[1].variance, 1e-15);
 
   OrientationOptions equal;
   equal.weighting = OrientationWeighting::kEqual;  // eq. 6.12
-  EXPECT_NEAR(correct_orientation(matches, map, est, Pose2::identity(), equal).delta, deg(-3.0),
-              1e-9);
+  EXPECT_NEAR(correct_orientation(matches, map, est, Pose2::identity(), equal).delta, deg(-3.0), 1e-9);
   OrientationOptions inverse;
   inverse.weighting = OrientationWeighting::kInverseVariance;
   const OrientationCorrection iv = correct_orientation(matches, map, est, Pose2::identity(), inverse);
@@ -180,8 +176,7 @@ TEST(CorrectOrientation, AllObliqueSegmentsFallBackToEqualWeights) {
   const Pose2 est = Pose2::identity();
   const auto a = test::robot_points_on(Pose2{0, 0, deg(-1.0)}, {2, 1}, {4, 1}, 11);
   const auto b = test::robot_points_on(Pose2{0, 0, deg(-1.0)}, {2, -0.5}, {4, -0.5}, 11);
-  const std::vector<laser::SegmentMatch> matches{test::hand_match(0, a, est),
-                                                 test::hand_match(1, b, est)};
+  const std::vector<laser::SegmentMatch> matches{test::hand_match(0, a, est), test::hand_match(1, b, est)};
   const OrientationCorrection c = correct_orientation(matches, map, est, Pose2::identity());
   ASSERT_TRUE(c.fixed);
   EXPECT_TRUE(c.equal_weight_fallback);
@@ -197,8 +192,7 @@ TEST(CorrectOrientation, SkipsShortMatchesAndRejectsUnknownSegments) {
   const std::vector<laser::SegmentMatch> short_match{
       test::hand_match(0, {{-1, 1}, {1, 1}}, est)};  // 2 points < min_points 3
   EXPECT_FALSE(correct_orientation(short_match, map, est, Pose2::identity()).fixed);
-  const std::vector<laser::SegmentMatch> bad{
-      test::hand_match(4, {{-1, 1}, {0, 1}, {1, 1}}, est)};
+  const std::vector<laser::SegmentMatch> bad{test::hand_match(4, {{-1, 1}, {0, 1}, {1, 1}}, est)};
   EXPECT_THROW(correct_orientation(bad, map, est, Pose2::identity()), UsageError);
 }
 

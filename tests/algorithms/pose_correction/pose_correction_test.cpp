@@ -30,8 +30,7 @@ TEST(CorrectPose, NoiseFreeScanAtTheThesisPoseIsCorrectedExactly) {
   const LineMap room = sim::room_world();
   const auto matches = test::matches_by_true_hit(test::ray_cast_scan(room, kTruth), kEstimate);
   for (const auto m : {PositionMethod::kPointToLine, PositionMethod::kPointToPoint}) {
-    const PoseCorrection c = correct_pose(matches, room, kEstimate, Pose2::identity(),
-                                          with_method(m));
+    const PoseCorrection c = correct_pose(matches, room, kEstimate, Pose2::identity(), with_method(m));
     ASSERT_TRUE(c.heading_fixed);
     ASSERT_TRUE(c.position_fixed);
     EXPECT_NEAR(c.delta(2), deg(5.0), 1e-9);  // the correction to add: +5°
@@ -53,11 +52,9 @@ TEST(CorrectPose, AtTheThesisPoseWithFiveMillimetreNoiseHeadingErrorDropsBelowTe
   ASSERT_NEAR(e_p1, 0.14142, 1e-5);
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     Rng rng(seed);
-    const auto matches =
-        test::matches_by_true_hit(test::ray_cast_scan(room, kTruth, &rng), kEstimate);
+    const auto matches = test::matches_by_true_hit(test::ray_cast_scan(room, kTruth, &rng), kEstimate);
     for (const auto m : {PositionMethod::kPointToLine, PositionMethod::kPointToPoint}) {
-      const PoseCorrection c = correct_pose(matches, room, kEstimate, Pose2::identity(),
-                                            with_method(m));
+      const PoseCorrection c = correct_pose(matches, room, kEstimate, Pose2::identity(), with_method(m));
       ASSERT_TRUE(c.position_fixed);
       const double e_o2 = std::abs(angle_diff(c.corrected.theta, kTruth.theta));
       const double e_p2 = translation_distance(c.corrected, kTruth);
@@ -83,8 +80,7 @@ TEST(CorrectPose, ReportedCovarianceMatchesTheMonteCarloScatter) {
   Eigen::Vector3d reported = Eigen::Vector3d::Zero();
   for (int k = 0; k < runs; ++k) {
     Rng rng(Rng::derive_seed(42, static_cast<std::uint64_t>(k)));
-    const auto matches =
-        test::matches_by_true_hit(test::ray_cast_scan(room, kTruth, &rng), kEstimate);
+    const auto matches = test::matches_by_true_hit(test::ray_cast_scan(room, kTruth, &rng), kEstimate);
     const PoseCorrection c = correct_pose(matches, room, kEstimate, Pose2::identity(), o);
     const Eigen::Vector3d e{c.corrected.x - kTruth.x, c.corrected.y - kTruth.y,
                             angle_diff(c.corrected.theta, kTruth.theta)};
@@ -106,8 +102,7 @@ TEST(CorrectPose, CorridorWithTwoParallelWallsFixesHeadingOnly) {
   const Pose2 truth{3.0, 0.1, deg(1.0)};
   const Pose2 estimate{3.3, -0.1, deg(4.0)};
   Rng rng(5);
-  const auto matches =
-      test::matches_by_true_hit(test::ray_cast_scan(corridor, truth, &rng), estimate);
+  const auto matches = test::matches_by_true_hit(test::ray_cast_scan(corridor, truth, &rng), estimate);
   ASSERT_EQ(matches.size(), 2u);
   const PoseCorrection c = correct_pose(matches, corridor, estimate);
   EXPECT_TRUE(c.heading_fixed);
@@ -136,8 +131,7 @@ TEST(CorrectPose, SensorMountedOffCentreIsHandledThroughRobotFramePoints) {
   // (rotation is about the robot centre, eq. 6.21; beams leave from the sensor).
   const LineMap room = sim::room_world();
   const Pose2 mount{0.25, 0.05, deg(3.0)};
-  const auto matches = test::matches_by_true_hit(
-      test::ray_cast_scan(room, kTruth, nullptr, 0.0, mount), kEstimate);
+  const auto matches = test::matches_by_true_hit(test::ray_cast_scan(room, kTruth, nullptr, 0.0, mount), kEstimate);
   const PoseCorrection c = correct_pose(matches, room, kEstimate, mount);
   ASSERT_TRUE(c.position_fixed);
   EXPECT_NEAR(c.corrected.x, kTruth.x, 1e-9);

@@ -54,15 +54,12 @@ TEST_P(BothSolvers, RecoverAKnownOffsetFromNoiseFreePoints) {
     EXPECT_NEAR(c.delta.y(), -offset.y(), 1e-9);
     EXPECT_NEAR(c.residual_sigma, 0.0, 1e-7);  // √(rounding)
     // Noise-free: the covariance is the floor σ² A⁻¹.
-    const PositionNormalEquations eq =
-        position_normal_equations(matches, room, estimate, Pose2::identity(), o);
-    EXPECT_TRUE(c.covariance.isApprox(o.min_point_sigma * o.min_point_sigma *
-                                      eq.matrix().inverse(), 1e-9));
+    const PositionNormalEquations eq = position_normal_equations(matches, room, estimate, Pose2::identity(), o);
+    EXPECT_TRUE(c.covariance.isApprox(o.min_point_sigma * o.min_point_sigma * eq.matrix().inverse(), 1e-9));
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Rooms, BothSolvers,
-                         ::testing::Values(Case{"axis_aligned", 0.0}, Case{"oblique", deg(30.0)}),
+INSTANTIATE_TEST_SUITE_P(Rooms, BothSolvers, ::testing::Values(Case{"axis_aligned", 0.0}, Case{"oblique", deg(30.0)}),
                          [](const auto& param_info) { return std::string(param_info.param.name); });
 
 TEST(ThesisClosedForm, DeltaXIsRightButDeltaYDividesByK4WhichVanishesInAnAxisAlignedRoom) {
@@ -75,8 +72,7 @@ TEST(ThesisClosedForm, DeltaXIsRightButDeltaYDividesByK4WhichVanishesInAnAxisAli
     const auto matches = test::matches_by_true_hit(test::ray_cast_scan(room, truth), estimate);
     PositionOptions o;
     o.method = PositionMethod::kPointToLine;
-    const PositionNormalEquations k =
-        position_normal_equations(matches, room, estimate, Pose2::identity(), o);
+    const PositionNormalEquations k = position_normal_equations(matches, room, estimate, Pose2::identity(), o);
     const Vector2d direct = k.matrix().fullPivLu().solve(k.rhs());
     const double dx = (k.k1 * k.k5 - k.k2 * k.k4) / (k.k4 * k.k4 - k.k3 * k.k5);
     const double dy = (-k.k1 - k.k3 * dx) / k.k4;
@@ -91,8 +87,7 @@ TEST(ThesisClosedForm, DeltaXIsRightButDeltaYDividesByK4WhichVanishesInAnAxisAli
       EXPECT_NEAR(dy, 0.05, 1e-9);  // fine when k4 ≠ 0
     }
     // Ours (Cramer) in both rooms.
-    EXPECT_NEAR(correct_position(matches, room, estimate, Pose2::identity(), o).delta.y(), 0.05,
-                1e-9);
+    EXPECT_NEAR(correct_position(matches, room, estimate, Pose2::identity(), o).delta.y(), 0.05, 1e-9);
   }
 }
 
@@ -140,8 +135,7 @@ TEST(Degenerate, TwoParallelCorridorWallsDoNotDeterminePosition) {
   EXPECT_NEAR(c.angle_spread, 0.0, 1e-12);
   EXPECT_EQ(c.delta, Vector2d::Zero());
   // The normal matrix is rank 1: k3 ≈ 0 (both normals along y).
-  const PositionNormalEquations eq =
-      position_normal_equations(matches, corridor, estimate, Pose2::identity(), {});
+  const PositionNormalEquations eq = position_normal_equations(matches, corridor, estimate, Pose2::identity(), {});
   EXPECT_LT(std::abs(eq.k3 * eq.k5 - eq.k4 * eq.k4), 1e-12 * eq.k5 * eq.k5);
 }
 
@@ -149,14 +143,11 @@ TEST(Degenerate, AngleSpreadThresholdDecides) {
   // A second wall at 8° or 12° to the first: below / above the 10° default.
   for (const double tilt : {8.0, 12.0}) {
     LineMap map;
-    map.segments = {{{-5, 2}, {5, 2}},
-                    {{-5, -2}, {5, -2 + 10 * std::tan(deg(tilt))}}};
+    map.segments = {{{-5, 2}, {5, 2}}, {{-5, -2}, {5, -2 + 10 * std::tan(deg(tilt))}}};
     const Pose2 truth = Pose2::identity();
-    const auto matches =
-        test::matches_by_true_hit(test::ray_cast_scan(map, truth), Pose2{0.05, -0.05, 0.0});
+    const auto matches = test::matches_by_true_hit(test::ray_cast_scan(map, truth), Pose2{0.05, -0.05, 0.0});
     ASSERT_EQ(matches.size(), 2u);
-    const PositionCorrection c =
-        correct_position(matches, map, Pose2{0.05, -0.05, 0.0}, Pose2::identity());
+    const PositionCorrection c = correct_position(matches, map, Pose2{0.05, -0.05, 0.0}, Pose2::identity());
     EXPECT_NEAR(c.angle_spread, deg(tilt), 1e-9);
     EXPECT_EQ(c.fixed, tilt > 10.0) << tilt;
     if (c.fixed) {

@@ -8,14 +8,14 @@
 #include <optional>
 #include <vector>
 
+#include "algorithms/laser/line_fit.h"
+#include "algorithms/laser/scan_points.h"
+#include "algorithms/laser/segment_match.h"
 #include "core/line_map.h"
 #include "core/pose2.h"
 #include "core/rng.h"
 #include "core/scan.h"
 #include "core/units.h"
-#include "algorithms/laser/line_fit.h"
-#include "algorithms/laser/scan_points.h"
-#include "algorithms/laser/segment_match.h"
 
 namespace locbench::test {
 
@@ -25,9 +25,9 @@ struct RayCastScan {
 };
 
 // LMS 200-like scan (§5.4): 181 beams over −90°…90°, 8 m; Gaussian range noise σ when rng given.
-inline RayCastScan ray_cast_scan(const LineMap& map, const Pose2& truth, Rng* rng = nullptr,
-                                 double sigma = mm(5.0), const Pose2& mount = Pose2::identity(),
-                                 std::size_t beams = 181, double max_range = 8.0) {
+inline RayCastScan ray_cast_scan(const LineMap& map, const Pose2& truth, Rng* rng = nullptr, double sigma = mm(5.0),
+                                 const Pose2& mount = Pose2::identity(), std::size_t beams = 181,
+                                 double max_range = 8.0) {
   RayCastScan out;
   out.scan.bearings = even_bearings(beams, -deg(90.0), deg(90.0));
   out.scan.sensor_pose = mount;
@@ -49,8 +49,7 @@ inline RayCastScan ray_cast_scan(const LineMap& map, const Pose2& truth, Rng* rn
 }
 
 // One SegmentMatch per segment hit by at least `min_points` beams, in order of first beam.
-inline std::vector<laser::SegmentMatch> matches_by_true_hit(const RayCastScan& s,
-                                                            const Pose2& estimate,
+inline std::vector<laser::SegmentMatch> matches_by_true_hit(const RayCastScan& s, const Pose2& estimate,
                                                             std::size_t min_points = 5) {
   const auto points = laser::scan_points(s.scan, estimate);
   std::vector<laser::SegmentMatch> out;
@@ -77,8 +76,7 @@ inline std::vector<laser::SegmentMatch> matches_by_true_hit(const RayCastScan& s
 }
 
 // A match made of hand-placed robot-frame points (beam bearing from the robot centre).
-inline laser::SegmentMatch hand_match(std::size_t map_segment,
-                                      const std::vector<Eigen::Vector2d>& robot_points,
+inline laser::SegmentMatch hand_match(std::size_t map_segment, const std::vector<Eigen::Vector2d>& robot_points,
                                       const Pose2& estimate) {
   laser::SegmentMatch m;
   m.map_segment = map_segment;

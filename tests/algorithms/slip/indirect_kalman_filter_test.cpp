@@ -6,9 +6,9 @@
 #include <numbers>
 #include <vector>
 
+#include "algorithms/slip/indirect_kalman_filter.h"
 #include "core/diff_drive_odometry.h"
 #include "core/errors.h"
-#include "algorithms/slip/indirect_kalman_filter.h"
 
 namespace locbench {
 namespace {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "core/errors.h"
 #include "algorithms/slip/slip_detector.h"
+#include "core/errors.h"
 
 namespace locbench {
 namespace {
@@ -56,7 +56,7 @@ TEST(SlipDetector, CorrectionsOnHandBuiltCases) {
   const BodyIncrement left = corrected_increment(u, 0.1, kB, SlipWheel::kLeft);
   EXPECT_NEAR(left.rotation, 0.1, 1e-15);                                 // (3.15)
   EXPECT_NEAR(left.distance, (2 * 0.1 - kB * std::tan(0.1)) / 2, 1e-15);  // (3.14)
-  EXPECT_NEAR(left.distance, 0.0899666, 1e-7);  // true ΔD = 0.09; tan vs angle: 0.03 mm
+  EXPECT_NEAR(left.distance, 0.0899666, 1e-7);                            // true ΔD = 0.09; tan vs angle: 0.03 mm
   // Right wheel really moved 0.07 m: Δθ = −0.15 rad.
   const BodyIncrement right = corrected_increment(u, -0.15, kB, SlipWheel::kRight);
   EXPECT_NEAR(right.rotation, -0.15, 1e-15);                                 // (3.17)

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "core/statistics.h"
 #include "algorithms/slip/indirect_kalman_filter.h"
 #include "benchmarks/experiments/harness/slip_sim.h"
+#include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 
@@ -30,8 +30,8 @@ TEST(SlipSim, DetectsLargeSlipsOnTheRightWheel) {
   for (std::uint64_t k = 0; k < 5; ++k) {
     const auto r = sim::simulate(s, 500 + k);
     const ss::RunData d = ss::run_data(r, *r.log.nominal_model(), {}, nullptr);
-    const SlipEkfRun run = run_slip_ekf(d.samples, d.initial_compass, cal.compass, {}, {},
-                                        d.wheelbase, d.truth.front());
+    const SlipEkfRun run =
+        run_slip_ekf(d.samples, d.initial_compass, cal.compass, {}, {}, d.wheelbase, d.truth.front());
     const ss::DetectionScore sc = ss::score_detections(run, r, 0.0);
     events += sc.true_events;
     tp += sc.true_positives;
@@ -81,13 +81,13 @@ TEST(SlipSim, GyroFallbackHandlesADisturbedZone) {
     Rng g(k);
     const ss::RunData d = ss::run_data(r, *r.log.nominal_model(), gyro, &g);
     SlipEkfOptions o;
-    const SlipEkfRun a = run_slip_ekf(d.samples, d.initial_compass, cal.compass, cal.gyro, o,
-                                      d.wheelbase, d.truth.front());
+    const SlipEkfRun a =
+        run_slip_ekf(d.samples, d.initial_compass, cal.compass, cal.gyro, o, d.wheelbase, d.truth.front());
     EXPECT_GE(a.disturbed_samples, 1u);  // rule 3 sees the bias switch on and off
     naive.push_back(ss::final_position_error(a, d));
     o.latch_disturbance = o.gyro_fallback = true;
-    const SlipEkfRun b = run_slip_ekf(d.samples, d.initial_compass, cal.compass, cal.gyro, o,
-                                      d.wheelbase, d.truth.front());
+    const SlipEkfRun b =
+        run_slip_ekf(d.samples, d.initial_compass, cal.compass, cal.gyro, o, d.wheelbase, d.truth.front());
     EXPECT_GE(b.disturbed_samples, 20u);  // ~2 m at 62.5 mm per sample = 32 samples
     gyro_err.push_back(ss::final_position_error(b, d));
   }
@@ -116,8 +116,8 @@ TEST(SlipSim, IndirectKfRecoversDiameterErrorsFromStraightRuns) {
     const IkfRunResult h = run_indirect_kf(ikf.samples, d.truth.front().theta, o, nominal.wheelbase);
     diff.push_back(h.s_right - h.s_left);
     db.push_back(h.delta_b);
-    const IkfRunResult p = run_indirect_kf(ikf.samples, d.truth.front().theta, frozen,
-                                           nominal.wheelbase, ikf.end_error, 1e-6);
+    const IkfRunResult p =
+        run_indirect_kf(ikf.samples, d.truth.front().theta, frozen, nominal.wheelbase, ikf.end_error, 1e-6);
     sr.push_back(p.s_right);
     sl.push_back(p.s_left);
   }
@@ -128,9 +128,8 @@ TEST(SlipSim, IndirectKfRecoversDiameterErrorsFromStraightRuns) {
   // the quantization swing of the odometry heading (whose regressor Σ(U_L − U_R)/B² is exactly
   // −θ_odometry/B), not the true 0 — it moves by several prior σ.
   EXPECT_GT(std::abs(mean(db)), 0.01);
-  const auto id = ikf_identifiability(std::vector<IkfSample>(160, IkfSample{{0.0625, 0.0625}, 0.0}),
-                                      0.0, nominal.wheelbase, o.heading_variance,
-                                      {true_sr, true_sl, 0.0}, 1e-6, 1e-10);
+  const auto id = ikf_identifiability(std::vector<IkfSample>(160, IkfSample{{0.0625, 0.0625}, 0.0}), 0.0,
+                                      nominal.wheelbase, o.heading_variance, {true_sr, true_sl, 0.0}, 1e-6, 1e-10);
   EXPECT_FALSE(id.parameters[2].identifiable);
   EXPECT_TRUE(id.parameters[0].identifiable);
 }

@@ -23,8 +23,7 @@ const Vector3 kSmallP0(1e-6, 1e-6, deg(0.3) * deg(0.3));
 class BaselinesMatchedCorridor : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    runs_ = new std::vector<sim::SimulationResult>(
-        test::simulate_runs(test::matched_corridor(), 50, 7000));
+    runs_ = new std::vector<sim::SimulationResult>(test::simulate_runs(test::matched_corridor(), 50, 7000));
   }
   static void TearDownTestSuite() {
     delete runs_;
@@ -80,9 +79,8 @@ TEST_F(BaselinesMatchedCorridor, VbAkfLearnsTheCompassVariance) {
 TEST_F(BaselinesMatchedCorridor, SageHusaIsOverConfident) {
   // The estimator's Q̂ collapses: its NEES lies far above the bounds (the thesis's point that
   // its accuracy cannot be trusted).
-  const auto mc = test::monte_carlo(*runs_, 150, [](double b, const Pose2& start) {
-    return SageHusaAekf(SageHusaOptions{}, b, start);
-  });
+  const auto mc = test::monte_carlo(
+      *runs_, 150, [](double b, const Pose2& start) { return SageHusaAekf(SageHusaOptions{}, b, start); });
   EXPECT_GT(mc.nees.fraction_above, 0.8);
 }
 
@@ -90,16 +88,12 @@ TEST(BaselinesCorridorPreset, PublishedSettingsFinalErrors) {
   // The thesis's experiment (Table 4.1): Trilobot corridor run, published settings.
   const auto runs = test::simulate_runs(sim::preset("corridor"), 10, 100);
   auto final_errors = [&](auto make) { return test::monte_carlo(runs, 100000, make).final_errors; };
-  const auto fixed =
-      final_errors([](double b, const Pose2& s) { return FixedQEkf(FixedQEkfOptions{}, b, s); });
-  const auto vb =
-      final_errors([](double b, const Pose2& s) { return VbAkf(VbAkfOptions{}, b, s); });
-  const auto aekf =
-      final_errors([](double b, const Pose2& s) { return SageHusaAekf(SageHusaOptions{}, b, s); });
+  const auto fixed = final_errors([](double b, const Pose2& s) { return FixedQEkf(FixedQEkfOptions{}, b, s); });
+  const auto vb = final_errors([](double b, const Pose2& s) { return VbAkf(VbAkfOptions{}, b, s); });
+  const auto aekf = final_errors([](double b, const Pose2& s) { return SageHusaAekf(SageHusaOptions{}, b, s); });
   SageHusaOptions nofix;
   nofix.positive_definiteness_fix = false;
-  const auto unfixed =
-      final_errors([&](double b, const Pose2& s) { return SageHusaAekf(nofix, b, s); });
+  const auto unfixed = final_errors([&](double b, const Pose2& s) { return SageHusaAekf(nofix, b, s); });
   for (std::size_t i = 0; i < runs.size(); ++i) {
     EXPECT_TRUE(std::isfinite(fixed[i]) && fixed[i] < 0.15) << i;
     EXPECT_TRUE(std::isfinite(vb[i]) && vb[i] < 0.15) << i;

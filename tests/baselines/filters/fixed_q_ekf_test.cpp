@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/errors.h"
 #include "algorithms/filters/compass_ekf.h"
+#include "core/errors.h"
 #include "tests/algorithms/filters/corridor_harness.h"
 
 namespace locbench {
@@ -50,8 +50,8 @@ TEST(FixedQEkf, AgreesWithTheGenericCompassEkfGivenTheSameQ) {
   const FixedQEkfOptions o;
   FixedQEkf a(o, m.wheelbase, res.wheel_samples[0].pose);
   const Matrix3 q = o.process_noise.asDiagonal();
-  CompassEkf b([&](const Vector3&, const WheelDisplacement&, double) { return q; },
-               o.compass_variance, Matrix3::Zero(), m.wheelbase, res.wheel_samples[0].pose);
+  CompassEkf b([&](const Vector3&, const WheelDisplacement&, double) { return q; }, o.compass_variance, Matrix3::Zero(),
+               m.wheelbase, res.wheel_samples[0].pose);
   for (const auto& s : steps) {
     const CompassFilterStep x = a.step(s.u, s.compass), y = b.step(s.u, s.compass);
     ASSERT_TRUE(x.mean.isApprox(y.mean, 1e-14));

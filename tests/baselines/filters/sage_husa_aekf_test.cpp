@@ -54,11 +54,9 @@ TEST(SageHusaAekf, HandComputedFirstAndSecondSteps) {
     EXPECT_NEAR(s1.filter.innovation, z1, 1e-16);
     EXPECT_NEAR(s1.filter.innovation_variance, 2.0 * kC, 1e-18);
     EXPECT_TRUE(s1.filter.mean.isApprox(Vector3(0.0625, 0.0, z1 / 2.0), 1e-15));
-    EXPECT_TRUE(s1.filter.covariance.isApprox(
-        Vector3(kA, kA, kC / 2.0).asDiagonal().toDenseMatrix(), 1e-14));
+    EXPECT_TRUE(s1.filter.covariance.isApprox(Vector3(kA, kA, kC / 2.0).asDiagonal().toDenseMatrix(), 1e-14));
     EXPECT_TRUE(s1.process_mean.isApprox(Vector3(0.0, 0.0, z1 / 2.0), 1e-15));
-    EXPECT_TRUE(s1.process_cov.isApprox(
-        Vector3(kA, kA, z1 * z1 / 4.0 + kC / 2.0).asDiagonal().toDenseMatrix(), 1e-14));
+    EXPECT_TRUE(s1.process_cov.isApprox(Vector3(kA, kA, z1 * z1 / 4.0 + kC / 2.0).asDiagonal().toDenseMatrix(), 1e-14));
     EXPECT_NEAR(s1.measurement_mean, z1, 1e-16);
     EXPECT_NEAR(s1.measurement_variance, fix ? z1 * z1 : z1 * z1 - kC, 1e-18);
     EXPECT_EQ(s1.measurement_fix_applied, fix);
@@ -143,8 +141,7 @@ TEST(SageHusaAekf, OptionsJson) {
   EXPECT_FALSE(back.positive_definiteness_fix);
   EXPECT_EQ(nlohmann::json(back), j);
   EXPECT_THROW((nlohmann::json{{"forgetting", 1.0}}.get<SageHusaOptions>()), UsageError);
-  EXPECT_THROW((nlohmann::json{{"positive_definiteness_fix", 1}}.get<SageHusaOptions>()),
-               UsageError);
+  EXPECT_THROW((nlohmann::json{{"positive_definiteness_fix", 1}}.get<SageHusaOptions>()), UsageError);
   EXPECT_THROW((nlohmann::json{{"lambda", 0.9}}.get<SageHusaOptions>()), UsageError);
 }
 

@@ -8,12 +8,12 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/rng.h"
-#include "core/units.h"
 #include "baselines/global/likelihood_field.h"
 #include "baselines/global/monte_carlo_localization.h"
 #include "baselines/global/odometry_motion_model.h"
+#include "core/errors.h"
+#include "core/rng.h"
+#include "core/units.h"
 #include "datasets/sim/worlds.h"
 
 namespace locbench::global {
@@ -97,8 +97,7 @@ TEST(KldSampling, SampleCountIsTheChiSquareBoundOfFox2003) {
   EXPECT_NEAR(z, 2.326, 1e-3);
   EXPECT_EQ(kld_sample_count(1, eps, z), 0u);
   for (std::size_t k : {2u, 5u, 10u, 50u, 100u, 500u, 2000u}) {
-    const double chi = boost::math::quantile(
-        boost::math::chi_squared(static_cast<double>(k - 1)), 1.0 - delta);
+    const double chi = boost::math::quantile(boost::math::chi_squared(static_cast<double>(k - 1)), 1.0 - delta);
     const double exact = chi / (2.0 * eps);
     const double n = static_cast<double>(kld_sample_count(k, eps, z));
     EXPECT_NEAR(n, exact, std::max(2.0, 0.03 * exact)) << "k = " << k;

@@ -24,8 +24,8 @@ const SideModel kDoor = {{Feature::kClosedDoor, 0.6}, {Feature::kOpenDoor, 0.4}}
 // they do not enter the result: 1-2 and 2-3 hold no mass after the action, and 3, 3-4 have
 // p(open door | wall) = 0 on the right.)
 std::vector<TopologicalNode> dervish_map() {
-  return {{"1-2", kWall, kWall},   {"2", kHallway, kDoor}, {"2-3", kWall, kWall},
-          {"3", kWall, kWall},     {"3-4", kWall, kWall},  {"4", kHallway, kHallway}};
+  return {{"1-2", kWall, kWall}, {"2", kHallway, kDoor}, {"2-3", kWall, kWall},
+          {"3", kWall, kWall},   {"3-4", kWall, kWall},  {"4", kHallway, kHallway}};
 }
 
 // p(l | l', o_t) of the slides' step, rows l, columns l' (order 1-2, 2, 2-3, 3, 3-4, 4).

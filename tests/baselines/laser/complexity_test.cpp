@@ -19,15 +19,14 @@ struct Works {
 
 Works works_on_wall(int beams) {
   const LineMap map = test::segments_map({{2, -3, 2, 3}});
-  const std::vector<ScanPoint> p =
-      scan_points(test::lms_scan(map, Pose2(), mm(5.0), 9, beams), Pose2());
+  const std::vector<ScanPoint> p = scan_points(test::lms_scan(map, Pose2(), mm(5.0), 9, beams), Pose2());
   Works w;
   w.points = p.size();
   w.split_and_merge = split_and_merge(p, LineFrame::robot).work;
   w.agglomerative = agglomerative_lines(p, LineFrame::robot).work;
   w.rwht = rwht_lines(p, LineFrame::robot).extraction.work;
-  std::cout << w.points << " points: split_and_merge " << w.split_and_merge << ", agglomerative "
-            << w.agglomerative << ", rwht " << w.rwht << "\n";
+  std::cout << w.points << " points: split_and_merge " << w.split_and_merge << ", agglomerative " << w.agglomerative
+            << ", rwht " << w.rwht << "\n";
   return w;
 }
 
@@ -36,9 +35,7 @@ TEST(ExtractorWork, DoublingThePointsQuadruplesClusteringButNotSplitAndMerge) {
   const Works two = works_on_wall(361);  // 0.5°: 225 points
   ASSERT_EQ(one.points, 113u);
   ASSERT_EQ(two.points, 225u);
-  const auto ratio = [](std::size_t a, std::size_t b) {
-    return static_cast<double>(b) / static_cast<double>(a);
-  };
+  const auto ratio = [](std::size_t a, std::size_t b) { return static_cast<double>(b) / static_cast<double>(a); };
   EXPECT_GT(ratio(one.agglomerative, two.agglomerative), 3.0);
   EXPECT_LT(ratio(one.split_and_merge, two.split_and_merge), 2.5);
   EXPECT_LT(ratio(one.rwht, two.rwht), 2.1);

@@ -25,8 +25,7 @@ void PrintTo(const Extractor& e, std::ostream* os) { *os << e.name; }
 
 class Extractors : public testing::TestWithParam<Extractor> {
  protected:
-  ExtractionResult extract(const Scan& scan, const Pose2& pose = Pose2(),
-                           LineFrame frame = LineFrame::robot) const {
+  ExtractionResult extract(const Scan& scan, const Pose2& pose = Pose2(), LineFrame frame = LineFrame::robot) const {
     points_ = scan_points(scan, pose);
     return GetParam().run(points_, frame);
   }
@@ -105,18 +104,10 @@ TEST_P(Extractors, TooFewPointsGiveNoLines) {
 
 INSTANTIATE_TEST_SUITE_P(
     AllExtractors, Extractors,
-    testing::Values(Extractor{"split_and_merge",
-                              [](std::span<const ScanPoint> p, LineFrame f) {
-                                return split_and_merge(p, f);
-                              }},
-                    Extractor{"agglomerative",
-                              [](std::span<const ScanPoint> p, LineFrame f) {
-                                return agglomerative_lines(p, f);
-                              }},
-                    Extractor{"rwht",
-                              [](std::span<const ScanPoint> p, LineFrame f) {
-                                return rwht_lines(p, f).extraction;
-                              }}),
+    testing::Values(
+        Extractor{"split_and_merge", [](std::span<const ScanPoint> p, LineFrame f) { return split_and_merge(p, f); }},
+        Extractor{"agglomerative", [](std::span<const ScanPoint> p, LineFrame f) { return agglomerative_lines(p, f); }},
+        Extractor{"rwht", [](std::span<const ScanPoint> p, LineFrame f) { return rwht_lines(p, f).extraction; }}),
     name_of);
 
 }  // namespace

@@ -10,17 +10,17 @@
 #include <set>
 #include <vector>
 
+#include "algorithms/laser/scan_points.h"
 #include "core/angle.h"
 #include "core/line_map.h"
 #include "core/rng.h"
 #include "core/scan.h"
-#include "algorithms/laser/scan_points.h"
 #include "datasets/sim/laser_model.h"
 
 namespace locbench::laser::test {
 
-inline Scan lms_scan(const LineMap& world, const Pose2& pose, double sigma = 0.0,
-                     std::uint64_t seed = 1, int beams = 181) {
+inline Scan lms_scan(const LineMap& world, const Pose2& pose, double sigma = 0.0, std::uint64_t seed = 1,
+                     int beams = 181) {
   sim::LaserConfig c;
   c.beams = beams;
   c.noise = sigma;
@@ -36,13 +36,11 @@ inline LineMap segments_map(std::initializer_list<std::array<double, 4>> rows) {
 }
 
 // The segment each beam of `scan` truly hits from `pose` (or -1).
-inline std::vector<int> true_segment_of_beams(const LineMap& map, const Pose2& pose,
-                                              const Scan& scan) {
+inline std::vector<int> true_segment_of_beams(const LineMap& map, const Pose2& pose, const Scan& scan) {
   const Pose2 sensor = pose * scan.sensor_pose;
   std::vector<int> seg(scan.bearings.size(), -1);
   for (std::size_t i = 0; i < seg.size(); ++i) {
-    if (auto hit = map.ray_cast(sensor.translation(), sensor.theta + scan.bearings[i],
-                                scan.max_range)) {
+    if (auto hit = map.ray_cast(sensor.translation(), sensor.theta + scan.bearings[i], scan.max_range)) {
       seg[i] = static_cast<int>(hit->segment);
     }
   }
@@ -51,14 +49,12 @@ inline std::vector<int> true_segment_of_beams(const LineMap& map, const Pose2& p
 
 // Segments seen by at least `min_points` consecutive beams whose hits span at least
 // `min_length`: what an extract-then-match pipeline with that acceptance can find.
-inline std::set<std::size_t> visible_segments(const LineMap& map, const Pose2& pose,
-                                              const Scan& scan, std::size_t min_points = 5,
-                                              double min_length = 0.2) {
+inline std::set<std::size_t> visible_segments(const LineMap& map, const Pose2& pose, const Scan& scan,
+                                              std::size_t min_points = 5, double min_length = 0.2) {
   const std::vector<int> seg = true_segment_of_beams(map, pose, scan);
   const Pose2 sensor = pose * scan.sensor_pose;
   const auto hit_point = [&](std::size_t i) {
-    const auto hit = map.ray_cast(sensor.translation(), sensor.theta + scan.bearings[i],
-                                  scan.max_range);
+    const auto hit = map.ray_cast(sensor.translation(), sensor.theta + scan.bearings[i], scan.max_range);
     const double a = sensor.theta + scan.bearings[i];
     return Eigen::Vector2d(sensor.x + hit->range * std::cos(a), sensor.y + hit->range * std::sin(a));
   };
@@ -66,8 +62,7 @@ inline std::set<std::size_t> visible_segments(const LineMap& map, const Pose2& p
   for (std::size_t b = 0; b < seg.size();) {
     std::size_t e = b + 1;
     while (e < seg.size() && seg[e] == seg[b]) ++e;
-    if (seg[b] >= 0 && e - b >= min_points &&
-        (hit_point(e - 1) - hit_point(b)).norm() >= min_length) {
+    if (seg[b] >= 0 && e - b >= min_points && (hit_point(e - 1) - hit_point(b)).norm() >= min_length) {
       visible.insert(static_cast<std::size_t>(seg[b]));
     }
     b = e;

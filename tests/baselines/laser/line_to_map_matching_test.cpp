@@ -11,8 +11,7 @@ namespace locbench::laser {
 namespace {
 
 // An extracted line of `count` world points evenly from a to b, beams first_beam, first_beam+1…
-ExtractedLine line_between(Eigen::Vector2d a, Eigen::Vector2d b, std::size_t first_beam,
-                           std::size_t count = 10) {
+ExtractedLine line_between(Eigen::Vector2d a, Eigen::Vector2d b, std::size_t first_beam, std::size_t count = 10) {
   ExtractedLine l;
   std::vector<Eigen::Vector2d> pts;
   for (std::size_t i = 0; i < count; ++i) {
@@ -41,10 +40,9 @@ TEST(LineToMapMatching, LineOnASegmentMatchesItWithItsPointsAndFit) {
 
 TEST(LineToMapMatching, ParallelWallOneMetreAwayIsGatedOutByDeltaRho) {
   const LineMap map = test::segments_map({{0, 4, 4, 4}});
-  const std::vector<ExtractedLine> lines{line_between({1, 3}, {3, 3}, 0),
-                                         line_between({1, 3.8}, {3, 3.8}, 20)};
+  const std::vector<ExtractedLine> lines{line_between({1, 3}, {3, 3}, 0), line_between({1, 3.8}, {3, 3.8}, 20)};
   const LineToMapMatches m = match_lines_to_map(lines, map, {2, 1});
-  EXPECT_FALSE(m.segment_of[0].has_value());          // Δρ = 1 m > 0.3 m
+  EXPECT_FALSE(m.segment_of[0].has_value());                  // Δρ = 1 m > 0.3 m
   EXPECT_EQ(m.segment_of[1], std::optional<std::size_t>(0));  // Δρ = 0.2 m
 }
 
@@ -73,8 +71,7 @@ TEST(LineToMapMatching, CollinearLineBeyondTheSegmentEndIsGatedOutByOverlap) {
 
 TEST(LineToMapMatching, TwoLinesOnOneSegmentArePooledInBeamOrder) {
   const LineMap map = test::segments_map({{0, 3, 6, 3}});
-  const std::vector<ExtractedLine> lines{line_between({4, 3}, {5, 3}, 30, 5),
-                                         line_between({1, 3}, {2, 3}, 0, 5)};
+  const std::vector<ExtractedLine> lines{line_between({4, 3}, {5, 3}, 30, 5), line_between({1, 3}, {2, 3}, 0, 5)};
   const LineToMapMatches m = match_lines_to_map(lines, map, {3, 0});
   ASSERT_EQ(m.matches.size(), 1u);
   ASSERT_EQ(m.matches[0].points.size(), 10u);
@@ -90,8 +87,7 @@ TEST(LineToMapMatching, OfTwoPassingSegmentsTheCheaperOneWins) {
   const double t = std::tan(deg(5.0));
   const LineMap map = test::segments_map({{0, 3 - 2 * t, 4, 3 + 2 * t}, {0, 3, 4, 3}});
   const std::vector<ExtractedLine> lines{line_between({1, 3}, {3, 3}, 0)};
-  EXPECT_EQ(match_lines_to_map(lines, map, {2, 1}).segment_of[0],
-            std::optional<std::size_t>(1));
+  EXPECT_EQ(match_lines_to_map(lines, map, {2, 1}).segment_of[0], std::optional<std::size_t>(1));
 }
 
 TEST(LineToMapMatching, WallThroughTheWorldOriginMatchesWhicheverWayItsNormalPoints) {
@@ -100,10 +96,8 @@ TEST(LineToMapMatching, WallThroughTheWorldOriginMatchesWhicheverWayItsNormalPoi
   ExtractedLine l = line_between({3, 0.01}, {5, -0.01}, 0);
   l.fit.line = {1e-6, -kPi / 2};
   const std::vector<ExtractedLine> lines{l};
-  EXPECT_EQ(match_lines_to_map(lines, map, {2, 1}).segment_of[0],
-            std::optional<std::size_t>(0));
-  EXPECT_EQ(match_lines_to_map(lines, map, {0, 0}).segment_of[0],
-            std::optional<std::size_t>(0));
+  EXPECT_EQ(match_lines_to_map(lines, map, {2, 1}).segment_of[0], std::optional<std::size_t>(0));
+  EXPECT_EQ(match_lines_to_map(lines, map, {0, 0}).segment_of[0], std::optional<std::size_t>(0));
 }
 
 TEST(LineToMapMatching, DeltaRhoIsMeasuredFromThePivotNotTheWorldOrigin) {
@@ -112,22 +106,18 @@ TEST(LineToMapMatching, DeltaRhoIsMeasuredFromThePivotNotTheWorldOrigin) {
   // its ρ would move by 35·(cos 3° − 1) + 30·sin 3° ≈ 1.52 m, far outside the 0.3 m gate.
   const LineMap map = test::segments_map({{40, -5, 40, 35}});
   const Pose2 about_sensor = Pose2(35, 30, deg(3.0)) * Pose2(-35, -30, 0.0);
-  const std::vector<ExtractedLine> lines{line_between(
-      about_sensor * Eigen::Vector2d(40, 28), about_sensor * Eigen::Vector2d(40, 32), 0)};
-  EXPECT_EQ(match_lines_to_map(lines, map, {35, 30}).segment_of[0],
-            std::optional<std::size_t>(0));
+  const std::vector<ExtractedLine> lines{
+      line_between(about_sensor * Eigen::Vector2d(40, 28), about_sensor * Eigen::Vector2d(40, 32), 0)};
+  EXPECT_EQ(match_lines_to_map(lines, map, {35, 30}).segment_of[0], std::optional<std::size_t>(0));
   EXPECT_FALSE(match_lines_to_map(lines, map, {0, 0}).segment_of[0].has_value());
 }
 
 TEST(LineToMapMatching, InvalidOptionsThrowUsageError) {
   const LineMap map = test::segments_map({{0, 0, 1, 0}});
   for (auto mutate : std::vector<std::function<void(LineMatchOptions&)>>{
-           [](LineMatchOptions& o) { o.max_delta_rho = 0.0; },
-           [](LineMatchOptions& o) { o.max_delta_rho = -0.1; },
-           [](LineMatchOptions& o) { o.max_delta_beta = 0.0; },
-           [](LineMatchOptions& o) { o.min_overlap = 0.0; },
-           [](LineMatchOptions& o) { o.min_overlap = 1.5; },
-           [](LineMatchOptions& o) { o.end_tolerance = -0.01; }}) {
+           [](LineMatchOptions& o) { o.max_delta_rho = 0.0; }, [](LineMatchOptions& o) { o.max_delta_rho = -0.1; },
+           [](LineMatchOptions& o) { o.max_delta_beta = 0.0; }, [](LineMatchOptions& o) { o.min_overlap = 0.0; },
+           [](LineMatchOptions& o) { o.min_overlap = 1.5; }, [](LineMatchOptions& o) { o.end_tolerance = -0.01; }}) {
     LineMatchOptions o;
     mutate(o);
     EXPECT_THROW(match_lines_to_map({}, map, {0, 0}, o), UsageError);

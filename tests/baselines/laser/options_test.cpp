@@ -3,8 +3,8 @@
 
 #include <functional>
 
-#include "core/errors.h"
 #include "baselines/laser/options_json.h"
+#include "core/errors.h"
 #include "tests/options_error_message.h"
 
 namespace locbench::laser {
@@ -28,40 +28,28 @@ TEST(LaserBaselineOptions, DefaultsAreValid) {
 
 TEST(LaserBaselineOptions, SplitAndMergeRejectsNonPositiveAndNegativeThresholds) {
   expect_each_rejected<SplitAndMergeOptions>(
-      {[](auto& o) { o.split_distance = 0.0; },
-       [](auto& o) { o.split_distance = -0.01; },
-       [](auto& o) { o.breakpoints.lambda = 0.0; },
-       [](auto& o) { o.breakpoints.lambda = deg(90.0); },
-       [](auto& o) { o.breakpoints.range_sigma = -mm(1.0); },
-       [](auto& o) { o.acceptance.min_points = 1; },
+      {[](auto& o) { o.split_distance = 0.0; }, [](auto& o) { o.split_distance = -0.01; },
+       [](auto& o) { o.breakpoints.lambda = 0.0; }, [](auto& o) { o.breakpoints.lambda = deg(90.0); },
+       [](auto& o) { o.breakpoints.range_sigma = -mm(1.0); }, [](auto& o) { o.acceptance.min_points = 1; },
        [](auto& o) { o.acceptance.min_length = -0.1; }},
       [](const SplitAndMergeOptions& o) { split_and_merge({}, LineFrame::robot, o); });
 }
 
 TEST(LaserBaselineOptions, AgglomerativeRejectsBadWindowsConfidencesAndDistances) {
   expect_each_rejected<AgglomerativeOptions>(
-      {[](auto& o) { o.window = 2; },
-       [](auto& o) { o.window_confidence = 1.0; },
-       [](auto& o) { o.merge_confidence = 0.0; },
-       [](auto& o) { o.model_sigma_alpha = -deg(0.1); },
-       [](auto& o) { o.model_sigma_r = -mm(1.0); },
-       [](auto& o) { o.assign_distance = -0.01; },
-       [](auto& o) { o.max_gap_points = -1; },
-       [](auto& o) { o.breakpoints.range_sigma = -mm(5.0); }},
+      {[](auto& o) { o.window = 2; }, [](auto& o) { o.window_confidence = 1.0; },
+       [](auto& o) { o.merge_confidence = 0.0; }, [](auto& o) { o.model_sigma_alpha = -deg(0.1); },
+       [](auto& o) { o.model_sigma_r = -mm(1.0); }, [](auto& o) { o.assign_distance = -0.01; },
+       [](auto& o) { o.max_gap_points = -1; }, [](auto& o) { o.breakpoints.range_sigma = -mm(5.0); }},
       [](const AgglomerativeOptions& o) { agglomerative_lines({}, LineFrame::robot, o); });
 }
 
 TEST(LaserBaselineOptions, RwhtRejectsZeroBinSizesAndNegativeThresholds) {
   expect_each_rejected<RwhtOptions>(
-      {[](auto& o) { o.angle_bin = 0.0; },
-       [](auto& o) { o.range_bin = 0.0; },
-       [](auto& o) { o.angle_bin = -deg(1.0); },
-       [](auto& o) { o.range_bin = -0.05; },
-       [](auto& o) { o.min_peak_votes = -0.2; },
-       [](auto& o) { o.nms_radius = 0; },
-       [](auto& o) { o.inlier_distance = 0.0; },
-       [](auto& o) { o.max_gap_points = -1; },
-       [](auto& o) { o.acceptance.min_points = 0; }},
+      {[](auto& o) { o.angle_bin = 0.0; }, [](auto& o) { o.range_bin = 0.0; }, [](auto& o) { o.angle_bin = -deg(1.0); },
+       [](auto& o) { o.range_bin = -0.05; }, [](auto& o) { o.min_peak_votes = -0.2; },
+       [](auto& o) { o.nms_radius = 0; }, [](auto& o) { o.inlier_distance = 0.0; },
+       [](auto& o) { o.max_gap_points = -1; }, [](auto& o) { o.acceptance.min_points = 0; }},
       [](const RwhtOptions& o) { rwht_lines({}, LineFrame::robot, o); });
 }
 
@@ -114,11 +102,9 @@ TEST(LaserBaselineOptions, JsonRoundTripKeepsEveryField) {
 TEST(LaserBaselineOptions, JsonRejectsUnknownKeysWrongTypesAndBadValuesByName) {
   const auto message = testing::options_error_message<RwhtMatcherOptions>;
   EXPECT_NE(message({{"extraction", {{"angel_bin", 0.1}}}}).find("angel_bin"), std::string::npos);
-  EXPECT_NE(message({{"extraction", {{"range_bin", "5 cm"}}}}).find("range_bin"),
-            std::string::npos);
+  EXPECT_NE(message({{"extraction", {{"range_bin", "5 cm"}}}}).find("range_bin"), std::string::npos);
   EXPECT_NE(message({{"extraction", {{"range_bin", 0.0}}}}).find("range_bin"), std::string::npos);
-  EXPECT_NE(message({{"matching", {{"min_overlap", 2.0}}}}).find("min_overlap"),
-            std::string::npos);
+  EXPECT_NE(message({{"matching", {{"min_overlap", 2.0}}}}).find("min_overlap"), std::string::npos);
 }
 
 }  // namespace

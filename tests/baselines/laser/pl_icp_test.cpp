@@ -19,8 +19,8 @@ using test::segments_map;
 
 // A 8 m × 6 m room with a box, so every direction is observable.
 LineMap room() {
-  return segments_map({{0, 0, 8, 0}, {8, 0, 8, 6}, {8, 6, 0, 6}, {0, 6, 0, 0},
-                       {4, 2, 5, 2}, {5, 2, 5, 3}, {5, 3, 4, 3}, {4, 3, 4, 2}});
+  return segments_map(
+      {{0, 0, 8, 0}, {8, 0, 8, 6}, {8, 6, 0, 6}, {0, 6, 0, 0}, {4, 2, 5, 2}, {5, 2, 5, 3}, {5, 3, 4, 3}, {4, 3, 4, 2}});
 }
 
 // Two 30 m parallel walls 2 m apart: the position along them is not observable.
@@ -45,8 +45,7 @@ TEST(PlIcp, RecoversAKnownMotionFromAGuessOffBy10CmAnd3Degrees) {
   };
   // Point-to-point pairs points that are not the same surface point (1° beams): it is biased by
   // a fraction of the beam spacing, PL-ICP is not.
-  for (const Case c : {Case{IcpMetric::kPointToLine, 5, 0.005, 0.1},
-                       Case{IcpMetric::kPointToLine, 2, 0.005, 0.1},
+  for (const Case c : {Case{IcpMetric::kPointToLine, 5, 0.005, 0.1}, Case{IcpMetric::kPointToLine, 2, 0.005, 0.1},
                        Case{IcpMetric::kPointToPoint, 5, 0.02, 0.5}}) {
     PlIcpOptions o;
     o.metric = c.metric;
@@ -97,8 +96,7 @@ TEST(PlIcp, CovarianceMatchesTheSpreadOverNoisyScans) {
     const Pair p = scans(room(), a, b, 0.01, 100 + static_cast<std::uint64_t>(k));
     const PlIcpResult r = pl_icp(p.first, p.second, truth * Pose2(0.05, 0.03, deg(1)), {});
     ASSERT_TRUE(r.valid);
-    errors.emplace_back(r.motion.x - truth.x, r.motion.y - truth.y,
-                        angle_diff(r.motion.theta, truth.theta));
+    errors.emplace_back(r.motion.x - truth.x, r.motion.y - truth.y, angle_diff(r.motion.theta, truth.theta));
     reported += r.covariance / n;
   }
   for (int i = 0; i < 3; ++i) {

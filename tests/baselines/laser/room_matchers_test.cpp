@@ -68,8 +68,7 @@ TEST_P(RoomMatchers, NoisyScanWithAnEstimateOffByTenCentimetresAndThreeDegreesSt
   for (const SegmentMatch& m : r.matches) {
     std::size_t right = 0;
     for (const ScanPoint& p : m.points) right += truth[p.beam] == static_cast<int>(m.map_segment);
-    EXPECT_GE(static_cast<double>(right), 0.95 * static_cast<double>(m.points.size()))
-        << "segment " << m.map_segment;
+    EXPECT_GE(static_cast<double>(right), 0.95 * static_cast<double>(m.points.size())) << "segment " << m.map_segment;
   }
 }
 
@@ -83,8 +82,7 @@ TEST_P(RoomMatchers, MapFreeExtractionGivesRobotFrameLinesOfTheVisibleWalls) {
   for (const ExtractedLine& l : r.lines) {
     // the line of the wall its middle point is on, brought into the robot frame
     const auto seg = static_cast<std::size_t>(truth[l.points[l.points.size() / 2].beam]);
-    const LineParams expected =
-        test::transform_line(room_.segments[seg].line(), kThesisPose.inverse());
+    const LineParams expected = test::transform_line(room_.segments[seg].line(), kThesisPose.inverse());
     const test::LineError e = test::line_error(l.fit.line, expected);
     EXPECT_LT(e.rho, mm(1.0)) << "segment " << seg;
     EXPECT_LT(e.beta, deg(0.05)) << "segment " << seg;
@@ -95,13 +93,12 @@ TEST_P(RoomMatchers, MapFreeExtractionGivesRobotFrameLinesOfTheVisibleWalls) {
 
 INSTANTIATE_TEST_SUITE_P(
     AllMatchers, RoomMatchers,
-    testing::Values(
-        MatcherCase{"split_and_merge", std::make_shared<SplitAndMergeMatcher>(),
-                    [](const Scan& s) { return SplitAndMergeMatcher().extract_lines(s); }},
-        MatcherCase{"agglomerative", std::make_shared<AgglomerativeMatcher>(),
-                    [](const Scan& s) { return AgglomerativeMatcher().extract_lines(s); }},
-        MatcherCase{"rwht", std::make_shared<RwhtMatcher>(),
-                    [](const Scan& s) { return RwhtMatcher().extract_lines(s); }}),
+    testing::Values(MatcherCase{"split_and_merge", std::make_shared<SplitAndMergeMatcher>(),
+                                [](const Scan& s) { return SplitAndMergeMatcher().extract_lines(s); }},
+                    MatcherCase{"agglomerative", std::make_shared<AgglomerativeMatcher>(),
+                                [](const Scan& s) { return AgglomerativeMatcher().extract_lines(s); }},
+                    MatcherCase{"rwht", std::make_shared<RwhtMatcher>(),
+                                [](const Scan& s) { return RwhtMatcher().extract_lines(s); }}),
     name_of);
 
 }  // namespace

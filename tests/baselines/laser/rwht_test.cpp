@@ -17,10 +17,8 @@ TEST(Rwht, VotesMeasureAWallsLengthNotItsPointCount) {
   // at 6.025 m (both in the middle of a 5 cm range bin). Plain counting would tie them.
   const LineMap near = test::segments_map({{3.025, -1, 3.025, 1}});
   const LineMap far = test::segments_map({{6.025, -2, 6.025, 2}});
-  const RwhtExtraction a = rwht_lines(scan_points(test::lms_scan(near, Pose2()), Pose2()),
-                                      LineFrame::robot);
-  const RwhtExtraction b = rwht_lines(scan_points(test::lms_scan(far, Pose2()), Pose2()),
-                                      LineFrame::robot);
+  const RwhtExtraction a = rwht_lines(scan_points(test::lms_scan(near, Pose2()), Pose2()), LineFrame::robot);
+  const RwhtExtraction b = rwht_lines(scan_points(test::lms_scan(far, Pose2()), Pose2()), LineFrame::robot);
   ASSERT_EQ(a.extraction.lines.size(), 1u);
   ASSERT_EQ(b.extraction.lines.size(), 1u);
   EXPECT_EQ(a.extraction.lines[0].points.size(), 37u);
@@ -63,13 +61,11 @@ BinTrial run_bins(const Scan& scan, const LineMap& room, double angle_bin, doubl
     const ExtractedLine& l = r.extraction.lines[i];
     double worst = 0.0;
     for (const ScanPoint& p : l.points) {
-      worst = std::max(worst, std::abs(signed_distance_to_line(r.peaks[r.line_peak[i]].cell,
-                                                               p.robot)));
+      worst = std::max(worst, std::abs(signed_distance_to_line(r.peaks[r.line_peak[i]].cell, p.robot)));
     }
     t.peak_distance += worst;
     const auto seg = static_cast<std::size_t>(truth[l.points[l.points.size() / 2].beam]);
-    const LineParams truth_line =
-        test::transform_line(room.segments[seg].line(), kThesisPose.inverse());
+    const LineParams truth_line = test::transform_line(room.segments[seg].line(), kThesisPose.inverse());
     const test::LineError e = test::line_error(l.fit.line, truth_line);
     t.fit_rho += e.rho;
     t.fit_beta += e.beta;
@@ -85,9 +81,8 @@ BinTrial run_bins(const Scan& scan, const LineMap& room, double angle_bin, doubl
   t.peak_beta /= n;
   std::cout << "bins " << to_deg(angle_bin) << " deg x " << to_mm(range_bin) << " mm: " << t.lines
             << " lines, cell |drho| " << to_mm(t.peak_rho) << " mm |dbeta| " << to_deg(t.peak_beta)
-            << " deg, cell line to points " << to_mm(t.peak_distance) << " mm, LS refit |drho| "
-            << to_mm(t.fit_rho) << " mm |dbeta| " << to_deg(t.fit_beta) << " deg, " << t.cells
-            << " cells, work " << t.work << "\n";
+            << " deg, cell line to points " << to_mm(t.peak_distance) << " mm, LS refit |drho| " << to_mm(t.fit_rho)
+            << " mm |dbeta| " << to_deg(t.fit_beta) << " deg, " << t.cells << " cells, work " << t.work << "\n";
   return t;
 }
 

@@ -104,8 +104,7 @@ TEST(LineFeatureKalmanLocalizer, ConvergesOnTheRoomFromAWrongStart) {
   const LineMap room = sim::room_world();
   Pose2 truth{2.0, 1.0, deg(46.0)};
   const Pose2 start{2.1, 1.1, deg(42.0)};
-  LineFeatureKalmanLocalizer loc(
-      with_p0({0.15 * 0.15, 0.15 * 0.15, std::pow(deg(5.0), 2)}), 0.33, start);
+  LineFeatureKalmanLocalizer loc(with_p0({0.15 * 0.15, 0.15 * 0.15, std::pow(deg(5.0), 2)}), 0.33, start);
   Rng rng(21);
   double first_error = 0.0;
   for (int k = 0; k < 50; ++k) {
@@ -120,8 +119,7 @@ TEST(LineFeatureKalmanLocalizer, ConvergesOnTheRoomFromAWrongStart) {
   EXPECT_LT(translation_distance(loc.pose(), truth), mm(10.0));
   EXPECT_LT(std::abs(angle_diff(loc.pose().theta, truth.theta)), deg(0.2));
   // The claimed uncertainty covers the error (NEES below χ²₃(0.999) = 16.3).
-  const Vector3d e{truth.x - loc.mean()(0), truth.y - loc.mean()(1),
-                   angle_diff(truth.theta, loc.mean()(2))};
+  const Vector3d e{truth.x - loc.mean()(0), truth.y - loc.mean()(1), angle_diff(truth.theta, loc.mean()(2))};
   EXPECT_LT(e.dot(loc.covariance().ldlt().solve(e)), 16.3);
 }
 

@@ -78,10 +78,8 @@ void expect_jacobian_matches_finite_differences(const LineParams& line, const Po
   for (int c = 0; c < 3; ++c) {
     Eigen::Vector3d dp = Eigen::Vector3d::Zero();
     dp(c) = eps;
-    const LinePrediction hp = predict_line(line, Pose2{pose.x + dp(0), pose.y + dp(1),
-                                                       pose.theta + dp(2)});
-    const LinePrediction hm = predict_line(line, Pose2{pose.x - dp(0), pose.y - dp(1),
-                                                       pose.theta - dp(2)});
+    const LinePrediction hp = predict_line(line, Pose2{pose.x + dp(0), pose.y + dp(1), pose.theta + dp(2)});
+    const LinePrediction hm = predict_line(line, Pose2{pose.x - dp(0), pose.y - dp(1), pose.theta - dp(2)});
     ASSERT_EQ(hp.flipped, h.flipped);
     ASSERT_EQ(hm.flipped, h.flipped);
     const double da = angle_diff(hp.z(0), hm.z(0)) / (2 * eps);

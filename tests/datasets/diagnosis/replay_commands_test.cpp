@@ -21,7 +21,8 @@ TEST(ReplayCommands, VelocityOdometryGivesBackTheLoggedVelocities) {
   const double th = 0.05;
   log.odometry.push_back({0.1, Pose2(0.02 * std::cos(0.025), 0.02 * std::sin(0.025), th), -0.1, 0.0});
   log.odometry.push_back(
-      {0.3, Pose2(log.odometry[1].pose.x - 0.02 * std::cos(th), log.odometry[1].pose.y - 0.02 * std::sin(th), th), 0, 0});
+      {0.3, Pose2(log.odometry[1].pose.x - 0.02 * std::cos(th), log.odometry[1].pose.y - 0.02 * std::sin(th), th), 0,
+       0});
   const ReplaySource src = replay_commands(log, -1e9, 1e9);
   EXPECT_EQ(src.odometry, "ODOM");
   ASSERT_EQ(src.commands.size(), 3u);

@@ -49,7 +49,8 @@ TEST(TwinClosedLoop, WithNothingHiddenBothTwinsAreEquallyClose) {
   const Twin twin = build_twin(g.log, d);
   const auto cells = compare_twins(g.log, twin, {1.0}, 2, 3);
   for (const auto& c : cells) {
-    std::cout << c.window << " " << c.component << ": D nominal " << c.nominal.d << ", extended " << c.extended.d << "\n";
+    std::cout << c.window << " " << c.component << ": D nominal " << c.nominal.d << ", extended " << c.extended.d
+              << "\n";
     EXPECT_DOUBLE_EQ(c.extended.d, c.nominal.d) << c.component;
     EXPECT_GT(c.nominal.p_value, 0.01) << c.component << ": the twin should be indistinguishable from the log";
   }

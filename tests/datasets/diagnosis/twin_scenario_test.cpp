@@ -56,7 +56,7 @@ TEST(TwinScenario, KeptCausesBecomeTheirSimulatorSettings) {
   EXPECT_DOUBLE_EQ(0.5 * (s.slip.turn.magnitude_min + s.slip.turn.magnitude_max), 0.3);
   EXPECT_DOUBLE_EQ(s.motion_noise.dof, 4.0);
   EXPECT_DOUBLE_EQ(s.robot.actual.wheelbase, s.robot.nominal.wheelbase);  // wheelbase_scale was not kept
-  ASSERT_EQ(mapping.size(), 10u);  // every kept cause, none of the others
+  ASSERT_EQ(mapping.size(), 10u);                                         // every kept cause, none of the others
   std::vector<std::string> not_simulated;
   for (const auto& m : mapping) {
     if (!m.simulated) not_simulated.push_back(m.id);
@@ -111,7 +111,8 @@ TEST(TwinScenario, TheWrittenScenarioReplaysTheLogAndListsWhatItCannotSimulate) 
   EXPECT_EQ(j["odometry"]["latency"], -0.21);
   const auto notes = j["notes"].get<std::vector<std::string>>();
   const auto has = [&](const std::string& text) {
-    return std::any_of(notes.begin(), notes.end(), [&](const std::string& n) { return n.find(text) != std::string::npos; });
+    return std::any_of(notes.begin(), notes.end(),
+                       [&](const std::string& n) { return n.find(text) != std::string::npos; });
   };
   EXPECT_TRUE(has("mystery_cause: not simulated")) << j["notes"].dump(1);
   EXPECT_TRUE(has("compass_bias: not simulated")) << j["notes"].dump(1);

@@ -46,17 +46,15 @@ TEST(CensiTupleReader, ReadsGzipFiles) {
 TEST(CensiTupleReader, RejectsMalformedTuplesNamingFileLineAndKey) {
   const std::string ok = "{\"T\": 1, \"phi_l\": 1, \"phi_r\": 1, \"sm\": [0, 0, 0]}\n";
   auto parse = [](std::string text) { return [text] { parse_censi_tuples(text, "b.tuple"); }; };
-  EXPECT_TRUE(throws_input_error(parse(ok + "{\"T\": 1, \"phi_l\": 1, \"sm\": [0, 0, 0]}\n"),
-                                 "b.tuple", 2, {"phi_r", "missing"}));
-  EXPECT_TRUE(throws_input_error(parse(ok + ok + "{\"T\": NaN, \"phi_l\": 1}\n"), "b.tuple", 3,
-                                 {"expected JSON"}));
-  EXPECT_TRUE(throws_input_error(parse("{\"T\": 0, \"phi_l\": 1, \"phi_r\": 1, \"sm\": [0,0,0]}"),
-                                 "b.tuple", 1, {"\"T\"", "> 0"}));
-  EXPECT_TRUE(throws_input_error(parse("{\"T\": 1, \"phi_l\": 1, \"phi_r\": 1, \"sm\": [0, 0]}"),
-                                 "b.tuple", 1, {"\"sm\"", "3 numbers"}));
-  EXPECT_TRUE(
-      throws_input_error(parse("{\"T\": 1, \"phi_l\": \"1\", \"phi_r\": 1, \"sm\": [0, 0, 0]}"),
-                         "b.tuple", 1, {"\"phi_l\"", "a number", "a string"}));
+  EXPECT_TRUE(throws_input_error(parse(ok + "{\"T\": 1, \"phi_l\": 1, \"sm\": [0, 0, 0]}\n"), "b.tuple", 2,
+                                 {"phi_r", "missing"}));
+  EXPECT_TRUE(throws_input_error(parse(ok + ok + "{\"T\": NaN, \"phi_l\": 1}\n"), "b.tuple", 3, {"expected JSON"}));
+  EXPECT_TRUE(throws_input_error(parse("{\"T\": 0, \"phi_l\": 1, \"phi_r\": 1, \"sm\": [0,0,0]}"), "b.tuple", 1,
+                                 {"\"T\"", "> 0"}));
+  EXPECT_TRUE(throws_input_error(parse("{\"T\": 1, \"phi_l\": 1, \"phi_r\": 1, \"sm\": [0, 0]}"), "b.tuple", 1,
+                                 {"\"sm\"", "3 numbers"}));
+  EXPECT_TRUE(throws_input_error(parse("{\"T\": 1, \"phi_l\": \"1\", \"phi_r\": 1, \"sm\": [0, 0, 0]}"), "b.tuple", 1,
+                                 {"\"phi_l\"", "a number", "a string"}));
   EXPECT_TRUE(throws_input_error(parse("[1, 2, 3]\n"), "b.tuple", 1, {"JSON object"}));
   EXPECT_TRUE(throws_input_error(parse(ok + "{\"T\": 1e999}"), "b.tuple", 2, {"JSON"}));
   EXPECT_TRUE(throws_input_error(parse("  \n\n"), "b.tuple", 0, {}));
@@ -73,8 +71,8 @@ RC_GTEST_PROP(CensiTupleReader, ReadingWhatWasWrittenGivesTheSameTuples, ()) {
     t.phi_r = *testing::gen_finite();
     t.sm = *testing::gen_pose();
     in.push_back(t);
-    text += fmt::format("{{ \"T\": {}, \"phi_l\": {}, \"phi_r\": {}, \"sm\": [ {}, {}, {} ] }}",
-                        t.T, t.phi_l, t.phi_r, t.sm.x, t.sm.y, t.sm.theta);
+    text += fmt::format("{{ \"T\": {}, \"phi_l\": {}, \"phi_r\": {}, \"sm\": [ {}, {}, {} ] }}", t.T, t.phi_l, t.phi_r,
+                        t.sm.x, t.sm.y, t.sm.theta);
     text += *rc::gen::element(std::string("\n"), std::string(" "), std::string("\r\n"));
   }
   const auto out = parse_censi_tuples(text, "p.tuple");
@@ -120,14 +118,12 @@ TEST(CensiResultsReader, RejectsMissingKeysBadCovariancesAndBadJson) {
   std::string five = kResults;
   five.replace(five.find("[ 0, 0, 0, 0, 1, 0 ], "), 22, "");
   EXPECT_TRUE(throws_input_error(parse(five), "y.json", 1, {"6 rows"}));
-  EXPECT_TRUE(
-      throws_input_error(parse("\n\n{ \"axle\": 1,\n  oops }"), "y.json", 4, {"expected JSON"}));
+  EXPECT_TRUE(throws_input_error(parse("\n\n{ \"axle\": 1,\n  oops }"), "y.json", 4, {"expected JSON"}));
 }
 
 TEST(RelativeMotionReader, PairsTheRowsOfTheTwoFiles) {
-  const auto p =
-      parse_relative_motion_pairs(" 0 0 0\n 0.113 -8.3e-05 0\n", "odom.txt",
-                                  "# scan\n 0 0 0\n\n 0.113001 -0.000942 0.003906\n", "sm.txt");
+  const auto p = parse_relative_motion_pairs(" 0 0 0\n 0.113 -8.3e-05 0\n", "odom.txt",
+                                             "# scan\n 0 0 0\n\n 0.113001 -0.000942 0.003906\n", "sm.txt");
   ASSERT_EQ(p.size(), 2u);
   EXPECT_EQ(p[1].odometry.x, 0.113);
   EXPECT_EQ(p[1].odometry.y, -8.3e-05);
@@ -136,18 +132,16 @@ TEST(RelativeMotionReader, PairsTheRowsOfTheTwoFiles) {
 }
 
 TEST(RelativeMotionReader, DifferentRowCountsAreAnErrorNamingBothFiles) {
-  EXPECT_TRUE(throws_input_error(
-      [] { parse_relative_motion_pairs("0 0 0\n1 0 0\n", "odom.txt", "0 0 0\n", "sm.txt"); },
-      "sm.txt", 0, {"1 motion rows", "odom.txt has 2"}));
+  EXPECT_TRUE(throws_input_error([] { parse_relative_motion_pairs("0 0 0\n1 0 0\n", "odom.txt", "0 0 0\n", "sm.txt"); },
+                                 "sm.txt", 0, {"1 motion rows", "odom.txt has 2"}));
 }
 
 TEST(RelativeMotionReader, MalformedRowsNameFileLineAndField) {
-  EXPECT_TRUE(throws_input_error(
-      [] { parse_relative_motion_pairs("0 0 0\n1 0\n", "odom.txt", "0 0 0\n1 0 0\n", "sm.txt"); },
-      "odom.txt", 2, {"expected 3 fields"}));
-  EXPECT_TRUE(throws_input_error(
-      [] { parse_relative_motion_pairs("0 0 0\n", "odom.txt", "0 nan 0\n", "sm.txt"); }, "sm.txt",
-      1, {"dy"}));
+  EXPECT_TRUE(
+      throws_input_error([] { parse_relative_motion_pairs("0 0 0\n1 0\n", "odom.txt", "0 0 0\n1 0 0\n", "sm.txt"); },
+                         "odom.txt", 2, {"expected 3 fields"}));
+  EXPECT_TRUE(throws_input_error([] { parse_relative_motion_pairs("0 0 0\n", "odom.txt", "0 nan 0\n", "sm.txt"); },
+                                 "sm.txt", 1, {"dy"}));
 }
 
 TEST(TickMotionReader, ReadsTicksAndReferenceMotion) {
@@ -160,10 +154,10 @@ TEST(TickMotionReader, ReadsTicksAndReferenceMotion) {
   EXPECT_EQ(rows[1].right, 0.0210924);
   EXPECT_EQ(rows[1].reference.x, 0.0154077);
   EXPECT_EQ(rows[1].reference.theta, -0.0023148);
-  EXPECT_TRUE(throws_input_error([] { parse_tick_motions("1 2 3 4 5\n1 2 3 4 x\n", "dd.txt"); },
-                                 "dd.txt", 2, {"theta"}));
-  EXPECT_TRUE(throws_input_error([] { parse_tick_motions("1 2 3 4 5 6\n", "dd.txt"); }, "dd.txt", 1,
-                                 {"expected 5 fields"}));
+  EXPECT_TRUE(
+      throws_input_error([] { parse_tick_motions("1 2 3 4 5\n1 2 3 4 x\n", "dd.txt"); }, "dd.txt", 2, {"theta"}));
+  EXPECT_TRUE(
+      throws_input_error([] { parse_tick_motions("1 2 3 4 5 6\n", "dd.txt"); }, "dd.txt", 1, {"expected 5 fields"}));
 }
 
 RC_GTEST_PROP(RelativeMotionReader, ReadingWhatWasWrittenGivesTheSameRows, ()) {
@@ -211,12 +205,10 @@ TEST(CalibrationRealData, StachnissAndGrisettiFilesRead) {
   LOCBENCH_REQUIRE_DATA("calibration/stachniss_ls_calib");
   LOCBENCH_REQUIRE_DATA("calibration/grisetti_diffdrive");
   const auto root = data_root() / "calibration";
-  const auto pairs =
-      read_relative_motion_pairs(root / "stachniss_ls_calib/odom_motions.txt.gz",
-                                 root / "stachniss_ls_calib/scanmatched_motions.txt.gz");
+  const auto pairs = read_relative_motion_pairs(root / "stachniss_ls_calib/odom_motions.txt.gz",
+                                                root / "stachniss_ls_calib/scanmatched_motions.txt.gz");
   EXPECT_EQ(pairs.size(), 2000u);
-  const auto rows =
-      read_tick_motions(root / "grisetti_diffdrive/differential_drive_calibration.txt.gz");
+  const auto rows = read_tick_motions(root / "grisetti_diffdrive/differential_drive_calibration.txt.gz");
   EXPECT_EQ(rows.size(), 487u);
 }
 

@@ -23,8 +23,7 @@ TEST(CarmenLaserParams, WithoutFovTheFlaserConventionHolds) {
 
 TEST(CarmenLaserParams, FovAndResolutionInDegreesSetTheBearings) {
   const Log log = parse_carmen_log(
-      std::string("PARAM laser_front_laser_fov 100\nPARAM laser_front_laser_resolution 25\n") + kFlaser5,
-      "a.clf");
+      std::string("PARAM laser_front_laser_fov 100\nPARAM laser_front_laser_resolution 25\n") + kFlaser5, "a.clf");
   const auto& b = log.laser[0].scan.bearings;
   ASSERT_EQ(b.size(), 5u);
   EXPECT_NEAR(b[0], -deg(50), 1e-12);
@@ -33,9 +32,8 @@ TEST(CarmenLaserParams, FovAndResolutionInDegreesSetTheBearings) {
 }
 
 TEST(CarmenLaserParams, FovAloneSpreadsTheBeamsOverIt) {
-  const Log log = parse_carmen_log(std::string("PARAM laser_front_laser_fov 180\n") +
-                                       "FLASER 4 1 1 1 1 0 0 0 0 0 0 10.0 host 10.0\n",
-                                   "a.clf");
+  const Log log = parse_carmen_log(
+      std::string("PARAM laser_front_laser_fov 180\n") + "FLASER 4 1 1 1 1 0 0 0 0 0 0 10.0 host 10.0\n", "a.clf");
   const auto& b = log.laser[0].scan.bearings;
   EXPECT_NEAR(b[0], -deg(90), 1e-12);
   EXPECT_NEAR(b[1], -deg(30), 1e-12);  // 180°/3 steps, not the 4-beam FLASER 45°
@@ -62,8 +60,7 @@ TEST(CarmenLaserParams, InvalidFovIsAnInputErrorNamingTheLine) {
 
 TEST(CarmenLaserParams, TheWriterKeepsDeclaredBearingsThroughARoundTrip) {
   const Log log = parse_carmen_log(
-      std::string("PARAM laser_front_laser_fov 100\nPARAM laser_front_laser_resolution 25\n") + kFlaser5,
-      "a.clf");
+      std::string("PARAM laser_front_laser_fov 100\nPARAM laser_front_laser_resolution 25\n") + kFlaser5, "a.clf");
   const Log back = parse_carmen_log(format_carmen_log(log), "b.clf");
   EXPECT_EQ(back.laser[0].scan.bearings, log.laser[0].scan.bearings);
 }

@@ -90,18 +90,15 @@ TEST(CarmenReader, MaxRangeDefaultsToSickConventionSoThatSaturatedReadingsAreNoR
 
 TEST(CarmenReader, MaxRangeComesFromLaserParam) {
   const Log log = parse_carmen_log(
-      "PARAM laser_front_laser_max_range 50 0 h 0\nPARAM robot_front_laser_max 30\n" +
-          flaser_line(3, 2.0, 1.0),
+      "PARAM laser_front_laser_max_range 50 0 h 0\nPARAM robot_front_laser_max 30\n" + flaser_line(3, 2.0, 1.0),
       "a.clf");
   EXPECT_EQ(log.laser[0].scan.max_range, 50.0);  // laser_front_laser_max_range wins
-  const Log log2 =
-      parse_carmen_log("PARAM robot_front_laser_max 30\n" + flaser_line(3, 2.0, 1.0), "b.clf");
+  const Log log2 = parse_carmen_log("PARAM robot_front_laser_max 30\n" + flaser_line(3, 2.0, 1.0), "b.clf");
   EXPECT_EQ(log2.laser[0].scan.max_range, 30.0);
 }
 
 TEST(CarmenReader, MaxRangeParamMayFollowTheScans) {
-  const Log log =
-      parse_carmen_log(flaser_line(3, 2.0, 1.0) + "PARAM robot_front_laser_max 30\n", "a.clf");
+  const Log log = parse_carmen_log(flaser_line(3, 2.0, 1.0) + "PARAM robot_front_laser_max 30\n", "a.clf");
   EXPECT_EQ(log.laser[0].scan.max_range, 30.0);
 }
 
@@ -118,17 +115,15 @@ TEST(CarmenReader, SensorPoseComesFromFrontLaserOffsetParams) {
 }
 
 TEST(CarmenReader, ParamAcceptsTwoFourAndFiveFieldForms) {
-  const Log log =
-      parse_carmen_log("PARAM a 1\nPARAM b two host 12.5\nPARAM c x_y 12.5 host 0.01\n", "a.clf");
+  const Log log = parse_carmen_log("PARAM a 1\nPARAM b two host 12.5\nPARAM c x_y 12.5 host 0.01\n", "a.clf");
   EXPECT_EQ(log.params.at("a"), "1");
   EXPECT_EQ(log.params.at("b"), "two");
   EXPECT_EQ(log.params.at("c"), "x_y");
 }
 
 TEST(CarmenReader, ReadsEncoderTicksAsSigned64BitCounts) {
-  const Log log = parse_carmen_log(
-      "ENCODER -9223372036854775808 9223372036854775807 1.25 h 1.25\nENCODER -5 +7 2 h 2\n",
-      "a.clf");
+  const Log log =
+      parse_carmen_log("ENCODER -9223372036854775808 9223372036854775807 1.25 h 1.25\nENCODER -5 +7 2 h 2\n", "a.clf");
   ASSERT_EQ(log.encoders.size(), 2u);
   EXPECT_EQ(log.encoders[0].left, std::numeric_limits<std::int64_t>::min());
   EXPECT_EQ(log.encoders[0].right, std::numeric_limits<std::int64_t>::max());
@@ -159,15 +154,13 @@ TEST(CarmenReader, SkipsCommentsAndBlankLinesAndCountsUnknownRecords) {
       "a.clf");
   EXPECT_EQ(log.odometry.size(), 1u);
   const auto skipped = skipped_record_counts(log);
-  EXPECT_EQ(skipped,
-            (std::map<std::string, std::size_t>{{"NMEAGGA", 1}, {"ROBOTLASER1", 1}, {"SONAR", 2}}));
+  EXPECT_EQ(skipped, (std::map<std::string, std::size_t>{{"NMEAGGA", 1}, {"ROBOTLASER1", 1}, {"SONAR", 2}}));
   EXPECT_EQ(log.params.at("locbench_skipped_records.SONAR"), "2");
 }
 
 TEST(CarmenReader, AcceptsEqualTimestampsAndIndependentOrderAcrossRecordTypes) {
-  const Log log = parse_carmen_log(
-      "ODOM 0 0 0 0 0 0 5 h 5\nODOM 0 0 0 0 0 0 5 h 5\nCOMPASS 0 1 h 1\nENCODER 1 1 0 h 0\n",
-      "a.clf");
+  const Log log =
+      parse_carmen_log("ODOM 0 0 0 0 0 0 5 h 5\nODOM 0 0 0 0 0 0 5 h 5\nCOMPASS 0 1 h 1\nENCODER 1 1 0 h 0\n", "a.clf");
   EXPECT_EQ(log.odometry.size(), 2u);
   EXPECT_EQ(log.compass.size(), 1u);
   EXPECT_EQ(log.encoders.size(), 1u);

@@ -82,9 +82,7 @@ TEST(CarmenWriter, DeclaresTheScansMaxRangeAndMountingAsParams) {
 }
 
 TEST(CarmenWriter, RejectsLogsTheFormatCannotHold) {
-  auto rejects = [](const Log& log) {
-    EXPECT_THROW(format_carmen_log(log), std::invalid_argument);
-  };
+  auto rejects = [](const Log& log) { EXPECT_THROW(format_carmen_log(log), std::invalid_argument); };
   Log backwards = small_log();
   backwards.odometry.push_back({0.5, Pose2(), 0, 0});
   rejects(backwards);
@@ -113,9 +111,8 @@ TEST(CarmenWriter, RejectsLogsTheFormatCannotHold) {
 
 TEST(CarmenWriter, FailsWithInputErrorWhenTheFileCannotBeCreated) {
   ScratchDir dir;
-  EXPECT_TRUE(testing::throws_input_error(
-      [&] { write_carmen_log(small_log(), dir.file("no/such/dir/a.clf")); }, "a.clf", 0,
-      {"cannot open for writing"}));
+  EXPECT_TRUE(testing::throws_input_error([&] { write_carmen_log(small_log(), dir.file("no/such/dir/a.clf")); },
+                                          "a.clf", 0, {"cannot open for writing"}));
 }
 
 }  // namespace

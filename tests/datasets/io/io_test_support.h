@@ -14,9 +14,7 @@
 
 namespace locbench::testing {
 
-inline bool same_pose(const Pose2& a, const Pose2& b) {
-  return a.x == b.x && a.y == b.y && a.theta == b.theta;
-}
+inline bool same_pose(const Pose2& a, const Pose2& b) { return a.x == b.x && a.y == b.y && a.theta == b.theta; }
 
 // The first difference between two logs' records and params, or "" if they are identical
 // (exact floating-point equality). Name and source are not compared.
@@ -38,8 +36,8 @@ inline std::string log_difference(const Log& a, const Log& b) {
   for (std::size_t i = 0; i < a.encoders.size(); ++i) {
     const auto &x = a.encoders[i], &y = b.encoders[i];
     if (x.t != y.t || x.left != y.left || x.right != y.right) {
-      d << "encoder " << i << ": t " << x.t << "/" << y.t << " ticks " << x.left << "," << x.right
-        << " vs " << y.left << "," << y.right;
+      d << "encoder " << i << ": t " << x.t << "/" << y.t << " ticks " << x.left << "," << x.right << " vs " << y.left
+        << "," << y.right;
       return d.str();
     }
   }
@@ -69,13 +67,11 @@ inline std::string log_difference(const Log& a, const Log& b) {
   if (!sizes("laser", a.laser.size(), b.laser.size())) return d.str();
   for (std::size_t i = 0; i < a.laser.size(); ++i) {
     const auto &x = a.laser[i], &y = b.laser[i];
-    if (x.scan.timestamp != y.scan.timestamp || x.scan.ranges != y.scan.ranges ||
-        x.scan.bearings != y.scan.bearings || x.scan.max_range != y.scan.max_range ||
-        !same_pose(x.scan.sensor_pose, y.scan.sensor_pose) || !same_pose(x.pose, y.pose) ||
-        !same_pose(x.odom_pose, y.odom_pose)) {
-      d << "laser " << i << " differs (t " << x.scan.timestamp << ", " << x.scan.ranges.size()
-        << " vs " << y.scan.ranges.size() << " beams, max range " << x.scan.max_range << " vs "
-        << y.scan.max_range << ")";
+    if (x.scan.timestamp != y.scan.timestamp || x.scan.ranges != y.scan.ranges || x.scan.bearings != y.scan.bearings ||
+        x.scan.max_range != y.scan.max_range || !same_pose(x.scan.sensor_pose, y.scan.sensor_pose) ||
+        !same_pose(x.pose, y.pose) || !same_pose(x.odom_pose, y.odom_pose)) {
+      d << "laser " << i << " differs (t " << x.scan.timestamp << ", " << x.scan.ranges.size() << " vs "
+        << y.scan.ranges.size() << " beams, max range " << x.scan.max_range << " vs " << y.scan.max_range << ")";
       return d.str();
     }
   }
@@ -139,12 +135,10 @@ template <typename F>
   } catch (const InputError& e) {
     const std::string msg = e.what();
     if (e.file().find(file) == std::string::npos) {
-      return ::testing::AssertionFailure()
-             << "file '" << e.file() << "' lacks '" << file << "' in: " << msg;
+      return ::testing::AssertionFailure() << "file '" << e.file() << "' lacks '" << file << "' in: " << msg;
     }
     if (e.line() != line) {
-      return ::testing::AssertionFailure()
-             << "line " << e.line() << ", expected " << line << " in: " << msg;
+      return ::testing::AssertionFailure() << "line " << e.line() << ", expected " << line << " in: " << msg;
     }
     const std::string where = line > 0 ? ":" + std::to_string(line) + ": " : ": ";
     if (msg.find(file) == std::string::npos || msg.find(where) == std::string::npos) {

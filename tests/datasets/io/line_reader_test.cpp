@@ -39,8 +39,7 @@ TEST(LineReader, ReadsLongLinesAcrossBufferBoundariesFromPlainAndGzipFiles) {
   std::string text;
   std::vector<std::string> expected;
   for (int i = 0; i < 50; ++i) {
-    expected.push_back(std::string(static_cast<std::size_t>(1 + i * 7919 % 40000),
-                                   'a' + static_cast<char>(i % 26)));
+    expected.push_back(std::string(static_cast<std::size_t>(1 + i * 7919 % 40000), 'a' + static_cast<char>(i % 26)));
     text += expected.back() + "\n";
   }
   testing::write_bytes(dir.file("p.txt"), text);

@@ -42,8 +42,8 @@ TEST(LogLoader, LoadsMrclamFoldersWithOptionalRobotSuffix) {
   }
   EXPECT_EQ(load_log(dir.path().string()).params.at("mrclam_robot"), "1");
   EXPECT_EQ(load_log(dir.path().string() + "#robot3").params.at("mrclam_robot"), "3");
-  EXPECT_TRUE(testing::throws_input_error([&] { load_log(dir.path().string() + "#robot2"); },
-                                          "Robot2_Odometry.dat", 0, {"missing MRCLAM file"}));
+  EXPECT_TRUE(testing::throws_input_error([&] { load_log(dir.path().string() + "#robot2"); }, "Robot2_Odometry.dat", 0,
+                                          {"missing MRCLAM file"}));
 }
 
 TEST(LogLoader, AttachesRelationsToALog) {

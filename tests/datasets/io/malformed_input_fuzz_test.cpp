@@ -11,8 +11,8 @@
 #include "datasets/io/carmen_writer.h"
 #include "datasets/io/censi_results_reader.h"
 #include "datasets/io/censi_tuple_reader.h"
-#include "datasets/io/relative_motion_reader.h"
 #include "datasets/io/relations_reader.h"
+#include "datasets/io/relative_motion_reader.h"
 #include "datasets/io/tum_reader.h"
 #include "io_test_support.h"
 #include "log_generators.h"
@@ -189,8 +189,7 @@ RC_GTEST_PROP(RelationsFuzz, MutatedRelationsAreReadOrRejectedWithInputError, ()
 }
 
 RC_GTEST_PROP(TumFuzz, MutatedTrajectoriesAreReadOrRejectedWithInputError, ()) {
-  const std::string text =
-      mutate("# tum\n1 0 0 0 0 0 0 1\n2 1 2 0 0 0 0.7071067811865476 0.7071067811865476\n");
+  const std::string text = mutate("# tum\n1 0 0 0 0 0 0 1\n2 1 2 0 0 0 0.7071067811865476 0.7071067811865476\n");
   reads_or_rejects([&] { parse_tum(text, "fuzz.tum"); });
 }
 
@@ -242,8 +241,7 @@ RC_GTEST_PROP(CensiResultsFuzz, MutatedResultsAreReadOrRejectedWithInputError, (
 
 RC_GTEST_PROP(RelativeMotionFuzz, MutatedMotionPairsAreReadOrRejectedWithInputError, ()) {
   const std::string odom = mutate(" 0 0 0\n 0.113 -8.3e-05 0\n 0.115 -0.0001 0\n");
-  const std::string ref =
-      mutate(" 0 0 0\n 0.113001 -0.000942 0.003906\n 0.1108986065228533 0.0022428 0\n");
+  const std::string ref = mutate(" 0 0 0\n 0.113001 -0.000942 0.003906\n 0.1108986065228533 0.0022428 0\n");
   reads_or_rejects([&] { parse_relative_motion_pairs(odom, "odom.txt", ref, "sm.txt"); });
 }
 

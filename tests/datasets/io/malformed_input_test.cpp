@@ -41,18 +41,15 @@ TEST(CarmenReader, RejectsBadNumberNamingTheFieldAndToken) {
 TEST(CarmenReader, RejectsNanAndInfinity) {
   EXPECT_TRUE(throws_input_error(parse("ODOM nan 0 0 0 0 0 1 h 1\n"), "aces.clf", 1,
                                  {"x: expected a finite number, found 'nan'"}));
-  EXPECT_TRUE(throws_input_error(parse("COMPASS -inf 1 h 1\n"), "aces.clf", 1,
-                                 {"COMPASS", "heading", "'-inf'"}));
-  EXPECT_TRUE(throws_input_error(parse("TRUEPOS 0 0 0 0 0 0 1e999 h 1\n"), "aces.clf", 1,
-                                 {"TRUEPOS", "timestamp", "'1e999'"}));
+  EXPECT_TRUE(throws_input_error(parse("COMPASS -inf 1 h 1\n"), "aces.clf", 1, {"COMPASS", "heading", "'-inf'"}));
+  EXPECT_TRUE(
+      throws_input_error(parse("TRUEPOS 0 0 0 0 0 0 1e999 h 1\n"), "aces.clf", 1, {"TRUEPOS", "timestamp", "'1e999'"}));
 }
 
 TEST(CarmenReader, RejectsFlaserWhoseFieldCountDoesNotMatchItsBeamCount) {
-  EXPECT_TRUE(
-      throws_input_error(parse("FLASER 3 1 2 0 0 0 0 0 0 1 h 1\n"), "aces.clf", 1,
-                         {"FLASER", "expected 1 + n + 9 = 13 fields", "n = 3", "found 12"}));
-  EXPECT_TRUE(throws_input_error(parse("FLASER 99999999999999 1 2\n"), "aces.clf", 1,
-                                 {"FLASER", "found 3"}));
+  EXPECT_TRUE(throws_input_error(parse("FLASER 3 1 2 0 0 0 0 0 0 1 h 1\n"), "aces.clf", 1,
+                                 {"FLASER", "expected 1 + n + 9 = 13 fields", "n = 3", "found 12"}));
+  EXPECT_TRUE(throws_input_error(parse("FLASER 99999999999999 1 2\n"), "aces.clf", 1, {"FLASER", "found 3"}));
 }
 
 TEST(CarmenReader, RejectsFlaserWithoutBeams) {
@@ -69,13 +66,12 @@ TEST(CarmenReader, RejectsNegativeRange) {
 }
 
 TEST(CarmenReader, RejectsTimestampsGoingBackwardsWithinARecordType) {
-  for (const std::string tag : {"ODOM 0 0 0 0 0 0", "FLASER 1 1 0 0 0 0 0 0", "TRUEPOS 0 0 0 0 0 0",
-                                "ENCODER 1 2", "COMPASS 0"}) {
+  for (const std::string tag :
+       {"ODOM 0 0 0 0 0 0", "FLASER 1 1 0 0 0 0 0 0", "TRUEPOS 0 0 0 0 0 0", "ENCODER 1 2", "COMPASS 0"}) {
     const std::string text = tag + " 5 h 5\nSONAR 1 2\n" + tag + " 4.5 h 6\n";
     const std::string type = tag.substr(0, tag.find(' '));
-    EXPECT_TRUE(throws_input_error(
-        parse(text), "aces.clf", 3,
-        {type, "timestamp 4.5 goes back in time", "(line 1)", "has timestamp 5"}))
+    EXPECT_TRUE(throws_input_error(parse(text), "aces.clf", 3,
+                                   {type, "timestamp 4.5 goes back in time", "(line 1)", "has timestamp 5"}))
         << type;
   }
 }
@@ -93,8 +89,8 @@ TEST(CarmenReader, RejectsLinesThatDoNotStartWithARecordType) {
 }
 
 TEST(CarmenReader, RejectsParamWithWrongFieldCountOrBadLaserValue) {
-  EXPECT_TRUE(throws_input_error(parse("PARAM a\n"), "aces.clf", 1,
-                                 {"PARAM", "expected 2 fields (name value)", "found 1"}));
+  EXPECT_TRUE(
+      throws_input_error(parse("PARAM a\n"), "aces.clf", 1, {"PARAM", "expected 2 fields (name value)", "found 1"}));
   EXPECT_TRUE(throws_input_error(parse("PARAM robot_front_laser_max -3\n"), "aces.clf", 1,
                                  {"robot_front_laser_max", "positive maximum range"}));
   EXPECT_TRUE(throws_input_error(parse("PARAM robot_frontlaser_offset abc\n"), "aces.clf", 1,
@@ -106,19 +102,18 @@ TEST(CarmenReader, RejectsEmptyFile) {
   EXPECT_TRUE(throws_input_error(parse("\n  \n\t\n"), "aces.clf", 0, {"empty file"}));
   ScratchDir dir;
   write_bytes(dir.file("empty.clf"), "");
-  EXPECT_TRUE(throws_input_error([&] { read_carmen_log(dir.file("empty.clf")); }, "empty.clf", 0,
-                                 {"empty file"}));
+  EXPECT_TRUE(throws_input_error([&] { read_carmen_log(dir.file("empty.clf")); }, "empty.clf", 0, {"empty file"}));
   write_bytes(dir.file("empty.clf.gz"), gzip(""));
-  EXPECT_TRUE(throws_input_error([&] { read_carmen_log(dir.file("empty.clf.gz")); }, "empty.clf.gz",
-                                 0, {"empty file"}));
+  EXPECT_TRUE(
+      throws_input_error([&] { read_carmen_log(dir.file("empty.clf.gz")); }, "empty.clf.gz", 0, {"empty file"}));
 }
 
 TEST(CarmenReader, RejectsMissingFileAndFolder) {
   ScratchDir dir;
   EXPECT_TRUE(throws_input_error([&] { read_carmen_log(dir.file("nope.clf")); }, "nope.clf", 0,
                                  {"cannot open", "no such file"}));
-  EXPECT_TRUE(throws_input_error([&] { read_carmen_log(dir.path()); }, dir.path().string(), 0,
-                                 {"folder, expected a file"}));
+  EXPECT_TRUE(
+      throws_input_error([&] { read_carmen_log(dir.path()); }, dir.path().string(), 0, {"folder, expected a file"}));
 }
 
 // A valid multi-line log compressed, then cut short by k bytes: never read as a short log.
@@ -177,26 +172,25 @@ TEST(CarmenReader, RejectsCorruptGzipData) {
 }
 
 TEST(RelationsReader, RejectsWrongFieldCountAndBadNumbersWithFileAndLine) {
-  EXPECT_TRUE(throws_input_error([] { parse_relations("1 2 0 0 0 0 0 0\n1 2 3\n", "a.relations"); },
-                                 "a.relations", 2, {"expected 8 fields, found 3"}));
-  EXPECT_TRUE(throws_input_error([] { parse_relations("# c\n1 2 0 0 0 0 0 zz\n", "a.relations"); },
-                                 "a.relations", 2, {"yaw: expected a finite number, found 'zz'"}));
-  EXPECT_TRUE(throws_input_error([] { parse_relations("1 2 nan 0 0 0 0 0\n", "a.relations"); },
-                                 "a.relations", 1, {"x: expected a finite number"}));
+  EXPECT_TRUE(throws_input_error([] { parse_relations("1 2 0 0 0 0 0 0\n1 2 3\n", "a.relations"); }, "a.relations", 2,
+                                 {"expected 8 fields, found 3"}));
+  EXPECT_TRUE(throws_input_error([] { parse_relations("# c\n1 2 0 0 0 0 0 zz\n", "a.relations"); }, "a.relations", 2,
+                                 {"yaw: expected a finite number, found 'zz'"}));
+  EXPECT_TRUE(throws_input_error([] { parse_relations("1 2 nan 0 0 0 0 0\n", "a.relations"); }, "a.relations", 1,
+                                 {"x: expected a finite number"}));
 }
 
 TEST(LogLoader, RejectsUnknownFormatsListingTheAcceptedOnes) {
   ScratchDir dir;
   write_bytes(dir.file("a.csv"), "1,2\n");
-  EXPECT_TRUE(
-      throws_input_error([&] { load_log(dir.file("a.csv").string()); }, "a.csv", 0,
-                         {"unrecognised log format", "CARMEN", ".clf", ".relations", "MRCLAM"}));
+  EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("a.csv").string()); }, "a.csv", 0,
+                                 {"unrecognised log format", "CARMEN", ".clf", ".relations", "MRCLAM"}));
   EXPECT_TRUE(throws_input_error([&] { load_log(dir.path().string()); }, dir.path().string(), 0,
                                  {"not an MRCLAM dataset folder", "accepted: a CARMEN log"}));
-  EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("a.csv").string() + "#robot2"); },
-                                 "a.csv#robot2", 0, {"needs an MRCLAM dataset folder"}));
-  EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("missing.clf").string()); }, "missing.clf",
-                                 0, {"no such file or folder"}));
+  EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("a.csv").string() + "#robot2"); }, "a.csv#robot2", 0,
+                                 {"needs an MRCLAM dataset folder"}));
+  EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("missing.clf").string()); }, "missing.clf", 0,
+                                 {"no such file or folder"}));
 }
 
 }  // namespace

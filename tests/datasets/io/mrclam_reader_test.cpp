@@ -14,8 +14,7 @@ using testing::ScratchDir;
 using testing::throws_input_error;
 using testing::write_bytes;
 
-const std::string kHeader =
-    "# UTIAS Multi-Robot Cooperative Localization and Mapping Dataset\r\n# format\r\n";
+const std::string kHeader = "# UTIAS Multi-Robot Cooperative Localization and Mapping Dataset\r\n# format\r\n";
 
 // A tiny dataset: robot 2 drives at 1 m/s turning at 0.5 rad/s for 2 s.
 void write_dataset(const std::filesystem::path& dir, bool gz, bool barcodes) {
@@ -27,8 +26,7 @@ void write_dataset(const std::filesystem::path& dir, bool gz, bool barcodes) {
     }
   };
   put("Robot2_Odometry.dat", kHeader + "10.0 \t 1.0 \t 0.5 \r\n11.0\t1.0\t0.5\r\n12.0 0 0\r\n");
-  put("Robot2_Groundtruth.dat",
-      kHeader + "9.0 \t 1.0 \t 2.0 \t 0.1 \r\n11.0 \t 2.0 \t 2.0 \t 0.3 \r\n");
+  put("Robot2_Groundtruth.dat", kHeader + "9.0 \t 1.0 \t 2.0 \t 0.1 \r\n11.0 \t 2.0 \t 2.0 \t 0.3 \r\n");
   put("Robot2_Measurement.dat", kHeader +
                                     "10.5 \t  14 \t 3.787 \t -0.257 \r\n"
                                     "11.5 \t  43 \t 1.0 \t 0.1 \r\n"
@@ -86,18 +84,18 @@ TEST(MrclamReader, IntegratesVelocitiesWithTheMidpointRuleFromTheGroundTruthPose
 TEST(MrclamReader, RejectsMissingFilesMalformedLinesAndBackwardsTime) {
   ScratchDir dir;
   write_dataset(dir.path(), false, true);
-  EXPECT_TRUE(throws_input_error([&] { read_mrclam_robot(dir.path(), 3); }, "Robot3_Odometry.dat",
-                                 0, {"missing MRCLAM file"}));
+  EXPECT_TRUE(
+      throws_input_error([&] { read_mrclam_robot(dir.path(), 3); }, "Robot3_Odometry.dat", 0, {"missing MRCLAM file"}));
   write_bytes(dir.file("Robot2_Odometry.dat"), kHeader + "10.0 1.0\r\n");
-  EXPECT_TRUE(throws_input_error([&] { read_mrclam_robot(dir.path(), 2); }, "Robot2_Odometry.dat",
-                                 3, {"expected 3 fields, found 2"}));
+  EXPECT_TRUE(throws_input_error([&] { read_mrclam_robot(dir.path(), 2); }, "Robot2_Odometry.dat", 3,
+                                 {"expected 3 fields, found 2"}));
   write_bytes(dir.file("Robot2_Odometry.dat"), kHeader + "10.0 1.0 0\r\n9.0 1 0\r\n");
-  EXPECT_TRUE(throws_input_error([&] { read_mrclam_robot(dir.path(), 2); }, "Robot2_Odometry.dat",
-                                 4, {"time goes back"}));
+  EXPECT_TRUE(
+      throws_input_error([&] { read_mrclam_robot(dir.path(), 2); }, "Robot2_Odometry.dat", 4, {"time goes back"}));
   write_bytes(dir.file("Robot2_Odometry.dat"), kHeader + "10.0 1.0 0\r\n");
   write_bytes(dir.file("Robot2_Measurement.dat"), kHeader + "10.0 x 1 0\r\n");
-  EXPECT_TRUE(throws_input_error([&] { read_mrclam_robot(dir.path(), 2); },
-                                 "Robot2_Measurement.dat", 3, {"barcode: expected an integer"}));
+  EXPECT_TRUE(throws_input_error([&] { read_mrclam_robot(dir.path(), 2); }, "Robot2_Measurement.dat", 3,
+                                 {"barcode: expected an integer"}));
 }
 
 // Real data: UTIAS MRCLAM dataset 6, robot 1.

@@ -40,8 +40,7 @@ TEST(RealData, AcesFromBagHas7374FlaserAnd7375OdomWithZeroFlaserPoses) {
   EXPECT_TRUE(all_zero(log.laser[100].odom_pose));
   // The odometry pose of every scan comes from the ODOM records around it.
   std::size_t covered = 0;
-  for (const auto& r : log.laser)
-    covered += interpolate_odometry(log, r.scan.timestamp).has_value();
+  for (const auto& r : log.laser) covered += interpolate_odometry(log, r.scan.timestamp).has_value();
   EXPECT_GE(covered, log.laser.size() - 2);
   const auto [t0, t1] = log.time_span();
   EXPECT_NEAR(t0, 70.179699, 1e-9);
@@ -105,15 +104,14 @@ TEST_P(RealRelations, LoadWithTheirLineCountAndMatchScanTimestamps) {
   EXPECT_LE(worst, c.tolerance);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Freiburg, RealRelations,
-    ::testing::Values(RelationsCase{"aces", "slam_benchmark/relations/aces.relations.gz",
-                                    "slam_benchmark/clf/aces.from_bag.clf.gz", 1279, 0.0},
-                      RelationsCase{"intel", "slam_benchmark/relations/intel.relations.gz",
-                                    "slam_benchmark/clf/intel.from_bag.clf.gz", 2984, 0.0},
-                      RelationsCase{"mit_csail", "slam_benchmark/relations/mit-csail.relations.gz",
-                                    "slam_benchmark/clf/mit-csail.clf.gz", 1172, 1e-5}),
-    [](const ::testing::TestParamInfo<RelationsCase>& p) { return std::string(p.param.name); });
+INSTANTIATE_TEST_SUITE_P(Freiburg, RealRelations,
+                         ::testing::Values(RelationsCase{"aces", "slam_benchmark/relations/aces.relations.gz",
+                                                         "slam_benchmark/clf/aces.from_bag.clf.gz", 1279, 0.0},
+                                           RelationsCase{"intel", "slam_benchmark/relations/intel.relations.gz",
+                                                         "slam_benchmark/clf/intel.from_bag.clf.gz", 2984, 0.0},
+                                           RelationsCase{"mit_csail", "slam_benchmark/relations/mit-csail.relations.gz",
+                                                         "slam_benchmark/clf/mit-csail.clf.gz", 1172, 1e-5}),
+                         [](const ::testing::TestParamInfo<RelationsCase>& p) { return std::string(p.param.name); });
 
 TEST(RealData, AcesSurvivesAWriteReadRoundTrip) {
   LOCBENCH_REQUIRE_DATA("slam_benchmark/clf/aces.from_bag.clf.gz");

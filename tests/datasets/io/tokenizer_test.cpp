@@ -26,14 +26,13 @@ TEST(Tokenizer, ParsesDecimalAndExponentForms) {
   EXPECT_EQ(parse_finite("-2.5e3", "x", kCtx), -2500.0);
   EXPECT_EQ(parse_finite("+.5", "x", kCtx), 0.5);
   EXPECT_EQ(parse_finite("976052857.337284", "x", kCtx), 976052857.337284);
-  EXPECT_EQ(parse_int64("-9223372036854775808", "n", kCtx),
-            std::numeric_limits<std::int64_t>::min());
+  EXPECT_EQ(parse_int64("-9223372036854775808", "n", kCtx), std::numeric_limits<std::int64_t>::min());
   EXPECT_EQ(parse_int64("+12", "n", kCtx), 12);
 }
 
 TEST(Tokenizer, RejectsGarbageNanInfTrailingJunkAndOverflowNamingTheField) {
-  for (const char* bad : {"", "abc", "1.0x", "nan", "NaN", "inf", "-infinity", "1e999", "0x10", "+",
-                          "+-1", "--1", "1,5", " 1"}) {
+  for (const char* bad :
+       {"", "abc", "1.0x", "nan", "NaN", "inf", "-infinity", "1e999", "0x10", "+", "+-1", "--1", "1,5", " 1"}) {
     EXPECT_TRUE(testing::throws_input_error([&] { parse_finite(bad, "theta", kCtx); }, kFile, 7,
                                             {"ODOM: theta: expected a finite number, found '"}))
         << bad;

@@ -20,8 +20,8 @@ TEST(TumWriter, WritesTimestampPositionZeroZAndYawQuaternion) {
   const std::string text = format_tum(traj);
   EXPECT_EQ(text.substr(0, text.find('\n')), "# timestamp x y z qx qy qz qw");
   double t, x, y, z, qx, qy, qz, qw;
-  ASSERT_EQ(std::sscanf(text.c_str() + text.find('\n') + 1, "%lf %lf %lf %lf %lf %lf %lf %lf", &t,
-                        &x, &y, &z, &qx, &qy, &qz, &qw),
+  ASSERT_EQ(std::sscanf(text.c_str() + text.find('\n') + 1, "%lf %lf %lf %lf %lf %lf %lf %lf", &t, &x, &y, &z, &qx, &qy,
+                        &qz, &qw),
             8);
   EXPECT_EQ(t, 1.5);
   EXPECT_EQ(x, 1.0);
@@ -45,11 +45,10 @@ TEST(TumReader, ReadsYawFromAGeneralQuaternion) {
 }
 
 TEST(TumReader, RejectsNonUnitQuaternionsAndBackwardsTime) {
-  EXPECT_TRUE(testing::throws_input_error([] { parse_tum("1 0 0 0 0 0 0 0\n", "t.tum"); }, "t.tum",
-                                          1, {"expected a unit quaternion"}));
-  EXPECT_TRUE(
-      testing::throws_input_error([] { parse_tum("2 0 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n", "t.tum"); },
-                                  "t.tum", 2, {"goes back in time"}));
+  EXPECT_TRUE(testing::throws_input_error([] { parse_tum("1 0 0 0 0 0 0 0\n", "t.tum"); }, "t.tum", 1,
+                                          {"expected a unit quaternion"}));
+  EXPECT_TRUE(testing::throws_input_error([] { parse_tum("2 0 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n", "t.tum"); }, "t.tum", 2,
+                                          {"goes back in time"}));
   EXPECT_TRUE(testing::throws_input_error([] { parse_tum("2 0 0 0 0 0 1\n", "t.tum"); }, "t.tum", 1,
                                           {"expected 8 fields, found 7"}));
 }
@@ -76,8 +75,7 @@ RC_GTEST_PROP(TumRoundTrip, ReadingWhatWasWrittenGivesTheSameTrajectory, ()) {
 
 TEST(TumRoundTrip, GzipFileRoundTrip) {
   testing::ScratchDir dir;
-  const Trajectory traj(
-      {{0.0, Pose2(0, 0, 0)}, {0.5, Pose2(1, -1, -3.0)}, {1.0, Pose2(2, 0, 3.1)}});
+  const Trajectory traj({{0.0, Pose2(0, 0, 0)}, {0.5, Pose2(1, -1, -3.0)}, {1.0, Pose2(2, 0, 3.1)}});
   write_tum(traj, dir.file("t.tum.gz"));
   const Trajectory back = read_tum(dir.file("t.tum.gz"));
   ASSERT_EQ(back.size(), 3u);

@@ -39,8 +39,7 @@ std::string with(const std::string& from, const std::string& to) {
 }
 
 // Expects an InputError at `line` whose message contains every fragment.
-void expect_error(const std::string& text, std::size_t line,
-                  std::initializer_list<std::string> fragments) {
+void expect_error(const std::string& text, std::size_t line, std::initializer_list<std::string> fragments) {
   try {
     parse_umbmark_input(text, "umbmark.json");
     ADD_FAILURE() << "accepted:\n" << text;
@@ -48,8 +47,7 @@ void expect_error(const std::string& text, std::size_t line,
     EXPECT_EQ(e.file(), "umbmark.json");
     EXPECT_EQ(e.line(), line) << e.what();
     for (const auto& f : fragments) {
-      EXPECT_NE(std::string(e.what()).find(f), std::string::npos)
-          << "'" << f << "' not in: " << e.what();
+      EXPECT_NE(std::string(e.what()).find(f), std::string::npos) << "'" << f << "' not in: " << e.what();
     }
   }
 }
@@ -74,13 +72,11 @@ TEST(UmbmarkInputReader, ReadsTheDocumentedFormatInMetres) {
 
 TEST(UmbmarkInputReader, AcceptsPerWheelDiametersAndDefaultsTheTapeScaleToOne) {
   const std::string text =
-      with(R"("wheel_diameter_m": 0.0885,)",
-           R"("wheel_diameter_left_m": 0.0885, "wheel_diameter_right_m": 0.0889,)");
+      with(R"("wheel_diameter_m": 0.0885,)", R"("wheel_diameter_left_m": 0.0885, "wheel_diameter_right_m": 0.0889,)");
   const UmbmarkInput in = parse_umbmark_input(text, "umbmark.json");
   EXPECT_EQ(in.nominal.diameter_left, 0.0885);
   EXPECT_EQ(in.nominal.diameter_right, 0.0889);
-  const UmbmarkInput no_tape =
-      parse_umbmark_input(with(R"("tape_measure_scale": 1.002,)", ""), "umbmark.json");
+  const UmbmarkInput no_tape = parse_umbmark_input(with(R"("tape_measure_scale": 1.002,)", ""), "umbmark.json");
   EXPECT_EQ(no_tape.tape_measure_scale, 1.0);
 }
 
@@ -122,44 +118,35 @@ TEST(UmbmarkInputReader, NaNAndInfinityLiteralsAreRejectedWithTheirLine) {
 }
 
 TEST(UmbmarkInputReader, NaNWrittenAsAStringIsRejectedByField) {
-  expect_error(with("0.29", R"("NaN")"), 0,
-               {"runs[1].x_error_m", "\"NaN\"", "NaN and Infinity are not allowed"});
+  expect_error(with("0.29", R"("NaN")"), 0, {"runs[1].x_error_m", "\"NaN\"", "NaN and Infinity are not allowed"});
   expect_error(with("1.6", R"("inf")"), 0, {"side_length_m", "\"inf\""});
 }
 
 TEST(UmbmarkInputReader, MillimetresWhereMetresBelongAreCaught) {
-  expect_error(with("0.0885", "88.5"), 0,
-               {"nominal.wheel_diameter_m", "looks like millimetres; expected metres"});
+  expect_error(with("0.0885", "88.5"), 0, {"nominal.wheel_diameter_m", "looks like millimetres; expected metres"});
   expect_error(with("0.198", "198"), 0, {"nominal.wheelbase_m", "looks like millimetres"});
   // The side in mm makes the leg counts inconsistent too, but the side is checked first.
   expect_error(with("1.6", "1600"), 0, {"side_length_m", "looks like millimetres"});
-  expect_error(with("0.31", "310"), 0,
-               {"runs[0].x_error_m", "longer than the side", "looks like millimetres"});
+  expect_error(with("0.31", "310"), 0, {"runs[0].x_error_m", "longer than the side", "looks like millimetres"});
   expect_error(with("-0.12", "-120"), 0, {"runs[0].y_error_m", "looks like millimetres"});
 }
 
 TEST(UmbmarkInputReader, LegCountsMustBeOneStraightLeg) {
   // The issue's example gives 57 counts: 57·12.638 mm = 0.720 m, not a 1.6 m leg.
-  expect_error(with(R"("left": 127)", R"("left": 57)"), 0,
-               {"leg_ticks.left", "57 counts are 0.720 m", "about 127"});
-  expect_error(with(R"("right": 127)", R"("right": 126.5)"), 0,
-               {"leg_ticks.right", "whole number"});
+  expect_error(with(R"("left": 127)", R"("left": 57)"), 0, {"leg_ticks.left", "57 counts are 0.720 m", "about 127"});
+  expect_error(with(R"("right": 127)", R"("right": 126.5)"), 0, {"leg_ticks.right", "whole number"});
   expect_error(with(R"("right": 127)", R"("right": -127)"), 0, {"leg_ticks.right", "> 0"});
 }
 
 TEST(UmbmarkInputReader, WrongTypesNameTheFieldAndWhatWasFound) {
-  expect_error(with("1.6", R"("1.6")"), 0,
-               {"side_length_m", "expected a number in metres", "string \"1.6\""});
+  expect_error(with("1.6", R"("1.6")"), 0, {"side_length_m", "expected a number in metres", "string \"1.6\""});
   expect_error(with(R"("direction": "cw")", R"("direction": 1)"), 0,
                {"runs[0].direction", "expected \"cw\" or \"ccw\"", "number"});
-  expect_error(with(R"("direction": "cw")", R"("direction": "clockwise")"), 0,
-               {"runs[0].direction", "\"clockwise\""});
-  expect_error(with(R"("gear_ratio": 1)", R"("gear_ratio": true)"), 0,
-               {"nominal.gear_ratio", "boolean"});
-  expect_error(with(R"("leg_ticks": { "left": 127, "right": 127 })", R"("leg_ticks": [127, 127])"),
-               0, {"leg_ticks", "expected an object", "array"});
-  const std::string runs_object =
-      kValid.substr(0, kValid.find(R"("runs")")) + R"("runs": { "direction": "cw" } })";
+  expect_error(with(R"("direction": "cw")", R"("direction": "clockwise")"), 0, {"runs[0].direction", "\"clockwise\""});
+  expect_error(with(R"("gear_ratio": 1)", R"("gear_ratio": true)"), 0, {"nominal.gear_ratio", "boolean"});
+  expect_error(with(R"("leg_ticks": { "left": 127, "right": 127 })", R"("leg_ticks": [127, 127])"), 0,
+               {"leg_ticks", "expected an object", "array"});
+  const std::string runs_object = kValid.substr(0, kValid.find(R"("runs")")) + R"("runs": { "direction": "cw" } })";
   expect_error(runs_object, 0, {"runs", "expected an array", "object"});
   expect_error("[1, 2]", 0, {"expected an object", "array"});
 }
@@ -167,10 +154,8 @@ TEST(UmbmarkInputReader, WrongTypesNameTheFieldAndWhatWasFound) {
 TEST(UmbmarkInputReader, UnknownKeysAreErrorsAtEveryLevel) {
   expect_error(with(R"("side_length_m")", R"("side_m": 1, "side_length_m")"), 0,
                {"side_m", "unknown key", "side_length_m"});
-  expect_error(with(R"("gear_ratio")", R"("gear": 1, "gear_ratio")"), 0,
-               {"nominal.gear", "unknown key"});
-  expect_error(with(R"("x_error_m": 0.29)", R"("x_err_m": 0.29)"), 0,
-               {"runs[1].x_err_m", "unknown key", "x_error_m"});
+  expect_error(with(R"("gear_ratio")", R"("gear": 1, "gear_ratio")"), 0, {"nominal.gear", "unknown key"});
+  expect_error(with(R"("x_error_m": 0.29)", R"("x_err_m": 0.29)"), 0, {"runs[1].x_err_m", "unknown key", "x_error_m"});
 }
 
 TEST(UmbmarkInputReader, MissingFieldsAreNamed) {
@@ -182,11 +167,10 @@ TEST(UmbmarkInputReader, ImplausibleValuesAreRejected) {
   expect_error(with("0.0885", "0"), 0, {"nominal.wheel_diameter_m", "must be > 0"});
   expect_error(with("1.6", "-1.6"), 0, {"side_length_m", "must be > 0"});
   expect_error(with("1.002", "100.2"), 0, {"tape_measure_scale", "ratio near 1"});
-  expect_error(with(R"("counts_per_rev": 22)", R"("counts_per_rev": 0)"), 0,
-               {"nominal.counts_per_rev", "> 0"});
-  expect_error(with(R"("wheel_diameter_m": 0.0885,)",
-                    R"("wheel_diameter_m": 0.0885, "wheel_diameter_left_m": 0.0885,)"),
-               0, {"nominal", "not both"});
+  expect_error(with(R"("counts_per_rev": 22)", R"("counts_per_rev": 0)"), 0, {"nominal.counts_per_rev", "> 0"});
+  expect_error(
+      with(R"("wheel_diameter_m": 0.0885,)", R"("wheel_diameter_m": 0.0885, "wheel_diameter_left_m": 0.0885,)"), 0,
+      {"nominal", "not both"});
 }
 
 TEST(UmbmarkInputReader, SyntaxErrorsCarryTheirLine) {

@@ -26,9 +26,8 @@ std::vector<double> floor_errors(double speed, bool left) {
   const auto& w = r.wheel_samples;
   std::vector<double> d;
   for (std::size_t i = 2; i + 2 < w.size(); ++i) {
-    d.push_back(
-        left ? (w[i].rim_left - w[i - 1].rim_left) - (w[i].ground_left - w[i - 1].ground_left)
-             : (w[i].rim_right - w[i - 1].rim_right) - (w[i].ground_right - w[i - 1].ground_right));
+    d.push_back(left ? (w[i].rim_left - w[i - 1].rim_left) - (w[i].ground_left - w[i - 1].ground_left)
+                     : (w[i].rim_right - w[i - 1].rim_right) - (w[i].ground_right - w[i - 1].ground_right));
   }
   return d;
 }

@@ -17,8 +17,7 @@ TEST(Presets, ListTheRequiredNamesWithOneLineDescriptions) {
     EXPECT_EQ(p.description.find('\n'), std::string::npos);
     EXPECT_EQ(preset(p.name).name, p.name);
   }
-  for (const char* required :
-       {"corridor", "umbmark_trilobot", "umbmark_borenstein", "room_laser", "ideal"}) {
+  for (const char* required : {"corridor", "umbmark_trilobot", "umbmark_borenstein", "room_laser", "ideal"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
   }
 }

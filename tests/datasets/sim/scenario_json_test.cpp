@@ -65,8 +65,7 @@ TEST(ScenarioJson, RoundTripsEveryField) {
   EXPECT_TRUE(back.drive.equal_wheel_ticks);
   EXPECT_EQ(back.slip.unit, SlipRateUnit::kPerMetre);
   // Doubles survive text exactly.
-  EXPECT_EQ(scenario_from_json(json::parse(j.dump())).robot.actual.diameter_left,
-            s.robot.actual.diameter_left);
+  EXPECT_EQ(scenario_from_json(json::parse(j.dump())).robot.actual.diameter_left, s.robot.actual.diameter_left);
 }
 
 TEST(ScenarioJson, AbsentKeysKeepTheDefaults) {
@@ -77,8 +76,7 @@ TEST(ScenarioJson, AbsentKeysKeepTheDefaults) {
 }
 
 TEST(ScenarioJson, PresetKeyStartsFromThatPreset) {
-  const Scenario s =
-      scenario_from_json(json{{"preset", "corridor"}, {"motion", {{"distance", 5.0}}}});
+  const Scenario s = scenario_from_json(json{{"preset", "corridor"}, {"motion", {{"distance", 5.0}}}});
   EXPECT_EQ(s.name, "corridor");
   EXPECT_EQ(s.motion.distance, 5.0);
   EXPECT_EQ(s.encoders.timing.rate, 4.0);
@@ -94,8 +92,7 @@ TEST(ScenarioJson, UnknownKeyIsRejectedWithItsName) {
   expect_input_error([] { scenario_from_json(json{{"sped", 1.0}}); }, {"unknown key", "sped"});
   expect_input_error(
       [] {
-        scenario_from_json(
-            json{{"compass", {{"zones", json::array({{{"shape", "circle"}, {"min", {0, 0}}}})}}}});
+        scenario_from_json(json{{"compass", {{"zones", json::array({{{"shape", "circle"}, {"min", {0, 0}}}})}}}});
       },
       {"compass.zones[0].min"});
 }
@@ -111,16 +108,8 @@ TEST(ScenarioJson, WrongTypeIsRejectedWithTheKeyAndTheExpectedType) {
         scenario_from_json(json{{"motion", {{"runs", 2.5}}}});
       },
       {"motion.runs", "expected an integer"});
-  expect_input_error(
-      [] {
-        scenario_from_json(json{{"start", {1.0, 2.0}}});
-      },
-      {"start", "3 numbers"});
-  expect_input_error(
-      [] {
-        scenario_from_json(json{{"laser", true}});
-      },
-      {"laser", "expected an object"});
+  expect_input_error([] { scenario_from_json(json{{"start", {1.0, 2.0}}}); }, {"start", "3 numbers"});
+  expect_input_error([] { scenario_from_json(json{{"laser", true}}); }, {"laser", "expected an object"});
   expect_input_error(
       [] {
         scenario_from_json(json{{"encoders", {{"enabled", 1}}}});
@@ -134,16 +123,8 @@ TEST(ScenarioJson, WrongTypeIsRejectedWithTheKeyAndTheExpectedType) {
 }
 
 TEST(ScenarioJson, InvalidValuesAreInputErrorsNamingTheField) {
-  expect_input_error(
-      [] {
-        scenario_from_json(json{{"drive", {{"speed", -1.0}}}});
-      },
-      {"drive.speed", "> 0"});
-  expect_input_error(
-      [] {
-        scenario_from_json(json{{"laser", {{"dropout", 1.5}}}});
-      },
-      {"laser.dropout"});
+  expect_input_error([] { scenario_from_json(json{{"drive", {{"speed", -1.0}}}}); }, {"drive.speed", "> 0"});
+  expect_input_error([] { scenario_from_json(json{{"laser", {{"dropout", 1.5}}}}); }, {"laser.dropout"});
 }
 
 TEST(ScenarioJson, LoadsAFileAndReportsSyntaxErrorsWithTheLine) {

@@ -28,8 +28,7 @@ inline std::vector<Pose2> dead_reckon(const Log& log, const Pose2& start) {
     if (i > 0) {
       const auto& a = log.encoders[i - 1];
       const auto& b = log.encoders[i];
-      p = odometry_step(p, displacement_from_ticks(m, b.left - a.left, b.right - a.right),
-                        m.wheelbase);
+      p = odometry_step(p, displacement_from_ticks(m, b.left - a.left, b.right - a.right), m.wheelbase);
     }
     out.push_back(p);
   }

@@ -153,9 +153,8 @@ TEST(Simulation, OdometryRecordsCarryTheDeadReckonedPoseAndVelocities) {
 }
 
 bool identical(const Log& a, const Log& b) {
-  if (a.params != b.params || a.encoders.size() != b.encoders.size() ||
-      a.compass.size() != b.compass.size() || a.laser.size() != b.laser.size() ||
-      a.truth.size() != b.truth.size() || a.odometry.size() != b.odometry.size()) {
+  if (a.params != b.params || a.encoders.size() != b.encoders.size() || a.compass.size() != b.compass.size() ||
+      a.laser.size() != b.laser.size() || a.truth.size() != b.truth.size() || a.odometry.size() != b.odometry.size()) {
     return false;
   }
   for (std::size_t i = 0; i < a.encoders.size(); ++i) {
@@ -165,8 +164,7 @@ bool identical(const Log& a, const Log& b) {
     }
   }
   for (std::size_t i = 0; i < a.compass.size(); ++i) {
-    if (a.compass[i].t != b.compass[i].t || a.compass[i].heading != b.compass[i].heading)
-      return false;
+    if (a.compass[i].t != b.compass[i].t || a.compass[i].heading != b.compass[i].heading) return false;
   }
   for (std::size_t i = 0; i < a.laser.size(); ++i) {
     if (a.laser[i].scan.ranges != b.laser[i].scan.ranges) return false;
@@ -178,8 +176,7 @@ bool identical(const Log& a, const Log& b) {
     }
   }
   for (std::size_t i = 0; i < a.odometry.size(); ++i) {
-    if (a.odometry[i].pose.x != b.odometry[i].pose.x || a.odometry[i].tv != b.odometry[i].tv)
-      return false;
+    if (a.odometry[i].pose.x != b.odometry[i].pose.x || a.odometry[i].tv != b.odometry[i].tv) return false;
   }
   return true;
 }

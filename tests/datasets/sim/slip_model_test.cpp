@@ -72,8 +72,7 @@ TEST(SlipInSimulation, AffectsOnlyOneWheelPerSample) {
   for (const auto& e : r.slips) {
     const auto& a = w[e.sample];
     const auto& b = w[e.sample + 1];
-    const double other =
-        e.wheel == Side::kLeft ? b.slip_right - a.slip_right : b.slip_left - a.slip_left;
+    const double other = e.wheel == Side::kLeft ? b.slip_right - a.slip_right : b.slip_left - a.slip_left;
     EXPECT_EQ(other, 0.0);
   }
 }

@@ -45,22 +45,17 @@ class QuantizationResidual : public ::testing::Test {
 
   static std::vector<double> residuals(bool left) {
     const auto& w = result_->wheel_samples;
-    const double c =
-        left ? left_c() : result_->robot.meters_per_tick(result_->robot.actual.diameter_right);
+    const double c = left ? left_c() : result_->robot.meters_per_tick(result_->robot.actual.diameter_right);
     std::vector<double> r;
     // Skip the first and last samples (standing still: remainder exactly 0).
     for (std::size_t i = 2; i + 2 < w.size(); ++i) {
-      const double rim =
-          left ? w[i].rim_left - w[i - 1].rim_left : w[i].rim_right - w[i - 1].rim_right;
-      const auto n =
-          left ? w[i].count_left - w[i - 1].count_left : w[i].count_right - w[i - 1].count_right;
+      const double rim = left ? w[i].rim_left - w[i - 1].rim_left : w[i].rim_right - w[i - 1].rim_right;
+      const auto n = left ? w[i].count_left - w[i - 1].count_left : w[i].count_right - w[i - 1].count_right;
       r.push_back(quantization_residual(rim, n, c));
     }
     return r;
   }
-  static double left_c() {
-    return result_->robot.meters_per_tick(result_->robot.actual.diameter_left);
-  }
+  static double left_c() { return result_->robot.meters_per_tick(result_->robot.actual.diameter_left); }
 
   static SimulationResult* result_;
 };
@@ -78,8 +73,7 @@ TEST_F(QuantizationResidual, HasZeroMeanAndVarianceCSquaredOverSix) {
 
 TEST_F(QuantizationResidual, StaysWithinPlusMinusOneTick) {
   for (bool left : {true, false}) {
-    const double c =
-        left ? left_c() : result_->robot.meters_per_tick(result_->robot.actual.diameter_right);
+    const double c = left ? left_c() : result_->robot.meters_per_tick(result_->robot.actual.diameter_right);
     const auto r = residuals(left);
     const auto [lo, hi] = std::minmax_element(r.begin(), r.end());
     EXPECT_GT(*lo, -c);
@@ -97,8 +91,7 @@ TEST_F(QuantizationResidual, HasTheTriangularShape) {
   const double kurtosis = central_moment(r, 4) / std::pow(central_moment(r, 2), 2);
   EXPECT_NEAR(kurtosis, 2.4, 0.1);
   // Triangle: P(|e| < C/2) = 3/4.
-  const auto inner =
-      std::count_if(r.begin(), r.end(), [&](double e) { return std::abs(e) < c / 2; });
+  const auto inner = std::count_if(r.begin(), r.end(), [&](double e) { return std::abs(e) < c / 2; });
   EXPECT_NEAR(static_cast<double>(inner) / static_cast<double>(r.size()), 0.75, 0.03);
 }
 

@@ -72,8 +72,7 @@ TEST(CorridorWorld, IsClosedAndHasTheConfiguredWidthAndLength) {
 
 TEST(WorldJson, ReadsNameAndSegmentsInMetres) {
   const LineMap m = world_from_json(
-      nlohmann::json::parse(R"({"name": "lab", "segments": [[0, 0, 4, 0], [4, 0, 4, 3.5]]})"),
-      "lab.json");
+      nlohmann::json::parse(R"({"name": "lab", "segments": [[0, 0, 4, 0], [4, 0, 4, 3.5]]})"), "lab.json");
   EXPECT_EQ(m.name, "lab");
   ASSERT_EQ(m.segments.size(), 2u);
   EXPECT_EQ(m.segments[1].p2, Eigen::Vector2d(4.0, 3.5));
