@@ -84,7 +84,6 @@ struct IdentifiabilitySetup {
 
 class CalibrationIdentifiability final : public MonteCarloExperiment<Options, IdentifiabilitySetup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   IdentifiabilitySetup setup(const Options& o, const McPlan& plan) const override {
     IdentifiabilitySetup u;
     u.base = o.scenario;

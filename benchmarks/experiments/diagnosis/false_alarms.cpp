@@ -44,7 +44,6 @@ struct FalseAlarmSetup {
 
 class DiagnosisFalseAlarms final : public MonteCarloExperiment<Options, FalseAlarmSetup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   FalseAlarmSetup setup(const Options& c, const McPlan&) const override {
     FalseAlarmSetup s;
     s.config = options_json(c);

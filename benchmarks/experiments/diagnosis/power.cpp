@@ -84,7 +84,6 @@ const diagnosis::Cause* find(const diagnosis::Diagnosis& d, const std::string& i
 
 class DiagnosisPower final : public MonteCarloExperiment<Options, PowerSetup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   PowerSetup setup(const Options& cfg, const McPlan&) const override {
     PowerSetup s;
     s.config = options_json(cfg);

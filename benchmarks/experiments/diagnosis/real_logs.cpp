@@ -50,7 +50,6 @@ void visit_fields(V& v, Options& o) {
 
 class DiagnosisRealLogs final : public OptionsExperiment<Options> {
  public:
-  using OptionsExperiment::OptionsExperiment;
   reports::ExperimentResults run_with(const Options& cfg, const RunOptions& options) const override {
     reports::ExperimentResults out = start_results(options_json(cfg));
     diagnosis::DiagnosisOptions opt;

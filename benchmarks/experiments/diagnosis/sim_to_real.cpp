@@ -105,7 +105,6 @@ void visit_fields(V& v, Options& o) {
 
 class DiagnosisSimToReal final : public OptionsExperiment<Options> {
  public:
-  using OptionsExperiment::OptionsExperiment;
   reports::ExperimentResults run_with(const Options& cfg, const RunOptions& options) const override {
     reports::ExperimentResults out = start_results(options_json(cfg));
     out.seeds = {options.seed};

@@ -36,6 +36,9 @@ struct ExperimentInfo {
   std::vector<std::string> reading = {};
 };
 
+template <typename E>
+class Registration;
+
 class Experiment {
  public:
   explicit Experiment(ExperimentInfo info) : info_(std::move(info)) {}
@@ -66,7 +69,14 @@ class Experiment {
   virtual reports::ExperimentResults summarise_records(const nlohmann::json& config, const RunOptions& options,
                                                        const std::vector<nlohmann::json>& records) const;
 
+ protected:
+  // For experiments registered with their ExperimentInfo (registry.h): Registration gives the
+  // info right after construction, so an experiment class need not forward a constructor.
+  Experiment() = default;
+
  private:
+  template <typename E>
+  friend class Registration;
   ExperimentInfo info_;
 };
 

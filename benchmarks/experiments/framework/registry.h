@@ -8,12 +8,13 @@
 //   const Registration<OdometrySimCorridor> odometry_sim_corridor_registration(kInfo);
 //   }  // namespace locbench::experiments::odometry_sim_corridor     (or …("constructor arg"))
 //
-// The name and description are data (ExperimentInfo), stated once, at the top of the file. The file's own types
+// The name, description and reading notes are data (ExperimentInfo), stated once, at the top of
+// the file; the class needs no constructor (Registration gives it the info). The file's own types
 // and the registrar live in a namespace named after the file (<topic>_<name>), not an anonymous
-// one, so that files batched into one unity-build unit never define the same name twice. It runs while the program
-// loads and stores a factory; no experiment is constructed then. all_experiments() (experiment.h) makes each one once,
-// on first use, sorted by name, so the order never depends on the link order. The experiments are compiled into an
-// OBJECT library
+// one, so that files batched into one unity-build unit never define the same name twice. The
+// registrar runs while the program loads and stores a factory; no experiment is constructed then.
+// all_experiments() (experiment.h) makes each one once, on first use, sorted by name, so the order
+// never depends on the link order. The experiments are compiled into an OBJECT library
 // (../CMakeLists.txt), which puts every registrar into the program: from a static library the
 // linker would drop the files nothing refers to.
 #include <functional>
@@ -36,10 +37,15 @@ std::vector<std::unique_ptr<Experiment>> make_sorted(const std::vector<Experimen
 template <typename E>
 class Registration {
  public:
-  // The arguments are copied into the factory and given to E's constructor.
+  // E is default-constructed and given `info`.
   explicit Registration(ExperimentInfo info) {
-    register_experiment([info] { return std::make_unique<E>(info); });
+    register_experiment([info] {
+      auto e = std::make_unique<E>();
+      e->info_ = info;
+      return e;
+    });
   }
+  // The arguments are copied into the factory and given to E's constructor, which states the info.
   template <typename... Args>
   explicit Registration(Args... args) {
     register_experiment([args...] { return std::make_unique<E>(args...); });

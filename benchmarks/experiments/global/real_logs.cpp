@@ -115,7 +115,6 @@ void visit_fields(V& v, Options& o) {
 
 class GlobalRealLogs final : public MonteCarloExperiment<Options, Setup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   Setup setup(const Options& o, const McPlan& plan) const override {
     Setup s;
     s.specs = real_log_specs(o.datasets, name());

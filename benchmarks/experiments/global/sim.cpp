@@ -165,7 +165,6 @@ void visit_fields(V& v, Options& o) {
 
 class GlobalSim final : public MonteCarloExperiment<Options, Setup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   Setup setup(const Options& o, const McPlan& plan) const override {
     Setup s;
     s.methods = o.methods;

@@ -37,7 +37,6 @@ void visit_fields(V& v, Options& o) {
 
 class GlobalTopological final : public OptionsExperiment<Options> {
  public:
-  using OptionsExperiment::OptionsExperiment;
   reports::ExperimentResults run_with(const Options& o, const RunOptions&) const override {
     const double p12 = o.prior_1_2;
     const double p23 = o.prior_2_3;

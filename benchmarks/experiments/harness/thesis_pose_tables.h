@@ -69,7 +69,6 @@ std::pair<double, std::size_t> finite_mean(const std::vector<double>& v);
 // Shared shape of the three table experiments.
 class ThesisTableExperiment : public MonteCarloExperiment<TableOptions, Setup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   Setup setup(const TableOptions& o, const McPlan& plan) const override;
   // Run k: one scan of the room from the thesis pose, then the table's rows.
   nlohmann::json run_task(const Setup& s, const McPlan& plan, int k) const final;

@@ -158,7 +158,6 @@ Pose2 random_free_pose(const LineMap& room, Rng& rng) {
 
 class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   Setup setup(const Options& o, const McPlan& plan) const override {
     Setup s;
     s.matchers = o.matchers;

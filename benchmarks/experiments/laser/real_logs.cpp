@@ -134,7 +134,6 @@ constexpr double kHeadingSpread = 0.0349066;  // 2°
 
 class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   Setup setup(const Options& o, const McPlan&) const override {
     Setup s;
     s.datasets = real_log_specs(o.datasets, name());

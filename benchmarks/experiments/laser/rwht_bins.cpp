@@ -77,7 +77,6 @@ std::pair<double, double> line_difference(const LineParams& a, const LineParams&
 
 class LaserRwhtBins final : public MonteCarloExperiment<Options, Setup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   Setup setup(const Options& o, const McPlan& plan) const override {
     Setup s;
     for (double a : o.angle_bins_deg) s.angle_bins.push_back(deg(a));

@@ -90,7 +90,6 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Record, final_position_error, final_heading_e
 
 class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   Setup setup(const Options& o, const McPlan& plan) const override {
     if (o.scenario.laser.timing.rate <= 0 || o.scenario.encoders.timing.rate <= 0) {
       throw UsageError(name() + ": the scenario needs encoders and a laser");

@@ -40,7 +40,6 @@ void visit_fields(V& v, Options& o) {
 
 class EncoderResolutionSweep final : public MonteCarloExperiment<Options, SweepSetup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   SweepSetup setup(const Options& o, const McPlan& plan) const override {
     SweepSetup u;
     u.filters = o.filters;

@@ -31,7 +31,6 @@ void visit_fields(V& v, Options& o) {
 
 class QuantizationSigma final : public OptionsExperiment<Options> {
  public:
-  using OptionsExperiment::OptionsExperiment;
   reports::ExperimentResults run_with(const Options& o, const RunOptions&) const override {
     reports::ExperimentResults out = start_results(options_json(o));
     const std::vector<double>& cs = o.resolutions_mm;

@@ -100,7 +100,6 @@ void visit_fields(V& v, Options& o) {
 
 class NoiseRealLogs final : public OptionsExperiment<Options> {
  public:
-  using OptionsExperiment::OptionsExperiment;
   reports::ExperimentResults run_with(const Options& c, const RunOptions& options) const override {
     reports::ExperimentResults out = start_results(options_json(c));
     OdometryNoiseOptions adaptive;

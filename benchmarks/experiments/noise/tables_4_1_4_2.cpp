@@ -84,7 +84,6 @@ void add_plots(reports::ExperimentResults& out, const McPlan& plan, const std::v
 
 class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   NoiseSetup setup(const Options& o, const McPlan& plan) const override {
     return {o.scenario, o.filters, recorded(o, plan)};
   }

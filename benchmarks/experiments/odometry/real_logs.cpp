@@ -43,7 +43,6 @@ void visit_fields(V& v, Options& o) {
 
 class OdometryRealLogs final : public OptionsExperiment<Options> {
  public:
-  using OptionsExperiment::OptionsExperiment;
   reports::ExperimentResults run_with(const Options& c, const RunOptions& options) const override {
     reports::ExperimentResults out = start_results(options_json(c));
     const auto specs = real_log_specs(c.datasets, name());

@@ -86,7 +86,6 @@ reports::PlotSeries series_from(const nlohmann::json& j) {
 
 class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorSetup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   CorridorSetup setup(const Options& o, const McPlan& plan) const override { return {o.scenario, recorded(o, plan)}; }
 
   nlohmann::json run_task(const CorridorSetup& s, const McPlan& plan, int k) const override {

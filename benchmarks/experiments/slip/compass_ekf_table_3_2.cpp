@@ -111,7 +111,6 @@ struct CompassSetup {
 
 class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   CompassSetup setup(const Options& o, const McPlan& plan) const override {
     CompassSetup u;
     u.cal_runs = o.calibration_runs;

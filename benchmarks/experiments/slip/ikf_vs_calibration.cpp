@@ -131,7 +131,6 @@ IkfRunResult ikf_on_squares(const sim::SimulationResult& r, const NominalModel& 
 
 class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   Setup setup(const Options& o, const McPlan& plan) const override {
     Setup s;
     s.squares = o.squares;

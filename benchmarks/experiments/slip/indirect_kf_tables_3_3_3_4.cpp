@@ -109,7 +109,6 @@ struct IkfSetup {
 
 class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
  public:
-  using MonteCarloExperiment::MonteCarloExperiment;
   IkfSetup setup(const Options& o, const McPlan& plan) const override {
     IkfSetup u;
     u.scenario = o.scenario;

@@ -35,7 +35,6 @@ void visit_fields(V& v, Options& o) {
 
 class SlipNormality final : public OptionsExperiment<Options> {
  public:
-  using OptionsExperiment::OptionsExperiment;
   reports::ExperimentResults run_with(const Options& o, const RunOptions& options) const override {
     const nlohmann::json config = options_json(o);
     reports::ExperimentResults out = start_results(config);
