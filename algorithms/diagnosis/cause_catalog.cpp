@@ -26,95 +26,82 @@ bool timed_reference(const MotionData& d) { return d.reference != ReferenceKind:
 std::vector<CauseSpec> build() {
   using M = OdometryModel;
   std::vector<CauseSpec> c;
-  c.push_back({cause::kWheelDiameterRatio,
-               "odometry",
-               {{"E_d", "1", &M::E_d, 1.0, 1e-3, false, 0.9, 1.1}},
-               PrimaryMetric::kHeading,
-               false,
-               false,
-               {"bias:heading", "drift_with_distance:heading"},
-               encoder,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kWheelDiameterRatio,
+               .channel = "odometry",
+               .params = {{"E_d", "1", &M::E_d, 1.0, 1e-3, false, 0.9, 1.1}},
+               .metric = PrimaryMetric::kHeading,
+               .explains = {"bias:heading", "drift_with_distance:heading"},
+               .applies = encoder,
+               .explain = [](const Cause& x) {
                  return "the wheels' diameters differ from the nominal ratio: E_d = D_R/D_L = " + ci(x, 0) +
                         " (eq. 2.1), so the odometry drifts in heading on straight lines";
                }});
-  c.push_back({cause::kWheelbaseScale,
-               "odometry",
-               {{"E_b", "1", &M::E_b, 1.0, 1e-3, false, 0.8, 1.2}},
-               PrimaryMetric::kHeading,
-               false,
-               false,
-               {"drift_with_turning:heading"},
-               encoder,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kWheelbaseScale,
+               .channel = "odometry",
+               .params = {{"E_b", "1", &M::E_b, 1.0, 1e-3, false, 0.8, 1.2}},
+               .metric = PrimaryMetric::kHeading,
+               .explains = {"drift_with_turning:heading"},
+               .applies = encoder,
+               .explain = [](const Cause& x) {
                  return "the effective wheelbase differs from the nominal one: E_b = " + ci(x, 0) +
                         " (eq. 2.2), so turns are over- or under-counted";
                }});
   // On heading-only references E_o and E_b act only through E_o/E_b (confounded, reported).
-  c.push_back({cause::kMeanDiameterScale,
-               "odometry",
-               {{"E_o", "1", &M::E_o, 1.0, 1e-3, false, 0.8, 1.2}},
-               PrimaryMetric::kTranslation,
-               false,
-               false,
-               {"bias:along_track", "drift_with_distance:along_track", "drift_with_turning:heading"},
-               encoder,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kMeanDiameterScale,
+               .channel = "odometry",
+               .params = {{"E_o", "1", &M::E_o, 1.0, 1e-3, false, 0.8, 1.2}},
+               .metric = PrimaryMetric::kTranslation,
+               .explains = {"bias:along_track", "drift_with_distance:along_track", "drift_with_turning:heading"},
+               .applies = encoder,
+               .explain = [](const Cause& x) {
                  return "the mean wheel diameter differs from the nominal one: E_o = " + ci(x, 0) +
                         " (eq. 2.15), so every distance is scaled";
                }});
-  c.push_back({cause::kWheelSlip,
-               "odometry",
-               {{"rate_per_m", "1/m", &M::slip_rate, 0.05, 0.01, true, 0.0, 10.0},
-                {"mean_loss", "1", &M::slip_loss, 0.2, 0.01, false, -1.0, 1.0}},
-               PrimaryMetric::kLikelihood,
-               true,
-               false,
-               {"heavy_tails:heading", "normality_skewness:heading", "heavy_tails:along_track"},
-               encoder,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kWheelSlip,
+               .channel = "odometry",
+               .params = {{"rate_per_m", "1/m", &M::slip_rate, 0.05, 0.01, true, 0.0, 10.0},
+                          {"mean_loss", "1", &M::slip_loss, 0.2, 0.01, false, -1.0, 1.0}},
+               .metric = PrimaryMetric::kLikelihood,
+               .noise = true,
+               .explains = {"heavy_tails:heading", "normality_skewness:heading", "heavy_tails:along_track"},
+               .applies = encoder,
+               .explain = [](const Cause& x) {
                  return "occasional wheel slip: " + ci(x, 0) + " events per metre of wheel travel, each losing " +
                         ci(x, 1) + " of one sample's travel of one wheel (§3.2) — heavy tails in the heading residual";
                }});
-  c.push_back({cause::kVelocityScale,
-               "odometry",
-               {{"scale", "1", &M::velocity_scale, 1.0, 1e-3, false, 0.5, 1.5}},
-               PrimaryMetric::kTranslation,
-               false,
-               false,
-               {"bias:along_track", "drift_with_distance:along_track", "speed_dependence:along_track"},
-               velocity_with_distance,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kVelocityScale,
+               .channel = "odometry",
+               .params = {{"scale", "1", &M::velocity_scale, 1.0, 1e-3, false, 0.5, 1.5}},
+               .metric = PrimaryMetric::kTranslation,
+               .explains = {"bias:along_track", "drift_with_distance:along_track", "speed_dependence:along_track"},
+               .applies = velocity_with_distance,
+               .explain = [](const Cause& x) {
                  return "the robot moves " + ci(x, 0) +
                         " times the logged distance (a velocity command the drive does not reach, or "
                         "a wheel radius off)";
                }});
-  c.push_back({cause::kSpeedDependentScale,
-               "odometry",
-               {{"scale_at_0", "1", &M::velocity_scale, 1.0, 1e-3, false, 0.5, 1.5},
-                {"slope_s_per_m", "s/m", &M::speed_slope, 0.0, 1e-2, false, -2.0, 2.0}},
-               PrimaryMetric::kTranslation,
-               false,
-               false,
-               {"bias:along_track", "speed_dependence:along_track", "drift_with_distance:along_track"},
-               velocity_with_distance,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kSpeedDependentScale,
+               .channel = "odometry",
+               .params = {{"scale_at_0", "1", &M::velocity_scale, 1.0, 1e-3, false, 0.5, 1.5},
+                          {"slope_s_per_m", "s/m", &M::speed_slope, 0.0, 1e-2, false, -2.0, 2.0}},
+               .metric = PrimaryMetric::kTranslation,
+               .explains = {"bias:along_track", "speed_dependence:along_track", "drift_with_distance:along_track"},
+               .applies = velocity_with_distance,
+               .explain = [](const Cause& x) {
                  return "the distance scale changes with speed: " + ci(x, 0) + " at rest, changing by " + ci(x, 1) +
                         " per m/s of logged speed";
                }});
   // A skewed along-track residual (windows that lose much of their distance, the rest at the
   // command) is not a scale: a symmetric noise model reads the slow windows as outliers and the
   // scale as the typical window's, while the path-length ratio is the mean's.
-  c.push_back({cause::kDriveStall,
-               "odometry",
-               {{"rate_per_s", "1/s", &M::stall_rate, 0.1, 0.01, true, 0.0, 2.0},
-                {"duration_s", "s", &M::stall_duration, 0.4, 0.01, true, 0.0, 5.0}},
-               PrimaryMetric::kTranslation,
-               false,
-               false,
-               {"bias:along_track", "drift_with_distance:along_track", "speed_dependence:along_track"},
-               velocity_with_distance,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kDriveStall,
+               .channel = "odometry",
+               .params = {{"rate_per_s", "1/s", &M::stall_rate, 0.1, 0.01, true, 0.0, 2.0},
+                          {"duration_s", "s", &M::stall_duration, 0.4, 0.01, true, 0.0, 5.0}},
+               .metric = PrimaryMetric::kTranslation,
+               .explains = {"bias:along_track", "drift_with_distance:along_track", "speed_dependence:along_track"},
+               .applies = velocity_with_distance,
+               .explain = [](const Cause& x) {
                  std::string s = "the drive stalls now and then: " + ci(x, 0) +
                                  " episodes per second, each stopping the "
                                  "robot for " +
@@ -125,119 +112,97 @@ std::vector<CauseSpec> build() {
                  }
                  return s;
                }});
-  c.push_back({cause::kTurnRateScale,
-               "odometry",
-               {{"scale", "1", &M::turn_rate_scale, 1.0, 1e-3, false, 0.5, 1.5}},
-               PrimaryMetric::kHeading,
-               false,
-               false,
-               {"drift_with_turning:heading"},
-               velocity,
-               [](const Cause& x) { return "the robot turns " + ci(x, 0) + " times the logged turn"; }});
-  c.push_back({cause::kTurnRateBias,
-               "odometry",
-               {{"bias_rad_s", "rad/s", &M::turn_rate_bias, 0.0, 1e-4, false, -0.5, 0.5}},
-               PrimaryMetric::kHeading,
-               false,
-               false,
-               {"bias:heading", "drift_with_distance:heading"},
-               velocity,
-               [](const Cause& x) { return "the logged turn rate has a bias of " + ci(x, 0) + " rad/s"; }});
-  c.push_back({cause::kDriveResponse,
-               "odometry",
-               {{"tau_s", "s", &M::drive_tau, 0.1, 0.01, true, 0.0, 2.0}},
-               PrimaryMetric::kTranslationOrHeading,
-               false,
-               false,
-               {"lead_lag:heading", "autocorrelation:heading"},
-               velocity,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kTurnRateScale,
+               .channel = "odometry",
+               .params = {{"scale", "1", &M::turn_rate_scale, 1.0, 1e-3, false, 0.5, 1.5}},
+               .metric = PrimaryMetric::kHeading,
+               .explains = {"drift_with_turning:heading"},
+               .applies = velocity,
+               .explain = [](const Cause& x) { return "the robot turns " + ci(x, 0) + " times the logged turn"; }});
+  c.push_back({.id = cause::kTurnRateBias,
+               .channel = "odometry",
+               .params = {{"bias_rad_s", "rad/s", &M::turn_rate_bias, 0.0, 1e-4, false, -0.5, 0.5}},
+               .metric = PrimaryMetric::kHeading,
+               .explains = {"bias:heading", "drift_with_distance:heading"},
+               .applies = velocity,
+               .explain = [](const Cause& x) { return "the logged turn rate has a bias of " + ci(x, 0) + " rad/s"; }});
+  c.push_back({.id = cause::kDriveResponse,
+               .channel = "odometry",
+               .params = {{"tau_s", "s", &M::drive_tau, 0.1, 0.01, true, 0.0, 2.0}},
+               .explains = {"lead_lag:heading", "autocorrelation:heading"},
+               .applies = velocity,
+               .explain = [](const Cause& x) {
                  return "the robot follows the logged velocity through a first-order drive response "
                         "with time constant τ = " +
                         ci(x, 0) + " s (a lag that smooths, unlike a pure time offset)";
                }});
-  c.push_back({cause::kNoiseGrowth,
-               "odometry",
-               {{"k2_m", "m", &M::k2, 1e-6, 1e-6, true, 0.0, 1.0}},
-               PrimaryMetric::kLikelihood,
-               true,
-               false,
-               {"heteroscedasticity:heading", "heteroscedasticity:along_track"},
-               nullptr,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kNoiseGrowth,
+               .channel = "odometry",
+               .params = {{"k2_m", "m", &M::k2, 1e-6, 1e-6, true, 0.0, 1.0}},
+               .metric = PrimaryMetric::kLikelihood,
+               .noise = true,
+               .explains = {"heteroscedasticity:heading", "heteroscedasticity:along_track"},
+               .explain = [](const Cause& x) {
                  return "odometry noise grows with travel: k² = " + ci(x, 0) +
                         " m² per metre of wheel travel (eq. 4.16), which the nominal constant-noise model misses";
                }});
-  c.push_back({cause::kHeavyTails,
-               "odometry",
-               {{"dof", "1", &M::dof, 5.0, 1.0, true, 0.5, 1e3}},
-               PrimaryMetric::kLikelihood,
-               true,
-               true,
-               {"heavy_tails:heading", "heavy_tails:along_track", "normality_skewness:heading"},
-               nullptr,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kHeavyTails,
+               .channel = "odometry",
+               .params = {{"dof", "1", &M::dof, 5.0, 1.0, true, 0.5, 1e3}},
+               .metric = PrimaryMetric::kLikelihood,
+               .noise = true,
+               .generic = true,
+               .explains = {"heavy_tails:heading", "heavy_tails:along_track", "normality_skewness:heading"},
+               .explain = [](const Cause& x) {
                  return "the residuals are heavy-tailed: Student-t with " + ci(x, 0) +
                         " degrees of freedom fits them better than the normal model (occasional large "
                         "errors: collisions, slips, reference glitches); all fits use it";
                }});
-  c.push_back({cause::kTimeOffset,
-               "odometry",
-               {{"offset_s", "s", &M::time_offset, 0.0, 0.01, false, -0.5, 0.5}},
-               PrimaryMetric::kTranslationOrHeading,
-               false,
-               false,
-               {"lead_lag:heading", "autocorrelation:heading"},
-               timed_reference,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kTimeOffset,
+               .channel = "odometry",
+               .params = {{"offset_s", "s", &M::time_offset, 0.0, 0.01, false, -0.5, 0.5}},
+               .explains = {"lead_lag:heading", "autocorrelation:heading"},
+               .applies = timed_reference,
+               .explain = [](const Cause& x) {
                  return "the " + x.extra.value("sensor", std::string("sensor")) +
                         " timestamps are offset from the reference by " + ci(x, 0) + " s (logged − true)";
                }});
-  c.push_back({cause::kEncoderQuantization,
-               "odometry",
-               {{"step_m", "m"}},
-               PrimaryMetric::kExact,
-               true,
-               false,
-               {},
-               encoder,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kEncoderQuantization,
+               .channel = "odometry",
+               .params = {{"step_m", "m"}},
+               .metric = PrimaryMetric::kExact,
+               .noise = true,
+               .explains = {},
+               .applies = encoder,
+               .explain = [](const Cause& x) {
                  return "the encoders count in steps of " + ci(x, 0) + " m, coarser than the declared tick";
                }});
   // A lattice's round-off does not average out over a path with few headings: the moment tests
   // of the compass residual (mean, dependence on position) see it; the likelihood causes
   // (compass_bias, compass_disturbance) use the quantized density and judge those instead.
-  c.push_back({cause::kCompassQuantization,
-               "compass",
-               {{"step_rad", "rad"}, {"offset_rad", "rad"}},
-               PrimaryMetric::kExact,
-               true,
-               false,
-               {"bias:compass", "position_dependence:compass", "heavy_tails:compass"},
-               nullptr,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kCompassQuantization,
+               .channel = "compass",
+               .params = {{"step_rad", "rad"}, {"offset_rad", "rad"}},
+               .metric = PrimaryMetric::kExact,
+               .noise = true,
+               .explains = {"bias:compass", "position_dependence:compass", "heavy_tails:compass"},
+               .explain = [](const Cause& x) {
                  return "the compass reports multiples of " + ci(x, 0) + " rad (" +
                         fmt::format("{:.4g}", to_deg(x.parameters.empty() ? 0.0 : x.parameters[0].value)) +
                         "°), coarser than declared";
                }});
-  c.push_back({cause::kCompassBias,
-               "compass",
-               {{"bias_rad", "rad"}},
-               PrimaryMetric::kLikelihood,
-               false,
-               false,
-               {"bias:compass"},
-               nullptr,
-               [](const Cause& x) { return "the compass has a constant bias of " + ci(x, 0) + " rad"; }});
-  c.push_back({cause::kCompassDisturbance,
-               "compass",
-               {{"max_bias_rad", "rad"}},
-               PrimaryMetric::kLikelihood,
-               false,
-               false,
-               {"position_dependence:compass"},
-               nullptr,
-               [](const Cause& x) {
+  c.push_back({.id = cause::kCompassBias,
+               .channel = "compass",
+               .params = {{"bias_rad", "rad"}},
+               .metric = PrimaryMetric::kLikelihood,
+               .explains = {"bias:compass"},
+               .explain = [](const Cause& x) { return "the compass has a constant bias of " + ci(x, 0) + " rad"; }});
+  c.push_back({.id = cause::kCompassDisturbance,
+               .channel = "compass",
+               .params = {{"max_bias_rad", "rad"}},
+               .metric = PrimaryMetric::kLikelihood,
+               .explains = {"position_dependence:compass"},
+               .explain = [](const Cause& x) {
                  return "the compass is disturbed in a region (see `region`): extra bias " + ci(x, 0) + " rad there";
                }});
   return c;

@@ -45,15 +45,6 @@ using global::ScanStep;
 const char* const kWorlds[] = {"room", "corridor", "random_room"};
 constexpr int kWorldCount = 3;
 
-struct Setup {
-  std::vector<std::string> methods;
-  nlohmann::json method_options;
-  global::ConvergenceCriterion criterion;
-  int waypoints = 4;
-  double corridor_length = 16.0;
-  nlohmann::json configuration;
-};
-
 struct MethodRecord {
   double converged = 0.0;                                                     // 1/0, first tour
   double time_to_convergence = std::numeric_limits<double>::quiet_NaN();      // [s]
@@ -163,15 +154,18 @@ void visit_fields(V& v, Options& o) {
   v.field("corridor_length_m", o.corridor_length_m, "m", at_least(4.0), "the corridor world's length");
 }
 
+// The options and what is computed once from them.
+struct Setup : Options {
+  explicit Setup(const Options& o) : Options(o) {}
+  global::ConvergenceCriterion criterion;
+  nlohmann::json configuration;
+};
+
 class GlobalSim final : public MonteCarloExperiment<Options, Setup> {
  public:
   Setup setup(const Options& o, const McPlan& plan) const override {
-    Setup s;
-    s.methods = o.methods;
-    s.method_options = o.method_options;
+    Setup s(o);
     s.criterion = o.criterion();
-    s.waypoints = o.waypoints;
-    s.corridor_length = o.corridor_length_m;
     // Validate every method's options now (UsageError names the key).
     const LineMap probe = sim::room_world();
     for (const auto& m : s.methods) global::make_localizer(m, probe, s.method_options, Pose2{}, 1);
@@ -185,7 +179,7 @@ class GlobalSim final : public MonteCarloExperiment<Options, Setup> {
     Record rec;
     rec.world = task % kWorldCount;
     Rng rng = Rng::stream(seed, 100 + static_cast<std::uint64_t>(rec.world));
-    const LineMap world = make_world(rec.world, s.corridor_length, rng);
+    const LineMap world = make_world(rec.world, s.corridor_length_m, rng);
     const sim::SimulationResult ra = sim::simulate(tour(world, s.waypoints, rng), Rng::derive_seed(seed, 1));
     const sim::SimulationResult rb = sim::simulate(tour(world, s.waypoints, rng), Rng::derive_seed(seed, 2));
     const std::vector<ScanStep> a = global::scan_steps(ra.log);

@@ -121,12 +121,12 @@ void visit_fields(V& v, Options& o) {
   v.nested("random_room", o.random_room, "the random rooms (sim::RandomRoomOptions)");
 }
 
-struct Setup {
-  std::vector<std::string> matchers;
-  nlohmann::json matcher_options;
-  std::vector<Condition> conditions;
+// The options and what is computed once from them (in SI units).
+struct Setup : Options {
+  explicit Setup(const Options& o) : Options(o) {}
+  std::vector<Condition> conditions_si;
   sim::LaserConfig laser;
-  sim::RandomRoomOptions random_room;
+  sim::RandomRoomOptions random_room_si;
   nlohmann::json configuration;
 };
 
@@ -159,17 +159,15 @@ Pose2 random_free_pose(const LineMap& room, Rng& rng) {
 class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
  public:
   Setup setup(const Options& o, const McPlan& plan) const override {
-    Setup s;
-    s.matchers = o.matchers;
-    s.matcher_options = o.matcher_options;
+    Setup s(o);
     make_matchers(s.matchers, s.matcher_options, nullptr);  // validates names and options early
     for (const ConditionOptions& j : o.conditions) {
-      s.conditions.push_back({j.name, j.position_error_m, deg(j.heading_error_deg), mm(j.noise_mm),
-                              mm(j.range_offset_mm), j.dropout, j.spurious, j.clutter_segments});
+      s.conditions_si.push_back({j.name, j.position_error_m, deg(j.heading_error_deg), mm(j.noise_mm),
+                                 mm(j.range_offset_mm), j.dropout, j.spurious, j.clutter_segments});
     }
-    s.random_room.min_size = o.random_room.min_size_m;
-    s.random_room.max_size = o.random_room.max_size_m;
-    s.random_room.boxes = o.random_room.boxes;
+    s.random_room_si.min_size = o.random_room.min_size_m;
+    s.random_room_si.max_size = o.random_room.max_size_m;
+    s.random_room_si.boxes = o.random_room.boxes;
     s.laser.timing.enabled = true;  // LMS 200 defaults: 181 beams, ±90°, 8 m
     s.configuration = recorded(o, plan);
     return s;
@@ -179,11 +177,11 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
     Record rec;
     const auto matchers = make_matchers(s.matchers, s.matcher_options, nullptr);
     for (int w = 0; w < kWorldCount; ++w) {
-      for (std::size_t c = 0; c < s.conditions.size(); ++c) {
-        const Condition& cond = s.conditions[c];
+      for (std::size_t c = 0; c < s.conditions_si.size(); ++c) {
+        const Condition& cond = s.conditions_si[c];
         const std::uint64_t case_seed = Rng::derive_seed(plan.run_seed(k), 100 * static_cast<std::uint64_t>(w) + c);
         Rng rng(case_seed);
-        LineMap map = w == 0 ? sim::room_world() : sim::random_room(rng, s.random_room);
+        LineMap map = w == 0 ? sim::room_world() : sim::random_room(rng, s.random_room_si);
         const Pose2 truth = random_free_pose(map, rng);
         LineMap world = map;
         for (int i = 0; i < cond.clutter; ++i) {  // short walls, chairs, people: not in the map
@@ -219,7 +217,7 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
   reports::ExperimentResults summarise(const Setup& s, const McPlan& plan,
                                        const std::vector<nlohmann::json>& records) const override {
     reports::ExperimentResults out = start_results(s.configuration);
-    const std::size_t nm = s.matchers.size(), nc = s.conditions.size();
+    const std::size_t nm = s.matchers.size(), nc = s.conditions_si.size();
     std::vector<Record> recs;
     for (std::size_t k = 0; k < records.size(); ++k) {
       out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
@@ -230,7 +228,7 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
                             reports::text_checksum(s.configuration.at("random_room").dump()), records.size(), 0.0});
     for (int w = 0; w < kWorldCount; ++w) {
       for (std::size_t c = 0; c < nc; ++c) {
-        const std::string ds = std::string(kWorlds[w]) + "_" + reports::key_part(s.conditions[c].name);
+        const std::string ds = std::string(kWorlds[w]) + "_" + reports::key_part(s.conditions_si[c].name);
         for (std::size_t m = 0; m < nm; ++m) {
           for (int q = 0; q < kMetrics; ++q) {
             const std::size_t at =

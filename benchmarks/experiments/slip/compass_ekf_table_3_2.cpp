@@ -98,13 +98,13 @@ void visit_fields(V& v, Options& o) {
   v.nested("disturbance_zone", o.disturbance_zone, "the compass disturbance of the disturbed runs");
 }
 
-struct CompassSetup {
-  sim::Scenario scenario;
+// The options and what is computed once from them.
+struct CompassSetup : Options {
+  explicit CompassSetup(const Options& o) : Options(o) {}
   sim::Scenario disturbed;  // with the compass disturbance zone
   SlipEkfOptions ekf_opt;
   double large = 0.0;  // [m] a "large" slip
-  slip_sim::GyroConfig gyro;
-  int cal_runs = 4;
+  slip_sim::GyroConfig gyro_si;
   slip_sim::CalibratedModels cal;
   nlohmann::json configuration;
 };
@@ -112,14 +112,12 @@ struct CompassSetup {
 class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> {
  public:
   CompassSetup setup(const Options& o, const McPlan& plan) const override {
-    CompassSetup u;
-    u.cal_runs = o.calibration_runs;
-    u.scenario = o.scenario;
+    CompassSetup u(o);
     u.ekf_opt.detector = o.detector;
     u.ekf_opt.latch_tolerance = deg(o.latch_tolerance_deg);
     u.large = mm(o.large_slip_mm);
-    u.gyro.bias = deg(o.gyro.bias_deg_per_s);
-    u.gyro.noise_density = deg(o.gyro.noise_deg_per_sqrt_s);
+    u.gyro_si.bias = deg(o.gyro.bias_deg_per_s);
+    u.gyro_si.noise_density = deg(o.gyro.noise_deg_per_sqrt_s);
     u.disturbed = u.scenario;
     sim::DisturbanceZone zone;
     zone.min = o.disturbance_zone.min;
@@ -128,7 +126,7 @@ class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> 
     u.disturbed.compass.zones.push_back(zone);
     u.configuration = recorded(o, plan);
     // Slip models (μ, σ of θ_E − θ_C and of θ_E − θ_G) from calibration runs.
-    u.cal = slip_sim::calibrate(u.scenario, plan.seed, u.cal_runs, u.gyro);
+    u.cal = slip_sim::calibrate(u.scenario, plan.seed, u.calibration_runs, u.gyro_si);
     return u;
   }
 
@@ -159,7 +157,7 @@ class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> 
     // The same seed with a compass disturbance zone.
     const sim::SimulationResult rd = sim::simulate(u.disturbed, seed);
     Rng g = Rng::stream(seed, slip_sim::kGyroStream);
-    const slip_sim::RunData dd = slip_sim::run_data(rd, *rd.log.nominal_model(), u.gyro, &g);
+    const slip_sim::RunData dd = slip_sim::run_data(rd, *rd.log.nominal_model(), u.gyro_si, &g);
     for (int m = 0; m < 4; ++m) {
       SlipEkfOptions od = u.ekf_opt;
       od.correct_slip = m > 0;
@@ -178,7 +176,7 @@ class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> 
     const sim::Scenario& scenario = u.scenario;
     const SlipEkfOptions& ekf_opt = u.ekf_opt;
     const double large = u.large;
-    const int cal_runs = u.cal_runs;
+    const int cal_runs = u.calibration_runs;
     const slip_sim::CalibratedModels& cal = u.cal;
     const SlipModel& compass_model = cal.compass;
     const SlipModel& gyro_model = *cal.gyro;

@@ -76,13 +76,10 @@ void visit_fields(V& v, Options& o) {
   v.field("validation_waypoints", o.validation_waypoints, "m", any_finite(), "the validation path, [x, y] each");
 }
 
-struct Setup {
-  sim::Scenario squares;
-  sim::Scenario straight;
-  std::vector<Eigen::Vector2d> validation;
-  IndirectKfOptions ikf;
+// The options (the straight run's robot made the squares') and what is computed once from them.
+struct Setup : Options {
+  explicit Setup(const Options& o) : Options(o) {}
   double end_variance = 0.0;
-  bool tape_measure = false;
   nlohmann::json configuration;
 };
 
@@ -132,9 +129,7 @@ IkfRunResult ikf_on_squares(const sim::SimulationResult& r, const NominalModel& 
 class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
  public:
   Setup setup(const Options& o, const McPlan& plan) const override {
-    Setup s;
-    s.squares = o.squares;
-    s.straight = o.straight;
+    Setup s(o);
     if (s.squares.motion.kind != sim::MotionKind::kUmbmark) {
       throw UsageError(name() + ": squares.motion must be the UMBmark square");
     }
@@ -143,10 +138,7 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
     }
     // The same robot and the same belief in both.
     s.straight.robot = s.squares.robot;
-    s.ikf = o.ikf;
     s.end_variance = std::pow(mm(o.end_position_sigma_mm), 2);
-    s.tape_measure = o.tape_measure;
-    s.validation = o.validation_waypoints;
     s.configuration = recorded(o, plan);
     s.configuration["straight"] = sim::to_json(s.straight);
     return s;
@@ -190,7 +182,7 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
       sim::Scenario check = s.squares;
       check.robot.nominal = geometry[m];
       check.motion.kind = sim::MotionKind::kWaypoints;
-      check.motion.waypoints = s.validation;
+      check.motion.waypoints = s.validation_waypoints;
       const Pose2 err = sim::dead_reckoning_end_error(sim::simulate(check, Rng::derive_seed(seed, 2)));
       rec.validation_error.push_back(std::hypot(err.x, err.y));
     }

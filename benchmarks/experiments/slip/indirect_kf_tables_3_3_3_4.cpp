@@ -96,27 +96,21 @@ void visit_fields(V& v, Options& o) {
   v.flag("slip_corrected_travel", o.slip_corrected_travel, "feed the IKF the slip-corrected travel");
 }
 
-struct IkfSetup {
-  sim::Scenario scenario;
+// The options and what is computed once from them.
+struct IkfSetup : Options {
+  explicit IkfSetup(const Options& o) : Options(o) {}
   SlipEkfOptions ekf_opt;
-  IndirectKfOptions ikf_opt;
-  bool corrected_travel = false;
   double end_var = 0.0;  // [m²] variance of the measured end position
-  double end_sigma_mm = 0.0;
-  SlipModel model;  // μ, σ of Δθ' from the calibration runs
+  SlipModel model;       // μ, σ of Δθ' from the calibration runs
   nlohmann::json configuration;
 };
 
 class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
  public:
   IkfSetup setup(const Options& o, const McPlan& plan) const override {
-    IkfSetup u;
-    u.scenario = o.scenario;
+    IkfSetup u(o);
     u.ekf_opt.detector = o.detector;
-    u.ikf_opt = o.ikf;
-    u.corrected_travel = o.slip_corrected_travel;
     u.end_var = std::pow(mm(o.end_position_sigma_mm), 2);
-    u.end_sigma_mm = o.end_position_sigma_mm;
     u.configuration = recorded(o, plan);
     u.model = slip_sim::calibrate(u.scenario, plan.seed, o.calibration_runs, {}).compass;
     return u;
@@ -134,7 +128,7 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
     Pose2 odo = d.truth.front();
     for (std::size_t i = 0; i < d.samples.size(); ++i) {
       const SlipEkfStep& st = ekf.steps[i];
-      IkfSample x{u.corrected_travel ? st.decision.wheels : d.samples[i].u, {}};
+      IkfSample x{u.slip_corrected_travel ? st.decision.wheels : d.samples[i].u, {}};
       if (st.source == HeadingSource::kCompass) x.reference_heading = d.samples[i].compass;
       s.push_back(x);
       odo = odometry_step(odo, x.u, b);
@@ -142,9 +136,9 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
     const Eigen::Vector2d end_err(d.truth.back().x - odo.x, d.truth.back().y - odo.y);
     // Ours: δB, undetermined on straight runs, is held at 0 (prior variance 0) when the end
     // position is used; the thesis's variant estimates all three.
-    IndirectKfOptions frozen = u.ikf_opt;
+    IndirectKfOptions frozen = u.ikf;
     frozen.initial_covariance(5) = 0.0;
-    const IkfRunResult r[kVariants] = {run_indirect_kf(s, d.truth.front().theta, u.ikf_opt, b),
+    const IkfRunResult r[kVariants] = {run_indirect_kf(s, d.truth.front().theta, u.ikf, b),
                                        run_indirect_kf(s, d.truth.front().theta, frozen, b, end_err, u.end_var)};
     nlohmann::json rec = {{"records", sim.log.record_count()}, {"duration", sim.duration}};
     for (int v = 0; v < kVariants; ++v) {
@@ -157,7 +151,7 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
                                        const std::vector<nlohmann::json>& records) const override {
     reports::ExperimentResults out = start_results(u.configuration);
     const sim::Scenario& scenario = u.scenario;
-    const IndirectKfOptions& ikf_opt = u.ikf_opt;
+    const IndirectKfOptions& ikf_opt = u.ikf;
     const double end_var = u.end_var;
     const int runs = plan.runs;
     const RobotParams robot = scenario.robot.params();
@@ -282,7 +276,7 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
         "thesis's equal S_L ≈ S_R ≈ 0.0036 cannot come from headings on straight runs; how its "
         "filter reached them is not recoverable from the text. Its δB = −0.000036 is in mm "
         "(B' = 197.929964 mm), i.e. no correction.",
-        true_values[0] - true_values[1], describe(id_straight[0]), u.end_sigma_mm, describe(id_straight[1]));
+        true_values[0] - true_values[1], describe(id_straight[0]), u.end_position_sigma_mm, describe(id_straight[1]));
     t33.claim = "the IKF estimates S_L ≈ S_R ≈ 0.0036 and δB ≈ 0 from the compass heading on straight runs";
     t33.tolerance = 0.0005;
     t33.tolerance_basis = "0.0005 (1/mm, or mm for δB): a seventh of the true S, well above the runs' scatter";
@@ -322,15 +316,15 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
                     "but never δB; a path with turns plus a distance reference determines all three.",
                     scenario.motion.distance, describe(id_straight[0]), describe(id_straight[1]),
                     describe(id_square[0]), describe(id_square[1])));
-    out.notes.push_back(
-        fmt::format("IKF input: {}. With 12.64 mm ticks a sample's θ_E swings by one tick (3.7°) and the next "
-                    "sample swings back (the counts are cumulative, so the errors telescope). The slip rule "
-                    "picks exactly the extreme swings (at 95% about 5% of slip-free samples, and on this "
-                    "preset most detections are such false alarms) and replaces θ_E by θ_C, leaving the "
-                    "returning swing uncorrected: the 'corrected' dead reckoning drifts by metres over 10 m. "
-                    "Harmless inside the compass EKF (the compass heading is absolute), fatal for the IKF's "
-                    "odometry heading; set slip_corrected_travel = true to see it.",
-                    u.corrected_travel ? "slip-corrected travel (as the thesis)" : "raw encoder travel (default)"));
+    out.notes.push_back(fmt::format(
+        "IKF input: {}. With 12.64 mm ticks a sample's θ_E swings by one tick (3.7°) and the next "
+        "sample swings back (the counts are cumulative, so the errors telescope). The slip rule "
+        "picks exactly the extreme swings (at 95% about 5% of slip-free samples, and on this "
+        "preset most detections are such false alarms) and replaces θ_E by θ_C, leaving the "
+        "returning swing uncorrected: the 'corrected' dead reckoning drifts by metres over 10 m. "
+        "Harmless inside the compass EKF (the compass heading is absolute), fatal for the IKF's "
+        "odometry heading; set slip_corrected_travel = true to see it.",
+        u.slip_corrected_travel ? "slip-corrected travel (as the thesis)" : "raw encoder travel (default)"));
     return out;
   }
 };
