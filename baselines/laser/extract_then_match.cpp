@@ -2,7 +2,10 @@
 
 #include <utility>
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::MatchResult;
+using locbench::laser::scan_points;
+using locbench::laser::ScanPoint;
 namespace {
 
 // Each baseline's name and extraction step (lines in frame `f`).
@@ -55,4 +58,4 @@ template class ExtractThenMatcher<SplitAndMergeOptions>;
 template class ExtractThenMatcher<AgglomerativeOptions>;
 template class ExtractThenMatcher<RwhtOptions>;
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -6,7 +6,10 @@
 #include "baselines/laser/extraction_steps.h"
 #include "baselines/laser/options_fields.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::fit_line;
+using locbench::laser::LineFit;
+using locbench::laser::ScanPoint;
 namespace {
 
 using detail::IndexRange;
@@ -132,4 +135,4 @@ ExtractionResult split_and_merge(std::span<const ScanPoint> points, LineFrame fr
   return result;
 }
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -37,7 +37,7 @@ struct PairCase {
 };
 
 LineMap lines_of(const Scan& s) {
-  const laser::SplitAndMergeMatcher extractor;
+  const baselines::laser::SplitAndMergeMatcher extractor;
   LineMap m;
   for (const auto& l : extractor.extract_lines(s).lines) {
     const Segment seg = l.fit.segment();

@@ -125,13 +125,13 @@ void BM_Match_band_reference(benchmark::State& state) {
   state.counters["map_segments"] = static_cast<double>(m);
 }
 void BM_Match_split_and_merge(benchmark::State& state) {
-  run(state, laser::SplitAndMergeMatcher(), world(static_cast<int>(state.range(1))));
+  run(state, baselines::laser::SplitAndMergeMatcher(), world(static_cast<int>(state.range(1))));
 }
 void BM_Match_agglomerative(benchmark::State& state) {
-  run(state, laser::AgglomerativeMatcher(), world(static_cast<int>(state.range(1))));
+  run(state, baselines::laser::AgglomerativeMatcher(), world(static_cast<int>(state.range(1))));
 }
 void BM_Match_rwht(benchmark::State& state) {
-  run(state, laser::RwhtMatcher(), world(static_cast<int>(state.range(1))));
+  run(state, baselines::laser::RwhtMatcher(), world(static_cast<int>(state.range(1))));
 }
 
 // n sweep at the room (complexity in n), then m sweep at 181 beams.
@@ -190,9 +190,9 @@ void BM_RealScans(benchmark::State& state, const std::string& dataset, const std
         ("dataset " + dataset + " not found under " + data_root().string() + " (set LOCBENCH_DATA)").c_str());
     return;
   }
-  const laser::SplitAndMergeMatcher sm;
-  const laser::AgglomerativeMatcher agg;
-  const laser::RwhtMatcher rwht;
+  const baselines::laser::SplitAndMergeMatcher sm;
+  const baselines::laser::AgglomerativeMatcher agg;
+  const baselines::laser::RwhtMatcher rwht;
   const laser::EapMatcher eap;
   std::vector<LineMap> own_lines;
   if (method == "eap") {

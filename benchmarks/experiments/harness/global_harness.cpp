@@ -112,14 +112,14 @@ class LineKalmanLocalizer final : public Localizer {
  public:
   LineKalmanLocalizer(const LineMap& map, const nlohmann::json& o, const Pose2& start, double wheelbase)
       : map_(map),
-        sm_(o.at("split_and_merge").get<laser::SplitAndMergeMatcherOptions>()),
+        sm_(o.at("split_and_merge").get<baselines::laser::SplitAndMergeMatcherOptions>()),
         kf_(o.at("line_kalman").get<localization::LineFeatureKalmanOptions>(), wheelbase, start),
         wheelbase_(wheelbase) {}
   void step(const ScanStep& s) override {
     if (last_) kf_.predict(wheels_between(*last_, s.odometry, wheelbase_));
     last_ = s.odometry;
     std::vector<localization::LineObservation> obs;
-    for (const laser::ExtractedLine& l : sm_.extract_lines(*s.scan).lines) {
+    for (const baselines::laser::ExtractedLine& l : sm_.extract_lines(*s.scan).lines) {
       std::vector<Eigen::Vector2d> pts;
       for (const laser::ScanPoint& p : l.points) pts.push_back(p.robot);
       obs.push_back(localization::line_observation(pts));
@@ -132,7 +132,7 @@ class LineKalmanLocalizer final : public Localizer {
 
  private:
   const LineMap& map_;
-  laser::SplitAndMergeMatcher sm_;
+  baselines::laser::SplitAndMergeMatcher sm_;
   localization::LineFeatureKalmanLocalizer kf_;
   double wheelbase_;
   std::optional<Pose2> last_;
@@ -146,7 +146,7 @@ nlohmann::json default_method_options() {
   locbench::global::to_json(grid, locbench::global::GridMarkovOptions{});
   to_json(eap, laser::EapOptions{});
   to_json(tracker, pose_correction::EkfTrackerOptions{});
-  to_json(sm, laser::SplitAndMergeMatcherOptions{});
+  to_json(sm, baselines::laser::SplitAndMergeMatcherOptions{});
   to_json(lk, localization::LineFeatureKalmanOptions{});
   return {{"mcl", mcl},
           {"grid_markov", grid},
@@ -245,14 +245,14 @@ double path_length(const std::vector<ScanStep>& steps, std::size_t a, std::size_
 
 LineMap map_from_scans(const std::vector<ScanStep>& steps, double t0, double t1, int every) {
   if (every < 1) throw UsageError("map_from_scans: every must be ≥ 1");
-  const laser::SplitAndMergeMatcher sm{laser::SplitAndMergeMatcherOptions{}};
+  const baselines::laser::SplitAndMergeMatcher sm{baselines::laser::SplitAndMergeMatcherOptions{}};
   LineMap m;
   m.name = "scan_lines";
   int k = 0;
   for (const ScanStep& s : steps) {
     if (s.t < t0 || s.t > t1) continue;
     if (k++ % every != 0) continue;
-    for (const laser::ExtractedLine& l : sm.extract_lines(*s.scan).lines) {
+    for (const baselines::laser::ExtractedLine& l : sm.extract_lines(*s.scan).lines) {
       const Segment r = l.fit.segment();
       if (r.length() < 0.3) continue;
       m.segments.push_back({s.odometry * r.p1, s.odometry * r.p2});

@@ -196,7 +196,7 @@ void compare_on_log(const std::string& dataset) {
   ASSERT_NE(entry, nullptr) << dataset;
   LOCBENCH_REQUIRE_DATA(entry->path);
   const Log log = load_catalog_dataset(*entry, data_root());
-  const SplitAndMergeMatcher sm;
+  const baselines::laser::SplitAndMergeMatcher sm;
   std::vector<LineMap> lines;
   FitDifference diff;
   RuleCoverage coverage;

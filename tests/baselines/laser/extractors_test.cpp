@@ -9,7 +9,9 @@
 #include "baselines/laser/split_and_merge.h"
 #include "tests/baselines/laser/laser_scenes.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::scan_points;
+using locbench::laser::ScanPoint;
 namespace {
 
 using test::lms_scan;
@@ -111,4 +113,4 @@ INSTANTIATE_TEST_SUITE_P(
     name_of);
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -7,7 +7,9 @@
 #include "core/errors.h"
 #include "tests/baselines/laser/laser_scenes.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::fit_line;
+using locbench::laser::ScanPoint;
 namespace {
 
 // An extracted line of `count` world points evenly from a to b, beams first_beam, first_beam+1…
@@ -125,4 +127,4 @@ TEST(LineToMapMatching, InvalidOptionsThrowUsageError) {
 }
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -11,7 +11,7 @@
 #include "core/errors.h"
 #include "laser_scenes.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 namespace {
 
 using test::lms_scan;
@@ -140,4 +140,4 @@ TEST(PlIcp, OptionsAreStrict) {
 }
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

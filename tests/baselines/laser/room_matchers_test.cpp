@@ -9,7 +9,11 @@
 #include "datasets/sim/worlds.h"
 #include "tests/baselines/laser/laser_scenes.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::MatchResult;
+using locbench::laser::ScanPoint;
+using locbench::laser::SegmentMatch;
+using locbench::laser::SegmentMatcher;
 namespace {
 
 const Pose2 kThesisPose(2.0, 1.0, deg(46.0));
@@ -102,4 +106,4 @@ INSTANTIATE_TEST_SUITE_P(
     name_of);
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser
