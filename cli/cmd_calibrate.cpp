@@ -22,6 +22,28 @@
 #include "reports/output_file.h"
 
 namespace locbench::cli {
+using locbench::baselines::calibration::classic_umbmark;
+using locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::analyze_umbmark_design;
+using locbench::calibration::calibrate_ml;
+using locbench::calibration::CalibratedParameter;
+using locbench::calibration::calibration_data_from_encoders;
+using locbench::calibration::calibration_data_from_relations;
+using locbench::calibration::calibration_data_from_velocities;
+using locbench::calibration::calibration_data_from_wheel_speed_tuples;
+using locbench::calibration::CalibrationData;
+using locbench::calibration::improved_umbmark;
+using locbench::calibration::ImprovedUmbmarkResult;
+using locbench::calibration::MlCalibrationOptions;
+using locbench::calibration::MlCalibrationResult;
+using locbench::calibration::NoiseModelKind;
+using locbench::calibration::ParameterFinding;
+using locbench::calibration::RelationSampleOptions;
+using locbench::calibration::SampleIntervalOptions;
+using locbench::calibration::UmbmarkDesign;
+using locbench::calibration::UmbmarkDesignFinding;
+using locbench::calibration::UmbmarkIdentifiabilityOptions;
+using locbench::calibration::UmbmarkParameterSet;
 namespace {
 
 struct CalibrateArgs {

@@ -11,7 +11,7 @@
 #include "algorithms/calibration/closed_form_calibration.h"
 #include "algorithms/calibration/ml_calibration_solver.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -384,4 +384,4 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   return res;
 }
 
-}  // namespace locbench
+}  // namespace locbench::calibration

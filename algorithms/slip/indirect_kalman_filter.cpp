@@ -8,6 +8,8 @@
 #include "core/option_fields.h"
 
 namespace locbench {
+using locbench::calibration::analyze_identifiability;
+using locbench::calibration::IdentifiabilityReport;
 
 // IndirectKfOptions' fields, stated once (the header explains each).
 template <class V>

@@ -125,9 +125,10 @@ IkfRunResult run_indirect_kf(std::span<const IkfRun> runs, const IndirectKfOptio
 // with the heading variance (and end-position variance). Parameter names "S_R", "S_L", "dB".
 // `relative_tolerance` is on the Fisher-information eigenvalues (1e-6 ⇔ singular values of the
 // whitened Jacobian below 1e-3 of the largest count as zero).
-IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, double start_heading, double wheelbase,
-                                          double heading_variance, const Eigen::Vector3d& values,
-                                          std::optional<double> end_position_variance = {},
-                                          double relative_tolerance = 1e-6);
+calibration::IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, double start_heading,
+                                                       double wheelbase, double heading_variance,
+                                                       const Eigen::Vector3d& values,
+                                                       std::optional<double> end_position_variance = {},
+                                                       double relative_tolerance = 1e-6);
 
 }  // namespace locbench

@@ -7,6 +7,10 @@
 #include "datasets/io/relative_motion_reader.h"
 
 namespace locbench {
+using locbench::calibration::calibration_data_from_motion_pairs;
+using locbench::calibration::calibration_data_from_tick_motions;
+using locbench::calibration::calibration_data_from_wheel_speed_tuples;
+using locbench::calibration::CalibrationData;
 namespace {
 
 // folder/name or folder/name.gz, whichever exists; InputError naming both otherwise.

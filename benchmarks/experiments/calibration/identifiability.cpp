@@ -22,6 +22,18 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments::calibration_identifiability {
+using locbench::baselines::calibration::classic_umbmark;
+using locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::analyze_umbmark_design;
+using locbench::calibration::improved_umbmark;
+using locbench::calibration::ImprovedUmbmarkResult;
+using locbench::calibration::ParameterFinding;
+using locbench::calibration::true_geometry;
+using locbench::calibration::UmbmarkDesign;
+using locbench::calibration::UmbmarkDesignFinding;
+using locbench::calibration::UmbmarkErrorParams;
+using locbench::calibration::UmbmarkIdentifiabilityOptions;
+using locbench::calibration::UmbmarkParameterSet;
 
 const ExperimentInfo kInfo{
     .name = "calibration/identifiability",

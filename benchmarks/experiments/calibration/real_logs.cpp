@@ -23,6 +23,18 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments::calibration_real_logs {
+using locbench::calibration::calibrate_ml;
+using locbench::calibration::CalibratedParameter;
+using locbench::calibration::calibration_data_from_relations;
+using locbench::calibration::calibration_data_from_velocities;
+using locbench::calibration::CalibrationData;
+using locbench::calibration::evaluate_held_out;
+using locbench::calibration::HeldOutEvaluation;
+using locbench::calibration::MlCalibrationOptions;
+using locbench::calibration::MlCalibrationResult;
+using locbench::calibration::NoiseModelKind;
+using locbench::calibration::RelationSampleOptions;
+using locbench::calibration::SampleIntervalOptions;
 
 const ExperimentInfo kInfo{.name = "calibration/real_logs",
                            .description =

@@ -16,6 +16,19 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments {
+using locbench::baselines::calibration::classic_umbmark;
+using locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::analyze_umbmark_design;
+using locbench::calibration::error_params;
+using locbench::calibration::IdentifiabilityReport;
+using locbench::calibration::improved_umbmark;
+using locbench::calibration::ImprovedUmbmarkResult;
+using locbench::calibration::ParameterFinding;
+using locbench::calibration::UmbmarkDesign;
+using locbench::calibration::UmbmarkDesignFinding;
+using locbench::calibration::UmbmarkErrorParams;
+using locbench::calibration::UmbmarkIdentifiabilityOptions;
+using locbench::calibration::UmbmarkParameterSet;
 namespace {
 
 constexpr int kMethods = 3;

@@ -31,6 +31,12 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments::slip_ikf_vs_calibration {
+using locbench::baselines::calibration::classic_umbmark;
+using locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::error_params;
+using locbench::calibration::improved_umbmark;
+using locbench::calibration::ImprovedUmbmarkResult;
+using locbench::calibration::UmbmarkErrorParams;
 
 const ExperimentInfo kInfo{
     .name = "slip/ikf_vs_calibration",

@@ -28,6 +28,8 @@
 #include "reports/findings.h"
 
 namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4 {
+using locbench::calibration::IdentifiabilityReport;
+using locbench::calibration::ParameterFinding;
 
 const ExperimentInfo kInfo{
     .name = "slip/indirect_kf_tables_3_3_3_4",

@@ -11,7 +11,7 @@
 #include "datasets/log/data_root.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 const DatasetEntry& censi_entry() {
@@ -85,4 +85,4 @@ INSTANTIATE_TEST_SUITE_P(Parts, CensiKhepera,
                                            "l90_1", "l90_2"));
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

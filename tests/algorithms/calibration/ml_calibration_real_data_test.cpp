@@ -15,7 +15,7 @@
 #include "datasets/log/data_root.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 const DatasetEntry& entry(const std::string& name) {
@@ -163,4 +163,4 @@ TEST(MlCalibrationRealData, MrclamRobot1CalibratedOnTheFirstHalfIsEvaluatedOnThe
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration
