@@ -7,6 +7,7 @@
 #include "core/errors.h"
 
 namespace locbench {
+using locbench::filters::CompassEkf;
 
 SlipEkfRun run_slip_ekf(std::span<const SlipSample> samples, std::optional<double> initial_compass,
                         const SlipModel& compass_model, const std::optional<SlipModel>& gyro_model,

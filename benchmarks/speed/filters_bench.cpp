@@ -15,6 +15,16 @@
 #include "core/rng.h"
 
 namespace locbench {
+using locbench::baselines::filters::FixedQEkf;
+using locbench::baselines::filters::FixedQEkfOptions;
+using locbench::baselines::filters::SageHusaAekf;
+using locbench::baselines::filters::SageHusaOptions;
+using locbench::baselines::filters::VbAkf;
+using locbench::baselines::filters::VbAkfOptions;
+using locbench::filters::CompassEkf;
+using locbench::filters::CompassEkfOptions;
+using locbench::filters::l2_optimal_sigma;
+using locbench::filters::OdometryNoiseForm;
 namespace {
 
 constexpr double kWheelbase = 0.19793;

@@ -17,6 +17,21 @@
 #include "datasets/sim/scenario_json.h"
 
 namespace locbench::experiments {
+using locbench::baselines::filters::FixedQEkf;
+using locbench::baselines::filters::FixedQEkfOptions;
+using locbench::baselines::filters::SageHusaAekf;
+using locbench::baselines::filters::SageHusaOptions;
+using locbench::baselines::filters::VbAkf;
+using locbench::baselines::filters::VbAkfOptions;
+using locbench::filters::CompassEkf;
+using locbench::filters::CompassEkfOptions;
+using locbench::filters::CompassOdometrySample;
+using locbench::filters::ConsistencySummary;
+using locbench::filters::nees;
+using locbench::filters::nis;
+using locbench::filters::pair_encoder_compass;
+using locbench::filters::pose_nees;
+using locbench::filters::summarize_consistency;
 
 nlohmann::json default_filter_options(const Eigen::Vector3d& initial_covariance) {
   CompassEkfOptions adaptive;
