@@ -33,7 +33,7 @@
 #include "core/diff_drive_odometry.h"
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::slip {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
@@ -131,4 +131,4 @@ calibration::IdentifiabilityReport ikf_identifiability(std::span<const IkfSample
                                                        std::optional<double> end_position_variance = {},
                                                        double relative_tolerance = 1e-6);
 
-}  // namespace locbench
+}  // namespace locbench::slip

@@ -6,7 +6,7 @@
 #include "core/angle.h"
 #include "core/errors.h"
 
-namespace locbench {
+namespace locbench::slip {
 using locbench::filters::CompassEkf;
 
 SlipEkfRun run_slip_ekf(std::span<const SlipSample> samples, std::optional<double> initial_compass,
@@ -95,4 +95,4 @@ SlipEkfRun run_slip_ekf(std::span<const SlipSample> samples, std::optional<doubl
   return run;
 }
 
-}  // namespace locbench
+}  // namespace locbench::slip

@@ -26,6 +26,12 @@
 #include "reports/findings.h"
 
 namespace locbench::experiments::slip_compass_ekf_table_3_2 {
+using locbench::slip::run_slip_ekf;
+using locbench::slip::slip_threshold;
+using locbench::slip::SlipDetectorOptions;
+using locbench::slip::SlipEkfOptions;
+using locbench::slip::SlipEkfRun;
+using locbench::slip::SlipModel;
 
 const ExperimentInfo kInfo{
     .name = "slip/compass_ekf_table_3_2",

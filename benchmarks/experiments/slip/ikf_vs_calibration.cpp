@@ -37,6 +37,10 @@ using locbench::calibration::error_params;
 using locbench::calibration::improved_umbmark;
 using locbench::calibration::ImprovedUmbmarkResult;
 using locbench::calibration::UmbmarkErrorParams;
+using locbench::slip::IkfRun;
+using locbench::slip::IkfRunResult;
+using locbench::slip::IndirectKfOptions;
+using locbench::slip::run_indirect_kf;
 
 const ExperimentInfo kInfo{
     .name = "slip/ikf_vs_calibration",

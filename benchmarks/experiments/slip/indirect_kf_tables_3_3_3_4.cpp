@@ -30,6 +30,18 @@
 namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4 {
 using locbench::calibration::IdentifiabilityReport;
 using locbench::calibration::ParameterFinding;
+using locbench::slip::HeadingSource;
+using locbench::slip::ikf_identifiability;
+using locbench::slip::IkfRunResult;
+using locbench::slip::IkfSample;
+using locbench::slip::IndirectKfOptions;
+using locbench::slip::run_indirect_kf;
+using locbench::slip::run_slip_ekf;
+using locbench::slip::SlipDetectorOptions;
+using locbench::slip::SlipEkfOptions;
+using locbench::slip::SlipEkfRun;
+using locbench::slip::SlipEkfStep;
+using locbench::slip::SlipModel;
 
 const ExperimentInfo kInfo{
     .name = "slip/indirect_kf_tables_3_3_3_4",
