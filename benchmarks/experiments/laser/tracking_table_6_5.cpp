@@ -53,7 +53,7 @@ struct Options {
   laser::EapOptions eap;
   baselines::laser::SplitAndMergeMatcherOptions split_and_merge;
   pose_correction::EkfTrackerOptions tracker;
-  localization::LineFeatureKalmanOptions line_kalman;
+  baselines::localization::LineFeatureKalmanOptions line_kalman;
 };
 template <class V>
 void visit_fields(V& v, Options& o) {
@@ -71,7 +71,7 @@ struct Setup {
   laser::EapOptions eap;
   baselines::laser::SplitAndMergeMatcherOptions split_and_merge;
   pose_correction::EkfTrackerOptions tracker;
-  localization::LineFeatureKalmanOptions line_kalman;
+  baselines::localization::LineFeatureKalmanOptions line_kalman;
   nlohmann::json configuration;
 };
 
@@ -109,7 +109,7 @@ class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
     const baselines::laser::SplitAndMergeMatcher sm(s.split_and_merge);
     pose_correction::EkfTracker ekf_eap(s.tracker, model.wheelbase, start);
     pose_correction::EkfTracker ekf_sm(s.tracker, model.wheelbase, start);
-    localization::LineFeatureKalmanLocalizer line_kf(s.line_kalman, model.wheelbase, start);
+    baselines::localization::LineFeatureKalmanLocalizer line_kf(s.line_kalman, model.wheelbase, start);
     Pose2 odo = start;
     Record rec;
     rec.records = r.log.record_count();
@@ -134,11 +134,11 @@ class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
         if (up.kind == pose_correction::TrackerUpdateKind::kFull) ++rec.full_updates;
         if (up.kind == pose_correction::TrackerUpdateKind::kHeading) ++rec.heading_updates;
         ekf_sm.correct(scan, r.world, sm);
-        std::vector<localization::LineObservation> obs;
+        std::vector<baselines::localization::LineObservation> obs;
         for (const baselines::laser::ExtractedLine& l : sm.extract_lines(scan).lines) {
           std::vector<Eigen::Vector2d> pts;
           for (const laser::ScanPoint& p : l.points) pts.push_back(p.robot);
-          obs.push_back(localization::line_observation(pts));
+          obs.push_back(baselines::localization::line_observation(pts));
         }
         line_kf.update(obs, r.world);
         const Pose2 t = *truth.pose_at(enc[i].t);
