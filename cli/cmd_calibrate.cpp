@@ -44,6 +44,11 @@ using locbench::calibration::UmbmarkDesign;
 using locbench::calibration::UmbmarkDesignFinding;
 using locbench::calibration::UmbmarkIdentifiabilityOptions;
 using locbench::calibration::UmbmarkParameterSet;
+using locbench::catalog::DatasetEntry;
+using locbench::catalog::find_dataset;
+using locbench::catalog::is_calibration_dataset;
+using locbench::catalog::load_catalog_calibration_data;
+using locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct CalibrateArgs {

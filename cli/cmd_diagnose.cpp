@@ -26,6 +26,9 @@
 #include "reports/output_file.h"
 
 namespace locbench::cli {
+using locbench::catalog::DatasetEntry;
+using locbench::catalog::find_dataset;
+using locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct DiagnoseArgs {

@@ -13,6 +13,12 @@
 #include "datasets/sim/presets.h"
 
 namespace locbench::cli {
+using locbench::catalog::calibration_dataset_parts;
+using locbench::catalog::dataset_catalog;
+using locbench::catalog::DatasetEntry;
+using locbench::catalog::is_calibration_dataset;
+using locbench::catalog::load_catalog_calibration_data;
+using locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct ListArgs {

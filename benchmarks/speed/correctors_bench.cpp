@@ -28,6 +28,9 @@
 #include "datasets/sim/worlds.h"
 
 namespace locbench {
+using locbench::catalog::DatasetEntry;
+using locbench::catalog::find_dataset;
+using locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct PairCase {

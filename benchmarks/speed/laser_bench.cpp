@@ -34,6 +34,9 @@
 #include "datasets/sim/worlds.h"
 
 namespace locbench {
+using locbench::catalog::DatasetEntry;
+using locbench::catalog::find_dataset;
+using locbench::catalog::load_catalog_dataset;
 namespace {
 
 const Pose2 kTruth(2.0, 1.0, deg(46.0));

@@ -6,7 +6,7 @@
 #include "datasets/io/censi_tuple_reader.h"
 #include "datasets/io/relative_motion_reader.h"
 
-namespace locbench {
+namespace locbench::catalog {
 using locbench::calibration::calibration_data_from_motion_pairs;
 using locbench::calibration::calibration_data_from_tick_motions;
 using locbench::calibration::calibration_data_from_wheel_speed_tuples;
@@ -73,4 +73,4 @@ CalibrationData load_catalog_calibration_data(const DatasetEntry& entry, const s
   return d;
 }
 
-}  // namespace locbench
+}  // namespace locbench::catalog

@@ -9,7 +9,7 @@
 #include "algorithms/calibration/calibration_data.h"
 #include "datasets/catalog/dataset_catalog.h"
 
-namespace locbench {
+namespace locbench::catalog {
 
 // True for the entries loaded by load_catalog_calibration_data.
 bool is_calibration_dataset(const DatasetEntry& entry);
@@ -30,4 +30,4 @@ std::vector<std::string> calibration_dataset_parts(const DatasetEntry& entry);
 calibration::CalibrationData load_catalog_calibration_data(const DatasetEntry& entry, const std::filesystem::path& root,
                                                            const std::string& part = "");
 
-}  // namespace locbench
+}  // namespace locbench::catalog

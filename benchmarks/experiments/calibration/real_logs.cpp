@@ -35,6 +35,9 @@ using locbench::calibration::MlCalibrationResult;
 using locbench::calibration::NoiseModelKind;
 using locbench::calibration::RelationSampleOptions;
 using locbench::calibration::SampleIntervalOptions;
+using locbench::catalog::DatasetEntry;
+using locbench::catalog::find_dataset;
+using locbench::catalog::load_catalog_calibration_data;
 
 const ExperimentInfo kInfo{.name = "calibration/real_logs",
                            .description =

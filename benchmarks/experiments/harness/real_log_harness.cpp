@@ -9,6 +9,9 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments {
+using locbench::catalog::DatasetEntry;
+using locbench::catalog::find_dataset;
+using locbench::catalog::load_catalog_dataset;
 namespace {
 
 std::string string_field(const nlohmann::json& item, const char* key, const std::string& where) {

@@ -12,6 +12,9 @@
 #include "tests/test_data.h"
 
 namespace locbench::calibration {
+using locbench::catalog::dataset_catalog;
+using locbench::catalog::DatasetEntry;
+using locbench::catalog::load_catalog_calibration_data;
 namespace {
 
 const DatasetEntry& censi_entry() {

@@ -25,6 +25,9 @@
 #include "tests/test_data.h"
 
 namespace locbench::laser {
+using locbench::catalog::DatasetEntry;
+using locbench::catalog::find_dataset;
+using locbench::catalog::load_catalog_dataset;
 namespace {
 
 constexpr double kFitTolerance = 1e-9;  // [m] and [rad]
