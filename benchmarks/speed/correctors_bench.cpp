@@ -27,7 +27,7 @@
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench {
+namespace locbench::speed {
 using locbench::catalog::DatasetEntry;
 using locbench::catalog::find_dataset;
 using locbench::catalog::load_catalog_dataset;
@@ -160,4 +160,4 @@ int register_all() {
 [[maybe_unused]] const int kRegistered = register_all();
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::speed

@@ -14,7 +14,7 @@
 #include "baselines/filters/vb_akf.h"
 #include "core/rng.h"
 
-namespace locbench {
+namespace locbench::speed {
 using locbench::baselines::filters::FixedQEkf;
 using locbench::baselines::filters::FixedQEkfOptions;
 using locbench::baselines::filters::SageHusaAekf;
@@ -96,4 +96,4 @@ void BM_L2OptimalSigma(benchmark::State& state) {
 BENCHMARK(BM_L2OptimalSigma);
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::speed

@@ -24,7 +24,7 @@
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench {
+namespace locbench::speed {
 namespace {
 
 const Pose2 kTruth(2.0, 1.0, deg(46.0));
@@ -110,4 +110,4 @@ void BM_Replay(benchmark::State& state) {
 BENCHMARK(BM_Replay)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::speed

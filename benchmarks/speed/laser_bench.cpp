@@ -33,7 +33,7 @@
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench {
+namespace locbench::speed {
 using locbench::catalog::DatasetEntry;
 using locbench::catalog::find_dataset;
 using locbench::catalog::load_catalog_dataset;
@@ -237,4 +237,4 @@ const bool kRealScanBenchmarks = [] {
 }();
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::speed
