@@ -22,33 +22,19 @@
 #include "reports/output_file.h"
 
 namespace locbench::cli {
-using locbench::baselines::calibration::classic_umbmark;
-using locbench::baselines::calibration::ClassicUmbmarkResult;
-using locbench::calibration::analyze_umbmark_design;
-using locbench::calibration::calibrate_ml;
-using locbench::calibration::CalibratedParameter;
-using locbench::calibration::calibration_data_from_encoders;
-using locbench::calibration::calibration_data_from_relations;
-using locbench::calibration::calibration_data_from_velocities;
-using locbench::calibration::calibration_data_from_wheel_speed_tuples;
-using locbench::calibration::CalibrationData;
-using locbench::calibration::improved_umbmark;
-using locbench::calibration::ImprovedUmbmarkResult;
-using locbench::calibration::MlCalibrationOptions;
-using locbench::calibration::MlCalibrationResult;
-using locbench::calibration::NoiseModelKind;
-using locbench::calibration::ParameterFinding;
-using locbench::calibration::RelationSampleOptions;
-using locbench::calibration::SampleIntervalOptions;
-using locbench::calibration::UmbmarkDesign;
-using locbench::calibration::UmbmarkDesignFinding;
-using locbench::calibration::UmbmarkIdentifiabilityOptions;
-using locbench::calibration::UmbmarkParameterSet;
-using locbench::catalog::DatasetEntry;
-using locbench::catalog::find_dataset;
-using locbench::catalog::is_calibration_dataset;
-using locbench::catalog::load_catalog_calibration_data;
-using locbench::catalog::load_catalog_dataset;
+using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::analyze_umbmark_design, locbench::calibration::calibrate_ml,
+    locbench::calibration::CalibratedParameter, locbench::calibration::calibration_data_from_encoders,
+    locbench::calibration::calibration_data_from_relations, locbench::calibration::calibration_data_from_velocities,
+    locbench::calibration::calibration_data_from_wheel_speed_tuples, locbench::calibration::CalibrationData,
+    locbench::calibration::improved_umbmark, locbench::calibration::ImprovedUmbmarkResult,
+    locbench::calibration::MlCalibrationOptions, locbench::calibration::MlCalibrationResult,
+    locbench::calibration::NoiseModelKind, locbench::calibration::ParameterFinding,
+    locbench::calibration::RelationSampleOptions, locbench::calibration::SampleIntervalOptions,
+    locbench::calibration::UmbmarkDesign, locbench::calibration::UmbmarkDesignFinding,
+    locbench::calibration::UmbmarkIdentifiabilityOptions, locbench::calibration::UmbmarkParameterSet;
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::is_calibration_dataset,
+    locbench::catalog::load_catalog_calibration_data, locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct CalibrateArgs {

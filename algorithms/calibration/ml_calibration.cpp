@@ -16,10 +16,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-using ml_solver::LmOutcome;
-using ml_solver::Problem;
-using ml_solver::Vector6;
-using ml_solver::Whitening;
+using ml_solver::LmOutcome, ml_solver::Problem, ml_solver::Vector6, ml_solver::Whitening;
 
 // Σᵢ⁻¹ᐟ² rᵢ for every active sample.
 Eigen::VectorXd whiten(const Whitening& w, const Eigen::VectorXd& r) {

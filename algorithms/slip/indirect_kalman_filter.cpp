@@ -8,8 +8,7 @@
 #include "core/option_fields.h"
 
 namespace locbench::slip {
-using locbench::calibration::analyze_identifiability;
-using locbench::calibration::IdentifiabilityReport;
+using locbench::calibration::analyze_identifiability, locbench::calibration::IdentifiabilityReport;
 
 // IndirectKfOptions' fields, stated once (the header explains each).
 template <class V>

@@ -3,9 +3,7 @@
 #include <utility>
 
 namespace locbench::baselines::laser {
-using locbench::laser::MatchResult;
-using locbench::laser::scan_points;
-using locbench::laser::ScanPoint;
+using locbench::laser::MatchResult, locbench::laser::scan_points, locbench::laser::ScanPoint;
 namespace {
 
 // Each baseline's name and extraction step (lines in frame `f`).

@@ -7,9 +7,7 @@
 #include "core/errors.h"
 
 namespace locbench::baselines::laser::detail {
-using locbench::laser::fit_line;
-using locbench::laser::LineFit;
-using locbench::laser::ScanPoint;
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint;
 
 Eigen::Vector2d sensor_point(const ScanPoint& p) {
   return {p.range * std::cos(p.bearing), p.range * std::sin(p.bearing)};
@@ -108,9 +106,7 @@ void require(bool ok, const std::string& message) {
 }  // namespace locbench::baselines::laser::detail
 
 namespace locbench::baselines::laser {
-using locbench::laser::fit_line;
-using locbench::laser::LineFit;
-using locbench::laser::ScanPoint;
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint;
 
 void validate(const BreakpointOptions& o) { validate_fields(o, "BreakpointOptions"); }
 void validate(const LineAcceptance& o) { validate_fields(o, "LineAcceptance"); }

@@ -9,10 +9,7 @@
 #include "core/angle.h"
 
 namespace locbench::baselines::laser {
-using locbench::laser::fit_line;
-using locbench::laser::LineFit;
-using locbench::laser::ScanPoint;
-using locbench::laser::SegmentMatch;
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint, locbench::laser::SegmentMatch;
 namespace {
 
 // The line's normal form with ρ measured from `pivot` (may be negative: both forms are tried).

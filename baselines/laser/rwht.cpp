@@ -12,9 +12,7 @@
 #include "core/angle.h"
 
 namespace locbench::baselines::laser {
-using locbench::laser::fit_line;
-using locbench::laser::LineFit;
-using locbench::laser::ScanPoint;
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint;
 namespace {
 
 using detail::IndexRange;

@@ -7,9 +7,7 @@
 #include "baselines/laser/options_fields.h"
 
 namespace locbench::baselines::laser {
-using locbench::laser::fit_line;
-using locbench::laser::LineFit;
-using locbench::laser::ScanPoint;
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint;
 namespace {
 
 using detail::IndexRange;

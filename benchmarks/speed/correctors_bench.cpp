@@ -28,9 +28,7 @@
 #include "datasets/sim/worlds.h"
 
 namespace locbench::speed {
-using locbench::catalog::DatasetEntry;
-using locbench::catalog::find_dataset;
-using locbench::catalog::load_catalog_dataset;
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct PairCase {

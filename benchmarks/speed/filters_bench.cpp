@@ -15,16 +15,11 @@
 #include "core/rng.h"
 
 namespace locbench::speed {
-using locbench::baselines::filters::FixedQEkf;
-using locbench::baselines::filters::FixedQEkfOptions;
-using locbench::baselines::filters::SageHusaAekf;
-using locbench::baselines::filters::SageHusaOptions;
-using locbench::baselines::filters::VbAkf;
-using locbench::baselines::filters::VbAkfOptions;
-using locbench::filters::CompassEkf;
-using locbench::filters::CompassEkfOptions;
-using locbench::filters::l2_optimal_sigma;
-using locbench::filters::OdometryNoiseForm;
+using locbench::baselines::filters::FixedQEkf, locbench::baselines::filters::FixedQEkfOptions,
+    locbench::baselines::filters::SageHusaAekf, locbench::baselines::filters::SageHusaOptions,
+    locbench::baselines::filters::VbAkf, locbench::baselines::filters::VbAkfOptions;
+using locbench::filters::CompassEkf, locbench::filters::CompassEkfOptions, locbench::filters::l2_optimal_sigma,
+    locbench::filters::OdometryNoiseForm;
 namespace {
 
 constexpr double kWheelbase = 0.19793;

@@ -34,9 +34,7 @@
 #include "datasets/sim/worlds.h"
 
 namespace locbench::speed {
-using locbench::catalog::DatasetEntry;
-using locbench::catalog::find_dataset;
-using locbench::catalog::load_catalog_dataset;
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
 const Pose2 kTruth(2.0, 1.0, deg(46.0));

@@ -7,10 +7,9 @@
 #include "datasets/io/relative_motion_reader.h"
 
 namespace locbench::catalog {
-using locbench::calibration::calibration_data_from_motion_pairs;
-using locbench::calibration::calibration_data_from_tick_motions;
-using locbench::calibration::calibration_data_from_wheel_speed_tuples;
-using locbench::calibration::CalibrationData;
+using locbench::calibration::calibration_data_from_motion_pairs,
+    locbench::calibration::calibration_data_from_tick_motions,
+    locbench::calibration::calibration_data_from_wheel_speed_tuples, locbench::calibration::CalibrationData;
 namespace {
 
 // folder/name or folder/name.gz, whichever exists; InputError naming both otherwise.

@@ -22,18 +22,12 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments::calibration_identifiability {
-using locbench::baselines::calibration::classic_umbmark;
-using locbench::baselines::calibration::ClassicUmbmarkResult;
-using locbench::calibration::analyze_umbmark_design;
-using locbench::calibration::improved_umbmark;
-using locbench::calibration::ImprovedUmbmarkResult;
-using locbench::calibration::ParameterFinding;
-using locbench::calibration::true_geometry;
-using locbench::calibration::UmbmarkDesign;
-using locbench::calibration::UmbmarkDesignFinding;
-using locbench::calibration::UmbmarkErrorParams;
-using locbench::calibration::UmbmarkIdentifiabilityOptions;
-using locbench::calibration::UmbmarkParameterSet;
+using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::analyze_umbmark_design, locbench::calibration::improved_umbmark,
+    locbench::calibration::ImprovedUmbmarkResult, locbench::calibration::ParameterFinding,
+    locbench::calibration::true_geometry, locbench::calibration::UmbmarkDesign,
+    locbench::calibration::UmbmarkDesignFinding, locbench::calibration::UmbmarkErrorParams,
+    locbench::calibration::UmbmarkIdentifiabilityOptions, locbench::calibration::UmbmarkParameterSet;
 
 const ExperimentInfo kInfo{
     .name = "calibration/identifiability",

@@ -23,21 +23,14 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments::calibration_real_logs {
-using locbench::calibration::calibrate_ml;
-using locbench::calibration::CalibratedParameter;
-using locbench::calibration::calibration_data_from_relations;
-using locbench::calibration::calibration_data_from_velocities;
-using locbench::calibration::CalibrationData;
-using locbench::calibration::evaluate_held_out;
-using locbench::calibration::HeldOutEvaluation;
-using locbench::calibration::MlCalibrationOptions;
-using locbench::calibration::MlCalibrationResult;
-using locbench::calibration::NoiseModelKind;
-using locbench::calibration::RelationSampleOptions;
-using locbench::calibration::SampleIntervalOptions;
-using locbench::catalog::DatasetEntry;
-using locbench::catalog::find_dataset;
-using locbench::catalog::load_catalog_calibration_data;
+using locbench::calibration::calibrate_ml, locbench::calibration::CalibratedParameter,
+    locbench::calibration::calibration_data_from_relations, locbench::calibration::calibration_data_from_velocities,
+    locbench::calibration::CalibrationData, locbench::calibration::evaluate_held_out,
+    locbench::calibration::HeldOutEvaluation, locbench::calibration::MlCalibrationOptions,
+    locbench::calibration::MlCalibrationResult, locbench::calibration::NoiseModelKind,
+    locbench::calibration::RelationSampleOptions, locbench::calibration::SampleIntervalOptions;
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset,
+    locbench::catalog::load_catalog_calibration_data;
 
 const ExperimentInfo kInfo{.name = "calibration/real_logs",
                            .description =

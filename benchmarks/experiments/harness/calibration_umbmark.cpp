@@ -16,19 +16,13 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments {
-using locbench::baselines::calibration::classic_umbmark;
-using locbench::baselines::calibration::ClassicUmbmarkResult;
-using locbench::calibration::analyze_umbmark_design;
-using locbench::calibration::error_params;
-using locbench::calibration::IdentifiabilityReport;
-using locbench::calibration::improved_umbmark;
-using locbench::calibration::ImprovedUmbmarkResult;
-using locbench::calibration::ParameterFinding;
-using locbench::calibration::UmbmarkDesign;
-using locbench::calibration::UmbmarkDesignFinding;
-using locbench::calibration::UmbmarkErrorParams;
-using locbench::calibration::UmbmarkIdentifiabilityOptions;
-using locbench::calibration::UmbmarkParameterSet;
+using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::analyze_umbmark_design, locbench::calibration::error_params,
+    locbench::calibration::IdentifiabilityReport, locbench::calibration::improved_umbmark,
+    locbench::calibration::ImprovedUmbmarkResult, locbench::calibration::ParameterFinding,
+    locbench::calibration::UmbmarkDesign, locbench::calibration::UmbmarkDesignFinding,
+    locbench::calibration::UmbmarkErrorParams, locbench::calibration::UmbmarkIdentifiabilityOptions,
+    locbench::calibration::UmbmarkParameterSet;
 namespace {
 
 constexpr int kMethods = 3;

@@ -12,9 +12,8 @@
 #include "tests/test_data.h"
 
 namespace locbench::calibration {
-using locbench::catalog::dataset_catalog;
-using locbench::catalog::DatasetEntry;
-using locbench::catalog::load_catalog_calibration_data;
+using locbench::catalog::dataset_catalog, locbench::catalog::DatasetEntry,
+    locbench::catalog::load_catalog_calibration_data;
 namespace {
 
 const DatasetEntry& censi_entry() {

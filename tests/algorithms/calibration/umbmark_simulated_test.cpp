@@ -23,8 +23,7 @@
 #include "datasets/sim/umbmark_input.h"
 
 namespace locbench::calibration {
-using locbench::baselines::calibration::classic_umbmark;
-using locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
 namespace {
 
 sim::Scenario scenario(const char* name, bool slip) {

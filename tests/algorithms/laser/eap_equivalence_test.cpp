@@ -25,9 +25,7 @@
 #include "tests/test_data.h"
 
 namespace locbench::laser {
-using locbench::catalog::DatasetEntry;
-using locbench::catalog::find_dataset;
-using locbench::catalog::load_catalog_dataset;
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
 constexpr double kFitTolerance = 1e-9;  // [m] and [rad]

@@ -7,8 +7,7 @@
 #include "tests/algorithms/filters/corridor_harness.h"
 
 namespace locbench::baselines::filters {
-using locbench::filters::CompassEkf;
-using locbench::filters::pair_encoder_compass;
+using locbench::filters::CompassEkf, locbench::filters::pair_encoder_compass;
 namespace {
 
 constexpr double kTwoDeg2 = 6.092348395734171e-4;  // 2 deg² in rad²

@@ -11,8 +11,7 @@
 #include "tests/baselines/laser/laser_scenes.h"
 
 namespace locbench::baselines::laser {
-using locbench::laser::scan_points;
-using locbench::laser::ScanPoint;
+using locbench::laser::scan_points, locbench::laser::ScanPoint;
 namespace {
 
 struct Works {

@@ -10,12 +10,10 @@
 #include "tests/baselines/laser/laser_scenes.h"
 
 namespace locbench::baselines::laser {
-using locbench::laser::scan_points;
-using locbench::laser::ScanPoint;
+using locbench::laser::scan_points, locbench::laser::ScanPoint;
 namespace {
 
-using test::lms_scan;
-using test::segments_map;
+using test::lms_scan, test::segments_map;
 
 struct Extractor {
   std::string name;

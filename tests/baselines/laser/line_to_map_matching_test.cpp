@@ -8,8 +8,7 @@
 #include "tests/baselines/laser/laser_scenes.h"
 
 namespace locbench::baselines::laser {
-using locbench::laser::fit_line;
-using locbench::laser::ScanPoint;
+using locbench::laser::fit_line, locbench::laser::ScanPoint;
 namespace {
 
 // An extracted line of `count` world points evenly from a to b, beams first_beam, first_beam+1…

@@ -14,8 +14,7 @@
 namespace locbench::baselines::laser {
 namespace {
 
-using test::lms_scan;
-using test::segments_map;
+using test::lms_scan, test::segments_map;
 
 // A 8 m × 6 m room with a box, so every direction is observable.
 LineMap room() {

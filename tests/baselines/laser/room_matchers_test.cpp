@@ -10,10 +10,8 @@
 #include "tests/baselines/laser/laser_scenes.h"
 
 namespace locbench::baselines::laser {
-using locbench::laser::MatchResult;
-using locbench::laser::ScanPoint;
-using locbench::laser::SegmentMatch;
-using locbench::laser::SegmentMatcher;
+using locbench::laser::MatchResult, locbench::laser::ScanPoint, locbench::laser::SegmentMatch,
+    locbench::laser::SegmentMatcher;
 namespace {
 
 const Pose2 kThesisPose(2.0, 1.0, deg(46.0));

@@ -8,8 +8,7 @@
 #include "tests/baselines/laser/laser_scenes.h"
 
 namespace locbench::baselines::laser {
-using locbench::laser::scan_points;
-using locbench::laser::ScanPoint;
+using locbench::laser::scan_points, locbench::laser::ScanPoint;
 namespace {
 
 const Pose2 kThesisPose(2.0, 1.0, deg(46.0));
