@@ -22,6 +22,19 @@
 #include "reports/output_file.h"
 
 namespace locbench::cli {
+using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::analyze_umbmark_design, locbench::calibration::calibrate_ml,
+    locbench::calibration::CalibratedParameter, locbench::calibration::calibration_data_from_encoders,
+    locbench::calibration::calibration_data_from_relations, locbench::calibration::calibration_data_from_velocities,
+    locbench::calibration::calibration_data_from_wheel_speed_tuples, locbench::calibration::CalibrationData,
+    locbench::calibration::improved_umbmark, locbench::calibration::ImprovedUmbmarkResult,
+    locbench::calibration::MlCalibrationOptions, locbench::calibration::MlCalibrationResult,
+    locbench::calibration::NoiseModelKind, locbench::calibration::ParameterFinding,
+    locbench::calibration::RelationSampleOptions, locbench::calibration::SampleIntervalOptions,
+    locbench::calibration::UmbmarkDesign, locbench::calibration::UmbmarkDesignFinding,
+    locbench::calibration::UmbmarkIdentifiabilityOptions, locbench::calibration::UmbmarkParameterSet;
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::is_calibration_dataset,
+    locbench::catalog::load_catalog_calibration_data, locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct CalibrateArgs {

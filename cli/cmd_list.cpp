@@ -13,6 +13,9 @@
 #include "datasets/sim/presets.h"
 
 namespace locbench::cli {
+using locbench::catalog::calibration_dataset_parts, locbench::catalog::dataset_catalog, locbench::catalog::DatasetEntry,
+    locbench::catalog::is_calibration_dataset, locbench::catalog::load_catalog_calibration_data,
+    locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct ListArgs {

@@ -9,7 +9,7 @@
 #include "core/errors.h"
 #include "core/trajectory.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 // A time-stamped odometry increment and its nominal (ΔD, Δθ), for cutting intervals.
@@ -327,4 +327,4 @@ bool is_finite(const CalibrationSample& s) {
   });
 }
 
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -16,7 +16,7 @@
 #include "core/pose2.h"
 #include "core/robot_params.h"
 
-namespace locbench {
+namespace locbench::calibration {
 
 // What the odometry measured; decides the parameterisation (calibration_model.h).
 enum class OdometryInputKind {
@@ -150,4 +150,4 @@ OdometryIncrement arc_increment(const Pose2& delta, double dt = 0.0);
 // The samples [begin, end) of `data` (same kind and nominal values), e.g. to hold some out.
 CalibrationData subset(const CalibrationData& data, std::size_t begin, std::size_t end);
 
-}  // namespace locbench
+}  // namespace locbench::calibration

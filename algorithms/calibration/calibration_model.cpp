@@ -5,7 +5,7 @@
 
 #include "core/angle.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 // sin(θ)/θ, (1 − cos θ)/θ and their derivatives, with series near θ = 0.
@@ -314,4 +314,4 @@ NoiseShape odometry_noise_shape(const CalibrationData& data, const CalibrationSa
   return out;
 }
 
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -16,7 +16,7 @@
 #include "algorithms/calibration/calibration_data.h"
 #include "core/pose2.h"
 
-namespace locbench {
+namespace locbench::calibration {
 
 // Names of the three odometry parameters of a kind, in the order of CalibrationData::nominal:
 // kWheelTicks: left_scale, right_scale, wheelbase; kWheelAngles: r_L, r_R, b;
@@ -88,4 +88,4 @@ struct NoiseShape {
 NoiseShape odometry_noise_shape(const CalibrationData& data, const CalibrationSample& sample, const ModelParameters& p,
                                 double virtual_track);
 
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -7,7 +7,7 @@
 
 #include "core/angle.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 bool is_wheel_kind(OdometryInputKind k) {
@@ -156,4 +156,4 @@ ClosedFormResult closed_form_calibration(const CalibrationData& data, const Mode
   return out;
 }
 
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -21,7 +21,7 @@
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/calibration_model.h"
 
-namespace locbench {
+namespace locbench::calibration {
 
 // Which of the six model parameters (odometry 0–2, sensor x, y, θ) are free.
 using ParameterMask = std::array<bool, 6>;
@@ -39,4 +39,4 @@ struct ClosedFormResult {
 ClosedFormResult closed_form_calibration(const CalibrationData& data, const ModelParameters& start,
                                          const ParameterMask& free);
 
-}  // namespace locbench
+}  // namespace locbench::calibration

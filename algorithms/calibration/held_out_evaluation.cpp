@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace locbench {
+namespace locbench::calibration {
 
 PoseErrors relative_motion_errors(const CalibrationData& data, const ModelParameters& p) {
   // One trajectory holding each sample's predicted motion over [2i, 2i + 1] (its start pose
@@ -62,4 +62,4 @@ HeldOutEvaluation evaluate_held_out(const CalibrationData& train, const Calibrat
   return out;
 }
 
-}  // namespace locbench
+}  // namespace locbench::calibration

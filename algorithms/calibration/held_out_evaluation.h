@@ -10,7 +10,7 @@
 #include "algorithms/calibration/ml_calibration.h"
 #include "core/trajectory_error.h"
 
-namespace locbench {
+namespace locbench::calibration {
 
 // Per-sample relative-motion errors (translation [m], |rotation| [rad]) of the model's
 // predicted reference against each sample's reference, computed with relation_error.
@@ -40,4 +40,4 @@ HeldOutEvaluation evaluate_held_out(const CalibrationData& data, const MlCalibra
 HeldOutEvaluation evaluate_held_out(const CalibrationData& training, const CalibrationData& evaluation,
                                     const MlCalibrationOptions& options = {});
 
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -7,7 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace locbench {
+namespace locbench::calibration {
 
 IdentifiabilityReport analyze_identifiability(const Eigen::MatrixXd& jacobian,
                                               const Eigen::MatrixXd& measurement_covariance,
@@ -72,4 +72,4 @@ IdentifiabilityReport analyze_identifiability(const Eigen::MatrixXd& jacobian,
   return r;
 }
 
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace locbench {
+namespace locbench::calibration {
 
 struct ParameterFinding {
   std::string name;
@@ -35,4 +35,4 @@ IdentifiabilityReport analyze_identifiability(const Eigen::MatrixXd& jacobian,
                                               const std::vector<std::string>& names, const Eigen::VectorXd& values,
                                               double relative_tolerance = 1e-10);
 
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -11,15 +11,12 @@
 #include "algorithms/calibration/closed_form_calibration.h"
 #include "algorithms/calibration/ml_calibration_solver.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-using ml_solver::LmOutcome;
-using ml_solver::Problem;
-using ml_solver::Vector6;
-using ml_solver::Whitening;
+using ml_solver::LmOutcome, ml_solver::Problem, ml_solver::Vector6, ml_solver::Whitening;
 
 // Σᵢ⁻¹ᐟ² rᵢ for every active sample.
 Eigen::VectorXd whiten(const Whitening& w, const Eigen::VectorXd& r) {
@@ -384,4 +381,4 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   return res;
 }
 
-}  // namespace locbench
+}  // namespace locbench::calibration

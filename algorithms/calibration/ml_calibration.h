@@ -18,7 +18,7 @@
 #include "algorithms/calibration/calibration_model.h"
 #include "algorithms/calibration/identifiability.h"
 
-namespace locbench {
+namespace locbench::calibration {
 
 enum class NoiseModelKind {
   // Σᵢ = diag(σ_x², σ_y², σ_θ²) for every sample: the reference (e.g. a scan matcher) dominates
@@ -115,4 +115,4 @@ struct MlCalibrationResult {
 // parameters than 3 × samples, an unknown name in `fixed`, or invalid options.
 MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibrationOptions& options = {});
 
-}  // namespace locbench
+}  // namespace locbench::calibration

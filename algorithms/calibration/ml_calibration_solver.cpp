@@ -11,7 +11,7 @@
 #include <cmath>
 #include <utility>
 
-namespace locbench::ml_solver {
+namespace locbench::calibration::ml_solver {
 
 namespace {
 
@@ -193,4 +193,4 @@ void restrict_to_determined(ceres::Problem& problem, Eigen::VectorXd& x) {
   problem.SetManifold(x.data(), new LinearSubspace(basis));
 }
 
-}  // namespace locbench::ml_solver
+}  // namespace locbench::calibration::ml_solver

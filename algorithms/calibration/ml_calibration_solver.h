@@ -15,7 +15,7 @@ namespace ceres {
 class Problem;
 }
 
-namespace locbench::ml_solver {
+namespace locbench::calibration::ml_solver {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 
@@ -70,4 +70,4 @@ struct LmOutcome {
 // Levenberg–Marquardt from the parameter block's current values.
 LmOutcome levenberg_marquardt(ceres::Problem& problem, Eigen::VectorXd& x, int max_iterations);
 
-}  // namespace locbench::ml_solver
+}  // namespace locbench::calibration::ml_solver

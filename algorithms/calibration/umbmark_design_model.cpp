@@ -8,7 +8,7 @@
 #include "core/pose2.h"
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::calibration {
 
 WheelGeometry true_geometry(const WheelGeometry& nominal, const UmbmarkErrorParams& e) {
   const double d_a = e.E_o * nominal.mean_diameter();  // 2.16
@@ -207,4 +207,4 @@ UmbmarkDesignFinding analyze_umbmark_design(UmbmarkDesign design, UmbmarkParamet
   return f;
 }
 
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -21,7 +21,7 @@
 #include "algorithms/calibration/identifiability.h"
 #include "core/robot_params.h"
 
-namespace locbench {
+namespace locbench::calibration {
 
 struct UmbmarkErrorParams {
   double E_d = 1.0;  // D_R/D_L (2.1)
@@ -110,4 +110,4 @@ UmbmarkDesignFinding analyze_umbmark_design(UmbmarkDesign design, UmbmarkParamet
                                             const UmbmarkErrorParams& at,
                                             const UmbmarkIdentifiabilityOptions& options = {});
 
-}  // namespace locbench
+}  // namespace locbench::calibration

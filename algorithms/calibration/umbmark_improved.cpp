@@ -7,7 +7,7 @@
 
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::calibration {
 
 ImprovedUmbmarkResult improved_umbmark(const UmbmarkInput& in, const ImprovedUmbmarkOptions& options) {
   check_umbmark_input(in, true);
@@ -89,4 +89,4 @@ ImprovedUmbmarkResult improved_umbmark(const UmbmarkInput& in, const ImprovedUmb
   return r;
 }
 
-}  // namespace locbench
+}  // namespace locbench::calibration

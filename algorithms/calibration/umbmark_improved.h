@@ -32,7 +32,7 @@
 #include "core/robot_params.h"
 #include "core/umbmark_measurements.h"
 
-namespace locbench {
+namespace locbench::calibration {
 
 struct ImprovedUmbmarkOptions {
   UmbmarkAngleFormula angles = UmbmarkAngleFormula::kX;  // 2.3a/2.6a by default
@@ -69,4 +69,4 @@ struct ImprovedUmbmarkResult {
 // when the angles are too large for 2.5/2.27.
 ImprovedUmbmarkResult improved_umbmark(const UmbmarkInput& in, const ImprovedUmbmarkOptions& options = {});
 
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -6,7 +6,7 @@
 #include "core/errors.h"
 #include "core/option_fields.h"
 
-namespace locbench {
+namespace locbench::filters {
 
 // CompassEkfOptions's fields, stated once (the header explains each).
 template <class V>
@@ -49,4 +49,4 @@ CompassFilterStep CompassEkf::step(const WheelDisplacement& u, std::optional<dou
   return compass_ekf_step(x_, p_, u, wheelbase_, q, compass_heading, options_.compass_variance);
 }
 
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -13,7 +13,7 @@
 #include "algorithms/filters/odometry_noise_model.h"
 #include "core/compass_ekf_model.h"
 
-namespace locbench {
+namespace locbench::filters {
 
 struct CompassEkfOptions {
   OdometryNoiseOptions noise;                           // k_l = k_r = 0.005 √m, σ = 5.00 mm
@@ -58,4 +58,4 @@ class CompassEkf {
   Matrix3 p_;
 };
 
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace locbench {
+namespace locbench::filters {
 
 std::vector<CompassOdometrySample> pair_encoder_compass(std::span<const EncoderReading> encoders,
                                                         std::span<const CompassReading> compass,
@@ -36,4 +36,4 @@ std::vector<CompassOdometrySample> pair_encoder_compass(std::span<const EncoderR
   return out;
 }
 
-}  // namespace locbench
+}  // namespace locbench::filters

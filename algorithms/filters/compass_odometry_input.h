@@ -10,7 +10,7 @@
 #include "core/robot_params.h"
 #include "core/sensor_data.h"
 
-namespace locbench {
+namespace locbench::filters {
 
 struct CompassOdometrySample {
   double t = 0.0;                 // time of the later encoder sample [s]
@@ -26,4 +26,4 @@ std::vector<CompassOdometrySample> pair_encoder_compass(std::span<const EncoderR
                                                         std::span<const CompassReading> compass,
                                                         const NominalModel& model, double max_offset);
 
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -8,7 +8,7 @@
 #include "core/angle.h"
 #include "core/chi_square.h"
 
-namespace locbench {
+namespace locbench::filters {
 
 double nees(const Eigen::Ref<const Eigen::VectorXd>& error, const Eigen::Ref<const Eigen::MatrixXd>& covariance) {
   if (covariance.rows() != error.size() || covariance.cols() != error.size()) {
@@ -76,4 +76,4 @@ ConsistencySummary summarize_consistency(const std::vector<std::vector<double>>&
   return s;
 }
 
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -11,7 +11,7 @@
 
 #include "core/pose2.h"
 
-namespace locbench {
+namespace locbench::filters {
 
 // eᵀP⁻¹e; +∞ when P is not positive definite (a zero error with singular P gives +∞ too: a
 // filter claiming certainty is not consistent).
@@ -47,4 +47,4 @@ struct ConsistencySummary {
 ConsistencySummary summarize_consistency(const std::vector<std::vector<double>>& per_run, int dof,
                                          double confidence = 0.95);
 
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -6,7 +6,7 @@
 #include "core/errors.h"
 #include "core/option_fields.h"
 
-namespace locbench {
+namespace locbench::filters {
 
 constexpr EnumNames<OdometryNoiseForm, 2> kForms{
     {{OdometryNoiseForm::kThesis, "thesis"}, {OdometryNoiseForm::kJacobian, "jacobian"}}};
@@ -57,4 +57,4 @@ Matrix3 adaptive_process_noise(const OdometryNoiseOptions& o, double theta_prev,
   return q;
 }
 
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -13,7 +13,7 @@
 #include "core/diff_drive_odometry.h"
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::filters {
 
 // kThesis is eq. 4.43–4.44 as published. kJacobian propagates the same per-wheel variances
 // through the full wheel Jacobian, Q = F_u diag(var_R, var_L) F_uᵀ (core's
@@ -58,4 +58,4 @@ IncrementNoise increment_noise(const OdometryNoiseOptions& o, const WheelDisplac
 Matrix3 adaptive_process_noise(const OdometryNoiseOptions& o, double theta_prev, const WheelDisplacement& u,
                                double wheelbase);
 
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace locbench {
+namespace locbench::filters {
 namespace {
 
 constexpr double kSqrtPi = 1.7724538509055160273;   // √π
@@ -150,4 +150,4 @@ QuantizationSigmaComparison compare_quantization_sigma(double c, double publishe
   return r;
 }
 
-}  // namespace locbench
+}  // namespace locbench::filters

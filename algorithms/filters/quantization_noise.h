@@ -6,7 +6,7 @@
 // that minimises G₂(σ) = ∫(f₁ − f₂)² dx (eq. 4.28). Every function is unit-agnostic: C and σ in
 // the same length unit; G₂ comes out in 1/unit, G₁ is dimensionless. README.md compares the
 // results with the published σ = 5.00 mm, G₂ = 0.0021.
-namespace locbench {
+namespace locbench::filters {
 
 // f₁(e) (eq. 4.18).
 double triangular_density(double e, double c);
@@ -62,4 +62,4 @@ struct QuantizationSigmaComparison {
 };
 QuantizationSigmaComparison compare_quantization_sigma(double c, double published_sigma, double published_l2);
 
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -7,7 +7,8 @@
 #include "core/errors.h"
 #include "core/option_fields.h"
 
-namespace locbench {
+namespace locbench::slip {
+using locbench::calibration::analyze_identifiability, locbench::calibration::IdentifiabilityReport;
 
 // IndirectKfOptions' fields, stated once (the header explains each).
 template <class V>
@@ -147,4 +148,4 @@ IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, do
   return analyze_identifiability(j, cov, {"S_R", "S_L", "dB"}, values, relative_tolerance);
 }
 
-}  // namespace locbench
+}  // namespace locbench::slip

@@ -33,7 +33,7 @@
 #include "core/diff_drive_odometry.h"
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::slip {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
@@ -125,9 +125,10 @@ IkfRunResult run_indirect_kf(std::span<const IkfRun> runs, const IndirectKfOptio
 // with the heading variance (and end-position variance). Parameter names "S_R", "S_L", "dB".
 // `relative_tolerance` is on the Fisher-information eigenvalues (1e-6 ⇔ singular values of the
 // whitened Jacobian below 1e-3 of the largest count as zero).
-IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, double start_heading, double wheelbase,
-                                          double heading_variance, const Eigen::Vector3d& values,
-                                          std::optional<double> end_position_variance = {},
-                                          double relative_tolerance = 1e-6);
+calibration::IdentifiabilityReport ikf_identifiability(std::span<const IkfSample> samples, double start_heading,
+                                                       double wheelbase, double heading_variance,
+                                                       const Eigen::Vector3d& values,
+                                                       std::optional<double> end_position_variance = {},
+                                                       double relative_tolerance = 1e-6);
 
-}  // namespace locbench
+}  // namespace locbench::slip

@@ -6,7 +6,8 @@
 #include "core/angle.h"
 #include "core/errors.h"
 
-namespace locbench {
+namespace locbench::slip {
+using locbench::filters::CompassEkf;
 
 SlipEkfRun run_slip_ekf(std::span<const SlipSample> samples, std::optional<double> initial_compass,
                         const SlipModel& compass_model, const std::optional<SlipModel>& gyro_model,
@@ -94,4 +95,4 @@ SlipEkfRun run_slip_ekf(std::span<const SlipSample> samples, std::optional<doubl
   return run;
 }
 
-}  // namespace locbench
+}  // namespace locbench::slip

@@ -20,7 +20,7 @@
 #include "algorithms/slip/slip_detector.h"
 #include "core/compass_ekf_model.h"
 
-namespace locbench {
+namespace locbench::slip {
 
 struct SlipSample {
   WheelDisplacement u;                   // encoder wheel travel of the sample [m]
@@ -64,4 +64,4 @@ SlipEkfRun run_slip_ekf(std::span<const SlipSample> samples, std::optional<doubl
                         const SlipModel& compass_model, const std::optional<SlipModel>& gyro_model,
                         const SlipEkfOptions& options, double wheelbase, const Pose2& start);
 
-}  // namespace locbench
+}  // namespace locbench::slip

@@ -8,7 +8,7 @@
 #include "core/option_fields.h"
 #include "core/statistics.h"
 
-namespace locbench {
+namespace locbench::slip {
 
 SlipModel fit_slip_model(std::span<const double> d) {
   if (d.size() < 2) throw std::invalid_argument("fit_slip_model: need at least 2 samples");
@@ -111,4 +111,4 @@ SlipDecision SlipDetector::classify(const WheelDisplacement& u, double theta_c) 
   return d;
 }
 
-}  // namespace locbench
+}  // namespace locbench::slip

@@ -17,7 +17,7 @@
 
 #include "core/diff_drive_odometry.h"
 
-namespace locbench {
+namespace locbench::slip {
 
 // μ and σ of Δθ' = θ_E − θ_C [rad].
 struct SlipModel {
@@ -90,4 +90,4 @@ class SlipDetector {
   double z_;
 };
 
-}  // namespace locbench
+}  // namespace locbench::slip

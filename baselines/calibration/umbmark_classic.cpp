@@ -7,7 +7,7 @@
 
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::baselines::calibration {
 
 namespace {
 
@@ -70,4 +70,4 @@ ClassicUmbmarkResult classic_umbmark(const UmbmarkInput& in, const ClassicUmbmar
   return r;
 }
 
-}  // namespace locbench
+}  // namespace locbench::baselines::calibration

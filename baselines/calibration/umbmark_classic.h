@@ -7,7 +7,7 @@
 #include "core/robot_params.h"
 #include "core/umbmark_measurements.h"
 
-namespace locbench {
+namespace locbench::baselines::calibration {
 
 struct ClassicUmbmarkOptions {
   UmbmarkAngleFormula angles = UmbmarkAngleFormula::kX;  // 2.3a/2.6a by default
@@ -36,4 +36,4 @@ struct ClassicUmbmarkResult {
 // too large for 2.5/2.8 (|R| ≤ B/2 or α ≥ 90°).
 ClassicUmbmarkResult classic_umbmark(const UmbmarkInput& in, const ClassicUmbmarkOptions& options = {});
 
-}  // namespace locbench
+}  // namespace locbench::baselines::calibration

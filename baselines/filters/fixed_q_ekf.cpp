@@ -5,7 +5,7 @@
 #include "core/errors.h"
 #include "core/option_fields.h"
 
-namespace locbench {
+namespace locbench::baselines::filters {
 
 // FixedQEkfOptions's fields, stated once (the header explains each).
 template <class V>
@@ -33,4 +33,4 @@ CompassFilterStep FixedQEkf::step(const WheelDisplacement& u, std::optional<doub
   return compass_ekf_step(x_, p_, u, wheelbase_, q_, compass_heading, r_);
 }
 
-}  // namespace locbench
+}  // namespace locbench::baselines::filters

@@ -9,7 +9,7 @@
 #include "core/compass_ekf_model.h"
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::baselines::filters {
 
 struct FixedQEkfOptions {
   // diag Q [m², m², rad²] = diag(6.33 mm², 6.33 mm², 2 deg²) (§4.5).
@@ -43,4 +43,4 @@ class FixedQEkf {
   Matrix3 p_;
 };
 
-}  // namespace locbench
+}  // namespace locbench::baselines::filters

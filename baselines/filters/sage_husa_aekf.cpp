@@ -5,7 +5,7 @@
 #include "core/errors.h"
 #include "core/option_fields.h"
 
-namespace locbench {
+namespace locbench::baselines::filters {
 
 // SageHusaOptions's fields, stated once (the header explains each).
 template <class V>
@@ -92,4 +92,4 @@ SageHusaStep SageHusaAekf::step(const WheelDisplacement& u, std::optional<double
   return out;
 }
 
-}  // namespace locbench
+}  // namespace locbench::baselines::filters

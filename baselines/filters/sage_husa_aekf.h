@@ -21,7 +21,7 @@
 #include "core/compass_ekf_model.h"
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::baselines::filters {
 
 struct SageHusaOptions {
   // Q̂(0) = diag(6.33 mm², 6.33 mm², 2 deg²) [m², m², rad²] (§4.5).
@@ -81,4 +81,4 @@ class SageHusaAekf {
   int k_ = 0;  // compass updates so far
 };
 
-}  // namespace locbench
+}  // namespace locbench::baselines::filters

@@ -5,7 +5,7 @@
 #include "core/errors.h"
 #include "core/option_fields.h"
 
-namespace locbench {
+namespace locbench::baselines::filters {
 
 // VbAkfOptions's fields, stated once (the header explains each).
 template <class V>
@@ -67,4 +67,4 @@ VbAkfStep VbAkf::step(const WheelDisplacement& u, std::optional<double> compass_
   return out;
 }
 
-}  // namespace locbench
+}  // namespace locbench::baselines::filters

@@ -17,7 +17,7 @@
 #include "core/compass_ekf_model.h"
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::baselines::filters {
 
 struct VbAkfOptions {
   // diag Q [m², m², rad²]: the published fixed Q (§4.5).
@@ -67,4 +67,4 @@ class VbAkf {
   double beta_;
 };
 
-}  // namespace locbench
+}  // namespace locbench::baselines::filters

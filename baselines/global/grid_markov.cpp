@@ -8,7 +8,7 @@
 #include "core/errors.h"
 #include "core/units.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 void validate(const GridMarkovOptions& o) { validate_fields(o, "GridMarkovOptions"); }
 
@@ -255,4 +255,4 @@ std::size_t GridMarkov::memory_bytes() const {
   return (belief_.capacity() + scratch_.capacity()) * sizeof(double) + field_.memory_bytes();
 }
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

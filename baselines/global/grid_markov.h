@@ -22,7 +22,7 @@
 #include "baselines/global/odometry_motion_model.h"
 #include "core/line_map.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 struct GridMarkovOptions {
   OdometryMotionOptions motion;
@@ -85,4 +85,4 @@ class GridMarkov {
   std::size_t updates_ = 0;
 };
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

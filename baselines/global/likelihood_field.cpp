@@ -8,7 +8,7 @@
 #include "core/errors.h"
 #include "core/units.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 void validate(const LikelihoodFieldOptions& o) {
   validate_fields(o, "LikelihoodFieldOptions");
@@ -139,4 +139,4 @@ double LikelihoodField::log_likelihood(const Pose2& robot, const std::vector<Eig
   return sum;
 }
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

@@ -14,7 +14,7 @@
 #include "core/pose2.h"
 #include "core/scan.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 struct LikelihoodFieldOptions {
   double resolution = 0.05;   // distance-grid cell [m]
@@ -74,4 +74,4 @@ class LikelihoodField {
   double log_far_ = 0.0;
 };
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

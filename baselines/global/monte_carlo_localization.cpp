@@ -9,7 +9,7 @@
 #include "core/errors.h"
 #include "core/units.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 void validate(const MclOptions& o) {
   validate_fields(o, "MclOptions");
@@ -206,4 +206,4 @@ std::size_t MonteCarloLocalization::memory_bytes() const {
   return particles_.capacity() * sizeof(Particle) + field_.memory_bytes();
 }
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

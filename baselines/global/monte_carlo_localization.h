@@ -28,7 +28,7 @@
 #include "core/line_map.h"
 #include "core/rng.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 struct MclOptions {
   OdometryMotionOptions motion;
@@ -103,4 +103,4 @@ class MonteCarloLocalization {
   std::size_t updates_ = 0;
 };
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

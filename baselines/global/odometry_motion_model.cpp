@@ -6,7 +6,7 @@
 #include "core/angle.h"
 #include "core/errors.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 void validate(const OdometryMotionOptions& o) { validate_fields(o, "OdometryMotionOptions"); }
 
@@ -56,4 +56,4 @@ Pose2 sample_motion(const Pose2& p, const OdometryDelta& d, const OdometryMotion
   return apply_delta(p, n);
 }
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

@@ -11,7 +11,7 @@
 #include "core/pose2.h"
 #include "core/rng.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 struct OdometryMotionOptions {
   double alpha1 = 0.05;                 // rotation noise from rotation [rad²/rad²]
@@ -43,4 +43,4 @@ OdometryDelta delta_sigma(const OdometryDelta& d, const OdometryMotionOptions& o
 // One sample of the motion model from p.
 Pose2 sample_motion(const Pose2& p, const OdometryDelta& d, const OdometryMotionOptions& o, Rng& rng);
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

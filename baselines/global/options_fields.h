@@ -9,7 +9,7 @@
 #include "core/option_fields.h"
 #include "core/units.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 template <class V>
 void visit_fields(V& v, OdometryMotionOptions& o) {
@@ -64,4 +64,4 @@ void visit_fields(V& v, GridMarkovOptions& o) {
   v.field("max_cells", o.max_cells, "", at_least(1.0), "refuse larger grids (memory)");
 }
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

@@ -3,11 +3,11 @@
 // options_fields.h.
 #include "baselines/global/options_fields.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 LOCBENCH_OPTIONS_JSON(OdometryMotionOptions)
 LOCBENCH_OPTIONS_JSON(LikelihoodFieldOptions)
 LOCBENCH_OPTIONS_JSON(MclOptions)
 LOCBENCH_OPTIONS_JSON(GridMarkovOptions)
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

@@ -4,7 +4,7 @@
 
 #include "core/errors.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 SensorTable dervish_sensor_table() {
   return {{{0.70, 0.40, 0.05, 0.001, 0.30},
@@ -104,4 +104,4 @@ std::size_t TopologicalMarkov::index(const std::string& name) const {
   throw UsageError("topological map: no node named " + name);
 }
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

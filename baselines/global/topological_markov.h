@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 
 enum class Feature { kWall, kClosedDoor, kOpenDoor, kOpenHallway, kFoyer };
 inline constexpr int kFeatureCount = 5;
@@ -82,4 +82,4 @@ class TopologicalMarkov {
   std::vector<double> belief_;
 };
 
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

@@ -10,7 +10,8 @@
 #include "core/angle.h"
 #include "core/chi_square.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint;
 namespace {
 
 using detail::IndexRange;
@@ -277,4 +278,4 @@ ExtractionResult agglomerative_lines(std::span<const ScanPoint> points, LineFram
   return result;
 }
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

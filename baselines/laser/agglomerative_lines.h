@@ -26,7 +26,7 @@
 
 #include "baselines/laser/line_extraction.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 
 struct AgglomerativeOptions {
   BreakpointOptions breakpoints;  // range_sigma is also the σ of a point across a line
@@ -52,7 +52,7 @@ struct AgglomerativeOptions {
 // Throws UsageError naming the first invalid option.
 void validate(const AgglomerativeOptions& o);
 
-ExtractionResult agglomerative_lines(std::span<const ScanPoint> points, LineFrame frame,
+ExtractionResult agglomerative_lines(std::span<const locbench::laser::ScanPoint> points, LineFrame frame,
                                      const AgglomerativeOptions& options = {});
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

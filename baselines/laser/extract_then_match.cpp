@@ -2,7 +2,8 @@
 
 #include <utility>
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::MatchResult, locbench::laser::scan_points, locbench::laser::ScanPoint;
 namespace {
 
 // Each baseline's name and extraction step (lines in frame `f`).
@@ -55,4 +56,4 @@ template class ExtractThenMatcher<SplitAndMergeOptions>;
 template class ExtractThenMatcher<AgglomerativeOptions>;
 template class ExtractThenMatcher<RwhtOptions>;
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -13,7 +13,7 @@
 #include "baselines/laser/rwht.h"
 #include "baselines/laser/split_and_merge.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 
 // A baseline's options: its extractor's (SplitAndMergeOptions, AgglomerativeOptions or
 // RwhtOptions) and the line-to-map matching's.
@@ -28,13 +28,13 @@ using RwhtMatcherOptions = ExtractThenMatchOptions<RwhtOptions>;
 
 // One matcher per extractor; the three differ only in the extraction step (and their name).
 template <class Extraction>
-class ExtractThenMatcher final : public SegmentMatcher {
+class ExtractThenMatcher final : public locbench::laser::SegmentMatcher {
  public:
   using Options = ExtractThenMatchOptions<Extraction>;
   // Throws UsageError for invalid options.
   explicit ExtractThenMatcher(const Options& options = {});
   std::string name() const override;
-  MatchResult match(const Scan& scan, const LineMap& map, const Pose2& estimate) const override;
+  locbench::laser::MatchResult match(const Scan& scan, const LineMap& map, const Pose2& estimate) const override;
   ExtractionResult extract_lines(const Scan& scan) const;
   const Options& options() const { return options_; }
 
@@ -48,4 +48,4 @@ extern template class ExtractThenMatcher<SplitAndMergeOptions>;
 extern template class ExtractThenMatcher<AgglomerativeOptions>;
 extern template class ExtractThenMatcher<RwhtOptions>;
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -6,7 +6,8 @@
 #include "baselines/laser/options_fields.h"
 #include "core/errors.h"
 
-namespace locbench::laser::detail {
+namespace locbench::baselines::laser::detail {
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint;
 
 Eigen::Vector2d sensor_point(const ScanPoint& p) {
   return {p.range * std::cos(p.bearing), p.range * std::sin(p.bearing)};
@@ -102,11 +103,12 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw UsageError(message);
 }
 
-}  // namespace locbench::laser::detail
+}  // namespace locbench::baselines::laser::detail
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint;
 
 void validate(const BreakpointOptions& o) { validate_fields(o, "BreakpointOptions"); }
 void validate(const LineAcceptance& o) { validate_fields(o, "LineAcceptance"); }
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -12,7 +12,7 @@
 
 #include "baselines/laser/line_extraction.h"
 
-namespace locbench::laser::detail {
+namespace locbench::baselines::laser::detail {
 
 // A half-open range of indices into the point list.
 struct IndexRange {
@@ -22,13 +22,14 @@ struct IndexRange {
 };
 
 // The point in the sensor frame, from its polar measurement.
-Eigen::Vector2d sensor_point(const ScanPoint& p);
-std::vector<Eigen::Vector2d> sensor_points(std::span<const ScanPoint> points);
+Eigen::Vector2d sensor_point(const locbench::laser::ScanPoint& p);
+std::vector<Eigen::Vector2d> sensor_points(std::span<const locbench::laser::ScanPoint> points);
 
 // Adaptive breakpoint test between consecutive points a (earlier) and b (see BreakpointOptions).
-bool is_breakpoint(const ScanPoint& a, const ScanPoint& b, const BreakpointOptions& o);
+bool is_breakpoint(const locbench::laser::ScanPoint& a, const locbench::laser::ScanPoint& b,
+                   const BreakpointOptions& o);
 // The runs of points between breakpoints, in order; together they cover every point.
-std::vector<IndexRange> breakpoint_runs(std::span<const ScanPoint> points, const BreakpointOptions& o);
+std::vector<IndexRange> breakpoint_runs(std::span<const locbench::laser::ScanPoint> points, const BreakpointOptions& o);
 // run_of[i] = index of the run that holds point i.
 std::vector<std::size_t> run_index(const std::vector<IndexRange>& runs, std::size_t count);
 
@@ -48,13 +49,15 @@ struct LineNormal {
 
 // The sensor-frame least-squares line of sensor[indices] if it passes `accept` (count, and
 // first-to-last length), else nothing. `scratch` is reused storage.
-std::optional<LineFit> accepted_fit(std::span<const std::size_t> indices, std::span<const Eigen::Vector2d> sensor,
-                                    const LineAcceptance& accept, std::vector<Eigen::Vector2d>& scratch);
+std::optional<locbench::laser::LineFit> accepted_fit(std::span<const std::size_t> indices,
+                                                     std::span<const Eigen::Vector2d> sensor,
+                                                     const LineAcceptance& accept,
+                                                     std::vector<Eigen::Vector2d>& scratch);
 
 // Appends the line through points[indices] (ascending) to `out` when it passes `accept`
 // (count and first-to-last length measured on the sensor-frame points); the fit is made in
 // `frame`. `scratch` is reused storage. Returns whether it was accepted.
-bool append_if_accepted(std::span<const ScanPoint> points, std::span<const std::size_t> indices,
+bool append_if_accepted(std::span<const locbench::laser::ScanPoint> points, std::span<const std::size_t> indices,
                         std::span<const Eigen::Vector2d> sensor, LineFrame frame, const LineAcceptance& accept,
                         std::vector<Eigen::Vector2d>& scratch, std::vector<ExtractedLine>& out);
 
@@ -63,4 +66,4 @@ void sort_by_first_beam(std::vector<ExtractedLine>& lines);
 
 void require(bool ok, const std::string& message);  // throws UsageError(message) when !ok
 
-}  // namespace locbench::laser::detail
+}  // namespace locbench::baselines::laser::detail

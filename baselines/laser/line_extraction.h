@@ -17,15 +17,15 @@
 #include "algorithms/laser/scan_points.h"
 #include "core/units.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 
 // Which coordinates of the ScanPoints a line is fitted in: `robot` for map-free use, `world`
 // (the frame of the pose estimate the points were made with) for matching against a map.
 enum class LineFrame { robot, world };
 
 struct ExtractedLine {
-  std::vector<ScanPoint> points;  // in beam order, contiguous in the scan
-  LineFit fit;                    // least-squares line of the points in the chosen frame
+  std::vector<locbench::laser::ScanPoint> points;  // in beam order, contiguous in the scan
+  locbench::laser::LineFit fit;                    // least-squares line of the points in the chosen frame
 };
 
 struct ExtractionResult {
@@ -56,4 +56,4 @@ struct LineAcceptance {
 void validate(const BreakpointOptions& o);
 void validate(const LineAcceptance& o);
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -8,7 +8,8 @@
 #include "baselines/laser/options_fields.h"
 #include "core/angle.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint, locbench::laser::SegmentMatch;
 namespace {
 
 // The line's normal form with ρ measured from `pivot` (may be negative: both forms are tried).
@@ -86,4 +87,4 @@ LineToMapMatches match_lines_to_map(std::span<const ExtractedLine> lines, const 
   return out;
 }
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -25,7 +25,7 @@
 #include "core/line_map.h"
 #include "core/units.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 
 struct LineMatchOptions {
   // Room for a pose estimate off by ~0.15 m and ~5° (the EKF's prior of Chapter 6 is far
@@ -40,7 +40,7 @@ struct LineMatchOptions {
 void validate(const LineMatchOptions& o);
 
 struct LineToMapMatches {
-  std::vector<SegmentMatch> matches;                   // ordered by map segment
+  std::vector<locbench::laser::SegmentMatch> matches;  // ordered by map segment
   std::vector<std::optional<std::size_t>> segment_of;  // per extracted line: its map segment
   std::size_t work = 0;
 };
@@ -49,4 +49,4 @@ struct LineToMapMatches {
 LineToMapMatches match_lines_to_map(std::span<const ExtractedLine> lines, const LineMap& map,
                                     const Eigen::Vector2d& pivot, const LineMatchOptions& options = {});
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

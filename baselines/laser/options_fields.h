@@ -6,7 +6,7 @@
 #include "core/option_fields.h"
 #include "core/units.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 
 template <class V>
 void visit_fields(V& v, BreakpointOptions& o) {
@@ -67,4 +67,4 @@ void visit_fields(V& v, ExtractThenMatchOptions<Extraction>& o) {
   v.nested("matching", o.matching, "LineMatchOptions");
 }
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -2,7 +2,7 @@
 
 #include "baselines/laser/options_fields.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 
 // Each struct's fields are in options_fields.h; from_json validates (nested structs on reading).
 LOCBENCH_OPTIONS_JSON(BreakpointOptions)
@@ -15,4 +15,4 @@ LOCBENCH_OPTIONS_JSON(SplitAndMergeMatcherOptions)
 LOCBENCH_OPTIONS_JSON(AgglomerativeMatcherOptions)
 LOCBENCH_OPTIONS_JSON(RwhtMatcherOptions)
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

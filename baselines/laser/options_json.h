@@ -6,7 +6,7 @@
 
 #include "baselines/laser/extract_then_match.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 
 void to_json(nlohmann::json& j, const BreakpointOptions& o);
 void from_json(const nlohmann::json& j, BreakpointOptions& o);
@@ -28,4 +28,4 @@ void from_json(const nlohmann::json& j, AgglomerativeMatcherOptions& o);
 void to_json(nlohmann::json& j, const RwhtMatcherOptions& o);
 void from_json(const nlohmann::json& j, RwhtMatcherOptions& o);
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -13,7 +13,7 @@
 #include "core/option_fields.h"
 #include "core/pose_observability.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 namespace {
 
 // The valid beams' end points in the robot frame, in beam order.
@@ -259,4 +259,4 @@ PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& init
   return out;
 }
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -35,7 +35,7 @@
 #include "core/scan.h"
 #include "core/units.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 
 enum class IcpMetric { kPointToLine, kPointToPoint };
 const char* to_string(IcpMetric m);
@@ -92,4 +92,4 @@ struct PlIcpResult {
 // valid = false, motion = initial.
 PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& initial, const PlIcpOptions& options = {});
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -11,7 +11,8 @@
 #include "baselines/laser/options_fields.h"
 #include "core/angle.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint;
 namespace {
 
 using detail::IndexRange;
@@ -317,4 +318,4 @@ RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame, co
   return out;
 }
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -31,7 +31,7 @@
 
 #include "baselines/laser/line_extraction.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 
 struct RwhtOptions {
   BreakpointOptions breakpoints;  // contiguity of pieces; range_sigma widens the peak band
@@ -59,6 +59,7 @@ struct RwhtExtraction {
   std::size_t cells = 0;               // N_α · N_r
 };
 
-RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame, const RwhtOptions& options = {});
+RwhtExtraction rwht_lines(std::span<const locbench::laser::ScanPoint> points, LineFrame frame,
+                          const RwhtOptions& options = {});
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

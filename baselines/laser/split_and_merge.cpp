@@ -6,7 +6,8 @@
 #include "baselines/laser/extraction_steps.h"
 #include "baselines/laser/options_fields.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::fit_line, locbench::laser::LineFit, locbench::laser::ScanPoint;
 namespace {
 
 using detail::IndexRange;
@@ -132,4 +133,4 @@ ExtractionResult split_and_merge(std::span<const ScanPoint> points, LineFrame fr
   return result;
 }
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

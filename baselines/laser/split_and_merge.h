@@ -21,7 +21,7 @@
 
 #include "baselines/laser/line_extraction.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 
 struct SplitAndMergeOptions {
   BreakpointOptions breakpoints;
@@ -35,7 +35,7 @@ struct SplitAndMergeOptions {
 // Throws UsageError naming the first invalid option.
 void validate(const SplitAndMergeOptions& o);
 
-ExtractionResult split_and_merge(std::span<const ScanPoint> points, LineFrame frame,
+ExtractionResult split_and_merge(std::span<const locbench::laser::ScanPoint> points, LineFrame frame,
                                  const SplitAndMergeOptions& options = {});
 
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

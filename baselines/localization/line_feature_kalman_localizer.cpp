@@ -10,7 +10,7 @@
 #include "core/errors.h"
 #include "core/option_fields.h"
 
-namespace locbench::localization {
+namespace locbench::baselines::localization {
 
 // LineFeatureKalmanOptions' fields, stated once (the header explains each).
 template <class V>
@@ -110,4 +110,4 @@ LineUpdate LineFeatureKalmanLocalizer::update(std::span<const LineObservation> o
   return out;
 }
 
-}  // namespace locbench::localization
+}  // namespace locbench::baselines::localization

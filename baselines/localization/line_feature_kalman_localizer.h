@@ -25,7 +25,7 @@
 #include "core/line_map.h"
 #include "core/pose2.h"
 
-namespace locbench::localization {
+namespace locbench::baselines::localization {
 
 struct LineFeatureKalmanOptions {
   // k_r, k_l of Σ_u [m] (same default as the chapter-6 EKF tracker: σ = 5 mm per √m of travel).
@@ -83,4 +83,4 @@ class LineFeatureKalmanLocalizer {
   Matrix3 p_;
 };
 
-}  // namespace locbench::localization
+}  // namespace locbench::baselines::localization

@@ -7,12 +7,12 @@
 #include "core/angle.h"
 #include "core/errors.h"
 
-namespace locbench::localization {
+namespace locbench::baselines::localization {
 
 LineObservation line_observation(std::span<const Eigen::Vector2d> robot_points, double min_sigma) {
   if (!(min_sigma > 0.0)) throw UsageError("line_observation: min_sigma must be > 0 m");
   if (robot_points.size() < 2) throw UsageError("line_observation: needs at least 2 points");
-  const laser::LineFit fit = laser::fit_line(robot_points);
+  const locbench::laser::LineFit fit = locbench::laser::fit_line(robot_points);
   const double n = static_cast<double>(robot_points.size());
   double ss_along = 0.0;
   for (const auto& p : robot_points) ss_along += std::pow(fit.direction.dot(p - fit.centroid), 2);
@@ -30,7 +30,7 @@ LineObservation line_observation(std::span<const Eigen::Vector2d> robot_points, 
   return z;
 }
 
-std::vector<LineObservation> line_observations(std::span<const laser::SegmentMatch> matches, double min_sigma,
+std::vector<LineObservation> line_observations(std::span<const locbench::laser::SegmentMatch> matches, double min_sigma,
                                                int min_points) {
   if (!(min_sigma > 0.0)) throw UsageError("line_observations: min_sigma must be > 0 m");
   std::vector<LineObservation> out;
@@ -66,4 +66,4 @@ Eigen::Vector2d line_innovation(const LineObservation& z, const LinePrediction& 
   return {angle_diff(z.alpha, predicted.z(0)), z.r - predicted.z(1)};
 }
 
-}  // namespace locbench::localization
+}  // namespace locbench::baselines::localization

@@ -15,7 +15,7 @@
 #include "core/segment.h"
 #include "core/units.h"
 
-namespace locbench::localization {
+namespace locbench::baselines::localization {
 
 struct LineObservation {
   double alpha = 0.0;                                    // normal direction [rad], robot frame
@@ -23,7 +23,7 @@ struct LineObservation {
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();  // Σ_R over (α, r)
 };
 
-// Orthogonal LS line through robot-frame points (laser::fit_line) with its first-order
+// Orthogonal LS line through robot-frame points (locbench::laser::fit_line) with its first-order
 // covariance for independent perpendicular point noise σ²: var α = σ²/Σ(t − t̄)²,
 // var r = σ²/N + t_c² var α, cov(α, r) = t_c var α, where t is the coordinate along the line and
 // t_c the centroid's (r = nᵀc, ∂r/∂α = t_c). σ² = max(Σ residual²/(N − 2), min_sigma²).
@@ -31,8 +31,8 @@ struct LineObservation {
 LineObservation line_observation(std::span<const Eigen::Vector2d> robot_points, double min_sigma = mm(5.0));
 // One observation per match with at least `min_points` points (the map segment it was matched
 // to is ignored: the localizer associates by its validation gate).
-std::vector<LineObservation> line_observations(std::span<const laser::SegmentMatch> matches, double min_sigma = mm(5.0),
-                                               int min_points = 3);
+std::vector<LineObservation> line_observations(std::span<const locbench::laser::SegmentMatch> matches,
+                                               double min_sigma = mm(5.0), int min_points = 3);
 
 // h_i and ∇h_i of a map line (β, ρ) seen from `pose` (slides):
 //   h = [β − θ, ρ − (x cos β + y sin β)],  ∇h = [[0, 0, −1], [−cos β, −sin β, 0]].
@@ -49,4 +49,4 @@ LinePrediction predict_line(const LineParams& map_line, const Pose2& pose);
 // z − ẑ with the α component wrapped to [−π, π).
 Eigen::Vector2d line_innovation(const LineObservation& z, const LinePrediction& predicted);
 
-}  // namespace locbench::localization
+}  // namespace locbench::baselines::localization

@@ -8,7 +8,7 @@
 #include "core/line_map.h"
 #include "core/rng.h"
 
-namespace locbench {
+namespace locbench::speed {
 namespace {
 
 void BM_OdometryStep(benchmark::State& state) {
@@ -59,6 +59,6 @@ void BM_RayCastScan(benchmark::State& state) {
 BENCHMARK(BM_RayCastScan)->RangeMultiplier(4)->Range(16, 4096)->Complexity(benchmark::oN);
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::speed
 
 BENCHMARK_MAIN();

@@ -27,7 +27,8 @@
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench {
+namespace locbench::speed {
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct PairCase {
@@ -37,7 +38,7 @@ struct PairCase {
 };
 
 LineMap lines_of(const Scan& s) {
-  const laser::SplitAndMergeMatcher extractor;
+  const baselines::laser::SplitAndMergeMatcher extractor;
   LineMap m;
   for (const auto& l : extractor.extract_lines(s).lines) {
     const Segment seg = l.fit.segment();
@@ -157,4 +158,4 @@ int register_all() {
 [[maybe_unused]] const int kRegistered = register_all();
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::speed

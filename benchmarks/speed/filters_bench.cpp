@@ -14,7 +14,12 @@
 #include "baselines/filters/vb_akf.h"
 #include "core/rng.h"
 
-namespace locbench {
+namespace locbench::speed {
+using locbench::baselines::filters::FixedQEkf, locbench::baselines::filters::FixedQEkfOptions,
+    locbench::baselines::filters::SageHusaAekf, locbench::baselines::filters::SageHusaOptions,
+    locbench::baselines::filters::VbAkf, locbench::baselines::filters::VbAkfOptions;
+using locbench::filters::CompassEkf, locbench::filters::CompassEkfOptions, locbench::filters::l2_optimal_sigma,
+    locbench::filters::OdometryNoiseForm;
 namespace {
 
 constexpr double kWheelbase = 0.19793;
@@ -86,4 +91,4 @@ void BM_L2OptimalSigma(benchmark::State& state) {
 BENCHMARK(BM_L2OptimalSigma);
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::speed

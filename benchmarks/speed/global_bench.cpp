@@ -24,7 +24,7 @@
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench {
+namespace locbench::speed {
 namespace {
 
 const Pose2 kTruth(2.0, 1.0, deg(46.0));
@@ -41,10 +41,10 @@ const Scan& room_scan() {
 }
 
 void BM_GridMarkovUpdate(benchmark::State& state) {
-  global::GridMarkovOptions o;
+  baselines::global::GridMarkovOptions o;
   o.cell_size = static_cast<double>(state.range(0)) / 1000.0;
   o.angular_cell = deg(static_cast<double>(state.range(1)) / 10.0);
-  global::GridMarkov g(sim::room_world(), o);
+  baselines::global::GridMarkov g(sim::room_world(), o);
   const Scan& scan = room_scan();
   for (auto _ : state) {
     g.action_update({deg(1.0), 0.2, deg(1.0)});
@@ -62,13 +62,13 @@ BENCHMARK(BM_GridMarkovUpdate)
     ->Unit(benchmark::kMillisecond);
 
 void BM_MclUpdate(benchmark::State& state) {
-  global::MclOptions o;
+  baselines::global::MclOptions o;
   o.kld = false;
   o.initial_particles = o.max_particles = static_cast<int>(state.range(0));
   o.min_particles = std::min(o.min_particles, o.max_particles);
   o.update_min_distance = 0.0;
   o.update_min_angle = 0.0;
-  global::MonteCarloLocalization mcl(sim::room_world(), o, 3);
+  baselines::global::MonteCarloLocalization mcl(sim::room_world(), o, 3);
   const Scan& scan = room_scan();
   Pose2 odo;
   for (auto _ : state) {
@@ -110,4 +110,4 @@ void BM_Replay(benchmark::State& state) {
 BENCHMARK(BM_Replay)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::speed

@@ -33,7 +33,8 @@
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench {
+namespace locbench::speed {
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
 const Pose2 kTruth(2.0, 1.0, deg(46.0));
@@ -125,13 +126,13 @@ void BM_Match_band_reference(benchmark::State& state) {
   state.counters["map_segments"] = static_cast<double>(m);
 }
 void BM_Match_split_and_merge(benchmark::State& state) {
-  run(state, laser::SplitAndMergeMatcher(), world(static_cast<int>(state.range(1))));
+  run(state, baselines::laser::SplitAndMergeMatcher(), world(static_cast<int>(state.range(1))));
 }
 void BM_Match_agglomerative(benchmark::State& state) {
-  run(state, laser::AgglomerativeMatcher(), world(static_cast<int>(state.range(1))));
+  run(state, baselines::laser::AgglomerativeMatcher(), world(static_cast<int>(state.range(1))));
 }
 void BM_Match_rwht(benchmark::State& state) {
-  run(state, laser::RwhtMatcher(), world(static_cast<int>(state.range(1))));
+  run(state, baselines::laser::RwhtMatcher(), world(static_cast<int>(state.range(1))));
 }
 
 // n sweep at the room (complexity in n), then m sweep at 181 beams.
@@ -190,9 +191,9 @@ void BM_RealScans(benchmark::State& state, const std::string& dataset, const std
         ("dataset " + dataset + " not found under " + data_root().string() + " (set LOCBENCH_DATA)").c_str());
     return;
   }
-  const laser::SplitAndMergeMatcher sm;
-  const laser::AgglomerativeMatcher agg;
-  const laser::RwhtMatcher rwht;
+  const baselines::laser::SplitAndMergeMatcher sm;
+  const baselines::laser::AgglomerativeMatcher agg;
+  const baselines::laser::RwhtMatcher rwht;
   const laser::EapMatcher eap;
   std::vector<LineMap> own_lines;
   if (method == "eap") {
@@ -234,4 +235,4 @@ const bool kRealScanBenchmarks = [] {
 }();
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::speed

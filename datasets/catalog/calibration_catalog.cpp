@@ -6,7 +6,10 @@
 #include "datasets/io/censi_tuple_reader.h"
 #include "datasets/io/relative_motion_reader.h"
 
-namespace locbench {
+namespace locbench::catalog {
+using locbench::calibration::calibration_data_from_motion_pairs,
+    locbench::calibration::calibration_data_from_tick_motions,
+    locbench::calibration::calibration_data_from_wheel_speed_tuples, locbench::calibration::CalibrationData;
 namespace {
 
 // folder/name or folder/name.gz, whichever exists; InputError naming both otherwise.
@@ -69,4 +72,4 @@ CalibrationData load_catalog_calibration_data(const DatasetEntry& entry, const s
   return d;
 }
 
-}  // namespace locbench
+}  // namespace locbench::catalog

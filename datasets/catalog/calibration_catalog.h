@@ -9,7 +9,7 @@
 #include "algorithms/calibration/calibration_data.h"
 #include "datasets/catalog/dataset_catalog.h"
 
-namespace locbench {
+namespace locbench::catalog {
 
 // True for the entries loaded by load_catalog_calibration_data.
 bool is_calibration_dataset(const DatasetEntry& entry);
@@ -27,7 +27,7 @@ std::vector<std::string> calibration_dataset_parts(const DatasetEntry& entry);
 // CalibrationData::source names the file(s). Throws UsageError for an entry that is not a
 // calibration data set or an unknown part (listing the parts), InputError for missing or
 // malformed files.
-CalibrationData load_catalog_calibration_data(const DatasetEntry& entry, const std::filesystem::path& root,
-                                              const std::string& part = "");
+calibration::CalibrationData load_catalog_calibration_data(const DatasetEntry& entry, const std::filesystem::path& root,
+                                                           const std::string& part = "");
 
-}  // namespace locbench
+}  // namespace locbench::catalog

@@ -3,7 +3,7 @@
 #include "core/errors.h"
 #include "datasets/io/log_loader.h"
 
-namespace locbench {
+namespace locbench::catalog {
 
 const std::vector<DatasetEntry>& dataset_catalog() {
   static const std::vector<DatasetEntry> entries = [] {
@@ -62,4 +62,4 @@ Log load_catalog_dataset(const DatasetEntry& entry, const std::filesystem::path&
   return log;
 }
 
-}  // namespace locbench
+}  // namespace locbench::catalog

@@ -6,7 +6,7 @@
 
 #include "core/log.h"
 
-namespace locbench {
+namespace locbench::catalog {
 
 struct DatasetEntry {
   std::string name;       // short stable name used in result keys, e.g. "aces"
@@ -28,4 +28,4 @@ const DatasetEntry* find_dataset(const std::string& name);
 // malformed, UsageError if no reader exists for it yet.
 Log load_catalog_dataset(const DatasetEntry& entry, const std::filesystem::path& root);
 
-}  // namespace locbench
+}  // namespace locbench::catalog

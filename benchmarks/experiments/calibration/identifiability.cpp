@@ -22,6 +22,12 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments::calibration_identifiability {
+using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::analyze_umbmark_design, locbench::calibration::improved_umbmark,
+    locbench::calibration::ImprovedUmbmarkResult, locbench::calibration::ParameterFinding,
+    locbench::calibration::true_geometry, locbench::calibration::UmbmarkDesign,
+    locbench::calibration::UmbmarkDesignFinding, locbench::calibration::UmbmarkErrorParams,
+    locbench::calibration::UmbmarkIdentifiabilityOptions, locbench::calibration::UmbmarkParameterSet;
 
 const ExperimentInfo kInfo{
     .name = "calibration/identifiability",

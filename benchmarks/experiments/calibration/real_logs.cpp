@@ -23,6 +23,14 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments::calibration_real_logs {
+using locbench::calibration::calibrate_ml, locbench::calibration::CalibratedParameter,
+    locbench::calibration::calibration_data_from_relations, locbench::calibration::calibration_data_from_velocities,
+    locbench::calibration::CalibrationData, locbench::calibration::evaluate_held_out,
+    locbench::calibration::HeldOutEvaluation, locbench::calibration::MlCalibrationOptions,
+    locbench::calibration::MlCalibrationResult, locbench::calibration::NoiseModelKind,
+    locbench::calibration::RelationSampleOptions, locbench::calibration::SampleIntervalOptions;
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset,
+    locbench::catalog::load_catalog_calibration_data;
 
 const ExperimentInfo kInfo{.name = "calibration/real_logs",
                            .description =

@@ -70,7 +70,7 @@ std::vector<Pose2> scan_matched_path(const std::vector<ScanStep>& w) {
   out.push_back(w.front().odometry);
   for (std::size_t i = 1; i < w.size(); ++i) {
     const Pose2 guess = between(w[i - 1].odometry, w[i].odometry);
-    const laser::PlIcpResult r = laser::pl_icp(*w[i - 1].scan, *w[i].scan, guess);
+    const baselines::laser::PlIcpResult r = baselines::laser::pl_icp(*w[i - 1].scan, *w[i].scan, guess);
     out.push_back(out.back() * (r.valid ? r.motion : guess));
   }
   return out;

@@ -18,7 +18,7 @@ const ExperimentInfo kInfo{.name = "global/topological_example",
                                "1.0 / 0.2, action 1-2 → 2 and 2-3 → 3, 3-4, 4, observation 'open hallway left, open "
                                "door right' → 0.324 at node 2 and 0.018 at node 4 (18 : 1)"};
 
-using namespace locbench::global;
+using namespace locbench::baselines::global;
 
 struct Options {
   double prior_1_2 = 1.0;

@@ -16,6 +16,13 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments {
+using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::analyze_umbmark_design, locbench::calibration::error_params,
+    locbench::calibration::IdentifiabilityReport, locbench::calibration::improved_umbmark,
+    locbench::calibration::ImprovedUmbmarkResult, locbench::calibration::ParameterFinding,
+    locbench::calibration::UmbmarkDesign, locbench::calibration::UmbmarkDesignFinding,
+    locbench::calibration::UmbmarkErrorParams, locbench::calibration::UmbmarkIdentifiabilityOptions,
+    locbench::calibration::UmbmarkParameterSet;
 namespace {
 
 constexpr int kMethods = 3;

@@ -63,8 +63,8 @@ UmbmarkOptions umbmark_defaults(const std::string& preset);
 
 struct UmbmarkSetup {
   sim::Scenario scenario;  // with the effects switched as configured
-  ClassicUmbmarkOptions classic;
-  ImprovedUmbmarkOptions improved;
+  baselines::calibration::ClassicUmbmarkOptions classic;
+  calibration::ImprovedUmbmarkOptions improved;
   std::vector<Eigen::Vector2d> validation;
   nlohmann::json configuration;
 };

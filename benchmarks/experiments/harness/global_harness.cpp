@@ -59,19 +59,20 @@ WheelDisplacement wheels_between(const Pose2& a, const Pose2& b, double wheelbas
 
 class MclLocalizer final : public Localizer {
  public:
-  MclLocalizer(const LineMap& map, const locbench::global::MclOptions& o, std::uint64_t seed) : mcl_(map, o, seed) {}
+  MclLocalizer(const LineMap& map, const locbench::baselines::global::MclOptions& o, std::uint64_t seed)
+      : mcl_(map, o, seed) {}
   void step(const ScanStep& s) override { mcl_.update(s.odometry, *s.scan); }
   Pose2 pose() const override { return mcl_.estimate(); }
   std::size_t memory_bytes() const override { return mcl_.memory_bytes(); }
   std::size_t hypotheses() const override { return mcl_.particle_count(); }
 
  private:
-  locbench::global::MonteCarloLocalization mcl_;
+  locbench::baselines::global::MonteCarloLocalization mcl_;
 };
 
 class GridLocalizer final : public Localizer {
  public:
-  GridLocalizer(const LineMap& map, const locbench::global::GridMarkovOptions& o) : grid_(map, o) {}
+  GridLocalizer(const LineMap& map, const locbench::baselines::global::GridMarkovOptions& o) : grid_(map, o) {}
   void step(const ScanStep& s) override {
     if (grid_.update(s.odometry, *s.scan)) estimate_ = grid_.estimate();
   }
@@ -80,7 +81,7 @@ class GridLocalizer final : public Localizer {
   std::size_t hypotheses() const override { return grid_.cell_count(); }
 
  private:
-  locbench::global::GridMarkov grid_;
+  locbench::baselines::global::GridMarkov grid_;
   Pose2 estimate_;
 };
 
@@ -112,17 +113,17 @@ class LineKalmanLocalizer final : public Localizer {
  public:
   LineKalmanLocalizer(const LineMap& map, const nlohmann::json& o, const Pose2& start, double wheelbase)
       : map_(map),
-        sm_(o.at("split_and_merge").get<laser::SplitAndMergeMatcherOptions>()),
-        kf_(o.at("line_kalman").get<localization::LineFeatureKalmanOptions>(), wheelbase, start),
+        sm_(o.at("split_and_merge").get<baselines::laser::SplitAndMergeMatcherOptions>()),
+        kf_(o.at("line_kalman").get<baselines::localization::LineFeatureKalmanOptions>(), wheelbase, start),
         wheelbase_(wheelbase) {}
   void step(const ScanStep& s) override {
     if (last_) kf_.predict(wheels_between(*last_, s.odometry, wheelbase_));
     last_ = s.odometry;
-    std::vector<localization::LineObservation> obs;
-    for (const laser::ExtractedLine& l : sm_.extract_lines(*s.scan).lines) {
+    std::vector<baselines::localization::LineObservation> obs;
+    for (const baselines::laser::ExtractedLine& l : sm_.extract_lines(*s.scan).lines) {
       std::vector<Eigen::Vector2d> pts;
       for (const laser::ScanPoint& p : l.points) pts.push_back(p.robot);
-      obs.push_back(localization::line_observation(pts));
+      obs.push_back(baselines::localization::line_observation(pts));
     }
     kf_.update(obs, map_);
   }
@@ -132,8 +133,8 @@ class LineKalmanLocalizer final : public Localizer {
 
  private:
   const LineMap& map_;
-  laser::SplitAndMergeMatcher sm_;
-  localization::LineFeatureKalmanLocalizer kf_;
+  baselines::laser::SplitAndMergeMatcher sm_;
+  baselines::localization::LineFeatureKalmanLocalizer kf_;
   double wheelbase_;
   std::optional<Pose2> last_;
 };
@@ -142,12 +143,12 @@ class LineKalmanLocalizer final : public Localizer {
 
 nlohmann::json default_method_options() {
   nlohmann::json mcl, grid, eap, tracker, sm, lk;
-  locbench::global::to_json(mcl, locbench::global::MclOptions{});
-  locbench::global::to_json(grid, locbench::global::GridMarkovOptions{});
+  locbench::baselines::global::to_json(mcl, locbench::baselines::global::MclOptions{});
+  locbench::baselines::global::to_json(grid, locbench::baselines::global::GridMarkovOptions{});
   to_json(eap, laser::EapOptions{});
   to_json(tracker, pose_correction::EkfTrackerOptions{});
-  to_json(sm, laser::SplitAndMergeMatcherOptions{});
-  to_json(lk, localization::LineFeatureKalmanOptions{});
+  to_json(sm, baselines::laser::SplitAndMergeMatcherOptions{});
+  to_json(lk, baselines::localization::LineFeatureKalmanOptions{});
   return {{"mcl", mcl},
           {"grid_markov", grid},
           {"ekf_eap", {{"eap", eap}, {"tracker", tracker}}},
@@ -158,13 +159,13 @@ nlohmann::json default_method_options() {
 std::unique_ptr<Localizer> make_localizer(const std::string& name, const LineMap& map, const nlohmann::json& options,
                                           const std::optional<Pose2>& start, std::uint64_t seed) {
   if (name == "mcl") {
-    locbench::global::MclOptions o;
-    locbench::global::from_json(options.at("mcl"), o);
+    locbench::baselines::global::MclOptions o;
+    locbench::baselines::global::from_json(options.at("mcl"), o);
     return std::make_unique<MclLocalizer>(map, o, seed);
   }
   if (name == "grid_markov") {
-    locbench::global::GridMarkovOptions o;
-    locbench::global::from_json(options.at("grid_markov"), o);
+    locbench::baselines::global::GridMarkovOptions o;
+    locbench::baselines::global::from_json(options.at("grid_markov"), o);
     return std::make_unique<GridLocalizer>(map, o);
   }
   const bool ekf = name == "ekf_eap";
@@ -245,14 +246,14 @@ double path_length(const std::vector<ScanStep>& steps, std::size_t a, std::size_
 
 LineMap map_from_scans(const std::vector<ScanStep>& steps, double t0, double t1, int every) {
   if (every < 1) throw UsageError("map_from_scans: every must be ≥ 1");
-  const laser::SplitAndMergeMatcher sm{laser::SplitAndMergeMatcherOptions{}};
+  const baselines::laser::SplitAndMergeMatcher sm{baselines::laser::SplitAndMergeMatcherOptions{}};
   LineMap m;
   m.name = "scan_lines";
   int k = 0;
   for (const ScanStep& s : steps) {
     if (s.t < t0 || s.t > t1) continue;
     if (k++ % every != 0) continue;
-    for (const laser::ExtractedLine& l : sm.extract_lines(*s.scan).lines) {
+    for (const baselines::laser::ExtractedLine& l : sm.extract_lines(*s.scan).lines) {
       const Segment r = l.fit.segment();
       if (r.length() < 0.3) continue;
       m.segments.push_back({s.odometry * r.p1, s.odometry * r.p2});

@@ -111,11 +111,11 @@ class IteratedPointToLine final : public ScanPairCorrector {
 
 class Icp final : public ScanPairCorrector {
  public:
-  Icp(std::string name, laser::PlIcpOptions options) : name_(std::move(name)), options_(options) {}
+  Icp(std::string name, baselines::laser::PlIcpOptions options) : name_(std::move(name)), options_(options) {}
   std::string name() const override { return name_; }
   ScanPairCorrection correct(const Scan& first, const LineMap&, const Scan& second,
                              const Pose2& odometry) const override {
-    const laser::PlIcpResult r = laser::pl_icp(first, second, odometry, options_);
+    const baselines::laser::PlIcpResult r = baselines::laser::pl_icp(first, second, odometry, options_);
     ScanPairCorrection out;
     out.motion = r.motion;
     out.heading_fixed = r.valid;
@@ -127,7 +127,7 @@ class Icp final : public ScanPairCorrector {
 
  private:
   std::string name_;
-  laser::PlIcpOptions options_;
+  baselines::laser::PlIcpOptions options_;
 };
 
 template <typename Options>
@@ -145,9 +145,9 @@ nlohmann::json default_corrector_options() {
   to_json(j["ch6"], PoseCorrectionOptions{});
   j["rematch_iterations"] = 10;
   to_json(j["iterated"], pose_correction::IteratedCorrectionOptions{});
-  to_json(j["pl_icp"], laser::PlIcpOptions{});
-  laser::PlIcpOptions p2p;
-  p2p.metric = laser::IcpMetric::kPointToPoint;
+  to_json(j["pl_icp"], baselines::laser::PlIcpOptions{});
+  baselines::laser::PlIcpOptions p2p;
+  p2p.metric = baselines::laser::IcpMetric::kPointToPoint;
   to_json(j["icp_point_to_point"], p2p);
   return j;
 }
@@ -179,10 +179,10 @@ std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vecto
       out.push_back(std::make_unique<IteratedPointToLine>(
           name, matcher("eap"), read_options<pose_correction::IteratedCorrectionOptions>(o, "iterated")));
     } else if (name == "pl_icp") {
-      out.push_back(std::make_unique<Icp>(name, read_options<laser::PlIcpOptions>(o, "pl_icp")));
+      out.push_back(std::make_unique<Icp>(name, read_options<baselines::laser::PlIcpOptions>(o, "pl_icp")));
     } else if (name == "icp_point_to_point") {
-      laser::PlIcpOptions p;
-      p.metric = laser::IcpMetric::kPointToPoint;
+      baselines::laser::PlIcpOptions p;
+      p.metric = baselines::laser::IcpMetric::kPointToPoint;
       if (o.contains("icp_point_to_point")) from_json(o.at("icp_point_to_point"), p);
       out.push_back(std::make_unique<Icp>(name, p));
     } else {

@@ -21,9 +21,9 @@ Options options_of(const nlohmann::json& all, const char* key) {
 nlohmann::json default_matcher_options() {
   nlohmann::json j;
   to_json(j["eap"], laser::EapOptions{});
-  to_json(j["split_and_merge"], laser::SplitAndMergeMatcherOptions{});
-  to_json(j["agglomerative"], laser::AgglomerativeMatcherOptions{});
-  to_json(j["rwht"], laser::RwhtMatcherOptions{});
+  to_json(j["split_and_merge"], baselines::laser::SplitAndMergeMatcherOptions{});
+  to_json(j["agglomerative"], baselines::laser::AgglomerativeMatcherOptions{});
+  to_json(j["rwht"], baselines::laser::RwhtMatcherOptions{});
   return j;
 }
 
@@ -40,13 +40,14 @@ std::vector<std::unique_ptr<laser::SegmentMatcher>> make_matchers(const std::vec
       g.d_limit = o.d_limit;
       out.push_back(std::make_unique<laser::EapMatcher>(std::make_shared<const laser::SegmentGridIndex>(*map, g), o));
     } else if (name == "split_and_merge") {
-      out.push_back(std::make_unique<laser::SplitAndMergeMatcher>(
-          options_of<laser::SplitAndMergeMatcherOptions>(options, "split_and_merge")));
+      out.push_back(std::make_unique<baselines::laser::SplitAndMergeMatcher>(
+          options_of<baselines::laser::SplitAndMergeMatcherOptions>(options, "split_and_merge")));
     } else if (name == "agglomerative") {
-      out.push_back(std::make_unique<laser::AgglomerativeMatcher>(
-          options_of<laser::AgglomerativeMatcherOptions>(options, "agglomerative")));
+      out.push_back(std::make_unique<baselines::laser::AgglomerativeMatcher>(
+          options_of<baselines::laser::AgglomerativeMatcherOptions>(options, "agglomerative")));
     } else if (name == "rwht") {
-      out.push_back(std::make_unique<laser::RwhtMatcher>(options_of<laser::RwhtMatcherOptions>(options, "rwht")));
+      out.push_back(std::make_unique<baselines::laser::RwhtMatcher>(
+          options_of<baselines::laser::RwhtMatcherOptions>(options, "rwht")));
     } else {
       throw UsageError("unknown matcher '" + name +
                        "' (known: eap, eap_indexed, split_and_merge, agglomerative, rwht)");

@@ -17,6 +17,12 @@
 #include "datasets/sim/scenario_json.h"
 
 namespace locbench::experiments {
+using locbench::baselines::filters::FixedQEkf, locbench::baselines::filters::FixedQEkfOptions,
+    locbench::baselines::filters::SageHusaAekf, locbench::baselines::filters::SageHusaOptions,
+    locbench::baselines::filters::VbAkf, locbench::baselines::filters::VbAkfOptions;
+using locbench::filters::CompassEkf, locbench::filters::CompassEkfOptions, locbench::filters::CompassOdometrySample,
+    locbench::filters::ConsistencySummary, locbench::filters::nees, locbench::filters::nis,
+    locbench::filters::pair_encoder_compass, locbench::filters::pose_nees, locbench::filters::summarize_consistency;
 
 nlohmann::json default_filter_options(const Eigen::Vector3d& initial_covariance) {
   CompassEkfOptions adaptive;

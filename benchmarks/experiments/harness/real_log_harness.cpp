@@ -9,6 +9,7 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments {
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
 std::string string_field(const nlohmann::json& item, const char* key, const std::string& where) {

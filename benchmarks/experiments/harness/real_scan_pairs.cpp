@@ -7,10 +7,10 @@
 
 namespace locbench::experiments {
 
-LineMap lines_as_map(const laser::ExtractionResult& lines) {
+LineMap lines_as_map(const baselines::laser::ExtractionResult& lines) {
   LineMap m;
   m.name = "previous_scan";
-  for (const laser::ExtractedLine& l : lines.lines) {
+  for (const baselines::laser::ExtractedLine& l : lines.lines) {
     const Segment s = l.fit.segment();
     if (s.length() > 1e-6) m.segments.push_back(s);
   }

@@ -14,7 +14,7 @@
 namespace locbench::experiments {
 
 // A map of the lines extracted from one scan, in its robot frame.
-LineMap lines_as_map(const laser::ExtractionResult& lines);
+LineMap lines_as_map(const baselines::laser::ExtractionResult& lines);
 
 // The scan stamped t (within 1 ms: mit-csail's relations print 5 decimals, its scans 6), as an
 // index into `scans` (stamp → index).

@@ -27,7 +27,7 @@ struct GyroConfig {
 };
 
 struct RunData {
-  std::vector<SlipSample> samples;        // one per encoder interval k−1 → k (k ≥ 1)
+  std::vector<slip::SlipSample> samples;  // one per encoder interval k−1 → k (k ≥ 1)
   std::optional<double> initial_compass;  // reading nearest the first encoder sample
   std::vector<Pose2> truth;               // true pose at each encoder sample (size = samples + 1)
   double wheelbase = 0.0;                 // of the model used for the wheel travel
@@ -60,7 +60,7 @@ inline RunData run_data(const sim::SimulationResult& r, const NominalModel& mode
   d.initial_compass = nearest_compass(r.log, enc.front().t, half_period);
   d.truth.push_back(r.wheel_samples.front().pose);
   for (std::size_t k = 1; k < enc.size(); ++k) {
-    SlipSample s;
+    slip::SlipSample s;
     s.u = displacement_from_ticks(model, enc[k].left - enc[k - 1].left, enc[k].right - enc[k - 1].right);
     s.compass = nearest_compass(r.log, enc[k].t, half_period);
     const auto& w0 = r.wheel_samples[k - 1];
@@ -80,13 +80,13 @@ inline RunData run_data(const sim::SimulationResult& r, const NominalModel& mode
 // reading, and the end-position error of the odometry dead-reckoned from the true start
 // (true end − odometry end), the IKF's end-position measurement.
 struct IkfRun {
-  std::vector<IkfSample> samples;
+  std::vector<slip::IkfSample> samples;
   Eigen::Vector2d end_error = Eigen::Vector2d::Zero();
 };
 inline IkfRun ikf_run(const RunData& d) {
   IkfRun out;
   Pose2 odo = d.truth.front();
-  for (const SlipSample& x : d.samples) {
+  for (const slip::SlipSample& x : d.samples) {
     out.samples.push_back({x.u, x.compass});
     odo = odometry_step(odo, x.u, d.wheelbase);
   }
@@ -99,7 +99,7 @@ inline IkfRun ikf_run(const RunData& d) {
 // samples failing rule 3 are left out.
 inline void collect_delta_prime(const RunData& d, bool use_gyro, std::vector<double>& out) {
   std::optional<double> prev = d.initial_compass;
-  for (const SlipSample& s : d.samples) {
+  for (const slip::SlipSample& s : d.samples) {
     const double theta_e = (s.u.right - s.u.left) / d.wheelbase;
     std::optional<double> ref;
     if (use_gyro) {
@@ -109,7 +109,7 @@ inline void collect_delta_prime(const RunData& d, bool use_gyro, std::vector<dou
     }
     if (s.compass) prev = s.compass;
     if (!ref || (s.u.left == 0.0 && s.u.right == 0.0)) continue;
-    if (!use_gyro && compass_disturbed(s.u, *ref, d.wheelbase)) continue;
+    if (!use_gyro && slip::compass_disturbed(s.u, *ref, d.wheelbase)) continue;
     out.push_back(theta_e - *ref);
   }
 }
@@ -125,15 +125,16 @@ struct DetectionScore {
   std::size_t large_events = 0;  // events losing ≥ `large` metres
   std::size_t large_detected = 0;
 };
-inline DetectionScore score_detections(const SlipEkfRun& run, const sim::SimulationResult& r, double large) {
+inline DetectionScore score_detections(const slip::SlipEkfRun& run, const sim::SimulationResult& r, double large) {
   DetectionScore s;
   for (const auto& e : r.slips) {
     if (e.sample >= run.steps.size() || e.lost == 0.0) continue;
     ++s.true_events;
     const bool is_large = std::abs(e.lost) >= large;
     if (is_large) ++s.large_events;
-    const SampleStatus want = e.wheel == sim::Side::kLeft ? SampleStatus::kLeftSlip : SampleStatus::kRightSlip;
-    const SampleStatus got = run.steps[e.sample].decision.status;
+    const slip::SampleStatus want =
+        e.wheel == sim::Side::kLeft ? slip::SampleStatus::kLeftSlip : slip::SampleStatus::kRightSlip;
+    const slip::SampleStatus got = run.steps[e.sample].decision.status;
     if (got == want) {
       ++s.true_positives;
       if (is_large) ++s.large_detected;
@@ -150,8 +151,8 @@ inline DetectionScore score_detections(const SlipEkfRun& run, const sim::Simulat
 inline constexpr std::uint64_t kCalibrationSeedBase = 100000;
 inline constexpr std::uint64_t kGyroStream = 77;  // Rng::stream(run seed, ·) of the gyro
 struct CalibratedModels {
-  SlipModel compass;
-  std::optional<SlipModel> gyro;
+  slip::SlipModel compass;
+  std::optional<slip::SlipModel> gyro;
   std::size_t samples = 0;
 };
 inline CalibratedModels calibrate(const sim::Scenario& scenario, std::uint64_t seed, int runs,
@@ -166,13 +167,13 @@ inline CalibratedModels calibrate(const sim::Scenario& scenario, std::uint64_t s
     if (gyro) collect_delta_prime(d, true, dp_gyro);
   }
   CalibratedModels m;
-  m.compass = fit_slip_model(dp_compass);
-  if (gyro) m.gyro = fit_slip_model(dp_gyro);
+  m.compass = slip::fit_slip_model(dp_compass);
+  if (gyro) m.gyro = slip::fit_slip_model(dp_gyro);
   m.samples = dp_compass.size();
   return m;
 }
 
-inline double final_position_error(const SlipEkfRun& run, const RunData& d) {
+inline double final_position_error(const slip::SlipEkfRun& run, const RunData& d) {
   const Pose2& t = d.truth.back();
   return std::hypot(run.final_pose.x - t.x, run.final_pose.y - t.y);
 }

@@ -179,7 +179,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     std::map<double, std::size_t> scan_at;
     for (std::size_t i = 0; i < log.laser.size(); ++i) scan_at[log.laser[i].scan.timestamp] = i;
     const auto correctors = make_correctors(s.methods, s.corrector_options);
-    const laser::SplitAndMergeMatcher extractor;
+    const baselines::laser::SplitAndMergeMatcher extractor;
     const std::size_t methods = 1 + correctors.size();
     rec.translation.assign(methods, {});
     rec.rotation.assign(methods, {});

@@ -100,10 +100,11 @@ class LaserRwhtBins final : public MonteCarloExperiment<Options, Setup> {
     Record rec;
     for (double ab : s.angle_bins) {
       for (double rb : s.range_bins) {
-        laser::RwhtOptions o;
+        baselines::laser::RwhtOptions o;
         o.angle_bin = ab;
         o.range_bin = rb;
-        const laser::RwhtExtraction x = laser::rwht_lines(points, laser::LineFrame::robot, o);
+        const baselines::laser::RwhtExtraction x =
+            baselines::laser::rwht_lines(points, baselines::laser::LineFrame::robot, o);
         std::vector<double> pr, pb, fr, fb;
         std::vector<bool> found(room.segments.size(), false);
         for (std::size_t i = 0; i < x.extraction.lines.size(); ++i) {

@@ -51,17 +51,17 @@ struct Options {
   int runs = 10;
   sim::Scenario scenario = corridor_at_5_hz();
   laser::EapOptions eap;
-  laser::SplitAndMergeMatcherOptions split_and_merge;
+  baselines::laser::SplitAndMergeMatcherOptions split_and_merge;
   pose_correction::EkfTrackerOptions tracker;
-  localization::LineFeatureKalmanOptions line_kalman;
+  baselines::localization::LineFeatureKalmanOptions line_kalman;
 };
 template <class V>
 void visit_fields(V& v, Options& o) {
   v.field("runs", o.runs, "", at_least(1), "Monte-Carlo runs");
   v.coded("scenario", o.scenario, scenario_json, scenario_option, "the simulated corridor run (datasets/sim)");
   v.nested("eap", o.eap, "EAP matcher of ekf_eap");
-  v.coded("split_and_merge", o.split_and_merge, adl_json<laser::SplitAndMergeMatcherOptions>,
-          adl_from_json<laser::SplitAndMergeMatcherOptions>, "split-and-merge matcher");
+  v.coded("split_and_merge", o.split_and_merge, adl_json<baselines::laser::SplitAndMergeMatcherOptions>,
+          adl_from_json<baselines::laser::SplitAndMergeMatcherOptions>, "split-and-merge matcher");
   v.nested("tracker", o.tracker, "the chapter-6 EKF tracker");
   v.nested("line_kalman", o.line_kalman, "the slides' line-feature Kalman localizer");
 }
@@ -69,9 +69,9 @@ void visit_fields(V& v, Options& o) {
 struct Setup {
   sim::Scenario scenario;
   laser::EapOptions eap;
-  laser::SplitAndMergeMatcherOptions split_and_merge;
+  baselines::laser::SplitAndMergeMatcherOptions split_and_merge;
   pose_correction::EkfTrackerOptions tracker;
-  localization::LineFeatureKalmanOptions line_kalman;
+  baselines::localization::LineFeatureKalmanOptions line_kalman;
   nlohmann::json configuration;
 };
 
@@ -106,10 +106,10 @@ class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
     const Pose2 start = *truth.pose_at(enc.front().t);
 
     const laser::EapMatcher eap(s.eap);
-    const laser::SplitAndMergeMatcher sm(s.split_and_merge);
+    const baselines::laser::SplitAndMergeMatcher sm(s.split_and_merge);
     pose_correction::EkfTracker ekf_eap(s.tracker, model.wheelbase, start);
     pose_correction::EkfTracker ekf_sm(s.tracker, model.wheelbase, start);
-    localization::LineFeatureKalmanLocalizer line_kf(s.line_kalman, model.wheelbase, start);
+    baselines::localization::LineFeatureKalmanLocalizer line_kf(s.line_kalman, model.wheelbase, start);
     Pose2 odo = start;
     Record rec;
     rec.records = r.log.record_count();
@@ -134,11 +134,11 @@ class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
         if (up.kind == pose_correction::TrackerUpdateKind::kFull) ++rec.full_updates;
         if (up.kind == pose_correction::TrackerUpdateKind::kHeading) ++rec.heading_updates;
         ekf_sm.correct(scan, r.world, sm);
-        std::vector<localization::LineObservation> obs;
-        for (const laser::ExtractedLine& l : sm.extract_lines(scan).lines) {
+        std::vector<baselines::localization::LineObservation> obs;
+        for (const baselines::laser::ExtractedLine& l : sm.extract_lines(scan).lines) {
           std::vector<Eigen::Vector2d> pts;
           for (const laser::ScanPoint& p : l.points) pts.push_back(p.robot);
-          obs.push_back(localization::line_observation(pts));
+          obs.push_back(baselines::localization::line_observation(pts));
         }
         line_kf.update(obs, r.world);
         const Pose2 t = *truth.pose_at(enc[i].t);

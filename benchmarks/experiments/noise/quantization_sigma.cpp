@@ -11,6 +11,8 @@
 #include "core/errors.h"
 
 namespace locbench::experiments::noise_quantization_sigma {
+using locbench::filters::compare_quantization_sigma, locbench::filters::l2_optimal_sigma_closed_form,
+    locbench::filters::QuantizationSigmaComparison;
 
 const ExperimentInfo kInfo{.name = "noise/quantization_sigma",
                            .description =

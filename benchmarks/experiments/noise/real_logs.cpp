@@ -22,6 +22,9 @@
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments::noise_real_logs {
+using locbench::filters::adaptive_process_noise, locbench::filters::average_chi_square_interval,
+    locbench::filters::ChiSquareInterval, locbench::filters::nees, locbench::filters::OdometryNoiseOptions,
+    locbench::filters::pose_nees;
 
 const ExperimentInfo kInfo{
     .name = "noise/real_logs",

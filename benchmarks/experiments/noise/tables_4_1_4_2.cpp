@@ -20,6 +20,7 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments::noise_tables_4_1_4_2 {
+using locbench::filters::ConsistencySummary, locbench::filters::summarize_consistency;
 
 const ExperimentInfo kInfo{.name = "noise/tables_4_1_4_2",
                            .description =

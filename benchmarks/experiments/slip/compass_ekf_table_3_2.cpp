@@ -26,6 +26,8 @@
 #include "reports/findings.h"
 
 namespace locbench::experiments::slip_compass_ekf_table_3_2 {
+using locbench::slip::run_slip_ekf, locbench::slip::slip_threshold, locbench::slip::SlipDetectorOptions,
+    locbench::slip::SlipEkfOptions, locbench::slip::SlipEkfRun, locbench::slip::SlipModel;
 
 const ExperimentInfo kInfo{
     .name = "slip/compass_ekf_table_3_2",

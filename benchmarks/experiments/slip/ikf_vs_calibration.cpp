@@ -31,6 +31,11 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments::slip_ikf_vs_calibration {
+using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
+using locbench::calibration::error_params, locbench::calibration::improved_umbmark,
+    locbench::calibration::ImprovedUmbmarkResult, locbench::calibration::UmbmarkErrorParams;
+using locbench::slip::IkfRun, locbench::slip::IkfRunResult, locbench::slip::IndirectKfOptions,
+    locbench::slip::run_indirect_kf;
 
 const ExperimentInfo kInfo{
     .name = "slip/ikf_vs_calibration",

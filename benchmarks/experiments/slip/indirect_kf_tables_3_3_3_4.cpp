@@ -28,6 +28,11 @@
 #include "reports/findings.h"
 
 namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4 {
+using locbench::calibration::IdentifiabilityReport, locbench::calibration::ParameterFinding;
+using locbench::slip::HeadingSource, locbench::slip::ikf_identifiability, locbench::slip::IkfRunResult,
+    locbench::slip::IkfSample, locbench::slip::IndirectKfOptions, locbench::slip::run_indirect_kf,
+    locbench::slip::run_slip_ekf, locbench::slip::SlipDetectorOptions, locbench::slip::SlipEkfOptions,
+    locbench::slip::SlipEkfRun, locbench::slip::SlipEkfStep, locbench::slip::SlipModel;
 
 const ExperimentInfo kInfo{
     .name = "slip/indirect_kf_tables_3_3_3_4",

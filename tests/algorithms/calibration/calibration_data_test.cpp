@@ -10,7 +10,7 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 // Pose after driving an arc of constant speed v and turn rate w for t seconds from the origin.
@@ -177,4 +177,4 @@ TEST(CalibrationData, SubsetKeepsTheKindAndNominalValues) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

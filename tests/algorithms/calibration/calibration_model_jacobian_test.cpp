@@ -13,7 +13,7 @@
 #include "algorithms/calibration/ml_calibration_solver.h"
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
@@ -205,4 +205,4 @@ TEST(MlCalibrationSolver, CeresEvaluatesTheWhitenedExactJacobianOverTheFreeParam
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -7,7 +7,7 @@
 
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 CalibrationData ticks_data(double c, double wheelbase) {
@@ -141,4 +141,4 @@ TEST(CalibrationModel, QuantizedTicksAddCSquaredOverSixPerWheelAndSample) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

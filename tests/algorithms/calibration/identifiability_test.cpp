@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 TEST(Identifiability, AFullRankModelGivesTheLeastSquaresStandardErrors) {
@@ -44,4 +44,4 @@ TEST(Identifiability, AParameterThatNoMeasurementTouchesIsTheOnlyUndeterminedOne
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -11,7 +11,9 @@
 #include "datasets/log/data_root.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::calibration {
+using locbench::catalog::dataset_catalog, locbench::catalog::DatasetEntry,
+    locbench::catalog::load_catalog_calibration_data;
 namespace {
 
 const DatasetEntry& censi_entry() {
@@ -85,4 +87,4 @@ INSTANTIATE_TEST_SUITE_P(Parts, CensiKhepera,
                                            "l90_1", "l90_2"));
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

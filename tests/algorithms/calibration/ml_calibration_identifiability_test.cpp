@@ -7,7 +7,7 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 // A Pioneer-like robot with wrong nominal wheels and wheelbase on a noisy floor (no slip).
@@ -74,4 +74,4 @@ TEST(MlCalibrationIdentifiability, ASquareWithTurnsDeterminesAllThree) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

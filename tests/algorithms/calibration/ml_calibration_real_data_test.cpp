@@ -15,7 +15,10 @@
 #include "datasets/log/data_root.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::calibration {
+using locbench::catalog::calibration_dataset_parts, locbench::catalog::dataset_catalog, locbench::catalog::DatasetEntry,
+    locbench::catalog::is_calibration_dataset, locbench::catalog::load_catalog_calibration_data,
+    locbench::catalog::load_catalog_dataset;
 namespace {
 
 const DatasetEntry& entry(const std::string& name) {
@@ -163,4 +166,4 @@ TEST(MlCalibrationRealData, MrclamRobot1CalibratedOnTheFirstHalfIsEvaluatedOnThe
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -13,7 +13,7 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 // A Pioneer-like robot (fine encoders) whose true wheels and wheelbase differ from the nominal
@@ -112,4 +112,4 @@ TEST(MlCalibrationSim, SpreadOverTwentySeedsMatchesTheReportedStandardErrors) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

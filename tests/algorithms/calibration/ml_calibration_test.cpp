@@ -12,7 +12,7 @@
 #include "algorithms/calibration/held_out_evaluation.h"
 #include "core/rng.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 // `n` samples of 1–3 increments mixing straight runs, arcs and turns on the spot, with
@@ -196,4 +196,4 @@ TEST(HeldOutEvaluation, CalibratedOdometryBeatsTheNominalOnTheHeldOutHalf) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -10,7 +10,7 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 // Borenstein's 4 m square with a LabMate-like robot: D_n = 150 mm, B = 340 mm, 89702 counts/rev.
@@ -202,4 +202,4 @@ TEST(UmbmarkIdentifiability, RejectsNonPositiveSigmas) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -9,7 +9,7 @@
 
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::calibration {
 namespace {
 
 constexpr auto kCw = UmbmarkDirection::kClockwise;
@@ -134,4 +134,4 @@ TEST(ImprovedUmbmark, NeedsTheLegCountsAndBothDirections) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -22,7 +22,8 @@
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/umbmark_input.h"
 
-namespace locbench {
+namespace locbench::calibration {
+using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
 namespace {
 
 sim::Scenario scenario(const char* name, bool slip) {
@@ -348,4 +349,4 @@ TEST(UmbmarkSimulated, ClassicPutsAnUncompensatedTapeScaleOnTheTurns) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::calibration

@@ -6,7 +6,7 @@
 #include "algorithms/filters/compass_ekf.h"
 #include "tests/algorithms/filters/corridor_harness.h"
 
-namespace locbench {
+namespace locbench::filters {
 namespace {
 
 // The filter whose noise model is the simulator's: k = 0.005 √m, σ = C/√6 of the fine
@@ -95,4 +95,4 @@ TEST(CompassEkfCorridorPreset, PublishedSettingsGiveAFiniteSmallFinalError) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::filters

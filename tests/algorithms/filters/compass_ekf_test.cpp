@@ -6,7 +6,7 @@
 
 #include "core/errors.h"
 
-namespace locbench {
+namespace locbench::filters {
 namespace {
 
 constexpr double kR = 6.092348395734171e-4;  // 2 deg² in rad²
@@ -108,4 +108,4 @@ TEST(CompassEkf, OptionsJsonRoundTripAndValidation) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-namespace locbench {
+namespace locbench::filters {
 namespace {
 
 TEST(CompassOdometryInput, PairsEachSampleWithTheNearestUnusedCompassReading) {
@@ -41,4 +41,4 @@ TEST(CompassOdometryInput, EdgeCases) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -9,7 +9,7 @@
 #include "core/rng.h"
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::filters {
 namespace {
 
 TEST(Consistency, NeesAndNisOfHandCases) {
@@ -83,4 +83,4 @@ TEST(Consistency, SummaryRejectsRaggedOrEmptyInput) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::filters

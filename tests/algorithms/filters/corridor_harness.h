@@ -59,7 +59,7 @@ struct RunTrace {
 template <class Make>
 RunTrace run_filter(const sim::SimulationResult& res, Make make, std::size_t max_steps = 100000) {
   const NominalModel model = *res.log.nominal_model();
-  const auto steps = pair_encoder_compass(res.log.encoders, res.log.compass, model, 0.125);
+  const auto steps = filters::pair_encoder_compass(res.log.encoders, res.log.compass, model, 0.125);
   auto filter = make(model.wheelbase, res.wheel_samples.front().pose);
   RunTrace t;
   Vector3 last = to_vector(res.wheel_samples.front().pose);
@@ -67,8 +67,8 @@ RunTrace run_filter(const sim::SimulationResult& res, Make make, std::size_t max
   for (std::size_t k = 0; k < steps.size() && k < max_steps; ++k) {
     const auto out = filter.step(steps[k].u, steps[k].compass);
     const CompassFilterStep& f = filter_part(out);
-    t.nees.push_back(pose_nees(res.wheel_samples[steps[k].encoder_index].pose, f.mean, f.covariance));
-    if (f.updated) t.nis.push_back(nis(f.innovation, f.innovation_variance));
+    t.nees.push_back(filters::pose_nees(res.wheel_samples[steps[k].encoder_index].pose, f.mean, f.covariance));
+    if (f.updated) t.nis.push_back(filters::nis(f.innovation, f.innovation_variance));
     last = f.mean;
     last_index = steps[k].encoder_index;
   }
@@ -78,8 +78,8 @@ RunTrace run_filter(const sim::SimulationResult& res, Make make, std::size_t max
 }
 
 struct MonteCarlo {
-  ConsistencySummary nees;
-  ConsistencySummary nis;
+  filters::ConsistencySummary nees;
+  filters::ConsistencySummary nis;
   std::vector<double> final_errors;
 };
 
@@ -109,8 +109,8 @@ MonteCarlo monte_carlo(const std::vector<sim::SimulationResult>& runs, std::size
   };
   cut(nees);
   cut(nis_runs);
-  mc.nees = summarize_consistency(nees, 3);
-  mc.nis = summarize_consistency(nis_runs, 1);
+  mc.nees = filters::summarize_consistency(nees, 3);
+  mc.nis = filters::summarize_consistency(nis_runs, 1);
   return mc;
 }
 

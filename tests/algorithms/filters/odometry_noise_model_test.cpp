@@ -7,7 +7,7 @@
 #include "algorithms/filters/quantization_noise.h"
 #include "core/errors.h"
 
-namespace locbench {
+namespace locbench::filters {
 namespace {
 
 TEST(OdometryNoiseModel, DefaultsAreThePublishedSettingsInSi) {
@@ -105,4 +105,4 @@ TEST(OdometryNoiseModel, JsonRoundTripAndStrictness) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::filters

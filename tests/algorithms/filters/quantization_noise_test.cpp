@@ -7,7 +7,7 @@
 
 #include "core/rng.h"
 
-namespace locbench {
+namespace locbench::filters {
 namespace {
 
 // Composite Simpson on [a, b] with n (even) intervals.
@@ -169,4 +169,4 @@ TEST(QuantizationNoise, RejectsNonPositiveArguments) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::filters

@@ -25,6 +25,7 @@
 #include "tests/test_data.h"
 
 namespace locbench::laser {
+using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
 constexpr double kFitTolerance = 1e-9;  // [m] and [rad]
@@ -196,7 +197,7 @@ void compare_on_log(const std::string& dataset) {
   ASSERT_NE(entry, nullptr) << dataset;
   LOCBENCH_REQUIRE_DATA(entry->path);
   const Log log = load_catalog_dataset(*entry, data_root());
-  const SplitAndMergeMatcher sm;
+  const baselines::laser::SplitAndMergeMatcher sm;
   std::vector<LineMap> lines;
   FitDifference diff;
   RuleCoverage coverage;

@@ -10,7 +10,7 @@
 #include "core/diff_drive_odometry.h"
 #include "core/errors.h"
 
-namespace locbench {
+namespace locbench::slip {
 namespace {
 
 constexpr double kB = 0.2;
@@ -180,4 +180,4 @@ TEST(IndirectKf, StraightRunsDetermineOnlyTheDifferenceFromHeadings) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::slip

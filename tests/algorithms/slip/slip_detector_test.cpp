@@ -8,7 +8,7 @@
 #include "algorithms/slip/slip_detector.h"
 #include "core/errors.h"
 
-namespace locbench {
+namespace locbench::slip {
 namespace {
 
 constexpr double kB = 0.2;  // wheelbase [m]
@@ -121,4 +121,4 @@ TEST(SlipDetector, OptionsJson) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::slip

@@ -9,7 +9,7 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 
-namespace locbench {
+namespace locbench::slip {
 namespace {
 
 namespace ss = experiments::slip_sim;
@@ -135,4 +135,4 @@ TEST(SlipSim, IndirectKfRecoversDiameterErrorsFromStraightRuns) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::slip

@@ -9,7 +9,7 @@
 
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::baselines::calibration {
 namespace {
 
 constexpr auto kCw = UmbmarkDirection::kClockwise;
@@ -131,4 +131,4 @@ TEST(ClassicUmbmark, RejectsMissingDirectionsAndErrorsTooLargeToBeMetres) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::baselines::calibration

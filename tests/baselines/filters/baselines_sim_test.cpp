@@ -9,7 +9,8 @@
 #include "baselines/filters/vb_akf.h"
 #include "tests/algorithms/filters/corridor_harness.h"
 
-namespace locbench {
+namespace locbench::baselines::filters {
+using locbench::filters::pair_encoder_compass;
 namespace {
 
 // The fixed Q matching the matched corridor's floor noise at the cruising travel of 62.5 mm
@@ -110,4 +111,4 @@ TEST(BaselinesCorridorPreset, PublishedSettingsFinalErrors) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::baselines::filters

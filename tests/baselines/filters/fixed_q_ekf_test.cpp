@@ -6,7 +6,8 @@
 #include "core/errors.h"
 #include "tests/algorithms/filters/corridor_harness.h"
 
-namespace locbench {
+namespace locbench::baselines::filters {
+using locbench::filters::CompassEkf, locbench::filters::pair_encoder_compass;
 namespace {
 
 constexpr double kTwoDeg2 = 6.092348395734171e-4;  // 2 deg² in rad²
@@ -71,4 +72,4 @@ TEST(FixedQEkf, OptionsJson) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::baselines::filters

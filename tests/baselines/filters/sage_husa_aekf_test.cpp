@@ -7,7 +7,7 @@
 
 #include "core/errors.h"
 
-namespace locbench {
+namespace locbench::baselines::filters {
 namespace {
 
 constexpr double kA = 6.33e-6;               // 6.33 mm² in m²
@@ -146,4 +146,4 @@ TEST(SageHusaAekf, OptionsJson) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::baselines::filters

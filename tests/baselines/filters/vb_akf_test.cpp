@@ -7,7 +7,7 @@
 #include "core/errors.h"
 #include "core/rng.h"
 
-namespace locbench {
+namespace locbench::baselines::filters {
 namespace {
 
 TEST(VbAkf, HandComputedSingleIterationUpdate) {
@@ -83,4 +83,4 @@ TEST(VbAkf, OptionsJson) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::baselines::filters

@@ -9,7 +9,7 @@
 #include "datasets/sim/worlds.h"
 #include "tests/baselines/global/sim_drive.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 namespace {
 
 GridMarkovOptions coarse() {
@@ -94,4 +94,4 @@ TEST(GridMarkov, RejectsBadInput) {
 }
 
 }  // namespace
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

@@ -16,7 +16,7 @@
 #include "core/units.h"
 #include "datasets/sim/worlds.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 namespace {
 
 TEST(OdometryMotionModel, DeltaRoundTripsForwardAndBackward) {
@@ -158,4 +158,4 @@ TEST(GlobalOptions, RejectBadValuesAndUnknownKeys) {
 }
 
 }  // namespace
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

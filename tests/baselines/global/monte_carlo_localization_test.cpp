@@ -8,7 +8,7 @@
 #include "datasets/sim/worlds.h"
 #include "tests/baselines/global/sim_drive.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 namespace {
 
 struct RunStats {
@@ -113,4 +113,4 @@ TEST(MonteCarloLocalization, RejectsBadOptions) {
 }
 
 }  // namespace
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

@@ -9,7 +9,7 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 
-namespace locbench::global::test {
+namespace locbench::baselines::global::test {
 
 struct Step {
   double t = 0.0;
@@ -57,4 +57,4 @@ inline std::vector<Step> kidnapped(std::vector<Step> a, const std::vector<Step>&
 
 inline double position_error(const Pose2& a, const Pose2& b) { return translation_distance(a, b); }
 
-}  // namespace locbench::global::test
+}  // namespace locbench::baselines::global::test

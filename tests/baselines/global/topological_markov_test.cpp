@@ -10,7 +10,7 @@
 
 #include "core/errors.h"
 
-namespace locbench::global {
+namespace locbench::baselines::global {
 namespace {
 
 const SideModel kWall = {{Feature::kWall, 1.0}};
@@ -104,4 +104,4 @@ TEST(TopologicalMarkov, RejectsBadInput) {
 }
 
 }  // namespace
-}  // namespace locbench::global
+}  // namespace locbench::baselines::global

@@ -10,7 +10,8 @@
 #include "baselines/laser/split_and_merge.h"
 #include "tests/baselines/laser/laser_scenes.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::scan_points, locbench::laser::ScanPoint;
 namespace {
 
 struct Works {
@@ -43,4 +44,4 @@ TEST(ExtractorWork, DoublingThePointsQuadruplesClusteringButNotSplitAndMerge) {
 }
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -9,11 +9,11 @@
 #include "baselines/laser/split_and_merge.h"
 #include "tests/baselines/laser/laser_scenes.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::scan_points, locbench::laser::ScanPoint;
 namespace {
 
-using test::lms_scan;
-using test::segments_map;
+using test::lms_scan, test::segments_map;
 
 struct Extractor {
   std::string name;
@@ -111,4 +111,4 @@ INSTANTIATE_TEST_SUITE_P(
     name_of);
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -17,7 +17,7 @@
 #include "core/scan.h"
 #include "datasets/sim/laser_model.h"
 
-namespace locbench::laser::test {
+namespace locbench::baselines::laser::test {
 
 inline Scan lms_scan(const LineMap& world, const Pose2& pose, double sigma = 0.0, std::uint64_t seed = 1,
                      int beams = 181) {
@@ -92,4 +92,4 @@ inline LineParams transform_line(const LineParams& l, const Pose2& a_in_b) {
   return rho >= 0.0 ? LineParams{rho, wrap_angle(beta)} : LineParams{-rho, wrap_angle(beta + kPi)};
 }
 
-}  // namespace locbench::laser::test
+}  // namespace locbench::baselines::laser::test

@@ -7,7 +7,8 @@
 #include "core/errors.h"
 #include "tests/baselines/laser/laser_scenes.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::fit_line, locbench::laser::ScanPoint;
 namespace {
 
 // An extracted line of `count` world points evenly from a to b, beams first_beam, first_beam+1…
@@ -125,4 +126,4 @@ TEST(LineToMapMatching, InvalidOptionsThrowUsageError) {
 }
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

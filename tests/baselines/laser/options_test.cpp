@@ -7,7 +7,8 @@
 #include "core/errors.h"
 #include "tests/options_error_message.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::ScanPoint;
 namespace {
 
 template <class Options>
@@ -108,4 +109,4 @@ TEST(LaserBaselineOptions, JsonRejectsUnknownKeysWrongTypesAndBadValuesByName) {
 }
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

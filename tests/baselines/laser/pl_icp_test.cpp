@@ -11,11 +11,10 @@
 #include "core/errors.h"
 #include "laser_scenes.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
 namespace {
 
-using test::lms_scan;
-using test::segments_map;
+using test::lms_scan, test::segments_map;
 
 // A 8 m × 6 m room with a box, so every direction is observable.
 LineMap room() {
@@ -140,4 +139,4 @@ TEST(PlIcp, OptionsAreStrict) {
 }
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -9,7 +9,9 @@
 #include "datasets/sim/worlds.h"
 #include "tests/baselines/laser/laser_scenes.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::MatchResult, locbench::laser::ScanPoint, locbench::laser::SegmentMatch,
+    locbench::laser::SegmentMatcher;
 namespace {
 
 const Pose2 kThesisPose(2.0, 1.0, deg(46.0));
@@ -102,4 +104,4 @@ INSTANTIATE_TEST_SUITE_P(
     name_of);
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

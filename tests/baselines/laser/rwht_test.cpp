@@ -7,7 +7,8 @@
 #include "datasets/sim/worlds.h"
 #include "tests/baselines/laser/laser_scenes.h"
 
-namespace locbench::laser {
+namespace locbench::baselines::laser {
+using locbench::laser::scan_points, locbench::laser::ScanPoint;
 namespace {
 
 const Pose2 kThesisPose(2.0, 1.0, deg(46.0));
@@ -115,4 +116,4 @@ TEST(Rwht, FinerBinsPlaceLinesCloserAndCoarserBinsCostFewerCells) {
 }
 
 }  // namespace
-}  // namespace locbench::laser
+}  // namespace locbench::baselines::laser

@@ -12,7 +12,7 @@
 #include "datasets/sim/worlds.h"
 #include "tests/algorithms/pose_correction/ray_cast_matches.h"
 
-namespace locbench::localization {
+namespace locbench::baselines::localization {
 namespace {
 
 using Eigen::Vector3d;
@@ -137,4 +137,4 @@ TEST(LineFeatureKalmanLocalizer, RejectsInvalidInput) {
 }
 
 }  // namespace
-}  // namespace locbench::localization
+}  // namespace locbench::baselines::localization

@@ -9,7 +9,7 @@
 #include "core/rng.h"
 #include "core/units.h"
 
-namespace locbench::localization {
+namespace locbench::baselines::localization {
 namespace {
 
 using Eigen::Vector2d;
@@ -130,4 +130,4 @@ TEST(PredictLine, RandomPosesAgreeWithFiniteDifferences) {
 }
 
 }  // namespace
-}  // namespace locbench::localization
+}  // namespace locbench::baselines::localization
