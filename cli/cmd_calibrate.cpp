@@ -22,6 +22,7 @@
 #include "reports/output_file.h"
 
 namespace locbench::cli {
+using io::attach_relations, io::load_log, io::read_censi_tuples, io::read_umbmark_input;
 using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
 using locbench::calibration::analyze_umbmark_design, locbench::calibration::calibrate_ml,
     locbench::calibration::CalibratedParameter, locbench::calibration::calibration_data_from_encoders,

@@ -26,6 +26,7 @@
 #include "reports/output_file.h"
 
 namespace locbench::cli {
+using io::attach_relations, io::load_log;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 

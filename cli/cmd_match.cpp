@@ -21,6 +21,7 @@
 #include "reports/output_file.h"
 
 namespace locbench::cli {
+using io::odometry_trajectory;
 namespace {
 
 struct MatchArgs {

@@ -14,6 +14,7 @@
 #include "reports/output_file.h"
 
 namespace locbench::cli {
+using io::write_carmen_log, io::write_tum;
 namespace {
 
 struct SimulateArgs {

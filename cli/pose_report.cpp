@@ -12,6 +12,7 @@
 #include "reports/finish_report.h"
 
 namespace locbench::cli {
+using io::load_log, io::write_tum;
 
 Log load_scan_log(const std::string& spec) {
   Log log = load_log(spec);

@@ -4,5 +4,5 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return locbench::fuzz::accept_or_reject(
-      [&] { locbench::parse_carmen_log(locbench::fuzz::text(data, size), "fuzz.clf"); });
+      [&] { locbench::io::parse_carmen_log(locbench::fuzz::text(data, size), "fuzz.clf"); });
 }

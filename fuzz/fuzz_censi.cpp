@@ -7,7 +7,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace locbench;
   const std::string t = fuzz::text(data, size);
-  fuzz::accept_or_reject([&] { parse_censi_tuples(t, "fuzz.tuple"); });
-  fuzz::accept_or_reject([&] { parse_censi_results(t, "fuzz.results"); });
-  return fuzz::accept_or_reject([&] { parse_tick_motions(t, "fuzz.ticks"); });
+  fuzz::accept_or_reject([&] { io::parse_censi_tuples(t, "fuzz.tuple"); });
+  fuzz::accept_or_reject([&] { io::parse_censi_results(t, "fuzz.results"); });
+  return fuzz::accept_or_reject([&] { io::parse_tick_motions(t, "fuzz.ticks"); });
 }

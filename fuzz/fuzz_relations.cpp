@@ -4,5 +4,5 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return locbench::fuzz::accept_or_reject(
-      [&] { locbench::parse_relations(locbench::fuzz::text(data, size), "fuzz.relations"); });
+      [&] { locbench::io::parse_relations(locbench::fuzz::text(data, size), "fuzz.relations"); });
 }

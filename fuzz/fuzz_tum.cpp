@@ -3,5 +3,6 @@
 #include "fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  return locbench::fuzz::accept_or_reject([&] { locbench::parse_tum(locbench::fuzz::text(data, size), "fuzz.tum"); });
+  return locbench::fuzz::accept_or_reject(
+      [&] { locbench::io::parse_tum(locbench::fuzz::text(data, size), "fuzz.tum"); });
 }

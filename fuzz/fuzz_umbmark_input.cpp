@@ -4,5 +4,5 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return locbench::fuzz::accept_or_reject(
-      [&] { locbench::parse_umbmark_input(locbench::fuzz::text(data, size), "fuzz.json"); });
+      [&] { locbench::io::parse_umbmark_input(locbench::fuzz::text(data, size), "fuzz.json"); });
 }

@@ -28,6 +28,7 @@
 #include "datasets/sim/worlds.h"
 
 namespace locbench::speed {
+using io::odometry_trajectory;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 

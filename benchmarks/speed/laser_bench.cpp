@@ -34,6 +34,7 @@
 #include "datasets/sim/worlds.h"
 
 namespace locbench::speed {
+using io::read_scan_json;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 

@@ -7,6 +7,7 @@
 #include "datasets/io/relative_motion_reader.h"
 
 namespace locbench::catalog {
+using io::read_censi_tuples, io::read_relative_motion_pairs, io::read_tick_motions;
 using locbench::calibration::calibration_data_from_motion_pairs,
     locbench::calibration::calibration_data_from_tick_motions,
     locbench::calibration::calibration_data_from_wheel_speed_tuples, locbench::calibration::CalibrationData;

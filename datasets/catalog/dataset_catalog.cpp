@@ -4,6 +4,7 @@
 #include "datasets/io/log_loader.h"
 
 namespace locbench::catalog {
+using io::attach_relations, io::load_log;
 
 const std::vector<DatasetEntry>& dataset_catalog() {
   static const std::vector<DatasetEntry> entries = [] {

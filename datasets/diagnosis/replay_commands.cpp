@@ -7,6 +7,7 @@
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::sim {
+using io::odometry_trajectory;
 namespace {
 
 struct Step {

@@ -17,6 +17,7 @@
 #include "datasets/sim/simulator.h"
 
 namespace locbench::sim {
+using io::interpolate_odometry, io::interpolate_truth;
 namespace {
 
 std::string log_label(const Log& log) { return log.source.empty() ? log.name : log.source; }

@@ -6,7 +6,7 @@
 #include "core/units.h"
 #include "datasets/io/tokenizer.h"
 
-namespace locbench {
+namespace locbench::io {
 
 std::vector<double> flaser_bearings(std::size_t n) {
   if (n == 0) return {};
@@ -74,4 +74,4 @@ CarmenLaserSetup carmen_laser_setup(const std::map<std::string, std::string>& pa
   return s;
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -10,7 +10,7 @@
 
 #include "core/pose2.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // PARAM names read for FLASER scans. Maximum range [m]: the first of these present wins.
 inline constexpr std::string_view kParamLaserMaxRange = "laser_front_laser_max_range";
@@ -51,4 +51,4 @@ std::optional<std::string> laser_param_problem(std::string_view name, std::strin
 // The setup the PARAM records declare. Throws std::invalid_argument on an invalid value.
 CarmenLaserSetup carmen_laser_setup(const std::map<std::string, std::string>& params);
 
-}  // namespace locbench
+}  // namespace locbench::io

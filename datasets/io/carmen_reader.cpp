@@ -10,7 +10,7 @@
 #include "datasets/io/number_format.h"
 #include "datasets/io/tokenizer.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 using Fields = std::span<const std::string_view>;
@@ -236,4 +236,4 @@ std::map<std::string, std::size_t> skipped_record_counts(const Log& log) {
   return counts;
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

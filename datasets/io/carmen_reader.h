@@ -9,7 +9,7 @@
 
 #include "core/log.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // Records of unknown types (ROBOTLASER1, RAWLASER1, SONAR, …) are skipped; their count per
 // type is stored in Log::params under this prefix, e.g. "locbench_skipped_records.SONAR" → "12".
@@ -25,4 +25,4 @@ Log parse_carmen_log(std::string_view text, const std::string& source_name);
 // The skipped-record counts stored by the reader: type → count.
 std::map<std::string, std::size_t> skipped_record_counts(const Log& log);
 
-}  // namespace locbench
+}  // namespace locbench::io

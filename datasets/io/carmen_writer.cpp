@@ -11,7 +11,7 @@
 #include "datasets/io/number_format.h"
 #include "datasets/io/text_writer.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 constexpr double kBearingTolerance = 1e-9;  // [rad]
@@ -251,4 +251,4 @@ std::string format_carmen_log(const Log& log) {
   return text;
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -6,7 +6,7 @@
 
 #include "core/log.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // Writes PARAM records first, then ENCODER, ODOM, COMPASS, TRUEPOS and FLASER records merged in
 // time order (ties in that order), numbers in shortest round-trip form, host "locbench".
@@ -22,4 +22,4 @@ void write_carmen_log(const Log& log, const std::filesystem::path& path);
 // The same text in memory.
 std::string format_carmen_log(const Log& log);
 
-}  // namespace locbench
+}  // namespace locbench::io

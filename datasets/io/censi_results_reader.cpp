@@ -6,7 +6,7 @@
 #include "datasets/io/json_line.h"
 #include "datasets/io/line_reader.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 CensiPublishedResult read_text(LineReader& reader) {
@@ -72,4 +72,4 @@ CensiPublishedResult parse_censi_results(std::string_view text, const std::strin
   return read_lines_of(text, source_name, read_text);
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

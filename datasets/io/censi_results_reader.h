@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace locbench {
+namespace locbench::io {
 
 struct CensiPublishedResult {
   double axle = 0.0;            // b [m]
@@ -37,4 +37,4 @@ CensiPublishedResult read_censi_results(const std::filesystem::path& path);
 // The same for text in memory; `source_name` stands for the file name in errors.
 CensiPublishedResult parse_censi_results(std::string_view text, const std::string& source_name);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -6,7 +6,7 @@
 #include "datasets/io/json_line.h"
 #include "datasets/io/line_reader.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 bool blank(std::string_view line) { return line.find_first_not_of(" \t\r\v\f") == std::string_view::npos; }
@@ -86,4 +86,4 @@ std::vector<WheelSpeedTuple> parse_censi_tuples(std::string_view text, const std
   return read_lines_of(text, source_name, read_tuple_lines);
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -8,7 +8,7 @@
 
 #include "core/calibration_records.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // Reads a tuple file (plain or gzip). The upstream solver reads a stream of JSON values, and the
 // published full sets (lstraight, l90) are concatenations of the subset files, three of which
@@ -22,4 +22,4 @@ std::vector<WheelSpeedTuple> read_censi_tuples(const std::filesystem::path& path
 // The same for text in memory; `source_name` stands for the file name in errors.
 std::vector<WheelSpeedTuple> parse_censi_tuples(std::string_view text, const std::string& source_name);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -10,7 +10,7 @@
 #include "datasets/io/line_reader.h"
 #include "datasets/io/tokenizer.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // Calls on_row(fields, ctx) for each data line of `reader`, after checking that it has
 // `field_count` fields.
@@ -38,4 +38,4 @@ void for_each_numeric_row(LineReader& reader, const std::array<const char*, N>& 
   });
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -3,7 +3,7 @@
 #include <array>
 #include <string_view>
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 bool strip_suffix(std::string& s, std::string_view suffix) {
@@ -30,4 +30,4 @@ std::string dataset_name_from_file(const std::filesystem::path& path) {
   return name;
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -3,10 +3,10 @@
 #include <filesystem>
 #include <string>
 
-namespace locbench {
+namespace locbench::io {
 
 // The file name without ".gz" and without a known format extension (.clf, .log, .carmen,
 // .relations, .dat, .txt, .tum): "…/aces.from_bag.clf.gz" → "aces.from_bag".
 std::string dataset_name_from_file(const std::filesystem::path& path);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <vector>
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 std::uint32_t le32(const unsigned char* p) {
@@ -60,4 +60,4 @@ std::optional<std::uint64_t> gzip_trailing_garbage(const std::filesystem::path& 
   return walk_members(path);
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

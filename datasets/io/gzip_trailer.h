@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <optional>
 
-namespace locbench {
+namespace locbench::io {
 
 // The byte offset where trailing garbage starts in the gzip file `path`, or nullopt when the
 // file is one or more complete gzip members and nothing else. `crc` and `length` are the CRC-32
@@ -15,4 +15,4 @@ namespace locbench {
 std::optional<std::uint64_t> gzip_trailing_garbage(const std::filesystem::path& path, std::uint32_t crc,
                                                    std::uint64_t length);
 
-}  // namespace locbench
+}  // namespace locbench::io

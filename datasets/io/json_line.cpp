@@ -5,7 +5,7 @@
 
 #include "core/errors.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 std::string type_name(const nlohmann::json& v) {
@@ -76,4 +76,4 @@ void json_finite_array(const nlohmann::json& obj, const char* key, double* out, 
   }
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-namespace locbench {
+namespace locbench::io {
 
 // Parses `text` as one JSON value. A syntax error becomes InputError at `first_line` plus the
 // number of line breaks before the error's byte.
@@ -20,4 +20,4 @@ double json_finite(const nlohmann::json& obj, const char* key, const std::string
 void json_finite_array(const nlohmann::json& obj, const char* key, double* out, std::size_t n, const std::string& file,
                        std::size_t line);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -8,7 +8,7 @@
 #include "core/errors.h"
 #include "datasets/io/gzip_trailer.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 constexpr std::size_t kChunk = std::size_t{1} << 18;  // bytes read from zlib at a time
@@ -146,4 +146,4 @@ bool LineReader::next(std::string_view& line) {
   return true;
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

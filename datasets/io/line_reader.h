@@ -9,7 +9,7 @@
 
 struct gzFile_s;
 
-namespace locbench {
+namespace locbench::io {
 
 class LineReader {
  public:
@@ -62,4 +62,4 @@ auto read_lines_of(std::string_view text, const std::string& source_name, Read r
   return read(reader);
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

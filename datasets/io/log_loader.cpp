@@ -11,7 +11,7 @@
 #include "datasets/io/relations_reader.h"
 #include "datasets/io/tokenizer.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 constexpr const char* kAccepted =
@@ -96,4 +96,4 @@ void attach_relations(Log& log, const std::filesystem::path& relations_path) {
   log.relations = read_relations(relations_path);
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -5,7 +5,7 @@
 
 #include "core/log.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // Accepted specs:
 // - a CARMEN log file *.clf, *.log or *.carmen, optionally gzip-compressed (*.clf.gz, …);
@@ -18,4 +18,4 @@ Log load_log(const std::string& spec);
 // Reads a relations file (plain or gzip) into log.relations, replacing any already there.
 void attach_relations(Log& log, const std::filesystem::path& relations_path);
 
-}  // namespace locbench
+}  // namespace locbench::io

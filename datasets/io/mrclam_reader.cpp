@@ -11,7 +11,7 @@
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/io/tokenizer.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 // folder/name or folder/name.gz, whichever exists.
@@ -149,4 +149,4 @@ Log read_mrclam_robot(const std::filesystem::path& folder, int robot) {
   return log;
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -5,7 +5,7 @@
 
 #include "core/log.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // PARAM-style entries the reader stores in Log::params.
 inline constexpr std::string_view kParamMrclamRobot = "mrclam_robot";  // robot number
@@ -27,4 +27,4 @@ inline constexpr std::string_view kParamMrclamUnknownBarcodes = "mrclam_unknown_
 // Throws InputError for a missing file, malformed lines or times going backwards.
 Log read_mrclam_robot(const std::filesystem::path& folder, int robot);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -2,7 +2,7 @@
 
 #include <charconv>
 
-namespace locbench {
+namespace locbench::io {
 
 void append_number(std::string& out, double v) {
   char buf[32];
@@ -26,4 +26,4 @@ void append_row(std::string& out, std::initializer_list<double> values) {
   out.push_back('\n');
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

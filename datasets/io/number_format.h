@@ -4,7 +4,7 @@
 #include <initializer_list>
 #include <string>
 
-namespace locbench {
+namespace locbench::io {
 
 // Appends the shortest decimal form of `v` that parses back to exactly `v` (e.g. "0.1", "1e+20").
 void append_number(std::string& out, double v);
@@ -14,4 +14,4 @@ void append_number(std::string& out, std::int64_t v);
 // separated by single spaces, then '\n'.
 void append_row(std::string& out, std::initializer_list<double> values);
 
-}  // namespace locbench
+}  // namespace locbench::io

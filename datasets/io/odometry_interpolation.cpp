@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 // Interpolates records sorted by time; time_of and pose_of read one record.
@@ -52,4 +52,4 @@ std::optional<Pose2> interpolate_truth(const Log& log, double t) {
       log.truth, t, [](const TruePose& r) { return r.t; }, [](const TruePose& r) -> const Pose2& { return r.pose; });
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -6,7 +6,7 @@
 #include "core/pose2.h"
 #include "core/trajectory.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // The odometry trajectory of a log: its ODOM poses; for a log without ODOM records (e.g.
 // mit-csail) the odom poses logged with its FLASER scans.
@@ -19,4 +19,4 @@ std::optional<Pose2> interpolate_odometry(const Log& log, double t);
 // Ground-truth (TRUEPOS / Vicon) pose at time t, interpolated the same way.
 std::optional<Pose2> interpolate_truth(const Log& log, double t);
 
-}  // namespace locbench
+}  // namespace locbench::io

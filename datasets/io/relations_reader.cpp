@@ -4,7 +4,7 @@
 
 #include "datasets/io/data_lines.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 std::vector<Relation> read_relation_lines(LineReader& reader) {
@@ -26,4 +26,4 @@ std::vector<Relation> parse_relations(std::string_view text, const std::string& 
   return read_lines_of(text, source_name, read_relation_lines);
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

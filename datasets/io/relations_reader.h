@@ -7,7 +7,7 @@
 
 #include "core/sensor_data.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // Reads a .relations file (plain or gzip): each line becomes Relation{t1, t2, Pose2(x, y, yaw)};
 // z, roll and pitch must be numbers and are ignored. '#' comments and blank lines are skipped.
@@ -17,4 +17,4 @@ std::vector<Relation> read_relations(const std::filesystem::path& path);
 // The same for text in memory; `source_name` stands for the file name in errors.
 std::vector<Relation> parse_relations(std::string_view text, const std::string& source_name);
 
-}  // namespace locbench
+}  // namespace locbench::io

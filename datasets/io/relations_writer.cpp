@@ -6,7 +6,7 @@
 #include "datasets/io/number_format.h"
 #include "datasets/io/text_writer.h"
 
-namespace locbench {
+namespace locbench::io {
 
 std::string format_relations(const std::vector<Relation>& relations) {
   std::string out = "# t1 t2 x y z roll pitch yaw\n";
@@ -26,4 +26,4 @@ void write_relations(const std::vector<Relation>& relations, const std::filesyst
   write_text_file(path, format_relations(relations));
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -6,7 +6,7 @@
 
 #include "core/sensor_data.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // Writes one line per relation, numbers in shortest round-trip form; gzip when the path ends in
 // ".gz". Throws std::invalid_argument for non-finite values, InputError if it cannot write.
@@ -15,4 +15,4 @@ void write_relations(const std::vector<Relation>& relations, const std::filesyst
 // The same text in memory.
 std::string format_relations(const std::vector<Relation>& relations);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -6,7 +6,7 @@
 #include "datasets/io/data_lines.h"
 #include "datasets/io/tokenizer.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 // The rows of a whitespace-separated numeric file with N columns named `names`.
@@ -68,4 +68,4 @@ std::vector<TickMotion> parse_tick_motions(std::string_view text, const std::str
   return read_lines_of(text, source_name, tick_rows);
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -10,7 +10,7 @@
 
 #include "core/calibration_records.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // Reads the two files (plain or gzip) row by row into pairs. '#' comments and blank lines are
 // skipped; every other line must hold exactly three finite numbers. Throws InputError naming the
@@ -29,4 +29,4 @@ std::vector<RelativeMotionPair> parse_relative_motion_pairs(std::string_view odo
 std::vector<TickMotion> read_tick_motions(const std::filesystem::path& path);
 std::vector<TickMotion> parse_tick_motions(std::string_view text, const std::string& source_name);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -8,7 +8,7 @@
 #include "core/json_file.h"
 #include "datasets/io/line_reader.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 std::vector<double> numbers(const nlohmann::json& j, const char* key, const std::string& file) {
@@ -59,4 +59,4 @@ Scan read_scan_json(const std::filesystem::path& path) {
   return s;
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

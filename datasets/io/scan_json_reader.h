@@ -7,10 +7,10 @@
 
 #include "core/scan.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // InputError naming the file and what was expected for malformed JSON, a missing or non-numeric
 // field, or bearings and ranges of different lengths.
 Scan read_scan_json(const std::filesystem::path& path);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -10,7 +10,7 @@
 #include "core/errors.h"
 #include "reports/output_file.h"
 
-namespace locbench {
+namespace locbench::io {
 
 bool has_gz_suffix(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
@@ -65,4 +65,4 @@ void write_text_file(const std::filesystem::path& path, std::string_view text) {
   writer.close();
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -13,7 +13,7 @@ namespace locbench::reports {
 class AtomicOutput;
 }
 
-namespace locbench {
+namespace locbench::io {
 
 class TextWriter {
  public:
@@ -38,4 +38,4 @@ void write_text_file(const std::filesystem::path& path, std::string_view text);
 // True if the file name ends in ".gz" (case-insensitive).
 bool has_gz_suffix(const std::filesystem::path& path);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -6,7 +6,7 @@
 
 #include "core/errors.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
@@ -111,4 +111,4 @@ void expect_field_count(std::span<const std::string_view> fields, std::size_t ex
   }
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-namespace locbench {
+namespace locbench::io {
 
 // Where a record comes from, for error messages: "file:line: RECORD: ...".
 struct FieldContext {
@@ -40,4 +40,4 @@ bool try_parse_int64(std::string_view token, std::int64_t& value);
 // Throws unless `fields` (the tokens after the record tag) has exactly `expected` entries.
 void expect_field_count(std::span<const std::string_view> fields, std::size_t expected, const FieldContext& ctx);
 
-}  // namespace locbench
+}  // namespace locbench::io

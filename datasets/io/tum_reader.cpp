@@ -6,7 +6,7 @@
 #include "datasets/io/data_lines.h"
 #include "datasets/io/number_format.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 constexpr double kNormTolerance = 1e-3;
@@ -39,4 +39,4 @@ Trajectory parse_tum(std::string_view text, const std::string& source_name) {
   return read_lines_of(text, source_name, read_tum_lines);
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -6,7 +6,7 @@
 
 #include "core/trajectory.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // Reads a TUM trajectory (plain or gzip): x, y and the yaw of the quaternion,
 // θ = atan2(2(qw qz + qx qy), 1 − 2(qy² + qz²)); z is ignored. '#' comments and blank lines are
@@ -17,4 +17,4 @@ Trajectory read_tum(const std::filesystem::path& path);
 // The same for text in memory; `source_name` stands for the file name in errors.
 Trajectory parse_tum(std::string_view text, const std::string& source_name);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -6,7 +6,7 @@
 #include "datasets/io/number_format.h"
 #include "datasets/io/text_writer.h"
 
-namespace locbench {
+namespace locbench::io {
 
 std::string format_tum(const Trajectory& trajectory) {
   std::string out = "# timestamp x y z qx qy qz qw\n";
@@ -27,4 +27,4 @@ void write_tum(const Trajectory& trajectory, const std::filesystem::path& path) 
   write_text_file(path, format_tum(trajectory));
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -5,7 +5,7 @@
 
 #include "core/trajectory.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // One line per pose: z = 0 and the quaternion of a rotation by θ about z
 // (qx = qy = 0, qz = sin(θ/2), qw = cos(θ/2)); numbers in shortest round-trip form; gzip when
@@ -16,4 +16,4 @@ void write_tum(const Trajectory& trajectory, const std::filesystem::path& path);
 // The same text in memory.
 std::string format_tum(const Trajectory& trajectory);
 
-}  // namespace locbench
+}  // namespace locbench::io

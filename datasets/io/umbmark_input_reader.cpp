@@ -12,7 +12,7 @@
 #include "core/json_options.h"
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::io {
 
 using nlohmann::json;
 
@@ -188,4 +188,4 @@ UmbmarkInput read_umbmark_input(const std::string& path) {
   return umbmark_input_from_json(read_json_file(path, "UMBmark input file (JSON)"), path);
 }
 
-}  // namespace locbench
+}  // namespace locbench::io

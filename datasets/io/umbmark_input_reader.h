@@ -23,7 +23,7 @@
 
 #include "core/umbmark_measurements.h"
 
-namespace locbench {
+namespace locbench::io {
 
 // Reads and checks the file at `path`; unreadable files throw InputError.
 UmbmarkInput read_umbmark_input(const std::string& path);
@@ -33,4 +33,4 @@ UmbmarkInput parse_umbmark_input(const std::string& text, const std::string& sou
 // The same from already parsed JSON; `source` names it in errors.
 UmbmarkInput umbmark_input_from_json(const nlohmann::json& j, const std::string& source);
 
-}  // namespace locbench
+}  // namespace locbench::io

@@ -69,8 +69,8 @@ inline SmallRealLog write_small_real_log(const std::filesystem::path& dir, int s
   out.log = dir / "small.clf";
   out.relations = dir / "small.relations";
   out.relation_count = log.relations.size();
-  write_carmen_log(log, out.log);
-  write_relations(log.relations, out.relations);
+  locbench::io::write_carmen_log(log, out.log);
+  locbench::io::write_relations(log.relations, out.relations);
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "tests/test_data.h"
 
 namespace locbench {
+using io::read_carmen_log;
 namespace {
 
 using testing::Outcome;

@@ -12,6 +12,7 @@
 #include "tests/cli/cli_helpers.h"
 
 namespace locbench::testing {
+using io::load_log, io::write_carmen_log;
 namespace {
 
 namespace fs = std::filesystem;

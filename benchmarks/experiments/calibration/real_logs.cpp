@@ -23,6 +23,7 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments::calibration_real_logs {
+using io::CensiPublishedResult, io::read_censi_results;
 using locbench::calibration::calibrate_ml, locbench::calibration::CalibratedParameter,
     locbench::calibration::calibration_data_from_relations, locbench::calibration::calibration_data_from_velocities,
     locbench::calibration::CalibrationData, locbench::calibration::evaluate_held_out,

@@ -32,6 +32,7 @@
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments::diagnosis_sim_to_real {
+using io::odometry_trajectory;
 
 const ExperimentInfo kInfo{
     .name = "diagnosis/sim_to_real",

@@ -15,6 +15,7 @@
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments::global {
+using io::interpolate_odometry, io::interpolate_truth;
 
 std::vector<ScanStep> scan_steps(const Log& log) {
   std::vector<ScanStep> out;

@@ -9,6 +9,7 @@
 #include "reports/checksum.h"
 
 namespace locbench::experiments {
+using io::attach_relations, io::load_log, io::read_tum;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 

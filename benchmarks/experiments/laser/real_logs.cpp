@@ -28,6 +28,7 @@
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments::laser_real_logs {
+using io::odometry_trajectory;
 
 const ExperimentInfo kInfo{
     .name = "laser/real_logs",

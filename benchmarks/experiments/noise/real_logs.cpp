@@ -22,6 +22,7 @@
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments::noise_real_logs {
+using io::odometry_trajectory;
 using locbench::filters::adaptive_process_noise, locbench::filters::average_chi_square_interval,
     locbench::filters::ChiSquareInterval, locbench::filters::nees, locbench::filters::OdometryNoiseOptions,
     locbench::filters::pose_nees;

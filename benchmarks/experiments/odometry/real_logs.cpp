@@ -17,6 +17,7 @@
 #include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments::odometry_real_logs {
+using io::odometry_trajectory;
 
 const ExperimentInfo kInfo{.name = "odometry/real_logs",
                            .description =

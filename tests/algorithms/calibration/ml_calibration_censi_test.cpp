@@ -12,6 +12,7 @@
 #include "tests/test_data.h"
 
 namespace locbench::calibration {
+using io::CensiPublishedResult, io::read_censi_results;
 using locbench::catalog::dataset_catalog, locbench::catalog::DatasetEntry,
     locbench::catalog::load_catalog_calibration_data;
 namespace {

@@ -21,8 +21,8 @@ struct Step {
 inline std::vector<Step> steps_of(const sim::SimulationResult& r) {
   std::vector<Step> out;
   for (const LaserReading& l : r.log.laser) {
-    const auto odo = interpolate_odometry(r.log, l.scan.timestamp);
-    const auto truth = interpolate_truth(r.log, l.scan.timestamp);
+    const auto odo = locbench::io::interpolate_odometry(r.log, l.scan.timestamp);
+    const auto truth = locbench::io::interpolate_truth(r.log, l.scan.timestamp);
     if (odo && truth) out.push_back({l.scan.timestamp, *odo, l.scan, *truth});
   }
   return out;

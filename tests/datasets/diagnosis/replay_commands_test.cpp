@@ -11,6 +11,7 @@
 #include "datasets/sim/simulator.h"
 
 namespace locbench::sim {
+using io::interpolate_truth;
 namespace {
 
 TEST(ReplayCommands, VelocityOdometryGivesBackTheLoggedVelocities) {

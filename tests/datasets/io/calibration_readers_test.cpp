@@ -11,7 +11,7 @@
 #include "log_generators.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 using testing::throws_input_error;
@@ -213,4 +213,4 @@ TEST(CalibrationRealData, StachnissAndGrisettiFilesRead) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -10,7 +10,7 @@
 #include "datasets/io/carmen_reader.h"
 #include "datasets/io/carmen_writer.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 const char* kFlaser5 = "FLASER 5 1 1 1 1 1 0 0 0 0 0 0 10.0 host 10.0\n";
@@ -66,4 +66,4 @@ TEST(CarmenLaserParams, TheWriterKeepsDeclaredBearingsThroughARoundTrip) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

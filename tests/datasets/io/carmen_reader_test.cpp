@@ -9,7 +9,7 @@
 #include "io_test_support.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 using testing::gzip;
@@ -184,4 +184,4 @@ TEST(CarmenReader, ReadsLastLineWithoutNewline) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -9,7 +9,7 @@
 #include "log_generators.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 using testing::log_difference;
@@ -43,4 +43,4 @@ TEST(CarmenRoundTrip, FilesPlainAndGzipGiveTheSameLog) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -10,7 +10,7 @@
 #include "io_test_support.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 using testing::log_difference;
@@ -116,4 +116,4 @@ TEST(CarmenWriter, FailsWithInputErrorWhenTheFileCannotBeCreated) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -7,7 +7,7 @@
 #include "io_test_support.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 std::vector<std::string> all_lines(LineReader& r) {
@@ -69,4 +69,4 @@ TEST(LineReader, RejectsWhitespaceOnlyInput) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -61,20 +61,21 @@ inline Log random_carmen_log() {
     log.params[*gen_token("abcdefghijklmnopqrstuvwxyz_")] = *gen_token("abcxyzABC0123456789.-+_#:/!~\"'");
   }
   // Laser setup: the SICK default, or PARAM records declaring another max range / mounting.
-  double max_range = kDefaultFlaserMaxRange;
+  double max_range = locbench::io::kDefaultFlaserMaxRange;
   Pose2 sensor;
   if (*rc::gen::arbitrary<bool>()) {
     max_range = *rc::gen::suchThat(rc::gen::map(gen_finite(), [](double v) { return std::abs(v); }),
                                    [](double v) { return v > 0.0; });
     sensor = *gen_pose();
     std::string v;
-    append_number(v, max_range);
-    log.params[std::string(*rc::gen::element(kParamLaserMaxRange, kParamRobotLaserMax))] = v;
-    for (const auto& [name, value] :
-         {std::pair{kParamLaserOffset, sensor.x}, std::pair{kParamLaserSideOffset, sensor.y},
-          std::pair{kParamLaserAngularOffset, sensor.theta}}) {
+    locbench::io::append_number(v, max_range);
+    log.params[std::string(*rc::gen::element(locbench::io::kParamLaserMaxRange, locbench::io::kParamRobotLaserMax))] =
+        v;
+    for (const auto& [name, value] : {std::pair{locbench::io::kParamLaserOffset, sensor.x},
+                                      std::pair{locbench::io::kParamLaserSideOffset, sensor.y},
+                                      std::pair{locbench::io::kParamLaserAngularOffset, sensor.theta}}) {
       std::string text;
-      append_number(text, value);
+      locbench::io::append_number(text, value);
       log.params[std::string(name)] = text;
     }
   }
@@ -94,7 +95,7 @@ inline Log random_carmen_log() {
     const auto n = static_cast<std::size_t>(*rc::gen::oneOf(rc::gen::element(180, 181, 361), rc::gen::inRange(1, 400)));
     r.scan.timestamp = t;
     r.scan.ranges = *rc::gen::container<std::vector<double>>(n, gen_range());
-    r.scan.bearings = flaser_bearings(n);
+    r.scan.bearings = locbench::io::flaser_bearings(n);
     r.scan.max_range = max_range;
     r.scan.sensor_pose = sensor;
     r.pose = *gen_pose();

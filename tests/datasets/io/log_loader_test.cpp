@@ -6,7 +6,7 @@
 #include "io_test_support.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 using testing::ScratchDir;
@@ -55,4 +55,4 @@ TEST(LogLoader, AttachesRelationsToALog) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -18,7 +18,7 @@
 #include "log_generators.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 const std::string kSample =
@@ -260,4 +260,4 @@ RC_GTEST_PROP(CalibrationFuzz, RandomBytesAreReadOrRejectedWithInputError, ()) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -9,7 +9,7 @@
 #include "io_test_support.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 using testing::gzip;
@@ -194,4 +194,4 @@ TEST(LogLoader, RejectsUnknownFormatsListingTheAcceptedOnes) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

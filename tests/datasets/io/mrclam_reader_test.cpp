@@ -7,7 +7,7 @@
 #include "io_test_support.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 using testing::ScratchDir;
@@ -126,4 +126,4 @@ TEST(MrclamReader, LoadsDataset6Robot1WithPlausibleTimeSpans) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

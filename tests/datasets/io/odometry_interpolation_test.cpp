@@ -4,7 +4,7 @@
 
 #include "core/units.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 Log two_odom(double th0, double th1) {
@@ -57,4 +57,4 @@ TEST(OdometryInterpolation, InterpolatesGroundTruth) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -13,7 +13,7 @@
 #include "io_test_support.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 Log timed_load(const std::string& relative) {
@@ -131,4 +131,4 @@ TEST(RealData, Mrclam6LoadsThroughTheLoaderWithARobotSuffix) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -8,7 +8,7 @@
 #include "log_generators.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 TEST(RelationsReader, ReadsTimesAndPlanarMotionIgnoringZRollPitch) {
@@ -64,4 +64,4 @@ TEST(RelationsRoundTrip, GzipFileRoundTrip) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -10,7 +10,7 @@
 #include "core/errors.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 std::filesystem::path write(const testing::ScratchDir& dir, const std::string& text) {
@@ -65,4 +65,4 @@ TEST(ScanJsonReader, ReadsTheQueensHallwayScans) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

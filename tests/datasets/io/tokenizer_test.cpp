@@ -7,7 +7,7 @@
 
 #include "io_test_support.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 const std::string kFile = "f.clf";
@@ -51,4 +51,4 @@ TEST(Tokenizer, QuotesTokensEscapingBytesAndCuttingLongOnes) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -12,7 +12,7 @@
 #include "log_generators.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 TEST(TumWriter, WritesTimestampPositionZeroZAndYawQuaternion) {
@@ -84,4 +84,4 @@ TEST(TumRoundTrip, GzipFileRoundTrip) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io

@@ -10,7 +10,7 @@
 #include "core/errors.h"
 #include "tests/test_data.h"
 
-namespace locbench {
+namespace locbench::io {
 namespace {
 
 // The Trilobot on the thesis's 1.6 m square: 1.6 m / (π·88.5 mm/22) = 126.6 → 127 counts a leg.
@@ -178,4 +178,4 @@ TEST(UmbmarkInputReader, SyntaxErrorsCarryTheirLine) {
 }
 
 }  // namespace
-}  // namespace locbench
+}  // namespace locbench::io
