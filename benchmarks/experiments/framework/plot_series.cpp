@@ -1,5 +1,7 @@
 #include "benchmarks/experiments/framework/plot_series.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -71,6 +73,42 @@ reports::PlotSeries mean_over_runs(const std::string& name, const std::vector<do
     s.y.push_back(sum / n);
   }
   return s;
+}
+
+reports::Plot run_zero_trajectories(const std::string& what, std::uint64_t seed,
+                                    std::vector<reports::PlotSeries> paths) {
+  return {"trajectories_run_0",
+          "trajectory",
+          "Trajectories of run 0: " + what,
+          "x",
+          "m",
+          "y",
+          "m",
+          std::move(paths),
+          "Monte-Carlo run 0 (seed " + std::to_string(seed) + ")"};
+}
+
+reports::Plot mean_error_vs_distance(const std::vector<std::string>& methods,
+                                     const std::vector<std::vector<std::vector<double>>>& errors, double step) {
+  const std::size_t runs = errors.empty() ? 0 : errors.front().size();
+  reports::Plot plot{"error_vs_distance",
+                     "error_vs_distance",
+                     "Position error against distance travelled (mean over runs)",
+                     "distance travelled",
+                     "m",
+                     "position error",
+                     "m",
+                     {},
+                     fmt::format("mean over {} Monte-Carlo runs, every {:g} m of the true path", runs, step)};
+  std::size_t longest = 0;
+  for (const auto& method : errors) {
+    for (const auto& run : method) longest = std::max(longest, run.size());
+  }
+  const std::vector<double> grid = distance_grid(step * static_cast<double>(longest), step);
+  for (std::size_t m = 0; m < methods.size() && m < errors.size(); ++m) {
+    plot.series.push_back(mean_over_runs(methods[m], grid, errors[m]));
+  }
+  return plot;
 }
 
 }  // namespace locbench::experiments

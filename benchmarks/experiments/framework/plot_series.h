@@ -1,6 +1,7 @@
 #pragma once
 // Chart series for reports (reports::Plot): trajectories and position error against distance
 // travelled, built from trajectories the experiments already have.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,16 @@ std::vector<double> error_at_distances(const Trajectory& truth, const Trajectory
 // reached are dropped. runs[k][i] is run k's value at distances[i].
 reports::PlotSeries mean_over_runs(const std::string& name, const std::vector<double>& distances,
                                    const std::vector<std::vector<double>>& runs);
+
+// A "trajectory" plot of Monte-Carlo run 0 (seed `seed`): one path per series, titled
+// "Trajectories of run 0: <what>".
+reports::Plot run_zero_trajectories(const std::string& what, std::uint64_t seed,
+                                    std::vector<reports::PlotSeries> paths);
+
+// The "error_vs_distance" plot: per method, the mean over runs of its position error every `step`
+// metres of the true path. errors[m][k] is method m's error_at_distances of run k.
+reports::Plot mean_error_vs_distance(const std::vector<std::string>& methods,
+                                     const std::vector<std::vector<std::vector<double>>>& errors, double step);
 
 }  // namespace locbench::experiments
 

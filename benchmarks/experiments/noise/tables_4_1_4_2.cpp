@@ -44,43 +44,20 @@ struct NoiseSetup {
 
 // Trajectories of run 0 and the mean error against distance travelled, for the report's charts.
 void add_plots(reports::ExperimentResults& out, const McPlan& plan, const std::vector<nlohmann::json>& records) {
-  reports::Plot traj{"trajectories_run_0",
-                     "trajectory",
-                     "Trajectories of run 0: truth, odometry and the four filters",
-                     "x",
-                     "m",
-                     "y",
-                     "m",
-                     {},
-                     "Monte-Carlo run 0 (seed " + std::to_string(plan.run_seed(0)) + ")"};
+  std::vector<reports::PlotSeries> paths;
   for (const auto& j : records.front().at("trajectories")) {
-    traj.series.push_back(
+    paths.push_back(
         {j.at("name").get<std::string>(), j.at("x").get<std::vector<double>>(), j.at("y").get<std::vector<double>>()});
   }
-  out.plots.push_back(std::move(traj));
-  reports::Plot dist{
-      "error_vs_distance",
-      "error_vs_distance",
-      "Position error against distance travelled (mean over runs)",
-      "distance travelled",
-      "m",
-      "position error",
-      "m",
-      {},
-      fmt::format("mean over {} Monte-Carlo runs, every {:g} m of the true path", records.size(), kDistanceStep)};
+  out.plots.push_back(
+      run_zero_trajectories("truth, odometry and the four filters", plan.run_seed(0), std::move(paths)));
   std::vector<std::string> names(kNoiseFilterNames.begin(), kNoiseFilterNames.end());
   names.push_back("odometry_nominal");
+  std::vector<std::vector<std::vector<double>>> errors(names.size());
   for (std::size_t f = 0; f < names.size(); ++f) {
-    std::vector<std::vector<double>> runs;
-    std::size_t longest = 0;
-    for (const auto& r : records) {
-      runs.push_back(r.at("error_at_distance").at(f).get<std::vector<double>>());
-      longest = std::max(longest, runs.back().size());
-    }
-    dist.series.push_back(
-        mean_over_runs(names[f], distance_grid(kDistanceStep * static_cast<double>(longest), kDistanceStep), runs));
+    for (const auto& r : records) errors[f].push_back(r.at("error_at_distance").at(f).get<std::vector<double>>());
   }
-  out.plots.push_back(std::move(dist));
+  out.plots.push_back(mean_error_vs_distance(names, errors, kDistanceStep));
 }
 
 class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {

@@ -122,7 +122,6 @@ class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorS
     reports::ExperimentResults out = start_results(s.configuration);
     std::vector<double> pos[2], head[2], ape[2];
     std::vector<std::vector<double>> at_distance[2];
-    std::size_t longest = 0;
     CorridorRecord r;
     for (std::size_t k = 0; k < records.size(); ++k) {
       out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
@@ -132,7 +131,6 @@ class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorS
         head[m].push_back(r.final_heading[m]);
         ape[m].push_back(r.ape_rmse[m]);
         at_distance[m].push_back(r.error_at_distance[m]);
-        longest = std::max(longest, r.error_at_distance[m].size());
       }
     }
     // Records and duration of the last run (all runs of the scenario are alike).
@@ -146,32 +144,11 @@ class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorS
           reports::make_metric(kMethods[m], dataset, "final_heading_error", "rad", "monte_carlo_runs", head[m]));
       out.results.push_back(reports::make_metric(kMethods[m], dataset, "ape_rmse", "m", "monte_carlo_runs", ape[m]));
     }
-    reports::Plot traj{"trajectories_run_0",
-                       "trajectory",
-                       "Trajectories of run 0: truth and dead reckoning",
-                       "x",
-                       "m",
-                       "y",
-                       "m",
-                       {},
-                       "Monte-Carlo run 0 (seed " + std::to_string(plan.run_seed(0)) + ")"};
-    for (const auto& j : records.front().get<CorridorRecord>().trajectories) {
-      traj.series.push_back(series_from(j));
-    }
-    out.plots.push_back(std::move(traj));
-    reports::Plot dist{"error_vs_distance",
-                       "error_vs_distance",
-                       "Position error against distance travelled (mean over runs)",
-                       "distance travelled",
-                       "m",
-                       "position error",
-                       "m",
-                       {},
-                       "mean over " + std::to_string(records.size()) + " Monte-Carlo runs, every " +
-                           fmt::format("{:g}", kDistanceStep) + " m of the true path"};
-    const std::vector<double> grid = distance_grid(kDistanceStep * static_cast<double>(longest), kDistanceStep);
-    for (int m = 0; m < 2; ++m) dist.series.push_back(mean_over_runs(kMethods[m], grid, at_distance[m]));
-    out.plots.push_back(std::move(dist));
+    std::vector<reports::PlotSeries> paths;
+    for (const auto& j : records.front().get<CorridorRecord>().trajectories) paths.push_back(series_from(j));
+    out.plots.push_back(run_zero_trajectories("truth and dead reckoning", plan.run_seed(0), std::move(paths)));
+    out.plots.push_back(
+        mean_error_vs_distance({kMethods[0], kMethods[1]}, {at_distance[0], at_distance[1]}, kDistanceStep));
     return out;
   }
 };
