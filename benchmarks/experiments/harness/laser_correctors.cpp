@@ -32,23 +32,41 @@ void diagnose(const pose_correction::PoseCorrection& c, ScanPairCorrection& out)
   }
 }
 
+// A corrector that registers the second scan to the first scan's lines; with no lines it keeps the
+// odometry's relative motion.
+class LineMapCorrector : public ScanPairCorrector {
+ public:
+  explicit LineMapCorrector(std::string name) : name_(std::move(name)) {}
+  std::string name() const final { return name_; }
+  ScanPairCorrection correct(const Scan&, const LineMap& map, const Scan& second, const Pose2& odometry) const final {
+    ScanPairCorrection out;
+    out.motion = odometry;
+    if (!map.segments.empty()) correct_to(map, second, odometry, out);
+    return out;
+  }
+
+ private:
+  // `out` starts as the odometry's motion and nothing matched.
+  virtual void correct_to(const LineMap& map, const Scan& second, const Pose2& odometry,
+                          ScanPairCorrection& out) const = 0;
+  std::string name_;
+};
+
 // matcher + one pass of chapter 6 (or heading only, or re-matched until it stops moving).
-class Chapter6 final : public ScanPairCorrector {
+class Chapter6 final : public LineMapCorrector {
  public:
   enum class Mode { kOneShot, kHeadingOnly, kRematched };
   Chapter6(std::string name, std::unique_ptr<laser::SegmentMatcher> matcher, PoseCorrectionOptions options, Mode mode,
            int rematch_iterations)
-      : name_(std::move(name)),
+      : LineMapCorrector(std::move(name)),
         matcher_(std::move(matcher)),
         options_(options),
         mode_(mode),
         rematch_(rematch_iterations) {}
-  std::string name() const override { return name_; }
-  ScanPairCorrection correct(const Scan&, const LineMap& map, const Scan& second,
-                             const Pose2& odometry) const override {
-    ScanPairCorrection out;
-    out.motion = odometry;
-    if (map.segments.empty()) return out;
+
+ private:
+  void correct_to(const LineMap& map, const Scan& second, const Pose2& odometry,
+                  ScanPairCorrection& out) const override {
     Pose2 pose = odometry;
     const int passes = mode_ == Mode::kRematched ? rematch_ : 1;
     for (int k = 0; k < passes; ++k) {
@@ -61,7 +79,7 @@ class Chapter6 final : public ScanPairCorrector {
       diagnose(c, out);
       if (mode_ == Mode::kHeadingOnly) {
         out.motion = Pose2(pose.x, pose.y, c.corrected.theta);
-        return out;
+        return;
       }
       out.position_fixed = c.position_fixed;
       const double dt = std::hypot(c.corrected.x - pose.x, c.corrected.y - pose.y);
@@ -70,41 +88,33 @@ class Chapter6 final : public ScanPairCorrector {
       if (dt < 1e-4 && dth < 1e-5) break;
     }
     out.motion = pose;
-    return out;
   }
 
- private:
-  std::string name_;
   std::unique_ptr<laser::SegmentMatcher> matcher_;
   PoseCorrectionOptions options_;
   Mode mode_;
   int rematch_;
 };
 
-class IteratedPointToLine final : public ScanPairCorrector {
+class IteratedPointToLine final : public LineMapCorrector {
  public:
   IteratedPointToLine(std::string name, std::unique_ptr<laser::SegmentMatcher> matcher,
                       pose_correction::IteratedCorrectionOptions options)
-      : name_(std::move(name)), matcher_(std::move(matcher)), options_(options) {}
-  std::string name() const override { return name_; }
-  ScanPairCorrection correct(const Scan&, const LineMap& map, const Scan& second,
-                             const Pose2& odometry) const override {
-    ScanPairCorrection out;
-    out.motion = odometry;
-    if (map.segments.empty()) return out;
+      : LineMapCorrector(std::move(name)), matcher_(std::move(matcher)), options_(options) {}
+
+ private:
+  void correct_to(const LineMap& map, const Scan& second, const Pose2& odometry,
+                  ScanPairCorrection& out) const override {
     const auto c = pose_correction::iterated_point_to_line(*matcher_, second, map, odometry, options_);
     out.iterations = c.iterations;
     out.matched_points = c.points_used;
     out.matched_segments = c.segments_used;
-    if (!c.valid) return out;
+    if (!c.valid) return;
     out.motion = c.corrected;
     out.heading_fixed = true;
     out.position_fixed = !c.degenerate;
-    return out;
   }
 
- private:
-  std::string name_;
   std::unique_ptr<laser::SegmentMatcher> matcher_;
   pose_correction::IteratedCorrectionOptions options_;
 };

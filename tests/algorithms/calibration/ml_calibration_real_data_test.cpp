@@ -102,32 +102,33 @@ TEST(CalibrationCatalog, LoadsEveryCensiPartWithItsSampleCount) {
   }
 }
 
-TEST(MlCalibrationRealData, StachnissOdometryCalibratesAndFitsItsScanMatchedMotionsBetter) {
-  LOCBENCH_REQUIRE_DATA("calibration/stachniss_ls_calib");
-  const CalibrationData d = load_catalog_calibration_data(entry("stachniss_ls_calib"), data_root());
+// A catalog set calibrated against its scan-matched reference (printed, checked sound), with the
+// relation-error RMSE (m, rad) of the nominal and of the calibrated model.
+struct ScanMatchedFit {
+  std::pair<double, double> before, after;
+};
+ScanMatchedFit calibrate_against_scan_matching(const std::string& dataset) {
+  const CalibrationData d = load_catalog_calibration_data(entry(dataset), data_root());
   const MlCalibrationResult r = calibrate_ml(d, scan_matched());
-  fmt::print("stachniss_ls_calib:\n");
+  fmt::print("{}:\n", dataset);
   print(r);
   expect_sound(r);
-  const auto before = rmse(d, nominal_parameters(d));
-  const auto after = rmse(d, r.estimate);
-  fmt::print("  relation error RMSE nominal → calibrated: {:.5g} → {:.5g} m, {:.5g} → {:.5g} rad\n", before.first,
-             after.first, before.second, after.second);
+  const ScanMatchedFit fit{rmse(d, nominal_parameters(d)), rmse(d, r.estimate)};
+  fmt::print("  relation error RMSE nominal → calibrated: {:.5g} → {:.5g} m, {:.5g} → {:.5g} rad\n", fit.before.first,
+             fit.after.first, fit.before.second, fit.after.second);
+  return fit;
+}
+
+TEST(MlCalibrationRealData, StachnissOdometryCalibratesAndFitsItsScanMatchedMotionsBetter) {
+  LOCBENCH_REQUIRE_DATA("calibration/stachniss_ls_calib");
+  const auto [before, after] = calibrate_against_scan_matching("stachniss_ls_calib");
   EXPECT_LT(after.second, before.second);
   EXPECT_LE(after.first, before.first * 1.001);
 }
 
 TEST(MlCalibrationRealData, GrisettiTicksCalibrateAndFitTheirReferenceMuchBetter) {
   LOCBENCH_REQUIRE_DATA("calibration/grisetti_diffdrive");
-  const CalibrationData d = load_catalog_calibration_data(entry("grisetti_diffdrive"), data_root());
-  const MlCalibrationResult r = calibrate_ml(d, scan_matched());
-  fmt::print("grisetti_diffdrive:\n");
-  print(r);
-  expect_sound(r);
-  const auto before = rmse(d, nominal_parameters(d));
-  const auto after = rmse(d, r.estimate);
-  fmt::print("  relation error RMSE nominal → calibrated: {:.5g} → {:.5g} m, {:.5g} → {:.5g} rad\n", before.first,
-             after.first, before.second, after.second);
+  const auto [before, after] = calibrate_against_scan_matching("grisetti_diffdrive");
   // The nominal model is a guess (1 m per tick unit, B = 1 m): the calibration halves the errors.
   EXPECT_LT(after.first, 0.7 * before.first);
   EXPECT_LT(after.second, 0.7 * before.second);
