@@ -121,7 +121,7 @@ class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorS
                                        const std::vector<nlohmann::json>& records) const override {
     reports::ExperimentResults out = start_results(s.configuration);
     std::vector<double> pos[2], head[2], ape[2];
-    std::vector<std::vector<double>> at_distance[2];
+    std::vector<std::vector<std::vector<double>>> at_distance(2);  // [method][run][distance]
     CorridorRecord r;
     for (std::size_t k = 0; k < records.size(); ++k) {
       out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
@@ -147,8 +147,7 @@ class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorS
     std::vector<reports::PlotSeries> paths;
     for (const auto& j : records.front().get<CorridorRecord>().trajectories) paths.push_back(series_from(j));
     out.plots.push_back(run_zero_trajectories("truth and dead reckoning", plan.run_seed(0), std::move(paths)));
-    out.plots.push_back(
-        mean_error_vs_distance({kMethods[0], kMethods[1]}, {at_distance[0], at_distance[1]}, kDistanceStep));
+    out.plots.push_back(mean_error_vs_distance({kMethods[0], kMethods[1]}, at_distance, kDistanceStep));
     return out;
   }
 };
