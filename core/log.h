@@ -27,6 +27,8 @@ struct Log {
   std::vector<TruePose> truth;
   std::vector<Relation> relations;
   std::vector<LandmarkReading> landmarks;
+  // The surveyed landmarks the observations in `landmarks` refer to (empty when the log has none).
+  std::vector<MapLandmark> landmark_map;
 
   // The nominal odometry model declared by the PARAM records robot_meters_per_tick_left,
   // robot_meters_per_tick_right and robot_wheelbase; nullopt if any is missing.

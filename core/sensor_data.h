@@ -58,4 +58,12 @@ struct LandmarkReading {
   double bearing = 0.0;
 };
 
+// A surveyed landmark of a map (MRCLAM Landmark_Groundtruth.dat, or a user's landmark map): its
+// identifier (the subject number an observation names), position and the survey's 1σ [m].
+struct MapLandmark {
+  int id = 0;
+  double x = 0.0, y = 0.0;
+  double sigma_x = 0.0, sigma_y = 0.0;
+};
+
 }  // namespace locbench
