@@ -1,15 +1,18 @@
 #pragma once
-// Plumbing shared by every compass-aided odometry EKF (algorithms/filters and baselines/filters):
-// state X = [x, y, θ]ᵀ (eq. 3.27, 4.1), motion model F(X, k−1) with its Jacobian ∇F (eq. 4.1–4.2),
-// and the compass measurement Z = H X + V, H = [0 0 1] (eq. 3.28, 4.45). Header-only so the
-// 3-state step stays inlinable; SI units (m, rad).
+// Plumbing shared by every odometry EKF (algorithms/filters and baselines/filters): state
+// X = [x, y, θ]ᵀ (eq. 3.27, 4.1), motion model F(X, k−1) with its Jacobian ∇F (eq. 4.1–4.2), and
+// the correction with any absolute measurement of core/pose_measurement.h — the compass
+// Z = H X + V, H = [0 0 1] (eq. 3.28, 4.45), or a landmark's range and bearing — with an optional
+// Mahalanobis gate. Header-only so the 3-state step stays inlinable; SI units (m, rad).
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <limits>
 #include <optional>
 
 #include "core/angle.h"
 #include "core/diff_drive_odometry.h"
 #include "core/pose2.h"
+#include "core/pose_measurement.h"
 
 namespace locbench {
 
@@ -36,29 +39,60 @@ inline MotionPrediction predict_motion(const Vector3& x, const WheelDisplacement
   return {to_vector(odometry_step(p, u, wheelbase)), odometry_jacobian_pose(p, u, wheelbase)};
 }
 
-// The compass innovation for a predicted state: ε = Z − (H X̂(k/k−1) + r̂) wrapped to [−π, π),
-// S = H P Hᵀ + R, K = P Hᵀ S⁻¹ (eq. 3.28, 4.45; r̂ is the Sage–Husa measurement-noise mean).
-struct CompassInnovation {
-  double innovation = 0.0;  // ε [rad]
-  double variance = 0.0;    // S [rad²]
-  Vector3 gain = Vector3::Zero();
-};
-inline CompassInnovation compass_innovation(const Vector3& x_pred, const Matrix3& p_pred, double heading,
-                                            double r_variance, double r_mean = 0.0) {
-  CompassInnovation c;
-  c.innovation = angle_diff(heading, x_pred(2) + r_mean);
-  c.variance = p_pred(2, 2) + r_variance;
-  c.gain = p_pred.col(2) / c.variance;
-  return c;
+// The EKF prediction X̂(k/k−1) = F(X̂(k−1)), P(k/k−1) = ∇F P ∇Fᵀ + Q (eq. 4.1–4.2), in place.
+inline void ekf_predict(Vector3& x, Matrix3& p, const WheelDisplacement& u, double wheelbase, const Matrix3& q) {
+  const MotionPrediction pred = predict_motion(x, u, wheelbase);
+  x = pred.mean;
+  p = symmetrize(pred.jacobian * p * pred.jacobian.transpose() + q);
 }
 
-// X̂(k/k) = X̂(k/k−1) + K ε, P(k) = (I − K H) P(k/k−1) (symmetrised).
-inline void apply_compass_update(Vector3& x, Matrix3& p, const CompassInnovation& c) {
-  x += c.gain * c.innovation;
+// No Mahalanobis gate: every measurement is used.
+inline constexpr double kNoGate = std::numeric_limits<double>::infinity();
+
+// The correction with a linearised measurement, noise R and an optional mean r̂:
+//   ν = z − (h(X̂) + r̂), S = H P Hᵀ + R, K = P Hᵀ S⁻¹, NIS = νᵀ S⁻¹ ν.
+// (For the compass H = [0 0 1], S = P_θθ + R and K = P_·θ / S exactly as eq. 3.28, 4.45.)
+struct MeasurementUpdate {
+  MeasurementVector innovation;             // ν
+  MeasurementMatrix innovation_covariance;  // S
+  MeasurementGain gain;                     // K
+  double nis = 0.0;                         // νᵀ S⁻¹ ν
+  bool gated = false;                       // NIS above the gate: not applied
+};
+inline MeasurementUpdate measurement_innovation(const LinearizedMeasurement& m, const Matrix3& p,
+                                                const MeasurementMatrix& r, const MeasurementVector* r_mean = nullptr) {
+  MeasurementUpdate u;
+  u.innovation = m.residual(r_mean);
+  const MeasurementGain ph = p * m.H.transpose();  // P Hᵀ
+  u.innovation_covariance = m.H * ph + r;
+  const Eigen::LDLT<MeasurementMatrix> ldlt(u.innovation_covariance);
+  u.gain = ldlt.solve(ph.transpose()).transpose();
+  u.nis = u.innovation.dot(ldlt.solve(u.innovation));
+  if (!std::isfinite(u.nis)) u.nis = std::numeric_limits<double>::infinity();
+  return u;
+}
+
+// X̂(k/k) = X̂(k/k−1) + K ν, P(k) = (I − K H) P(k/k−1) (symmetrised).
+inline void apply_measurement_update(Vector3& x, Matrix3& p, const MeasurementUpdate& u,
+                                     const LinearizedMeasurement& m) {
+  x += u.gain * u.innovation;
   x(2) = wrap_angle(x(2));
-  const Eigen::RowVector3d h_p = p.row(2);  // H P
-  p -= c.gain * h_p;
+  const Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 2, 3> h_p = m.H * p;  // H P
+  p -= u.gain * h_p;
   p = symmetrize(p);
+}
+
+// Linearise at X̂, gate on the NIS, correct: the plain EKF update with the measurement's own R.
+// Returns the update (gated = true and nothing changed when NIS > gate).
+inline MeasurementUpdate ekf_update(Vector3& x, Matrix3& p, const PoseMeasurement& z, double gate = kNoGate) {
+  const LinearizedMeasurement m = linearize(z, x);
+  MeasurementUpdate u = measurement_innovation(m, p, m.R);
+  if (u.nis > gate) {
+    u.gated = true;
+    return u;
+  }
+  apply_measurement_update(x, p, u, m);
+  return u;
 }
 
 // One filter step as returned by the compass EKFs: the posterior (or the prediction when no
@@ -72,34 +106,16 @@ struct CompassFilterStep {
 
   Pose2 pose() const { return to_pose(mean); }
 
-  // The state after the step, and the innovation `c` when a compass reading updated it.
-  void record(const Vector3& x, const Matrix3& p, const CompassInnovation* c) {
+  // The state after the step, and the compass update `c` when a reading updated it.
+  void record(const Vector3& x, const Matrix3& p, const MeasurementUpdate* c) {
     mean = x;
     covariance = p;
-    if (c) {
+    if (c && !c->gated) {
       updated = true;
-      innovation = c->innovation;
-      innovation_variance = c->variance;
+      innovation = c->innovation(0);
+      innovation_variance = c->innovation_covariance(0, 0);
     }
   }
 };
-
-// One step of the plain compass EKF with process noise Q and compass variance R: the prediction
-// X̂(k/k−1) = F(X̂(k−1)), P(k/k−1) = ∇F P ∇Fᵀ + Q (eq. 4.1–4.2), then, when a heading came, the
-// compass update (eq. 4.45). Updates x and p in place.
-inline CompassFilterStep compass_ekf_step(Vector3& x, Matrix3& p, const WheelDisplacement& u, double wheelbase,
-                                          const Matrix3& q, std::optional<double> heading, double r_variance) {
-  const MotionPrediction pred = predict_motion(x, u, wheelbase);
-  x = pred.mean;
-  p = symmetrize(pred.jacobian * p * pred.jacobian.transpose() + q);
-  std::optional<CompassInnovation> c;
-  if (heading) {
-    c = compass_innovation(x, p, *heading, r_variance);
-    apply_compass_update(x, p, *c);
-  }
-  CompassFilterStep out;
-  out.record(x, p, c ? &*c : nullptr);
-  return out;
-}
 
 }  // namespace locbench

@@ -50,4 +50,36 @@ std::size_t Log::record_count() const {
          relations.size() + landmarks.size();
 }
 
+Log restrict_log(const Log& log, double from, double to) {
+  Log out;
+  out.name = log.name;
+  out.source = log.source;
+  out.params = log.params;
+  out.landmark_map = log.landmark_map;
+  const auto in = [&](double t) { return t >= from && t <= to; };
+  for (const auto& r : log.encoders)
+    if (in(r.t)) out.encoders.push_back(r);
+  for (const auto& r : log.odometry)
+    if (in(r.t)) out.odometry.push_back(r);
+  for (const auto& r : log.compass)
+    if (in(r.t)) out.compass.push_back(r);
+  for (const auto& r : log.truth)
+    if (in(r.t)) out.truth.push_back(r);
+  for (const auto& r : log.relations)
+    if (in(r.t1) && in(r.t2)) out.relations.push_back(r);
+  for (const auto& r : log.landmarks)
+    if (in(r.t)) out.landmarks.push_back(r);
+  if (log.odometry.empty() && log.encoders.empty()) {
+    for (const auto& r : log.laser) {
+      if (!in(r.scan.timestamp)) continue;
+      LaserReading l;
+      l.scan.timestamp = r.scan.timestamp;
+      l.pose = r.pose;
+      l.odom_pose = r.odom_pose;
+      out.laser.push_back(l);
+    }
+  }
+  return out;
+}
+
 }  // namespace locbench

@@ -38,6 +38,12 @@ struct Log {
   std::size_t record_count() const;
 };
 
+// The records of `log` with time in [from, to] (relations: both ends inside; landmark
+// observations by their time; the landmark map and PARAM records whole). Logs without ODOM or
+// ENCODER records (mit-csail) carry their odometry in the FLASER records: their poses are kept,
+// without the scans' ranges.
+Log restrict_log(const Log& log, double from, double to);
+
 // PARAM names of the nominal model (see datasets/FORMAT.md).
 inline constexpr const char* kParamMetersPerTickLeft = "robot_meters_per_tick_left";
 inline constexpr const char* kParamMetersPerTickRight = "robot_meters_per_tick_right";

@@ -44,9 +44,24 @@ Matrix3 CompassEkf::process_noise(const WheelDisplacement& u) const {
   return options_.process_noise_scale * adaptive_process_noise(options_.noise, x_(2), u, wheelbase_);
 }
 
+void CompassEkf::predict(const WheelDisplacement& u, double noise_scale) {
+  Matrix3 q = process_noise(u);  // Q(k−1) at X̂(k−1) (eq. 4.43)
+  if (noise_scale != 1.0) q *= noise_scale;
+  ekf_predict(x_, p_, u, wheelbase_, q);
+}
+
+MeasurementUpdate CompassEkf::update(const PoseMeasurement& z, double gate) { return ekf_update(x_, p_, z, gate); }
+
 CompassFilterStep CompassEkf::step(const WheelDisplacement& u, std::optional<double> compass_heading) {
-  const Matrix3 q = process_noise(u);  // Q(k−1) at X̂(k−1) (eq. 4.43)
-  return compass_ekf_step(x_, p_, u, wheelbase_, q, compass_heading, options_.compass_variance);
+  predict(u);
+  CompassFilterStep out;
+  if (compass_heading) {
+    const MeasurementUpdate c = update(CompassHeading{*compass_heading, options_.compass_variance});
+    out.record(x_, p_, &c);
+  } else {
+    out.record(x_, p_, nullptr);
+  }
+  return out;
 }
 
 }  // namespace locbench::filters

@@ -45,6 +45,12 @@ class CompassEkf {
   // if one came with this sample.
   CompassFilterStep step(const WheelDisplacement& u, std::optional<double> compass_heading);
 
+  // The prediction alone, Q(k−1) multiplied by `noise_scale` (1 per sample of the model's
+  // period; a step of another length passes its ratio).
+  void predict(const WheelDisplacement& u, double noise_scale = 1.0);
+  // The correction with any absolute measurement (its own R), skipped when NIS > gate.
+  MeasurementUpdate update(const PoseMeasurement& z, double gate = kNoGate);
+
   const Vector3& mean() const { return x_; }
   const Matrix3& covariance() const { return p_; }
 

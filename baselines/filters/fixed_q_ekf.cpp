@@ -29,8 +29,22 @@ FixedQEkf::FixedQEkf(const FixedQEkfOptions& options, double wheelbase, const Po
   require_positive_wheelbase(wheelbase, "FixedQEkf");
 }
 
+void FixedQEkf::predict(const WheelDisplacement& u, double noise_scale) {
+  ekf_predict(x_, p_, u, wheelbase_, noise_scale == 1.0 ? q_ : Matrix3(noise_scale * q_));
+}
+
+MeasurementUpdate FixedQEkf::update(const PoseMeasurement& z, double gate) { return ekf_update(x_, p_, z, gate); }
+
 CompassFilterStep FixedQEkf::step(const WheelDisplacement& u, std::optional<double> compass_heading) {
-  return compass_ekf_step(x_, p_, u, wheelbase_, q_, compass_heading, r_);
+  predict(u);
+  CompassFilterStep out;
+  if (compass_heading) {
+    const MeasurementUpdate c = update(CompassHeading{*compass_heading, r_});
+    out.record(x_, p_, &c);
+  } else {
+    out.record(x_, p_, nullptr);
+  }
+  return out;
 }
 
 }  // namespace locbench::baselines::filters

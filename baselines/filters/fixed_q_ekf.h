@@ -32,6 +32,12 @@ class FixedQEkf {
   // [rad] if one came with it.
   CompassFilterStep step(const WheelDisplacement& u, std::optional<double> compass_heading);
 
+  // The prediction alone with Q·noise_scale (1 per sample; a step of another length passes its
+  // ratio to the sample period).
+  void predict(const WheelDisplacement& u, double noise_scale = 1.0);
+  // The correction with any absolute measurement (its own R), skipped when NIS > gate.
+  MeasurementUpdate update(const PoseMeasurement& z, double gate = kNoGate);
+
   const Vector3& mean() const { return x_; }
   const Matrix3& covariance() const { return p_; }
 

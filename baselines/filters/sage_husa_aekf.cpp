@@ -35,60 +35,95 @@ SageHusaAekf::SageHusaAekf(const SageHusaOptions& options, double wheelbase, con
       p_(options.initial_covariance.asDiagonal()),
       q_mean_(options.initial_process_mean),
       q_cov_(options.initial_process_noise.asDiagonal()),
-      r_mean_(options.initial_measurement_mean),
-      r_var_(options.initial_measurement_noise) {
+      f_mean_(x_),
+      fpf_(p_) {
   validate(options);
   require_positive_wheelbase(wheelbase, "SageHusaAekf");
+  MeasurementNoise& compass = r_[0];  // PoseMeasurement's first kind: CompassHeading
+  compass.started = true;
+  compass.mean = MeasurementVector::Constant(1, options.initial_measurement_mean);
+  compass.cov = MeasurementMatrix::Constant(1, 1, options.initial_measurement_noise);
+}
+
+void SageHusaAekf::predict(const WheelDisplacement& u, double noise_scale) {
+  const MotionPrediction pred = predict_motion(x_, u, wheelbase_);  // F(X̂(k−1)), ∇F
+  f_mean_ = pred.mean;
+  fpf_ = pred.jacobian * p_ * pred.jacobian.transpose();  // ∇F P(k−1) ∇Fᵀ
+  x_ = pred.mean + q_mean_;                               // X̂(k/k−1)
+  x_(2) = wrap_angle(x_(2));
+  p_ = symmetrize(fpf_ + (noise_scale == 1.0 ? q_cov_ : Matrix3(noise_scale * q_cov_)));  // P(k/k−1)
+}
+
+MeasurementUpdate SageHusaAekf::update(const PoseMeasurement& z, double gate, SageHusaStep* stats) {
+  MeasurementNoise& noise = r_[z.index()];
+  const LinearizedMeasurement m = linearize(z, x_);
+  if (!noise.started) {
+    noise.started = true;
+    noise.mean = MeasurementVector::Zero(m.z.size());
+    noise.cov = m.R;
+  }
+  const Matrix3 p_pred = p_;
+  MeasurementUpdate c = measurement_innovation(m, p_pred, noise.cov, &noise.mean);
+  if (c.nis > gate) {
+    c.gated = true;
+    return c;
+  }
+  apply_measurement_update(x_, p_, c, m);  // X̂(k/k), P(k)
+  ++k_;
+  const double d = deng_forgetting_weight(options_.forgetting, k_);
+
+  Vector3 state_jump = x_ - f_mean_;  // X̂(k/k) − F(X̂(k−1))
+  state_jump(2) = angle_diff(x_(2), f_mean_(2));
+  q_mean_ = (1.0 - d) * q_mean_ + d * state_jump;
+  const Vector3 k_eps = c.gain * c.innovation;
+  q_cov_ = symmetrize((1.0 - d) * q_cov_ + d * (k_eps * k_eps.transpose() + p_ - fpf_));
+  const MeasurementVector z_residual = m.residual();  // Z(k) − H X̂(k/k−1)
+  noise.mean = (1.0 - d) * noise.mean + d * z_residual;
+  const MeasurementMatrix hph = m.H * p_pred * m.H.transpose();  // H P(k/k−1) Hᵀ
+  noise.cov = (1.0 - d) * noise.cov + d * (c.innovation * c.innovation.transpose() - hph);
+  noise.cov = 0.5 * (noise.cov + noise.cov.transpose());
+
+  bool process_fix = false, measurement_fix = false;
+  if (options_.positive_definiteness_fix) {  // Zhang et al.
+    if (!is_positive_definite(q_cov_)) {
+      q_cov_ = symmetrize(q_cov_ + d * (fpf_ - p_));
+      process_fix = true;
+    }
+    if (noise.cov.llt().info() != Eigen::Success) {
+      noise.cov += d * hph;
+      measurement_fix = true;
+    }
+  }
+  f_mean_ = x_;  // a second measurement at this time sees no motion
+  fpf_ = p_;
+  if (stats) {
+    stats->weight = d;
+    stats->process_fix_applied = process_fix;
+    stats->measurement_fix_applied = measurement_fix;
+  }
+  return c;
+}
+
+void SageHusaAekf::record_statistics(SageHusaStep& out) const {
+  const MeasurementNoise& compass = r_[0];
+  out.process_mean = q_mean_;
+  out.process_cov = q_cov_;
+  out.measurement_mean = compass.mean(0);
+  out.measurement_variance = compass.cov(0, 0);
+  out.process_cov_positive_definite = is_positive_definite(q_cov_);
+  out.measurement_variance_positive = compass.cov(0, 0) > 0.0;
 }
 
 SageHusaStep SageHusaAekf::step(const WheelDisplacement& u, std::optional<double> compass_heading) {
-  const MotionPrediction pred = predict_motion(x_, u, wheelbase_);     // F(X̂(k−1)), ∇F
-  const Matrix3 fpf = pred.jacobian * p_ * pred.jacobian.transpose();  // ∇F P(k−1) ∇Fᵀ
-  Vector3 x_pred = pred.mean + q_mean_;                                // X̂(k/k−1)
-  x_pred(2) = wrap_angle(x_pred(2));
-  const Matrix3 p_pred = symmetrize(fpf + q_cov_);  // P(k/k−1)
-
+  predict(u);
   SageHusaStep out;
-  if (!compass_heading) {
-    x_ = x_pred;
-    p_ = p_pred;
-    out.filter.record(x_, p_, nullptr);
-  } else {
-    const CompassInnovation c = compass_innovation(x_pred, p_pred, *compass_heading, r_var_, r_mean_);
-    x_ = x_pred;
-    p_ = p_pred;
-    apply_compass_update(x_, p_, c);  // X̂(k/k), P(k)
-    ++k_;
-    const double d = deng_forgetting_weight(options_.forgetting, k_);
-    out.weight = d;
-
-    Vector3 state_jump = x_ - pred.mean;  // X̂(k/k) − F(X̂(k−1))
-    state_jump(2) = angle_diff(x_(2), pred.mean(2));
-    q_mean_ = (1.0 - d) * q_mean_ + d * state_jump;
-    const Vector3 k_eps = c.gain * c.innovation;
-    q_cov_ = symmetrize((1.0 - d) * q_cov_ + d * (k_eps * k_eps.transpose() + p_ - fpf));
-    const double z_residual = angle_diff(*compass_heading, x_pred(2));  // Z(k) − H X̂(k/k−1)
-    r_mean_ = (1.0 - d) * r_mean_ + d * z_residual;
-    r_var_ = (1.0 - d) * r_var_ + d * (c.innovation * c.innovation - p_pred(2, 2));
-
-    if (options_.positive_definiteness_fix) {  // Zhang et al.
-      if (!is_positive_definite(q_cov_)) {
-        q_cov_ = symmetrize(q_cov_ + d * (fpf - p_));
-        out.process_fix_applied = true;
-      }
-      if (!(r_var_ > 0.0)) {
-        r_var_ += d * p_pred(2, 2);
-        out.measurement_fix_applied = true;
-      }
-    }
+  if (compass_heading) {
+    const MeasurementUpdate c = update(CompassHeading{*compass_heading, options_.initial_measurement_noise}, kNoGate, &out);
     out.filter.record(x_, p_, &c);
+  } else {
+    out.filter.record(x_, p_, nullptr);
   }
-  out.process_mean = q_mean_;
-  out.process_cov = q_cov_;
-  out.measurement_mean = r_mean_;
-  out.measurement_variance = r_var_;
-  out.process_cov_positive_definite = is_positive_definite(q_cov_);
-  out.measurement_variance_positive = r_var_ > 0.0;
+  record_statistics(out);
   return out;
 }
 

@@ -14,8 +14,12 @@
 //   R̂(k) = (1 − d) R̂(k−1) + d [ε εᵀ − H P(k/k−1) Hᵀ]
 // Zhang's fix: if Q̂(k) is not positive definite, Q̂(k) += d (∇F P(k−1) ∇Fᵀ − P(k)); if R̂(k) is
 // not, R̂(k) += d H P(k/k−1) Hᵀ — i.e. the subtracted term is dropped for that step.
-// The statistics are updated only at samples that bring a compass reading (k counts those).
+// The statistics are updated only at samples that bring a measurement (k counts those). Any
+// measurement of core/pose_measurement.h can be used: r̂ and R̂ are kept per kind (compass,
+// landmark range-bearing); the compass's start at R̂(0), r̂(0) of the options, another kind's at
+// its first measurement's own R and r̂ = 0. A measurement rejected by the gate changes nothing.
 #include <nlohmann/json.hpp>
+#include <array>
 #include <optional>
 
 #include "core/compass_ekf_model.h"
@@ -65,20 +69,38 @@ class SageHusaAekf {
   // and update q̂, Q̂, r̂, R̂.
   SageHusaStep step(const WheelDisplacement& u, std::optional<double> compass_heading);
 
+  // The prediction alone, Q̂(k−1)·noise_scale (1 per sample; a step of another length passes its
+  // ratio to the sample period).
+  void predict(const WheelDisplacement& u, double noise_scale = 1.0);
+  // The correction and the noise-statistics update with any measurement, skipped when the NIS
+  // (with R̂ and r̂) exceeds the gate. Fills `stats` (may be null) like step().
+  MeasurementUpdate update(const PoseMeasurement& z, double gate = kNoGate, SageHusaStep* stats = nullptr);
+
   const Vector3& mean() const { return x_; }
   const Matrix3& covariance() const { return p_; }
   int updates() const { return k_; }
 
  private:
+  // r̂ and R̂ of one measurement kind.
+  struct MeasurementNoise {
+    bool started = false;
+    MeasurementVector mean;
+    MeasurementMatrix cov;
+  };
+  void record_statistics(SageHusaStep& out) const;
+
   SageHusaOptions options_;
   double wheelbase_;
   Vector3 x_;
   Matrix3 p_;
   Vector3 q_mean_;
   Matrix3 q_cov_;
-  double r_mean_;
-  double r_var_;
-  int k_ = 0;  // compass updates so far
+  std::array<MeasurementNoise, kMeasurementKinds> r_;
+  int k_ = 0;  // measurement updates so far
+  // Of the last prediction: F(X̂(k−1)) and ∇F P(k−1) ∇Fᵀ (after an update, the posterior and P,
+  // so that a second measurement at the same time sees no motion).
+  Vector3 f_mean_;
+  Matrix3 fpf_;
 };
 
 }  // namespace locbench::baselines::filters

@@ -26,44 +26,73 @@ VbAkf::VbAkf(const VbAkfOptions& options, double wheelbase, const Pose2& start)
     : q_(options.process_noise.asDiagonal()),
       rho_(options.forgetting),
       iterations_(options.iterations),
+      initial_shape_(options.initial_shape),
       wheelbase_(wheelbase),
       x_(to_vector(start)),
-      p_(options.initial_covariance.asDiagonal()),
-      alpha_(options.initial_shape),
-      beta_(options.initial_shape * options.initial_measurement_variance) {
+      p_(options.initial_covariance.asDiagonal()) {
   validate(options);
   require_positive_wheelbase(wheelbase, "VbAkf");
+  NoisePosterior& compass = noise_[0];  // PoseMeasurement's first kind: CompassHeading
+  compass.started = true;
+  compass.alpha = options.initial_shape;
+  compass.beta = MeasurementVector::Constant(1, options.initial_shape * options.initial_measurement_variance);
+}
+
+void VbAkf::predict(const WheelDisplacement& u, double noise_scale) {
+  ekf_predict(x_, p_, u, wheelbase_, noise_scale == 1.0 ? q_ : Matrix3(noise_scale * q_));
+  for (NoisePosterior& n : noise_) {  // heuristic dynamics of the noise parameters
+    n.alpha *= rho_;
+    n.beta *= rho_;
+  }
+}
+
+MeasurementUpdate VbAkf::update(const PoseMeasurement& z, double gate) {
+  NoisePosterior& noise = noise_[z.index()];
+  const LinearizedMeasurement m = linearize(z, x_);
+  if (!noise.started) {
+    noise.started = true;
+    noise.alpha = initial_shape_;
+    noise.beta = initial_shape_ * m.R.diagonal();
+  }
+  const Vector3 x_pred = x_;
+  const Matrix3 p_pred = p_;
+  const MeasurementVector beta_pred = noise.beta;
+  MeasurementUpdate c;
+  if (gate < kNoGate) {
+    const MeasurementMatrix r_prior = (beta_pred / noise.alpha).asDiagonal();
+    c = measurement_innovation(m, p_pred, r_prior);
+    if (c.nis > gate) {
+      c.gated = true;
+      return c;
+    }
+  }
+  noise.alpha += 0.5;
+  for (int n = 0; n < iterations_; ++n) {
+    const MeasurementMatrix r = (noise.beta / noise.alpha).asDiagonal();
+    c = measurement_innovation(m, p_pred, r);
+    x_ = x_pred;
+    p_ = p_pred;
+    apply_measurement_update(x_, p_, c, m);
+    const MeasurementVector residual = measurement_residual(z, x_);  // Z − h(X̂)
+    const MeasurementVector hph = (m.H * p_ * m.H.transpose()).diagonal();
+    noise.beta = beta_pred + 0.5 * residual.cwiseProduct(residual) + 0.5 * hph;
+  }
+  return c;
 }
 
 VbAkfStep VbAkf::step(const WheelDisplacement& u, std::optional<double> compass_heading) {
-  const MotionPrediction pred = predict_motion(x_, u, wheelbase_);
-  const Vector3 x_pred = pred.mean;
-  const Matrix3 p_pred = symmetrize(pred.jacobian * p_ * pred.jacobian.transpose() + q_);
-  alpha_ *= rho_;  // heuristic dynamics of the noise parameters
-  beta_ *= rho_;
-
+  predict(u);
   VbAkfStep out;
-  x_ = x_pred;
-  p_ = p_pred;
   if (compass_heading) {
-    const double beta_pred = beta_;
-    alpha_ += 0.5;
-    CompassInnovation c;
-    for (int n = 0; n < iterations_; ++n) {
-      c = compass_innovation(x_pred, p_pred, *compass_heading, beta_ / alpha_);
-      x_ = x_pred;
-      p_ = p_pred;
-      apply_compass_update(x_, p_, c);
-      const double residual = angle_diff(*compass_heading, x_(2));  // Z − H X̂
-      beta_ = beta_pred + 0.5 * residual * residual + 0.5 * p_(2, 2);
-    }
+    const MeasurementUpdate c = update(CompassHeading{*compass_heading, measurement_variance()});
     out.filter.record(x_, p_, &c);
   } else {
     out.filter.record(x_, p_, nullptr);
   }
-  out.shape = alpha_;
-  out.scale = beta_;
-  out.measurement_variance = beta_ / alpha_;
+  const NoisePosterior& compass = noise_[0];
+  out.shape = compass.alpha;
+  out.scale = compass.beta(0);
+  out.measurement_variance = compass.beta(0) / compass.alpha;
   return out;
 }
 

@@ -10,8 +10,13 @@
 //   update:      α = α⁻ + 1/2;  β ← β⁻; repeat N times:
 //                  R = β/α, S = H P⁻ Hᵀ + R, K = P⁻Hᵀ/S, X̂ = X̂⁻ + K ε, P = P⁻ − K S Kᵀ,
 //                  β = β⁻ + ½ (Z − H X̂)² + ½ H P Hᵀ
-// (ε = Z − H X̂⁻ wrapped to [−π, π)). The filter's R is the plug-in β/α.
+// (ε = Z − H X̂⁻ wrapped to [−π, π)). The filter's R is the plug-in β/α. Any measurement of
+// core/pose_measurement.h can be used: each kind keeps its own α and one β per component (the
+// paper's diagonal R: range and bearing have independent inverse-gamma posteriors); the compass's
+// start at the options' prior, another kind's at its first measurement (β = α(0)·its own R). A
+// measurement whose NIS under the prior plug-in R exceeds the gate changes nothing.
 #include <nlohmann/json.hpp>
+#include <array>
 #include <optional>
 
 #include "core/compass_ekf_model.h"
@@ -52,19 +57,33 @@ class VbAkf {
   // One encoder sample: predict with u; with a compass heading [rad], the VB update.
   VbAkfStep step(const WheelDisplacement& u, std::optional<double> compass_heading);
 
+  // The prediction alone, Q·noise_scale (1 per sample; a step of another length passes its ratio
+  // to the sample period); α, β forget by ρ.
+  void predict(const WheelDisplacement& u, double noise_scale = 1.0);
+  // The VB correction with any measurement, skipped when NIS > gate.
+  MeasurementUpdate update(const PoseMeasurement& z, double gate = kNoGate);
+
   const Vector3& mean() const { return x_; }
   const Matrix3& covariance() const { return p_; }
-  double measurement_variance() const { return beta_ / alpha_; }
+  // The compass's plug-in R = β/α.
+  double measurement_variance() const { return noise_[0].beta(0) / noise_[0].alpha; }
 
  private:
+  // The inverse-gamma posterior of one measurement kind's noise variances.
+  struct NoisePosterior {
+    bool started = false;
+    double alpha = 0.0;
+    MeasurementVector beta;
+  };
+
   Matrix3 q_;
   double rho_;
   int iterations_;
+  double initial_shape_;
   double wheelbase_;
   Vector3 x_;
   Matrix3 p_;
-  double alpha_;
-  double beta_;
+  std::array<NoisePosterior, kMeasurementKinds> noise_;
 };
 
 }  // namespace locbench::baselines::filters

@@ -41,38 +41,6 @@ const ExperimentInfo kInfo{
         "simulated) under the nominal and under the extended model, compared with the log by the Kolmogorov–Smirnov "
         "distance of the window residuals (1 s and 10 s windows; relations on Freiburg), per component"};
 
-// The records of `log` with time in [from, to] (relations: both ends inside).
-Log restrict_log(const Log& log, double from, double to) {
-  Log out;
-  out.name = log.name;
-  out.source = log.source;
-  out.params = log.params;
-  const auto in = [&](double t) { return t >= from && t <= to; };
-  for (const auto& r : log.encoders)
-    if (in(r.t)) out.encoders.push_back(r);
-  for (const auto& r : log.odometry)
-    if (in(r.t)) out.odometry.push_back(r);
-  for (const auto& r : log.compass)
-    if (in(r.t)) out.compass.push_back(r);
-  for (const auto& r : log.truth)
-    if (in(r.t)) out.truth.push_back(r);
-  for (const auto& r : log.relations)
-    if (in(r.t1) && in(r.t2)) out.relations.push_back(r);
-  // Logs without ODOM (mit-csail) carry their odometry in the FLASER records; keep those poses
-  // only (the twin does not simulate scans).
-  if (log.odometry.empty() && log.encoders.empty()) {
-    for (const auto& r : log.laser) {
-      if (!in(r.scan.timestamp)) continue;
-      LaserReading l;
-      l.scan.timestamp = r.scan.timestamp;
-      l.pose = r.pose;
-      l.odom_pose = r.odom_pose;
-      out.laser.push_back(l);
-    }
-  }
-  return out;
-}
-
 struct Outcome {
   std::optional<reports::CaseNote> note;
   std::optional<reports::DatasetRef> dataset;

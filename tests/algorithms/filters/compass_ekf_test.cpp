@@ -24,13 +24,14 @@ TEST(CompassEkfModel, PredictionIsTheOdometryStepWithItsJacobian) {
 TEST(CompassEkfModel, InnovationIsWrappedAcrossPlusMinusPi) {
   const Vector3 x(0.0, 0.0, deg(179.0));
   const Matrix3 p = Matrix3::Identity() * 1e-4;
-  const CompassInnovation c = compass_innovation(x, p, deg(-179.0), 1e-4);
-  EXPECT_NEAR(c.innovation, deg(2.0), 1e-12);
-  EXPECT_NEAR(c.variance, 2e-4, 1e-18);
+  const LinearizedMeasurement m = linearize(CompassHeading{deg(-179.0), 1e-4}, x);
+  const MeasurementUpdate c = measurement_innovation(m, p, m.R);
+  EXPECT_NEAR(c.innovation(0), deg(2.0), 1e-12);
+  EXPECT_NEAR(c.innovation_covariance(0, 0), 2e-4, 1e-18);
   EXPECT_NEAR(c.gain(2), 0.5, 1e-15);
   Vector3 xu = x;
   Matrix3 pu = p;
-  apply_compass_update(xu, pu, c);
+  apply_measurement_update(xu, pu, c, m);
   EXPECT_NEAR(xu(2), deg(-180.0), 1e-12);  // 179° + 1° wraps to −180°
   EXPECT_NEAR(pu(2, 2), 0.5e-4, 1e-18);
 }

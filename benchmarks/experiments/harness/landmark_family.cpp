@@ -1,0 +1,116 @@
+#include "benchmarks/experiments/harness/landmark_family.h"
+
+#include <cmath>
+#include <limits>
+
+#include "core/statistics.h"
+
+namespace locbench::experiments::landmarks {
+namespace {
+
+// The observations' true times under a sensor model: where the steps are cut.
+std::vector<double> observation_times(const TrackingData& data, const LandmarkSensorModel& sensor) {
+  std::vector<double> t;
+  t.reserve(data.observations.size());
+  for (const Observation& o : data.observations) t.push_back(o.t - sensor.time_offset);
+  return t;
+}
+
+// The motion each method predicts with on one part of a log: the logged motion (no model), the
+// nominal model's and the diagnosed model's.
+struct PartMotion {
+  std::vector<MotionStep> logged, nominal, diagnosed;
+};
+PartMotion part_motion(const TrackingData& data, const FilterModels& m, const LandmarkSensorModel& plain) {
+  PartMotion p;
+  p.logged = model_motion(data, diagnosis::OdometryModel{}, m.noise_window_s, observation_times(data, plain));
+  p.nominal = model_motion(data, m.nominal_motion, m.noise_window_s, observation_times(data, m.nominal_sensor));
+  p.diagnosed =
+      model_motion(data, m.diagnosed_motion, m.noise_window_s, observation_times(data, m.diagnosed_sensor));
+  return p;
+}
+
+MethodSetup base_setup(Method method, const PartMotion& motion, const FilterModels& m, const FamilyOptions& o) {
+  MethodSetup s;
+  s.method = method;
+  s.fixed_q_per_s = o.fixed_q_per_s;
+  s.adaptive = o.adaptive;
+  s.initial_sigma = o.initial_sigma;
+  switch (method) {
+    case Method::kNominalModel:
+      s.motion = &motion.nominal;
+      s.sensor = m.nominal_sensor;
+      break;
+    case Method::kDiagnosedModel:
+      s.motion = &motion.diagnosed;
+      s.sensor = m.diagnosed_sensor;
+      break;
+    default:
+      s.motion = &motion.logged;
+      s.sensor = m.nominal_sensor;
+      s.sensor.time_offset = 0.0;
+  }
+  return s;
+}
+
+const std::vector<double>& knobs(Method m, const FamilyOptions& o) {
+  if (m == Method::kSageHusa) return o.sage_husa_forgetting;
+  if (m == Method::kVbAkf) return o.vb_forgetting;
+  return o.r_scales;
+}
+
+}  // namespace
+
+std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test,
+                                        const FilterModels& models, const FamilyOptions& options) {
+  const PartMotion train_motion = part_motion(train, models, models.nominal_sensor);
+  const PartMotion test_motion = part_motion(test, models, models.nominal_sensor);
+  std::vector<MethodScore> scores;
+  for (Method method : kMethods) {
+    MethodScore best;
+    best.method = method;
+    best.tuning_rmse = std::numeric_limits<double>::infinity();
+    MethodSetup s = base_setup(method, train_motion, models, options);
+    struct Run {
+      double q, k, rmse, nees;
+    };
+    std::vector<Run> runs;
+    for (double q : options.process_scales) {
+      for (double k : knobs(method, options)) {
+        s.process_scale = q;
+        s.knob = k;
+        const TrackResult r = track(train, s, options.gate);
+        const double inf = std::numeric_limits<double>::infinity();
+        runs.push_back({q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees)});
+      }
+    }
+    best.grid_runs = runs.size();
+    // The lowest RMSE; among the settings within `rmse_tolerance` of it, the most consistent (time-
+    // averaged NEES closest to 3 on a log scale).
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const Run& r : runs) lowest = std::min(lowest, r.rmse);
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (const Run& r : runs) {
+      if (!(r.rmse <= lowest * (1.0 + options.rmse_tolerance))) continue;
+      const double distance = std::isfinite(r.nees) && r.nees > 0.0 ? std::abs(std::log(r.nees / 3.0)) : 1e300;
+      if (distance < best_distance || best_distance == std::numeric_limits<double>::infinity()) {
+        best_distance = distance;
+        best.process_scale = r.q;
+        best.knob = r.k;
+        best.tuning_rmse = r.rmse;
+      }
+    }
+    if (!std::isfinite(lowest)) {  // every setting diverged: keep the first, report it as such
+      best.process_scale = runs.front().q;
+      best.knob = runs.front().k;
+    }
+    MethodSetup held = base_setup(method, test_motion, models, options);
+    held.process_scale = best.process_scale;
+    held.knob = best.knob;
+    best.heldout = track(test, held, options.gate);
+    scores.push_back(std::move(best));
+  }
+  return scores;
+}
+
+}  // namespace locbench::experiments::landmarks

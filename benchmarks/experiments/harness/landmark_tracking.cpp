@@ -1,0 +1,289 @@
+#include "benchmarks/experiments/harness/landmark_tracking.h"
+
+#include <algorithm>
+#include <cmath>
+#include <variant>
+
+#include "algorithms/filters/consistency.h"
+#include "algorithms/filters/motion_model_ekf.h"
+#include "core/chi_square.h"
+#include "core/errors.h"
+#include "core/statistics.h"
+
+namespace locbench::experiments::landmarks {
+namespace {
+
+using baselines::filters::FixedQEkf, baselines::filters::FixedQEkfOptions, baselines::filters::SageHusaAekf,
+    baselines::filters::SageHusaOptions, baselines::filters::VbAkf, baselines::filters::VbAkfOptions;
+using filters::CompassEkf, filters::CompassEkfOptions, filters::MotionModelEkf, filters::OdometryNoiseForm;
+
+constexpr double kTruthMargin = 2.0;  // [s]
+
+WheelDisplacement wheel_travel(double distance, double turn, double wheelbase) {
+  return {distance - 0.5 * wheelbase * turn, distance + 0.5 * wheelbase * turn};
+}
+
+// The odometry steps of `d` (logged time) cut at the logged times `cuts` (sorted), each part
+// carrying its share of the step's increment (the logged rate is constant within a step).
+std::vector<diagnosis::OdometryStep> cut_steps(const std::vector<diagnosis::OdometryStep>& steps,
+                                               const std::vector<double>& cuts) {
+  std::vector<diagnosis::OdometryStep> out;
+  out.reserve(steps.size() + cuts.size());
+  std::size_t c = 0;
+  for (const auto& s : steps) {
+    while (c < cuts.size() && cuts[c] <= s.t0) ++c;
+    double t = s.t0;
+    const double dt = s.t1 - s.t0;
+    while (c < cuts.size() && cuts[c] < s.t1) {
+      const double f = dt > 0.0 ? (cuts[c] - t) / dt : 0.0;
+      out.push_back({t, cuts[c], s.a * f, s.b * f});
+      t = cuts[c];
+      ++c;
+    }
+    const double f = dt > 0.0 ? (s.t1 - t) / dt : 1.0;
+    out.push_back({t, s.t1, s.a * f, s.b * f});
+  }
+  return out;
+}
+
+}  // namespace
+
+const char* to_string(Method m) {
+  switch (m) {
+    case Method::kFixedQ: return "fixed_q";
+    case Method::kAdaptiveThesis: return "adaptive_thesis";
+    case Method::kAdaptiveJacobian: return "adaptive_jacobian";
+    case Method::kSageHusa: return "sage_husa";
+    case Method::kVbAkf: return "vb_akf";
+    case Method::kNominalModel: return "nominal_model";
+    case Method::kDiagnosedModel: return "diagnosed_model";
+  }
+  return "?";
+}
+
+TrackingData tracking_data(const Log& log, double from, double to, double wheelbase) {
+  TrackingData data;
+  data.log = log.name;
+  data.from = from;
+  data.to = to;
+  data.wheelbase = wheelbase;
+  if (log.landmark_map.empty()) {
+    throw InputError(log.source, 0, "no landmark map: landmark localization needs the surveyed landmarks");
+  }
+  for (const MapLandmark& l : log.landmark_map) data.map[l.id] = {l.x, l.y};
+  for (const LandmarkReading& r : log.landmarks) {
+    if (r.t < from || r.t > to) continue;
+    if (!data.map.count(r.subject)) {
+      ++data.other_robot_observations;
+      continue;
+    }
+    data.observations.push_back({r.t, r.subject, r.range, r.bearing});
+  }
+  if (data.observations.empty()) {
+    throw InputError(log.source, 0, "no observation of a map landmark between the span's ends");
+  }
+  data.motion = diagnosis::build_motion_data(restrict_log(log, from, to));
+  // The truth a little beyond the span, so that a step starting before the span's first truth
+  // record (or a model's time offset) still finds its reference.
+  data.motion.truth.clear();
+  for (const TruePose& p : log.truth) {
+    if (p.t >= from - kTruthMargin && p.t <= to + kTruthMargin) data.motion.truth.push_back(p);
+  }
+  return data;
+}
+
+std::vector<MotionStep> model_motion(const TrackingData& data, const diagnosis::OdometryModel& model,
+                                     double noise_window_s, const std::vector<double>& cuts) {
+  diagnosis::MotionData d;
+  d.odometry = data.motion.odometry;
+  d.nominal = data.motion.nominal;
+  std::vector<double> logged_cuts;
+  logged_cuts.reserve(cuts.size());
+  for (double t : cuts) logged_cuts.push_back(t + model.time_offset);  // logged = true + offset
+  std::sort(logged_cuts.begin(), logged_cuts.end());
+  d.steps = cut_steps(data.motion.steps, logged_cuts);
+
+  diagnosis::OdometryModel mean_model = model;  // the stalls' loss is applied below, per step
+  mean_model.stall_rate = 0.0;
+  mean_model.stall_duration = 0.0;
+  const double stall_time = model.stall_rate * model.stall_duration;
+  const double phi = stall_time > 0.0 ? stall_time / (1.0 + stall_time) : 0.0;
+  const double b = d.nominal.wheelbase > 0.0 ? d.nominal.wheelbase : 0.5;  // as the diagnosis's windows
+  const double tail = model.dof > 2.0 ? model.dof / (model.dof - 2.0) : 1.0;
+  const Vector3 floor_per_s = Vector3(model.sigma_x * model.sigma_x, model.sigma_y * model.sigma_y,
+                                      model.sigma_theta * model.sigma_theta) *
+                              (tail / noise_window_s);
+
+  std::vector<MotionStep> out;
+  out.reserve(d.steps.size());
+  diagnosis::MotionWindow w;
+  for (std::size_t i = 0; i < d.steps.size(); ++i) {
+    w.first = i;
+    w.last = i + 1;
+    w.t0 = d.steps[i].t0;
+    w.t1 = d.steps[i].t1;
+    const Pose2 p = diagnosis::predict_window(d, w, mean_model);  // eq. 1.3 on the model's rates
+    MotionStep s;
+    s.t0 = w.t0 - model.time_offset;
+    s.t1 = w.t1 - model.time_offset;
+    const double chord = std::hypot(p.x, p.y);
+    const double full = p.x < 0.0 ? -chord : chord;
+    s.distance = (1.0 - phi) * full;
+    s.turn = p.theta;
+    const double dt = s.t1 - s.t0;
+    const double travel = 2.0 * std::abs(full) + std::abs(p.theta) * b;  // W of the diagnosis's windows
+    Vector3 v = floor_per_s * dt;
+    v(0) += model.k2 * travel / 4.0 + phi * (1.0 - phi) * full * full;  // eq. 4.36 with k², stalls
+    v(1) += model.k2 * travel / 4.0;
+    v(2) += model.k2 * travel / (b * b);  // eq. 4.37
+    s.body_covariance = v.asDiagonal();
+    out.push_back(s);
+  }
+  return out;
+}
+
+double TrackResult::position_rmse() const { return position_error.empty() ? 0.0 : rms(position_error); }
+double TrackResult::heading_rmse() const { return heading_error.empty() ? 0.0 : rms(heading_error); }
+double TrackResult::gated_fraction() const {
+  return observations > 0 ? static_cast<double>(gated) / static_cast<double>(observations) : 0.0;
+}
+
+namespace {
+
+using AnyFilter = std::variant<FixedQEkf, CompassEkf, SageHusaAekf, VbAkf, MotionModelEkf>;
+
+AnyFilter make_filter(const MethodSetup& s, double wheelbase, const Pose2& start) {
+  const Vector3 p0 = s.initial_sigma.cwiseProduct(s.initial_sigma);
+  switch (s.method) {
+    case Method::kFixedQ: {
+      FixedQEkfOptions o;
+      o.process_noise = s.fixed_q_per_s * s.process_scale;
+      o.initial_covariance = p0;
+      return FixedQEkf(o, wheelbase, start);
+    }
+    case Method::kAdaptiveThesis:
+    case Method::kAdaptiveJacobian: {
+      CompassEkfOptions o;
+      o.noise = s.adaptive;
+      o.noise.form = s.method == Method::kAdaptiveThesis ? OdometryNoiseForm::kThesis : OdometryNoiseForm::kJacobian;
+      o.process_noise_scale = s.process_scale;
+      o.initial_covariance = p0;
+      return CompassEkf(o, wheelbase, start);
+    }
+    case Method::kSageHusa: {
+      SageHusaOptions o;
+      o.initial_process_noise = s.fixed_q_per_s * s.process_scale;
+      o.forgetting = s.knob;
+      o.initial_covariance = p0;
+      return SageHusaAekf(o, wheelbase, start);
+    }
+    case Method::kVbAkf: {
+      VbAkfOptions o;
+      o.process_noise = s.fixed_q_per_s * s.process_scale;
+      o.forgetting = s.knob;
+      o.initial_covariance = p0;
+      return VbAkf(o, wheelbase, start);
+    }
+    case Method::kNominalModel:
+    case Method::kDiagnosedModel: return MotionModelEkf(wheelbase, start, Matrix3(p0.asDiagonal()));
+  }
+  throw std::logic_error("make_filter: unknown method");
+}
+
+// Does the method estimate R itself (its knob is a forgetting factor, not an R scale)?
+bool estimates_r(Method m) { return m == Method::kSageHusa || m == Method::kVbAkf; }
+
+}  // namespace
+
+TrackResult track(const TrackingData& data, const MethodSetup& setup, const GatePolicy& gate) {
+  if (!setup.motion || setup.motion->empty()) throw UsageError("track: no motion steps");
+  const std::vector<MotionStep>& steps = *setup.motion;
+  diagnosis::TruthInterpolator truth(data.motion.truth);
+  const auto start = diagnosis::interpolate_truth(data.motion.truth, steps.front().t0);
+  if (!start) throw InputError(data.log, 0, "the ground truth does not cover the span's start");
+  AnyFilter filter = make_filter(setup, data.wheelbase, *start);
+
+  // Observations in true time, with the sensor model's corrections (Table 7.2's z, inverted).
+  const LandmarkSensorModel& sm = setup.sensor;
+  const double r_scale = estimates_r(setup.method) ? 1.0 : setup.knob;
+  struct Timed {
+    double t;
+    LandmarkRangeBearing z;
+  };
+  std::vector<Timed> obs;
+  obs.reserve(data.observations.size());
+  for (const Observation& o : data.observations) {
+    Eigen::Vector2d m = data.map.at(o.id);
+    if (const auto it = sm.landmark_shift.find(o.id); it != sm.landmark_shift.end()) m += it->second;
+    LandmarkRangeBearing z;
+    z.range = (o.range - sm.range_bias) / sm.range_scale;
+    z.bearing = o.bearing - sm.bearing_bias;
+    z.landmark_x = m.x();
+    z.landmark_y = m.y();
+    const double sr = sm.range_noise_slope * z.range;
+    z.range_variance = r_scale * (sm.range_sigma * sm.range_sigma + sr * sr) / (sm.range_scale * sm.range_scale);
+    z.bearing_variance = r_scale * sm.bearing_sigma * sm.bearing_sigma;
+    obs.push_back({o.t - sm.time_offset, z});
+  }
+  std::stable_sort(obs.begin(), obs.end(), [](const Timed& a, const Timed& b) { return a.t < b.t; });
+
+  const double threshold = chi_square_quantile(ChiSquareDof(2.0), gate.gate_probability);
+  TrackResult out;
+  int starving = 0;
+  std::size_t next = 0;
+  const auto observe_until = [&](double t) {
+    for (; next < obs.size() && obs[next].t <= t; ++next) {
+      ++out.observations;
+      const bool recover = starving >= gate.starve_after;
+      const MeasurementUpdate u =
+          std::visit([&](auto& f) { return f.update(obs[next].z, recover ? kNoGate : threshold); }, filter);
+      if (u.gated) {
+        ++out.gated;
+        ++starving;
+      } else {
+        ++out.used;
+        if (recover) ++out.recoveries;
+        starving = 0;
+      }
+    }
+  };
+
+  observe_until(steps.front().t0);
+  std::size_t far = 0;
+  for (const MotionStep& s : steps) {
+    const WheelDisplacement u = wheel_travel(s.distance, s.turn, data.wheelbase);
+    const double dt = s.t1 - s.t0;
+    std::visit(
+        [&](auto& f) {
+          using F = std::decay_t<decltype(f)>;
+          if constexpr (std::is_same_v<F, MotionModelEkf>) {
+            f.predict(u, setup.process_scale * s.body_covariance);
+          } else if constexpr (std::is_same_v<F, CompassEkf>) {
+            f.predict(u);
+          } else {
+            f.predict(u, dt);  // Q per second
+          }
+        },
+        filter);
+    observe_until(s.t1);
+    const Vector3 x = std::visit([](auto& f) { return f.mean(); }, filter);
+    const Matrix3 p = std::visit([](auto& f) { return f.covariance(); }, filter);
+    if (!x.allFinite() || !p.allFinite()) {
+      out.finite = false;
+      break;
+    }
+    const auto ref = truth.at(s.t1);
+    if (!ref) continue;
+    out.t.push_back(s.t1);
+    const double e = std::hypot(ref->x - x(0), ref->y - x(1));
+    out.position_error.push_back(e);
+    out.heading_error.push_back(angle_diff(ref->theta, x(2)));
+    out.nees.push_back(filters::pose_nees(*ref, x, p));
+    if (e > gate.divergence_error_m) ++far;
+  }
+  out.diverged = !out.finite || out.position_error.empty() ||
+                 static_cast<double>(far) >= 0.05 * static_cast<double>(out.position_error.size());
+  return out;
+}
+
+}  // namespace locbench::experiments::landmarks

@@ -1,0 +1,120 @@
+#pragma once
+// Landmark localization on a log (issue 25): the filters of chapter 4 driven by the log's
+// odometry and corrected by range-bearing observations of surveyed landmarks (Probabilistic
+// Robotics Table 7.2, known correspondence), scored against the log's ground truth.
+//
+// Every method predicts with the odometry's steps, cut at the observation times so that each
+// observation is used at its own time, and runs the same outlier handling: a Mahalanobis gate
+// (NIS > χ²₂(gate_probability) is rejected) and recovery when the gate starves the filter (after
+// `starve_after` consecutive rejections the next observation is used ungated, counted as a
+// recovery). What differs between methods is the process model:
+// - fixed_q, sage_husa, vb_akf: the logged motion with their own Q per `process_period_s`
+//   (Q·dt/period per step);
+// - adaptive_thesis, adaptive_jacobian: the logged motion with the thesis's per-sample Q
+//   (eq. 4.36–4.44, diagonal or full-Jacobian form) of the step's wheel travel;
+// - nominal_model, diagnosed_model: a fitted motion model (diagnosis::OdometryModel: velocity and
+//   turn scales, turn bias, drive lag, time offset, stalls, k² growth, the white floor) used for
+//   both the prediction and the process noise, and its fitted landmark sensor model.
+#include <map>
+#include <vector>
+
+#include "algorithms/diagnosis/motion_windows.h"
+#include "algorithms/diagnosis/odometry_model.h"
+#include "algorithms/filters/compass_ekf.h"
+#include "baselines/filters/fixed_q_ekf.h"
+#include "baselines/filters/sage_husa_aekf.h"
+#include "baselines/filters/vb_akf.h"
+#include "core/log.h"
+
+namespace locbench::experiments::landmarks {
+
+// The landmark sensor a filter assumes: z_r = range_scale·ρ + range_bias + n_r,
+// z_φ = φ + bearing_bias + n_φ, var n_r = range_sigma² + (range_noise_slope·ρ)², var n_φ =
+// bearing_sigma²; an observation logged at t was taken at true time t − time_offset; landmark id's
+// true position is the surveyed one plus landmark_shift[id].
+struct LandmarkSensorModel {
+  double range_scale = 1.0, range_bias = 0.0, bearing_bias = 0.0;
+  double range_sigma = 0.1, bearing_sigma = 0.05, range_noise_slope = 0.0;
+  double time_offset = 0.0;
+  std::map<int, Eigen::Vector2d> landmark_shift;
+};
+
+struct Observation {
+  double t = 0.0;  // logged
+  int id = 0;
+  double range = 0.0, bearing = 0.0;
+};
+
+// One span of one log: what every filter sees and is scored against.
+struct TrackingData {
+  std::string log;
+  double from = 0.0, to = 0.0;  // true (reference) time
+  diagnosis::MotionData motion;  // the span's odometry steps (logged time) and its truth
+  std::vector<Observation> observations;  // of map landmarks, logged time order
+  std::map<int, Eigen::Vector2d> map;
+  double wheelbase = 0.0;
+  std::size_t other_robot_observations = 0;  // observations of subjects not in the map, left out
+};
+
+// The span [from, to] of `log` (true time). Throws InputError (naming the log) when the log has
+// no landmark map, no observation of a map landmark in the span, or no usable odometry or truth.
+TrackingData tracking_data(const Log& log, double from, double to, double wheelbase);
+
+// One step of a model's motion, in true time: the increment (ΔD along the chord, Δθ) and the
+// model's covariance of it in the robot frame at the step's start (x along, y left, θ).
+struct MotionStep {
+  double t0 = 0.0, t1 = 0.0;
+  double distance = 0.0, turn = 0.0;
+  Matrix3 body_covariance = Matrix3::Zero();
+};
+
+// The steps of `model` over the span, cut at the observations' true times (`cuts`), its
+// increments from diagnosis::predict_window (drive lag, scales, turn bias) with the stalls' mean
+// loss φ = rate·duration/(1 + rate·duration) taken off the translation, and its covariance per
+// step: the white floor (σ per noise_window_s, scaled by dt/noise_window_s; × ν/(ν − 2) for
+// Student-t tails with ν > 2), the k² growth of eq. 4.36–4.37 and the stall mixture's
+// φ(1 − φ)ΔD² along the track.
+std::vector<MotionStep> model_motion(const TrackingData& data, const diagnosis::OdometryModel& model,
+                                     double noise_window_s, const std::vector<double>& cuts);
+
+enum class Method { kFixedQ, kAdaptiveThesis, kAdaptiveJacobian, kSageHusa, kVbAkf, kNominalModel, kDiagnosedModel };
+inline constexpr Method kMethods[] = {Method::kFixedQ,  Method::kAdaptiveThesis, Method::kAdaptiveJacobian,
+                                      Method::kSageHusa, Method::kVbAkf,         Method::kNominalModel,
+                                      Method::kDiagnosedModel};
+const char* to_string(Method m);
+
+// What a method runs with. `knob` is the method's second tuned parameter: the R scale for
+// fixed_q, the adaptive models and the fitted models; the forgetting factor b for Sage–Husa and
+// ρ for VB-AKF (both estimate R themselves).
+struct MethodSetup {
+  Method method = Method::kFixedQ;
+  double process_scale = 1.0;  // multiplies the method's process noise (Q, Q̂(0), model covariance)
+  double knob = 1.0;
+  const std::vector<MotionStep>* motion = nullptr;  // the steps it predicts with
+  LandmarkSensorModel sensor;
+  Vector3 fixed_q_per_s{0.0025, 0.0025, 0.0025};  // fixed_q, Q̂(0) of sage_husa, vb_akf's Q [m²/s, m²/s, rad²/s]
+  filters::OdometryNoiseOptions adaptive;          // adaptive_thesis / adaptive_jacobian (form set by the method)
+  Vector3 initial_sigma{0.02, 0.02, 0.02};         // P(0) = diag(σ²) at the span's true start [m, m, rad]
+};
+
+struct GatePolicy {
+  double gate_probability = 0.999;  // χ²₂ quantile of the Mahalanobis gate
+  int starve_after = 10;            // consecutive rejections before an observation is used ungated
+  double divergence_error_m = 1.0;  // diverged: position error above this at ≥ 5% of the steps
+};
+
+struct TrackResult {
+  std::vector<double> t;  // true time of each step end
+  std::vector<double> position_error, heading_error, nees;
+  std::size_t observations = 0, used = 0, gated = 0, recoveries = 0;
+  bool finite = true;
+  bool diverged = false;
+  double position_rmse() const;
+  double heading_rmse() const;
+  double gated_fraction() const;
+};
+
+// One filter over the span. Throws UsageError for a setup without motion steps.
+TrackResult track(const TrackingData& data, const MethodSetup& setup, const GatePolicy& gate);
+
+}  // namespace locbench::experiments::landmarks

@@ -1,0 +1,314 @@
+// Experiment noise/landmark_logs: the thesis's filters on logged data (issue 25). Each log with
+// landmark observations and ground truth (MRCLAM Dataset 6 robots 1–5, or a user's log with a
+// landmark map) is split in time: the first part tunes every method (the same 7 × 3 grid each)
+// and fits the diagnosis, the rest is held out and scored against the truth. Methods: fixed-Q EKF,
+// the thesis's adaptive odometry noise (eq. 4.43–4.44, diagonal and full-Jacobian forms), the
+// Sage–Husa AEKF, VB-AKF, and the motion model the diagnosis fits, nominal and diagnosed, used as
+// the prediction and the process noise (harness/landmark_tracking.h).
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "algorithms/diagnosis/diagnosis.h"
+#include "algorithms/filters/consistency.h"
+#include "benchmarks/experiments/framework/experiment.h"
+#include "benchmarks/experiments/framework/options_experiment.h"
+#include "benchmarks/experiments/framework/parallel_tasks.h"
+#include "benchmarks/experiments/framework/registry.h"
+#include "benchmarks/experiments/harness/filter_models.h"
+#include "benchmarks/experiments/harness/landmark_family.h"
+#include "benchmarks/experiments/harness/real_log_harness.h"
+#include "core/block_bootstrap.h"
+#include "core/errors.h"
+#include "core/statistics.h"
+
+namespace locbench::experiments::noise_landmark_logs {
+using namespace landmarks;
+
+const ExperimentInfo kInfo{
+    .name = "noise/landmark_logs",
+    .description = "The chapter-4 filters on logged data: landmark localization on MRCLAM (range-bearing to surveyed "
+                   "landmarks) with every process-noise model and the diagnosed motion model, tuned on the first "
+                   "half of each log and scored on the second against Vicon",
+    .reading = {
+        "Every method predicts with the log's odometry and corrects with range-bearing observations of the "
+        "surveyed landmarks (Probabilistic Robotics Table 7.2, known correspondence); observations of other robots "
+        "are left out and counted. Outlier handling is the same for all: a Mahalanobis gate at χ²₂(0.999) and, "
+        "after 10 consecutive rejections, the next observation used ungated (a recovery).",
+        "Fair tuning: each method has two tuned parameters — the scale of its process noise over 7 values (×1/64 … "
+        "×64) and the R scale over 3 (×¼, ×1, ×4; for Sage–Husa and VB-AKF, which estimate R, their forgetting "
+        "factor over 3) — 21 runs each on the first half; the best position RMSE is scored on the second half "
+        "from the Vicon pose at its start.",
+        "Intervals: RMSE 95% intervals are block-bootstrap percentile intervals over 10 s blocks of the held-out "
+        "half (errors are correlated in time); the NEES band is the χ² interval of a time average over K "
+        "independent 10 s blocks, [χ²_{0.025}(3K)/K, χ²_{0.975}(3K)/K] (an error correlated over 10 s has about K "
+        "independent values). Diverged: the estimate is not finite or the position error exceeds 1 m at ≥ 5% of "
+        "the held-out steps."}};
+
+struct Options {
+  nlohmann::json datasets = {"mrclam6_robot1", "mrclam6_robot2", "mrclam6_robot3", "mrclam6_robot4",
+                             "mrclam6_robot5"};
+  double wheelbase_m = 0.26;  // iRobot Create (MRCLAM); a log's PARAM robot_wheelbase wins
+  double train_fraction = 0.5;
+  double range_sigma_m = 0.1;
+  double bearing_sigma_rad = 0.05;
+  Eigen::Vector3d fixed_q_per_s{0.0025, 0.0025, 0.0025};
+  double adaptive_k = 0.005;
+  double adaptive_sigma_m = 0.005;
+  double gate_probability = 0.999;
+  int starve_after = 10;
+  double divergence_error_m = 1.0;
+  double block_s = 10.0;
+  int bootstrap_resamples = 1000;
+  std::string model_file;  // a `locbench diagnose --report` file: its models instead of fitting the first half
+};
+template <class V>
+void visit_fields(V& v, Options& o) {
+  v.field("datasets", o.datasets, "", Range{}, "catalog names or user files with a landmark map (real_log_harness.h)");
+  v.field("wheelbase_m", o.wheelbase_m, "m", positive(), "wheelbase when the log declares none (iRobot Create)");
+  v.field("train_fraction", o.train_fraction, "", open(0.05, 0.95), "part of each log that tunes and fits");
+  v.field("range_sigma_m", o.range_sigma_m, "m", positive(), "nominal range noise σ_r");
+  v.field("bearing_sigma_rad", o.bearing_sigma_rad, "rad", positive(), "nominal bearing noise σ_φ");
+  v.field("fixed_q_per_s", o.fixed_q_per_s, "m²/s, m²/s, rad²/s", non_negative(),
+          "fixed Q per second (fixed_q; Q̂(0) of Sage–Husa; VB-AKF's Q)");
+  v.field("adaptive_k", o.adaptive_k, "√m", non_negative(), "k_l = k_r of the thesis's model (eq. 4.36–4.37)");
+  v.field("adaptive_sigma_m", o.adaptive_sigma_m, "m", non_negative(), "σ_l = σ_r of the thesis's model");
+  v.field("gate_probability", o.gate_probability, "", open(0.5, 1.0), "Mahalanobis gate χ²₂ quantile");
+  v.field("starve_after", o.starve_after, "", at_least(1), "consecutive rejections before an ungated update");
+  v.field("divergence_error_m", o.divergence_error_m, "m", positive(), "position error that counts as lost");
+  v.field("block_s", o.block_s, "s", positive(), "bootstrap and NEES block length");
+  v.field("bootstrap_resamples", o.bootstrap_resamples, "", at_least(100), "block-bootstrap resamples");
+  v.field("model_file", o.model_file, "", Range{}, "diagnosis report whose models replace the first-half fit");
+}
+LOCBENCH_EXPERIMENT_OPTIONS(Options)
+
+// What one log gave.
+struct Outcome {
+  std::optional<reports::CaseNote> note;
+  std::optional<reports::DatasetRef> dataset;
+  std::vector<MethodScore> scores;
+  TrackResult dead_reckoning;
+  FilterModels models;
+  double from = 0.0, mid = 0.0, to = 0.0;
+  std::size_t other_robot_observations = 0, observations = 0;
+};
+
+Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, const LandmarkSensorModel& sensor) {
+  Outcome o;
+  double from = -std::numeric_limits<double>::infinity(), to = std::numeric_limits<double>::infinity();
+  if (!log.odometry.empty()) from = log.odometry.front().t, to = log.odometry.back().t;
+  if (log.truth.empty()) throw InputError(log.source, 0, "no ground truth to score landmark localization against");
+  from = std::max(from, log.truth.front().t);
+  to = std::min(to, log.truth.back().t);
+  const double mid = from + c.train_fraction * (to - from);
+  const double wheelbase = log.nominal_model() ? log.nominal_model()->wheelbase : c.wheelbase_m;
+  const TrackingData train = tracking_data(log, from, mid, wheelbase);
+  const TrackingData test = tracking_data(log, mid, to, wheelbase);
+  o.models = c.model_file.empty() ? filter_models(diagnosis::diagnose_log(restrict_log(log, from, mid)), sensor)
+                                  : read_filter_models(c.model_file, sensor);
+  if (!c.model_file.empty()) o.models.source = c.model_file;
+  o.scores = tune_and_score(train, test, o.models, family);
+  // Dead reckoning on the held-out half: the logged motion, no observation.
+  TrackingData blind = test;
+  blind.observations.clear();
+  const auto steps = model_motion(blind, diagnosis::OdometryModel{}, 1.0, {});
+  MethodSetup s;
+  s.method = Method::kFixedQ;
+  s.motion = &steps;
+  o.dead_reckoning = track(blind, s, family.gate);
+  o.from = from, o.mid = mid, o.to = to;
+  o.other_robot_observations = train.other_robot_observations + test.other_robot_observations;
+  o.observations = train.observations.size() + test.observations.size();
+  return o;
+}
+
+reports::MetricResult rmse_metric(const std::string& method, const std::string& ds, const std::string& variant,
+                                  const std::string& unit, const TrackResult& r, const std::vector<double>& errors,
+                                  double t0, double block_s, std::size_t blocks, int resamples, std::uint64_t seed) {
+  reports::MetricResult m;
+  m.method = method;
+  m.dataset = ds;
+  m.variant = variant;
+  m.unit = unit;
+  m.over = "heldout_steps";
+  std::vector<double> abs_errors(errors.size());
+  std::transform(errors.begin(), errors.end(), abs_errors.begin(), [](double e) { return std::abs(e); });
+  const ErrorBlocks b = error_blocks(r.t, abs_errors, t0, block_s, blocks);
+  m.summary.n = errors.size();
+  m.summary.mean = b.rmse();
+  m.summary.median = m.summary.mean;
+  if (!errors.empty()) {
+    const BootstrapInterval ci = block_bootstrap_rmse(b, resamples, seed);
+    m.summary.ci95_low = ci.low;
+    m.summary.ci95_high = ci.high;
+    m.summary.min = *std::min_element(abs_errors.begin(), abs_errors.end());
+    m.summary.max = *std::max_element(abs_errors.begin(), abs_errors.end());
+  }
+  m.note = "RMSE over the held-out half; 95% block-bootstrap interval";
+  return m;
+}
+
+// The held-out error against time of every method, thinned to ≤ 400 points per series.
+reports::Plot error_plot(const std::string& ds, const Outcome& o) {
+  reports::Plot p;
+  p.name = ds + "_position_error_vs_time";
+  p.kind = "profile";
+  p.title = ds + ": position error on the held-out half";
+  p.x_label = "time since the held-out start";
+  p.x_unit = "s";
+  p.y_label = "position error";
+  p.y_unit = "m";
+  const auto add = [&](const std::string& name, const TrackResult& r) {
+    reports::PlotSeries s;
+    s.name = name;
+    const std::size_t every = std::max<std::size_t>(1, r.t.size() / 400);
+    for (std::size_t i = 0; i < r.t.size(); i += every) {
+      s.x.push_back(r.t[i] - o.mid);
+      s.y.push_back(r.position_error[i]);
+    }
+    p.series.push_back(std::move(s));
+  };
+  for (const MethodScore& m : o.scores) add(to_string(m.method), m.heldout);
+  p.note = "dead reckoning leaves the chart within seconds; see the notes for its RMSE";
+  return p;
+}
+
+class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
+ public:
+  reports::ExperimentResults run_with(const Options& c, const RunOptions& options) const override {
+    reports::ExperimentResults out = start_results(options_json(c));
+    out.seeds = {options.seed};
+    FamilyOptions family;
+    family.fixed_q_per_s = c.fixed_q_per_s;
+    family.adaptive.k_left = family.adaptive.k_right = c.adaptive_k;
+    family.adaptive.sigma_left = family.adaptive.sigma_right = c.adaptive_sigma_m;
+    family.gate.gate_probability = c.gate_probability;
+    family.gate.starve_after = c.starve_after;
+    family.gate.divergence_error_m = c.divergence_error_m;
+    LandmarkSensorModel sensor;
+    sensor.range_sigma = c.range_sigma_m;
+    sensor.bearing_sigma = c.bearing_sigma_rad;
+
+    const auto specs = real_log_specs(c.datasets, name());
+    const auto names = real_log_names(specs);
+    std::vector<Outcome> outcomes(names.size());
+    parallel_tasks(options.threads, names.size(), [&](std::size_t i) {
+      Outcome& o = outcomes[i];
+      const LoadedRealLog loaded = load_real_log(specs[i], options.data_root);
+      if (loaded.status != "ok") {
+        o.note = reports::CaseNote{"landmark_logs/" + names[i], loaded.status, loaded.reason};
+        return;
+      }
+      try {
+        const Outcome r = run_log(loaded.log, c, family, sensor);
+        o = r;
+        o.dataset = loaded.dataset;
+      } catch (const InputError& err) {
+        if (!specs[i].from_catalog) throw;
+        o.note = reports::CaseNote{"landmark_logs/" + names[i], "failed", err.what()};
+      }
+    });
+    options.report_progress(0.95);
+    for (std::size_t i = 0; i < names.size(); ++i) summarise_log(reports::key_part(names[i]), outcomes[i], c, options, out);
+    return out;
+  }
+
+ private:
+  static void summarise_log(const std::string& ds, const Outcome& o, const Options& c, const RunOptions& options,
+                            reports::ExperimentResults& out) {
+    if (o.note) out.cases.push_back(*o.note);
+    if (!o.dataset) return;
+    out.datasets.push_back(*o.dataset);
+    const auto blocks = static_cast<std::size_t>(std::ceil((o.to - o.mid) / c.block_s));
+    const auto seed = options.seed;
+    std::string table = fmt::format(
+        "{} — held-out {:.0f} s of {:.0f} s; {} landmark observations ({} of other robots left out); models: {} "
+        "(diagnosed causes: {}).\n  dead reckoning: position RMSE {:.3f} m",
+        ds, o.to - o.mid, o.to - o.from, o.observations, o.other_robot_observations, o.models.source,
+        o.models.causes.empty() ? "none" : fmt::format("{}", fmt::join(o.models.causes, ", ")),
+        o.dead_reckoning.position_rmse());
+    out.results.push_back(rmse_metric("dead_reckoning", ds, "heldout_position_rmse", "m", o.dead_reckoning,
+                                      o.dead_reckoning.position_error, o.mid, c.block_s, blocks,
+                                      c.bootstrap_resamples, seed));
+    const MethodScore* nominal = nullptr;
+    const MethodScore* diagnosed = nullptr;
+    for (const MethodScore& m : o.scores) {
+      const std::string method = to_string(m.method);
+      const TrackResult& r = m.heldout;
+      auto pos = rmse_metric(method, ds, "heldout_position_rmse", "m", r, r.position_error, o.mid, c.block_s, blocks,
+                             c.bootstrap_resamples, seed);
+      out.results.push_back(pos);
+      out.results.push_back(rmse_metric(method, ds, "heldout_heading_rmse", "rad", r, r.heading_error, o.mid,
+                                        c.block_s, blocks, c.bootstrap_resamples, seed));
+      const double nees = r.nees.empty() ? std::numeric_limits<double>::infinity() : mean(r.nees);
+      const filters::ChiSquareInterval band =
+          filters::average_chi_square_interval(3, static_cast<int>(std::max<std::size_t>(blocks, 1)), 0.95);
+      const bool inside = std::isfinite(nees) && band.contains(nees);
+      auto nees_metric = reports::make_estimate(method, ds, "heldout_nees_time_average", "", nees, 0.0, r.nees.size());
+      nees_metric.better = "stable";
+      nees_metric.note = fmt::format("3 for a consistent filter; 95% band [{:.3g}, {:.3g}] over {} blocks of {:g} s",
+                                     band.lower, band.upper, blocks, c.block_s);
+      if (std::isfinite(nees)) out.results.push_back(nees_metric);
+      auto inside_metric =
+          reports::make_estimate(method, ds, "heldout_nees_inside_band", "", inside ? 1.0 : 0.0, 0.0, r.nees.size());
+      inside_metric.better = "higher";
+      out.results.push_back(inside_metric);
+      auto gated = reports::make_estimate(method, ds, "heldout_gated_fraction", "", r.gated_fraction(), 0.0,
+                                          r.observations);
+      gated.better = "lower";
+      out.results.push_back(gated);
+      auto div = reports::make_estimate(method, ds, "heldout_diverged", "", r.diverged ? 1.0 : 0.0, 0.0, 1);
+      div.better = "lower";
+      out.results.push_back(div);
+      auto q = reports::make_estimate(method, ds, "tuned_process_scale", "", m.process_scale, 0.0, m.grid_runs);
+      q.better = "stable";
+      out.results.push_back(q);
+      auto k = reports::make_estimate(method, ds, "tuned_second_knob", "", m.knob, 0.0, m.grid_runs);
+      k.better = "stable";
+      out.results.push_back(k);
+      table += fmt::format(
+          "\n  {:<18} Q×{:<8.4g} {}={:<6.4g} tuning {:.3f} m | held-out {:.3f} m [{:.3f}, {:.3f}], heading {:.4f} "
+          "rad, NEES {:.3g} ({} [{:.3g}, {:.3g}]), gated {:.1f}% of {}, {} recoveries{}",
+          method, m.process_scale, m.method == Method::kSageHusa || m.method == Method::kVbAkf ? "forget" : "R×",
+          m.knob, m.tuning_rmse, pos.summary.mean, pos.summary.ci95_low, pos.summary.ci95_high, r.heading_rmse(),
+          nees, inside ? "inside" : "outside", band.lower, band.upper, 100.0 * r.gated_fraction(), r.observations,
+          r.recoveries, r.diverged ? ", DIVERGED" : "");
+      if (m.method == Method::kNominalModel) nominal = &m;
+      if (m.method == Method::kDiagnosedModel) diagnosed = &m;
+    }
+    if (nominal && diagnosed) {
+      const auto ea = error_blocks(diagnosed->heldout.t, diagnosed->heldout.position_error, o.mid, c.block_s, blocks);
+      const auto eb = error_blocks(nominal->heldout.t, nominal->heldout.position_error, o.mid, c.block_s, blocks);
+      const BootstrapInterval d = block_bootstrap_rmse_difference(ea, eb, c.bootstrap_resamples, options.seed);
+      reports::MetricResult diff;
+      diff.method = "diagnosed_minus_nominal";
+      diff.dataset = ds;
+      diff.variant = "heldout_position_rmse_difference";
+      diff.unit = "m";
+      diff.over = "heldout_steps";
+      diff.better = "lower";
+      diff.summary.n = diagnosed->heldout.position_error.size();
+      diff.summary.mean = ea.rmse() - eb.rmse();
+      diff.summary.median = diff.summary.mean;
+      diff.summary.ci95_low = d.low;
+      diff.summary.ci95_high = d.high;
+      diff.note = "paired block bootstrap (the same 10 s blocks drawn for both)";
+      out.results.push_back(diff);
+      table += fmt::format("\n  diagnosed − nominal model: {:+.3f} m [{:+.3f}, {:+.3f}] (paired): {}", diff.summary.mean,
+                           d.low, d.high,
+                           d.high < 0.0   ? "the diagnosed model is better"
+                           : d.low > 0.0  ? "the diagnosed model is WORSE"
+                                          : "no significant difference");
+    }
+    out.notes.push_back(table);
+    out.plots.push_back(error_plot(ds, o));
+  }
+};
+
+const Registration<NoiseLandmarkLogs> noise_landmark_logs_registration(kInfo);
+
+}  // namespace locbench::experiments::noise_landmark_logs
