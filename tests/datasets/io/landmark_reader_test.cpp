@@ -56,6 +56,13 @@ TEST(LandmarkMap, ARepeatedIdIsAnInputErrorNamingBothLines) {
                                  {"id: 6 is listed twice (first at line 1)"}));
 }
 
+TEST(LandmarkMap, MoreLandmarksThanTheInputLimitAreAnInputErrorNamingTheLimit) {
+  std::string text;
+  for (int i = 0; i <= 100'000; ++i) text += std::to_string(i) + " 0 0\n";
+  EXPECT_TRUE(throws_input_error([&] { parse_landmark_map(text, "big.txt"); }, "big.txt", 0,
+                                 {"landmarks: 100001 exceeds the limit 100000"}));
+}
+
 TEST(LandmarkObservationsFile, ReadsTimeIdRangeBearingWithTheLineOfEach) {
   const auto obs = parse_landmark_observations("# t id r b\n10.5 6 3.75 -0.25\n\n10.5 7 0 3.5\n11 6 1e1 0\n", "o.txt");
   ASSERT_EQ(obs.readings.size(), 3u);
