@@ -34,7 +34,8 @@ struct RunArgs {
   int threads = experiments::hardware_threads();
   std::string shard;                         // "K/N", empty: the whole experiment
   std::string log, relations, ground_truth;  // a user's real log (real_log_harness.h)
-  std::vector<std::string> skip_missing;     // dataset names whose absence is accepted ("all": any)
+  std::string landmark_map, landmark_observations;
+  std::vector<std::string> skip_missing;  // dataset names whose absence is accepted ("all": any)
 };
 
 // `--set a.b.c=VALUE` → {"a": {"b": {"c": VALUE}}}; VALUE is read as JSON, else as a string.
@@ -158,10 +159,12 @@ int run(const RunArgs& args, const std::string& command_line) {
       throw InputError(args.config, 0, "configuration for unknown experiment \"" + name + "\"");
     }
   }
-  if (args.log.empty() && (!args.relations.empty() || !args.ground_truth.empty())) {
-    throw UsageError("--relations and --ground-truth need --log");
+  if (args.log.empty() && (!args.relations.empty() || !args.ground_truth.empty() || !args.landmark_map.empty() ||
+                           !args.landmark_observations.empty())) {
+    throw UsageError("--relations, --ground-truth, --landmark-map and --landmark-observations need --log");
   }
-  const auto log_override = experiments::real_log_cli_override(args.log, args.relations, args.ground_truth);
+  const auto log_override = experiments::real_log_cli_override(args.log, args.relations, args.ground_truth,
+                                                               args.landmark_map, args.landmark_observations);
   if (log_override) {
     for (const auto* e : chosen) {
       if (!experiments::takes_real_logs(e->default_config())) {
@@ -268,6 +271,12 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
                   "(CARMEN .clf[.gz], MRCLAM folder[#robotN])");
   cmd->add_option("--relations", args->relations, "With --log: reference relations (.relations[.gz])");
   cmd->add_option("--ground-truth", args->ground_truth, "With --log: ground truth (TUM format)");
+  cmd->add_option("--landmark-map", args->landmark_map,
+                  "With --log: landmark map, one `id x y [sigma_x sigma_y]` [m] per line (replaces an "
+                  "MRCLAM folder's Landmark_Groundtruth.dat)");
+  cmd->add_option("--landmark-observations", args->landmark_observations,
+                  "With --log: landmark observations, one `t id range bearing` [s, -, m, rad] per line, ids "
+                  "from the landmark map");
   cmd->add_option("--skip-missing", args->skip_missing,
                   "Accept that this dataset (or case, or \"all\") is absent; otherwise a case skipped "
                   "for missing data fails the run (exit 2); repeatable");

@@ -38,10 +38,16 @@ inline constexpr Limit kSimLaserValues{"estimated laser ranges (scans x beams)",
 inline constexpr Limit kBeamsPerScan{"beams of one laser scan", 10'000, "time of the matchers"};
 // Monte-Carlo runs (`run --runs`, "runs" options).
 inline constexpr Limit kMonteCarloRuns{"--runs / runs", 100'000, "time and memory of the runs"};
+// Landmark maps and observations (`--landmark-map`, `--landmark-observations`, MRCLAM
+// Landmark_Groundtruth.dat). MRCLAM dataset 6: 15 landmarks; robot 3 has 5,627 observations.
+inline constexpr Limit kLandmarkMapSize{"landmarks of a landmark map", 100'000, "time of data association"};
+inline constexpr Limit kLandmarkObservations{"landmark observations of one file", 1e7,
+                                             "memory of the log (32 bytes each)"};
 
 inline constexpr Limit kAll[] = {
-    kHistogramBins, kHistogramTotalCount, kSimLaserBeams, kSimCoordinate,  kSimDistance,  kSimRuns,
-    kSimDuration,   kSimPhysicsSteps,     kSimRecords,    kSimLaserValues, kBeamsPerScan, kMonteCarloRuns};
+    kHistogramBins, kHistogramTotalCount, kSimLaserBeams,   kSimCoordinate,       kSimDistance,
+    kSimRuns,       kSimDuration,         kSimPhysicsSteps, kSimRecords,          kSimLaserValues,
+    kBeamsPerScan,  kMonteCarloRuns,      kLandmarkMapSize, kLandmarkObservations};
 
 // "limit: 1e+04" style text for messages and --help.
 inline std::string limit_text(double max) {

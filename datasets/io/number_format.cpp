@@ -26,4 +26,10 @@ void append_row(std::string& out, std::initializer_list<double> values) {
   out.push_back('\n');
 }
 
+std::string number_text(double v) {
+  std::string out;
+  append_number(out, v);
+  return out;
+}
+
 }  // namespace locbench::io

@@ -89,6 +89,81 @@ TEST(RealLogSpecs, CliFlagsBecomeOneDatasetNamedAfterTheLog) {
   EXPECT_FALSE(real_log_cli_override("", "", ""));
 }
 
+// An MRCLAM folder with robot 1 (odometry from t = 10 s), no landmark file of its own.
+std::filesystem::path write_mrclam_folder(const std::filesystem::path& dir) {
+  const auto folder = dir / "MRCLAM_Dataset9";
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "Robot1_Odometry.dat") << "# h\n10 0.1 0\n11 0.1 0\n12 0 0\n";
+  std::ofstream(folder / "Robot1_Groundtruth.dat") << "# h\n10 0 0 0\n12 0.2 0 0\n";
+  std::ofstream(folder / "Robot1_Measurement.dat") << "# h\n";
+  return folder;
+}
+
+TEST(RealLogSpecs, AnMrclamFolderWithARobotSuffixIsAUsersLog) {
+  ScratchDir dir;
+  const std::string log = write_mrclam_folder(dir.path()).string() + "#robot1";
+  const auto specs = real_log_specs(nlohmann::json::array({{{"name", "m"}, {"log", log}}}), "x");
+  const LoadedRealLog l = load_real_log(specs.at(0), "/nonexistent");
+  EXPECT_EQ(l.status, "ok");
+  EXPECT_EQ(l.log.odometry.size(), 3u);
+  const std::string absent = (dir.path() / "MRCLAM_Dataset8").string() + "#robot1";
+  EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "m"}, {"log", absent}}}), "x"), InputError);
+}
+
+TEST(RealLogSpecs, LandmarkFilesAreAttachedOnLoad) {
+  ScratchDir dir;
+  const std::string log = write_mrclam_folder(dir.path()).string() + "#robot1";
+  std::ofstream(dir.file("map.txt")) << "# id x y\n6 1 2\n7 3 4 0.01 0.01\n";
+  std::ofstream(dir.file("obs.txt")) << "10.5 6 1.5 0.25\n11 7 2 -0.5\n";
+  const auto specs = real_log_specs(nlohmann::json::array({{{"name", "m"},
+                                                            {"log", log},
+                                                            {"landmark_map", dir.file("map.txt").string()},
+                                                            {"landmark_observations", dir.file("obs.txt").string()}}}),
+                                    "x");
+  EXPECT_EQ(specs.at(0).landmark_map, dir.file("map.txt").string());
+  const LoadedRealLog l = load_real_log(specs.at(0), "/nonexistent");
+  ASSERT_EQ(l.log.landmark_map.size(), 2u);
+  ASSERT_EQ(l.log.landmarks.size(), 2u);
+  EXPECT_EQ(l.log.landmarks[1].subject, 7);
+}
+
+TEST(RealLogSpecs, MissingOrMalformedLandmarkFilesAreInputErrorsNamingTheFile) {
+  ScratchDir dir;
+  const std::string log = write_mrclam_folder(dir.path()).string();
+  std::ofstream(dir.file("map.txt")) << "6 1 2\n";
+  std::ofstream(dir.file("obs.txt")) << "10.5 6 1.5 0.25\n11 8 2 -0.5\n";  // 8 is not in the map
+  auto spec = [&](const std::string& map, const std::string& obs) {
+    nlohmann::json item = {{"name", "m"}, {"log", log}, {"landmark_map", map}};
+    if (!obs.empty()) item["landmark_observations"] = obs;
+    return nlohmann::json::array({item});
+  };
+  try {
+    real_log_specs(spec(dir.file("absent.txt").string(), ""), "x");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("absent.txt"), std::string::npos) << e.what();
+  }
+  const auto specs = real_log_specs(spec(dir.file("map.txt").string(), dir.file("obs.txt").string()), "x");
+  try {
+    load_real_log(specs.at(0), "/nonexistent");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 2u);
+    EXPECT_NE(e.file().find("obs.txt"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "aces"}, {"landmark_map", "m.txt"}}}), "x"), UsageError);
+}
+
+TEST(RealLogSpecs, CliLandmarkFlagsAndAnMrclamRobotBecomeOneDataset) {
+  const auto o = real_log_cli_override("/d/MRCLAM_Dataset6#robot2", "", "", "/d/map.txt", "/d/obs.txt");
+  ASSERT_TRUE(o);
+  EXPECT_EQ((*o)["datasets"][0]["name"], "MRCLAM_Dataset6_robot2");
+  EXPECT_EQ((*o)["datasets"][0]["log"], "/d/MRCLAM_Dataset6#robot2");
+  EXPECT_EQ((*o)["datasets"][0]["landmark_map"], "/d/map.txt");
+  EXPECT_EQ((*o)["datasets"][0]["landmark_observations"], "/d/obs.txt");
+  EXPECT_FALSE((*o)["datasets"][0].contains("relations"));
+}
+
 TEST(RealLogExperiments, LaserRealLogsCorrectsAUsersLog) {
   ScratchDir dir;
   const auto files = write_small_real_log(dir.path());

@@ -139,5 +139,42 @@ TEST(RealLogCli, MissingOrMalformedFilesExitWith2AndNameTheFile) {
   EXPECT_NE(o.output.find("does not take real logs"), std::string::npos) << o.output;
 }
 
+TEST(RealLogCli, LandmarkFilesWithAnMrclamRobotAreReadAndBadOnesExitWith2NamingTheFile) {
+  ScratchDir dir;
+  const auto folder = dir.path() / "MRCLAM_Dataset9";
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "Robot1_Odometry.dat") << "# h\n10 0.1 0\n11 0.1 0\n12 0 0\n";
+  std::ofstream(folder / "Robot1_Groundtruth.dat") << "# h\n10 0 0 0\n11 0.1 0 0\n12 0.2 0 0\n";
+  std::ofstream(folder / "Robot1_Measurement.dat") << "# h\n";
+  std::ofstream(dir.file("map.txt")) << "6 1 2\n";
+  std::ofstream(dir.file("obs.txt")) << "10.5 6 1.5 0.25\n11 8 2 -0.5\n";  // 8 is not in the map
+  const std::string log = " --log " + folder.string() + "#robot1";
+  const std::string out = " -o " + (dir.path() / "out").string();
+  Outcome o = run_locbench("run odometry/real_logs" + log + " --landmark-map " + dir.file("absent_map.txt").string() +
+                           " --landmark-observations " + dir.file("obs.txt").string() + out);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("absent_map.txt"), std::string::npos) << o.output;
+
+  o = run_locbench("run odometry/real_logs" + log + " --landmark-map " + dir.file("map.txt").string() +
+                   " --landmark-observations " + dir.file("obs.txt").string() + out);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("obs.txt:2: id: 8 is not a landmark"), std::string::npos) << o.output;
+
+  o = run_locbench("run odometry/real_logs --landmark-map " + dir.file("map.txt").string() + out);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("need --log"), std::string::npos) << o.output;
+}
+
+TEST(RealLogCli, AnMrclamFolderWithARobotSuffixIsAcceptedAsALog) {
+  LOCBENCH_REQUIRE_DATA("mrclam/MRCLAM_Dataset6");
+  ScratchDir dir;
+  const Outcome o = run_locbench("run odometry/real_logs --log " + (data_root() / "mrclam/MRCLAM_Dataset6").string() +
+                                 "#robot1 -o " + (dir.path() / "out").string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto r = reports::read_report(dir.path() / "out/odometry/real_logs.json");
+  ASSERT_FALSE(r.body.datasets.empty());
+  EXPECT_EQ(r.body.datasets[0].name, "MRCLAM_Dataset6_robot1");
+}
+
 }  // namespace
 }  // namespace locbench

@@ -1,15 +1,19 @@
 #include "benchmarks/experiments/harness/real_log_harness.h"
 
+#include <algorithm>
+#include <cctype>
+#include <iterator>
 #include <set>
 
 #include "core/errors.h"
 #include "datasets/catalog/dataset_catalog.h"
+#include "datasets/io/landmark_reader.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/tum_reader.h"
 #include "reports/checksum.h"
 
 namespace locbench::experiments {
-using io::attach_relations, io::load_log, io::read_tum;
+using io::attach_landmark_files, io::attach_relations, io::load_log, io::read_tum;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
@@ -22,6 +26,11 @@ std::string string_field(const nlohmann::json& item, const char* key, const std:
   return v.get<std::string>();
 }
 
+// The log of a spec may be a file or an MRCLAM folder (load_log judges which).
+void require_log(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw InputError(path, 0, "cannot open the log (no such file or folder)");
+}
+
 void require_file(const std::string& path, const char* what) {
   if (!std::filesystem::is_regular_file(path)) {
     throw InputError(path, 0,
@@ -30,8 +39,19 @@ void require_file(const std::string& path, const char* what) {
   }
 }
 
+// Where the "#robotN" suffix of a load_log spec starts ("folder#robot2" → 6), npos without one.
+std::size_t robot_suffix_at(const std::string& spec) {
+  const std::size_t hash = spec.rfind('#');
+  if (hash == std::string::npos) return hash;
+  std::string suffix = spec.substr(hash + 1, 5);
+  for (char& c : suffix) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return suffix == "robot" ? hash : std::string::npos;
+}
+
 // The file part of a load_log spec ("folder#robot2" → "folder").
-std::string file_of(const std::string& spec) { return spec.substr(0, spec.find('#')); }
+std::string file_of(const std::string& spec) { return spec.substr(0, robot_suffix_at(spec)); }
+
+constexpr const char* kKeys[] = {"name", "log", "relations", "ground_truth", "landmark_map", "landmark_observations"};
 
 }  // namespace
 
@@ -52,17 +72,21 @@ std::vector<RealLogSpec> real_log_specs(const nlohmann::json& datasets, const st
     } else if (item.is_object()) {
       for (const auto& [key, value] : item.items()) {
         (void)value;
-        if (key != "name" && key != "log" && key != "relations" && key != "ground_truth") {
-          throw UsageError(where + ": unknown key \"" + key + "\" (expected name, log, relations, ground_truth)");
+        if (std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys)) {
+          throw UsageError(where + ": unknown key \"" + key +
+                           "\" (expected name, log, relations, ground_truth, landmark_map, landmark_observations)");
         }
       }
       s.name = string_field(item, "name", where);
       s.log = string_field(item, "log", where);
       s.relations = string_field(item, "relations", where);
       s.ground_truth = string_field(item, "ground_truth", where);
+      s.landmark_map = string_field(item, "landmark_map", where);
+      s.landmark_observations = string_field(item, "landmark_observations", where);
       s.from_catalog = s.log.empty();
-      if (s.from_catalog && (!s.relations.empty() || !s.ground_truth.empty())) {
-        throw UsageError(where + ": relations or ground_truth given without a \"log\"");
+      if (s.from_catalog && (!s.relations.empty() || !s.ground_truth.empty() || !s.landmark_map.empty() ||
+                             !s.landmark_observations.empty())) {
+        throw UsageError(where + ": relations, ground_truth or landmark files given without a \"log\"");
       }
     } else {
       throw UsageError(where + ": expected a catalog name or an object, found a " + std::string(item.type_name()));
@@ -72,9 +96,11 @@ std::vector<RealLogSpec> real_log_specs(const nlohmann::json& datasets, const st
       throw UsageError(where + ": unknown dataset \"" + s.name + "\" (see `locbench list`, or give a \"log\" file)");
     }
     if (!s.from_catalog) {
-      require_file(file_of(s.log), "log");
+      require_log(file_of(s.log));
       if (!s.relations.empty()) require_file(s.relations, "relations file");
       if (!s.ground_truth.empty()) require_file(s.ground_truth, "ground-truth file");
+      if (!s.landmark_map.empty()) require_file(s.landmark_map, "landmark map");
+      if (!s.landmark_observations.empty()) require_file(s.landmark_observations, "landmark observations file");
     }
     if (!names.insert(s.name).second) {
       throw UsageError(where + ": dataset name \"" + s.name + "\" is used twice");
@@ -125,6 +151,7 @@ LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path
         out.log.truth.push_back(truth);
       }
     }
+    attach_landmark_files(out.log, spec.landmark_map, spec.landmark_observations);
   }
   out.dataset.name = spec.name;
   out.dataset.checksum = reports::file_checksum(file);  // a file, or an MRCLAM folder
@@ -152,14 +179,21 @@ void for_each_real_log(
 }
 
 std::optional<nlohmann::json> real_log_cli_override(const std::string& log, const std::string& relations,
-                                                    const std::string& ground_truth) {
+                                                    const std::string& ground_truth, const std::string& landmark_map,
+                                                    const std::string& landmark_observations) {
   if (log.empty()) return std::nullopt;
-  std::string name = std::filesystem::path(file_of(log)).filename().string();
+  std::filesystem::path file(file_of(log));
+  if (file.filename().empty()) file = file.parent_path();  // "…/MRCLAM_Dataset6/#robot2"
+  std::string name = file.filename().string();
   name = name.substr(0, name.find('.'));
   if (name.empty()) name = "log";
+  const std::size_t hash = robot_suffix_at(log);
+  if (hash != std::string::npos) name += "_" + log.substr(hash + 1);  // "MRCLAM_Dataset6_robot2"
   nlohmann::json item = {{"name", name}, {"log", log}};
   if (!relations.empty()) item["relations"] = relations;
   if (!ground_truth.empty()) item["ground_truth"] = ground_truth;
+  if (!landmark_map.empty()) item["landmark_map"] = landmark_map;
+  if (!landmark_observations.empty()) item["landmark_observations"] = landmark_observations;
   return nlohmann::json{{"datasets", nlohmann::json::array({item})}};
 }
 

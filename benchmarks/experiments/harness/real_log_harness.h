@@ -4,11 +4,14 @@
 //
 // A configuration's "datasets" is an array whose items are either
 //   "aces"                                   a catalog name (datasets/catalog), or
-//   {"name": "mine", "log": "my.clf.gz",     a user's log (any load_log spec) with optional
-//    "relations": "my.relations",            Freiburg relations and/or TUM ground truth
-//    "ground_truth": "my_truth.tum"}         (replacing any the log holds).
-// `locbench run EXPERIMENT --log L [--relations R] [--ground-truth G]` is the same as the object
-// form with the log file's name as "name" (real_log_cli_override).
+//   {"name": "mine", "log": "my.clf.gz",     a user's log (any load_log spec, e.g. an MRCLAM
+//    "relations": "my.relations",            folder "…/MRCLAM_Dataset6#robot2") with optional
+//    "ground_truth": "my_truth.tum",         Freiburg relations, TUM ground truth, a landmark
+//    "landmark_map": "map.txt",              map and landmark observations (datasets/FORMAT.md;
+//    "landmark_observations": "obs.txt"}     each replacing what the log holds; attach_landmark_files).
+// `locbench run EXPERIMENT --log L [--relations R] [--ground-truth G] [--landmark-map M]
+// [--landmark-observations O]` is the same as the object form with the log file's name as
+// "name" (real_log_cli_override).
 //
 // Missing catalog data is "skipped" (the data folder is optional); a user's file that is missing
 // or malformed is an InputError (exit 2), found as early as setup for a missing file.
@@ -26,11 +29,13 @@
 namespace locbench::experiments {
 
 struct RealLogSpec {
-  std::string name;          // result key ("aces", "mine")
-  bool from_catalog = true;  // false: the files below
-  std::string log;           // user's log spec (load_log)
-  std::string relations;     // optional
-  std::string ground_truth;  // optional, TUM
+  std::string name;                   // result key ("aces", "mine")
+  bool from_catalog = true;           // false: the files below
+  std::string log;                    // user's log spec (load_log)
+  std::string relations;              // optional
+  std::string ground_truth;           // optional, TUM
+  std::string landmark_map;           // optional: id x y [sigma_x sigma_y]
+  std::string landmark_observations;  // optional: t id range bearing
 };
 
 // Parses `datasets` (see above). `experiment` prefixes messages. UsageError for an unknown
@@ -69,10 +74,14 @@ void for_each_real_log(
     reports::ExperimentResults& out,
     const std::function<void(const RealLogSpec&, const LoadedRealLog&, reports::ExperimentResults&)>& run);
 
-// The configuration override `locbench run --log/--relations/--ground-truth` applies:
-// {"datasets": [{"name": <log file name without extensions>, "log": …, …}]}. Empty log → nullopt.
+// The configuration override `locbench run --log/--relations/--ground-truth/--landmark-map/
+// --landmark-observations` applies: {"datasets": [{"name": <log file name without extensions,
+// "_robotN" for an MRCLAM folder#robotN>, "log": …, …}]} (empty paths left out). Empty log →
+// nullopt.
 std::optional<nlohmann::json> real_log_cli_override(const std::string& log, const std::string& relations,
-                                                    const std::string& ground_truth);
+                                                    const std::string& ground_truth,
+                                                    const std::string& landmark_map = {},
+                                                    const std::string& landmark_observations = {});
 
 // True when an experiment's configuration takes real-log dataset specs (has "datasets").
 bool takes_real_logs(const nlohmann::json& default_config);

@@ -27,10 +27,14 @@ void write_dataset(const std::filesystem::path& dir, bool gz, bool barcodes) {
   };
   put("Robot2_Odometry.dat", kHeader + "10.0 \t 1.0 \t 0.5 \r\n11.0\t1.0\t0.5\r\n12.0 0 0\r\n");
   put("Robot2_Groundtruth.dat", kHeader + "9.0 \t 1.0 \t 2.0 \t 0.1 \r\n11.0 \t 2.0 \t 2.0 \t 0.3 \r\n");
+  // 102 measurements, one of unknown barcode 43: under the 1% of camera misreads dropped.
+  std::string more;
+  for (int i = 0; i < 99; ++i) more += "11.7 \t   5 \t 2.0 \t 0.2 \r\n";
   put("Robot2_Measurement.dat", kHeader +
                                     "10.5 \t  14 \t 3.787 \t -0.257 \r\n"
                                     "11.5 \t  43 \t 1.0 \t 0.1 \r\n"
-                                    "11.6 \t   5 \t 2.0 \t 0.2 \r\n");
+                                    "11.6 \t   5 \t 2.0 \t 0.2 \r\n" +
+                                    more);
   if (barcodes) put("Barcodes.dat", kHeader + "  1 \t   5 \r\n  2 \t  14 \r\n");
 }
 
@@ -50,7 +54,7 @@ TEST(MrclamReader, ReadsOdometryGroundTruthAndMeasurementsWithSubjectsFromBarcod
   EXPECT_EQ(log.truth[1].pose.x, 2.0);
   EXPECT_EQ(log.truth[1].pose.theta, 0.3);
   // Barcode 14 → subject 2, barcode 5 → subject 1; barcode 43 is unknown and dropped.
-  ASSERT_EQ(log.landmarks.size(), 2u);
+  ASSERT_EQ(log.landmarks.size(), 101u);
   EXPECT_EQ(log.landmarks[0].subject, 2);
   EXPECT_EQ(log.landmarks[0].range, 3.787);
   EXPECT_EQ(log.landmarks[0].bearing, -0.257);
@@ -58,6 +62,8 @@ TEST(MrclamReader, ReadsOdometryGroundTruthAndMeasurementsWithSubjectsFromBarcod
   EXPECT_EQ(log.params.at("mrclam_measurement_ids"), "subject");
   EXPECT_EQ(log.params.at("mrclam_unknown_barcode_measurements"), "1");
   EXPECT_EQ(log.params.at("mrclam_robot"), "2");
+  EXPECT_EQ(log.params.at("mrclam_robot_subjects"), "2");  // the folder holds Robot2_Odometry.dat only
+  EXPECT_TRUE(log.landmark_map.empty());                   // no Landmark_Groundtruth.dat
 }
 
 TEST(MrclamReader, IntegratesVelocitiesWithTheMidpointRuleFromTheGroundTruthPose) {
@@ -77,7 +83,7 @@ TEST(MrclamReader, IntegratesVelocitiesWithTheMidpointRuleFromTheGroundTruthPose
   EXPECT_DOUBLE_EQ(log.odometry[2].pose.theta, 1.2);
   // Without Barcodes.dat the raw barcodes are kept.
   EXPECT_EQ(log.params.at("mrclam_measurement_ids"), "barcode");
-  ASSERT_EQ(log.landmarks.size(), 3u);
+  ASSERT_EQ(log.landmarks.size(), 102u);
   EXPECT_EQ(log.landmarks[1].subject, 43);
 }
 
