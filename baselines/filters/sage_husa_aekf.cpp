@@ -17,6 +17,8 @@ void visit_fields(V& v, SageHusaOptions& o) {
   v.field("forgetting", o.forgetting, "", open(0.0, 1.0), "b (λ), Deng's forgetting");
   v.field("initial_covariance", o.initial_covariance, "m², m², rad²", non_negative(), "diag P(0)");
   v.flag("positive_definiteness_fix", o.positive_definiteness_fix, "Zhang's fix");
+  v.field("min_statistics_interval", o.min_statistics_interval, "", non_negative(),
+          "shortest Δ between measurements that updates q̂, Q̂");
 }
 
 void validate(const SageHusaOptions& o) { validate_fields(o, "SageHusaOptions"); }
@@ -35,7 +37,6 @@ SageHusaAekf::SageHusaAekf(const SageHusaOptions& options, double wheelbase, con
       p_(options.initial_covariance.asDiagonal()),
       q_mean_(options.initial_process_mean),
       q_cov_(options.initial_process_noise.asDiagonal()),
-      f_mean_(x_),
       fpf_(p_) {
   validate(options);
   require_positive_wheelbase(wheelbase, "SageHusaAekf");
@@ -47,11 +48,14 @@ SageHusaAekf::SageHusaAekf(const SageHusaOptions& options, double wheelbase, con
 
 void SageHusaAekf::predict(const WheelDisplacement& u, double noise_scale) {
   const MotionPrediction pred = predict_motion(x_, u, wheelbase_);  // F(X̂(k−1)), ∇F
-  f_mean_ = pred.mean;
-  fpf_ = pred.jacobian * p_ * pred.jacobian.transpose();  // ∇F P(k−1) ∇Fᵀ
-  x_ = pred.mean + q_mean_;                               // X̂(k/k−1)
+  fpf_ = pred.jacobian * fpf_ * pred.jacobian.transpose();           // ∇F P(k−1) ∇Fᵀ, chained
+  const Matrix3 fpf_step = pred.jacobian * p_ * pred.jacobian.transpose();
+  const Vector3 q_step = noise_scale == 1.0 ? q_mean_ : Vector3(noise_scale * q_mean_);
+  x_ = pred.mean + q_step;  // X̂(k/k−1)
   x_(2) = wrap_angle(x_(2));
-  p_ = symmetrize(fpf_ + (noise_scale == 1.0 ? q_cov_ : Matrix3(noise_scale * q_cov_)));  // P(k/k−1)
+  q_added_ += q_step;
+  p_ = symmetrize(fpf_step + (noise_scale == 1.0 ? q_cov_ : Matrix3(noise_scale * q_cov_)));  // P(k/k−1)
+  elapsed_ += noise_scale;
 }
 
 MeasurementUpdate SageHusaAekf::update(const PoseMeasurement& z, double gate, SageHusaStep* stats) {
@@ -62,6 +66,7 @@ MeasurementUpdate SageHusaAekf::update(const PoseMeasurement& z, double gate, Sa
     noise.mean = MeasurementVector::Zero(m.z.size());
     noise.cov = m.R;
   }
+  const Vector3 x_pred = x_;
   const Matrix3 p_pred = p_;
   MeasurementUpdate c = measurement_innovation(m, p_pred, noise.cov, &noise.mean);
   if (c.nis > gate) {
@@ -72,30 +77,32 @@ MeasurementUpdate SageHusaAekf::update(const PoseMeasurement& z, double gate, Sa
   ++k_;
   const double d = deng_forgetting_weight(options_.forgetting, k_);
 
-  Vector3 state_jump = x_ - f_mean_;  // X̂(k/k) − F(X̂(k−1))
-  state_jump(2) = angle_diff(x_(2), f_mean_(2));
-  q_mean_ = (1.0 - d) * q_mean_ + d * state_jump;
-  const Vector3 k_eps = c.gain * c.innovation;
-  q_cov_ = symmetrize((1.0 - d) * q_cov_ + d * (k_eps * k_eps.transpose() + p_ - fpf_));
+  bool process_fix = false, measurement_fix = false;
+  if (elapsed_ > 0.0 && elapsed_ >= options_.min_statistics_interval) {
+    // X̂(k/k) − F(X̂(k−1)) = the correction plus the q̂ the predictions added (eq. 4.10).
+    Vector3 state_jump = x_ - x_pred;
+    state_jump(2) = angle_diff(x_(2), x_pred(2));
+    state_jump += q_added_;
+    q_mean_ = (1.0 - d) * q_mean_ + (d / elapsed_) * state_jump;
+    const Vector3 k_eps = c.gain * c.innovation;
+    q_cov_ = symmetrize((1.0 - d) * q_cov_ + (d / elapsed_) * (k_eps * k_eps.transpose() + p_ - fpf_));  // eq. 4.11
+    if (options_.positive_definiteness_fix && !is_positive_definite(q_cov_)) {  // Zhang et al.
+      q_cov_ = symmetrize(q_cov_ + (d / elapsed_) * (fpf_ - p_));
+      process_fix = true;
+    }
+  }
   const MeasurementVector z_residual = m.residual();  // Z(k) − H X̂(k/k−1)
   noise.mean = (1.0 - d) * noise.mean + d * z_residual;
   const MeasurementMatrix hph = m.H * p_pred * m.H.transpose();  // H P(k/k−1) Hᵀ
   noise.cov = (1.0 - d) * noise.cov + d * (c.innovation * c.innovation.transpose() - hph);
   noise.cov = 0.5 * (noise.cov + noise.cov.transpose());
-
-  bool process_fix = false, measurement_fix = false;
-  if (options_.positive_definiteness_fix) {  // Zhang et al.
-    if (!is_positive_definite(q_cov_)) {
-      q_cov_ = symmetrize(q_cov_ + d * (fpf_ - p_));
-      process_fix = true;
-    }
-    if (noise.cov.llt().info() != Eigen::Success) {
-      noise.cov += d * hph;
-      measurement_fix = true;
-    }
+  if (options_.positive_definiteness_fix && noise.cov.llt().info() != Eigen::Success) {
+    noise.cov += d * hph;
+    measurement_fix = true;
   }
-  f_mean_ = x_;  // a second measurement at this time sees no motion
+  q_added_.setZero();  // the next measurement's chain starts at this posterior
   fpf_ = p_;
+  elapsed_ = 0.0;
   if (stats) {
     stats->weight = d;
     stats->process_fix_applied = process_fix;

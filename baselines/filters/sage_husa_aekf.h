@@ -14,7 +14,12 @@
 //   R̂(k) = (1 − d) R̂(k−1) + d [ε εᵀ − H P(k/k−1) Hᵀ]
 // Zhang's fix: if Q̂(k) is not positive definite, Q̂(k) += d (∇F P(k−1) ∇Fᵀ − P(k)); if R̂(k) is
 // not, R̂(k) += d H P(k/k−1) Hᵀ — i.e. the subtracted term is dropped for that step.
-// The statistics are updated only at samples that bring a measurement (k counts those). Any
+// The statistics are updated only at samples that bring a measurement (k counts those). Between
+// two measurements the filter may predict several times (a camera slower than the odometry):
+// q̂ and Q̂ are then rates per unit of the prediction's `noise_scale` (one sample; or seconds,
+// when the caller passes dt), F(X̂(k−1)) and ∇F P(k−1) ∇Fᵀ are the chain of those predictions
+// without q̂ and Q̂, and the terms of eq. 4.10–4.11 are divided by the elapsed Δ = Σ noise_scale.
+// With one prediction of scale 1 per measurement this is the thesis's filter as printed. Any
 // measurement of core/pose_measurement.h can be used: r̂ and R̂ are kept per kind (compass,
 // landmark range-bearing); the compass's start at R̂(0), r̂(0) of the options, another kind's at
 // its first measurement's own R and r̂ = 0. A measurement rejected by the gate changes nothing.
@@ -36,6 +41,9 @@ struct SageHusaOptions {
   double forgetting = 0.9;                                       // b (λ) in (0, 1)
   Vector3 initial_covariance = Vector3::Zero();                  // diag P(0) = 0
   bool positive_definiteness_fix = true;                         // Zhang's fix
+  // q̂ and Q̂ are updated only from intervals of at least this Δ (units of noise_scale): a rate
+  // estimated from two measurements a millisecond apart is noise divided by a millisecond. 0: all.
+  double min_statistics_interval = 0.0;
 };
 void to_json(nlohmann::json& j, const SageHusaOptions& o);
 // Strict: unknown keys, wrong types or invalid values throw UsageError.
@@ -97,10 +105,12 @@ class SageHusaAekf {
   Matrix3 q_cov_;
   std::array<MeasurementNoise, kMeasurementKinds> r_;
   int k_ = 0;  // measurement updates so far
-  // Of the last prediction: F(X̂(k−1)) and ∇F P(k−1) ∇Fᵀ (after an update, the posterior and P,
-  // so that a second measurement at the same time sees no motion).
-  Vector3 f_mean_;
+  // Since the last measurement: Σ q̂·noise_scale added to the mean, ∇F P(k−1) ∇Fᵀ chained over
+  // the predictions, and Δ = Σ noise_scale (0 for a second measurement at the same time, which
+  // then updates R̂ only).
+  Vector3 q_added_ = Vector3::Zero();
   Matrix3 fpf_;
+  double elapsed_ = 0.0;
 };
 
 }  // namespace locbench::baselines::filters

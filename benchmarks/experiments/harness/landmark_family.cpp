@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "algorithms/filters/consistency.h"
 #include "core/statistics.h"
 
 namespace locbench::experiments::landmarks {
@@ -61,10 +62,16 @@ const std::vector<double>& knobs(Method m, const FamilyOptions& o) {
 
 }  // namespace
 
+filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const FamilyOptions& options) {
+  const double blocks = std::max(1.0, std::ceil((data.to - data.from) / options.nees_block_s));
+  return filters::average_chi_square_interval(3, static_cast<int>(blocks), 0.95);
+}
+
 std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test,
                                         const FilterModels& models, const FamilyOptions& options) {
   const PartMotion train_motion = part_motion(train, models, models.nominal_sensor);
   const PartMotion test_motion = part_motion(test, models, models.nominal_sensor);
+  const filters::ChiSquareInterval band = tuning_nees_band(train, options);
   std::vector<MethodScore> scores;
   for (Method method : kMethods) {
     MethodScore best;
@@ -85,19 +92,23 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
       }
     }
     best.grid_runs = runs.size();
-    // The lowest RMSE; among the settings within `rmse_tolerance` of it, the most consistent (time-
-    // averaged NEES closest to 3 on a log scale).
+    // The lowest RMSE; among the settings within `rmse_tolerance` of it, the most consistent one
+    // (NEES inside its band first, then closest to 3 on a log scale).
     double lowest = std::numeric_limits<double>::infinity();
     for (const Run& r : runs) lowest = std::min(lowest, r.rmse);
     double best_distance = std::numeric_limits<double>::infinity();
     for (const Run& r : runs) {
       if (!(r.rmse <= lowest * (1.0 + options.rmse_tolerance))) continue;
-      const double distance = std::isfinite(r.nees) && r.nees > 0.0 ? std::abs(std::log(r.nees / 3.0)) : 1e300;
-      if (distance < best_distance || best_distance == std::numeric_limits<double>::infinity()) {
+      const double distance = !(std::isfinite(r.nees) && r.nees > 0.0) ? 1e300
+                              : band.contains(r.nees)                  ? 0.0
+                                                                       : std::abs(std::log(r.nees / 3.0));
+      if (distance < best_distance || (distance == best_distance && r.rmse < best.tuning_rmse)) {
         best_distance = distance;
         best.process_scale = r.q;
         best.knob = r.k;
         best.tuning_rmse = r.rmse;
+        best.tuning_nees = r.nees;
+        best.consistent_setting = band.contains(r.nees);
       }
     }
     if (!std::isfinite(lowest)) {  // every setting diverged: keep the first, report it as such

@@ -92,6 +92,28 @@ TrackingData tracking_data(const Log& log, double from, double to, double wheelb
   return data;
 }
 
+LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSensorModel sensor) {
+  std::vector<double> range, bearing;
+  diagnosis::TruthInterpolator truth(data.motion.truth);
+  for (const Observation& o : data.observations) {
+    const auto p = truth.at(o.t);
+    if (!p) continue;
+    const Eigen::Vector2d m = data.map.at(o.id);
+    const double dx = m.x() - p->x, dy = m.y() - p->y;
+    range.push_back(o.range - std::hypot(dx, dy));
+    bearing.push_back(angle_diff(o.bearing, std::atan2(dy, dx) - p->theta));
+  }
+  if (range.size() < 20) throw InputError(data.log, 0, "fewer than 20 landmark observations with ground truth");
+  const auto robust_sigma = [](std::vector<double> v) {
+    const double med = quantile(v, 0.5);
+    for (double& x : v) x = std::abs(x - med);
+    return 1.4826 * quantile(v, 0.5);
+  };
+  sensor.range_sigma = robust_sigma(range);
+  sensor.bearing_sigma = robust_sigma(bearing);
+  return sensor;
+}
+
 std::vector<MotionStep> model_motion(const TrackingData& data, const diagnosis::OdometryModel& model,
                                      double noise_window_s, const std::vector<double>& cuts) {
   diagnosis::MotionData d;
@@ -175,6 +197,7 @@ AnyFilter make_filter(const MethodSetup& s, double wheelbase, const Pose2& start
       o.initial_process_noise = s.fixed_q_per_s * s.process_scale;
       o.forgetting = s.knob;
       o.initial_covariance = p0;
+      o.min_statistics_interval = 0.1;  // [s]: the camera's frames come ~0.2–0.3 s apart
       return SageHusaAekf(o, wheelbase, start);
     }
     case Method::kVbAkf: {

@@ -60,6 +60,11 @@ struct TrackingData {
 // no landmark map, no observation of a map landmark in the span, or no usable odometry or truth.
 TrackingData tracking_data(const Log& log, double from, double to, double wheelbase);
 
+// The nominal sensor's noise measured on a span: σ_r and σ_φ = 1.4826·MAD of the range and
+// bearing residuals against the truth at the observation times (robust: the residuals have heavy
+// tails). Leaves `sensor`'s other fields; throws InputError with fewer than 20 residuals.
+LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSensorModel sensor);
+
 // One step of a model's motion, in true time: the increment (ΔD along the chord, Δθ) and the
 // model's covariance of it in the robot frame at the step's start (x along, y left, θ).
 struct MotionStep {
