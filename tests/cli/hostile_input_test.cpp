@@ -350,6 +350,10 @@ const std::vector<HostileCase>& cases() {
        "'{d}/b' '{d}/c' && sed -i 's/\"run_id\": \"[^\"]*\"/\"run_id\": \"an-older-run\"/' "
        "'{d}/c/odometry/sim_corridor.json'",
        "gate {d}/c --baseline {d}/b", 1, "mixes runs"},
+      {"report_says_a_folder_mixes_two_runs",
+       "{exe} run odometry/sim_corridor slip/normality_table_3_1 --runs 3 --out '{d}/b' >/dev/null 2>&1 && sed -i "
+       "'s/\"run_id\": \"[^\"]*\"/\"run_id\": \"an-older-run\"/' '{d}/b/odometry/sim_corridor.json'",
+       "report {d}/b -o {d}/p.html", 0, "mixes the reports of 2 runs"},
       {"gate_skip_missing_all_against_the_committed_baseline",
        "mkdir -p '{d}/data' && {exe} run odometry/real_logs --data '{d}/data' --skip-missing all --out '{d}/c' "
        ">/dev/null 2>&1",
