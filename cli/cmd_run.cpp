@@ -263,14 +263,14 @@ int run(const RunArgs& args, const std::string& command_line) {
     std::cerr << "locbench: error: " << failed.size() << " case(s) failed:\n";
     for (const std::string& f : failed) std::cerr << "  " << f << '\n';
   }
-  if (exit_code != kExitOk) return exit_code;  // a user's bad file: exit 2
   if (!missing.empty()) {
     // Fail closed: a run whose data went missing must not look like a run that passed.
     std::cerr << "locbench: error: " << missing.size() << " case(s) skipped for missing data (pass "
               << "--skip-missing NAME, or --skip-missing all, to accept):\n";
     for (const std::string& m : missing) std::cerr << "  " << m << '\n';
-    return kExitBadInput;
   }
+  // A user's bad file or unaccepted missing data: exit 2; else a failed case: exit 1.
+  if (exit_code != kExitOk || !missing.empty()) return kExitBadInput;
   return failed.empty() ? kExitOk : kExitCheckFailed;
 }
 
