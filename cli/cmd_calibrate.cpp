@@ -3,6 +3,10 @@
 //   ml: INPUT is a log (CARMEN with ENCODER + TRUEPOS, or ODOM + --relations), a Censi tuple
 //       file, or a catalog dataset name (`locbench list`), e.g. censi_khepera:l90, aces.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <iostream>
 
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/ml_calibration.h"
@@ -10,6 +14,7 @@
 #include "algorithms/calibration/umbmark_improved.h"
 #include "baselines/calibration/umbmark_classic.h"
 #include "cli/commands.h"
+#include "cli/estimate_judgement.h"
 #include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"
@@ -142,6 +147,11 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
   const std::string part = a.input.find(':') == std::string::npos ? "" : a.input.substr(a.input.find(':') + 1);
   if (const DatasetEntry* entry = find_dataset(name)) {
     const DatasetEntry& e = *entry;
+    if (!a.relations.empty()) {
+      throw UsageError("--relations " + a.relations + ": " + a.input +
+                       " is a catalog dataset, calibrated against its own reference; --relations applies to a "
+                       "log file");
+    }
     ref = {a.input, (root / e.path).string(), "", 0, 0.0};
     const std::string file = ref.path.substr(0, ref.path.find('#'));
     ref.checksum = reports::file_checksum(file);
@@ -164,9 +174,16 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
     o.noise.kind = NoiseModelKind::kPerComponent;
     return calibration_data_from_velocities(log, intervals);
   }
+  if (!a.data.empty()) {
+    throw UsageError("--data " + a.data + ": applies to a catalog dataset name (`locbench list`), and " + a.input +
+                     " is not one");
+  }
   // "folder#robot1" (MRCLAM): the folder's checksum, as diagnose reads the same input.
   ref = {a.input, a.input, reports::file_checksum(a.input.substr(0, a.input.find('#'))), 0, 0.0};
   if (a.input.find(".tuple") != std::string::npos) {
+    if (!a.relations.empty()) {
+      throw UsageError("--relations " + a.relations + ": a Censi tuple file brings its own reference");
+    }
     o.noise.kind = NoiseModelKind::kPerComponent;
     o.outliers = {4, 0.01};
     const auto tuples = read_censi_tuples(a.input);
@@ -176,6 +193,8 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
   Log log = load_log(a.input);
   if (!a.relations.empty()) attach_relations(log, a.relations);
   ref.records = log.record_count();
+  // Relations given are used (before a log's own TRUEPOS), never silently ignored.
+  if (!a.relations.empty()) return calibration_data_from_relations(log);
   if (!log.encoders.empty() && !log.truth.empty()) return calibration_data_from_encoders(log);
   if (!log.relations.empty()) return calibration_data_from_relations(log);
   if (!log.odometry.empty() && !log.truth.empty()) return calibration_data_from_velocities(log);
@@ -184,7 +203,7 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
                    "--relations, or ODOM velocities with ground truth");
 }
 
-reports::ExperimentResults calibrate_ml_cmd(const CalibrateArgs& a) {
+reports::ExperimentResults calibrate_ml_cmd(const CalibrateArgs& a, std::vector<std::string>& failures) {
   reports::ExperimentResults out;
   out.experiment = "calibrate/ml";
   out.description = "Maximum-likelihood odometry (and sensor-pose) calibration";
@@ -202,29 +221,54 @@ reports::ExperimentResults calibrate_ml_cmd(const CalibrateArgs& a) {
     if (!p.identifiable) m.note = p.reason;
     out.results.push_back(std::move(m));
   }
-  out.notes.push_back(
-      fmt::format("{} samples used, {} rejected; residual RMS {:.4g} m / {:.4g} rad; χ²/dof {:.3g}; "
-                  "converged: {}.",
-                  r.samples_used, r.samples_rejected, r.residual_rms_translation, r.residual_rms_rotation,
-                  r.chi2_per_dof, r.converged ? "yes" : "no"));
+  // Judged before printed: nonsense is "not identifiable" or a failure, never "converged: yes".
+  const EstimateJudgement judged = judge_estimates(out, true);
+  failures = judged.impossible;
+  const bool finite_fit = std::isfinite(r.residual_rms_translation) && std::isfinite(r.residual_rms_rotation) &&
+                          std::isfinite(r.chi2_per_dof);
+  if (!finite_fit) failures.push_back("the residual RMS or χ²/dof is not a finite number");
+  if (!r.converged) failures.push_back("the solver did not converge");
+  std::vector<std::string> undetermined;
+  for (const reports::MetricResult& m : out.results) {
+    if (!m.identifiable.value_or(true)) undetermined.push_back(m.variant);
+  }
+  std::string verdict = "converged: yes";
+  if (!failures.empty()) {
+    verdict = "failed: " + fmt::format("{}", fmt::join(failures, "; "));
+  } else if (!undetermined.empty()) {
+    verdict = "solver converged, but the data do not determine " + fmt::format("{}", fmt::join(undetermined, ", "));
+  }
+  out.notes.push_back(fmt::format(
+      "{} samples used, {} rejected; residual RMS {:.4g} m / {:.4g} rad; χ²/dof {:.3g}; {}.", r.samples_used,
+      r.samples_rejected, r.residual_rms_translation, r.residual_rms_rotation, r.chi2_per_dof, verdict));
   return out;
 }
 
 int calibrate(const CalibrateArgs& a, const std::string& command_line) {
   reports::check_outputs({a.input, a.relations}, {{"--report", a.report}});
+  // Every flag given is used or refused.
+  if (a.method != "ml" && (!a.relations.empty() || !a.data.empty())) {
+    throw UsageError(std::string(!a.relations.empty() ? "--relations" : "--data") + " applies to `calibrate ml`, not " +
+                     a.method);
+  }
   reports::Report report;
-  if (a.method == "umbmark-classic") {
-    report.body = calibrate_umbmark(a, false);
-  } else if (a.method == "umbmark-improved") {
-    report.body = calibrate_umbmark(a, true);
+  std::vector<std::string> failures;
+  if (a.method == "umbmark-classic" || a.method == "umbmark-improved") {
+    report.body = calibrate_umbmark(a, a.method == "umbmark-improved");
+    failures = judge_estimates(report.body, false).impossible;
   } else if (a.method == "ml") {
-    report.body = calibrate_ml_cmd(a);
+    report.body = calibrate_ml_cmd(a, failures);
   } else {
     throw UsageError("calibrate: METHOD must be umbmark-classic, umbmark-improved or ml, not \"" + a.method + "\"");
   }
   reports::ReportTail tail("calibrate", command_line, a.report);
   tail.print_summary = true;
   reports::finish_report(report, tail);
+  if (!failures.empty()) {
+    std::cerr << "locbench: calibrate: the estimate is not a result:\n";
+    for (const std::string& f : failures) std::cerr << "  " << f << '\n';
+    return kExitCheckFailed;
+  }
   return kExitOk;
 }
 

@@ -37,7 +37,10 @@ int gate(const GateArgs& args) {
   }
   const reports::GateRules rules =
       args.rules.empty() ? reports::default_gate_rules() : reports::load_gate_rules(args.rules);
-  const reports::GateVerdict verdict = reports::evaluate_gate(baseline, current, rules);
+  reports::GateVerdict verdict = reports::evaluate_gate(baseline, current, rules);
+  // One run id per current folder (a committed baseline is refreshed experiment by experiment:
+  // its reports may carry different ids, or none).
+  if (!args.allow_mixed) reports::fail_mixed_runs(current, verdict);
   std::cout << reports::gate_table(verdict);
   if (!args.markdown.empty()) reports::write_file_atomically(args.markdown, reports::gate_markdown(verdict));
   if (!args.json.empty()) {
@@ -59,8 +62,8 @@ Action add_gate_command(CLI::App& app) {
   cmd->add_option("--markdown", args->markdown, "Also write a Markdown summary (for CI logs)");
   cmd->add_option("--json", args->json, "Also write the verdict as JSON");
   cmd->add_flag("--allow-mixed", args->allow_mixed,
-                "Compare reports of different base seeds (or, among the current ones, git revisions); "
-                "refused by default");
+                "Compare reports of different base seeds (or, among the current ones, git revisions or "
+                "run ids); refused by default");
   return [args] { return gate(*args); };
 }
 

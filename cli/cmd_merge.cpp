@@ -160,8 +160,15 @@ reports::Report merge_group(const std::vector<const ShardFile*>& group, int thre
 int merge(const MergeArgs& args, const std::string& command_line) {
   const bool to_file = args.out.ends_with(".json");
   reports::check_outputs(args.inputs, {{"-o", to_file ? args.out : ""}}, ".json");
+  // -o takes the output folder's lock like `run --out`; a report file, the locks of the folders
+  // above it (a folder `run --out` is writing is refused, not written into).
   std::optional<reports::OutputFolderLock> lock;
-  if (!to_file) lock.emplace(args.out);
+  std::vector<std::unique_ptr<reports::OutputFolderLock>> locks_above;
+  if (to_file) {
+    locks_above = reports::lock_folders_above(args.out);
+  } else {
+    lock.emplace(args.out);
+  }
   const std::vector<ShardFile> files = load_all(args.inputs);
   std::map<std::string, std::vector<const ShardFile*>> groups;
   for (const ShardFile& f : files) groups[f.shard.experiment].push_back(&f);

@@ -2,6 +2,7 @@
 // and charts of the given reports (charts drawn by gnuplot, inlined as SVG).
 #include <algorithm>
 #include <iostream>
+#include <set>
 
 #include "benchmarks/experiments/framework/experiment.h"
 #include "cli/commands.h"
@@ -61,6 +62,14 @@ std::vector<reports::Report> load_all(const std::vector<std::string>& inputs) {
       here.push_back(load(f, j));
     }
     if (here.empty()) throw InputError(in, 0, "folder holds no locbench reports");
+    // A folder of two runs (one killed over an older folder's reports) is rendered, but said.
+    std::set<std::string> run_ids;
+    for (const auto& r : here) run_ids.insert(r.provenance.run_id.empty() ? "(none)" : r.provenance.run_id);
+    if (run_ids.size() > 1) {
+      std::cerr << "locbench report: warning: " << in << " mixes the reports of " << run_ids.size() << " runs (run ids";
+      for (const std::string& id : run_ids) std::cerr << ' ' << id;
+      std::cerr << "): `locbench gate` refuses such a folder\n";
+    }
     // A folder's reports in the order `locbench list` shows the experiments.
     const auto rank = [](const reports::Report& r) {
       const auto& all = experiments::all_experiments();

@@ -110,6 +110,17 @@ bool skip_allowed(const std::vector<std::string>& names, const std::string& case
 
 std::string args_shard_label(const experiments::Shard& s) { return fmt::format("shard {}/{}", s.index, s.count); }
 
+// The user's files named by a configuration's "datasets" (real_log_harness.h): inputs of the run.
+void add_dataset_files(const nlohmann::json& config, std::vector<std::string>& inputs) {
+  if (!config.is_object() || !config.contains("datasets") || !config.at("datasets").is_array()) return;
+  for (const nlohmann::json& d : config.at("datasets")) {
+    if (!d.is_object()) continue;
+    for (const char* key : {"log", "relations", "ground_truth"}) {
+      if (d.contains(key) && d.at(key).is_string()) inputs.push_back(d.at(key).get<std::string>());
+    }
+  }
+}
+
 nlohmann::json load_overrides(const std::string& path) {
   if (path.empty()) return nlohmann::json::object();
   nlohmann::json j = read_json_file(path, "--config file (JSON)");
@@ -179,14 +190,12 @@ int run(const RunArgs& args, const std::string& command_line) {
   if (!args.data.empty() && !std::filesystem::is_directory(options.data_root)) {
     throw InputError(args.data, 0, "--data: no such folder (the datasets' folder, see `locbench list`)");
   }
-  const reports::OutputFolderLock lock(args.out);
   options.threads = args.threads;
   std::optional<experiments::Shard> shard;
   if (!args.shard.empty()) shard = experiments::parse_shard(args.shard);
 
-  std::vector<reports::Report> written;
-  std::vector<std::string> missing;  // skipped cases not accepted by --skip-missing
-  int exit_code = kExitOk;
+  std::vector<nlohmann::json> configs;
+  std::vector<std::string> inputs = {args.config, args.log, args.relations, args.ground_truth};
   for (const experiments::Experiment* e : chosen) {
     nlohmann::json config = e->default_config();
     if (overrides.contains(e->name())) {
@@ -203,6 +212,21 @@ int run(const RunArgs& args, const std::string& command_line) {
     }
     if (log_override) config = experiments::merge_config(config, *log_override);
     check_runs_option(*e, config, args.config);
+    add_dataset_files(config, inputs);
+    configs.push_back(std::move(config));
+  }
+  // Every input file takes part in the overlap check: none may lie in the folder the run writes.
+  reports::check_inputs_outside(inputs, args.out, "--out");
+  const reports::OutputFolderLock lock(args.out);
+
+  std::vector<reports::Report> written;
+  std::vector<std::string> missing;   // skipped cases not accepted by --skip-missing
+  std::vector<std::string> accepted;  // skipped cases --skip-missing accepted
+  std::vector<std::string> failed;    // cases that ran and failed (unreadable data, …)
+  int exit_code = kExitOk;
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    const experiments::Experiment* e = chosen[i];
+    const nlohmann::json& config = configs[i];
     if (shard) {
       run_shard(*e, config, options, *shard, args.out, command_line);
       continue;
@@ -220,8 +244,11 @@ int run(const RunArgs& args, const std::string& command_line) {
       }
     }
     for (const reports::CaseNote& c : report.body.cases) {
-      if (c.status == "skipped" && !skip_allowed(args.skip_missing, c.name))
-        missing.push_back(c.name + ": " + c.reason);
+      if (c.status == "skipped") {
+        (skip_allowed(args.skip_missing, c.name) ? accepted : missing).push_back(c.name + ": " + c.reason);
+      } else {
+        failed.push_back(c.name + ": " + c.reason);
+      }
     }
     reports::ReportTail tail(e->name(), command_line, std::filesystem::path(args.out) / (e->name() + ".json"));
     tail.threads = options.threads;
@@ -229,14 +256,25 @@ int run(const RunArgs& args, const std::string& command_line) {
     written.push_back(std::move(report));
   }
   if (!shard) std::cout << reports::summary_table(written);
+  if (!accepted.empty()) {
+    std::cerr << "locbench: " << accepted.size() << " case(s) skipped for missing data, accepted by --skip-missing:\n";
+    for (const std::string& m : accepted) std::cerr << "  " << m << '\n';
+  }
+  if (!failed.empty()) {
+    // Fail closed: a case that ran and failed (an unreadable log, a missing file of a catalog
+    // dataset, no relations where they are needed) is a failed run, even when its report was written.
+    std::cerr << "locbench: error: " << failed.size() << " case(s) failed:\n";
+    for (const std::string& f : failed) std::cerr << "  " << f << '\n';
+  }
   if (!missing.empty()) {
     // Fail closed: a run whose data went missing must not look like a run that passed.
     std::cerr << "locbench: error: " << missing.size() << " case(s) skipped for missing data (pass "
               << "--skip-missing NAME, or --skip-missing all, to accept):\n";
     for (const std::string& m : missing) std::cerr << "  " << m << '\n';
-    return kExitBadInput;
   }
-  return exit_code;
+  // A user's bad file or unaccepted missing data: exit 2; else a failed case: exit 1.
+  if (exit_code != kExitOk || !missing.empty()) return kExitBadInput;
+  return failed.empty() ? kExitOk : kExitCheckFailed;
 }
 
 }  // namespace

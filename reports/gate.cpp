@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/statistics.h"
+#include "reports/gate_checks.h"
 
 namespace locbench::reports {
 namespace {
@@ -92,6 +93,14 @@ GateRatioRow compare_ratio(const SpeedRatioRule& rule, const GateInput& baseline
     row.detail = "current run lacks " + (!nn ? rule.numerator : rule.denominator);
     return row;
   }
+  // Fail closed: a time ≤ 0 or not finite (a 0 ns / 0 ns pair) makes no ratio.
+  for (const GateSeries* s : {nn, nd, on, od}) {
+    if (s && !implausible(*s).empty()) {
+      row.status = "invalid";
+      row.detail = s->key + ": " + implausible(*s);
+      return row;
+    }
+  }
   const std::vector<double> now = ratios(*nn, *nd);
   row.new_ratio = median(now);
   row.status = "ok";
@@ -133,23 +142,69 @@ std::string pct(const std::optional<double>& v) { return v ? fmt::format("{:+.2f
 
 }  // namespace
 
+namespace {
+
+// A row that fails because a series could not have been measured (gate_checks.h).
+GateRow invalid_row(const GateSeries& s, const std::optional<double>& old_v, const std::optional<double>& new_v,
+                    const std::string& detail) {
+  return {s.key, s.unit, old_v, new_v, std::nullopt, "invalid", detail};
+}
+
+// Fail closed: the baseline read recorded data, and not one of those results was compared now
+// (all skipped or missing): a gate on no real data cannot pass.
+void require_some_recorded_data(const GateInput& baseline, const GateInput& current, GateVerdict& v) {
+  std::size_t recorded = 0, compared = 0;
+  for (const auto& [key, s] : baseline.series) {
+    const auto ds = baseline.dataset_paths.find(s.experiment);
+    if (ds == baseline.dataset_paths.end() || !ds->second.count(s.dataset) ||
+        !is_recorded_data(ds->second.at(s.dataset))) {
+      continue;
+    }
+    ++recorded;
+    if (current.series.count(key)) ++compared;
+  }
+  if (recorded > 0 && compared == 0) {
+    v.rows.push_back({"recorded data", "", std::nullopt, std::nullopt, std::nullopt, "missing",
+                      fmt::format("the baseline has {} results from recorded data and none was compared now "
+                                  "(all skipped or missing): a gate on no real data cannot pass",
+                                  recorded)});
+    ++v.failures;
+  }
+}
+
+}  // namespace
+
 GateVerdict evaluate_gate(const GateInput& baseline, const GateInput& current, const GateRules& rules) {
   GateVerdict v;
   double log_sum = 0.0;
   std::size_t log_n = 0;
   for (const auto& [key, old_s] : baseline.series) {
     const auto it = current.series.find(key);
+    const std::string bad_old = implausible(old_s);
     if (it == current.series.end()) {
       GateRow row{key, old_s.unit, old_s.value, std::nullopt, std::nullopt, "missing", ""};
-      const auto sk = current.skipped.find(old_s.experiment);
-      if (sk != current.skipped.end() && sk->second.count(old_s.dataset)) {
+      const std::string unbacked = recorded_skip(old_s, current) ? unbacked_skip(old_s, baseline, current) : "";
+      if (!bad_old.empty()) {
+        row = invalid_row(old_s, old_s.value, std::nullopt, "baseline: " + bad_old);
+        ++v.failures;
+      } else if (recorded_skip(old_s, current) && unbacked.empty()) {
         row.status = "skipped";
-        row.detail = "the current run skipped dataset " + old_s.dataset;
+        row.detail = "the current run skipped dataset " + old_s.dataset + " (data not found)";
+      } else if (!unbacked.empty()) {
+        row.detail = "skip not backed: " + unbacked;
+        ++v.failures;
       } else if (rules.fail_on_missing && !old_s.is_time) {
         row.detail = "present in the baseline, absent now";
         ++v.failures;
       }
       v.rows.push_back(std::move(row));
+      continue;
+    }
+    const std::string bad_new = implausible(it->second);
+    if (!bad_old.empty() || !bad_new.empty()) {
+      v.rows.push_back(invalid_row(old_s, old_s.value, it->second.value,
+                                   bad_new.empty() ? "baseline: " + bad_old : "current: " + bad_new));
+      ++v.failures;
       continue;
     }
     GateRow row = compare(old_s, it->second, rules);
@@ -162,18 +217,25 @@ GateVerdict evaluate_gate(const GateInput& baseline, const GateInput& current, c
   }
   for (const auto& [key, s] : current.series) {
     if (!baseline.series.count(key)) {
-      v.rows.push_back({key, s.unit, std::nullopt, s.value, std::nullopt, "new", ""});
+      const std::string bad = implausible(s);
+      if (!bad.empty()) {
+        v.rows.push_back(invalid_row(s, std::nullopt, s.value, "current: " + bad));
+        ++v.failures;
+      } else {
+        v.rows.push_back({key, s.unit, std::nullopt, s.value, std::nullopt, "new", ""});
+      }
     }
   }
   if (log_n > 0) v.geomean_ratio = std::exp(log_sum / static_cast<double>(log_n));
   // Fail closed: an accuracy rule that matches no current result checks nothing — its results
-  // went missing (absent data, a typo in --data) — unless the run said it skipped them.
+  // went missing (absent data, a typo in --data) — unless the run said, with provenance, that
+  // it skipped them.
   for (const AccuracyRule& r : rules.accuracy) {
     bool matched = false, skipped = false;
     for (const auto& [key, s] : current.series) matched = matched || fnmatch(r.match.c_str(), key.c_str(), 0) == 0;
     for (const auto& [key, s] : baseline.series) {
-      const auto sk = current.skipped.find(s.experiment);
-      if (fnmatch(r.match.c_str(), key.c_str(), 0) == 0 && sk != current.skipped.end() && sk->second.count(s.dataset)) {
+      if (fnmatch(r.match.c_str(), key.c_str(), 0) == 0 && recorded_skip(s, current) &&
+          unbacked_skip(s, baseline, current).empty()) {
         skipped = true;
       }
     }
@@ -182,12 +244,20 @@ GateVerdict evaluate_gate(const GateInput& baseline, const GateInput& current, c
                       "no current result matches this rule: its results are missing"});
     ++v.failures;
   }
+  require_some_recorded_data(baseline, current, v);
   for (const SpeedRatioRule& r : rules.speed_ratios) {
     GateRatioRow row = compare_ratio(r, baseline, current);
-    if (row.status == "regressed" || row.status == "missing") ++v.failures;
+    if (row.status == "regressed" || row.status == "missing" || row.status == "invalid") ++v.failures;
     v.ratios.push_back(std::move(row));
   }
   return v;
+}
+
+void fail_mixed_runs(const GateInput& current, GateVerdict& v) {
+  const std::string mixed = mixed_run_ids(current);
+  if (mixed.empty()) return;
+  v.rows.push_back({"run id", "", std::nullopt, std::nullopt, std::nullopt, "mixed", mixed});
+  ++v.failures;
 }
 
 std::string gate_table(const GateVerdict& v) {

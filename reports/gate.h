@@ -18,7 +18,8 @@ struct GateRow {
   std::string unit;
   std::optional<double> old_value, new_value;
   std::optional<double> relative_change;  // (new − old)/|old|
-  // "ok", "improved", "regressed", "missing", "skipped", "new", "info" (times: no rule)
+  // "ok", "improved", "regressed", "missing", "skipped", "new", "info" (times: no rule),
+  // "invalid" (a number no measurement gives, gate_checks.h), "mixed" (reports of two runs)
   std::string status;
   std::string detail;
 };
@@ -28,7 +29,7 @@ struct GateRatioRow {
   std::optional<double> old_ratio, new_ratio;  // medians
   std::optional<double> relative_change;
   std::optional<double> p_value;  // Mann–Whitney, H1: the ratio grew
-  std::string status;             // "ok", "improved", "regressed", "missing"
+  std::string status;             // "ok", "improved", "regressed", "missing", "invalid"
   std::string detail;
 };
 
@@ -40,7 +41,14 @@ struct GateVerdict {
   bool passed() const { return failures == 0; }
 };
 
+// Fails closed (gate_checks.h): a series no measurement gives fails ("invalid"), a missing
+// result counts as skipped only when the skip is backed by provenance, and a baseline with
+// results from recorded data fails when none of them was compared now.
 GateVerdict evaluate_gate(const GateInput& baseline, const GateInput& current, const GateRules& rules);
+
+// Adds a failing row "run id" when the current reports carry different run ids (a run killed
+// over a folder of an older one).
+void fail_mixed_runs(const GateInput& current, GateVerdict& v);
 
 // A plain table (stdout), a Markdown summary (CI logs) and a JSON verdict.
 std::string gate_table(const GateVerdict& v);

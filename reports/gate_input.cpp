@@ -51,6 +51,8 @@ void add_benchmarks(const json& j, const std::string& file, GateInput& in) {
   for (auto& [name, samples] : iterations) {
     GateSeries s;
     s.key = "bench:" + name;
+    s.variant = name;
+    s.file = file;
     s.unit = "ns";
     s.is_time = true;
     std::vector<double> sorted = samples;
@@ -82,17 +84,19 @@ void add_report(const json& j, const std::string& file, GateInput& in) {
   }
   const Report r = report_from_json(j, file);
   in.revision_of[file] = r.provenance.git_revision;
+  in.run_id_of[file] = r.provenance.run_id;
   if (!r.body.seeds.empty()) in.seed_of[file] = base_seed(r.provenance);
   for (const CaseNote& c : r.body.cases) {
-    if (c.status == "skipped") {
-      in.skipped[r.body.experiment].insert(c.name.substr(c.name.rfind('/') + 1));
-    }
+    if (c.status == "skipped") in.skipped[r.body.experiment][c.name.substr(c.name.rfind('/') + 1)] = c.reason;
   }
+  for (const DatasetRef& d : r.body.datasets) in.dataset_paths[r.body.experiment][d.name] = d.path;
   for (const MetricResult& m : r.body.results) {
     GateSeries s;
     s.key = r.body.experiment + ":" + m.name();
     s.experiment = r.body.experiment;
     s.dataset = m.dataset;
+    s.variant = m.variant;
+    s.file = file;
     s.unit = m.unit;
     s.better = m.better;
     s.value = m.summary.mean;
@@ -100,6 +104,8 @@ void add_report(const json& j, const std::string& file, GateInput& in) {
     s.ci95_low = m.summary.ci95_low;
     s.ci95_high = m.summary.ci95_high;
     s.samples = m.values;
+    s.min = m.summary.min;
+    s.max = m.summary.max;
     if (in.series.count(s.key)) throw InputError(file, 0, "result " + s.key + " appears twice");
     in.series[s.key] = std::move(s);
   }

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <optional>
 
@@ -98,6 +99,51 @@ bool inside(const fs::path& file, const fs::path& folder) {
   return f.size() > d.size() && f.compare(0, d.size(), d) == 0 && (d.back() == '/' || f[d.size()] == '/');
 }
 
+// Temporary files are named ".<target name>.tmp-XXXXXX" (mkstemp), beside their target.
+constexpr std::string_view kTempMark = ".tmp-";
+bool is_temporary_name(const std::string& n) {
+  return n.size() > kTempMark.size() + 7 && n.front() == '.' &&
+         n.compare(n.size() - 6 - kTempMark.size(), kTempMark.size(), kTempMark) == 0;
+}
+
+// Removes `path` when it is a temporary file no live writer holds: every writer keeps an
+// exclusive flock on its temporary file until it is renamed or removed, so a lock we can take
+// means its writer was killed. Files younger than 10 s are left alone (a writer takes its lock
+// just after creating the file).
+void remove_if_stale(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return;
+  struct stat st {};
+  const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && now - st.st_mtime > 10 && ::flock(fd, LOCK_EX | LOCK_NB) == 0) {
+    ::unlink(path.c_str());
+  }
+  ::close(fd);  // releases the flock
+}
+
+// The stale temporary files of `target` in its folder (`target` empty: every temporary file in
+// the folder and below it).
+void remove_stale_temporaries(const fs::path& folder, const std::string& target) {
+  std::error_code ec;
+  const std::string prefix = "." + target + std::string(kTempMark);
+  const auto visit = [&](const fs::directory_entry& e) {
+    const std::string n = e.path().filename().string();
+    if (is_temporary_name(n) && (target.empty() || n.rfind(prefix, 0) == 0)) remove_if_stale(e.path());
+  };
+  if (target.empty()) {
+    // Reports lie at most a few folders down (<out>/<group>/<experiment>.json): 3 levels.
+    for (auto it = fs::recursive_directory_iterator(folder, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
+      if (it.depth() >= 3) it.disable_recursion_pending();
+      visit(*it);
+    }
+  } else {
+    for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+      visit(*it);
+    }
+  }
+}
+
 }  // namespace
 
 AtomicOutput::AtomicOutput(const fs::path& target) : target_(target) {
@@ -108,16 +154,23 @@ AtomicOutput::AtomicOutput(const fs::path& target) : target_(target) {
     return;
   }
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string name = (dir / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
+  remove_stale_temporaries(dir, target.filename().string());  // left by a killed writer
+  std::string name = (dir / ("." + target.filename().string() + std::string(kTempMark) + "XXXXXX")).string();
   const int fd = ::mkstemp(name.data());
   if (fd < 0) fail(target, "cannot open for writing (a temporary file beside it)", errno);
+  // Held until the file is renamed or removed: a later writer removes only unlocked ones.
+  ::flock(fd, LOCK_EX);
   // mkstemp creates the file 0600; the output gets what any new file gets (0666 less the umask),
   // so that reports are readable by whoever could read the folder.
   const int rc = ::fchmod(fd, 0666 & ~process_umask());
   const int err = errno;
-  ::close(fd);
-  if (rc != 0) fail(target, "cannot set the permissions of the temporary file beside it", err);
+  if (rc != 0) {
+    ::unlink(name.c_str());
+    ::close(fd);
+    fail(target, "cannot set the permissions of the temporary file beside it", err);
+  }
   temp_ = name;
+  lock_fd_ = fd;
 }
 
 AtomicOutput::~AtomicOutput() {
@@ -125,6 +178,7 @@ AtomicOutput::~AtomicOutput() {
     std::error_code ec;
     fs::remove(temp_, ec);
   }
+  if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
 void AtomicOutput::commit() {
@@ -137,6 +191,8 @@ void AtomicOutput::commit() {
   if (rc != 0) fail(target_, "cannot flush to disk", err);
   if (::rename(temp_.c_str(), target_.c_str()) != 0) fail(target_, "cannot replace", errno);
   committed_ = true;
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+  lock_fd_ = -1;
   sync_folder(target_);
 }
 
@@ -201,8 +257,20 @@ OutputFolderLock::OutputFolderLock(const fs::path& folder) {
   fs::create_directories(folder, ec);
   if (ec) throw InputError(folder.string(), 0, "cannot create the output folder: " + ec.message());
   const fs::path lock = folder / ".locbench.lock";
-  fd_ = ::open(lock.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+  // Never followed through a symbolic link (O_NOFOLLOW), never a FIFO or device (O_NONBLOCK, then
+  // a regular file required): the lock file is created in the folder and nowhere else.
+  fd_ = ::open(lock.c_str(), O_CREAT | O_RDWR | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+  if (fd_ < 0 && errno == ELOOP) {
+    throw InputError(lock.string(), 0,
+                     "is a symbolic link: the output folder's lock file is never followed (remove the link)");
+  }
   if (fd_ < 0) fail(lock, "cannot create the output folder's lock file", errno);
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    fd_ = -1;
+    throw InputError(lock.string(), 0, "is not a regular file: expected the output folder's lock file");
+  }
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const int err = errno;
     ::close(fd_);
@@ -213,6 +281,29 @@ OutputFolderLock::OutputFolderLock(const fs::path& folder) {
                            "): wait for it to finish or choose another folder");
     }
     fail(lock, "cannot lock the output folder", err);
+  }
+  remove_stale_temporaries(folder, "");  // left by a killed writer in this folder
+}
+
+std::vector<std::unique_ptr<OutputFolderLock>> lock_folders_above(const fs::path& file) {
+  std::vector<std::unique_ptr<OutputFolderLock>> locks;
+  for (fs::path dir = resolved(file).parent_path(); !dir.empty(); dir = dir.parent_path()) {
+    struct stat st {};
+    if (::lstat((dir / ".locbench.lock").c_str(), &st) == 0) locks.push_back(std::make_unique<OutputFolderLock>(dir));
+    if (dir == dir.root_path()) break;
+  }
+  return locks;
+}
+
+void check_inputs_outside(const std::vector<std::string>& inputs, const fs::path& folder, const std::string& flag) {
+  for (const std::string& in : inputs) {
+    if (in.empty()) continue;
+    const fs::path file = in.substr(0, in.find('#'));
+    if (resolved(file) == resolved(folder) || inside(file, folder)) {
+      throw InputError(in, 0,
+                       "is an input inside the folder " + flag + " " + folder.string() +
+                           " writes: its files may be replaced; move the input or choose another " + flag);
+    }
   }
 }
 

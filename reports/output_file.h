@@ -7,8 +7,12 @@
 //     of its outputs is refused before any work (exit 2), so no input is ever overwritten.
 //   - OutputFolderLock: a folder given to --out is locked (flock on <folder>/.locbench.lock) for
 //     the life of the command; a second command on the same folder is refused, not interleaved.
+//     The lock file is never followed through a symbolic link.
+//   - Temporary files (".<name>.tmp-XXXXXX") stay flock'ed by their writer; one left by a killed
+//     writer is removed by the next writer of the same file and by the next lock of its folder.
 // Every failure is an InputError naming the path and the system's reason (exit 2).
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -36,6 +40,7 @@ class AtomicOutput {
  private:
   std::filesystem::path target_, temp_;
   bool committed_ = false;
+  int lock_fd_ = -1;  // the temporary file, flock'ed while it may be written
 };
 
 // One named output of a command: its flag ("--report") and path; empty paths are ignored.
@@ -52,8 +57,14 @@ struct NamedPath {
 void check_outputs(const std::vector<std::string>& inputs, const std::vector<NamedPath>& outputs,
                    const std::string& folder_inputs_read_by_extension = "");
 
-// Holds an exclusive lock on `folder` (created if absent) until destroyed. InputError when the
-// folder is in use by another locbench command, or is an existing file.
+// InputError (exit 2) when an input lies inside (or is) the output folder a command writes, e.g.
+// `run --config out/x.json --out out`: its files may be replaced by the command's reports.
+void check_inputs_outside(const std::vector<std::string>& inputs, const std::filesystem::path& folder,
+                          const std::string& flag);
+
+// Holds an exclusive lock on `folder` (created if absent) until destroyed, then removes the
+// temporary files killed writers left in it. InputError when the folder is in use by another
+// locbench command, is an existing file, or its lock file is a symbolic link or not a file.
 class OutputFolderLock {
  public:
   explicit OutputFolderLock(const std::filesystem::path& folder);
@@ -64,5 +75,9 @@ class OutputFolderLock {
  private:
   int fd_ = -1;
 };
+
+// The locks a command writing the single file `file` takes: every folder above it that holds a
+// .locbench.lock (a `run --out` or `merge -o` folder it lies in). InputError when one is in use.
+std::vector<std::unique_ptr<OutputFolderLock>> lock_folders_above(const std::filesystem::path& file);
 
 }  // namespace locbench::reports

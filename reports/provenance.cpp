@@ -2,12 +2,28 @@
 
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <ctime>
+#include <random>
 
 #include "git_revision.h"  // generated at build time
 
 namespace locbench::reports {
+
+const std::string& invocation_run_id() {
+  static const std::string id = [] {
+    const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char stamp[32];
+    std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", &utc);
+    std::random_device entropy;
+    return fmt::format("{}-{}-{:08x}", stamp, static_cast<long>(::getpid()), entropy());
+  }();
+  return id;
+}
 
 Provenance current_provenance(const std::string& command_line) {
   Provenance p;
@@ -31,6 +47,7 @@ Provenance current_provenance(const std::string& command_line) {
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &utc);
   p.utc_time = buf;
   p.command_line = command_line;
+  p.run_id = invocation_run_id();
   return p;
 }
 

@@ -25,6 +25,9 @@ struct Provenance {
   std::string command_line;
   std::optional<int> threads;  // worker threads of the Monte-Carlo runs (results never depend on it)
   std::optional<int> shards;   // set when the report was merged from this many shard reports
+  // One id per locbench invocation, stamped into every report it writes (empty in reports made
+  // before run ids existed): a folder whose reports carry different ids mixes runs.
+  std::string run_id = {};
 };
 
 struct DatasetRef {

@@ -204,6 +204,7 @@ json to_json(const Report& r) {
                   {"command_line", p.command_line}};
   if (p.threads) j["context"]["threads"] = *p.threads;
   if (p.shards) j["context"]["shards"] = *p.shards;
+  if (!p.run_id.empty()) j["context"]["run_id"] = p.run_id;
   return j;
 }
 
@@ -219,6 +220,7 @@ Provenance provenance_from_json(const json& c, const std::string& source) {
   p.command_line = get<std::string>(c, "command_line", source, "context");
   if (c.contains("threads")) p.threads = get<int>(c, "threads", source, "context");
   if (c.contains("shards")) p.shards = get<int>(c, "shards", source, "context");
+  if (c.contains("run_id")) p.run_id = get<std::string>(c, "run_id", source, "context");
   return p;
 }
 

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "datasets/io/carmen_reader.h"
@@ -129,8 +130,9 @@ TEST(Cli, GatePassesOnTheBaselineAndFailsWithExitCode1OnAWorsenedResult) {
   EXPECT_EQ(same.exit_code, 0) << same.output;
   EXPECT_NE(same.output.find("gate: PASSED"), std::string::npos);
 
-  // Worsen one result fourfold and move its interval with it, as a real regression would
-  // (with 3 runs the 95% interval is wide: ± 4.3·s/√3).
+  // Worsen one result fourfold and move its interval, its runs' values, min, max and median with
+  // it, as a real regression would (with 3 runs the 95% interval is wide: ± 4.3·s/√3; a mean that
+  // contradicts its values is refused as invalid, not judged).
   const auto path = dir.path() / "base/odometry/sim_corridor.json";
   std::ifstream in(path);
   nlohmann::json j = nlohmann::json::parse(in);
@@ -140,6 +142,8 @@ TEST(Cli, GatePassesOnTheBaselineAndFailsWithExitCode1OnAWorsenedResult) {
       r["mean"] = r["mean"].get<double>() + shift;
       r["ci95"][0] = r["ci95"][0].get<double>() + shift;
       r["ci95"][1] = r["ci95"][1].get<double>() + shift;
+      for (const char* k : {"min", "max", "median"}) r[k] = r[k].get<double>() + shift;
+      for (auto& v : r["values"]) v = v.get<double>() + shift;
     }
   }
   std::filesystem::create_directories(dir.path() / "worse");
@@ -189,6 +193,25 @@ TEST(Cli, CalibrateClassicUmbmarkOnTheExampleWritesAValidReport) {
   bool has_ed = false;
   for (const auto& m : r.body.results) has_ed = has_ed || m.variant == "E_d";
   EXPECT_TRUE(has_ed);
+}
+
+TEST(Cli, CalibrateMlJudgesAnImpossibleWheelbaseAsNotIdentifiableAndExits1NeverConverged) {
+  testing::ScratchDir dir;
+  ASSERT_EQ(run_locbench("simulate corridor --seed 7 -o " + dir.file("c.clf").string()).exit_code, 0);
+  const Outcome o =
+      run_locbench("calibrate ml " + dir.file("c.clf").string() + " --report " + dir.file("r.json").string());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_EQ(o.output.find("converged: yes"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("wheelbase = -17.3644 is impossible"), std::string::npos) << o.output;
+  const auto r = reports::read_report(dir.file("r.json"));  // written, marked
+  for (const auto& m : r.body.results) {
+    EXPECT_EQ(m.identifiable, std::optional<bool>(false)) << m.variant;
+  }
+}
+
+TEST(Cli, CalibrateRefusesAFlagItWouldIgnore) {
+  EXPECT_EQ(run_locbench("calibrate ml aces --relations /nonexistent").exit_code, 2);
+  EXPECT_EQ(run_locbench("calibrate umbmark-classic examples/umbmark_trilobot.json --relations x").exit_code, 2);
 }
 
 TEST(Cli, GateOnMissingInputExitsWith2) {

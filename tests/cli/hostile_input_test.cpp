@@ -289,6 +289,97 @@ const std::vector<HostileCase>& cases() {
                "sub/s.json",
                R"({"preset": "corridor", "world": {"kind": "file", "file": "room.json"}, "motion": {"kind": "straight", "distance": 0.5}})"),
        "simulate {d}/sub/s.json -o {d}/o.clf", 0, "wrote"},
+      // 11. Fail closed (issue 26): a failed case is a failed run, a gate cannot be fooled, no
+      // input is overwritten, every flag is used or refused, nonsense is not a result.
+      {"run_with_a_corrupt_catalog_log_exits_1",
+       "mkdir -p '{d}/data/slam_benchmark/clf' && echo garbage | gzip > "
+       "'{d}/data/slam_benchmark/clf/aces.from_bag.clf.gz'",
+       "run odometry/real_logs --data {d}/data --skip-missing all --out {d}/out", 1, "odometry/aces"},
+      {"run_with_a_missing_mrclam_file_exits_1", "mkdir -p '{d}/data/mrclam/MRCLAM_Dataset6'",
+       "run odometry/real_logs --data {d}/data --skip-missing all --out {d}/out", 1, "case(s) failed"},
+      {"run_log_without_relations_exits_1", kShortLog, "run laser/real_logs --log {d}/l.clf --out {d}/out", 1,
+       "no relation pairs two scans"},
+      {"run_header_only_tum_exits_1", kShortLog + "printf '# timestamp tx ty tz qx qy qz qw\\n' > '{d}/h.tum'",
+       "run odometry/real_logs --log {d}/l.clf --ground-truth {d}/h.tum --out {d}/out", 1, "case(s) failed"},
+      {"run_skipping_missing_data_lists_the_skips", "mkdir -p '{d}/data'",
+       "run odometry/real_logs --data {d}/data --skip-missing all --out {d}/out", 0, "accepted by --skip-missing"},
+      {"run_config_inside_its_out_folder", "mkdir -p '{d}/o/slip' && echo '{}' > '{d}/o/slip/normality_table_3_1.json'",
+       "run slip/normality_table_3_1 --config {d}/o/slip/normality_table_3_1.json --out {d}/o", 2,
+       "inside the folder --out"},
+      {"run_relations_inside_its_out_folder", kShortLog + "mkdir -p '{d}/o' && touch '{d}/o/r.relations'",
+       "run odometry/real_logs --log {d}/l.clf --relations {d}/o/r.relations --out {d}/o", 2,
+       "inside the folder --out"},
+      {"merge_into_a_folder_run_is_writing",
+       "mkdir -p '{d}/s' '{d}/o' && touch '{d}/o/.locbench.lock' && {exe} run slip/normality_table_3_1 --shard 1/1 "
+       "--out '{d}/s' >/dev/null 2>&1",
+       "merge {d}/s -o {d}/o/slip/normality_table_3_1.json", 2, "in use", "flock '{d}/o/.locbench.lock'"},
+      {"merge_folder_lock_file_is_a_symlink",
+       "mkdir -p '{d}/s' '{d}/o' && ln -s '{d}/elsewhere' '{d}/o/.locbench.lock' && {exe} run "
+       "slip/normality_table_3_1 --shard 1/1 --out '{d}/s' >/dev/null 2>&1",
+       "merge {d}/s -o {d}/o", 2, "symbolic link"},
+      {"run_lock_file_is_a_symlink", "mkdir -p '{d}/out' && ln -s '{d}/elsewhere' '{d}/out/.locbench.lock'",
+       "run odometry/sim_corridor --runs 1 --out {d}/out && test ! -e '{d}/elsewhere'", 2, "symbolic link"},
+      {"run_removes_a_killed_writers_temporary",
+       "mkdir -p '{d}/out/odometry' && touch -d '1 hour ago' '{d}/out/odometry/.sim_corridor.json.tmp-AbCdEf'",
+       "run odometry/sim_corridor --runs 1 --out {d}/out >/dev/null && test ! -e "
+       "'{d}/out/odometry/.sim_corridor.json.tmp-AbCdEf' && echo no-temporary-left",
+       0, "no-temporary-left"},
+      {"simulate_removes_a_killed_writers_temporary", "touch -d '1 hour ago' '{d}/.c.clf.tmp-AbCdEf'",
+       "simulate corridor -o {d}/c.clf >/dev/null && test ! -e '{d}/.c.clf.tmp-AbCdEf' && echo no-temporary-left", 0,
+       "no-temporary-left"},
+      {"calibrate_ml_relations_on_a_catalog_dataset", "", "calibrate ml aces --relations /nonexistent", 2,
+       "--relations"},
+      {"calibrate_ml_relations_file_missing", kShortLog, "calibrate ml {d}/l.clf --relations {d}/absent.relations", 2,
+       "absent.relations"},
+      {"calibrate_umbmark_with_relations", "",
+       "calibrate umbmark-classic {src}/examples/umbmark_trilobot.json --relations /nonexistent", 2,
+       "applies to `calibrate ml`"},
+      {"calibrate_ml_data_on_a_log_file", kShortLog, "calibrate ml {d}/l.clf --data /tmp", 2, "--data"},
+      {"calibrate_ml_negative_wheelbase_is_not_converged",
+       "{exe} simulate corridor --seed 7 -o '{d}/c.clf' >/dev/null 2>&1", "calibrate ml {d}/c.clf", 1, "is impossible"},
+      {"gate_zero_ns_speed_pair",
+       file(
+           "b.json",
+           R"({"benchmarks": [{"name": "A", "real_time": 50, "time_unit": "ns"}, {"name": "B", "real_time": 100, "time_unit": "ns"}]})") +
+           file(
+               "c.json",
+               R"({"benchmarks": [{"name": "A", "real_time": 0, "time_unit": "ns"}, {"name": "B", "real_time": 0, "time_unit": "ns"}]})") +
+           file("rules.json",
+                R"({"speed_ratios": [{"name": "a_vs_b", "numerator": "bench:A", "denominator": "bench:B"}]})"),
+       "gate {d}/c.json --baseline {d}/b.json --rules {d}/rules.json", 1, "≤ 0 ns"},
+      {"gate_negative_ns_times",
+       file(
+           "b.json",
+           R"({"benchmarks": [{"name": "A", "real_time": 50, "time_unit": "ns"}, {"name": "B", "real_time": 100, "time_unit": "ns"}]})") +
+           file(
+               "c.json",
+               R"({"benchmarks": [{"name": "A", "real_time": -50, "time_unit": "ns"}, {"name": "B", "real_time": 100, "time_unit": "ns"}]})") +
+           file("rules.json",
+                R"({"speed_ratios": [{"name": "a_vs_b", "numerator": "bench:A", "denominator": "bench:B"}]})"),
+       "gate {d}/c.json --baseline {d}/b.json --rules {d}/rules.json", 1, "≤ 0 ns"},
+      {"gate_values_contradicting_the_mean",
+       "{exe} run odometry/sim_corridor --runs 3 --out '{d}/b' >/dev/null 2>&1 && cp -r '{d}/b' '{d}/c' && "
+       "sed -i '0,/\"mean\": [-0-9.e]*/s//\"mean\": 0.001/' '{d}/c/odometry/sim_corridor.json'",
+       "gate {d}/c --baseline {d}/b", 1, "contradicts its `values`"},
+      {"gate_negative_position_error",
+       "{exe} run odometry/sim_corridor --runs 3 --out '{d}/b' >/dev/null 2>&1 && mkdir -p '{d}/c/odometry' && " +
+           std::string(R"AWK(awk '/"values": \[/ {skip = 1} skip {if (/\]/) skip = 0; next} )AWK"
+                       R"AWK(/"(mean|median|min|max)": [0-9]/ {sub(/": /, "\": -")} {print}' )AWK") +
+           "'{d}/b/odometry/sim_corridor.json' > '{d}/c/odometry/sim_corridor.json'",
+       "gate {d}/c --baseline {d}/b", 1, "cannot be negative"},
+      {"gate_folder_of_two_run_ids",
+       "{exe} run odometry/sim_corridor slip/normality_table_3_1 --runs 3 --out '{d}/b' >/dev/null 2>&1 && cp -r "
+       "'{d}/b' '{d}/c' && sed -i 's/\"run_id\": \"[^\"]*\"/\"run_id\": \"an-older-run\"/' "
+       "'{d}/c/odometry/sim_corridor.json'",
+       "gate {d}/c --baseline {d}/b", 1, "mixes runs"},
+      {"report_says_a_folder_mixes_two_runs",
+       "{exe} run odometry/sim_corridor slip/normality_table_3_1 --runs 3 --out '{d}/b' >/dev/null 2>&1 && sed -i "
+       "'s/\"run_id\": \"[^\"]*\"/\"run_id\": \"an-older-run\"/' '{d}/b/odometry/sim_corridor.json'",
+       "report {d}/b -o {d}/p.html", 0, "mixes the reports of 2 runs"},
+      {"gate_skip_missing_all_against_the_committed_baseline",
+       "mkdir -p '{d}/data' && {exe} run odometry/real_logs --data '{d}/data' --skip-missing all --out '{d}/c' "
+       ">/dev/null 2>&1",
+       "gate {d}/c --baseline {src}/benchmarks/baselines/default/odometry/real_logs.json", 1, "none was compared"},
   };
   return all;
 }

@@ -61,6 +61,16 @@ TEST_F(ShardMerge, ThreeShardsOfTwoExperimentsMergeToExactlyTheSingleMachineRepo
     EXPECT_EQ(merged["context"]["shards"], 3);
     EXPECT_TRUE(reports::validate_report_json(merged).empty());
   }
+  // One run id per invocation: the merge's in both merged reports, the single run's in both of its
+  // own, each shard's its own, so each folder a gate reads is one run.
+  const auto run_id = [&](const std::string& f) { return read_json(at(f))["context"]["run_id"].get<std::string>(); };
+  EXPECT_EQ(run_id("merged/odometry/sim_corridor.json"), run_id("merged/noise/tables_4_1_4_2.json"));
+  EXPECT_EQ(run_id("single/odometry/sim_corridor.json"), run_id("single/noise/tables_4_1_4_2.json"));
+  EXPECT_NE(run_id("merged/odometry/sim_corridor.json"), run_id("single/odometry/sim_corridor.json"));
+  EXPECT_EQ(run_id("shards/1/odometry/sim_corridor.shard-1-of-3.json"),
+            run_id("shards/1/noise/tables_4_1_4_2.shard-1-of-3.json"));
+  const Outcome gate = run_locbench("gate " + at("merged") + " --baseline " + at("single"));
+  EXPECT_EQ(gate.exit_code, 0) << gate.output;
   // Shard 2 of 3 holds runs 1 and 4 of 0…4.
   const nlohmann::json s2 = read_json(at("shards/2/odometry/sim_corridor.shard-2-of-3.json"));
   EXPECT_TRUE(reports::validate_shard_json(s2).empty());

@@ -74,6 +74,17 @@ TEST(FinishReport, StampsTheProvenanceAndWritesAValidReportAtomically) {
   EXPECT_EQ(files_in(path.parent_path()), 1u);  // no temporary file left beside it
 }
 
+TEST(FinishReport, StampsOneRunIdPerInvocationIntoEveryReport) {
+  testing::ScratchDir dir;
+  Report a = testing::sample_report(), b = testing::sample_report();
+  std::ostringstream out, log;
+  finish_report(a, ReportTail("a", "locbench run", dir.file("a.json")), out, log);
+  finish_report(b, ReportTail("b", "locbench run", dir.file("b.json")), out, log);
+  EXPECT_FALSE(read_report(dir.file("a.json")).provenance.run_id.empty());
+  EXPECT_EQ(read_report(dir.file("a.json")).provenance.run_id, read_report(dir.file("b.json")).provenance.run_id);
+  EXPECT_EQ(read_report(dir.file("a.json")).provenance.run_id, invocation_run_id());
+}
+
 TEST(FinishReport, PrintsTheSummaryThenEachResultNoteThenEachNoteWhenAsked) {
   Report report = testing::sample_report();
   std::ostringstream out, log;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <chrono>
 #include <fstream>
 #include <sstream>
 
@@ -113,6 +114,74 @@ TEST(OutputFile, TheLockIsReleasedWithItsOwner) {
   testing::ScratchDir dir;
   { const OutputFolderLock first(dir.file("out")); }
   EXPECT_EQ(input_error_message([&] { OutputFolderLock again(dir.file("out")); }), "");
+}
+
+TEST(OutputFile, ALockFileThatIsASymbolicLinkIsRefusedAndNothingIsCreatedWhereItPoints) {
+  testing::ScratchDir dir;
+  std::filesystem::create_directories(dir.file("out"));
+  std::filesystem::create_symlink(dir.file("elsewhere"), dir.file("out/.locbench.lock"));
+  EXPECT_NE(input_error_message([&] { OutputFolderLock lock(dir.file("out")); }).find("is a symbolic link"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("elsewhere")));
+}
+
+// A temporary file as a killed writer leaves it: unlocked, its modification time `age` ago.
+std::filesystem::path killed_writers_temporary(const std::filesystem::path& folder, const std::string& target,
+                                               std::chrono::seconds age) {
+  const auto p = folder / ("." + target + ".tmp-Ab12Cd");
+  std::filesystem::create_directories(folder);
+  std::ofstream(p) << "half a report";
+  std::filesystem::last_write_time(p, std::filesystem::file_time_type::clock::now() - age);
+  return p;
+}
+
+TEST(OutputFile, ATemporaryFileOfAKilledWriterIsRemovedByTheNextLockOfItsFolder) {
+  testing::ScratchDir dir;
+  const auto stale = killed_writers_temporary(dir.file("out/odometry"), "sim_corridor.json", std::chrono::hours(1));
+  const auto fresh = killed_writers_temporary(dir.file("out"), "young.json", std::chrono::seconds(0));
+  AtomicOutput live(dir.file("out/live.json"));  // a writer at work: its file is locked
+  std::filesystem::last_write_time(live.temp_path(),
+                                   std::filesystem::file_time_type::clock::now() - std::chrono::hours(1));
+  { const OutputFolderLock lock(dir.file("out")); }
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  EXPECT_TRUE(std::filesystem::exists(fresh));  // maybe a writer about to take its lock
+  EXPECT_TRUE(std::filesystem::exists(live.temp_path()));
+}
+
+TEST(OutputFile, ATemporaryFileOfAKilledWriterIsRemovedByTheNextWriterOfTheSameFile) {
+  testing::ScratchDir dir;
+  const auto stale = killed_writers_temporary(dir.path(), "big.clf", std::chrono::hours(1));
+  const auto other = killed_writers_temporary(dir.path(), "other.clf", std::chrono::hours(1));
+  write_file_atomically(dir.file("big.clf"), "log");
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  EXPECT_TRUE(std::filesystem::exists(other));  // another file's: left to its own writer
+}
+
+TEST(OutputFile, AnInputInsideTheOutputFolderIsRefused) {
+  testing::ScratchDir dir;
+  std::filesystem::create_directories(dir.file("o/slip"));
+  std::ofstream(dir.file("o/slip/normality_table_3_1.json")) << "{}";
+  EXPECT_NE(input_error_message([&] {
+              check_inputs_outside({"", dir.file("o/slip/normality_table_3_1.json").string()}, dir.file("o"), "--out");
+            }).find("inside the folder --out"),
+            std::string::npos);
+  EXPECT_NE(
+      input_error_message([&] { check_inputs_outside({dir.file("o/../o/x.json").string()}, dir.file("o"), "--out"); }),
+      "");
+  EXPECT_EQ(input_error_message([&] { check_inputs_outside({dir.file("c.json").string()}, dir.file("o"), "--out"); }),
+            "");
+}
+
+TEST(OutputFile, AFileWrittenInsideALockedFolderIsRefusedWhileTheFolderIsInUse) {
+  testing::ScratchDir dir;
+  std::filesystem::create_directories(dir.file("o/odometry"));
+  {
+    const OutputFolderLock run(dir.file("o"));  // `run --out o` at work
+    EXPECT_NE(input_error_message([&] { lock_folders_above(dir.file("o/odometry/sim_corridor.json")); }).find("in use"),
+              std::string::npos);
+  }
+  EXPECT_EQ(lock_folders_above(dir.file("o/odometry/sim_corridor.json")).size(), 1u);
+  EXPECT_EQ(lock_folders_above(dir.file("elsewhere/x.json")).size(), 0u);  // no lock file: none taken or made
 }
 
 }  // namespace

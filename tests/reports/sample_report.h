@@ -9,9 +9,17 @@ namespace locbench::testing {
 // A small, fully populated report for tests.
 inline reports::Report sample_report() {
   reports::Report r;
-  r.provenance = {"0.1.0",      "abc123",    "GCC 12.2.0",           "-O2",
-                  "Release",    "host",      "2026-11-21T12:00:00Z", "locbench run smoke",
-                  std::nullopt, std::nullopt};
+  r.provenance = {"0.1.0",
+                  "abc123",
+                  "GCC 12.2.0",
+                  "-O2",
+                  "Release",
+                  "host",
+                  "2026-11-21T12:00:00Z",
+                  "locbench run smoke",
+                  std::nullopt,
+                  std::nullopt,
+                  ""};
   r.body.experiment = "odometry/sim_corridor";
   r.body.description = "dead reckoning on a simulated corridor";
   r.body.seeds = {1, 2, 3};
