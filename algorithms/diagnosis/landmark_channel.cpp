@@ -86,11 +86,14 @@ class LmFitter {
   }
   double nll(const LandmarkModel& m) const { return nll(m, index_); }
 
-  LmFit fit(const std::vector<const CauseSpec*>& free, LandmarkModel m, bool interval) const {
+  // `hold_offset`: a free offset stays at the start model's value (selection fits that add another
+  // cause to a model whose offset was profiled already: the likelihood ratio is then a little
+  // conservative, and the cost a Newton fit instead of repeated profiles).
+  LmFit fit(const std::vector<const CauseSpec*>& free, LandmarkModel m, bool interval, bool hold_offset = false) const {
     const bool offset =
         std::any_of(free.begin(), free.end(), [](const CauseSpec* c) { return c->id == cause::kLandmarkTimeOffset; });
     LmFit f = newton(free, m, 100);
-    if (!offset) return f;
+    if (!offset || hold_offset) return f;
     const double dt = d_.reference_interval;
     for (int round = 0; round < 4; ++round) {
       const LandmarkModel held = f.model;
@@ -107,7 +110,7 @@ class LmFitter {
       profiled = [&](double o) {
         LandmarkModel x = best;
         x.time_offset = o;
-        return newton(free, x, 15).nll;
+        return newton(free, x, 2).nll;  // from the optimum, two steps re-fit the others
       };
     }
     f.offset = profile_offset([&](double o) { return at_offset(best, o); }, profiled, dt);
@@ -266,7 +269,10 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
       m.position_error_dx = x.dx;
       m.position_error_dy = x.dy;
     }
-    return fits[key] = fitter.fit(specs, m, false);
+    const bool offset_earlier =
+        std::any_of(active.begin(), active.end() - 1,
+                    [&](std::size_t i) { return candidates[i]->id == cause::kLandmarkTimeOffset; });
+    return fits[key] = fitter.fit(specs, m, false, offset_earlier);
   };
   // The reported fits: the offset's interval profiled.
   std::map<std::vector<std::size_t>, LmFit> reported;
@@ -287,28 +293,37 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
     return chi_square_upper_quantile(ChiSquareDof(static_cast<double>(candidates[i]->params.size())),
                                      opt.false_alarm / (m * scan));
   };
+  // Specific causes first, then the generic heavy-tail model; once it has entered, the specific
+  // causes are tried again under it (a range bias that outliers hide from the normal model shows
+  // under the Student-t one), until a round adds nothing.
   Selection sel;
   sel.evidence.resize(candidates.size());
-  for (const bool generic : {false, true}) {
-    std::vector<std::size_t> pool;
-    for (std::size_t i = 0; i < candidates.size(); ++i) {
-      if (candidates[i]->generic == generic) pool.push_back(i);
+  for (int round = 0; round < 3; ++round) {
+    const std::size_t entered_before = sel.entered.size();
+    for (const bool generic : {false, true}) {
+      std::vector<std::size_t> pool;
+      for (std::size_t i = 0; i < candidates.size(); ++i) {
+        const bool in = std::find(sel.entered.begin(), sel.entered.end(), i) != sel.entered.end();
+        if (candidates[i]->generic == generic && !in) pool.push_back(i);
+      }
+      if (pool.empty()) continue;
+      const std::vector<std::size_t> before = sel.entered;
+      const Selection phase = forward_select(
+          pool.size(), fit_set(before).nll, [&](std::size_t k) { return threshold(pool[k]); },
+          [&](const std::vector<std::size_t>& active) {
+            std::vector<std::size_t> all = before;
+            for (std::size_t k : active) all.push_back(pool[k]);
+            const LmFit& f = fit_set(all);
+            const CauseSpec& last = *candidates[all.back()];
+            bool admissible = lm_plausible(last, f);
+            if (last.id == cause::kLandmarkTimeOffset) admissible = admissible && offset_resolved(f.model.time_offset);
+            if (last.id == cause::kLandmarkPositionError) admissible = admissible && f.model.position_error_id >= 0;
+            return SelectionFit{f.nll, admissible};
+          });
+      for (std::size_t k : phase.entered) sel.entered.push_back(pool[k]);
+      for (std::size_t k = 0; k < pool.size(); ++k) sel.evidence[pool[k]] = phase.evidence[k];
     }
-    const std::vector<std::size_t> before = sel.entered;
-    const Selection phase = forward_select(
-        pool.size(), fit_set(before).nll, [&](std::size_t k) { return threshold(pool[k]); },
-        [&](const std::vector<std::size_t>& active) {
-          std::vector<std::size_t> all = before;
-          for (std::size_t k : active) all.push_back(pool[k]);
-          const LmFit& f = fit_set(all);
-          const CauseSpec& last = *candidates[all.back()];
-          bool admissible = lm_plausible(last, f);
-          if (last.id == cause::kLandmarkTimeOffset) admissible = admissible && offset_resolved(f.model.time_offset);
-          if (last.id == cause::kLandmarkPositionError) admissible = admissible && f.model.position_error_id >= 0;
-          return SelectionFit{f.nll, admissible};
-        });
-    for (std::size_t k : phase.entered) sel.entered.push_back(pool[k]);
-    for (std::size_t k = 0; k < pool.size(); ++k) sel.evidence[pool[k]] = phase.evidence[k];
+    if (sel.entered.size() == entered_before) break;
   }
 
   // The held-out check, drop-one: the model with the other entered causes against the full one.

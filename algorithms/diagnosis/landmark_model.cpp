@@ -107,15 +107,15 @@ LandmarkResidual landmark_residual(const LandmarkData& d, std::size_t i, const L
 
 namespace {
 
-// Log-density of a residual with squared scale v: normal (dof = 0) or Student-t.
+// Log-density of a residual r with squared scale v (log v given): normal (dof = 0) or Student-t.
 struct LandmarkDensity {
   explicit LandmarkDensity(double nu)
       : dof(nu),
         constant(nu > 0.0 ? std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu) - 0.5 * std::log(nu * kPi)
                           : -0.5 * std::log(2.0 * kPi)) {}
-  double operator()(double r, double v) const {
-    if (!(dof > 0.0)) return constant - 0.5 * (r * r / v + std::log(v));
-    return constant - 0.5 * std::log(v) - 0.5 * (dof + 1.0) * std::log1p(r * r / (dof * v));
+  double operator()(double r, double v, double log_v) const {
+    if (!(dof > 0.0)) return constant - 0.5 * (r * r / v + log_v);
+    return constant - 0.5 * log_v - 0.5 * (dof + 1.0) * std::log1p(r * r / (dof * v));
   }
   double dof, constant;
 };
@@ -128,17 +128,20 @@ double landmark_nll(const LandmarkData& d, const std::vector<LandmarkGeometry>& 
     return std::numeric_limits<double>::infinity();
   }
   const LandmarkDensity density(m.dof);
-  const double v_b = m.sigma_bearing * m.sigma_bearing;
+  const double v_r0 = m.sigma_range * m.sigma_range, v_b = m.sigma_bearing * m.sigma_bearing;
+  const double log_v_r0 = std::log(v_r0), log_v_b = std::log(v_b);
+  const bool growing = m.range_noise_slope != 0.0;
   const std::size_t n = index.empty() ? d.readings.size() : index.size();
   double nll = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = index.empty() ? k : index[k];
     const LandmarkResidual r = landmark_residual(d, i, geometry[i], m);
     if (!r.valid) {
-      nll -= density(0.0, m.sigma_range * m.sigma_range) + density(0.0, v_b);
+      nll -= density(0.0, v_r0, log_v_r0) + density(0.0, v_b, log_v_b);
       continue;
     }
-    nll -= density(r.range, r.var_range) + density(r.bearing, r.var_bearing);
+    nll -= density(r.range, r.var_range, growing ? std::log(r.var_range) : log_v_r0) +
+           density(r.bearing, v_b, log_v_b);
   }
   return nll;
 }

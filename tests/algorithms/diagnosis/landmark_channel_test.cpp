@@ -107,3 +107,40 @@ INSTANTIATE_TEST_SUITE_P(
 
 }  // namespace
 }  // namespace locbench::diagnosis
+
+namespace locbench::diagnosis {
+namespace {
+
+// 150 null logs of 120 s (~300 observations each): at most 3 with any landmark cause detected
+// (α = 0.01 per log; P(≥ 4 of 150 | p = 0.01) ≈ 0.07 — diagnosis/false_alarms measures more).
+TEST(LandmarkChannel, NullLogsDetectNoLandmarkCauseAtTheStatedFalseAlarmLevel) {
+  sim::LandmarkLogOptions o;
+  o.duration = 120.0;
+  o.odometry = false;
+  int alarms = 0;
+  std::string which;
+  for (std::uint64_t seed = 1; seed <= 150; ++seed) {
+    const GeneratedLog g = sim::generate_landmark_log({}, seed, o);
+    const LandmarkChannelResult r = diagnose_landmarks(data_of(g.log), DiagnosisOptions{});
+    ASSERT_TRUE(r.testable) << seed;
+    const auto ids = detected_ids(r);
+    if (!ids.empty()) {
+      ++alarms;
+      which += " seed " + std::to_string(seed) + ": " + ids.front();
+    }
+  }
+  EXPECT_LE(alarms, 3) << which;
+}
+
+TEST(LandmarkChannel, FewerThanFortyMappedObservationsAreNotTestable) {
+  sim::LandmarkLogOptions o;
+  o.duration = 10.0;
+  const GeneratedLog g = sim::generate_landmark_log({}, 3, o);
+  const LandmarkChannelResult r = diagnose_landmarks(data_of(g.log), DiagnosisOptions{});
+  EXPECT_FALSE(r.testable);
+  EXPECT_TRUE(r.causes.empty());
+  EXPECT_TRUE(diagnose_landmarks(LandmarkData{}, DiagnosisOptions{}).causes.empty());
+}
+
+}  // namespace
+}  // namespace locbench::diagnosis
