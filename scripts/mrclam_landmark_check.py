@@ -110,7 +110,6 @@ def check(folder, robot):
     inl = [x for x in res if abs(x[2] - med_r) <= 5 * sd_r and abs(x[3] - med_b) <= 5 * sd_b]
     scale_all, bias_all = ols([x[1] for x in res], [x[4] for x in res])
     scale_in, bias_in = ols([x[1] for x in inl], [x[4] for x in inl])
-    inlier_keys = {(x[0], round(x[4], 6)) for x in inl}
 
     def bearing_ss(offset):
         r = residuals(obs, truth, marks, offset)
@@ -136,7 +135,6 @@ def check(folder, robot):
         if r:
             print("    %2d %4d %+.4f %+.5f" % (s, len(r), statistics.median([x[2] for x in r]),
                                             statistics.median([x[3] for x in r])))
-    del inlier_keys
 
 
 def main():

@@ -76,8 +76,8 @@ void add_landmark_causes(std::vector<CauseSpec>& c) {
                .explains = {"landmark_dependence:landmark_range", "landmark_dependence:landmark_bearing"},
                .explain = [](const Cause& x) {
                  const std::string id = x.extra.contains("landmark") ? x.extra["landmark"].dump() : "?";
-                 return "landmark " + id + " is not where the map says: true − surveyed position (" + ci(x, 0) +
-                        ", " + ci(x, 1) + ") m (the best of the landmarks searched)";
+                 return "landmark " + id + " is not where the map says: true − surveyed position (" + ci(x, 0) + ", " +
+                        ci(x, 1) + ") m (the best of the landmarks searched)";
                }});
   c.push_back({.id = cause::kLandmarkHeavyTails,
                .channel = "landmark",

@@ -40,7 +40,8 @@ LmField field_of(std::string_view id, std::size_t k) {
   if (id == cause::kLandmarkBearingBias) return &LandmarkModel::bearing_bias;
   if (id == cause::kLandmarkRangeNoise) return &LandmarkModel::range_noise_slope;
   if (id == cause::kLandmarkHeavyTails) return &LandmarkModel::dof;
-  if (id == cause::kLandmarkPositionError) return k == 0 ? &LandmarkModel::position_error_dx : &LandmarkModel::position_error_dy;
+  if (id == cause::kLandmarkPositionError)
+    return k == 0 ? &LandmarkModel::position_error_dx : &LandmarkModel::position_error_dy;
   return nullptr;
 }
 
@@ -199,7 +200,7 @@ class LmFitter {
 // Held-out gains: predictive NLL per observation (primary), then the RMS range and bearing
 // residuals of the model's mean.
 std::vector<Gain> lm_heldout(const LmFitter& f, const LandmarkData& d, const LandmarkModel& before,
-                          const LandmarkModel& after, const std::vector<std::size_t>& test) {
+                             const LandmarkModel& after, const std::vector<std::size_t>& test) {
   const double n = static_cast<double>(std::max<std::size_t>(test.size(), 1));
   auto rms_of = [&](const LandmarkModel& m, bool range) {
     const auto& g = f.geometry(m.time_offset);
@@ -269,9 +270,9 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
       m.position_error_dx = x.dx;
       m.position_error_dy = x.dy;
     }
-    const bool offset_earlier =
-        std::any_of(active.begin(), active.end() - 1,
-                    [&](std::size_t i) { return candidates[i]->id == cause::kLandmarkTimeOffset; });
+    const bool offset_earlier = std::any_of(active.begin(), active.end() - 1, [&](std::size_t i) {
+      return candidates[i]->id == cause::kLandmarkTimeOffset;
+    });
     return fits[key] = fitter.fit(specs, m, false, offset_earlier);
   };
   // The reported fits: the offset's interval profiled.

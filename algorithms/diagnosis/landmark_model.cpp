@@ -25,7 +25,8 @@ void visit_fields(V& v, LandmarkModel& m) {
           "range noise grows with range: Var n_r = σ_r² + (slope·ρ)²");
   v.field("dof", m.dof, "", non_negative(), "Student-t degrees of freedom of both noises; 0 = normal");
   v.field("time_offset_s", m.time_offset, "s", closed(-10.0, 10.0), "observation logged time − true time");
-  v.field("position_error_id", m.position_error_id, "", at_least(-1), "landmark whose surveyed position is off; -1 none");
+  v.field("position_error_id", m.position_error_id, "", at_least(-1),
+          "landmark whose surveyed position is off; -1 none");
   v.field("position_error_dx_m", m.position_error_dx, "m", any_finite(), "its true − surveyed x");
   v.field("position_error_dy_m", m.position_error_dy, "m", any_finite(), "its true − surveyed y");
 }
@@ -140,8 +141,7 @@ double landmark_nll(const LandmarkData& d, const std::vector<LandmarkGeometry>& 
       nll -= density(0.0, v_r0, log_v_r0) + density(0.0, v_b, log_v_b);
       continue;
     }
-    nll -= density(r.range, r.var_range, growing ? std::log(r.var_range) : log_v_r0) +
-           density(r.bearing, v_b, log_v_b);
+    nll -= density(r.range, r.var_range, growing ? std::log(r.var_range) : log_v_r0) + density(r.bearing, v_b, log_v_b);
   }
   return nll;
 }

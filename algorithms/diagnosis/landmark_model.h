@@ -59,9 +59,9 @@ struct LandmarkGeometry {
 std::vector<LandmarkGeometry> landmark_geometry(const LandmarkData& d, double time_offset);
 
 struct LandmarkResidual {
-  double range = 0.0, bearing = 0.0;           // z − prediction (scale, biases, δ applied)
-  double var_range = 0.0, var_bearing = 0.0;   // the model's squared scales
-  double rho = 0.0;                            // predicted range [m]
+  double range = 0.0, bearing = 0.0;          // z − prediction (scale, biases, δ applied)
+  double var_range = 0.0, var_bearing = 0.0;  // the model's squared scales
+  double rho = 0.0;                           // predicted range [m]
   bool valid = false;
 };
 LandmarkResidual landmark_residual(const LandmarkData& d, std::size_t i, const LandmarkGeometry& g,

@@ -31,8 +31,8 @@
 // with t̂ the predicted translation (x, y); the mean prediction (predict_window, the held-out
 // errors) is the translation scaled by 1 − p·f.
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
 

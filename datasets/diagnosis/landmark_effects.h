@@ -16,19 +16,19 @@
 namespace locbench::sim {
 
 struct LandmarkLogOptions {
-  double duration = 600.0;       // [s]
-  int landmarks = 15;            // placed uniformly in [−1, area + 1]²
-  double area = 8.0;             // waypoints in [0, area]² [m]
-  double speed = 0.3;            // [m/s]
-  double turn_rate = 0.785;      // turns in place [rad/s]
-  double sigma_range = 0.03;     // camera range noise [m]
-  double sigma_bearing = 0.01;   // camera bearing noise [rad]
+  double duration = 600.0;                  // [s]
+  int landmarks = 15;                       // placed uniformly in [−1, area + 1]²
+  double area = 8.0;                        // waypoints in [0, area]² [m]
+  double speed = 0.3;                       // [m/s]
+  double turn_rate = 0.785;                 // turns in place [rad/s]
+  double sigma_range = 0.03;                // camera range noise [m]
+  double sigma_bearing = 0.01;              // camera bearing noise [rad]
   double min_range = 0.5, max_range = 6.0;  // [m]
-  double field_of_view = 0.5;    // |bearing| ≤ this [rad]
-  double truth_rate = 100.0;     // [Hz]
-  double truth_noise_xy = 1e-3;  // [m]
-  double truth_noise_theta = 1e-3;  // [rad]
-  bool odometry = true;          // log ODOM at 10 Hz (the truth's motion, 1% velocity noise)
+  double field_of_view = 0.5;               // |bearing| ≤ this [rad]
+  double truth_rate = 100.0;                // [Hz]
+  double truth_noise_xy = 1e-3;             // [m]
+  double truth_noise_theta = 1e-3;          // [rad]
+  bool odometry = true;                     // log ODOM at 10 Hz (the truth's motion, 1% velocity noise)
 };
 
 // The landmark ids the generator can hide, with the unit of the magnitude.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/angle.h"
 #include "datasets/diagnosis/landmark_effects.h"
@@ -27,7 +28,8 @@ std::string channel_summary(const LandmarkChannelResult& r) {
     for (const auto& p : c.parameters)
       s += " " + p.name + "=" + std::to_string(p.value) + "[" + std::to_string(p.lo) + "," + std::to_string(p.hi) + "]";
   }
-  for (const auto& t : r.remaining) s += "\n  remaining " + t.name + ":" + t.residual + " p=" + std::to_string(t.p_value);
+  for (const auto& t : r.remaining)
+    s += "\n  remaining " + t.name + ":" + t.residual + " p=" + std::to_string(t.p_value);
   return s;
 }
 
@@ -88,22 +90,21 @@ TEST_P(LandmarkHiddenEffect, IsNamedWithTheTrueValueInsideItsInterval) {
   const auto p = std::find_if(cause->parameters.begin(), cause->parameters.end(),
                               [&](const Estimate& e) { return e.name == c.parameter; });
   ASSERT_NE(p, cause->parameters.end()) << channel_summary(r);
-  EXPECT_TRUE(truth >= p->lo && truth <= p->hi)
-      << c.parameter << ": true " << truth << ", estimate " << p->value << " [" << p->lo << ", " << p->hi << "]"
-      << channel_summary(r);
+  EXPECT_TRUE(truth >= p->lo && truth <= p->hi) << c.parameter << ": true " << truth << ", estimate " << p->value
+                                                << " [" << p->lo << ", " << p->hi << "]" << channel_summary(r);
   ASSERT_FALSE(cause->gains.empty());
   EXPECT_GT(cause->gains.front().relative(), 0.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    LandmarkChannel, LandmarkHiddenEffect,
-    ::testing::Values(LandmarkCase{"landmark_range_scale", 0.03, "scale"}, LandmarkCase{"landmark_range_bias", 0.04, "bias_m"},
-                      LandmarkCase{"landmark_bearing_bias", 0.02, "bias_rad"},
-                      LandmarkCase{"landmark_time_offset", 0.1, "offset_s"},
-                      LandmarkCase{"landmark_range_dependent_noise", 0.02, "slope"},
-                      LandmarkCase{"landmark_heavy_tails", 3.0, "dof"},
-                      LandmarkCase{"landmark_position_error", 0.3, "dx_m"}),
-    [](const auto& info) { return info.param.id; });
+INSTANTIATE_TEST_SUITE_P(LandmarkChannel, LandmarkHiddenEffect,
+                         ::testing::Values(LandmarkCase{"landmark_range_scale", 0.03, "scale"},
+                                           LandmarkCase{"landmark_range_bias", 0.04, "bias_m"},
+                                           LandmarkCase{"landmark_bearing_bias", 0.02, "bias_rad"},
+                                           LandmarkCase{"landmark_time_offset", 0.1, "offset_s"},
+                                           LandmarkCase{"landmark_range_dependent_noise", 0.02, "slope"},
+                                           LandmarkCase{"landmark_heavy_tails", 3.0, "dof"},
+                                           LandmarkCase{"landmark_position_error", 0.3, "dx_m"}),
+                         [](const auto& info) { return info.param.id; });
 
 }  // namespace
 }  // namespace locbench::diagnosis
@@ -129,6 +130,7 @@ TEST(LandmarkChannel, NullLogsDetectNoLandmarkCauseAtTheStatedFalseAlarmLevel) {
       which += " seed " + std::to_string(seed) + ": " + ids.front();
     }
   }
+  std::printf("null landmark logs: %d of 150 with a landmark cause detected%s\n", alarms, which.c_str());
   EXPECT_LE(alarms, 3) << which;
 }
 

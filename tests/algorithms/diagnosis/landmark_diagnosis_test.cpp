@@ -65,8 +65,8 @@ TEST(LandmarkDiagnosis, TheOdometryModelHoldsOnlyTheDetectedOdometryCausesWithTh
     for (const auto& p : cause_spec(c.id).params) {
       if (p.field == nullptr) continue;
       set.push_back(p.field);
-      const auto e = std::find_if(c.parameters.begin(), c.parameters.end(),
-                                  [&](const Estimate& x) { return x.name == p.name; });
+      const auto e =
+          std::find_if(c.parameters.begin(), c.parameters.end(), [&](const Estimate& x) { return x.name == p.name; });
       ASSERT_NE(e, c.parameters.end()) << c.id;
       EXPECT_DOUBLE_EQ((*d.odometry_model).*(p.field), e->value) << c.id << "." << p.name;
     }
