@@ -87,9 +87,10 @@ class LmFitter {
   }
   double nll(const LandmarkModel& m) const { return nll(m, index_); }
 
-  // `hold_offset`: a free offset stays at the start model's value (selection fits that add another
-  // cause to a model whose offset was profiled already: the likelihood ratio is then a little
-  // conservative, and the cost a Newton fit instead of repeated profiles).
+  // A free offset alternates with the others: profiled (selection.h) with them held, then they
+  // re-fitted, until it moves less than half a fine step; `interval`: its 95% interval from the
+  // profile with σ_r, σ_b re-fitted at each offset. `hold_offset`: the offset stays at the start
+  // model's value (joint fits started where it was profiled already).
   LmFit fit(const std::vector<const CauseSpec*>& free, LandmarkModel m, bool interval, bool hold_offset = false) const {
     const bool offset =
         std::any_of(free.begin(), free.end(), [](const CauseSpec* c) { return c->id == cause::kLandmarkTimeOffset; });
@@ -111,7 +112,7 @@ class LmFitter {
       profiled = [&](double o) {
         LandmarkModel x = best;
         x.time_offset = o;
-        return newton(free, x, 2).nll;  // from the optimum, two steps re-fit the others
+        return newton({}, x, 3).nll;  // σ_r, σ_b re-fitted (the offset trades against them)
       };
     }
     f.offset = profile_offset([&](double o) { return at_offset(best, o); }, profiled, dt);
@@ -160,7 +161,10 @@ class LmFitter {
   }
   LmFit newton(const std::vector<const CauseSpec*>& free, const LandmarkModel& m, int iterations) const {
     LmFit out;
-    std::vector<FitParameter> fp{{"sigma_range", m.sigma_range, 0.0, true},
+    // σ_r on a linear scale, used as |σ_r| (the variance holds σ_r²): beside a range-dependent
+    // noise the data may put it at 0, where a log scale has no curvature and every interval of
+    // the fit would be lost with the Hessian.
+    std::vector<FitParameter> fp{{"sigma_range", m.sigma_range, 0.01, false},
                                  {"sigma_bearing", m.sigma_bearing, 0.0, true}};
     out.coords = {&LandmarkModel::sigma_range, &LandmarkModel::sigma_bearing};
     const LandmarkModel defaults;
@@ -177,6 +181,7 @@ class LmFitter {
     auto apply = [&](const std::vector<double>& v) {
       LandmarkModel x = m;
       for (std::size_t i = 0; i < v.size(); ++i) x.*(out.coords[i]) = v[i];
+      x.sigma_range = std::abs(x.sigma_range);
       return x;
     };
     const auto& g = geometry(m.time_offset);
@@ -252,40 +257,55 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
   out.tests = landmark_battery(d, g0, nominal.model, train);
 
   const auto candidates = landmark_causes();
-  std::map<std::vector<std::size_t>, LmFit> fits;
+  std::vector<std::size_t> sel_order;  // the candidates entered so far, in order
+  // Selection fits, by the ordered list of candidates entered: each adds the last candidate's
+  // parameters to the model of the list without it and fits them with σ_r, σ_b, holding the
+  // parameters already in (a time offset, once profiled, among them). The likelihood ratio is
+  // then that of the added cause at the others' earlier values — a little conservative — and a
+  // fit costs a few parameters instead of all of them (MRCLAM: ~4000 observations per robot).
+  std::map<std::vector<std::size_t>, LmFit> steps;
   std::size_t searched = 1;  // landmarks searched for the displaced one
-  std::function<const LmFit&(std::vector<std::size_t>)> fit_set = [&](std::vector<std::size_t> active) -> const LmFit& {
+  std::function<const LmFit&(const std::vector<std::size_t>&)> step_fit =
+      [&](const std::vector<std::size_t>& active) -> const LmFit& {
     if (active.empty()) return nominal;
-    std::vector<std::size_t> key = active;
-    std::sort(key.begin(), key.end());
-    if (auto it = fits.find(key); it != fits.end()) return it->second;
-    LandmarkModel m = fit_set(std::vector<std::size_t>(active.begin(), active.end() - 1)).model;
-    std::vector<const CauseSpec*> specs;
-    for (std::size_t i : key) specs.push_back(candidates[i]);
-    if (candidates[active.back()]->id == cause::kLandmarkPositionError) {
+    if (auto it = steps.find(active); it != steps.end()) return it->second;
+    LandmarkModel m = step_fit(std::vector<std::size_t>(active.begin(), active.end() - 1)).model;
+    const CauseSpec* added = candidates[active.back()];
+    if (added->id == cause::kLandmarkPositionError) {
       const LmDisplacement x = fitter.displaced(m);
       searched = std::max<std::size_t>(x.searched, 1);
-      if (x.id < 0) return fits[key] = LmFit{m, {}, {}, {}, false, fit_set({}).nll};
+      if (x.id < 0) return steps[active] = LmFit{m, {}, {}, {}, false, nominal.nll};
       m.position_error_id = x.id;
       m.position_error_dx = x.dx;
       m.position_error_dy = x.dy;
     }
-    const bool offset_earlier = std::any_of(active.begin(), active.end() - 1, [&](std::size_t i) {
-      return candidates[i]->id == cause::kLandmarkTimeOffset;
-    });
-    return fits[key] = fitter.fit(specs, m, false, offset_earlier);
+    return steps[active] = fitter.fit({added}, m, false);
   };
-  // The reported fits: the offset's interval profiled.
-  std::map<std::vector<std::size_t>, LmFit> reported;
-  auto report_fit = [&](std::vector<std::size_t> active) -> const LmFit& {
-    std::sort(active.begin(), active.end());
-    const bool offset = std::any_of(active.begin(), active.end(),
-                                    [&](std::size_t i) { return candidates[i]->id == cause::kLandmarkTimeOffset; });
-    if (!offset) return fit_set(active);
-    if (auto it = reported.find(active); it != reported.end()) return it->second;
+  // Joint fits of a set of causes (every parameter free, started from the selection fit; a time
+  // offset held there), and with `interval` the offset profiled again with its 95% interval.
+  std::map<std::pair<std::vector<std::size_t>, bool>, LmFit> joints;
+  auto joint_fit = [&](std::vector<std::size_t> set, bool interval) -> const LmFit& {
+    std::vector<std::size_t> ordered;  // in order of entry when entered, else as given
+    for (std::size_t i : sel_order) {
+      if (std::find(set.begin(), set.end(), i) != set.end()) ordered.push_back(i);
+    }
+    for (std::size_t i : set) {
+      if (std::find(ordered.begin(), ordered.end(), i) == ordered.end()) ordered.push_back(i);
+    }
+    std::sort(set.begin(), set.end());
+    if (set.empty()) return nominal;
+    if (auto it = joints.find({set, interval}); it != joints.end()) return it->second;
     std::vector<const CauseSpec*> specs;
-    for (std::size_t i : active) specs.push_back(candidates[i]);
-    return reported[active] = fitter.fit(specs, fit_set(active).model, true);
+    for (std::size_t i : set) specs.push_back(candidates[i]);
+    const LmFit& start = step_fit(ordered);
+    if (start.model.position_error_id < 0 && std::any_of(set.begin(), set.end(), [&](std::size_t i) {
+          return candidates[i]->id == cause::kLandmarkPositionError;
+        })) {
+      return joints[{set, interval}] = start;
+    }
+    LmFit f = fitter.fit(specs, start.model, false, true);
+    if (interval) f = fitter.fit(specs, f.model, true);
+    return joints[{set, interval}] = f;
   };
 
   const double m = static_cast<double>(candidates.size());
@@ -310,11 +330,11 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
       if (pool.empty()) continue;
       const std::vector<std::size_t> before = sel.entered;
       const Selection phase = forward_select(
-          pool.size(), fit_set(before).nll, [&](std::size_t k) { return threshold(pool[k]); },
+          pool.size(), step_fit(before).nll, [&](std::size_t k) { return threshold(pool[k]); },
           [&](const std::vector<std::size_t>& active) {
             std::vector<std::size_t> all = before;
             for (std::size_t k : active) all.push_back(pool[k]);
-            const LmFit& f = fit_set(all);
+            const LmFit& f = step_fit(all);
             const CauseSpec& last = *candidates[all.back()];
             bool admissible = lm_plausible(last, f);
             if (last.id == cause::kLandmarkTimeOffset) admissible = admissible && offset_resolved(f.model.time_offset);
@@ -322,21 +342,33 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
             return SelectionFit{f.nll, admissible};
           });
       for (std::size_t k : phase.entered) sel.entered.push_back(pool[k]);
+      sel_order = sel.entered;
       for (std::size_t k = 0; k < pool.size(); ++k) sel.evidence[pool[k]] = phase.evidence[k];
     }
     if (sel.entered.size() == entered_before) break;
   }
 
-  // The held-out check, drop-one: the model with the other entered causes against the full one.
-  const LmFit& full = fit_set(sel.entered);
+  // The held-out check, drop-one: the full model against the same model without the cause (its
+  // parameters back to nominal, σ_r and σ_b re-fitted on the training observations; the other
+  // causes' parameters kept at their joint values — re-fitting them all costs several joint fits).
+  const LmFit& full = joint_fit(sel.entered, true);
+  auto without = [&](std::size_t i) {
+    LandmarkModel m = full.model;
+    const LandmarkModel nominal_values;
+    const CauseSpec& spec = *candidates[i];
+    for (std::size_t k = 0; k < spec.params.size(); ++k) {
+      if (const LmField f = field_of(spec.id, k)) m.*f = nominal_values.*f;
+    }
+    if (spec.id == cause::kLandmarkTimeOffset) m.time_offset = 0.0;
+    if (spec.id == cause::kLandmarkPositionError) m.position_error_id = -1;
+    // σ_r may have gone to ~0 beside a range-dependent noise: start its re-fit from a usable value.
+    m.sigma_range = std::max(m.sigma_range, 0.01);
+    return fitter.fit({}, m, false).model;
+  };
   std::vector<std::size_t> kept;
   std::map<std::size_t, std::vector<Gain>> gains;
   for (std::size_t i : sel.entered) {
-    std::vector<std::size_t> others;
-    for (std::size_t j : sel.entered) {
-      if (j != i) others.push_back(j);
-    }
-    gains[i] = lm_heldout(fitter, d, fit_set(others).model, full.model, test);
+    gains[i] = lm_heldout(fitter, d, without(i), full.model, test);
     if (gains[i].front().relative() > 0.0) {
       kept.push_back(i);
     } else {
@@ -348,7 +380,7 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
                       candidates[i]->id, sel.evidence[i].lr, sel.evidence[i].threshold, g.before, g.after));
     }
   }
-  const LmFit& final_fit = report_fit(kept);
+  const LmFit& final_fit = joint_fit(kept, true);
   out.final_fit = final_fit.model;
 
   for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -358,7 +390,7 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
     Cause c{std::string(spec.id), "landmark", keep};
     c.value = sel.evidence[i].lr;
     c.threshold = sel.evidence[i].threshold;
-    const LmFit& f = keep ? final_fit : entered ? report_fit(sel.entered) : report_fit({i});
+    const LmFit& f = keep ? final_fit : joint_fit(entered ? sel.entered : std::vector<std::size_t>{i}, true);
     for (std::size_t k = 0; k < spec.params.size(); ++k) {
       if (auto e = f.estimate(spec, k)) c.parameters.push_back(*e);
     }
@@ -385,7 +417,7 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
   }
   // Lead/lag only when the best offset alone is beyond the resolution (see the compass channel).
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (candidates[i]->id == cause::kLandmarkTimeOffset && !offset_resolved(fit_set({i}).model.time_offset)) {
+    if (candidates[i]->id == cause::kLandmarkTimeOffset && !offset_resolved(step_fit({i}).model.time_offset)) {
       std::erase_if(out.remaining, [](const ResidualTest& t) { return t.name == "lead_lag"; });
     }
   }

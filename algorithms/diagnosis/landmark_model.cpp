@@ -19,7 +19,7 @@ void visit_fields(V& v, LandmarkModel& m) {
   v.field("range_scale", m.range_scale, "", positive(), "z_r = range_scale·ρ + range_bias + n_r");
   v.field("range_bias_m", m.range_bias, "m", any_finite(), "added to every range");
   v.field("bearing_bias_rad", m.bearing_bias, "rad", any_finite(), "added to every bearing");
-  v.field("sigma_range_m", m.sigma_range, "m", positive(), "σ_r: range noise at range 0");
+  v.field("sigma_range_m", m.sigma_range, "m", non_negative(), "σ_r: range noise at range 0 (0 with a slope > 0)");
   v.field("sigma_bearing_rad", m.sigma_bearing, "rad", positive(), "σ_b: bearing noise");
   v.field("range_noise_slope", m.range_noise_slope, "m/m", non_negative(),
           "range noise grows with range: Var n_r = σ_r² + (slope·ρ)²");
@@ -125,11 +125,12 @@ struct LandmarkDensity {
 
 double landmark_nll(const LandmarkData& d, const std::vector<LandmarkGeometry>& geometry, const LandmarkModel& m,
                     const std::vector<std::size_t>& index) {
-  if (!(m.sigma_range > 0.0) || !(m.sigma_bearing > 0.0) || !(m.range_scale > 0.0) || m.dof < 0.0) {
+  const bool range_noise = m.sigma_range > 0.0 || (m.sigma_range == 0.0 && m.range_noise_slope > 0.0);
+  if (!range_noise || !(m.sigma_bearing > 0.0) || !(m.range_scale > 0.0) || m.dof < 0.0) {
     return std::numeric_limits<double>::infinity();
   }
   const LandmarkDensity density(m.dof);
-  const double v_r0 = m.sigma_range * m.sigma_range, v_b = m.sigma_bearing * m.sigma_bearing;
+  const double v_r0 = std::max(m.sigma_range * m.sigma_range, 1e-12), v_b = m.sigma_bearing * m.sigma_bearing;
   const double log_v_r0 = std::log(v_r0), log_v_b = std::log(v_b);
   const bool growing = m.range_noise_slope != 0.0;
   const std::size_t n = index.empty() ? d.readings.size() : index.size();
