@@ -19,6 +19,7 @@
 #include "core/json_file.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/diagnosis/twin_scenario.h"
+#include "datasets/io/data_lines.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/log/data_root.h"
 #include "datasets/sim/scenario_json.h"
@@ -29,6 +30,26 @@ namespace locbench::cli {
 using io::attach_relations, io::load_log;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
+
+// STOPGAP (issue 25, part 3) until the MRCLAM reader fills Log::landmark_map itself (being done
+// on another branch): an MRCLAM log ("<folder>#robotN") without a map gets the folder's
+// Landmark_Groundtruth.dat(.gz) — subject, x [m], y [m], σx [m], σy [m] per line. Delete this
+// once io::read_mrclam_robot reads the file; it does nothing when the map is already there.
+void fill_mrclam_landmark_map_stopgap(Log& log) {
+  const auto hash = log.source.rfind("#robot");
+  if (!log.landmark_map.empty() || hash == std::string::npos) return;
+  const std::filesystem::path folder = log.source.substr(0, hash);
+  for (const auto& name : {"Landmark_Groundtruth.dat", "Landmark_Groundtruth.dat.gz"}) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(folder / name, ec)) continue;
+    io::LineReader reader(folder / name);
+    io::for_each_numeric_row<5>(reader, {"subject", "x", "y", "x std-dev", "y std-dev"},
+                                [&](const std::array<double, 5>& v, const io::FieldContext&) {
+                                  log.landmark_map.push_back({static_cast<int>(v[0]), v[1], v[2], v[3], v[4]});
+                                });
+    return;
+  }
+}
 
 struct DiagnoseArgs {
   std::string input;
@@ -62,6 +83,7 @@ void print(const diagnosis::Diagnosis& d) {
     for (const auto& p : c.parameters) {
       std::cout << fmt::format("  {:<12} {:.6g}  95% [{:.6g}, {:.6g}]\n", p.name, p.value, p.lo, p.hi);
     }
+    for (const auto& [k, v] : c.extra.items()) std::cout << fmt::format("  {:<12} {}\n", k, v.dump());
     if (!c.gains.empty()) {
       const auto& g = c.gains.front();
       std::cout << fmt::format("  gain {}: {:.6g} → {:.6g} ({:+.1f}%)\n", g.metric, g.before, g.after,
@@ -123,6 +145,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
     }
     if (!a.relations.empty()) attach_relations(log, a.relations);
     if (log.source.empty()) log.source = a.input;
+    fill_mrclam_landmark_map_stopgap(log);
     d = diagnosis::diagnose_log(log, opt);
     log_read = std::move(log);
   }

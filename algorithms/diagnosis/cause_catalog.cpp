@@ -23,6 +23,76 @@ bool velocity_with_distance(const MotionData& d) {
 }
 bool timed_reference(const MotionData& d) { return d.reference != ReferenceKind::kRelations; }
 
+// Range-bearing observations of mapped landmarks against TRUEPOS (landmark_model.h).
+void add_landmark_causes(std::vector<CauseSpec>& c) {
+  const auto lk = PrimaryMetric::kLikelihood;
+  c.push_back({.id = cause::kLandmarkRangeScale,
+               .channel = "landmark",
+               .params = {{"scale", "1", nullptr, 1.0, 1e-3, false, 0.8, 1.2}},
+               .metric = lk,
+               .explains = {"bias:landmark_range", "range_dependence:landmark_range"},
+               .explain = [](const Cause& x) {
+                 return "the measured ranges are " + ci(x, 0) + " times the true ones (z_r = scale·ρ + bias)";
+               }});
+  c.push_back({.id = cause::kLandmarkRangeBias,
+               .channel = "landmark",
+               .params = {{"bias_m", "m", nullptr, 0.0, 1e-3, false, -0.5, 0.5}},
+               .metric = lk,
+               .explains = {"bias:landmark_range"},
+               .explain = [](const Cause& x) { return "the measured ranges carry a bias of " + ci(x, 0) + " m"; }});
+  c.push_back({.id = cause::kLandmarkBearingBias,
+               .channel = "landmark",
+               .params = {{"bias_rad", "rad", nullptr, 0.0, 1e-3, false, -0.3, 0.3}},
+               .metric = lk,
+               .explains = {"bias:landmark_bearing"},
+               .explain = [](const Cause& x) {
+                 return "the measured bearings carry a bias of " + ci(x, 0) +
+                        " rad (a camera mounted turned, or its optical axis off)";
+               }});
+  c.push_back({.id = cause::kLandmarkTimeOffset,
+               .channel = "landmark",
+               .params = {{"offset_s", "s", nullptr, 0.0, 0.01, false, -0.5, 0.5}},
+               .metric = lk,
+               .explains = {"lead_lag:landmark_bearing"},
+               .explain = [](const Cause& x) {
+                 return "the landmark observations are stamped " + ci(x, 0) +
+                        " s after they were taken (logged − true): bearings lag the turns";
+               }});
+  c.push_back({.id = cause::kLandmarkRangeNoise,
+               .channel = "landmark",
+               .params = {{"slope", "m/m", nullptr, 0.01, 1e-3, true, 0.0, 0.5}},
+               .metric = lk,
+               .noise = true,
+               .explains = {"heteroscedasticity:landmark_range", "heavy_tails:landmark_range"},
+               .explain = [](const Cause& x) {
+                 return "the range noise grows with range: σ_r(ρ)² = σ_r² + (" + ci(x, 0) +
+                        "·ρ)², which the constant-noise model misses";
+               }});
+  c.push_back({.id = cause::kLandmarkPositionError,
+               .channel = "landmark",
+               .params = {{"dx_m", "m", nullptr, 0.0, 1e-2, false, -2.0, 2.0},
+                          {"dy_m", "m", nullptr, 0.0, 1e-2, false, -2.0, 2.0}},
+               .metric = lk,
+               .explains = {"landmark_dependence:landmark_range", "landmark_dependence:landmark_bearing"},
+               .explain = [](const Cause& x) {
+                 const std::string id = x.extra.contains("landmark") ? x.extra["landmark"].dump() : "?";
+                 return "landmark " + id + " is not where the map says: true − surveyed position (" + ci(x, 0) + ", " +
+                        ci(x, 1) + ") m (the best of the landmarks searched)";
+               }});
+  c.push_back({.id = cause::kLandmarkHeavyTails,
+               .channel = "landmark",
+               .params = {{"dof", "1", nullptr, 5.0, 1.0, true, 0.5, 1e3}},
+               .metric = lk,
+               .noise = true,
+               .generic = true,
+               .explains = {"heavy_tails:landmark_range", "heavy_tails:landmark_bearing"},
+               .explain = [](const Cause& x) {
+                 return "the landmark residuals are heavy-tailed: Student-t with " + ci(x, 0) +
+                        " degrees of freedom fits them better than the normal model (outliers: misread "
+                        "barcodes, occlusions); all landmark fits use it";
+               }});
+}
+
 std::vector<CauseSpec> build() {
   using M = OdometryModel;
   std::vector<CauseSpec> c;
@@ -205,6 +275,7 @@ std::vector<CauseSpec> build() {
                .explain = [](const Cause& x) {
                  return "the compass is disturbed in a region (see `region`): extra bias " + ci(x, 0) + " rad there";
                }});
+  add_landmark_causes(c);
   return c;
 }
 
@@ -228,6 +299,14 @@ std::vector<const CauseSpec*> odometry_causes(const MotionData& d) {
     if (c.channel != "odometry" || c.metric == PrimaryMetric::kExact) continue;
     if (c.applies && !c.applies(d)) continue;
     out.push_back(&c);
+  }
+  return out;
+}
+
+std::vector<const CauseSpec*> landmark_causes() {
+  std::vector<const CauseSpec*> out;
+  for (const auto& c : cause_catalog()) {
+    if (c.channel == "landmark") out.push_back(&c);
   }
   return out;
 }

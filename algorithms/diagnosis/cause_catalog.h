@@ -32,6 +32,13 @@ inline constexpr std::string_view kEncoderQuantization = "encoder_quantization";
 inline constexpr std::string_view kCompassQuantization = "compass_quantization";
 inline constexpr std::string_view kCompassBias = "compass_bias";
 inline constexpr std::string_view kCompassDisturbance = "compass_disturbance";
+inline constexpr std::string_view kLandmarkRangeScale = "landmark_range_scale";
+inline constexpr std::string_view kLandmarkRangeBias = "landmark_range_bias";
+inline constexpr std::string_view kLandmarkBearingBias = "landmark_bearing_bias";
+inline constexpr std::string_view kLandmarkTimeOffset = "landmark_time_offset";
+inline constexpr std::string_view kLandmarkRangeNoise = "landmark_range_dependent_noise";
+inline constexpr std::string_view kLandmarkHeavyTails = "landmark_heavy_tails";
+inline constexpr std::string_view kLandmarkPositionError = "landmark_position_error";
 }  // namespace cause
 
 // The held-out metric that decides whether a cause is kept: the error component the cause acts
@@ -51,7 +58,7 @@ struct CauseParameter {
 
 struct CauseSpec {
   std::string_view id;
-  std::string_view channel;  // "odometry" or "compass"
+  std::string_view channel;  // "odometry", "compass" or "landmark"
   std::vector<CauseParameter> params;
   PrimaryMetric metric = PrimaryMetric::kTranslationOrHeading;
   bool noise = false;  // acts on the noise model, not on the mean
@@ -69,6 +76,8 @@ const std::vector<CauseSpec>& cause_catalog();
 const CauseSpec& cause_spec(std::string_view id);
 // The odometry causes that apply to these data, in catalog order.
 std::vector<const CauseSpec*> odometry_causes(const MotionData& d);
+// The landmark channel's causes, in catalog order.
+std::vector<const CauseSpec*> landmark_causes();
 // The catalog explanation of a cause with its fitted parameters filled in.
 std::string explain(const Cause& c);
 // Does the cause account for this residual test (by name and residual)?

@@ -9,6 +9,7 @@
 
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/compass_channel.h"
+#include "algorithms/diagnosis/landmark_channel.h"
 #include "algorithms/diagnosis/odometry_channel.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
@@ -110,6 +111,10 @@ Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options) {
   out.noise_sigma_x = odometry.nominal_fit.sigma_x;
   out.noise_sigma_y = odometry.nominal_fit.sigma_y;
   out.noise_sigma_theta = odometry.nominal_fit.sigma_theta;
+  // final_fit holds only the kept (held-out validated) causes: the odometry channel fits it on
+  // the set left after backward elimination, which is exactly its detected causes.
+  out.odometry_model = odometry.final_fit;
+  out.odometry_kind = data.odometry == OdometryKind::kEncoder ? "encoder" : "velocity";
   std::vector<const ChannelResult*> channels{&odometry};
   ChannelResult compass;
   if (data.compass.size() >= 40 && data.truth.size() >= 2) {
@@ -119,6 +124,24 @@ Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options) {
     channels.push_back(&compass);
   } else {
     out.not_testable.push_back("compass_bias, compass_quantization, compass_disturbance: need COMPASS and TRUEPOS");
+  }
+  LandmarkChannelResult landmarks;
+  if (!log.landmarks.empty() && !log.landmark_map.empty() && log.truth.size() >= 2) {
+    landmarks = diagnose_landmarks(make_landmark_data(log.landmarks, log.landmark_map, log.truth), options);
+  }
+  if (landmarks.testable) {
+    out.nominal_model["landmark"] = "z_r = ρ, z_b = φ (map positions, truth at the observation time), white noise";
+    out.nominal_model["landmark_observations_used"] = landmarks.observations;
+    out.nominal_model["landmark_observations_unmapped"] = landmarks.unmapped;
+    out.reference += fmt::format("; {} landmark observations against TRUEPOS ({} of subjects not in the map left out)",
+                                 landmarks.observations, landmarks.unmapped);
+    out.landmark_model = landmarks.final_fit;
+    channels.push_back(&landmarks);
+  } else {
+    out.not_testable.push_back(
+        "landmark_range_scale, landmark_range_bias, landmark_bearing_bias, landmark_time_offset, "
+        "landmark_range_dependent_noise, landmark_heavy_tails, landmark_position_error: need at least 40 landmark "
+        "observations of mapped landmarks, a landmark map and TRUEPOS");
   }
   out.not_testable.push_back(
       "laser_range_bias, laser_range_scale: need laser scans and a map of the world, which a log does not carry");

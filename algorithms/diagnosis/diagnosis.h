@@ -40,4 +40,16 @@ Diagnosis diagnose_histogram(const ResidualHistogram& h, const std::string& name
 // The report, "schema": "locbench.diagnosis/1".
 nlohmann::json to_json(const Diagnosis& d);
 
+// The fitted models of a report (`diagnose --report` output, or its "models" object), for a
+// filter: {"odometry_kind": "encoder"|"velocity", "odometry_window_s": s, "odometry": {…},
+// "landmark": {…}} (each part optional). Strict: an unknown key, a wrong type or a value out of
+// range → UsageError naming the key.
+struct FittedModels {
+  std::optional<OdometryModel> odometry;
+  std::string odometry_kind;
+  double odometry_window_s = 1.0;  // the odometry σ are per window of this length [s]
+  std::optional<LandmarkModel> landmark;
+};
+FittedModels read_fitted_models(const nlohmann::json& report_or_models);
+
 }  // namespace locbench::diagnosis

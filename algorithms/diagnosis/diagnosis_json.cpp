@@ -2,6 +2,8 @@
 #include <cmath>
 
 #include "algorithms/diagnosis/diagnosis.h"
+#include "core/errors.h"
+#include "core/json_options.h"
 
 namespace locbench::diagnosis {
 namespace {
@@ -82,7 +84,35 @@ nlohmann::json to_json(const Diagnosis& d) {
                       {"sigma_y_m", number(d.noise_sigma_y)},
                       {"sigma_theta_rad", number(d.noise_sigma_theta)}};
   j["verdict"] = d.verdict;
+  if (d.odometry_model || d.landmark_model) {
+    nlohmann::json models = nlohmann::json::object();
+    if (d.odometry_model) {
+      models["odometry_kind"] = d.odometry_kind;
+      models["odometry_window_s"] = d.noise_window_s;
+      models["odometry"] = *d.odometry_model;
+    }
+    if (d.landmark_model) models["landmark"] = *d.landmark_model;
+    j["models"] = models;
+  }
   return j;
+}
+
+FittedModels read_fitted_models(const nlohmann::json& report_or_models) {
+  const bool report = report_or_models.is_object() && report_or_models.contains("schema");
+  if (report && !report_or_models.contains("models")) throw UsageError("diagnosis report: no \"models\" object");
+  const nlohmann::json& j = report ? report_or_models.at("models") : report_or_models;
+  StrictJsonReader r(j, "models");
+  FittedModels out;
+  r.read("odometry_kind", out.odometry_kind);
+  r.read("odometry_window_s", out.odometry_window_s);
+  if (const nlohmann::json* v = r.raw("odometry")) out.odometry = v->get<OdometryModel>();
+  if (const nlohmann::json* v = r.raw("landmark")) out.landmark = v->get<LandmarkModel>();
+  r.finish();
+  if (out.odometry && out.odometry_kind != "encoder" && out.odometry_kind != "velocity") {
+    throw UsageError("models.odometry_kind: expected \"encoder\" or \"velocity\", got \"" + out.odometry_kind + "\"");
+  }
+  if (!(out.odometry_window_s > 0.0)) throw UsageError("models.odometry_window_s: expected > 0 s");
+  return out;
 }
 
 }  // namespace locbench::diagnosis

@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "algorithms/diagnosis/landmark_model.h"
 #include "algorithms/diagnosis/motion_windows.h"
+#include "algorithms/diagnosis/odometry_model.h"
 #include "algorithms/diagnosis/residual_tests.h"
 
 namespace locbench::diagnosis {
@@ -36,7 +38,7 @@ struct Gain {
 
 struct Cause {
   std::string id;
-  std::string channel;  // "odometry" or "compass"
+  std::string channel;  // "odometry", "compass", "landmark" or "histogram"
   bool detected = false;
   std::string statistic = "likelihood_ratio";
   double value = 0.0, threshold = 0.0;
@@ -83,6 +85,15 @@ struct Diagnosis {
   double noise_window_s = 1.0;
   double noise_sigma_x = 0.0, noise_sigma_y = 0.0, noise_sigma_theta = 0.0;
   std::string verdict;
+  // The fitted final models, for a filter to use (report: "models"). Odometry: the nominal model
+  // extended by the detected (held-out validated) odometry causes only, its σ per window of
+  // `noise_window_s` seconds fitted with them; `odometry_kind` says how to read it ("encoder":
+  // E_d, E_b, E_o act on the counts; "velocity": the scale and turn-rate parameters act on the
+  // logged velocities). Landmark: the nominal range-bearing model extended by the detected
+  // landmark causes, σ_r, σ_b fitted (nullopt when the log has no landmarks, map or truth).
+  std::optional<OdometryModel> odometry_model;
+  std::string odometry_kind;
+  std::optional<LandmarkModel> landmark_model;
 };
 
 }  // namespace locbench::diagnosis

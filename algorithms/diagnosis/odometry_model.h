@@ -32,6 +32,7 @@
 // errors) is the translation scaled by 1 − p·f.
 #include <Eigen/Core>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
 
@@ -52,6 +53,12 @@ struct OdometryModel {
   double stall_rate = 0.0;      // [1/s]
   double stall_duration = 0.0;  // [s]
 };
+// The model as JSON (`"models": {"odometry": …}` in a report; keys carry their units, e.g.
+// "sigma_x_m"), and back. Strict: an unknown key, a wrong type or a value out of range →
+// UsageError naming the key.
+void to_json(nlohmann::json& j, const OdometryModel& m);
+void from_json(const nlohmann::json& j, OdometryModel& m);
+void validate(const OdometryModel& m);
 
 // The expected fraction of a window's translation lost to drive stalls, p·f above (0 when the
 // model has none or the odometry is encoder counts).
