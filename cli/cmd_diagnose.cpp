@@ -31,26 +31,6 @@ using io::attach_relations, io::load_log;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
-// STOPGAP (issue 25, part 3) until the MRCLAM reader fills Log::landmark_map itself (being done
-// on another branch): an MRCLAM log ("<folder>#robotN") without a map gets the folder's
-// Landmark_Groundtruth.dat(.gz) — subject, x [m], y [m], σx [m], σy [m] per line. Delete this
-// once io::read_mrclam_robot reads the file; it does nothing when the map is already there.
-void fill_mrclam_landmark_map_stopgap(Log& log) {
-  const auto hash = log.source.rfind("#robot");
-  if (!log.landmark_map.empty() || hash == std::string::npos) return;
-  const std::filesystem::path folder = log.source.substr(0, hash);
-  for (const auto& name : {"Landmark_Groundtruth.dat", "Landmark_Groundtruth.dat.gz"}) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(folder / name, ec)) continue;
-    io::LineReader reader(folder / name);
-    io::for_each_numeric_row<5>(reader, {"subject", "x", "y", "x std-dev", "y std-dev"},
-                                [&](const std::array<double, 5>& v, const io::FieldContext&) {
-                                  log.landmark_map.push_back({static_cast<int>(v[0]), v[1], v[2], v[3], v[4]});
-                                });
-    return;
-  }
-}
-
 struct DiagnoseArgs {
   std::string input;
   std::string relations;
@@ -145,7 +125,6 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
     }
     if (!a.relations.empty()) attach_relations(log, a.relations);
     if (log.source.empty()) log.source = a.input;
-    fill_mrclam_landmark_map_stopgap(log);
     d = diagnosis::diagnose_log(log, opt);
     log_read = std::move(log);
   }

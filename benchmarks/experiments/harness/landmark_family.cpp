@@ -98,7 +98,7 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
     for (const Run& r : runs) lowest = std::min(lowest, r.rmse);
     double best_distance = std::numeric_limits<double>::infinity();
     for (const Run& r : runs) {
-      if (!(r.rmse <= lowest * (1.0 + options.rmse_tolerance))) continue;
+      if (!(r.rmse <= lowest * (1.0 + options.rmse_tolerance)) && !(r.rmse == lowest)) continue;
       const double distance = !(std::isfinite(r.nees) && r.nees > 0.0) ? 1e300
                               : band.contains(r.nees)                  ? 0.0
                                                                        : std::abs(std::log(r.nees / 3.0));

@@ -26,7 +26,10 @@ struct FamilyOptions {
   Vector3 initial_sigma{0.02, 0.02, 0.02};
   GatePolicy gate;
   double nees_block_s = 10.0;     // the NEES band counts one independent value per block
-  double rmse_tolerance = 0.05;  // settings this close to the lowest RMSE compete on consistency
+  // Settings this close to the lowest RMSE compete on consistency (0: the lowest RMSE alone). A
+  // tolerance of 5% chose, on MRCLAM robot 1, a setting 4% worse in RMSE and closer to 3 in NEES
+  // on the tuning half that diverged on the held-out half: the default is 0.
+  double rmse_tolerance = 0.0;
 };
 
 struct MethodScore {

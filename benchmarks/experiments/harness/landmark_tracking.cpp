@@ -258,8 +258,18 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
     for (; next < obs.size() && obs[next].t <= t; ++next) {
       ++out.observations;
       const bool recover = starving >= gate.starve_after;
+      LandmarkRangeBearing z = obs[next].z;
+      if (sm.dof > 0.0) {  // one reweighting step of the Student-t likelihood
+        const Vector3 x = std::visit([](auto& f) { return f.mean(); }, filter);
+        const Matrix3 p = std::visit([](auto& f) { return f.covariance(); }, filter);
+        const LinearizedMeasurement lin = linearize(z, x);
+        const double nis = measurement_innovation(lin, p, lin.R).nis;
+        const double w = std::max(1.0, (sm.dof + nis) / (sm.dof + 2.0));
+        z.range_variance *= w;
+        z.bearing_variance *= w;
+      }
       const MeasurementUpdate u =
-          std::visit([&](auto& f) { return f.update(obs[next].z, recover ? kNoGate : threshold); }, filter);
+          std::visit([&](auto& f) { return f.update(z, recover ? kNoGate : threshold); }, filter);
       if (u.gated) {
         ++out.gated;
         ++starving;

@@ -37,6 +37,11 @@ struct LandmarkSensorModel {
   double range_sigma = 0.1, bearing_sigma = 0.05, range_noise_slope = 0.0;
   double time_offset = 0.0;
   std::map<int, Eigen::Vector2d> landmark_shift;
+  // Student-t noise with this many degrees of freedom (0: normal): the update is made robust by
+  // one reweighting step of the t likelihood, R ← R·max(1, (ν + NIS)/(ν + 2)) with the NIS under R
+  // (Roth, Özkan and Gustafsson, "A Student's t filter for heavy tailed process and measurement
+  // noise", ICASSP 2013).
+  double dof = 0.0;
 };
 
 struct Observation {
