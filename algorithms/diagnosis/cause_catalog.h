@@ -2,7 +2,7 @@
 // The catalog of causes the diagnosis can name: one entry per cause with its channel, its
 // parameters (name, unit, plausible range, fit scale), the held-out metric that judges it, the
 // residual tests it accounts for, when it applies, and its explanation. A new cause is one entry
-// here plus its forward model (odometry_model.h or compass_channel.h); the simulator mapping of
+// here plus its forward model (odometry_model.h, compass_channel.h or landmark_model.h); the simulator mapping of
 // each id is in datasets/sim (the extended scenario a diagnosis writes).
 #include <string>
 #include <string_view>

@@ -2,7 +2,8 @@
 // What the simulation gets wrong: `diagnose_log` takes a log, the nominal model it declares
 // (PARAM records) and the reference it carries (TRUEPOS, .relations or a compass), and
 //  1. computes residuals of the nominal model against the reference (motion_windows.h,
-//     odometry_model.h; compass readings against ground truth: compass_channel.h);
+//     odometry_model.h; compass readings against ground truth: compass_channel.h; landmark
+//     range-bearing observations against ground truth and a map: landmark_channel.h);
 //  2. runs the residual battery (residual_tests.h) at a Bonferroni-divided level;
 //  3. fits every applicable catalog cause (cause_catalog.h) by maximum likelihood with a 95%
 //     interval on every parameter, and keeps causes by forward selection: the cause with the
