@@ -1,0 +1,81 @@
+// The landmark filter family on simulated logs with a hidden effect in the odometry: the model the
+// diagnosis fits on the first half, run inside the filter, beats the nominal model on the second
+// half; with nothing hidden the two are the same filter.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "algorithms/diagnosis/diagnosis.h"
+#include "benchmarks/experiments/harness/filter_models.h"
+#include "benchmarks/experiments/harness/landmark_family.h"
+#include "datasets/diagnosis/hidden_effects.h"
+#include "datasets/diagnosis/landmark_effects.h"
+
+namespace locbench::experiments::landmarks {
+namespace {
+
+struct Family {
+  std::vector<MethodScore> scores;
+  FilterModels models;
+  const MethodScore& of(Method m) const {
+    for (const auto& s : scores)
+      if (s.method == m) return s;
+    throw std::logic_error("no such method");
+  }
+};
+
+Family run_family(const std::vector<sim::HiddenEffect>& effects, std::uint64_t seed) {
+  sim::GeneratorOptions g;
+  g.velocity_odometry = true;
+  g.compass = false;
+  g.waypoints = 24;
+  sim::GeneratedLog log = sim::generate_log(effects, seed, g);
+  sim::LandmarkLogOptions l;
+  l.sigma_range = 0.05;
+  sim::add_landmark_observations(log, {}, seed + 1, l);
+  const Log& full = log.log;
+  const double from = std::max(full.odometry.front().t, full.truth.front().t);
+  const double to = std::min(full.odometry.back().t, full.truth.back().t);
+  const double mid = 0.5 * (from + to);
+  const double b = full.nominal_model() ? full.nominal_model()->wheelbase : 0.3;
+  const TrackingData train = tracking_data(full, from, mid, b), test = tracking_data(full, mid, to, b);
+  LandmarkSensorModel sensor;
+  Family f;
+  f.models = filter_models(diagnosis::diagnose_log(restrict_log(full, from, mid)), measured_sensor_noise(train, sensor));
+  FamilyOptions options;
+  options.process_scales = {1.0 / 16.0, 0.25, 1.0, 4.0, 16.0};
+  f.scores = tune_and_score(train, test, f.models, options);
+  return f;
+}
+
+TEST(LandmarkFamily, TheDiagnosedVelocityScaleMakesTheFilterBetterThanTheNominalModel) {
+  // The robot drives 15% farther and turns 10% more than its logged velocities say.
+  const Family f = run_family({{"velocity_scale", 0.15}, {"turn_rate_scale", 0.10}}, 21);
+  ASSERT_FALSE(f.models.causes.empty());
+  EXPECT_NEAR(f.models.diagnosed_motion.velocity_scale, 1.15, 0.02);
+  const TrackResult& nominal = f.of(Method::kNominalModel).heldout;
+  const TrackResult& diagnosed = f.of(Method::kDiagnosedModel).heldout;
+  for (const auto& s : f.scores) {
+    EXPECT_TRUE(s.heldout.finite) << to_string(s.method);
+    EXPECT_EQ(s.grid_runs, 15u) << "every method gets the same grid budget";
+  }
+  EXPECT_FALSE(diagnosed.diverged);
+  EXPECT_LT(diagnosed.position_rmse(), 0.8 * nominal.position_rmse())
+      << "diagnosed " << diagnosed.position_rmse() << " m, nominal " << nominal.position_rmse() << " m";
+}
+
+TEST(LandmarkFamily, WithNothingHiddenTheDiagnosedModelIsTheNominalOne) {
+  const Family f = run_family({}, 5);
+  for (const std::string& c : f.models.causes) {
+    EXPECT_EQ(c.rfind("landmark_", 0), std::string::npos) << "no landmark cause on a null log: " << c;
+  }
+  EXPECT_DOUBLE_EQ(f.models.diagnosed_motion.velocity_scale, 1.0);
+  EXPECT_DOUBLE_EQ(f.models.diagnosed_motion.turn_rate_scale, 1.0);
+  const double nominal = f.of(Method::kNominalModel).heldout.position_rmse();
+  const double diagnosed = f.of(Method::kDiagnosedModel).heldout.position_rmse();
+  EXPECT_NEAR(diagnosed, nominal, 0.2 * nominal);
+  EXPECT_LT(nominal, 0.15);
+}
+
+}  // namespace
+}  // namespace locbench::experiments::landmarks
