@@ -22,7 +22,8 @@ BootstrapInterval percentile_interval(std::size_t blocks, int resamples, std::ui
   std::vector<double> stats;
   stats.reserve(static_cast<std::size_t>(resamples));
   for (int r = 0; r < resamples; ++r) {
-    for (auto& k : draw) k = std::min(static_cast<std::size_t>(rng.uniform() * static_cast<double>(blocks)), blocks - 1);
+    for (auto& k : draw)
+      k = std::min(static_cast<std::size_t>(rng.uniform() * static_cast<double>(blocks)), blocks - 1);
     stats.push_back(stat(draw));
   }
   const double tail = 0.5 * (1.0 - confidence);

@@ -19,8 +19,8 @@ struct CompassHeading {
 };
 
 struct LandmarkRangeBearing {
-  double range = 0.0;    // [m]
-  double bearing = 0.0;  // [rad] in the robot frame (x forward, y left)
+  double range = 0.0;                         // [m]
+  double bearing = 0.0;                       // [rad] in the robot frame (x forward, y left)
   double landmark_x = 0.0, landmark_y = 0.0;  // the landmark's map position [m]
   double range_variance = 0.0;                // R = diag(σ_r², σ_φ²) [m², rad²]
   double bearing_variance = 0.0;

@@ -48,7 +48,7 @@ SageHusaAekf::SageHusaAekf(const SageHusaOptions& options, double wheelbase, con
 
 void SageHusaAekf::predict(const WheelDisplacement& u, double noise_scale) {
   const MotionPrediction pred = predict_motion(x_, u, wheelbase_);  // F(X̂(k−1)), ∇F
-  fpf_ = pred.jacobian * fpf_ * pred.jacobian.transpose();           // ∇F P(k−1) ∇Fᵀ, chained
+  fpf_ = pred.jacobian * fpf_ * pred.jacobian.transpose();          // ∇F P(k−1) ∇Fᵀ, chained
   const Matrix3 fpf_step = pred.jacobian * p_ * pred.jacobian.transpose();
   const Vector3 q_step = noise_scale == 1.0 ? q_mean_ : Vector3(noise_scale * q_mean_);
   x_ = pred.mean + q_step;  // X̂(k/k−1)
@@ -86,7 +86,7 @@ MeasurementUpdate SageHusaAekf::update(const PoseMeasurement& z, double gate, Sa
     q_mean_ = (1.0 - d) * q_mean_ + (d / elapsed_) * state_jump;
     const Vector3 k_eps = c.gain * c.innovation;
     q_cov_ = symmetrize((1.0 - d) * q_cov_ + (d / elapsed_) * (k_eps * k_eps.transpose() + p_ - fpf_));  // eq. 4.11
-    if (options_.positive_definiteness_fix && !is_positive_definite(q_cov_)) {  // Zhang et al.
+    if (options_.positive_definiteness_fix && !is_positive_definite(q_cov_)) {                           // Zhang et al.
       q_cov_ = symmetrize(q_cov_ + (d / elapsed_) * (fpf_ - p_));
       process_fix = true;
     }
@@ -125,7 +125,8 @@ SageHusaStep SageHusaAekf::step(const WheelDisplacement& u, std::optional<double
   predict(u);
   SageHusaStep out;
   if (compass_heading) {
-    const MeasurementUpdate c = update(CompassHeading{*compass_heading, options_.initial_measurement_noise}, kNoGate, &out);
+    const MeasurementUpdate c =
+        update(CompassHeading{*compass_heading, options_.initial_measurement_noise}, kNoGate, &out);
     out.filter.record(x_, p_, &c);
   } else {
     out.filter.record(x_, p_, nullptr);

@@ -23,8 +23,8 @@
 // measurement of core/pose_measurement.h can be used: r̂ and R̂ are kept per kind (compass,
 // landmark range-bearing); the compass's start at R̂(0), r̂(0) of the options, another kind's at
 // its first measurement's own R and r̂ = 0. A measurement rejected by the gate changes nothing.
-#include <nlohmann/json.hpp>
 #include <array>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "core/compass_ekf_model.h"

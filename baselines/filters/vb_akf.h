@@ -15,8 +15,8 @@
 // paper's diagonal R: range and bearing have independent inverse-gamma posteriors); the compass's
 // start at the options' prior, another kind's at its first measurement (β = α(0)·its own R). A
 // measurement whose NIS under the prior plug-in R exceeds the gate changes nothing.
-#include <nlohmann/json.hpp>
 #include <array>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "core/compass_ekf_model.h"

@@ -41,7 +41,8 @@ Family run_family(const std::vector<sim::HiddenEffect>& effects, std::uint64_t s
   const TrackingData train = tracking_data(full, from, mid, b), test = tracking_data(full, mid, to, b);
   LandmarkSensorModel sensor;
   Family f;
-  f.models = filter_models(diagnosis::diagnose_log(restrict_log(full, from, mid)), measured_sensor_noise(train, sensor));
+  f.models =
+      filter_models(diagnosis::diagnose_log(restrict_log(full, from, mid)), measured_sensor_noise(train, sensor));
   FamilyOptions options;
   options.process_scales = {1.0 / 16.0, 0.25, 1.0, 4.0, 16.0};
   f.scores = tune_and_score(train, test, f.models, options);

@@ -17,9 +17,9 @@ namespace locbench::experiments::landmarks {
 struct FilterModels {
   diagnosis::OdometryModel nominal_motion, diagnosed_motion;
   LandmarkSensorModel nominal_sensor, diagnosed_sensor;
-  double noise_window_s = 1.0;           // the floor's σ are per window of this length
-  std::vector<std::string> causes;       // the detected causes in the diagnosed model
-  std::string source;                    // where they come from
+  double noise_window_s = 1.0;      // the floor's σ are per window of this length
+  std::vector<std::string> causes;  // the detected causes in the diagnosed model
+  std::string source;               // where they come from
 };
 
 // The models of a diagnosis. `sensor` is the nominal landmark sensor (used as is when the

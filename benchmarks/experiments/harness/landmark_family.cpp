@@ -26,8 +26,7 @@ PartMotion part_motion(const TrackingData& data, const FilterModels& m, const La
   PartMotion p;
   p.logged = model_motion(data, diagnosis::OdometryModel{}, m.noise_window_s, observation_times(data, plain));
   p.nominal = model_motion(data, m.nominal_motion, m.noise_window_s, observation_times(data, m.nominal_sensor));
-  p.diagnosed =
-      model_motion(data, m.diagnosed_motion, m.noise_window_s, observation_times(data, m.diagnosed_sensor));
+  p.diagnosed = model_motion(data, m.diagnosed_motion, m.noise_window_s, observation_times(data, m.diagnosed_sensor));
   return p;
 }
 
@@ -67,8 +66,8 @@ filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const Fami
   return filters::average_chi_square_interval(3, static_cast<int>(blocks), 0.95);
 }
 
-std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test,
-                                        const FilterModels& models, const FamilyOptions& options) {
+std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test, const FilterModels& models,
+                                        const FamilyOptions& options) {
   const PartMotion train_motion = part_motion(train, models, models.nominal_sensor);
   const PartMotion test_motion = part_motion(test, models, models.nominal_sensor);
   const filters::ChiSquareInterval band = tuning_nees_band(train, options);

@@ -25,7 +25,7 @@ struct FamilyOptions {
   filters::OdometryNoiseOptions adaptive;
   Vector3 initial_sigma{0.02, 0.02, 0.02};
   GatePolicy gate;
-  double nees_block_s = 10.0;     // the NEES band counts one independent value per block
+  double nees_block_s = 10.0;  // the NEES band counts one independent value per block
   // Settings this close to the lowest RMSE compete on consistency (0: the lowest RMSE alone). A
   // tolerance of 5% chose, on MRCLAM robot 1, a setting 4% worse in RMSE and closer to 3 in NEES
   // on the tuning half that diverged on the held-out half: the default is 0.
@@ -47,7 +47,7 @@ struct MethodScore {
 filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const FamilyOptions& options);
 
 // Every method of kMethods tuned on `train` and scored on `test`.
-std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test,
-                                        const FilterModels& models, const FamilyOptions& options);
+std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test, const FilterModels& models,
+                                        const FamilyOptions& options);
 
 }  // namespace locbench::experiments::landmarks

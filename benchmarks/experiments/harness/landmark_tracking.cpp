@@ -132,9 +132,9 @@ std::vector<MotionStep> model_motion(const TrackingData& data, const diagnosis::
   const double phi = stall_time > 0.0 ? stall_time / (1.0 + stall_time) : 0.0;
   const double b = d.nominal.wheelbase > 0.0 ? d.nominal.wheelbase : 0.5;  // as the diagnosis's windows
   const double tail = model.dof > 2.0 ? model.dof / (model.dof - 2.0) : 1.0;
-  const Vector3 floor_per_s = Vector3(model.sigma_x * model.sigma_x, model.sigma_y * model.sigma_y,
-                                      model.sigma_theta * model.sigma_theta) *
-                              (tail / noise_window_s);
+  const Vector3 floor_per_s =
+      Vector3(model.sigma_x * model.sigma_x, model.sigma_y * model.sigma_y, model.sigma_theta * model.sigma_theta) *
+      (tail / noise_window_s);
 
   std::vector<MotionStep> out;
   out.reserve(d.steps.size());

@@ -53,8 +53,8 @@ struct Observation {
 // One span of one log: what every filter sees and is scored against.
 struct TrackingData {
   std::string log;
-  double from = 0.0, to = 0.0;  // true (reference) time
-  diagnosis::MotionData motion;  // the span's odometry steps (logged time) and its truth
+  double from = 0.0, to = 0.0;            // true (reference) time
+  diagnosis::MotionData motion;           // the span's odometry steps (logged time) and its truth
   std::vector<Observation> observations;  // of map landmarks, logged time order
   std::map<int, Eigen::Vector2d> map;
   double wheelbase = 0.0;
@@ -88,8 +88,8 @@ std::vector<MotionStep> model_motion(const TrackingData& data, const diagnosis::
                                      double noise_window_s, const std::vector<double>& cuts);
 
 enum class Method { kFixedQ, kAdaptiveThesis, kAdaptiveJacobian, kSageHusa, kVbAkf, kNominalModel, kDiagnosedModel };
-inline constexpr Method kMethods[] = {Method::kFixedQ,  Method::kAdaptiveThesis, Method::kAdaptiveJacobian,
-                                      Method::kSageHusa, Method::kVbAkf,         Method::kNominalModel,
+inline constexpr Method kMethods[] = {Method::kFixedQ,        Method::kAdaptiveThesis, Method::kAdaptiveJacobian,
+                                      Method::kSageHusa,      Method::kVbAkf,          Method::kNominalModel,
                                       Method::kDiagnosedModel};
 const char* to_string(Method m);
 
@@ -103,8 +103,8 @@ struct MethodSetup {
   const std::vector<MotionStep>* motion = nullptr;  // the steps it predicts with
   LandmarkSensorModel sensor;
   Vector3 fixed_q_per_s{0.0025, 0.0025, 0.0025};  // fixed_q, Q̂(0) of sage_husa, vb_akf's Q [m²/s, m²/s, rad²/s]
-  filters::OdometryNoiseOptions adaptive;          // adaptive_thesis / adaptive_jacobian (form set by the method)
-  Vector3 initial_sigma{0.02, 0.02, 0.02};         // P(0) = diag(σ²) at the span's true start [m, m, rad]
+  filters::OdometryNoiseOptions adaptive;         // adaptive_thesis / adaptive_jacobian (form set by the method)
+  Vector3 initial_sigma{0.02, 0.02, 0.02};        // P(0) = diag(σ²) at the span's true start [m, m, rad]
 };
 
 struct GatePolicy {

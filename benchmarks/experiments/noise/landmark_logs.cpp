@@ -32,9 +32,10 @@ using namespace landmarks;
 
 const ExperimentInfo kInfo{
     .name = "noise/landmark_logs",
-    .description = "The chapter-4 filters on logged data: landmark localization on MRCLAM (range-bearing to surveyed "
-                   "landmarks) with every process-noise model and the diagnosed motion model, tuned on the first "
-                   "half of each log and scored on the second against Vicon",
+    .description =
+        "The chapter-4 filters on logged data: landmark localization on MRCLAM (range-bearing to surveyed "
+        "landmarks) with every process-noise model and the diagnosed motion model, tuned on the first "
+        "half of each log and scored on the second against Vicon",
     .reading = {
         "Every method predicts with the log's odometry and corrects with range-bearing observations of the "
         "surveyed landmarks (Probabilistic Robotics Table 7.2, known correspondence); observations of other robots "
@@ -53,8 +54,7 @@ const ExperimentInfo kInfo{
         "the held-out steps."}};
 
 struct Options {
-  nlohmann::json datasets = {"mrclam6_robot1", "mrclam6_robot2", "mrclam6_robot3", "mrclam6_robot4",
-                             "mrclam6_robot5"};
+  nlohmann::json datasets = {"mrclam6_robot1", "mrclam6_robot2", "mrclam6_robot3", "mrclam6_robot4", "mrclam6_robot5"};
   double wheelbase_m = 0.26;  // iRobot Create (MRCLAM); a log's PARAM robot_wheelbase wins
   double train_fraction = 0.5;
   bool measure_sensor_noise = true;
@@ -271,8 +271,8 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     const auto it = tallies.find("fixed_q");
     if (it == tallies.end() || it->second.rmse.empty()) return;
     const std::size_t logs = it->second.rmse.size();
-    std::string text = fmt::format("Verdicts on real data ({} logs, held-out halves; fixed Q's mean RMSE {:.3f} m):",
-                                   logs, mean(it->second.rmse));
+    std::string text = fmt::format(
+        "Verdicts on real data ({} logs, held-out halves; fixed Q's mean RMSE {:.3f} m):", logs, mean(it->second.rmse));
     const std::vector<std::pair<std::string, std::string>> simulated = {
         {"adaptive_thesis",
          "simulated (noise/tables_4_1_4_2, seed 1): no better than fixed Q (25 ± 13 mm both); the published 7–32% "
@@ -309,8 +309,8 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         o.models.causes.empty() ? "none" : fmt::format("{}", fmt::join(o.models.causes, ", ")),
         o.dead_reckoning.position_rmse());
     out.results.push_back(rmse_metric("dead_reckoning", ds, "heldout_position_rmse", "m", o.dead_reckoning,
-                                      o.dead_reckoning.position_error, o.mid, c.block_s, blocks,
-                                      c.bootstrap_resamples, seed));
+                                      o.dead_reckoning.position_error, o.mid, c.block_s, blocks, c.bootstrap_resamples,
+                                      seed));
     const MethodScore* nominal = nullptr;
     const MethodScore* diagnosed = nullptr;
     for (const MethodScore& m : o.scores) {
@@ -319,8 +319,8 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
       auto pos = rmse_metric(method, ds, "heldout_position_rmse", "m", r, r.position_error, o.mid, c.block_s, blocks,
                              c.bootstrap_resamples, seed);
       out.results.push_back(pos);
-      out.results.push_back(rmse_metric(method, ds, "heldout_heading_rmse", "rad", r, r.heading_error, o.mid,
-                                        c.block_s, blocks, c.bootstrap_resamples, seed));
+      out.results.push_back(rmse_metric(method, ds, "heldout_heading_rmse", "rad", r, r.heading_error, o.mid, c.block_s,
+                                        blocks, c.bootstrap_resamples, seed));
       const double nees = r.nees.empty() ? std::numeric_limits<double>::infinity() : mean(r.nees);
       const filters::ChiSquareInterval band =
           filters::average_chi_square_interval(3, static_cast<int>(std::max<std::size_t>(blocks, 1)), 0.95);
@@ -334,8 +334,8 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
           reports::make_estimate(method, ds, "heldout_nees_inside_band", "", inside ? 1.0 : 0.0, 0.0, r.nees.size());
       inside_metric.better = "higher";
       out.results.push_back(inside_metric);
-      auto gated = reports::make_estimate(method, ds, "heldout_gated_fraction", "", r.gated_fraction(), 0.0,
-                                          r.observations);
+      auto gated =
+          reports::make_estimate(method, ds, "heldout_gated_fraction", "", r.gated_fraction(), 0.0, r.observations);
       gated.better = "lower";
       out.results.push_back(gated);
       auto div = reports::make_estimate(method, ds, "heldout_diverged", "", r.diverged ? 1.0 : 0.0, 0.0, 1);
@@ -348,12 +348,14 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
       k.better = "stable";
       out.results.push_back(k);
       table += fmt::format(
-          "\n  {:<18} Q×{:<8.4g} {}={:<6.4g} tuning {:.3f} m, NEES {:.3g}{} | held-out {:.3f} m [{:.3f}, {:.3f}], heading {:.4f} "
+          "\n  {:<18} Q×{:<8.4g} {}={:<6.4g} tuning {:.3f} m, NEES {:.3g}{} | held-out {:.3f} m [{:.3f}, {:.3f}], "
+          "heading {:.4f} "
           "rad, NEES {:.3g} ({} [{:.3g}, {:.3g}]), gated {:.1f}% of {}, {} recoveries{}",
           method, m.process_scale, m.method == Method::kSageHusa || m.method == Method::kVbAkf ? "forget" : "R×",
-          m.knob, m.tuning_rmse, m.tuning_nees, m.consistent_setting ? " (inside)" : " (outside)", pos.summary.mean, pos.summary.ci95_low, pos.summary.ci95_high, r.heading_rmse(),
-          nees, inside ? "inside" : "outside", band.lower, band.upper, 100.0 * r.gated_fraction(), r.observations,
-          r.recoveries, r.diverged ? ", DIVERGED" : "");
+          m.knob, m.tuning_rmse, m.tuning_nees, m.consistent_setting ? " (inside)" : " (outside)", pos.summary.mean,
+          pos.summary.ci95_low, pos.summary.ci95_high, r.heading_rmse(), nees, inside ? "inside" : "outside",
+          band.lower, band.upper, 100.0 * r.gated_fraction(), r.observations, r.recoveries,
+          r.diverged ? ", DIVERGED" : "");
       Tally& tally = tallies[method];
       tally.rmse.push_back(pos.summary.mean);
       tally.diverged += r.diverged ? 1 : 0;

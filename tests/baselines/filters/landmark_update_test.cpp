@@ -46,8 +46,8 @@ std::vector<Sample> circle_run(std::uint64_t seed) {
       for (const auto& m : kLandmarks) {
         const double dx = m.x() - truth.x, dy = m.y() - truth.y;
         s.seen.push_back({std::hypot(dx, dy) + 0.03 * rng.normal(),
-                          wrap_angle(std::atan2(dy, dx) - truth.theta + 0.02 * rng.normal()), m.x(), m.y(),
-                          0.03 * 0.03, 0.02 * 0.02});
+                          wrap_angle(std::atan2(dy, dx) - truth.theta + 0.02 * rng.normal()), m.x(), m.y(), 0.03 * 0.03,
+                          0.02 * 0.02});
       }
     }
     out.push_back(s);
@@ -98,8 +98,9 @@ TEST(LandmarkUpdate, EveryFilterTracksTheCircleWhereDeadReckoningDrifts) {
   vb.initial_covariance = {1e-4, 1e-4, 1e-4};
   EXPECT_LT(final_error(VbAkf(vb, kWheelbase, start), run, step, true), 0.05);
   const Matrix3 body = Vector3(4e-6, 4e-6, 2e-4).asDiagonal();
-  EXPECT_LT(final_error(MotionModelEkf(kWheelbase, start, Matrix3::Identity() * 1e-4), run,
-                        [&](MotionModelEkf& f, const WheelDisplacement& u) { f.predict(u, body); }, true),
+  EXPECT_LT(final_error(
+                MotionModelEkf(kWheelbase, start, Matrix3::Identity() * 1e-4), run,
+                [&](MotionModelEkf& f, const WheelDisplacement& u) { f.predict(u, body); }, true),
             0.05);
 }
 
