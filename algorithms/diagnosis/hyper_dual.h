@@ -9,6 +9,10 @@
 #include <cassert>
 #include <cmath>
 
+// The operations are forced inline: called per arithmetic operation of the likelihood, a call
+// costs as much as the loops.
+#define LOCBENCH_HD_INLINE inline __attribute__((always_inline))
+
 namespace locbench::diagnosis {
 
 template <int C>
@@ -44,7 +48,7 @@ struct HyperDual {
   }
 
   // f(this) given f(v), f'(v), f''(v).
-  HyperDual apply(double f0, double f1, double f2) const {
+  LOCBENCH_HD_INLINE HyperDual apply(double f0, double f1, double f2) const {
     HyperDual r;
     r.n = n;
     r.v = f0;
@@ -63,11 +67,11 @@ inline double value_of(const HyperDual<C>& a) {
 inline double value_of(double a) { return a; }
 
 template <int C>
-HyperDual<C> operator-(const HyperDual<C>& a) {
+LOCBENCH_HD_INLINE HyperDual<C> operator-(const HyperDual<C>& a) {
   return a.apply(-a.v, -1.0, 0.0);
 }
 template <int C>
-HyperDual<C> operator+(const HyperDual<C>& a, const HyperDual<C>& b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator+(const HyperDual<C>& a, const HyperDual<C>& b) {
   if (a.n == 0) {
     HyperDual<C> r = b;
     r.v = a.v + b.v;
@@ -82,7 +86,7 @@ HyperDual<C> operator+(const HyperDual<C>& a, const HyperDual<C>& b) {
   return r;
 }
 template <int C>
-HyperDual<C> operator-(const HyperDual<C>& a, const HyperDual<C>& b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator-(const HyperDual<C>& a, const HyperDual<C>& b) {
   if (a.n == 0) {
     HyperDual<C> r = -b;
     r.v = a.v - b.v;
@@ -97,7 +101,7 @@ HyperDual<C> operator-(const HyperDual<C>& a, const HyperDual<C>& b) {
   return r;
 }
 template <int C>
-HyperDual<C> operator*(const HyperDual<C>& a, const HyperDual<C>& b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator*(const HyperDual<C>& a, const HyperDual<C>& b) {
   if (a.n == 0 || b.n == 0) {
     const HyperDual<C>& x = a.n == 0 ? b : a;
     const double s = a.n == 0 ? a.v : b.v;
@@ -118,7 +122,7 @@ HyperDual<C> operator*(const HyperDual<C>& a, const HyperDual<C>& b) {
   return r;
 }
 template <int C>
-HyperDual<C> operator/(const HyperDual<C>& a, const HyperDual<C>& b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator/(const HyperDual<C>& a, const HyperDual<C>& b) {
   if (b.n == 0) {
     HyperDual<C> r = a.apply(0.0, 1.0 / b.v, 0.0);
     r.v = a.v / b.v;
@@ -138,69 +142,69 @@ HyperDual<C> operator/(const HyperDual<C>& a, const HyperDual<C>& b) {
   return q;
 }
 template <int C>
-HyperDual<C> operator+(const HyperDual<C>& a, double b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator+(const HyperDual<C>& a, double b) {
   return a + HyperDual<C>(b);
 }
 template <int C>
-HyperDual<C> operator+(double a, const HyperDual<C>& b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator+(double a, const HyperDual<C>& b) {
   return HyperDual<C>(a) + b;
 }
 template <int C>
-HyperDual<C> operator-(const HyperDual<C>& a, double b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator-(const HyperDual<C>& a, double b) {
   return a - HyperDual<C>(b);
 }
 template <int C>
-HyperDual<C> operator-(double a, const HyperDual<C>& b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator-(double a, const HyperDual<C>& b) {
   return HyperDual<C>(a) - b;
 }
 template <int C>
-HyperDual<C> operator*(const HyperDual<C>& a, double b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator*(const HyperDual<C>& a, double b) {
   return a * HyperDual<C>(b);
 }
 template <int C>
-HyperDual<C> operator*(double a, const HyperDual<C>& b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator*(double a, const HyperDual<C>& b) {
   return HyperDual<C>(a) * b;
 }
 template <int C>
-HyperDual<C> operator/(const HyperDual<C>& a, double b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator/(const HyperDual<C>& a, double b) {
   return a / HyperDual<C>(b);
 }
 template <int C>
-HyperDual<C> operator/(double a, const HyperDual<C>& b) {
+LOCBENCH_HD_INLINE HyperDual<C> operator/(double a, const HyperDual<C>& b) {
   return HyperDual<C>(a) / b;
 }
 
 template <int C>
-HyperDual<C> sin(const HyperDual<C>& a) {
+LOCBENCH_HD_INLINE HyperDual<C> sin(const HyperDual<C>& a) {
   const double s = std::sin(a.v);
   return a.apply(s, std::cos(a.v), -s);
 }
 template <int C>
-HyperDual<C> cos(const HyperDual<C>& a) {
+LOCBENCH_HD_INLINE HyperDual<C> cos(const HyperDual<C>& a) {
   const double c = std::cos(a.v);
   return a.apply(c, -std::sin(a.v), -c);
 }
 template <int C>
-HyperDual<C> exp(const HyperDual<C>& a) {
+LOCBENCH_HD_INLINE HyperDual<C> exp(const HyperDual<C>& a) {
   const double e = std::exp(a.v);
   return a.apply(e, e, e);
 }
 template <int C>
-HyperDual<C> expm1(const HyperDual<C>& a) {
+LOCBENCH_HD_INLINE HyperDual<C> expm1(const HyperDual<C>& a) {
   const double e = std::exp(a.v);
   return a.apply(std::expm1(a.v), e, e);
 }
 template <int C>
-HyperDual<C> log(const HyperDual<C>& a) {
+LOCBENCH_HD_INLINE HyperDual<C> log(const HyperDual<C>& a) {
   return a.apply(std::log(a.v), 1.0 / a.v, -1.0 / (a.v * a.v));
 }
 template <int C>
-HyperDual<C> log1p(const HyperDual<C>& a) {
+LOCBENCH_HD_INLINE HyperDual<C> log1p(const HyperDual<C>& a) {
   const double d = 1.0 + a.v;
   return a.apply(std::log1p(a.v), 1.0 / d, -1.0 / (d * d));
 }
 template <int C>
-HyperDual<C> abs(const HyperDual<C>& a) {
+LOCBENCH_HD_INLINE HyperDual<C> abs(const HyperDual<C>& a) {
   return a.v < 0.0 ? -a : a;
 }
 
@@ -210,7 +214,7 @@ double digamma(double x);
 double trigamma(double x);
 // lgamma with its first two derivatives.
 template <int C>
-HyperDual<C> lgamma(const HyperDual<C>& a) {
+LOCBENCH_HD_INLINE HyperDual<C> lgamma(const HyperDual<C>& a) {
   return a.apply(std::lgamma(a.v), digamma(a.v), trigamma(a.v));
 }
 

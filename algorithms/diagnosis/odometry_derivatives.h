@@ -17,7 +17,7 @@
 namespace locbench::diagnosis {
 
 // The most fields one call differentiates; more → false.
-inline constexpr int kMaxDifferentiatedFields = 16;
+inline constexpr int kMaxDifferentiatedFields = 12;
 
 // Fills `gradient` and `hessian` of negative_log_likelihood(d, m, index) with respect to
 // m.*fields[i] (i in fields' order) and returns the likelihood's value. Returns nullopt, with
