@@ -153,31 +153,18 @@ class Fitter {
       for (std::size_t i = 0; i < v.size(); ++i) m.*(out.coords[i].second) = v[i];
       return m;
     };
-    // The exact derivatives leave out the coordinates differenced by ml_fit (zero there).
     std::vector<Field> fields;
-    std::vector<std::size_t> at;
+    std::vector<bool> differenced;  // by ml_fit: left out of the exact derivatives
     for (std::size_t i = 0; i < fp.size(); ++i) {
-      if (fp[i].differences) continue;
       fields.push_back(out.coords[i].second);
-      at.push_back(i);
+      differenced.push_back(fp[i].differences);
     }
     NllDerivatives derivatives;
     if (exact_) {
       derivatives = [&](const std::vector<double>& v, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
         const OdometryModel m = apply(v);
-        Eigen::VectorXd ge;
-        Eigen::MatrixXd he;
-        if (!plausible(m) || !negative_log_likelihood_derivatives(d_, m, index_, fields, ge, he, &cache_)) return false;
-        g = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(v.size()));
-        h = Eigen::MatrixXd::Zero(g.size(), g.size());
-        for (std::size_t a = 0; a < at.size(); ++a) {
-          g[static_cast<Eigen::Index>(at[a])] = ge[static_cast<Eigen::Index>(a)];
-          for (std::size_t b = 0; b < at.size(); ++b) {
-            h(static_cast<Eigen::Index>(at[a]), static_cast<Eigen::Index>(at[b])) =
-                he(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
-          }
-        }
-        return true;
+        return plausible(m) &&
+               negative_log_likelihood_derivatives(d_, m, index_, fields, g, h, &cache_, &differenced).has_value();
       };
     }
     out.fit = fit_max_likelihood(

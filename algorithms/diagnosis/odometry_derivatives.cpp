@@ -180,11 +180,10 @@ Full log_sum_exp(const std::array<Full, N>& l) {
 }  // namespace ad
 }  // namespace
 
-std::optional<double> negative_log_likelihood_derivatives(const MotionData& d, const OdometryModel& m,
-                                                          const std::vector<std::size_t>& index,
-                                                          const std::vector<double OdometryModel::*>& fields,
-                                                          Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian,
-                                                          WindowCache* cache) {
+namespace {
+std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m, const std::vector<std::size_t>& index,
+                                     const std::vector<double OdometryModel::*>& fields, Eigen::VectorXd& gradient,
+                                     Eigen::MatrixXd& hessian, WindowCache* cache) {
   using namespace ad;
   const int n = static_cast<int>(fields.size());
   if (n > kMaxDifferentiatedFields) return std::nullopt;
@@ -300,6 +299,35 @@ std::optional<double> negative_log_likelihood_derivatives(const MotionData& d, c
     for (int j = 0; j < n; ++j) hessian(i, j) = nll.n == 0 ? 0.0 : nll.hessian(i, j);
   }
   return nll.v;
+}
+
+}  // namespace
+
+std::optional<double> negative_log_likelihood_derivatives(const MotionData& d, const OdometryModel& m,
+                                                          const std::vector<std::size_t>& index,
+                                                          const std::vector<double OdometryModel::*>& fields,
+                                                          Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian,
+                                                          WindowCache* cache, const std::vector<bool>* skip) {
+  if (skip == nullptr) return derivatives_of(d, m, index, fields, gradient, hessian, cache);
+  std::vector<double OdometryModel::*> kept;
+  std::vector<Eigen::Index> at;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    if ((*skip)[i]) continue;
+    kept.push_back(fields[i]);
+    at.push_back(static_cast<Eigen::Index>(i));
+  }
+  Eigen::VectorXd g;
+  Eigen::MatrixXd h;
+  const auto value = derivatives_of(d, m, index, kept, g, h, cache);
+  if (!value) return std::nullopt;
+  const auto n = static_cast<Eigen::Index>(fields.size());
+  gradient = Eigen::VectorXd::Zero(n);
+  hessian = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index a = 0; a < g.size(); ++a) {
+    gradient[at[a]] = g[a];
+    for (Eigen::Index b = 0; b < g.size(); ++b) hessian(at[a], at[b]) = h(a, b);
+  }
+  return value;
 }
 
 }  // namespace locbench::diagnosis
