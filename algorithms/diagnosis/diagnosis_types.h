@@ -18,6 +18,9 @@ struct DiagnosisOptions {
   WindowOptions windows;
   std::size_t rpe_chain = 10;  // windows chained into one relative-pose segment
   std::size_t block = 10;      // hold-out block length in windows (every third block held out)
+  // The odometry fits' Newton steps use the likelihood's exact gradient and Hessian; false: central
+  // differences (the tests compare the two). Not a report option (not serialized).
+  bool exact_derivatives = true;
 };
 void to_json(nlohmann::json& j, const DiagnosisOptions& o);
 void from_json(const nlohmann::json& j, DiagnosisOptions& o);  // strict: unknown key → UsageError

@@ -21,7 +21,8 @@ struct Coordinates {
 
 }  // namespace
 
-FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params, int max_iterations) {
+FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params, int max_iterations,
+                             const NllDerivatives& derivatives) {
   const std::size_t n = params.size();
   const Coordinates coords{params};
   Eigen::VectorXd z(n);
@@ -32,11 +33,33 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
     const double v = nll(coords.values(x));
     return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
   };
+  // Exact derivatives with respect to the values, mapped to the fitted coordinates z (v = e^z
+  // for positive parameters: ∂f/∂z = v·∂f/∂v, ∂²f/∂z_i∂z_j = v_i·v_j·∂²f/∂v_i∂v_j + δ_ij·v_i·∂f/∂v_i).
+  auto exact = [&](const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
+    if (!derivatives) return false;
+    const std::vector<double> v = coords.values(x);
+    if (!derivatives(v, g, h) || !g.allFinite() || !h.allFinite()) return false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!params[i].positive) continue;
+      h.row(i) *= v[i];
+      h.col(i) *= v[i];
+      h(i, i) += v[i] * g[i];
+      g[i] *= v[i];
+    }
+    return true;
+  };
+  // Central differences for every coordinate without exact derivatives, and for the rows and
+  // columns of those marked `differences` when there are.
   auto gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
-    g.resize(n);
-    h.resize(n, n);
+    const bool have_exact = exact(x, g, h);
+    if (!have_exact) {
+      g.resize(n);
+      h.resize(n, n);
+    }
+    auto differenced = [&](std::size_t i) { return !have_exact || params[i].differences; };
     std::vector<double> fp(n), fm(n);
     for (std::size_t i = 0; i < n; ++i) {
+      if (!differenced(i)) continue;
       Eigen::VectorXd a = x, b = x;
       a[i] += coords.step(i);
       b[i] -= coords.step(i);
@@ -47,6 +70,7 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
     }
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = i + 1; j < n; ++j) {
+        if (!differenced(i) && !differenced(j)) continue;
         Eigen::VectorXd pp = x, pm = x, mp = x, mm = x;
         pp[i] += coords.step(i), pp[j] += coords.step(j);
         pm[i] += coords.step(i), pm[j] -= coords.step(j);

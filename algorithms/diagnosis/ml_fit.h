@@ -1,6 +1,7 @@
 #pragma once
 // Maximum-likelihood fitting of a few parameters: minimises a negative log-likelihood by a
-// damped Newton method with a finite-difference gradient and Hessian, and gives each parameter
+// damped Newton method with the exact gradient and Hessian when the caller gives them, a
+// central-difference gradient and Hessian otherwise, and gives each parameter
 // a Wald 95% interval from the observed Fisher information (the Hessian at the optimum).
 // Parameters that must stay positive are fitted on a log scale and their intervals mapped back.
 #include <Eigen/Core>
@@ -15,6 +16,9 @@ struct FitParameter {
   double initial = 0.0;
   double scale = 1.0;     // a typical size of a change (sets finite-difference steps)
   bool positive = false;  // fitted as log(value)
+  // Its gradient entry and Hessian row by central differences even when the caller gives exact
+  // derivatives: for a parameter the likelihood is not smooth in (jumps smaller than the steps).
+  bool differences = false;
 };
 
 struct FitResult {
@@ -33,8 +37,13 @@ struct FitResult {
 
 using NegLogLikelihood = std::function<double(const std::vector<double>& values)>;
 
+// The exact gradient and Hessian of the NLL with respect to the values (not their log scale) at
+// `values`; false when they cannot be given there (central differences are then used).
+using NllDerivatives =
+    std::function<bool(const std::vector<double>& values, Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian)>;
+
 // `nll` may return +inf for invalid values (the step is then shortened).
 FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params,
-                             int max_iterations = 100);
+                             int max_iterations = 100, const NllDerivatives& derivatives = {});
 
 }  // namespace locbench::diagnosis

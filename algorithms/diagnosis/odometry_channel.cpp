@@ -12,6 +12,7 @@
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/ml_fit.h"
 #include "algorithms/diagnosis/odometry_battery.h"
+#include "algorithms/diagnosis/odometry_derivatives.h"
 #include "algorithms/diagnosis/selection.h"
 #include "core/chi_square.h"
 #include "core/statistics.h"
@@ -70,7 +71,8 @@ std::optional<std::string> implausible(const CauseSpec& spec, const OdometryMode
 
 class Fitter {
  public:
-  Fitter(const MotionData& d, std::vector<std::size_t> index) : d_(d), index_(std::move(index)), cache_(d) {}
+  Fitter(const MotionData& d, std::vector<std::size_t> index, bool exact_derivatives)
+      : d_(d), index_(std::move(index)), exact_(exact_derivatives), cache_(d) {}
 
   double nll(const OdometryModel& m) const { return negative_log_likelihood(d_, m, index_, &cache_); }
 
@@ -127,7 +129,10 @@ class Fitter {
         if (c.second == field) return;
       }
       out.coords.emplace_back(name, field);
-      fp.push_back({name, initial, scale, positive});
+      // The drive response's likelihood jumps where 4τ, the span its state is run over before a
+      // window, crosses an odometry step: the derivatives in τ stay central differences, which
+      // see those jumps as the fits always did.
+      fp.push_back({name, initial, scale, positive, field == &OdometryModel::drive_tau});
     };
     if (d_.reference != ReferenceKind::kCompass) {
       add("sigma_x", &OdometryModel::sigma_x, start.sigma_x, 0.0, true);
@@ -148,12 +153,26 @@ class Fitter {
       for (std::size_t i = 0; i < v.size(); ++i) m.*(out.coords[i].second) = v[i];
       return m;
     };
+    std::vector<Field> fields;
+    std::vector<bool> differenced;  // by ml_fit: left out of the exact derivatives
+    for (std::size_t i = 0; i < fp.size(); ++i) {
+      fields.push_back(out.coords[i].second);
+      differenced.push_back(fp[i].differences);
+    }
+    NllDerivatives derivatives;
+    if (exact_) {
+      derivatives = [&](const std::vector<double>& v, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
+        const OdometryModel m = apply(v);
+        return plausible(m) &&
+               negative_log_likelihood_derivatives(d_, m, index_, fields, g, h, &cache_, &differenced).has_value();
+      };
+    }
     out.fit = fit_max_likelihood(
         [&](const std::vector<double>& v) {
           const OdometryModel m = apply(v);
           return plausible(m) ? nll(m) : std::numeric_limits<double>::infinity();
         },
-        fp, max_iterations);
+        fp, max_iterations, derivatives);
     out.model = apply(out.fit.values);
     out.nll = out.fit.nll;
     return out;
@@ -161,6 +180,7 @@ class Fitter {
 
   const MotionData& d_;
   std::vector<std::size_t> index_;
+  bool exact_;
   mutable WindowCache cache_;
 };
 
@@ -259,7 +279,7 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
   split_windows(d.windows.size(), opt.block, train, test);
   const bool heading_only = d.reference == ReferenceKind::kCompass;
   const auto candidates = odometry_causes(d);
-  const Fitter fitter(d, train);
+  const Fitter fitter(d, train, opt.exact_derivatives);
   const OdoFit nominal = fitter.fit({}, initial_noise(d, train), false);
   out.nominal_fit = nominal.model;
   out.tests = odometry_battery(d, odometry_residuals(d, nominal.model, train));
@@ -368,8 +388,8 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
     std::vector<std::size_t> second(train.begin() + static_cast<long>(train.size() / 2), train.end());
     std::vector<const CauseSpec*> specs;
     for (std::size_t j : judged_in) specs.push_back(candidates[j]);
-    const auto a = Fitter(d, first).fit(specs, full.model, false).estimate(p);
-    const auto b = Fitter(d, second).fit(specs, full.model, false).estimate(p);
+    const auto a = Fitter(d, first, opt.exact_derivatives).fit(specs, full.model, false).estimate(p);
+    const auto b = Fitter(d, second, opt.exact_derivatives).fit(specs, full.model, false).estimate(p);
     const Gain& g = gains[i].front();
     std::string note = fmt::format(
         "{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not reduce the held-out {} "

@@ -1,0 +1,333 @@
+#include "algorithms/diagnosis/odometry_derivatives.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "algorithms/diagnosis/hyper_dual.h"
+#include "core/angle.h"
+#include "core/units.h"
+
+namespace locbench::diagnosis {
+
+double digamma(double x) {
+  double r = 0.0;
+  while (x < 8.0) {
+    r -= 1.0 / x;
+    x += 1.0;
+  }
+  const double f = 1.0 / (x * x);
+  return r + std::log(x) - 0.5 / x -
+         f * (1.0 / 12 - f * (1.0 / 120 - f * (1.0 / 252 - f * (1.0 / 240 - f * (1.0 / 132)))));
+}
+
+double trigamma(double x) {
+  double r = 0.0;
+  while (x < 8.0) {
+    r += 1.0 / (x * x);
+    x += 1.0;
+  }
+  const double f = 1.0 / (x * x);
+  return r + 1.0 / x + 0.5 * f +
+         (1.0 / x) * f * (1.0 / 6 - f * (1.0 / 30 - f * (1.0 / 42 - f * (1.0 / 30 - f * (5.0 / 66)))));
+}
+
+namespace {
+// A namespace of its own: in unity builds this file shares a unit with odometry_model.cpp.
+namespace ad {
+
+using Field = double OdometryModel::*;
+using Mean = HyperDual<5>;  // over the fitted mean-motion fields (at most 5 act on one kind of odometry)
+using Full = HyperDual<kMaxDifferentiatedFields>;
+
+// The fields that move the window prediction (with stalls taken out of the mean model).
+constexpr std::array<Field, 8> kMeanFields{&OdometryModel::E_d,
+                                           &OdometryModel::E_b,
+                                           &OdometryModel::E_o,
+                                           &OdometryModel::velocity_scale,
+                                           &OdometryModel::turn_rate_scale,
+                                           &OdometryModel::turn_rate_bias,
+                                           &OdometryModel::speed_slope,
+                                           &OdometryModel::drive_tau};
+
+// A model field as a number: a variable when fitted, a constant otherwise.
+template <class T>
+struct Seeded {
+  const OdometryModel& m;
+  const std::vector<Field>& fields;  // the differentiated fields, in variable order
+  int n;
+  T operator()(Field f) const {
+    for (int i = 0; i < static_cast<int>(fields.size()); ++i) {
+      if (fields[i] == f) return T::variable(m.*f, i, n);
+    }
+    return T(m.*f);
+  }
+};
+
+template <class T>
+struct PoseT {
+  T x{0.0}, y{0.0}, theta{0.0};
+};
+
+template <class T>
+PoseT<T> advance(const PoseT<T>& p, const T& dd, const T& dth) {
+  const T half = 0.5 * dth;
+  const T chord = std::abs(value_of(half)) < 1e-6 ? dd : dd * sin(half) / half;
+  const T heading = p.theta + half;
+  return {p.x + chord * cos(heading), p.y + chord * sin(heading), p.theta + dth};
+}
+
+// predict_window of odometry_model.cpp without stalls (the likelihood's mean model).
+PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mean>& s) {
+  PoseT<Mean> p;
+  if (d.odometry == OdometryKind::kEncoder) {
+    const Mean e_d = s(&OdometryModel::E_d), e_o = s(&OdometryModel::E_o);
+    const Mean cl = d.nominal.meters_per_tick_left * e_o * 2.0 / (1.0 + e_d);
+    const Mean cr = d.nominal.meters_per_tick_right * e_o * 2.0 * e_d / (1.0 + e_d);
+    const Mean b = d.nominal.wheelbase * s(&OdometryModel::E_b);
+    for (std::size_t i = w.first; i < w.last; ++i) {
+      const Mean ul = cl * d.steps[i].a, ur = cr * d.steps[i].b;
+      p = advance(p, 0.5 * (ul + ur), (ur - ul) / b);
+    }
+    return p;
+  }
+  const Mean tau = s(&OdometryModel::drive_tau);
+  const Mean velocity_scale = s(&OdometryModel::velocity_scale), speed_slope = s(&OdometryModel::speed_slope);
+  const Mean turn_scale = s(&OdometryModel::turn_rate_scale), turn_bias = s(&OdometryModel::turn_rate_bias);
+  std::size_t start = w.first;
+  Mean u(0.0), omega(0.0);
+  if (tau.v > 0.0) {
+    double span = 0.0;
+    while (start > 0 && span < 4.0 * tau.v && d.steps[start - 1].t1 == d.steps[start].t0) {
+      --start;
+      span += d.steps[start].t1 - d.steps[start].t0;
+    }
+    const auto& s0 = d.steps[start];
+    const double dt0 = s0.t1 - s0.t0;
+    u = dt0 > 0.0 ? s0.a / dt0 : 0.0;
+    omega = dt0 > 0.0 ? s0.b / dt0 : 0.0;
+  }
+  for (std::size_t i = start; i < w.last; ++i) {
+    const auto& st = d.steps[i];
+    const double dt = st.t1 - st.t0;
+    const double v = dt > 0.0 ? st.a / dt : 0.0, rate = dt > 0.0 ? st.b / dt : 0.0;
+    Mean dd(st.a), dth(st.b);
+    if (tau.v > 0.0 && dt > 0.0) {
+      const Mean decay = exp(-dt / tau);
+      dd = v * dt + (u - v) * tau * (1.0 - decay);
+      u = v + (u - v) * decay;
+      dth = rate * dt + (omega - rate) * tau * (1.0 - decay);
+      omega = rate + (omega - rate) * decay;
+    }
+    if (i < w.first) continue;
+    const Mean scale = velocity_scale + speed_slope * std::abs(v);
+    p = advance(p, scale * dd, turn_scale * dth + turn_bias * dt);
+  }
+  return p;
+}
+
+// A prediction over the mean fields as a number over all fitted fields.
+Full lift(const Mean& a, const std::vector<int>& to_full, int n) {
+  Full r = Full::zero(n);
+  r.v = a.v;
+  if (a.n == 0) return r;
+  for (int i = 0; i < a.n; ++i) {
+    r.g[to_full[i]] = a.g[i];
+    for (int j = i; j < a.n; ++j) {
+      const int fi = std::min(to_full[i], to_full[j]), fj = std::max(to_full[i], to_full[j]);
+      r.h[fi * n - fi * (fi - 1) / 2 + (fj - fi)] = a.hessian(i, j);
+    }
+  }
+  return r;
+}
+
+struct Density {
+  Full dof;
+  bool student;
+  Full constant{0.0};
+  explicit Density(const Full& nu) : dof(nu), student(nu.v > 0.0) {
+    if (student) constant = lgamma(0.5 * (nu + 1.0)) - lgamma(0.5 * nu) - 0.5 * log(nu * kPi);
+  }
+  Full operator()(const Full& r, const Full& v) const {
+    if (!student) return -0.5 * (r * r / v + log(2.0 * kPi * v));
+    return constant - 0.5 * log(v) - 0.5 * (dof + 1.0) * log1p(r * r / (dof * v));
+  }
+};
+
+Full log_density(const std::array<Full, 3>& r, const std::array<Full, 3>& v, bool heading_only,
+                 const Density& density) {
+  Full s(0.0);
+  for (int c = heading_only ? 2 : 0; c < 3; ++c) s = s + density(r[c], v[c]);
+  return s;
+}
+
+std::array<Full, 3> shifted(const std::array<Full, 3>& r, const std::array<Full, 3>& shift) {
+  return {r[0] - shift[0], r[1] - shift[1], r[2] - shift[2]};
+}
+
+// log Σ exp(l_i), with the largest value factored out as in odometry_model.cpp.
+template <std::size_t N>
+Full log_sum_exp(const std::array<Full, N>& l) {
+  std::size_t mx = 0;
+  for (std::size_t i = 1; i < l.size(); ++i) {
+    if (l[i].v > l[mx].v) mx = i;
+  }
+  Full sum(0.0);
+  for (const Full& x : l) sum = sum + exp(x - l[mx]);
+  return l[mx] + log(sum);
+}
+
+}  // namespace ad
+}  // namespace
+
+namespace {
+std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m, const std::vector<std::size_t>& index,
+                                     const std::vector<double OdometryModel::*>& fields, Eigen::VectorXd& gradient,
+                                     Eigen::MatrixXd& hessian, WindowCache* cache) {
+  using namespace ad;
+  const int n = static_cast<int>(fields.size());
+  if (n > kMaxDifferentiatedFields) return std::nullopt;
+  if (std::find(fields.begin(), fields.end(), &OdometryModel::time_offset) != fields.end()) return std::nullopt;
+  const bool has_stalls = d.odometry == OdometryKind::kPose && m.stall_rate > 0.0 && m.stall_duration > 0.0;
+  const bool stalls = has_stalls && d.reference != ReferenceKind::kCompass;
+  if (has_stalls && !stalls) return std::nullopt;  // stalls would move the mean prediction
+  OdometryModel mean_model = m;
+  if (stalls) mean_model.stall_rate = 0.0;
+
+  // The fitted mean fields, and where each sits among all fitted fields.
+  std::vector<Field> mean_fields;
+  std::vector<int> to_full;
+  for (int i = 0; i < n; ++i) {
+    if (std::find(kMeanFields.begin(), kMeanFields.end(), fields[i]) != kMeanFields.end()) {
+      mean_fields.push_back(fields[i]);
+      to_full.push_back(i);
+    }
+  }
+  if (mean_fields.size() > static_cast<std::size_t>(Mean::kCapacity)) return std::nullopt;
+  const Seeded<Mean> mean_seed{mean_model, mean_fields, static_cast<int>(mean_fields.size())};
+  const Seeded<Full> seed{m, fields, n};
+
+  const double base = d.nominal.wheelbase > 0.0 ? d.nominal.wheelbase : 0.5;
+  const Full b = base * seed(&OdometryModel::E_b);
+  const Density density(seed(&OdometryModel::dof));
+  const Full sx = seed(&OdometryModel::sigma_x), sy = seed(&OdometryModel::sigma_y),
+             st = seed(&OdometryModel::sigma_theta), k2 = seed(&OdometryModel::k2);
+  const Full slip_rate = seed(&OdometryModel::slip_rate), slip_loss = seed(&OdometryModel::slip_loss);
+  const Full stall_rate = seed(&OdometryModel::stall_rate), stall_duration = seed(&OdometryModel::stall_duration);
+  auto* references = cache != nullptr ? &cache->references(mean_model) : nullptr;
+  auto* predictions = cache != nullptr && mean_fields.empty() ? &cache->predictions(mean_model) : nullptr;
+
+  Full nll(0.0);
+  const std::size_t count = index.empty() ? d.windows.size() : index.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t wi = index.empty() ? k : index[k];
+    const MotionWindow& w = d.windows[wi];
+    std::optional<Pose2> ref;
+    if (references != nullptr) {
+      auto& cached = (*references)[wi];
+      if (!cached) cached = reference_window(d, w, mean_model);
+      ref = *cached;
+    } else {
+      ref = reference_window(d, w, mean_model);
+    }
+    const Full growth = k2 * w.wheel_travel;
+    const std::array<Full, 3> variance{sx * sx + growth / 4.0, sy * sy + growth / 4.0,
+                                       st * st + growth / (base * base)};
+    const bool heading_only = d.reference == ReferenceKind::kCompass;
+    if (!ref) {
+      const std::array<Full, 3> zero{Full(0.0), Full(0.0), Full(0.0)};
+      nll = nll - log_density(zero, variance, heading_only, density);
+      continue;
+    }
+    PoseT<Full> pred;
+    if (mean_fields.empty()) {
+      Pose2 p;
+      if (predictions != nullptr) {
+        auto& cached = (*predictions)[wi];
+        if (!cached) cached = predict_window(d, w, mean_model);
+        p = *cached;
+      } else {
+        p = predict_window(d, w, mean_model);
+      }
+      pred = {Full(p.x), Full(p.y), Full(p.theta)};
+    } else {
+      const PoseT<Mean> pm = predict(d, w, mean_seed);
+      pred = {lift(pm.x, to_full, n), lift(pm.y, to_full, n), lift(pm.theta, to_full, n)};
+    }
+    // r = reference − prediction; the heading difference wrapped by its value.
+    Full rt = -pred.theta;
+    rt.v = angle_diff(ref->theta, pred.theta.v);
+    std::array<Full, 3> r{ref->x - pred.x, ref->y - pred.y, rt};
+    if (heading_only) r[0] = r[1] = Full(0.0);
+    Full ll = log_density(r, variance, heading_only, density);
+    if (m.slip_rate > 0.0 && m.slip_loss != 0.0 && d.odometry == OdometryKind::kEncoder && w.last > w.first) {
+      const Full p = 1.0 - exp(-slip_rate * 0.5 * w.wheel_travel);
+      if (p.v > 0.0) {
+        double ul = 0.0, ur = 0.0;
+        for (std::size_t i = w.first; i < w.last; ++i) {
+          ul += d.steps[i].a * d.nominal.meters_per_tick_left;
+          ur += d.steps[i].b * d.nominal.meters_per_tick_right;
+        }
+        const double ns = static_cast<double>(w.last - w.first);
+        ul /= ns;
+        ur /= ns;
+        const std::array<Full, 3> left{-slip_loss * ul / 2.0, Full(0.0), slip_loss * ul / b};
+        const std::array<Full, 3> right{-slip_loss * ur / 2.0, Full(0.0), -slip_loss * ur / b};
+        const Full half_p = log(0.5 * p);
+        ll = log_sum_exp<3>({log1p(-p) + ll, half_p + log_density(shifted(r, left), variance, heading_only, density),
+                             half_p + log_density(shifted(r, right), variance, heading_only, density)});
+      }
+    }
+    if (stalls && !heading_only) {
+      const double span = w.t1 - w.t0;
+      if (span > 0.0) {
+        const Full p = -expm1(-stall_rate * span);
+        const Full ratio = stall_duration / span;
+        const Full fraction = ratio.v < 1.0 ? ratio : Full(1.0);
+        if (p.v > 0.0) {
+          const std::array<Full, 3> shift{-fraction * pred.x, -fraction * pred.y, Full(0.0)};
+          ll = log_sum_exp<2>({log1p(-p) + ll, log(p) + log_density(shifted(r, shift), variance, false, density)});
+        }
+      }
+    }
+    nll = nll - ll;
+  }
+  gradient.resize(n);
+  hessian.resize(n, n);
+  for (int i = 0; i < n; ++i) {
+    gradient[i] = nll.n == 0 ? 0.0 : nll.g[i];
+    for (int j = 0; j < n; ++j) hessian(i, j) = nll.n == 0 ? 0.0 : nll.hessian(i, j);
+  }
+  return nll.v;
+}
+
+}  // namespace
+
+std::optional<double> negative_log_likelihood_derivatives(const MotionData& d, const OdometryModel& m,
+                                                          const std::vector<std::size_t>& index,
+                                                          const std::vector<double OdometryModel::*>& fields,
+                                                          Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian,
+                                                          WindowCache* cache, const std::vector<bool>* skip) {
+  if (skip == nullptr) return derivatives_of(d, m, index, fields, gradient, hessian, cache);
+  std::vector<double OdometryModel::*> kept;
+  std::vector<Eigen::Index> at;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    if ((*skip)[i]) continue;
+    kept.push_back(fields[i]);
+    at.push_back(static_cast<Eigen::Index>(i));
+  }
+  Eigen::VectorXd g;
+  Eigen::MatrixXd h;
+  const auto value = derivatives_of(d, m, index, kept, g, h, cache);
+  if (!value) return std::nullopt;
+  const auto n = static_cast<Eigen::Index>(fields.size());
+  gradient = Eigen::VectorXd::Zero(n);
+  hessian = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index a = 0; a < g.size(); ++a) {
+    gradient[at[a]] = g[a];
+    for (Eigen::Index b = 0; b < g.size(); ++b) hessian(at[a], at[b]) = h(a, b);
+  }
+  return value;
+}
+
+}  // namespace locbench::diagnosis
