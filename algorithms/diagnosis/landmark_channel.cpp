@@ -297,13 +297,13 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
     if (auto it = joints.find({set, interval}); it != joints.end()) return it->second;
     std::vector<const CauseSpec*> specs;
     for (std::size_t i : set) specs.push_back(candidates[i]);
-    const LmFit& start = step_fit(ordered);
-    if (start.model.position_error_id < 0 && std::any_of(set.begin(), set.end(), [&](std::size_t i) {
+    const LmFit& entry_fit = step_fit(ordered);
+    if (entry_fit.model.position_error_id < 0 && std::any_of(set.begin(), set.end(), [&](std::size_t i) {
           return candidates[i]->id == cause::kLandmarkPositionError;
         })) {
-      return joints[{set, interval}] = start;
+      return joints[{set, interval}] = entry_fit;
     }
-    LmFit f = fitter.fit(specs, start.model, false, true);
+    LmFit f = fitter.fit(specs, entry_fit.model, false, true);
     if (interval) f = fitter.fit(specs, f.model, true);
     return joints[{set, interval}] = f;
   };
@@ -353,17 +353,17 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
   // causes' parameters kept at their joint values — re-fitting them all costs several joint fits).
   const LmFit& full = joint_fit(sel.entered, true);
   auto without = [&](std::size_t i) {
-    LandmarkModel m = full.model;
+    LandmarkModel reduced = full.model;
     const LandmarkModel nominal_values;
     const CauseSpec& spec = *candidates[i];
     for (std::size_t k = 0; k < spec.params.size(); ++k) {
-      if (const LmField f = field_of(spec.id, k)) m.*f = nominal_values.*f;
+      if (const LmField f = field_of(spec.id, k)) reduced.*f = nominal_values.*f;
     }
-    if (spec.id == cause::kLandmarkTimeOffset) m.time_offset = 0.0;
-    if (spec.id == cause::kLandmarkPositionError) m.position_error_id = -1;
+    if (spec.id == cause::kLandmarkTimeOffset) reduced.time_offset = 0.0;
+    if (spec.id == cause::kLandmarkPositionError) reduced.position_error_id = -1;
     // σ_r may have gone to ~0 beside a range-dependent noise: start its re-fit from a usable value.
-    m.sigma_range = std::max(m.sigma_range, 0.01);
-    return fitter.fit({}, m, false).model;
+    reduced.sigma_range = std::max(reduced.sigma_range, 0.01);
+    return fitter.fit({}, reduced, false).model;
   };
   std::vector<std::size_t> kept;
   std::map<std::size_t, std::vector<Gain>> gains;

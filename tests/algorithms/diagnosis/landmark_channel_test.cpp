@@ -104,7 +104,7 @@ INSTANTIATE_TEST_SUITE_P(LandmarkChannel, LandmarkHiddenEffect,
                                            LandmarkCase{"landmark_range_dependent_noise", 0.02, "slope"},
                                            LandmarkCase{"landmark_heavy_tails", 3.0, "dof"},
                                            LandmarkCase{"landmark_position_error", 0.3, "dx_m"}),
-                         [](const auto& info) { return info.param.id; });
+                         [](const auto& test) { return test.param.id; });
 
 }  // namespace
 }  // namespace locbench::diagnosis
