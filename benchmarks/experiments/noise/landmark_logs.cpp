@@ -135,29 +135,38 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
   return o;
 }
 
-reports::MetricResult rmse_metric(const std::string& method, const std::string& ds, const std::string& variant,
-                                  const std::string& unit, const TrackResult& r, const std::vector<double>& errors,
-                                  double t0, double block_s, std::size_t blocks, int resamples, std::uint64_t seed) {
+// A held-out result with its own value and 95% interval (no per-sample values).
+reports::MetricResult interval_metric(const std::string& method, const std::string& ds, const std::string& variant,
+                                      const std::string& unit, std::size_t n, double value, BootstrapInterval ci,
+                                      std::string note) {
   reports::MetricResult m;
   m.method = method;
   m.dataset = ds;
   m.variant = variant;
   m.unit = unit;
   m.over = "heldout_steps";
+  m.summary.n = n;
+  m.summary.mean = value;
+  m.summary.median = value;
+  m.summary.ci95_low = ci.low;
+  m.summary.ci95_high = ci.high;
+  m.note = std::move(note);
+  return m;
+}
+
+reports::MetricResult rmse_metric(const std::string& method, const std::string& ds, const std::string& variant,
+                                  const std::string& unit, const TrackResult& r, const std::vector<double>& errors,
+                                  double t0, double block_s, std::size_t blocks, int resamples, std::uint64_t seed) {
   std::vector<double> abs_errors(errors.size());
   std::transform(errors.begin(), errors.end(), abs_errors.begin(), [](double e) { return std::abs(e); });
   const ErrorBlocks b = error_blocks(r.t, abs_errors, t0, block_s, blocks);
-  m.summary.n = errors.size();
-  m.summary.mean = b.rmse();
-  m.summary.median = m.summary.mean;
+  const BootstrapInterval ci = errors.empty() ? BootstrapInterval{} : block_bootstrap_rmse(b, resamples, seed);
+  reports::MetricResult m = interval_metric(method, ds, variant, unit, errors.size(), b.rmse(), ci,
+                                            "RMSE over the held-out half; 95% block-bootstrap interval");
   if (!errors.empty()) {
-    const BootstrapInterval ci = block_bootstrap_rmse(b, resamples, seed);
-    m.summary.ci95_low = ci.low;
-    m.summary.ci95_high = ci.high;
     m.summary.min = *std::min_element(abs_errors.begin(), abs_errors.end());
     m.summary.max = *std::max_element(abs_errors.begin(), abs_errors.end());
   }
-  m.note = "RMSE over the held-out half; 95% block-bootstrap interval";
   return m;
 }
 
@@ -201,19 +210,10 @@ reports::MetricResult paired_difference(const std::string& method, const std::st
   const auto ea = error_blocks(a.t, a.position_error, t0, block_s, blocks);
   const auto eb = error_blocks(b.t, b.position_error, t0, block_s, blocks);
   ci = block_bootstrap_rmse_difference(ea, eb, resamples, seed);
-  reports::MetricResult diff;
-  diff.method = method;
-  diff.dataset = ds;
-  diff.variant = "heldout_position_rmse_difference";
-  diff.unit = "m";
-  diff.over = "heldout_steps";
+  reports::MetricResult diff =
+      interval_metric(method, ds, "heldout_position_rmse_difference", "m", a.position_error.size(),
+                      ea.rmse() - eb.rmse(), ci, "paired block bootstrap (the same blocks drawn for both)");
   diff.better = "lower";
-  diff.summary.n = a.position_error.size();
-  diff.summary.mean = ea.rmse() - eb.rmse();
-  diff.summary.median = diff.summary.mean;
-  diff.summary.ci95_low = ci.low;
-  diff.summary.ci95_high = ci.high;
-  diff.note = "paired block bootstrap (the same blocks drawn for both)";
   return diff;
 }
 
@@ -248,8 +248,7 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         return;
       }
       try {
-        const Outcome r = run_log(loaded.log, c, family, sensor);
-        o = r;
+        o = run_log(loaded.log, c, family, sensor);
         o.dataset = loaded.dataset;
       } catch (const InputError& err) {
         if (!specs[i].from_catalog) throw;
