@@ -61,6 +61,17 @@ def transpose(a):
     return [list(r) for r in zip(*a)]
 
 
+def nees3(e, P):
+    """e' P^-1 e for a 3-vector and a symmetric 3x3 matrix (cofactor inverse)."""
+    a, b, c = P[0]
+    d, f, g = P[1]
+    h, i, j = P[2]
+    A, B, C = f * j - g * i, -(d * j - g * h), d * i - f * h
+    det = a * A + b * B + c * C
+    inv = [[A, -(b * j - c * i), b * g - c * f], [B, a * j - c * h, -(a * g - c * d)], [C, -(a * i - b * h), a * f - b * d]]
+    return sum(e[r] * inv[r][k] * e[k] for r in range(3) for k in range(3)) / det
+
+
 def check_robot(root, robot, q_per_s, q_scale, r_scale):
     d = root + "/mrclam/MRCLAM_Dataset6/"
     landmarks = {int(r[0]): (r[1], r[2]) for r in rows(d + "Landmark_Groundtruth.dat.gz")}
@@ -94,7 +105,7 @@ def check_robot(root, robot, q_per_s, q_scale, r_scale):
     if k >= 0:
         v, w = odo[k][1], odo[k][2]
     t = mid
-    sq, n, gated, used, starving = 0.0, 0, 0, 0, 0
+    sq, n, gated, used, starving, nees = 0.0, 0, 0, 0, 0, 0.0
     for te, kind, e in events:
         dt = te - t
         if dt > 0:
@@ -135,8 +146,9 @@ def check_robot(root, robot, q_per_s, q_scale, r_scale):
         p = truth.at(t)
         if p is not None:
             sq += (p[0] - x[0]) ** 2 + (p[1] - x[1]) ** 2
+            nees += nees3([p[0] - x[0], p[1] - x[1], wrap(p[2] - x[2])], P)
             n += 1
-    return math.sqrt(sq / n), sr, sb, gated / max(1, gated + used)
+    return math.sqrt(sq / n), nees / n, sr, sb, gated / max(1, gated + used)
 
 
 def main():
@@ -144,7 +156,7 @@ def main():
     root = sys.argv[2] if len(sys.argv) > 2 else "../shared/datasets"
     q_per_s = report["configuration"]["fixed_q_per_s"]
     res = {r["name"]: r for r in report["results"]}
-    print("| robot | locbench fixed_q held-out RMSE [m] | this check [m] | check σ_r [m], σ_φ [rad] | check gated |")
+    print("| robot | locbench fixed_q held-out RMSE [m], NEES | this check [m], NEES | check σ_r [m], σ_φ [rad] | check gated |")
     print("|---|---|---|---|---|")
     for d in sorted({r["dataset"] for r in report["results"]}):
         if not d.startswith("mrclam6_robot"):
@@ -153,8 +165,9 @@ def main():
         q = res[f"fixed_q/{d}/tuned_process_scale"]["mean"]
         rs = res[f"fixed_q/{d}/tuned_second_knob"]["mean"]
         ours = res[f"fixed_q/{d}/heldout_position_rmse"]["mean"]
-        rmse, sr, sb, g = check_robot(root, robot, q_per_s, q, rs)
-        print(f"| {robot} | {ours:.3f} | {rmse:.3f} | {sr:.3f}, {sb:.4f} | {100 * g:.0f}% |")
+        our_nees = res[f"fixed_q/{d}/heldout_nees_time_average"]["mean"]
+        rmse, nees, sr, sb, g = check_robot(root, robot, q_per_s, q, rs)
+        print(f"| {robot} | {ours:.3f}, {our_nees:.2f} | {rmse:.3f}, {nees:.2f} | {sr:.3f}, {sb:.4f} | {100 * g:.0f}% |")
 
 
 if __name__ == "__main__":

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "algorithms/diagnosis/diagnosis.h"
 #include "benchmarks/experiments/harness/filter_models.h"
@@ -58,7 +59,7 @@ TEST(LandmarkFamily, TheDiagnosedVelocityScaleMakesTheFilterBetterThanTheNominal
   const TrackResult& diagnosed = f.of(Method::kDiagnosedModel).heldout;
   for (const auto& s : f.scores) {
     EXPECT_TRUE(s.heldout.finite) << to_string(s.method);
-    EXPECT_EQ(s.grid_runs, 15u) << "every method gets the same grid budget";
+    EXPECT_EQ(s.grid_runs, 30u) << "every method gets the same grid budget: 5 process scales × 6 second knobs";
   }
   EXPECT_FALSE(diagnosed.diverged);
   EXPECT_LT(diagnosed.position_rmse(), 0.8 * nominal.position_rmse())
@@ -76,6 +77,36 @@ TEST(LandmarkFamily, WithNothingHiddenTheDiagnosedModelIsTheNominalOne) {
   const double diagnosed = f.of(Method::kDiagnosedModel).heldout.position_rmse();
   EXPECT_NEAR(diagnosed, nominal, 0.2 * nominal);
   EXPECT_LT(nominal, 0.15);
+}
+
+TEST(LandmarkTuning, TheLogScoreIsLowestWhenTheCovarianceMatchesTheErrors) {
+  // Errors of 0.1 m, 0.1 m, 0.1 rad on every axis; the filter reports P = c·diag(0.01): the
+  // NEES is 3/c and the log score ½(3/c + ln det P), lowest at c = 1. An overconfident filter
+  // (c = 1/10, NEES 30) and an underconfident one (c = 10, NEES 0.3) score worse.
+  const auto score = [](double c) {
+    TrackResult r;
+    for (int i = 0; i < 100; ++i) {
+      r.position_error.push_back(std::sqrt(0.02));
+      r.nees.push_back(3.0 / c);
+      r.log_det_covariance.push_back(std::log(std::pow(c * 0.01, 3)));
+    }
+    return r.log_score();
+  };
+  EXPECT_NEAR(score(1.0), 0.5 * (3.0 + 3.0 * std::log(0.01)), 1e-12);
+  EXPECT_LT(score(1.0), score(0.1));
+  EXPECT_LT(score(1.0), score(10.0));
+  EXPECT_LT(score(1.0), score(0.8));
+  EXPECT_LT(score(1.0), score(1.25));
+}
+
+TEST(LandmarkTuning, ADivergedRunHasAnInfiniteLogScore) {
+  TrackResult r;
+  r.position_error = {0.1};
+  r.nees = {3.0};
+  r.log_det_covariance = {-9.0};
+  EXPECT_TRUE(std::isfinite(r.log_score()));
+  r.diverged = true;
+  EXPECT_EQ(r.log_score(), std::numeric_limits<double>::infinity());
 }
 
 }  // namespace

@@ -4,10 +4,13 @@
 #include <limits>
 
 #include "algorithms/filters/consistency.h"
+#include "core/enum_names.h"
 #include "core/statistics.h"
 
 namespace locbench::experiments::landmarks {
 namespace {
+
+constexpr EnumNames<TuningCriterion, 2> kCriteria{{{TuningCriterion::kLogScore, "log_score"}, {TuningCriterion::kRmse, "rmse"}}};
 
 // The observations' true times under a sensor model: where the steps are cut.
 std::vector<double> observation_times(const TrackingData& data, const LandmarkSensorModel& sensor) {
@@ -61,6 +64,11 @@ const std::vector<double>& knobs(Method m, const FamilyOptions& o) {
 
 }  // namespace
 
+const char* to_string(TuningCriterion c) { return enum_name(kCriteria, c); }
+TuningCriterion tuning_criterion_from_string(const std::string& s) {
+  return enum_value(kCriteria, s, "tuning criterion must be");
+}
+
 filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const FamilyOptions& options) {
   const double blocks = std::max(1.0, std::ceil((data.to - data.from) / options.nees_block_s));
   return filters::average_chi_square_interval(3, static_cast<int>(blocks), 0.95);
@@ -78,7 +86,7 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
     best.tuning_rmse = std::numeric_limits<double>::infinity();
     MethodSetup s = base_setup(method, train_motion, models, options);
     struct Run {
-      double q, k, rmse, nees;
+      double q, k, rmse, nees, log_score;
     };
     std::vector<Run> runs;
     for (double q : options.process_scales) {
@@ -87,32 +95,38 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
         s.knob = k;
         const TrackResult r = track(train, s, options.gate);
         const double inf = std::numeric_limits<double>::infinity();
-        runs.push_back({q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees)});
+        runs.push_back({q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees), r.log_score()});
       }
     }
     best.grid_runs = runs.size();
-    // The lowest RMSE; among the settings within `rmse_tolerance` of it, the most consistent one
-    // (NEES inside its band first, then closest to 3 on a log scale).
-    double lowest = std::numeric_limits<double>::infinity();
-    for (const Run& r : runs) lowest = std::min(lowest, r.rmse);
-    double best_distance = std::numeric_limits<double>::infinity();
-    for (const Run& r : runs) {
-      if (!(r.rmse <= lowest * (1.0 + options.rmse_tolerance)) && !(r.rmse == lowest)) continue;
-      const double distance = !(std::isfinite(r.nees) && r.nees > 0.0) ? 1e300
-                              : band.contains(r.nees)                  ? 0.0
-                                                                       : std::abs(std::log(r.nees / 3.0));
-      if (distance < best_distance || (distance == best_distance && r.rmse < best.tuning_rmse)) {
-        best_distance = distance;
-        best.process_scale = r.q;
-        best.knob = r.k;
-        best.tuning_rmse = r.rmse;
-        best.tuning_nees = r.nees;
-        best.consistent_setting = band.contains(r.nees);
+    const auto choose = [&](const Run& r) {
+      best.process_scale = r.q;
+      best.knob = r.k;
+      best.tuning_rmse = r.rmse;
+      best.tuning_nees = r.nees;
+      best.tuning_log_score = r.log_score;
+      best.consistent_setting = band.contains(r.nees);
+    };
+    choose(runs.front());  // kept when every setting diverged (reported as such)
+    if (options.criterion == TuningCriterion::kLogScore) {
+      for (const Run& r : runs)
+        if (r.log_score < best.tuning_log_score) choose(r);
+    } else {
+      // The lowest RMSE; among the settings within `rmse_tolerance` of it, the most consistent one
+      // (NEES inside its band first, then closest to 3 on a log scale).
+      double lowest = std::numeric_limits<double>::infinity();
+      for (const Run& r : runs) lowest = std::min(lowest, r.rmse);
+      double best_distance = std::numeric_limits<double>::infinity();
+      for (const Run& r : runs) {
+        if (!(r.rmse <= lowest * (1.0 + options.rmse_tolerance)) && !(r.rmse == lowest)) continue;
+        const double distance = !(std::isfinite(r.nees) && r.nees > 0.0) ? 1e300
+                                : band.contains(r.nees)                  ? 0.0
+                                                                         : std::abs(std::log(r.nees / 3.0));
+        if (distance < best_distance || (distance == best_distance && r.rmse < best.tuning_rmse)) {
+          best_distance = distance;
+          choose(r);
+        }
       }
-    }
-    if (!std::isfinite(lowest)) {  // every setting diverged: keep the first, report it as such
-      best.process_scale = runs.front().q;
-      best.knob = runs.front().k;
     }
     MethodSetup held = base_setup(method, test_motion, models, options);
     held.process_scale = best.process_scale;

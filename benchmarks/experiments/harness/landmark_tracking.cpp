@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <variant>
 
 #include "algorithms/filters/consistency.h"
@@ -165,6 +166,13 @@ std::vector<MotionStep> model_motion(const TrackingData& data, const diagnosis::
 }
 
 double TrackResult::position_rmse() const { return position_error.empty() ? 0.0 : rms(position_error); }
+double TrackResult::log_score() const {
+  if (diverged || nees.empty()) return std::numeric_limits<double>::infinity();
+  double sum = 0.0;
+  for (std::size_t i = 0; i < nees.size(); ++i) sum += 0.5 * (nees[i] + log_det_covariance[i]);
+  const double score = sum / static_cast<double>(nees.size());
+  return std::isfinite(score) ? score : std::numeric_limits<double>::infinity();
+}
 double TrackResult::heading_rmse() const { return heading_error.empty() ? 0.0 : rms(heading_error); }
 double TrackResult::gated_fraction() const {
   return observations > 0 ? static_cast<double>(gated) / static_cast<double>(observations) : 0.0;
@@ -312,6 +320,7 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
     out.position_error.push_back(e);
     out.heading_error.push_back(angle_diff(ref->theta, x(2)));
     out.nees.push_back(filters::pose_nees(*ref, x, p));
+    out.log_det_covariance.push_back(std::log(p.determinant()));
     if (e > gate.divergence_error_m) ++far;
   }
   out.diverged = !out.finite || out.position_error.empty() ||

@@ -116,12 +116,17 @@ struct GatePolicy {
 struct TrackResult {
   std::vector<double> t;  // true time of each step end
   std::vector<double> position_error, heading_error, nees;
+  std::vector<double> log_det_covariance;  // ln det P at each step
   std::size_t observations = 0, used = 0, gated = 0, recoveries = 0;
   bool finite = true;
   bool diverged = false;
   double position_rmse() const;
   double heading_rmse() const;
   double gated_fraction() const;
+  // The mean negative log-likelihood of the truth under the filter's Gaussian, ½(NEES + ln det P)
+  // per step without the constant (a proper scoring rule: it rewards accuracy and a covariance
+  // that matches it, Gneiting and Raftery, JASA 2007); +∞ for a diverged run.
+  double log_score() const;
 };
 
 // One filter over the span. Throws UsageError for a setup without motion steps.
