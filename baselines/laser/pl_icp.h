@@ -16,7 +16,8 @@
 //      point-to-line, R q_i + t − p_j1 for point-to-point); directions of the 3×3 normal matrix
 //      whose eigenvalue is below `degenerate_ratio` × the largest (a corridor's length) are not
 //      stepped along, so they keep the first guess;
-// until the step is below the tolerances or `max_iterations` is reached.
+// until the step is below the tolerances, a set of correspondences recurs (the iterations cycle;
+// CSM stops there too), or `max_iterations` is reached.
 //
 // Covariance: 2 σ̂² H⁻¹ with H = JᵀJ at the result and σ̂² = Σe²/(N − 3) (floored at
 // min_point_sigma²) — the inverse Hessian of the cost, doubled because the reference scan is as
@@ -78,7 +79,8 @@ struct PlIcpResult {
   Pose2 motion;  // the current robot pose in the reference robot frame
   // Covariance of (x, y, θ) of `motion` [m², m², rad²]; +∞ along degenerate directions.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  bool converged = false;   // the step fell below the tolerances
+  bool converged = false;   // the step fell below the tolerances, or the iterations cycled
+  bool cycled = false;      // stopped on a correspondence set met in an earlier iteration (CSM)
   bool degenerate = false;  // some direction was left at the first guess
   bool valid = false;       // enough correspondences: false → motion = first guess
   int iterations = 0;
