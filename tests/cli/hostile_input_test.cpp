@@ -414,6 +414,11 @@ const std::vector<HostileCase>& cases() {
        "mkdir '{d}/mr' && touch '{d}/mr/Robot1_Odometry.dat' '{d}/mr/Robot1_Measurement.dat' && "
        "mkfifo '{d}/mr/Robot1_Groundtruth.dat'",
        "diagnose '{d}/mr#robot1'", 2, "Robot1_Groundtruth.dat: is a named pipe (FIFO)"},
+      {"fifo_nothing_reads_as_simulate_output", file("s.json", R"({"preset": "corridor"})") + "mkfifo '{d}/x.clf'",
+       "simulate {d}/s.json -o {d}/x.clf", 2, "x.clf: is a named pipe (FIFO) that nothing reads"},
+      {"fifo_nothing_reads_as_report_output", "mkfifo '{d}/r.json'",
+       "calibrate umbmark-classic {src}/examples/umbmark_trilobot.json --report {d}/r.json", 2,
+       "r.json: is a named pipe (FIFO) that nothing reads"},
       {"dev_zero_as_log", "ln -s /dev/zero '{d}/z.clf'", "diagnose {d}/z.clf", 2, "z.clf: is a character device"},
       {"dev_zero_as_scenario", "ln -s /dev/zero '{d}/z.json'", "simulate {d}/z.json -o {d}/x.clf", 2,
        "z.json: is a character device"},
