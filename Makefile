@@ -130,3 +130,22 @@ format: setup
 
 clean:
 	rm -rf build $(OUT)
+
+# libFuzzer targets (fuzz/: one per reader, the scenario through the simulator and the CARMEN
+# writer, Censi tuples through the ML calibration, the JSON-option layer), built with clang
+# (Debian clang-14 + libclang-rt-14-dev, from scripts/setup.sh) under ASan/UBSan into
+# build/fuzz, then each run for FUZZ_SECONDS from its seed corpus (fuzz/corpus/, plus the first
+# lines of the real logs). A finding fails and leaves its input in build/fuzz/fuzz/ (crash-*,
+# timeout-*, oom-*). `make run` and `make test` never use clang.
+FUZZBUILD := build/fuzz
+FUZZ_SECONDS ?= 30
+FUZZ_TARGETS := fuzz_carmen fuzz_relations fuzz_tum fuzz_landmarks fuzz_censi fuzz_umbmark_input fuzz_scenario \
+  fuzz_histogram fuzz_reports fuzz_json_options
+.PHONY: fuzz
+fuzz: setup
+	@cmake -S . -B $(FUZZBUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
+	  -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g1" -DLOCBENCH_FUZZ=ON -DLOCBENCH_FUZZ_SECONDS=$(FUZZ_SECONDS) $(UNITY) >/dev/null
+	@s=$$(date +%s); cmake --build $(FUZZBUILD) -j$(JOBS) --target $(FUZZ_TARGETS) && \
+	  echo "make fuzz: build took $$(( $$(date +%s) - s )) s"
+	@s=$$(date +%s); cd $(FUZZBUILD) && ctest -L fuzz --output-on-failure -j$(JOBS); rc=$$?; \
+	  echo "make fuzz: $(words $(FUZZ_TARGETS)) targets, $(FUZZ_SECONDS) s each, took $$(( $$(date +%s) - s )) s"; exit $$rc

@@ -188,7 +188,9 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
     o.outliers = {4, 0.01};
     const auto tuples = read_censi_tuples(a.input);
     ref.records = tuples.size();
-    return calibration_data_from_wheel_speed_tuples(tuples);
+    CalibrationData data = calibration_data_from_wheel_speed_tuples(tuples);
+    data.source = a.input;  // errors about the samples name the file
+    return data;
   }
   Log log = load_log(a.input);
   if (!a.relations.empty()) attach_relations(log, a.relations);

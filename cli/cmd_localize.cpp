@@ -171,7 +171,7 @@ Action add_localize_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--start", args->start, "Start pose X,Y,THETA for the Kalman trackers [m, rad]");
   cmd->add_option("--options", args->options,
                   "JSON overriding the methods' options (keys: mcl, grid_markov, ekf_eap, kalman_line_features)");
-  cmd->add_option("--seed", args->seed, "Seed of MCL's random numbers (default 1)");
+  add_seed_option(cmd, args->seed, "Seed of MCL's random numbers (default 1)");
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--tum", args->tum, "Write the estimated poses here (TUM format)");
   return [args, command_line] { return localize(*args, command_line); };

@@ -203,9 +203,7 @@ Action add_merge_command(CLI::App& app, const std::string& command_line) {
       ->check(CLI::ExistingPath);
   cmd->add_option("-o,--out", args->out, "Report file (one experiment, ends in .json) or folder (one report each)")
       ->required();
-  cmd->add_option("--threads", args->threads, "Worker threads for any work of the summary step")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  add_threads_option(cmd, args->threads, "Worker threads for any work of the summary step")->capture_default_str();
   return [args, command_line] { return merge(*args, command_line); };
 }
 

@@ -13,7 +13,6 @@
 #include "core/errors.h"
 #include "core/input_limits.h"
 #include "core/json_file.h"
-#include "core/rng.h"
 #include "datasets/log/data_root.h"
 #include "reports/finish_report.h"
 #include "reports/output_file.h"
@@ -284,9 +283,7 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
       add_verb<RunArgs>(app, "run", "Run experiments (default: the default suite) and write JSON reports");
   cmd->add_option("experiments", args->experiments,
                   "Experiment names or groups (e.g. odometry/sim_corridor, odometry)");
-  cmd->add_option("--seed", args->seed, "Base seed of every random run (0 … 2^53 − 1)")
-      ->check(CLI::Range(std::uint64_t{0}, Rng::kMaxJsonSafeSeed))
-      ->capture_default_str();
+  add_seed_option(cmd, args->seed, "Base seed of every random run")->capture_default_str();
   cmd->add_option("--runs", args->runs, "Monte-Carlo runs, 1 … 100000 (default: each experiment's own)")
       ->check(CLI::Range(1, static_cast<int>(limits::kMonteCarloRuns.max)));
   cmd->add_option("-o,--out", args->out, "Folder for reports")->capture_default_str();
@@ -294,10 +291,8 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--set", args->sets,
                   "Override one option, KEY.PATH=VALUE (JSON value), e.g. "
                   "filters.sage_husa_aekf.forgetting=0.95; repeatable");
-  cmd->add_option("--threads", args->threads,
-                  "Worker threads for Monte-Carlo runs (default: all cores); results are the same "
-                  "for any number")
-      ->check(CLI::PositiveNumber)
+  add_threads_option(cmd, args->threads,
+                     "Worker threads for Monte-Carlo runs (default: all cores); results are the same for any number")
       ->capture_default_str();
   cmd->add_option("--shard", args->shard,
                   "Run only shard K of N (tasks i with i mod N = K-1) and write "

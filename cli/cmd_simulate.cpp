@@ -66,7 +66,7 @@ Action add_simulate_command(CLI::App& app) {
       add_verb<SimulateArgs>(app, "simulate", "Simulate a scenario and write its log (CARMEN format, .gz to compress)");
   cmd->add_option("scenario", args->scenario, "A scenario name (see `locbench list`) or a scenario JSON file")
       ->required();
-  cmd->add_option("--seed", args->seed, "Seed of every noise source")->capture_default_str();
+  add_seed_option(cmd, args->seed, "Seed of every noise source")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Log file to write (.clf or .clf.gz)");
   cmd->add_option("--truth-tum", args->truth_tum, "Also write the true trajectory in TUM format");
   cmd->add_flag("--print-scenario", args->print_scenario,

@@ -1,6 +1,7 @@
 #pragma once
 // One small file per verb; each registers its sub-command and returns the exit code.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -30,6 +31,20 @@ Verb<Args> add_verb(CLI::App& app, const char* name, const char* description) {
 // --data, the dataset folder, as every verb that reads the catalog declares it.
 inline void add_data_option(CLI::App* cmd, std::string& data) {
   cmd->add_option("--data", data, "Dataset folder (default: $LOCBENCH_DATA or ../shared/datasets)");
+}
+
+// --seed, as every verb that draws random numbers declares it: 0 … 2^53 − 1, the integers a
+// JSON report keeps exactly (a negative seed is refused, not wrapped to 2^64 − 5).
+inline CLI::Option* add_seed_option(CLI::App* cmd, std::uint64_t& seed, const std::string& description) {
+  return cmd->add_option("--seed", seed, description + " (0 … 2^53 − 1)")
+      ->check(CLI::Range(std::uint64_t{0}, (std::uint64_t{1} << 53) - 1));
+}
+
+// --threads, 1 … kMaxThreads (a range, not CLI11's "positive number", whose message prints
+// the largest double in full).
+inline constexpr int kMaxThreads = 1024;
+inline CLI::Option* add_threads_option(CLI::App* cmd, int& threads, const std::string& description) {
+  return cmd->add_option("--threads", threads, description + " (1 … 1024)")->check(CLI::Range(1, kMaxThreads));
 }
 
 // Each add_* registers a sub-command on `app` and returns the action to run when it is chosen.

@@ -31,6 +31,21 @@ int main(int argc, char** argv) {
   add(add_localize_command(app, command_line));
   add(add_diagnose_command(app, command_line));
 
+  // A first word that names no verb: CLI11 alone would say "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string verbs;
+    bool known = false;
+    for (CLI::App* sub : app.get_subcommands({})) {
+      verbs += (verbs.empty() ? "" : ", ") + sub->get_name();
+      known = known || sub->check_name(argv[1]);
+    }
+    if (!known) {
+      std::fprintf(stderr,
+                   "locbench: usage error: unknown subcommand '%s': expected one of %s (see `locbench --help`)\n",
+                   argv[1], verbs.c_str());
+      return kExitBadInput;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

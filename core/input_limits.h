@@ -44,10 +44,28 @@ inline constexpr Limit kLandmarkMapSize{"landmarks of a landmark map", 100'000, 
 inline constexpr Limit kLandmarkObservations{"landmark observations of one file", 1e7,
                                              "memory of the log (32 bytes each)"};
 
+// Every input file (core/input_file.h): its bytes, decompressed ones for gzip (the largest
+// catalog log, Intel's CARMEN file, is 18 MB decompressed; 128 MiB of ODOM lines parse in ~2.5 s
+// into ~400 MB), and for JSON its bytes and nesting (reports are under 1 MB; a 32 MiB array of
+// numbers parses in ~1 s into ~0.5 GB; copies and destruction recurse once per level).
+inline constexpr Limit kInputFileBytes{"bytes of one input file (decompressed, for gzip)", 134'217'728,
+                                       "memory and time of reading it (128 MiB)"};
+inline constexpr Limit kJsonFileBytes{"bytes of one JSON input", 33'554'432, "memory of the parsed document (32 MiB)"};
+inline constexpr Limit kJsonDepth{"nesting depth of a JSON input (arrays and objects)", 512,
+                                  "stack depth of the parser and of copies"};
+
+// Global localization (`localize`, global/real_logs options): MCL's particle counts and grid
+// Markov's cells (each cell a double, with a second grid for the prediction). The catalog
+// experiments use 50,000 initial particles; grid Markov's default max_cells is the limit.
+inline constexpr Limit kMclParticles{"mcl initial_particles, min_particles, max_particles", 1e6,
+                                     "memory and time of each update"};
+inline constexpr Limit kGridMarkovCells{"grid_markov max_cells", 5e7, "memory of the grid (8 bytes a cell, twice)"};
+
 inline constexpr Limit kAll[] = {
-    kHistogramBins, kHistogramTotalCount, kSimLaserBeams,   kSimCoordinate,       kSimDistance,
-    kSimRuns,       kSimDuration,         kSimPhysicsSteps, kSimRecords,          kSimLaserValues,
-    kBeamsPerScan,  kMonteCarloRuns,      kLandmarkMapSize, kLandmarkObservations};
+    kInputFileBytes,  kJsonFileBytes,        kJsonDepth,      kHistogramBins,  kHistogramTotalCount,
+    kSimLaserBeams,   kSimCoordinate,        kSimDistance,    kSimRuns,        kSimDuration,
+    kSimPhysicsSteps, kSimRecords,           kSimLaserValues, kBeamsPerScan,   kMonteCarloRuns,
+    kLandmarkMapSize, kLandmarkObservations, kMclParticles,   kGridMarkovCells};
 
 // "limit: 1e+04" style text for messages and --help.
 inline std::string limit_text(double max) {

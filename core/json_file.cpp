@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "core/errors.h"
+#include "core/input_file.h"
+#include "core/input_limits.h"
 
 namespace locbench {
 namespace {
@@ -34,9 +32,39 @@ std::size_t line_of(const std::string& text, std::size_t byte) {
   return 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + end, '\n'));
 }
 
+// Refuses text whose arrays and objects nest deeper than the limit, before the parser builds
+// a document whose copies and destruction recurse once per level (a 100,000-deep array
+// overflowed the stack). Brackets inside strings do not count.
+void check_nesting(const std::string& text, const std::string& source) {
+  const auto max_depth = static_cast<std::size_t>(limits::kJsonDepth.max);
+  std::size_t depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_depth) {
+        throw InputError(source, line_of(text, i),
+                         "arrays and objects nest more than " + limits::limit_text(limits::kJsonDepth.max) +
+                             " levels deep: expected at most that (see `locbench --help`, \"Input limits\")");
+      }
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
 }  // namespace
 
 nlohmann::json parse_json_text(const std::string& text, const std::string& source) {
+  check_nesting(text, source);
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
@@ -67,16 +95,8 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
 }
 
 nlohmann::json read_json_file(const std::filesystem::path& path, const std::string& what) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(path.string(), 0, "is a folder: expected a " + what);
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), 0, "cannot open the " + what + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path.string(), 0, "cannot read the " + what);
-  return parse_json_text(text.str(), path.string());
+  InputFile in(path, what, static_cast<std::uint64_t>(limits::kJsonFileBytes.max));
+  return parse_json_text(in.read_all(), path.string());
 }
 
 }  // namespace locbench

@@ -3,10 +3,10 @@
 #include <zlib.h>
 
 #include <algorithm>
-#include <fstream>
 #include <vector>
 
-#include "core/errors.h"
+#include "core/input_file.h"
+#include "core/input_limits.h"
 
 namespace locbench::reports {
 namespace {
@@ -18,13 +18,10 @@ std::string hex(uLong crc) {
 }
 
 uLong update_with_file(uLong crc, const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), 0, "cannot open file to checksum");
+  InputFile in(path, "input file", static_cast<std::uint64_t>(limits::kInputFileBytes.max));
   std::vector<char> buf(1 << 16);
-  while (in) {
-    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-    const auto got = static_cast<uInt>(in.gcount());
-    if (got > 0) crc = crc32(crc, reinterpret_cast<const Bytef*>(buf.data()), got);
+  while (const std::size_t got = in.read(buf.data(), buf.size())) {
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(buf.data()), static_cast<uInt>(got));
   }
   return crc;
 }

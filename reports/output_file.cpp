@@ -59,6 +59,21 @@ bool is_special(const fs::path& path) {
   return ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
 }
 
+// Opens a special target for writing without blocking: a FIFO that nothing reads is refused
+// (open would wait for a reader forever), one being read is written as a pipe (`-o /dev/stdout`
+// into `| less`). The descriptor is blocking again when returned.
+int open_special_for_writing(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0 && errno == ENXIO) {
+    throw InputError(path.string(), 0,
+                     "is a named pipe (FIFO) that nothing reads: expected a file to write (or a pipe being read)");
+  }
+  if (fd < 0) fail(path, "cannot open for writing", errno);
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  return fd;
+}
+
 void refuse_folder(const fs::path& path) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) {
@@ -151,6 +166,8 @@ AtomicOutput::AtomicOutput(const fs::path& target) : target_(target) {
   if (is_special(target)) {
     temp_ = target;  // written in place (see is_special)
     committed_ = true;
+    // Held open while the writer opens the target again: a pipe's reader sees no end before it.
+    lock_fd_ = open_special_for_writing(target);
     return;
   }
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
@@ -199,8 +216,7 @@ void AtomicOutput::commit() {
 void write_file_atomically(const fs::path& path, std::string_view text) {
   refuse_folder(path);
   if (is_special(path)) {
-    const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC);
-    if (fd < 0) fail(path, "cannot open for writing", errno);
+    const int fd = open_special_for_writing(path);
     write_all_or_close(fd, text, path);
     if (::close(fd) != 0) fail(path, "cannot write (on close)", errno);
     return;

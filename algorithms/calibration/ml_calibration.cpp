@@ -10,6 +10,7 @@
 
 #include "algorithms/calibration/closed_form_calibration.h"
 #include "algorithms/calibration/ml_calibration_solver.h"
+#include "core/errors.h"
 
 namespace locbench::calibration {
 namespace {
@@ -189,6 +190,13 @@ struct Solution {
   bool converged = false;
 };
 
+// "3 samples give 9 measurements for 6 free parameters after outlier rejection: expected …".
+std::string too_few_samples(std::size_t samples, std::size_t free, const char* when) {
+  return std::to_string(samples) + " samples give " + std::to_string(3 * samples) + " measurements for " +
+         std::to_string(free) + " free parameters" + when +
+         ": expected more measurements than free parameters (at least " + std::to_string(free / 3 + 1) + " samples)";
+}
+
 Solution solve(const Problem& pb, const ParameterMask& free_mask, const ModelParameters& start,
                const MlCalibrationOptions& opt) {
   Solution sol;
@@ -214,7 +222,9 @@ Solution solve(const Problem& pb, const ParameterMask& free_mask, const ModelPar
   for (int round = 0; round < rounds; ++round) {
     const auto shapes = noise_shapes(p, p.full(x), opt.noise.virtual_track);
     if (!whitening_of(noise, shapes, sol.whitening)) {
-      throw std::invalid_argument("calibrate_ml: a sample covariance is not positive definite");
+      throw InputError(pb.data.source, 0,
+                       "a sample's noise covariance is not positive definite (degenerate samples, e.g. no "
+                       "motion at all): expected samples whose motions give every noise term a positive variance");
     }
     if (problem) ml_solver::restrict_to_determined(*problem, x);
     const LmOutcome lm = problem ? ml_solver::levenberg_marquardt(*problem, x, opt.max_iterations) : LmOutcome{0, true};
@@ -269,9 +279,9 @@ const CalibratedParameter& MlCalibrationResult::parameter(const std::string& nam
 }
 
 MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibrationOptions& opt) {
-  if (data.samples.empty()) throw std::invalid_argument("calibrate_ml: no samples");
+  if (data.samples.empty()) throw InputError(data.source, 0, "no calibration samples: expected at least one");
   for (const CalibrationSample& s : data.samples) {
-    if (!is_finite(s)) throw std::invalid_argument("calibrate_ml: non-finite sample");
+    if (!is_finite(s)) throw InputError(data.source, 0, "a calibration sample is not finite: expected finite numbers");
   }
   if (opt.outliers.iterations < 0 || !(opt.outliers.fraction > 0.0) || !(opt.outliers.fraction <= 0.5)) {
     throw std::invalid_argument("calibrate_ml: outliers need iterations >= 0, 0 < fraction <= 0.5");
@@ -311,7 +321,7 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   }
   for (std::size_t i = 0; i < data.samples.size(); ++i) pb.active.push_back(i);
   if (3 * pb.active.size() <= pb.free.size()) {
-    throw std::invalid_argument("calibrate_ml: fewer measurements than free parameters");
+    throw InputError(data.source, 0, too_few_samples(pb.active.size(), pb.free.size(), ""));
   }
 
   const ModelParameters start = nominal_parameters(data);
@@ -321,7 +331,7 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   for (int it = 0; it < opt.outliers.iterations; ++it) {
     pb.active = drop_outliers(pb, sol.values, opt.outliers.fraction);
     if (3 * pb.active.size() <= pb.free.size()) {
-      throw std::invalid_argument("calibrate_ml: outlier rejection left too few samples");
+      throw InputError(data.source, 0, too_few_samples(pb.active.size(), pb.free.size(), " after outlier rejection"));
     }
     sol = solve(pb, free, start, opt);
     res.iterations += sol.iterations;

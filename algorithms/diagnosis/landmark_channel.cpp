@@ -129,7 +129,9 @@ class LmFitter {
     for (std::size_t i : index_) by[d_.landmark[i]].push_back(i);
     LmDisplacement best;
     double best_gain = 0.0;
-    for (const auto& [k, idx] : by) {
+    for (const auto& entry : by) {
+      const int k = entry.first;
+      const std::vector<std::size_t>& idx = entry.second;  // not a binding: clang 14 cannot capture those
       if (idx.size() < 10) continue;
       ++best.searched;
       LandmarkModel x = m;

@@ -4,7 +4,6 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <ranges>
 #include <span>
 #include <vector>
 
@@ -15,6 +14,25 @@
 
 namespace locbench::laser {
 namespace {
+
+// The point indices first … last − 1 as a range (what accept_run reads of a run): std::views::iota
+// did this, but clang 14 cannot instantiate libstdc++ 12's iota_view (the fuzz build).
+struct IndexRange {
+  std::uint32_t first, last;
+  struct Iterator {
+    std::uint32_t i;
+    std::uint32_t operator*() const { return i; }
+    Iterator& operator++() {
+      ++i;
+      return *this;
+    }
+    bool operator==(const Iterator&) const = default;
+  };
+  Iterator begin() const { return {first}; }
+  Iterator end() const { return {last}; }
+  std::size_t size() const { return last - first; }
+  std::uint32_t operator[](std::size_t k) const { return first + static_cast<std::uint32_t>(k); }
+};
 
 using detail::BearingCache;
 using detail::EapSegmentTable;
@@ -189,7 +207,7 @@ class MatchPass {
       std::uint32_t end = begin + 1;
       while (end < n && owner[end] == owner[begin]) ++end;
       Moments m;
-      if (owner[begin] != kNoSegment && accept_run(owner[begin], std::views::iota(begin, end), m)) {
+      if (owner[begin] != kNoSegment && accept_run(owner[begin], IndexRange{begin, end}, m)) {
         runs.push_back({owner[begin], begin, end, m});
       }
       begin = end;
@@ -234,7 +252,7 @@ class MatchPass {
   bool accept_run(std::uint32_t segment, const Points& run, Moments& m) const {
     const bool count = o_.weighting.kind == HoughWeighting::kCount;
     if (count && !(static_cast<double>(run.size()) >= o_.c_limit)) return false;  // (5.11)
-    const std::uint32_t a = run.front(), b = run.back();
+    const std::uint32_t a = run[0], b = run[run.size() - 1];
     if (!(Eigen::Vector2d(p_.x[b] - p_.x[a], p_.y[b] - p_.y[a]).norm() > o_.min_extent)) {
       return false;
     }

@@ -6,6 +6,7 @@
 #include "baselines/global/likelihood_field.h"
 #include "baselines/global/monte_carlo_localization.h"
 #include "baselines/global/odometry_motion_model.h"
+#include "core/input_limits.h"
 #include "core/option_fields.h"
 #include "core/units.h"
 
@@ -37,9 +38,11 @@ template <class V>
 void visit_fields(V& v, MclOptions& o) {
   v.nested("motion", o.motion, "OdometryMotionOptions");
   v.nested("field", o.field, "LikelihoodFieldOptions");
-  v.field("initial_particles", o.initial_particles, "", at_least(1), "drawn uniformly for global localization");
-  v.field("min_particles", o.min_particles, "", at_least(1), "KLD lower bound");
-  v.field("max_particles", o.max_particles, "", at_least(1), "KLD upper bound (≥ min_particles)");
+  v.field("initial_particles", o.initial_particles, "", closed(1, limits::kMclParticles.max),
+          "drawn uniformly for global localization");
+  v.field("min_particles", o.min_particles, "", closed(1, limits::kMclParticles.max), "KLD lower bound");
+  v.field("max_particles", o.max_particles, "", closed(1, limits::kMclParticles.max),
+          "KLD upper bound (≥ min_particles)");
   v.flag("kld", o.kld, "false: keep max_particles");
   v.field("kld_epsilon", o.kld_epsilon, "", positive(), "ε, the K-L bound");
   v.field("kld_z", o.kld_z, "", any_finite(), "z_{1−δ}");
@@ -61,7 +64,7 @@ void visit_fields(V& v, GridMarkovOptions& o) {
   v.field("update_min_angle", o.update_min_angle, "rad", non_negative(), "odometry between updates");
   v.field("prune_threshold", o.prune_threshold, "", non_negative(), "cells below this × the maximum are not moved");
   v.field("uniform_mix", o.uniform_mix, "", closed_open(0.0, 1.0), "mass spread uniformly after each update");
-  v.field("max_cells", o.max_cells, "", at_least(1.0), "refuse larger grids (memory)");
+  v.field("max_cells", o.max_cells, "", closed(1.0, limits::kGridMarkovCells.max), "refuse larger grids (memory)");
 }
 
 }  // namespace locbench::baselines::global

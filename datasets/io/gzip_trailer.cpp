@@ -1,9 +1,13 @@
 #include "datasets/io/gzip_trailer.h"
 
+#include <unistd.h>
 #include <zlib.h>
 
-#include <fstream>
+#include <string>
 #include <vector>
+
+#include "core/input_file.h"
+#include "core/input_limits.h"
 
 namespace locbench::io {
 namespace {
@@ -15,9 +19,9 @@ std::uint32_t le32(const unsigned char* p) {
 
 // Walks the members with inflate; returns where the bytes after the last complete member start
 // when they do not begin another member, nullopt when the file ends exactly after a member.
-std::optional<std::uint64_t> walk_members(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+std::optional<std::uint64_t> walk_members(InputFile& in) {
+  const std::string text = in.read_all();
+  const std::vector<unsigned char> data(text.begin(), text.end());
   std::size_t at = 0;
   std::vector<unsigned char> sink(1 << 16);
   while (at < data.size()) {
@@ -44,20 +48,16 @@ std::optional<std::uint64_t> walk_members(const std::filesystem::path& path) {
 
 std::optional<std::uint64_t> gzip_trailing_garbage(const std::filesystem::path& path, std::uint32_t crc,
                                                    std::uint64_t length) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  const auto end = in.tellg();
-  std::error_code ec;
-  if (!in || end < 0 || !std::filesystem::is_regular_file(path, ec)) return std::nullopt;  // a pipe
-  const auto size = static_cast<std::uint64_t>(end);
+  InputFile in(path, "gzip file", static_cast<std::uint64_t>(limits::kInputFileBytes.max));
+  const std::uint64_t size = in.size();
   if (size >= 18) {
     unsigned char tail[8];
-    in.seekg(static_cast<std::streamoff>(size - 8));
-    if (in.read(reinterpret_cast<char*>(tail), 8) && le32(tail) == crc &&
+    if (::pread(in.fd(), tail, 8, static_cast<off_t>(size - 8)) == 8 && le32(tail) == crc &&
         le32(tail + 4) == static_cast<std::uint32_t>(length)) {
       return std::nullopt;  // one member ending exactly at the end of the file
     }
   }
-  return walk_members(path);
+  return walk_members(in);
 }
 
 }  // namespace locbench::io

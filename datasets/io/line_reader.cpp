@@ -6,6 +6,8 @@
 #include <cstring>
 
 #include "core/errors.h"
+#include "core/input_file.h"
+#include "core/input_limits.h"
 #include "datasets/io/gzip_trailer.h"
 
 namespace locbench::io {
@@ -17,20 +19,14 @@ bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' |
 
 }  // namespace
 
-LineReader::LineReader(const std::filesystem::path& path) : source_(path.string()), from_file_(true) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) {
-    throw InputError(source_, 0, "cannot open: no such file");
-  }
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(source_, 0, "cannot open: it is a folder, expected a file");
-  }
-  errno = 0;
-  file_ = gzopen(source_.c_str(), "rb");
-  if (file_ == nullptr) {
-    const int err = errno;
-    throw InputError(source_, 0, std::string("cannot open: ") + (err != 0 ? std::strerror(err) : "out of memory"));
-  }
+const std::uint64_t LineReader::kDefaultMaxBytes = static_cast<std::uint64_t>(limits::kInputFileBytes.max);
+
+LineReader::LineReader(const std::filesystem::path& path, std::uint64_t max_bytes)
+    : source_(path.string()), from_file_(true), max_bytes_(max_bytes) {
+  InputFile in(path, "input file", max_bytes);
+  file_ = gzdopen(in.fd(), "rb");
+  if (file_ == nullptr) throw InputError(source_, 0, "cannot open: out of memory");
+  in.release();  // gzclose_r closes it now
   gzbuffer(file_, static_cast<unsigned>(kChunk));
 }
 
@@ -73,6 +69,9 @@ bool LineReader::fill() {
   if (n > 0) {
     crc_ = crc32(crc_, reinterpret_cast<const Bytef*>(buffer_.data() + old), static_cast<uInt>(n));
     length_ += static_cast<std::uint64_t>(n);
+    if (length_ > max_bytes_) {
+      throw InputError(source_, 0, too_large_message(max_bytes_, gzdirect(file_) == 0));
+    }
   }
   if (n == 0) {
     check_stream();

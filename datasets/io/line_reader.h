@@ -13,8 +13,11 @@ namespace locbench::io {
 
 class LineReader {
  public:
-  // Opens `path`. Throws InputError when it is missing, a folder or unreadable.
-  explicit LineReader(const std::filesystem::path& path);
+  // Opens `path` through the input opener (core/input_file.h). Throws InputError when it is
+  // missing, not a regular file (a folder, a FIFO, a device), unreadable, or longer than
+  // `max_bytes` — compressed or, while reading, decompressed (a gzip bomb stops at the limit).
+  explicit LineReader(const std::filesystem::path& path, std::uint64_t max_bytes = kDefaultMaxBytes);
+  static const std::uint64_t kDefaultMaxBytes;  // limits::kInputFileBytes
   // Reads `text` (not copied: it must outlive the reader); `source_name` names it in errors.
   LineReader(std::string_view text, std::string source_name);
   ~LineReader();
@@ -47,6 +50,7 @@ class LineReader {
   std::size_t line_number_ = 0;
   unsigned long crc_ = 0;     // CRC-32 of the decompressed bytes (gzip_trailer.h)
   std::uint64_t length_ = 0;  // decompressed bytes read
+  std::uint64_t max_bytes_ = 0;
 };
 
 // Reads a file, or text in memory, with `read` (a function of LineReader&): both entry points of

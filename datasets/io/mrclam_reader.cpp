@@ -22,7 +22,8 @@ namespace {
 std::optional<std::filesystem::path> find_data_file(const std::filesystem::path& folder, const std::string& name) {
   for (const auto& candidate : {folder / name, folder / (name + ".gz")}) {
     std::error_code ec;
-    if (std::filesystem::is_regular_file(candidate, ec)) return candidate;
+    // Whatever is there (a FIFO too): the input opener then says what it is and what was expected.
+    if (std::filesystem::exists(candidate, ec)) return candidate;
   }
   return std::nullopt;
 }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/input_limits.h"
 #include "core/json_file.h"
 #include "datasets/io/line_reader.h"
 
@@ -27,7 +28,7 @@ std::vector<double> numbers(const nlohmann::json& j, const char* key, const std:
 
 Scan read_scan_json(const std::filesystem::path& path) {
   const std::string file = path.string();
-  LineReader reader(path);
+  LineReader reader(path, static_cast<std::uint64_t>(limits::kJsonFileBytes.max));  // JSON, maybe gzip
   std::string text;
   std::string_view line;
   while (reader.next(line)) {

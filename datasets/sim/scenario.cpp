@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/units.h"
 #include "datasets/sim/scenario_fields.h"
 
 namespace locbench::sim {
@@ -113,6 +114,13 @@ void validate(const Scenario& s) {
 
   check_timing(s.laser.timing, "laser");
   require(s.laser.beams >= 1, "laser.beams", ">= 1");
+  finite(s.laser.first_bearing, "laser.first_bearing");
+  finite(s.laser.last_bearing, "laser.last_bearing");
+  require(s.laser.first_bearing <= s.laser.last_bearing && s.laser.last_bearing - s.laser.first_bearing <= 2.0 * kPi,
+          "laser.last_bearing", ">= laser.first_bearing and at most 2π [rad] beyond it");
+  require(std::abs(s.laser.first_bearing + s.laser.last_bearing) <= 1e-9, "laser.first_bearing",
+          "-laser.last_bearing (a field of view centred on the laser's heading, as a CARMEN log declares it; "
+          "aim the laser with laser.mount.theta)");
   positive(s.laser.max_range, "laser.max_range");
   non_negative(s.laser.noise, "laser.noise");
   finite(s.laser.range_offset, "laser.range_offset");

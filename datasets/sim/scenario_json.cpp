@@ -247,23 +247,7 @@ json to_json(const Scenario& s) {
   };
 }
 
-void check_scenario_limits(const Scenario& s, const std::string& source) {
-  using limits::check;
-  check(s.laser.beams, limits::kSimLaserBeams, source, "laser.beams");
-  check(std::max(std::abs(s.start.x), std::abs(s.start.y)), limits::kSimCoordinate, source, "start");
-  for (std::size_t i = 0; i < s.motion.waypoints.size(); ++i) {
-    check(s.motion.waypoints[i].cwiseAbs().maxCoeff(), limits::kSimCoordinate, source,
-          "motion.waypoints[" + std::to_string(i) + "]");
-  }
-  for (std::size_t i = 0; i < s.world.segments.size(); ++i) {
-    check(s.world.segments[i].cwiseAbs().maxCoeff(), limits::kSimCoordinate, source,
-          "world.segments[" + std::to_string(i) + "]");
-  }
-  check(std::abs(s.motion.distance), limits::kSimDistance, source, "motion.distance");
-  check(std::abs(s.motion.side), limits::kSimDistance, source, "motion.side");
-  check(s.motion.runs, limits::kSimRuns, source, "motion.runs");
-  // Robot time the motion program takes (legs at the nominal speeds, pauses), then the work and
-  // records it implies — all before a single step is simulated.
+double estimated_duration(const Scenario& s) {
   double duration = 0.0;
   Eigen::Vector2d at(s.start.x, s.start.y);
   for (const Instruction& in : build_program(s.motion, s.drive, s.start)) {
@@ -280,6 +264,26 @@ void check_scenario_limits(const Scenario& s, const std::string& source) {
       default: break;
     }
   }
+  return duration;
+}
+
+void check_scenario_limits(const Scenario& s, const std::string& source) {
+  using limits::check;
+  check(s.laser.beams, limits::kSimLaserBeams, source, "laser.beams");
+  check(std::max(std::abs(s.start.x), std::abs(s.start.y)), limits::kSimCoordinate, source, "start");
+  for (std::size_t i = 0; i < s.motion.waypoints.size(); ++i) {
+    check(s.motion.waypoints[i].cwiseAbs().maxCoeff(), limits::kSimCoordinate, source,
+          "motion.waypoints[" + std::to_string(i) + "]");
+  }
+  for (std::size_t i = 0; i < s.world.segments.size(); ++i) {
+    check(s.world.segments[i].cwiseAbs().maxCoeff(), limits::kSimCoordinate, source,
+          "world.segments[" + std::to_string(i) + "]");
+  }
+  check(std::abs(s.motion.distance), limits::kSimDistance, source, "motion.distance");
+  check(std::abs(s.motion.side), limits::kSimDistance, source, "motion.side");
+  check(s.motion.runs, limits::kSimRuns, source, "motion.runs");
+  // The work and records the motion's duration implies — all before a single step is simulated.
+  const double duration = estimated_duration(s);
   check(duration, limits::kSimDuration, source,
         "the motion's duration (legs / drive.speed, turns / drive.turn_rate, pauses)");
   check(duration / s.physics.step, limits::kSimPhysicsSteps, source, "duration / physics.step");

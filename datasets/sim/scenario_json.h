@@ -23,6 +23,9 @@ Scenario load_scenario(const std::filesystem::path& path);
 // duration, physics steps and records estimated from its motion program before simulating.
 // scenario_from_json calls it.
 void check_scenario_limits(const Scenario& s, const std::string& source);
+// Robot time [s] the motion program takes: legs at the nominal speeds, turns at the turn rate,
+// pauses (what check_scenario_limits bounds).
+double estimated_duration(const Scenario& s);
 
 // Enum spellings used in JSON and PARAM records.
 const char* to_string(WorldKind k);

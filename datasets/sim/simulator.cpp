@@ -8,6 +8,7 @@
 
 #include "core/angle.h"
 #include "core/diff_drive_odometry.h"
+#include "core/units.h"
 #include "datasets/sim/compass_model.h"
 #include "datasets/sim/floor_noise.h"
 #include "datasets/sim/laser_model.h"
@@ -168,6 +169,23 @@ class Simulation {
       p["robot_frontlaser_side_offset"] = number(sc_.laser.mount.y);
       p["robot_frontlaser_angular_offset"] = number(sc_.laser.mount.theta);
       p["laser_front_laser_max_range"] = number(sc_.laser.max_range);
+      declare_laser_span(p);
+    }
+  }
+
+  // Bearings other than the FLASER convention (an odd count over −90°…90°, or one beam at −90°;
+  // an even count such as 180 or 360 is not) are declared as a field of view [deg], so that the
+  // CARMEN log reads back with the bearings simulated. The span is centred (validate()).
+  void declare_laser_span(std::map<std::string, std::string>& p) const {
+    const auto& l = sc_.laser;
+    const bool from_minus_90 = std::abs(l.first_bearing + 0.5 * kPi) < 1e-12;
+    const bool flaser =
+        from_minus_90 && (l.beams == 1 || (l.beams % 2 == 1 && std::abs(l.last_bearing - 0.5 * kPi) < 1e-12));
+    if (flaser) return;
+    if (l.beams == 1 && l.first_bearing == 0.0) {
+      p["laser_front_laser_resolution"] = "1";  // one beam straight ahead: centred steps
+    } else {
+      p["laser_front_laser_fov"] = number(to_deg(l.last_bearing - l.first_bearing));
     }
   }
 

@@ -6,6 +6,8 @@
 #include <set>
 
 #include "core/errors.h"
+#include "core/input_file.h"
+#include "core/input_limits.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/landmark_reader.h"
 #include "datasets/io/log_loader.h"
@@ -26,17 +28,22 @@ std::string string_field(const nlohmann::json& item, const char* key, const std:
   return v.get<std::string>();
 }
 
+// A dataset name that is one word of a result name: no '/', no "..", no control characters.
+bool is_plain_name(const std::string& name) {
+  if (name.empty() || name.front() == '.' || name.size() > 128) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' || c == ':' || c == '+';
+  });
+}
+
 // The log of a spec may be a file or an MRCLAM folder (load_log judges which).
 void require_log(const std::string& path) {
   if (!std::filesystem::exists(path)) throw InputError(path, 0, "cannot open the log (no such file or folder)");
 }
 
+// Through the input opener: a missing file, a folder, a FIFO or a device is named as such.
 void require_file(const std::string& path, const char* what) {
-  if (!std::filesystem::is_regular_file(path)) {
-    throw InputError(path, 0,
-                     std::string("cannot open the ") + what +
-                         (std::filesystem::exists(path) ? " (not a regular file)" : " (no such file)"));
-  }
+  InputFile(path, what, static_cast<std::uint64_t>(limits::kInputFileBytes.max));
 }
 
 // Where the "#robotN" suffix of a load_log spec starts ("folder#robot2" → 6), npos without one.
@@ -92,6 +99,11 @@ std::vector<RealLogSpec> real_log_specs(const nlohmann::json& datasets, const st
       throw UsageError(where + ": expected a catalog name or an object, found a " + std::string(item.type_name()));
     }
     if (s.name.empty()) throw UsageError(where + ": needs a \"name\" (the key of its results)");
+    if (!is_plain_name(s.name)) {
+      throw UsageError(where + ": dataset name \"" + s.name +
+                       "\": expected letters, digits and _ - . : + only, not starting with a dot (it is the "
+                       "middle part of result names, method/dataset/variant, and never a path)");
+    }
     if (s.from_catalog && !find_dataset(s.name)) {
       throw UsageError(where + ": unknown dataset \"" + s.name + "\" (see `locbench list`, or give a \"log\" file)");
     }
@@ -189,6 +201,9 @@ std::optional<nlohmann::json> real_log_cli_override(const std::string& log, cons
   if (name.empty()) name = "log";
   const std::size_t hash = robot_suffix_at(log);
   if (hash != std::string::npos) name += "_" + log.substr(hash + 1);  // "MRCLAM_Dataset6_robot2"
+  for (char& c : name) {  // a plain name (is_plain_name) from any file name: "my log" → "my_log"
+    if (!is_plain_name(std::string(1, c))) c = '_';
+  }
   nlohmann::json item = {{"name", name}, {"log", log}};
   if (!relations.empty()) item["relations"] = relations;
   if (!ground_truth.empty()) item["ground_truth"] = ground_truth;

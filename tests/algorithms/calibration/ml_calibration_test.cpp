@@ -10,6 +10,7 @@
 
 #include "algorithms/calibration/closed_form_calibration.h"
 #include "algorithms/calibration/held_out_evaluation.h"
+#include "core/errors.h"
 #include "core/rng.h"
 
 namespace locbench::calibration {
@@ -160,9 +161,11 @@ TEST(MlCalibration, CensiOutlierRejectionDropsGrossOutliers) {
   expect_recovers(robust, truth, 1e-3);
 }
 
+// Options a caller got wrong are std::invalid_argument; data that cannot be calibrated (none,
+// not finite, fewer measurements than parameters) is an InputError naming the data (exit 2).
 TEST(MlCalibration, RejectsUnusableInput) {
   CalibrationData empty;
-  EXPECT_THROW(calibrate_ml(empty), std::invalid_argument);
+  EXPECT_THROW(calibrate_ml(empty), InputError);
   CalibrationData d = synthetic(OdometryInputKind::kWheelTicks, params(1, 1, 0.33), 10, 1e-3, 1e-3, 9);
   MlCalibrationOptions o;
   o.fixed = {"no_such_parameter"};
@@ -171,9 +174,9 @@ TEST(MlCalibration, RejectsUnusableInput) {
   o.outliers = {1, 0.9};
   EXPECT_THROW(calibrate_ml(d, o), std::invalid_argument);
   d.samples[3].increments[0].first = std::nan("");
-  EXPECT_THROW(calibrate_ml(d), std::invalid_argument);
+  EXPECT_THROW(calibrate_ml(d), InputError);
   CalibrationData one = subset(d, 0, 1);
-  EXPECT_THROW(calibrate_ml(one), std::invalid_argument);  // 3 measurements, 3 parameters
+  EXPECT_THROW(calibrate_ml(one), InputError);  // 3 measurements, 3 parameters
 }
 
 TEST(HeldOutEvaluation, CalibratedOdometryBeatsTheNominalOnTheHeldOutHalf) {

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "core/errors.h"
 #include "io_test_support.h"
 #include "tests/test_data.h"
 
@@ -49,6 +50,24 @@ TEST(LineReader, ReadsLongLinesAcrossBufferBoundariesFromPlainAndGzipFiles) {
   EXPECT_EQ(all_lines(plain), expected);
   EXPECT_EQ(all_lines(packed), expected);
   EXPECT_EQ(packed.line_number(), 50u);
+}
+
+// The decompressed bytes count against the limit: a gzip bomb stops at it with the reason.
+TEST(LineReader, ReadsGzipDecompressingToTheLimitAndStopsOneByteBeyond) {
+  testing::ScratchDir dir;
+  const std::string at(1000, '\n');
+  testing::write_bytes(dir.file("at.gz"), testing::gzip("x" + at.substr(1)));
+  testing::write_bytes(dir.file("past.gz"), testing::gzip("x" + at));
+  LineReader ok(dir.file("at.gz"), 1000);
+  EXPECT_EQ(all_lines(ok).size(), 999u);  // "x" and 998 empty lines
+  LineReader past(dir.file("past.gz"), 1000);
+  try {
+    all_lines(past);
+    ADD_FAILURE() << "no error past the limit";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("past.gz: decompresses to more than 1000 bytes"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(LineReader, KeepsNulBytesInsideLines) {

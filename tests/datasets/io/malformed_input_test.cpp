@@ -112,8 +112,8 @@ TEST(CarmenReader, RejectsMissingFileAndFolder) {
   ScratchDir dir;
   EXPECT_TRUE(throws_input_error([&] { read_carmen_log(dir.file("nope.clf")); }, "nope.clf", 0,
                                  {"cannot open", "no such file"}));
-  EXPECT_TRUE(
-      throws_input_error([&] { read_carmen_log(dir.path()); }, dir.path().string(), 0, {"folder, expected a file"}));
+  EXPECT_TRUE(throws_input_error([&] { read_carmen_log(dir.path()); }, dir.path().string(), 0,
+                                 {"is a folder", "regular file"}));
 }
 
 // A valid multi-line log compressed, then cut short by k bytes: never read as a short log.
