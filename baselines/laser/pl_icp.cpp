@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <nanoflann.hpp>
 #include <vector>
@@ -58,7 +58,8 @@ std::uint64_t fingerprint(const std::vector<Correspondence>& cs) {
   };
   for (const Correspondence& c : cs) {
     mix(c.current);
-    for (double v : {c.reference.x(), c.reference.y(), c.normal.x(), c.normal.y()}) mix(std::bit_cast<std::uint64_t>(v));
+    for (double v : {c.reference.x(), c.reference.y(), c.normal.x(), c.normal.y()})
+      mix(std::bit_cast<std::uint64_t>(v));
   }
   return h;
 }

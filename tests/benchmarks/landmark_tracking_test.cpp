@@ -46,7 +46,7 @@ Family run_family(const std::vector<sim::HiddenEffect>& effects, std::uint64_t s
       filter_models(diagnosis::diagnose_log(restrict_log(full, from, mid)), measured_sensor_noise(train, sensor));
   FamilyOptions options;
   options.process_scales = {1.0 / 16.0, 0.25, 1.0, 4.0, 16.0};  // a smaller grid than the experiment's,
-  options.r_scales = {1.0, 16.0, 256.0};                          // the same for every method
+  options.r_scales = {1.0, 16.0, 256.0};                        // the same for every method
   options.sage_husa_forgetting = {0.9, 0.97, 0.99};
   options.vb_forgetting = {0.97, 0.99, 0.999};
   f.scores = tune_and_score(train, test, f.models, options);

@@ -10,7 +10,8 @@
 namespace locbench::experiments::landmarks {
 namespace {
 
-constexpr EnumNames<TuningCriterion, 2> kCriteria{{{TuningCriterion::kLogScore, "log_score"}, {TuningCriterion::kRmse, "rmse"}}};
+constexpr EnumNames<TuningCriterion, 2> kCriteria{
+    {{TuningCriterion::kLogScore, "log_score"}, {TuningCriterion::kRmse, "rmse"}}};
 
 // The observations' true times under a sensor model: where the steps are cut.
 std::vector<double> observation_times(const TrackingData& data, const LandmarkSensorModel& sensor) {
@@ -95,7 +96,8 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
         s.knob = k;
         const TrackResult r = track(train, s, options.gate);
         const double inf = std::numeric_limits<double>::infinity();
-        runs.push_back({q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees), r.log_score()});
+        runs.push_back(
+            {q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees), r.log_score()});
       }
     }
     best.grid_runs = runs.size();
