@@ -1,5 +1,6 @@
 #include "benchmarks/experiments/harness/landmark_tracking.h"
 
+#include <Eigen/LU>  // Matrix3d::determinant
 #include <algorithm>
 #include <cmath>
 #include <limits>
