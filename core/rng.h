@@ -43,6 +43,33 @@ class Rng {
     return r * std::cos(2.0 * kPi * u2);
   }
   double normal(double mean, double sigma) { return mean + sigma * normal(); }
+  // χ²_k as 2·Gamma(k/2) (Marsaglia–Tsang; k/2 < 1 boosted by U^(2/k)).
+  double chi_square(double k) {
+    double shape = 0.5 * k, boost = 1.0;
+    if (shape < 1.0) {
+      double u = uniform();
+      while (u <= 0.0) u = uniform();
+      boost = std::pow(u, 1.0 / shape);
+      shape += 1.0;
+    }
+    const double d = shape - 1.0 / 3.0, c = 1.0 / std::sqrt(9.0 * d);
+    for (;;) {
+      double x = normal(), v = 1.0 + c * x;
+      if (v <= 0.0) continue;
+      v = v * v * v;
+      const double u = uniform();
+      if (u > 0.0 && std::log(u) < 0.5 * x * x + d - d * v + d * std::log(v)) {
+        return 2.0 * d * v * boost;
+      }
+    }
+  }
+
+  // Student-t with `dof` degrees of freedom (unit scale), as a normal over √(χ²_dof/dof); normal
+  // for dof ≤ 0.
+  double student_t(double dof) {
+    const double z = normal();
+    return dof > 0.0 ? z / std::sqrt(chi_square(dof) / dof) : z;
+  }
 
   static std::uint64_t splitmix64(std::uint64_t x) {
     x += 0x9E3779B97F4A7C15ULL;

@@ -46,6 +46,7 @@ double quantile(std::span<const double> v, double q) {
   const double h = q * static_cast<double>(s.size() - 1);
   const auto lo = static_cast<std::size_t>(std::floor(h));
   const std::size_t hi = std::min(lo + 1, s.size() - 1);
+  if (s[hi] == s[lo]) return s[lo];  // also two infinities, whose difference is NaN
   return s[lo] + (h - static_cast<double>(lo)) * (s[hi] - s[lo]);
 }
 
@@ -54,6 +55,41 @@ double rms(std::span<const double> v) {
   double s = 0.0;
   for (double x : v) s += x * x;
   return std::sqrt(s / static_cast<double>(v.size()));
+}
+
+double pearson_correlation(std::span<const double> a, std::span<const double> b) {
+  if (a.size() != b.size()) throw std::invalid_argument("pearson_correlation: samples of unequal length");
+  if (a.empty()) return 0.0;
+  const double ma = mean(a), mb = mean(b);
+  double sab = 0.0, saa = 0.0, sbb = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return saa > 0.0 && sbb > 0.0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+namespace {
+std::vector<double> mean_ranks(std::span<const double> v) {
+  std::vector<std::size_t> order(v.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return v[i] < v[j]; });
+  std::vector<double> rank(v.size());
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t j = i;
+    while (j + 1 < order.size() && v[order[j + 1]] == v[order[i]]) ++j;
+    for (std::size_t k = i; k <= j; ++k) rank[order[k]] = 0.5 * static_cast<double>(i + j) + 1.0;
+    i = j + 1;
+  }
+  return rank;
+}
+}  // namespace
+
+double spearman_correlation(std::span<const double> a, std::span<const double> b) {
+  if (a.size() != b.size()) throw std::invalid_argument("spearman_correlation: samples of unequal length");
+  const std::vector<double> ra = mean_ranks(a), rb = mean_ranks(b);
+  return pearson_correlation(ra, rb);
 }
 
 double student_t_critical(double confidence, double dof) {

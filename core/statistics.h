@@ -14,6 +14,11 @@ double sample_stddev(std::span<const double> v);
 // Quantile with linear interpolation between order statistics (type 7, as R and NumPy).
 double quantile(std::span<const double> v, double q);
 double rms(std::span<const double> v);
+// Pearson's correlation of paired samples (0 when either is constant); throws
+// std::invalid_argument for unequal lengths.
+double pearson_correlation(std::span<const double> a, std::span<const double> b);
+// Spearman's rank correlation: Pearson's of the ranks, ties given their mean rank.
+double spearman_correlation(std::span<const double> a, std::span<const double> b);
 
 struct Summary {
   std::size_t n = 0;

@@ -201,6 +201,24 @@ std::string plot_script(const Plot& plot) {
             fmt::format("${} using 1:2 with points pt 7 ps 0.35 lc rgb '{}' title {}", block, colour, quote(ps.name)));
       }
     }
+  } else if (plot.kind == "scatter") {
+    // Points; a series named "identity" is the line y = x (dashed), and one whose name ends in
+    // "intervals" holds vertical bars as consecutive point pairs.
+    for (std::size_t i = 0; i < plot.series.size(); ++i) {
+      const PlotSeries& ps = plot.series[i];
+      const std::string block = fmt::format("s{}", i);
+      if (ps.name.ends_with("intervals")) {
+        s += segment_datablock(block, ps.x, ps.y);
+        terms.push_back(
+            fmt::format("${} using 1:2 with lines lw 3 lc rgb '{}' title {}", block, kColours[i % 8], quote(ps.name)));
+      } else {
+        s += datablock(block, ps.x, ps.y);
+        const bool identity = ps.name == "identity";
+        terms.push_back(fmt::format("${} using 1:2 with {} lc rgb '{}' title {}", block,
+                                    identity ? "lines dt 2 lw 1" : "points pt 7 ps 0.8",
+                                    identity ? "#888888" : kColours[i % 8], quote(ps.name)));
+      }
+    }
   } else {
     double xlo = std::numeric_limits<double>::infinity(), xhi = -xlo, ylo = xlo, yhi = -xlo;
     for (std::size_t i = 0; i < plot.series.size(); ++i) {

@@ -126,7 +126,8 @@ struct PlotSeries {
 // "profile" (a curve, e.g. the deviance against a time offset, lines), "histogram" (series y values are samples; x is
 // unused and empty), "cdf" (series y values are samples drawn as overlaid empirical CDFs; x is unused and empty),
 // "scan_pair" (laser scans in one robot frame, equal axes: a series whose name ends in "lines" or "matches" holds
-// segments as consecutive point pairs, drawn as lines; any other series is points).
+// segments as consecutive point pairs, drawn as lines; any other series is points), "scatter" (points; a series
+// named "identity" is drawn as a dashed line, one whose name ends in "intervals" holds vertical bars as point pairs).
 struct Plot {
   std::string name;  // stable id within the experiment, e.g. "trajectories_run_0"
   std::string kind;

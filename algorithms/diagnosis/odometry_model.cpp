@@ -111,16 +111,20 @@ std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w
   return std::nullopt;
 }
 
+Eigen::Vector3d window_variance(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+  const double b = wheelbase_or_default(d);
+  const double growth = m.k2 * w.wheel_travel;
+  return {m.sigma_x * m.sigma_x + growth / 4.0, m.sigma_y * m.sigma_y + growth / 4.0,
+          m.sigma_theta * m.sigma_theta + growth / (b * b)};
+}
+
 namespace {
 
 WindowResidual residual_of(const MotionData& d, const MotionWindow& w, const OdometryModel& m,
                            const std::optional<Pose2>& ref, const Pose2& pred) {
   WindowResidual out;
   if (!ref) return out;
-  const double b = wheelbase_or_default(d);
-  const double growth = m.k2 * w.wheel_travel;
-  out.variance = {m.sigma_x * m.sigma_x + growth / 4.0, m.sigma_y * m.sigma_y + growth / 4.0,
-                  m.sigma_theta * m.sigma_theta + growth / (b * b)};
+  out.variance = window_variance(d, w, m);
   out.prediction = pred;
   out.valid = true;
   out.heading_only = d.reference == ReferenceKind::kCompass;

@@ -72,6 +72,9 @@ struct WindowResidual {
   bool heading_only = false;
 };
 
+// The variance (x, y, θ) of window w's residual under m without slip: the floor and the k²
+// growth with the window's wheel travel (eq. 4.36–4.37 summed).
+Eigen::Vector3d window_variance(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
 // The prediction of window w under model m (in the frame of the window's start).
 Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
 // The reference motion of window w read with the model's time offset.

@@ -11,21 +11,6 @@ namespace locbench::diagnosis {
 
 double two_sided_normal_p(double z) { return std::min(1.0, 2.0 * normal_upper_tail(std::abs(z))); }
 
-namespace {
-
-double correlation(std::span<const double> a, std::span<const double> b) {
-  const double ma = mean(a), mb = mean(b);
-  double sab = 0.0, saa = 0.0, sbb = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    sab += (a[i] - ma) * (b[i] - mb);
-    saa += (a[i] - ma) * (a[i] - ma);
-    sbb += (b[i] - mb) * (b[i] - mb);
-  }
-  return saa > 0.0 && sbb > 0.0 ? sab / std::sqrt(saa * sbb) : 0.0;
-}
-
-}  // namespace
-
 ResidualTest bias_test(std::span<const double> r, const std::string& residual) {
   ResidualTest t{"bias", residual, "", "z"};
   const double n = static_cast<double>(r.size());
@@ -39,7 +24,7 @@ ResidualTest bias_test(std::span<const double> r, const std::string& residual) {
 ResidualTest dependence_test(std::span<const double> r, std::span<const double> x, const std::string& name,
                              const std::string& residual, const std::string& variable) {
   ResidualTest t{name, residual, variable, "z"};
-  const double rho = std::clamp(correlation(r, x), -0.999999, 0.999999);
+  const double rho = std::clamp(pearson_correlation(r, x), -0.999999, 0.999999);
   t.strength = rho;
   t.value = std::atanh(rho) * std::sqrt(std::max(0.0, static_cast<double>(r.size()) - 3.0));
   t.p_value = two_sided_normal_p(t.value);

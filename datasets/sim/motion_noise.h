@@ -32,7 +32,7 @@ class MotionNoise {
     const auto window = static_cast<long long>(std::floor(t / c_.window));
     if (window != window_) {
       window_ = window;
-      lambda_ = c_.dof > 0.0 ? c_.dof / chi_square(c_.dof) : 1.0;
+      lambda_ = c_.dof > 0.0 ? c_.dof / rng_.chi_square(c_.dof) : 1.0;
     }
     const double f = std::sqrt(lambda_ * dt / c_.window);
     return {f * c_.sigma_along * rng_.normal(), f * c_.sigma_left * rng_.normal(),
@@ -40,27 +40,6 @@ class MotionNoise {
   }
 
  private:
-  // χ²_k as 2·Gamma(k/2) (Marsaglia–Tsang; k/2 < 1 boosted by U^(2/k)).
-  double chi_square(double k) {
-    double shape = 0.5 * k, boost = 1.0;
-    if (shape < 1.0) {
-      double u = rng_.uniform();
-      while (u <= 0.0) u = rng_.uniform();
-      boost = std::pow(u, 1.0 / shape);
-      shape += 1.0;
-    }
-    const double d = shape - 1.0 / 3.0, c = 1.0 / std::sqrt(9.0 * d);
-    for (;;) {
-      double x = rng_.normal(), v = 1.0 + c * x;
-      if (v <= 0.0) continue;
-      v = v * v * v;
-      const double u = rng_.uniform();
-      if (u > 0.0 && std::log(u) < 0.5 * x * x + d - d * v + d * std::log(v)) {
-        return 2.0 * d * v * boost;
-      }
-    }
-  }
-
   MotionNoiseConfig c_;
   Rng rng_;
   long long window_ = -1;

@@ -78,7 +78,6 @@ filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const Fami
 std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test, const FilterModels& models,
                                         const FamilyOptions& options) {
   const PartMotion train_motion = part_motion(train, models, models.nominal_sensor);
-  const PartMotion test_motion = part_motion(test, models, models.nominal_sensor);
   const filters::ChiSquareInterval band = tuning_nees_band(train, options);
   std::vector<MethodScore> scores;
   for (Method method : kMethods) {
@@ -130,13 +129,35 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
         }
       }
     }
-    MethodSetup held = base_setup(method, test_motion, models, options);
-    held.process_scale = best.process_scale;
-    held.knob = best.knob;
-    best.heldout = track(test, held, options.gate);
     scores.push_back(std::move(best));
   }
+  const std::vector<TrackResult> heldout = run_tuned(test, scores, models, options);
+  for (std::size_t i = 0; i < scores.size(); ++i) scores[i].heldout = heldout[i];
   return scores;
+}
+
+TrackResult dead_reckoning(const TrackingData& data, const GatePolicy& gate) {
+  TrackingData blind = data;
+  blind.observations.clear();
+  const auto steps = model_motion(blind, diagnosis::OdometryModel{}, 1.0, {});
+  MethodSetup s;
+  s.method = Method::kFixedQ;
+  s.motion = &steps;
+  return track(blind, s, gate);
+}
+
+std::vector<TrackResult> run_tuned(const TrackingData& data, const std::vector<MethodScore>& tuned,
+                                   const FilterModels& models, const FamilyOptions& options) {
+  const PartMotion motion = part_motion(data, models, models.nominal_sensor);
+  std::vector<TrackResult> out;
+  out.reserve(tuned.size());
+  for (const MethodScore& m : tuned) {
+    MethodSetup s = base_setup(m.method, motion, models, options);
+    s.process_scale = m.process_scale;
+    s.knob = m.knob;
+    out.push_back(track(data, s, options.gate));
+  }
+  return out;
 }
 
 }  // namespace locbench::experiments::landmarks

@@ -59,4 +59,12 @@ filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const Fami
 std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test, const FilterModels& models,
                                         const FamilyOptions& options);
 
+// Dead reckoning on `data`: the logged motion, no observation (scored as the filters are).
+TrackResult dead_reckoning(const TrackingData& data, const GatePolicy& gate);
+
+// Every method of `tuned` at its tuned setting on `data` (a held-out part or a twin of it), in
+// the order of `tuned`.
+std::vector<TrackResult> run_tuned(const TrackingData& data, const std::vector<MethodScore>& tuned,
+                                   const FilterModels& models, const FamilyOptions& options);
+
 }  // namespace locbench::experiments::landmarks

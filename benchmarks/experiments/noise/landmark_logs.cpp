@@ -22,9 +22,12 @@
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/filter_models.h"
 #include "benchmarks/experiments/harness/landmark_family.h"
+#include "benchmarks/experiments/harness/landmark_twin_runs.h"
+#include "benchmarks/experiments/harness/predictivity_report.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
 #include "core/block_bootstrap.h"
 #include "core/errors.h"
+#include "core/rng.h"
 #include "core/statistics.h"
 
 namespace locbench::experiments::noise_landmark_logs {
@@ -75,6 +78,7 @@ struct Options {
   TuningCriterion tuning_criterion = FamilyOptions{}.criterion;
   double rmse_tolerance = FamilyOptions{}.rmse_tolerance;
   std::string model_file;  // a `locbench diagnose --report` file: its models instead of fitting the first half
+  int twin_runs = 20;      // seeded runs of each twin of the held-out half (0: no twin predictions)
 };
 template <class V>
 void visit_fields(V& v, Options& o) {
@@ -100,6 +104,8 @@ void visit_fields(V& v, Options& o) {
   v.field("rmse_tolerance", o.rmse_tolerance, "", non_negative(),
           "with tuning_criterion rmse: settings this close to the lowest RMSE compete on NEES consistency");
   v.field("model_file", o.model_file, "", Range{}, "diagnosis report whose models replace the first-half fit");
+  v.field("twin_runs", o.twin_runs, "", at_least(0),
+          "seeded runs of the nominal and the extended twin of each held-out half (0: no twin predictions)");
 }
 LOCBENCH_EXPERIMENT_OPTIONS(Options)
 
@@ -115,6 +121,7 @@ struct Outcome {
   // The sensor noise measured against the truth on each half (a check of stationarity, used by no
   // method): a held-out half noisier than the tuning half makes every tuned setting overconfident.
   std::optional<LandmarkSensorModel> tuning_noise, heldout_noise;
+  PredictivityCells twin_cells;  // the twins' forecasts of the held-out results (empty: twin_runs 0)
 };
 
 // measured_sensor_noise, or nothing when the span has too few residuals to measure it.
@@ -127,7 +134,8 @@ std::optional<LandmarkSensorModel> sensor_noise_if_measurable(const TrackingData
   }
 }
 
-Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, const LandmarkSensorModel& sensor) {
+Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, const LandmarkSensorModel& sensor,
+                std::uint64_t twin_seed) {
   Outcome o;
   double from = -std::numeric_limits<double>::infinity(), to = std::numeric_limits<double>::infinity();
   if (!log.odometry.empty()) from = log.odometry.front().t, to = log.odometry.back().t;
@@ -144,19 +152,13 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
                                   : read_filter_models(c.model_file, measured);
   if (!c.model_file.empty()) o.models.source = c.model_file;
   o.scores = tune_and_score(train, test, o.models, family);
-  // Dead reckoning on the held-out half: the logged motion, no observation.
-  TrackingData blind = test;
-  blind.observations.clear();
-  const auto steps = model_motion(blind, diagnosis::OdometryModel{}, 1.0, {});
-  MethodSetup s;
-  s.method = Method::kFixedQ;
-  s.motion = &steps;
-  o.dead_reckoning = track(blind, s, family.gate);
+  o.dead_reckoning = dead_reckoning(test, family.gate);  // on the held-out half
   o.from = from, o.mid = mid, o.to = to;
   o.other_robot_observations = train.other_robot_observations + test.other_robot_observations;
   o.observations = train.observations.size() + test.observations.size();
   o.tuning_noise = sensor_noise_if_measurable(train, sensor);
   o.heldout_noise = sensor_noise_if_measurable(test, sensor);
+  if (c.twin_runs > 0) o.twin_cells = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed});
   return o;
 }
 
@@ -275,7 +277,7 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         return;
       }
       try {
-        o = run_log(loaded.log, c, family, sensor);
+        o = run_log(loaded.log, c, family, sensor, Rng::derive_seed(options.seed, 1000 + i));
         o.dataset = loaded.dataset;
       } catch (const InputError& err) {
         if (!specs[i].from_catalog) throw;
@@ -288,6 +290,7 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
       summarise_log(reports::key_part(names[i]), outcomes[i], c, options, out, tallies);
     }
     summarise_family(tallies, out);
+    summarise_twins(outcomes, c, out);
     return out;
   }
 
@@ -442,6 +445,77 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     out.notes.push_back(table);
     out.plots.push_back(error_plot(ds, o, false));
     out.plots.push_back(error_plot(ds, o, true));
+    if (!o.twin_cells.empty()) {
+      std::string twins = fmt::format(
+          "{} — twin forecasts of the held-out half: each method at its tuned setting on {} seeded runs of the "
+          "nominal twin (fitted floor, nominal sensor) and of the extended twin (every diagnosed cause, the fitted "
+          "landmark sensor); the real value beside each twin's 95% predictive interval",
+          ds, o.twin_cells.begin()->second.front().nominal.runs);
+      for (const auto& [metric, cells] : o.twin_cells) {
+        twins += fmt::format("\n  {}:{}", metric, cell_lines(cells, metric_unit(metric)));
+      }
+      out.notes.push_back(twins);
+      out.plots.push_back(interval_plot(ds + "_twin_intervals_position_rmse",
+                                        ds + ": held-out position RMSE, real and forecast by the twins", "m",
+                                        o.twin_cells.at("position_rmse")));
+    }
+  }
+
+  static std::string metric_unit(const std::string& metric) {
+    if (metric == "heading_rmse") return "rad";
+    if (metric == "nees" || metric == "gated_fraction") return "";
+    return "m";
+  }
+
+  // Across logs, per metric: coverage, correlation and rank violations of both twins, and the
+  // issue's targets checked against them.
+  static void summarise_twins(const std::vector<Outcome>& outcomes, const Options& c, reports::ExperimentResults& out) {
+    std::map<std::string, std::vector<PredictivityCell>> all;
+    for (const Outcome& o : outcomes)
+      for (const auto& [metric, cells] : o.twin_cells)
+        all[metric].insert(all[metric].end(), cells.begin(), cells.end());
+    if (all.empty()) return;
+    std::size_t cells_total = 0, covered_nominal = 0, covered_extended = 0;
+    std::string text = fmt::format(
+        "Twin predictivity (issue 29), {} seeded runs per twin and log; per metric across methods × logs (never "
+        "pooled across metrics): cells covered by the 95% predictive interval, Pearson r and Spearman ρ of the "
+        "prediction (median) against the real value, MMRV of the method ranking per log (relative to the log's "
+        "mean real value).",
+        c.twin_runs);
+    for (const auto& [metric, cells] : all) {
+      const MetricPredictivity m = predictivity(cells);
+      for (auto& r : predictivity_results(metric, m)) out.results.push_back(std::move(r));
+      cells_total += m.cells;
+      covered_nominal += m.nominal.covered;
+      covered_extended += m.extended.covered;
+      const bool correlations = m.compared >= 8;
+      text += fmt::format(
+          "\n  {:<20} {} cells ({} compared): covered nominal {} / extended {}{}", metric, m.cells, m.compared,
+          m.nominal.covered, m.extended.covered,
+          correlations ? fmt::format("; Pearson r {:.2f} / {:.2f}; Spearman ρ {:.2f} / {:.2f}; MMRV {:.3f} / {:.3f}{}",
+                                     m.nominal.pearson, m.extended.pearson, m.nominal.spearman, m.extended.spearman,
+                                     m.nominal.mmrv, m.extended.mmrv,
+                                     m.extended.pearson >= 0.9 && m.extended.mmrv <= 0.05 &&
+                                             m.extended.pearson > m.nominal.pearson && m.extended.mmrv < m.nominal.mmrv
+                                         ? " — target met (r ≥ 0.9, MMRV ≤ 0.05, both better than nominal)"
+                                         : " — target MISSED (r ≥ 0.9, MMRV ≤ 0.05, both better than nominal)")
+                       : " (fewer than 8 cells: no correlation target)");
+      out.plots.push_back(scatter_plot("twin_scatter_" + metric, metric + ": twins' forecasts against the real values",
+                                       metric_unit(metric), cells));
+    }
+    const double extended_fraction = cells_total ? static_cast<double>(covered_extended) / cells_total : 0.0;
+    text += fmt::format(
+        "\n  All cells: the extended twin covers {} of {} ({:.0f}%; target ≥ 80%), the nominal twin {} ({:.0f}%).",
+        covered_extended, cells_total, 100.0 * extended_fraction, covered_nominal,
+        cells_total ? 100.0 * covered_nominal / cells_total : 0.0);
+    if (const auto it = all.find("rpe_60s"); it != all.end()) {
+      std::size_t covered = 0;
+      for (const PredictivityCell& cell : it->second) covered += cell.extended.covers(cell.real) ? 1 : 0;
+      text += fmt::format(
+          " The extended twin's 60 s drift interval covers the real drift on {} of {} logs (target: 4 of 5).", covered,
+          it->second.size());
+    }
+    out.notes.push_back(text);
   }
 };
 

@@ -1,0 +1,40 @@
+#pragma once
+// The predictivity cells of one landmark log (issue 29): the real held-out result of every tuned
+// method and of dead reckoning, beside the results of seeded twins (landmark_twin.h) of the
+// held-out part under the nominal models (the fitted white floor, the nominal sensor) and under
+// the diagnosed ones (every kept cause, the fitted landmark sensor). Every twin run uses the
+// methods' settings tuned on the real tuning part — the twin forecasts what the user will see.
+//
+// Metrics (one list of cells each; predictivity.h): for each filter method "position_rmse" [m],
+// "heading_rmse" [rad], "nees" (time average) and "gated_fraction"; for dead reckoning
+// "dead_reckoning_rmse" [m] and the relative pose error of the logged odometry over 1 s, 10 s and
+// 60 s ("rpe_1s", "rpe_10s", "rpe_60s" [m]: RMS translation error of non-overlapping chains of
+// diagnosis windows, diagnosis::relative_pose_error).
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "benchmarks/experiments/harness/filter_models.h"
+#include "benchmarks/experiments/harness/landmark_family.h"
+#include "benchmarks/experiments/harness/predictivity.h"
+
+namespace locbench::experiments::landmarks {
+
+struct TwinRunOptions {
+  int runs = 20;           // seeded runs of each twin
+  std::uint64_t seed = 1;  // run k of twin j of this log has seed Rng::derive_seed(seed, 2k + j)
+};
+
+using PredictivityCells = std::map<std::string, std::vector<PredictivityCell>>;  // by metric
+
+// `real` holds the real held-out results of `tuned` (MethodScore::heldout) on `test`.
+PredictivityCells twin_predictions(const TrackingData& test, const std::vector<MethodScore>& tuned,
+                                   const FilterModels& models, const FamilyOptions& family,
+                                   const TwinRunOptions& options);
+
+// The RMS relative pose error of the logged odometry against the data's truth over chains of
+// windows `horizon_s` long [m] (NaN when no chain fits).
+double odometry_rpe(const TrackingData& data, double horizon_s);
+
+}  // namespace locbench::experiments::landmarks

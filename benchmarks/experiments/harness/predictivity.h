@@ -1,0 +1,47 @@
+#pragma once
+// Predictivity of a simulator (issue 29): does a twin forecast how each method fares on the real
+// log? For one metric, each cell is one method on one log: its real value and the values of
+// seeded twin runs. The twin's 95% predictive interval is the 2.5–97.5% quantiles of its runs
+// (type 7), its prediction their median. Across the cells of one metric (never pooled across
+// metrics of different scales):
+// - coverage: how many real values the predictive intervals contain;
+// - Pearson r and Spearman ρ between the predictions and the real values (Kadian et al. 2020,
+//   "Sim2Real predictivity": the sim-vs-real correlation);
+// - MMRV, the mean maximum rank violation of the method ranking per log (Li et al. 2024, SIMPLER):
+//   per log, RV(i, j) = |R_i − R_j| · [ (S_i < S_j) ≠ (R_i < R_j) ] for real R and predicted S,
+//   MMRV_log = mean_i max_j RV(i, j), averaged over logs. SIMPLER's R are success rates in
+//   [0, 1]; ours have units, so each |R_i − R_j| is divided by the log's mean |R| (a fraction:
+//   0.05 is a rank swap between methods 5% of the typical value apart).
+// Cells whose real value or prediction is not finite (a diverged run) are counted apart and left
+// out of the correlations and the MMRV.
+#include <string>
+#include <vector>
+
+namespace locbench::experiments {
+
+struct PredictiveInterval {
+  double low = 0.0, median = 0.0, high = 0.0;
+  std::size_t runs = 0;
+  bool covers(double v) const { return v >= low && v <= high; }
+};
+// Throws std::invalid_argument for no runs. Non-finite runs sort above every finite one.
+PredictiveInterval predictive_interval(std::vector<double> runs);
+
+struct PredictivityCell {
+  std::string log, method;
+  double real = 0.0;
+  PredictiveInterval nominal, extended;
+};
+
+struct TwinPredictivity {
+  std::size_t covered = 0;
+  double pearson = 0.0, spearman = 0.0, mmrv = 0.0;
+};
+struct MetricPredictivity {
+  std::size_t cells = 0;     // all cells of the metric
+  std::size_t compared = 0;  // with a finite real value and finite predictions of both twins
+  TwinPredictivity nominal, extended;
+};
+MetricPredictivity predictivity(const std::vector<PredictivityCell>& cells);
+
+}  // namespace locbench::experiments
