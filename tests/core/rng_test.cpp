@@ -42,5 +42,15 @@ TEST(Rng, UniformCoversZeroToOne) {
   EXPECT_NEAR(sum / 100000, 0.5, 0.005);
 }
 
+TEST(Rng, StudentTHasTheVarianceOfItsDegreesOfFreedom) {
+  Rng r(11);
+  std::vector<double> v;
+  for (int i = 0; i < 200000; ++i) v.push_back(r.student_t(6.0));
+  EXPECT_NEAR(central_moment(v, 2), 6.0 / 4.0, 0.05) << "ν/(ν − 2)";
+  std::vector<double> z;
+  for (int i = 0; i < 100000; ++i) z.push_back(r.student_t(0.0));
+  EXPECT_NEAR(central_moment(z, 2), 1.0, 0.02) << "dof 0 is the normal law";
+}
+
 }  // namespace
 }  // namespace locbench

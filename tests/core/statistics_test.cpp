@@ -28,6 +28,25 @@ TEST(Quantile, InterpolatesBetweenOrderStatisticsLikeNumPy) {
   EXPECT_DOUBLE_EQ(quantile(v, 1.0), 4.0);
 }
 
+TEST(Correlation, PearsonAndSpearmanOfSmallSamples) {
+  const std::vector<double> x{1, 2, 3, 4, 5}, y{2, 4, 5, 4, 5};
+  // Σdxdy = 6, Σdx² = 10, Σdy² = 6.8: r = 6 / √68.
+  EXPECT_NEAR(pearson_correlation(x, y), 6.0 / std::sqrt(68.0), 1e-12);
+  // Ranks of y with ties at their mean rank: 1, 2.5, 4.5, 2.5, 4.5.
+  const std::vector<double> ry{1, 2.5, 4.5, 2.5, 4.5};
+  EXPECT_NEAR(spearman_correlation(x, y), pearson_correlation(x, ry), 1e-12);
+  const std::vector<double> cubes{1, 8, 27, 64, 125};
+  EXPECT_DOUBLE_EQ(spearman_correlation(x, cubes), 1.0) << "monotone: rank correlation 1";
+  EXPECT_LT(pearson_correlation(x, cubes), 1.0);
+  EXPECT_EQ(pearson_correlation(x, std::vector<double>(5, 2.0)), 0.0) << "a constant sample";
+  EXPECT_THROW(pearson_correlation(x, std::vector<double>{1, 2}), std::invalid_argument);
+}
+
+TEST(Quantile, TwoInfinitiesGiveInfinityNotNaN) {
+  const std::vector<double> v{1.0, INFINITY, INFINITY};
+  EXPECT_EQ(quantile(v, 0.9), INFINITY);
+}
+
 TEST(StudentT, CriticalValuesMatchTheTable) {
   EXPECT_NEAR(student_t_critical(0.95, 1), 12.706, 1e-3);
   EXPECT_NEAR(student_t_critical(0.95, 4), 2.776, 1e-3);

@@ -94,14 +94,55 @@ TrackingData tracking_data(const Log& log, double from, double to, double wheelb
   return data;
 }
 
+NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::vector<double>& r, std::size_t lags) {
+  NoiseCorrelation none;
+  if (r.size() < 4 * lags || t.size() != r.size() || lags < 1) return none;
+  std::vector<double> x = r;
+  const double med = quantile(x, 0.5);
+  std::vector<double> dev(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) dev[i] = std::abs(x[i] - med);
+  const double clip = 4.0 * 1.4826 * quantile(dev, 0.5);
+  for (double& v : x) v = std::clamp(v, med - clip, med + clip);
+  const double m = mean(x);
+  double var = 0.0;
+  for (double v : x) var += (v - m) * (v - m);
+  if (!(var > 0.0)) return none;
+  std::vector<double> rho(lags + 1, 0.0);
+  double sum = 0.0;
+  for (std::size_t k = 1; k <= lags; ++k) {
+    for (std::size_t i = 0; i + k < x.size(); ++i) rho[k] += (x[i] - m) * (x[i + k] - m);
+    rho[k] /= var;
+    sum += rho[k];
+  }
+  if (!(rho[1] > 0.0) || !(sum > 0.0)) return none;
+  const double L = static_cast<double>(lags);
+  const auto model_sum = [&](double a) { return rho[1] * (1.0 - std::pow(a, L)) / (1.0 - a); };
+  double lo = std::min(rho[1], 0.999), hi = 0.999;
+  double a = lo;
+  if (model_sum(hi) <= sum) {
+    a = hi;
+  } else if (model_sum(lo) < sum) {
+    for (int i = 0; i < 60; ++i) {
+      a = 0.5 * (lo + hi);
+      (model_sum(a) < sum ? lo : hi) = a;
+    }
+  }
+  const double gap = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
+  if (!(gap > 0.0) || !(a > 0.0)) return none;
+  return {std::min(1.0, rho[1] / a), -gap / std::log(a)};
+}
+
 LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSensorModel sensor) {
-  std::vector<double> range, bearing;
+  std::vector<double> range, bearing, times;
+  std::vector<int> ids;
   diagnosis::TruthInterpolator truth(data.motion.truth);
   for (const Observation& o : data.observations) {
     const auto p = truth.at(o.t);
     if (!p) continue;
     const Eigen::Vector2d m = data.map.at(o.id);
     const double dx = m.x() - p->x, dy = m.y() - p->y;
+    times.push_back(o.t);
+    ids.push_back(o.id);
     range.push_back(o.range - std::hypot(dx, dy));
     bearing.push_back(angle_diff(o.bearing, std::atan2(dy, dx) - p->theta));
   }
@@ -113,6 +154,25 @@ LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSens
   };
   sensor.range_sigma = robust_sigma(range);
   sensor.bearing_sigma = robust_sigma(bearing);
+  // Per-landmark medians: their spread, and the residuals without them for the time correlation.
+  std::map<int, std::vector<std::size_t>> by_landmark;
+  for (std::size_t i = 0; i < ids.size(); ++i) by_landmark[ids[i]].push_back(i);
+  std::vector<double> range_medians, bearing_medians;
+  std::vector<double> range_within = range, bearing_within = bearing;
+  for (const auto& [id, index] : by_landmark) {
+    std::vector<double> r, b;
+    for (std::size_t i : index) r.push_back(range[i]), b.push_back(bearing[i]);
+    const double mr = quantile(r, 0.5), mb = quantile(b, 0.5);
+    for (std::size_t i : index) range_within[i] -= mr, bearing_within[i] -= mb;
+    if (index.size() >= 10) range_medians.push_back(mr), bearing_medians.push_back(mb);
+  }
+  sensor.structure = {};
+  if (range_medians.size() >= 3) {
+    sensor.structure.range_landmark_sigma = robust_sigma(range_medians);
+    sensor.structure.bearing_landmark_sigma = robust_sigma(bearing_medians);
+  }
+  sensor.structure.range_correlation = fit_noise_correlation(times, range_within);
+  sensor.structure.bearing_correlation = fit_noise_correlation(times, bearing_within);
   return sensor;
 }
 

@@ -32,6 +32,22 @@ namespace locbench::experiments::landmarks {
 // z_φ = φ + bearing_bias + n_φ, var n_r = range_sigma² + (range_noise_slope·ρ)², var n_φ =
 // bearing_sigma²; an observation logged at t was taken at true time t − time_offset; landmark id's
 // true position is the surveyed one plus landmark_shift[id].
+// Noise correlated in time: the share of a channel's variance that is an AR(1) process common to
+// all landmarks, with correlation time time_s (share 0: white noise).
+struct NoiseCorrelation {
+  double share = 0.0;
+  double time_s = 0.0;
+};
+
+// The sensor noise's structure beyond white noise, measured on residuals against the truth:
+// biases that differ between landmarks (drawn anew per landmark, normal with these spreads) and a
+// time correlation common to all landmarks (after each landmark's bias is removed).
+struct NoiseStructure {
+  NoiseCorrelation range_correlation, bearing_correlation;
+  double range_landmark_sigma = 0.0;    // [m]
+  double bearing_landmark_sigma = 0.0;  // [rad]
+};
+
 struct LandmarkSensorModel {
   double range_scale = 1.0, range_bias = 0.0, bearing_bias = 0.0;
   double range_sigma = 0.1, bearing_sigma = 0.05, range_noise_slope = 0.0;
@@ -42,6 +58,9 @@ struct LandmarkSensorModel {
   // (Roth, Özkan and Gustafsson, "A Student's t filter for heavy tailed process and measurement
   // noise", ICASSP 2013).
   double dof = 0.0;
+  // Only twins draw it (landmark_twin.h): every filter assumes white noise and discounts
+  // correlated errors through its tuned R scale.
+  NoiseStructure structure;
 };
 
 struct Observation {
@@ -67,8 +86,21 @@ TrackingData tracking_data(const Log& log, double from, double to, double wheelb
 
 // The nominal sensor's noise measured on a span: σ_r and σ_φ = 1.4826·MAD of the range and
 // bearing residuals against the truth at the observation times (robust: the residuals have heavy
-// tails). Leaves `sensor`'s other fields; throws InputError with fewer than 20 residuals.
+// tails), and their structure: the spread of the per-landmark medians (1.4826·MAD over landmarks
+// with ≥ 10 observations) and the time correlation of the residuals less their landmark's median
+// (fit_noise_correlation). Leaves `sensor`'s other fields;
+// throws InputError with fewer than 20 residuals.
 LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSensorModel sensor);
+
+// The time correlation of residuals r at times t (sorted), as a white part plus a shared AR(1)
+// part: with ρ_k the autocorrelation at lag k observations (residuals clipped at 4 robust σ),
+// the model ρ_k = s·a^k is matched to ρ_1 and to Σ_{k=1..lags} ρ_k (the long-run sum that
+// decides how much a filter can average away), i.e. ρ_1·(1 − a^L)/(1 − a) = Σρ_k, solved for a in
+// [ρ_1, 0.999] by bisection; s = ρ_1/a and time_s = −ḡ/ln a with ḡ the mean time between
+// observations. No correlation (share 0) when ρ_1 ≤ 0, the sum is ≤ 0, or fewer than 4·lags
+// residuals.
+NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::vector<double>& r,
+                                       std::size_t lags = 20);
 
 // One step of a model's motion, in true time: the increment (ΔD along the chord, Δθ) and the
 // model's covariance of it in the robot frame at the step's start (x along, y left, θ).

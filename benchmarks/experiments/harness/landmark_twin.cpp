@@ -1,6 +1,7 @@
 #include "benchmarks/experiments/harness/landmark_twin.h"
 
 #include <cmath>
+#include <map>
 
 #include "core/angle.h"
 #include "core/errors.h"
@@ -36,6 +37,32 @@ Pose2 walk_block(const diagnosis::MotionData& d, const diagnosis::MotionWindow& 
   }
   return end;
 }
+
+// Unit-variance sensor noise with a share of it correlated in time (NoiseCorrelation): the white
+// part Student-t (normal for dof 0), the shared part a stationary Gauss–Markov process,
+// b ← e^(−Δt/τ)·b + √(1 − e^(−2Δt/τ))·N(0, 1).
+class CorrelatedPart {
+ public:
+  explicit CorrelatedPart(const NoiseCorrelation& c) : c_(c) {}
+  double draw(double t, double dof, Rng& rng) {
+    const double white = rng.student_t(dof);
+    if (!(c_.share > 0.0 && c_.time_s > 0.0)) return white;
+    if (!started_) {
+      b_ = rng.normal();
+      started_ = true;
+    } else {
+      const double a = std::exp(-std::max(t - t_, 0.0) / c_.time_s);
+      b_ = a * b_ + std::sqrt(1.0 - a * a) * rng.normal();
+    }
+    t_ = t;
+    return std::sqrt(1.0 - c_.share) * white + std::sqrt(c_.share) * b_;
+  }
+
+ private:
+  NoiseCorrelation c_;
+  bool started_ = false;
+  double t_ = 0.0, b_ = 0.0;
+};
 
 }  // namespace
 
@@ -81,6 +108,12 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
 
   twin.observations.clear();
   diagnosis::TruthInterpolator at(truth);
+  CorrelatedPart range_part(sensor.structure.range_correlation), bearing_part(sensor.structure.bearing_correlation);
+  std::map<int, std::pair<double, double>> landmark_bias;  // drawn per twin: range, bearing
+  for (const auto& [id, position] : real.map) {
+    landmark_bias[id] = {sensor.structure.range_landmark_sigma * rng.normal(),
+                         sensor.structure.bearing_landmark_sigma * rng.normal()};
+  }
   for (const Observation& o : real.observations) {
     const auto p = at.at(o.t - sensor.time_offset);
     if (!p) continue;
@@ -90,8 +123,11 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
     const double phi = std::atan2(l.y() - p->y, l.x() - p->x) - p->theta;
     const double sigma_r = std::hypot(sensor.range_sigma, sensor.range_noise_slope * rho);
     Observation z = o;
-    z.range = sensor.range_scale * rho + sensor.range_bias + sigma_r * rng.student_t(sensor.dof);
-    z.bearing = wrap_angle(phi + sensor.bearing_bias + sensor.bearing_sigma * rng.student_t(sensor.dof));
+    const auto [range_bias, bearing_bias] = landmark_bias.at(o.id);
+    z.range =
+        sensor.range_scale * rho + sensor.range_bias + range_bias + sigma_r * range_part.draw(o.t, sensor.dof, rng);
+    z.bearing = wrap_angle(phi + sensor.bearing_bias + bearing_bias +
+                           sensor.bearing_sigma * bearing_part.draw(o.t, sensor.dof, rng));
     twin.observations.push_back(z);
   }
   return twin;

@@ -79,6 +79,7 @@ PredictivityCells twin_predictions(const TrackingData& test, const std::vector<M
       c.log = test.log;
       c.method = to_string(tuned[i].method);
       c.real = values[i];
+      c.real_diverged = tuned[i].heldout.diverged;
       c.nominal = interval(0, [&](const RunMetrics& r) { return r.per_method.at(metric)[i]; });
       c.extended = interval(1, [&](const RunMetrics& r) { return r.per_method.at(metric)[i]; });
       cells[metric].push_back(c);

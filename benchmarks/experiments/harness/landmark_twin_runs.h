@@ -6,7 +6,8 @@
 // methods' settings tuned on the real tuning part — the twin forecasts what the user will see.
 //
 // Metrics (one list of cells each; predictivity.h): for each filter method "position_rmse" [m],
-// "heading_rmse" [rad], "nees" (time average) and "gated_fraction"; for dead reckoning
+// "heading_rmse" [rad], "nees" (time average) and "gated_fraction" (a method's cells are left out
+// of the correlations where its real run diverged); for dead reckoning
 // "dead_reckoning_rmse" [m] and the relative pose error of the logged odometry over 1 s, 10 s and
 // 60 s ("rpe_1s", "rpe_10s", "rpe_60s" [m]: RMS translation error of non-overlapping chains of
 // diagnosis windows, diagnosis::relative_pose_error).

@@ -12,7 +12,8 @@ namespace locbench::experiments {
 namespace {
 
 bool finite_cell(const PredictivityCell& c) {
-  return std::isfinite(c.real) && std::isfinite(c.nominal.median) && std::isfinite(c.extended.median);
+  return !c.real_diverged && std::isfinite(c.real) && std::isfinite(c.nominal.median) &&
+         std::isfinite(c.extended.median);
 }
 
 double mmrv(const std::vector<const PredictivityCell*>& cells, bool extended) {
@@ -71,8 +72,17 @@ MetricPredictivity predictivity(const std::vector<PredictivityCell>& cells) {
   }
   m.compared = usable.size();
   if (usable.size() >= 2) {
-    m.nominal.pearson = pearson_correlation(nominal, real);
-    m.extended.pearson = pearson_correlation(extended, real);
+    const auto positive = [](const std::vector<double>& v) {
+      return std::all_of(v.begin(), v.end(), [](double x) { return x > 0.0; });
+    };
+    m.log_scale = positive(real) && positive(nominal) && positive(extended);
+    const auto scale = [&](std::vector<double> v) {
+      if (m.log_scale)
+        for (double& x : v) x = std::log(x);
+      return v;
+    };
+    m.nominal.pearson = pearson_correlation(scale(nominal), scale(real));
+    m.extended.pearson = pearson_correlation(scale(extended), scale(real));
     m.nominal.spearman = spearman_correlation(nominal, real);
     m.extended.spearman = spearman_correlation(extended, real);
   }

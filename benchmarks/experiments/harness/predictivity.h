@@ -12,8 +12,12 @@
 //   MMRV_log = mean_i max_j RV(i, j), averaged over logs. SIMPLER's R are success rates in
 //   [0, 1]; ours have units, so each |R_i − R_j| is divided by the log's mean |R| (a fraction:
 //   0.05 is a rank swap between methods 5% of the typical value apart).
-// Cells whose real value or prediction is not finite (a diverged run) are counted apart and left
-// out of the correlations and the MMRV.
+// Cells whose real value or prediction is not finite, or whose real run diverged (its error is a
+// measure of being lost, not of accuracy: a Sage–Husa NEES of 1e11 beside consistent filters near
+// 3 would decide any correlation alone), are counted apart and left out of the correlations and
+// the MMRV. When every compared value is positive,
+// Pearson r is taken on their logarithms: the metrics are ratio scales whose values span orders of magnitude (a
+// diverged filter's NEES of 1e11 beside consistent ones near 3 would make r ≈ 1 whatever the rest).
 #include <string>
 #include <vector>
 
@@ -30,6 +34,7 @@ PredictiveInterval predictive_interval(std::vector<double> runs);
 struct PredictivityCell {
   std::string log, method;
   double real = 0.0;
+  bool real_diverged = false;
   PredictiveInterval nominal, extended;
 };
 
@@ -39,7 +44,8 @@ struct TwinPredictivity {
 };
 struct MetricPredictivity {
   std::size_t cells = 0;     // all cells of the metric
-  std::size_t compared = 0;  // with a finite real value and finite predictions of both twins
+  std::size_t compared = 0;  // finite real value and predictions of both twins, real run not diverged
+  bool log_scale = false;    // Pearson r on logarithms (every compared value > 0)
   TwinPredictivity nominal, extended;
 };
 MetricPredictivity predictivity(const std::vector<PredictivityCell>& cells);

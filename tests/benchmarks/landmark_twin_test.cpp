@@ -1,0 +1,175 @@
+// The landmark twin (issue 29) draws a log from a model; the diagnosis, run on the drawn log,
+// gives the model back. Its sensor draws the noise structure it is given, and the predictivity
+// summary counts coverage, correlation and rank violations as defined.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "algorithms/diagnosis/diagnosis.h"
+#include "benchmarks/experiments/harness/landmark_twin.h"
+#include "benchmarks/experiments/harness/predictivity.h"
+#include "core/rng.h"
+#include "datasets/diagnosis/hidden_effects.h"
+#include "datasets/diagnosis/landmark_effects.h"
+
+namespace locbench::experiments::landmarks {
+namespace {
+
+// A simulated landmark log with nothing hidden, and the tracking data of all of it.
+struct Base {
+  Log log;
+  TrackingData data;
+};
+Base base_log(std::uint64_t seed) {
+  sim::GeneratorOptions g;
+  g.velocity_odometry = true;
+  g.compass = false;
+  g.waypoints = 24;
+  sim::GeneratedLog generated = sim::generate_log({}, seed, g);
+  sim::add_landmark_observations(generated, {}, seed + 1, {});
+  Base b;
+  b.log = generated.log;
+  const double from = std::max(b.log.odometry.front().t, b.log.truth.front().t);
+  const double to = std::min(b.log.odometry.back().t, b.log.truth.back().t);
+  b.data = tracking_data(b.log, from, to, b.log.nominal_model() ? b.log.nominal_model()->wheelbase : 0.3);
+  return b;
+}
+
+const diagnosis::Estimate* estimate(const diagnosis::Diagnosis& d, const std::string& cause) {
+  for (const auto& c : d.causes)
+    if (c.id == cause && c.detected && !c.parameters.empty()) return &c.parameters.front();
+  return nullptr;
+}
+
+TEST(LandmarkTwin, TheDiagnosisOfATwinRecoversTheModelItWasDrawnFrom) {
+  const Base b = base_log(41);
+  diagnosis::OdometryModel model;
+  model.velocity_scale = 1.12;
+  model.turn_rate_scale = 0.93;
+  model.sigma_x = 0.01, model.sigma_y = 0.005, model.sigma_theta = 0.004;
+  const TrackingData twin = landmark_twin(b.data, model, LandmarkSensorModel{}, 7);
+  Log drawn = b.log;
+  drawn.truth = twin.motion.truth;  // the logged odometry, the twin's truth
+  const diagnosis::Diagnosis d = diagnosis::diagnose_log(drawn);
+  const diagnosis::Estimate* v = estimate(d, "velocity_scale");
+  const diagnosis::Estimate* w = estimate(d, "turn_rate_scale");
+  ASSERT_NE(v, nullptr) << d.verdict;
+  ASSERT_NE(w, nullptr) << d.verdict;
+  EXPECT_LE(v->lo, 1.12) << v->value;
+  EXPECT_GE(v->hi, 1.12) << v->value;
+  EXPECT_LE(w->lo, 0.93) << w->value;
+  EXPECT_GE(w->hi, 0.93) << w->value;
+  ASSERT_TRUE(d.odometry_model.has_value());
+  EXPECT_NEAR(d.odometry_model->sigma_x, 0.01, 0.003) << "the floor per window the twin drew, fitted with the causes";
+  EXPECT_NEAR(d.odometry_model->sigma_theta, 0.004, 0.0015);
+}
+
+TEST(LandmarkTwin, ANoiselessTwinOfTheNominalModelFollowsTheLoggedOdometry) {
+  const Base b = base_log(43);
+  diagnosis::OdometryModel model;
+  model.sigma_x = model.sigma_y = model.sigma_theta = 0.0;
+  const TrackingData twin = landmark_twin(b.data, model, LandmarkSensorModel{}, 1);
+  // The generator's own truth differs from the logged odometry by its noise; the twin's does not:
+  // its windows' residuals under the nominal model vanish.
+  double worst = 0.0;
+  for (const auto& w : twin.motion.windows) {
+    const auto r = diagnosis::window_residual(twin.motion, w, diagnosis::OdometryModel{});
+    if (r.valid) worst = std::max(worst, r.r.head<2>().norm());
+  }
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_EQ(twin.observations.size(), b.data.observations.size()) << "the same observation schedule";
+}
+
+TEST(LandmarkTwin, ItsSensorDrawsTheNoiseStructureItIsGiven) {
+  const Base b = base_log(45);
+  LandmarkSensorModel sensor;
+  sensor.range_sigma = 0.08;
+  sensor.bearing_sigma = 0.01;
+  sensor.structure.range_landmark_sigma = 0.05;
+  sensor.structure.range_correlation = {0.5, 5.0};
+  diagnosis::OdometryModel still;
+  still.sigma_x = still.sigma_y = still.sigma_theta = 0.0;
+  const TrackingData twin = landmark_twin(b.data, still, sensor, 3);
+  const LandmarkSensorModel measured = measured_sensor_noise(twin, LandmarkSensorModel{});
+  EXPECT_NEAR(measured.range_sigma, 0.08 * std::sqrt(1.0 + 0.05 * 0.05 / (0.08 * 0.08)), 0.03);
+  EXPECT_NEAR(measured.bearing_sigma, 0.01, 0.0015);
+  EXPECT_GT(measured.structure.range_correlation.share, 0.2) << "half the range variance is correlated";
+  EXPECT_LT(measured.structure.bearing_correlation.share, 0.1) << "bearing noise was drawn white";
+}
+
+TEST(NoiseCorrelation, AGaussMarkovShareAndTimeAreRecovered) {
+  Rng rng(5);
+  std::vector<double> t, r;
+  double b = 0.0;
+  for (int i = 0; i < 6000; ++i) {
+    t.push_back(0.2 * i);
+    const double a = std::exp(-0.2 / 4.0);  // τ = 4 s at 0.2 s per observation
+    b = a * b + std::sqrt(1.0 - a * a) * rng.normal();
+    r.push_back(std::sqrt(0.6) * rng.normal() + std::sqrt(0.4) * b);
+  }
+  const NoiseCorrelation c = fit_noise_correlation(t, r);
+  EXPECT_NEAR(c.share, 0.4, 0.1);
+  EXPECT_NEAR(c.time_s, 4.0, 1.5);
+}
+
+TEST(NoiseCorrelation, WhiteNoiseHasNone) {
+  Rng rng(6);
+  std::vector<double> t, r;
+  for (int i = 0; i < 6000; ++i) t.push_back(0.2 * i), r.push_back(rng.normal());
+  EXPECT_LT(fit_noise_correlation(t, r).share, 0.05);
+}
+
+PredictivityCell cell(const std::string& log, const std::string& method, double real, double nominal, double extended) {
+  PredictivityCell c;
+  c.log = log;
+  c.method = method;
+  c.real = real;
+  c.nominal = {nominal * 0.9, nominal, nominal * 1.1, 20};
+  c.extended = {extended * 0.9, extended, extended * 1.1, 20};
+  return c;
+}
+
+TEST(Predictivity, CoverageCorrelationAndRankViolationsAreCountedPerMetric) {
+  // Log A: real 1, 2, 4. The nominal twin swaps the first two (predicts 2.1, 1.0), the extended
+  // twin ranks them right. Log B: both rank right.
+  const std::vector<PredictivityCell> cells = {cell("A", "m1", 1.0, 2.1, 1.0), cell("A", "m2", 2.0, 1.0, 2.05),
+                                               cell("A", "m3", 4.0, 4.0, 4.3), cell("B", "m1", 1.0, 1.0, 1.0),
+                                               cell("B", "m2", 3.0, 3.0, 2.9)};
+  const MetricPredictivity m = predictivity(cells);
+  EXPECT_EQ(m.cells, 5u);
+  EXPECT_EQ(m.compared, 5u);
+  EXPECT_TRUE(m.log_scale);
+  EXPECT_EQ(m.extended.covered, 5u);
+  EXPECT_EQ(m.nominal.covered, 3u) << "A's m1 (2.1 ± 10%) and m2 (1.0 ± 10%) miss";
+  // Nominal on A: m1 and m2 swapped, |1 − 2| / mean(1, 2, 4) = 3/7 for each of them, 0 for m3:
+  // MMRV_A = (2 · 3/7) / 3; MMRV_B = 0; the mean over logs is 1/7.
+  EXPECT_NEAR(m.nominal.mmrv, 1.0 / 7.0, 1e-12);
+  EXPECT_DOUBLE_EQ(m.extended.mmrv, 0.0);
+  EXPECT_GT(m.extended.pearson, 0.99);
+  EXPECT_LT(m.nominal.pearson, m.extended.pearson);
+  EXPECT_DOUBLE_EQ(m.extended.spearman, 1.0);
+}
+
+TEST(Predictivity, ANonFiniteCellIsCountedButNotCorrelated) {
+  std::vector<PredictivityCell> cells = {cell("A", "m1", 1.0, 1.0, 1.0), cell("A", "m2", 2.0, 2.0, 2.0),
+                                         cell("A", "m3", 3.0, 3.0, 3.0)};
+  cells.push_back(cell("A", "diverged", 5.0, 5.0, 5.0));
+  cells.back().extended = predictive_interval({1.0, INFINITY, INFINITY});
+  const MetricPredictivity m = predictivity(cells);
+  EXPECT_EQ(m.cells, 4u);
+  EXPECT_EQ(m.compared, 3u);
+  EXPECT_EQ(cells.back().extended.high, INFINITY) << "two infinities interpolate to infinity, not NaN";
+}
+
+TEST(Predictivity, ACellWhoseRealRunDivergedIsCountedButNotCorrelated) {
+  std::vector<PredictivityCell> cells = {cell("A", "m1", 1.0, 1.0, 1.0), cell("A", "m2", 2.0, 2.0, 2.0),
+                                         cell("A", "lost", 1e11, 1e3, 1e12)};
+  cells.back().real_diverged = true;
+  const MetricPredictivity m = predictivity(cells);
+  EXPECT_EQ(m.cells, 3u);
+  EXPECT_EQ(m.compared, 2u);
+  EXPECT_EQ(m.extended.covered, 2u) << "coverage still counts every cell";
+}
+
+}  // namespace
+}  // namespace locbench::experiments::landmarks
