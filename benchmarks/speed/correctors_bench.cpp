@@ -53,7 +53,8 @@ const std::vector<PairCase>& sim_pairs() {
     sim::LaserConfig c;
     c.beams = 181;
     c.noise = mm(5.0);
-    sim::LaserModel laser(c, sim::room_world(), Rng(11));
+    static const LineMap world = sim::room_world();  // the model keeps a reference to it
+    sim::LaserModel laser(c, world, Rng(11));
     const Pose2 a(2.0, 1.0, deg(46.0)), b(2.2, 1.2, deg(54.0));
     PairCase p{laser.measure(a, 0.0), laser.measure(b, 0.2), {}, {}};
     p.lines = lines_of(p.first);

@@ -34,7 +34,8 @@ const Scan& room_scan() {
     sim::LaserConfig c;
     c.timing.enabled = true;
     c.noise = mm(5.0);
-    sim::LaserModel laser(c, sim::room_world(), Rng(7));
+    static const LineMap world = sim::room_world();  // the model keeps a reference to it
+    sim::LaserModel laser(c, world, Rng(7));
     return laser.measure(kTruth, 0.0);
   }();
   return s;

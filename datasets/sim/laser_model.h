@@ -27,6 +27,8 @@ struct LabelledScan {
 class LaserModel {
  public:
   LaserModel(const LaserConfig& c, const LineMap& world, Rng rng);
+  // The model keeps a reference to `world`: a temporary map would dangle (every beam then misses).
+  LaserModel(const LaserConfig& c, LineMap&& world, Rng rng) = delete;
 
   const std::vector<double>& bearings() const { return bearings_; }
   // Noise-free ranges from the robot at `robot` (max_range where nothing is hit).
