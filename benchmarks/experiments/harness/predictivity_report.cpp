@@ -38,6 +38,7 @@ std::vector<reports::MetricResult> predictivity_results(const std::string& metri
     out.push_back(count(twin, metric + "_covered_fraction",
                         m.cells ? static_cast<double>(t.covered) / static_cast<double>(m.cells) : 0.0, m.cells,
                         "higher", "cells whose real value the twin's 95% predictive interval contains"));
+    if (m.compared < kMinCorrelatedCells) continue;
     out.push_back(count(twin, metric + "_pearson_r", t.pearson, m.compared, "higher",
                         "Pearson r of the twin's prediction (median) and the real value across methods × logs"));
     out.push_back(count(twin, metric + "_spearman_rho", t.spearman, m.compared, "higher", "Spearman ρ, as above"));

@@ -16,8 +16,12 @@ namespace locbench::experiments {
 // Lines of a note: one per cell, "method: real 0.187 | nominal [a, b] covered | extended …".
 std::string cell_lines(const std::vector<PredictivityCell>& cells, const std::string& unit);
 
+// Fewer compared cells than this say little about a correlation or a ranking: no such results.
+inline constexpr std::size_t kMinCorrelatedCells = 8;
+
 // Results of one metric's summary, under method "nominal_twin" / "extended_twin" and dataset
-// "all_logs": covered cells, Pearson r, Spearman ρ and MMRV.
+// "all_logs": the fraction of cells covered, and with ≥ kMinCorrelatedCells compared cells
+// Pearson r, Spearman ρ and MMRV.
 std::vector<reports::MetricResult> predictivity_results(const std::string& metric, const MetricPredictivity& m);
 
 // The per-log picture: methods along x (in the order of `cells`), the real value as a point and

@@ -507,7 +507,7 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
       cells_total += m.cells;
       covered_nominal += m.nominal.covered;
       covered_extended += m.extended.covered;
-      const bool correlations = m.compared >= 8;
+      const bool correlations = m.compared >= kMinCorrelatedCells;
       text += fmt::format(
           "\n  {:<20} {} cells ({} compared): covered nominal {} / extended {}{}", metric, m.cells, m.compared,
           m.nominal.covered, m.extended.covered,
