@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <initializer_list>
+#include <map>
+#include <optional>
 
 #include "reports/charts.h"
 #include "reports/findings.h"
@@ -140,6 +143,39 @@ std::string gain_text(const KeptCause& c) {
   return fmt::format("{} {} → {} ({:+.1f}%)", html_escape(g.metric), num(g.before), num(g.after), 100.0 * rel);
 }
 
+// Rows of the twins' predictivity: the results an experiment reports under methods "nominal_twin"
+// and "extended_twin" on dataset "all_logs" (benchmarks/experiments/harness/predictivity_report.h),
+// one row per metric.
+std::string twin_rows(const std::vector<Report>& reports) {
+  std::string rows;
+  for (const Report& r : reports) {
+    // metric → statistic → {nominal, extended}
+    std::map<std::string, std::map<std::string, std::pair<std::optional<double>, std::optional<double>>>> by_metric;
+    for (const MetricResult& m : r.body.results) {
+      if (m.dataset != "all_logs" || (m.method != "nominal_twin" && m.method != "extended_twin")) continue;
+      for (const char* statistic : {"_covered_fraction", "_pearson_r", "_mmrv"}) {
+        if (!m.variant.ends_with(statistic)) continue;
+        auto& pair = by_metric[m.variant.substr(0, m.variant.size() - std::strlen(statistic))][statistic];
+        (m.method == "nominal_twin" ? pair.first : pair.second) = m.summary.mean;
+      }
+    }
+    for (const auto& [metric, stats] : by_metric) {
+      const auto cell = [&](const char* statistic, bool percent) {
+        const auto it = stats.find(statistic);
+        if (it == stats.end()) return std::string("—");
+        const auto show = [&](const std::optional<double>& v) {
+          return !v ? std::string("—") : percent ? fmt::format("{:.0f}%", 100.0 * *v) : num(*v);
+        };
+        return show(it->second.first) + " / " + show(it->second.second);
+      };
+      rows += fmt::format("<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                          anchor(r.body.experiment), html_escape(r.body.experiment), html_escape(metric),
+                          cell("_covered_fraction", true), cell("_pearson_r", false), cell("_mmrv", false));
+    }
+  }
+  return rows;
+}
+
 // The front section: published tables with a verdict, then the diagnosed logs.
 void findings_section(std::string& h, const std::vector<Report>& reports) {
   std::string tables, logs;
@@ -170,7 +206,8 @@ void findings_section(std::string& h, const std::vector<Report>& reports) {
                           causes.empty() ? "none kept" : "<ul>" + causes + "</ul>", html_escape(d.verdict));
     }
   }
-  if (tables.empty() && logs.empty()) return;
+  const std::string twins = twin_rows(reports);
+  if (tables.empty() && logs.empty() && twins.empty()) return;
   h += "<section id=findings>\n<h2>Findings</h2>\n";
   if (!tables.empty()) {
     h += "<h3>Published tables: the thesis's claim, our measurement, the verdict</h3>\n"
@@ -188,6 +225,16 @@ void findings_section(std::string& h, const std::vector<Report>& reports) {
          "<table class=findings-diagnosis><thead><tr><th>log</th><th>reference</th><th>causes kept</th>"
          "<th>verdict</th></tr></thead><tbody>\n" +
          logs + "</tbody></table>\n";
+  }
+  if (!twins.empty()) {
+    h += "<h3>Twins: does the simulator forecast the real result?</h3>\n"
+         "<p class=note>Per metric across methods × logs: the share of real values inside each twin's 95% "
+         "predictive interval, Pearson r of its prediction against the real value and the mean maximum rank "
+         "violation of the methods (MMRV, lower is better) — nominal twin / extended twin (the diagnosed "
+         "model).</p>\n"
+         "<table class=findings-twins><thead><tr><th>experiment</th><th>metric</th><th>covered</th><th>Pearson "
+         "r</th><th>MMRV</th></tr></thead><tbody>\n" +
+         twins + "</tbody></table>\n";
   }
   h += "</section>\n";
 }
