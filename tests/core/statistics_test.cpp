@@ -30,8 +30,8 @@ TEST(Quantile, InterpolatesBetweenOrderStatisticsLikeNumPy) {
 
 TEST(Correlation, PearsonAndSpearmanOfSmallSamples) {
   const std::vector<double> x{1, 2, 3, 4, 5}, y{2, 4, 5, 4, 5};
-  // Σdxdy = 6, Σdx² = 10, Σdy² = 6.8: r = 6 / √68.
-  EXPECT_NEAR(pearson_correlation(x, y), 6.0 / std::sqrt(68.0), 1e-12);
+  // dx = −2 … 2, dy = −2, 0, 1, 0, 1: Σdxdy = 6, Σdx² = 10, Σdy² = 6, r = 6 / √60.
+  EXPECT_NEAR(pearson_correlation(x, y), 6.0 / std::sqrt(60.0), 1e-12);
   // Ranks of y with ties at their mean rank: 1, 2.5, 4.5, 2.5, 4.5.
   const std::vector<double> ry{1, 2.5, 4.5, 2.5, 4.5};
   EXPECT_NEAR(spearman_correlation(x, y), pearson_correlation(x, ry), 1e-12);
