@@ -66,8 +66,23 @@ class CorrelatedPart {
 
 }  // namespace
 
+MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& data,
+                                                const diagnosis::OdometryModel& model) {
+  std::vector<double> t, x, y, theta;
+  for (const diagnosis::MotionWindow& w : data.windows) {
+    const diagnosis::WindowResidual r = diagnosis::window_residual(data, w, model);
+    if (!r.valid || r.heading_only) continue;
+    t.push_back(w.t0);
+    x.push_back(r.r.x() / std::sqrt(r.variance.x()));
+    y.push_back(r.r.y() / std::sqrt(r.variance.y()));
+    theta.push_back(r.r.z() / std::sqrt(r.variance.z()));
+  }
+  return {fit_noise_correlation(t, x), fit_noise_correlation(t, y), fit_noise_correlation(t, theta)};
+}
+
 TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryModel& motion,
-                           const LandmarkSensorModel& sensor, std::uint64_t seed) {
+                           const LandmarkSensorModel& sensor, std::uint64_t seed,
+                           const MotionNoiseStructure& structure) {
   const diagnosis::MotionData& d = real.motion;
   if (d.windows.empty() || d.steps.empty()) throw InputError(real.log, 0, "the twin needs the span's motion windows");
   const auto first = diagnosis::interpolate_truth(d.truth, d.steps.front().t0 - motion.time_offset);
@@ -86,13 +101,15 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
   truth.push_back({t_start - kTwinTruthMargin, origin, {}});
   truth.push_back({t_start, origin, {}});
   Pose2 pose = origin;
+  CorrelatedPart along(structure.x), left(structure.y), turn(structure.theta);
   std::size_t next = 0;  // first step not walked yet
   for (const diagnosis::MotionWindow& w : d.windows) {
     if (w.first > next)
       pose = walk_block(d, block(d, next, w.first), mean_model, 1.0, Eigen::Vector3d::Zero(), pose, truth);
     const Eigen::Vector3d v = diagnosis::window_variance(d, w, motion);
-    const Eigen::Vector3d r(std::sqrt(v.x()) * rng.student_t(motion.dof), std::sqrt(v.y()) * rng.student_t(motion.dof),
-                            std::sqrt(v.z()) * rng.student_t(motion.dof));
+    const Eigen::Vector3d r(std::sqrt(v.x()) * along.draw(w.t0, motion.dof, rng),
+                            std::sqrt(v.y()) * left.draw(w.t0, motion.dof, rng),
+                            std::sqrt(v.z()) * turn.draw(w.t0, motion.dof, rng));
     double keep = 1.0;
     const double length = w.t1 - w.t0;
     if (motion.stall_rate > 0.0 && motion.stall_duration > 0.0 && length > 0.0 &&

@@ -32,9 +32,20 @@
 
 namespace locbench::experiments::landmarks {
 
-// A twin of `real` drawn with `seed`. Throws InputError (naming the log) when the span has no
-// diagnosis window or its truth does not cover the span's start.
+// The time correlation of a motion model's window residuals (x, y, θ), standardized by their
+// model variance: heading error that persists over many windows is what makes long-horizon drift.
+struct MotionNoiseStructure {
+  NoiseCorrelation x, y, theta;
+};
+// Fitted (fit_noise_correlation) on the windows of `data` under `model`.
+MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& data,
+                                                const diagnosis::OdometryModel& model);
+
+// A twin of `real` drawn with `seed`; `structure` correlates its window residuals in time
+// (each component √(1 − s)·t_ν + √s·b with b a Gauss–Markov process over the windows' times). Throws InputError (naming
+// the log) when the span has no diagnosis window or its truth does not cover the span's start.
 TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryModel& motion,
-                           const LandmarkSensorModel& sensor, std::uint64_t seed);
+                           const LandmarkSensorModel& sensor, std::uint64_t seed,
+                           const MotionNoiseStructure& structure = {});
 
 }  // namespace locbench::experiments::landmarks

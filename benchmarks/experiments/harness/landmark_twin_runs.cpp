@@ -3,7 +3,6 @@
 #include <cmath>
 #include <limits>
 
-#include "benchmarks/experiments/harness/landmark_twin.h"
 #include "core/rng.h"
 #include "core/statistics.h"
 
@@ -52,7 +51,7 @@ double odometry_rpe(const TrackingData& data, double horizon_s) {
 
 PredictivityCells twin_predictions(const TrackingData& test, const std::vector<MethodScore>& tuned,
                                    const FilterModels& models, const FamilyOptions& family,
-                                   const TwinRunOptions& options) {
+                                   const TwinRunOptions& options, const MotionNoiseStructure& extended_structure) {
   std::vector<TrackResult> real_results;
   for (const MethodScore& m : tuned) real_results.push_back(m.heldout);
   const RunMetrics real = run_metrics(test, real_results, family);
@@ -63,7 +62,8 @@ PredictivityCells twin_predictions(const TrackingData& test, const std::vector<M
     const diagnosis::OdometryModel& motion = j == 0 ? models.nominal_motion : models.diagnosed_motion;
     const LandmarkSensorModel& sensor = j == 0 ? models.nominal_sensor : models.diagnosed_sensor;
     for (int k = 0; k < options.runs; ++k) {
-      const TrackingData twin = landmark_twin(test, motion, sensor, Rng::derive_seed(options.seed, 2 * k + j));
+      const TrackingData twin = landmark_twin(test, motion, sensor, Rng::derive_seed(options.seed, 2 * k + j),
+                                              j == 0 ? MotionNoiseStructure{} : extended_structure);
       runs[j].push_back(run_metrics(twin, run_tuned(twin, tuned, models, family), family));
     }
   }

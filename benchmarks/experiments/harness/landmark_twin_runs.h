@@ -18,6 +18,7 @@
 
 #include "benchmarks/experiments/harness/filter_models.h"
 #include "benchmarks/experiments/harness/landmark_family.h"
+#include "benchmarks/experiments/harness/landmark_twin.h"
 #include "benchmarks/experiments/harness/predictivity.h"
 
 namespace locbench::experiments::landmarks {
@@ -29,10 +30,11 @@ struct TwinRunOptions {
 
 using PredictivityCells = std::map<std::string, std::vector<PredictivityCell>>;  // by metric
 
-// `real` holds the real held-out results of `tuned` (MethodScore::heldout) on `test`.
+// `tuned` holds the real held-out results (MethodScore::heldout) on `test`; the extended twin's
+// window residuals are correlated in time by `extended_structure` (the nominal twin's are white).
 PredictivityCells twin_predictions(const TrackingData& test, const std::vector<MethodScore>& tuned,
                                    const FilterModels& models, const FamilyOptions& family,
-                                   const TwinRunOptions& options);
+                                   const TwinRunOptions& options, const MotionNoiseStructure& extended_structure = {});
 
 // The RMS relative pose error of the logged odometry against the data's truth over chains of
 // windows `horizon_s` long [m] (NaN when no chain fits).

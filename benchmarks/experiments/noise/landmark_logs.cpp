@@ -121,7 +121,8 @@ struct Outcome {
   // The sensor noise measured against the truth on each half (a check of stationarity, used by no
   // method): a held-out half noisier than the tuning half makes every tuned setting overconfident.
   std::optional<LandmarkSensorModel> tuning_noise, heldout_noise;
-  PredictivityCells twin_cells;  // the twins' forecasts of the held-out results (empty: twin_runs 0)
+  PredictivityCells twin_cells;           // the twins' forecasts of the held-out results (empty: twin_runs 0)
+  MotionNoiseStructure motion_structure;  // of the diagnosed model's window residuals, tuning half
 };
 
 // measured_sensor_noise, or nothing when the span has too few residuals to measure it.
@@ -162,7 +163,10 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
   // measured on the tuning half (per-landmark biases, time correlation; the filters ignore both).
   o.models.nominal_sensor.structure = {};
   if (o.tuning_noise) o.models.diagnosed_sensor.structure = o.tuning_noise->structure;
-  if (c.twin_runs > 0) o.twin_cells = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed});
+  o.motion_structure = fit_motion_noise_structure(train.motion, o.models.diagnosed_motion);
+  if (c.twin_runs > 0) {
+    o.twin_cells = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed}, o.motion_structure);
+  }
   return o;
 }
 
@@ -359,6 +363,11 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
           "bearing {:.0f}% with τ {:.2g} s",
           st.range_landmark_sigma, st.bearing_landmark_sigma, 100.0 * st.range_correlation.share,
           st.range_correlation.time_s, 100.0 * st.bearing_correlation.share, st.bearing_correlation.time_s);
+      const MotionNoiseStructure& ms = o.motion_structure;
+      table += fmt::format(
+          "; the diagnosed motion model's window residuals: along {:.0f}% with τ {:.2g} s, left {:.0f}% with τ "
+          "{:.2g} s, heading {:.0f}% with τ {:.2g} s",
+          100.0 * ms.x.share, ms.x.time_s, 100.0 * ms.y.share, ms.y.time_s, 100.0 * ms.theta.share, ms.theta.time_s);
       for (const auto& [variant, value] :
            {std::pair{"tuning_range_sigma", a.range_sigma}, std::pair{"heldout_range_sigma", b.range_sigma}}) {
         out.results.push_back(reports::make_estimate("sensor_noise", ds, variant, "m", value, 0.0, 1));
