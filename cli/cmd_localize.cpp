@@ -12,6 +12,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "baselines/global/grid_markov.h"
+#include "baselines/global/monte_carlo_localization.h"
+#include "baselines/global/odometry_motion_model.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/harness/global_harness.h"
 #include "cli/commands.h"
@@ -74,6 +77,43 @@ auto naming_file(const std::string& file, F f) {
   }
 }
 
+// Updates a global localizer makes on `steps`: the first scan, then every scan after the
+// odometry moved update_min_distance or turned update_min_angle (as MCL and grid Markov gate).
+std::size_t count_updates(const std::vector<g::ScanStep>& steps, double min_distance, double min_angle) {
+  std::optional<Pose2> last;
+  std::size_t n = 0;
+  for (const g::ScanStep& s : steps) {
+    if (last) {
+      const auto d = baselines::global::odometry_delta(*last, s.odometry);
+      if (baselines::global::moved_less_than(d, *last, s.odometry, min_distance, min_angle)) continue;
+    }
+    last = s.odometry;
+    ++n;
+  }
+  return n;
+}
+
+// The whole run's work against its limit, before any update (limits::kMclWork, kGridMarkovWork).
+void check_work(const std::string& method, const nlohmann::json& options, const std::vector<g::ScanStep>& steps,
+                const g::Localizer& loc, const std::string& file) {
+  if (method == "mcl") {
+    baselines::global::MclOptions o;
+    baselines::global::from_json(options.at("mcl"), o);
+    const double updates = static_cast<double>(count_updates(steps, o.update_min_distance, o.update_min_angle));
+    const double work = std::max(o.initial_particles, o.max_particles) * static_cast<double>(o.field.beams) * updates;
+    limits::check(work, limits::kMclWork, file,
+                  fmt::format("mcl: {} particles x {} beams x {} updates",
+                              std::max(o.initial_particles, o.max_particles), o.field.beams, updates));
+  } else if (method == "grid_markov") {
+    baselines::global::GridMarkovOptions o;
+    baselines::global::from_json(options.at("grid_markov"), o);
+    const double updates = static_cast<double>(count_updates(steps, o.update_min_distance, o.update_min_angle));
+    const double cells = static_cast<double>(loc.hypotheses());
+    limits::check(cells * o.field.beams * updates, limits::kGridMarkovWork, file,
+                  fmt::format("grid_markov: {} cells x {} beams x {} updates", cells, o.field.beams, updates));
+  }
+}
+
 int localize(const LocalizeArgs& a, const std::string& command_line) {
   const std::string method = canonical_method(a.method);
   if (!std::isfinite(a.map_from_log) || a.map_from_log < 0.0 || a.map_from_log > 1e6) {
@@ -115,6 +155,7 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
   }
   // The options are read here: their errors name the --options file.
   auto loc = naming_file(a.options, [&] { return g::make_localizer(method, map, options, start, a.seed); });
+  check_work(method, options, steps, *loc, a.options.empty() ? a.log : a.options);
   const std::vector<Pose2> est = g::run_localizer(*loc, steps, 0, steps.size());
 
   Trajectory traj;
