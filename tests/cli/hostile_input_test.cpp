@@ -71,6 +71,26 @@ std::string run_report(const std::string& to, const std::string& seed, const std
          "'{d}/r.json' > '" + to + "'\n";
 }
 
+// A histogram of 1,000 bins with the first 500 filled (a wide normal shape): the filled-bins limit.
+const std::string kHist500 =
+    "awk 'BEGIN{printf \"{\\\"residual\\\": \\\"r\\\", \\\"unit\\\": \\\"deg\\\", \\\"edges\\\": [0\"; "
+    "for(i=1;i<=1000;i++) printf \",%d\", i; printf \"], \\\"counts\\\": [\"; "
+    "for(i=0;i<1000;i++) printf \"%s%d\", (i ? \",\" : \"\"), (i < 500 ? 1 + int(400 * exp(-0.5 * ((i - 250) / 80) ^ "
+    "2)) "
+    ": 0); print \"]}\"}' > '{d}/h.json'\n";
+// A CARMEN log of `n` ENCODER records and nothing else (no reference): `diagnose` counts them first.
+std::string encoder_log(int n) {
+  return "awk 'BEGIN{for(i=0;i<" + std::to_string(n) +
+         ";i++) printf \"ENCODER %d %d %.3f locbench %.3f\\n\", i, i, i * 0.01, i * 0.01}' > '{d}/e.clf'\n";
+}
+// A CARMEN log of `scans` FLASER scans of `beams` ranges each, at a pose in the room map.
+std::string scan_log(int scans, int beams) {
+  return "awk 'BEGIN{for(s=0;s<" + std::to_string(scans) + ";s++){printf \"FLASER " + std::to_string(beams) +
+         "\"; for(i=0;i<" + std::to_string(beams) +
+         ";i++) printf \" %.2f\", 1.5 + (i % 7) * 0.1; "
+         "printf \" 2 2 0.3 2 2 0.3 %.1f locbench %.1f\\n\", s * 0.2, s * 0.2}}' > '{d}/s.clf'\n";
+}
+
 const std::vector<HostileCase>& cases() {
   static const std::vector<HostileCase> all = {
       // 1. The histogram crash, the superlinear fits, counts validation.
@@ -89,9 +109,9 @@ const std::vector<HostileCase>& cases() {
       {"histogram_is_a_folder", "mkdir '{d}/h.json'", "diagnose {d}/h.json", 2, "is a folder"},
       {"histogram_too_many_bins",
        "awk 'BEGIN{printf \"{\\\"residual\\\": \\\"r\\\", \\\"unit\\\": \\\"deg\\\", \\\"edges\\\": [0\"; "
-       "for(i=1;i<=100001;i++) printf \",%d\", i; "
-       "printf \"], \\\"counts\\\": [9\"; for(i=1;i<100001;i++) printf \",9\"; print \"]}\"}' > '{d}/h.json'",
-       "diagnose {d}/h.json", 2, "exceeds the limit 100000"},
+       "for(i=1;i<=10001;i++) printf \",%d\", i; "
+       "printf \"], \\\"counts\\\": [9\"; for(i=1;i<10001;i++) printf \",0\"; print \"]}\"}' > '{d}/h.json'",
+       "diagnose {d}/h.json", 2, "counts: 10001 exceeds the limit 10000"},
       // 2. Limits checked before work.
       {"simulate_1e9_beams", file("s.json", R"({"preset": "corridor", "laser": {"beams": 1000000000}})"),
        "simulate {d}/s.json -o {d}/o.clf", 2, "laser.beams"},
@@ -104,8 +124,8 @@ const std::vector<HostileCase>& cases() {
       {"simulate_crawling_speed", file("s.json", R"({"preset": "corridor", "drive": {"speed": 1e-9}})"),
        "simulate {d}/s.json -o {d}/o.clf", 2, "duration"},
       {"run_set_runs_1e8", "", "run odometry/sim_corridor --set runs=100000000 --out {d}/out", 2,
-       "exceeds the limit 100000"},
-      {"run_runs_0", "", "run odometry/sim_corridor --runs 0 --out {d}/out", 2, "not in range 1 to 100000"},
+       "exceeds the limit 1000"},
+      {"run_runs_0", "", "run odometry/sim_corridor --runs 0 --out {d}/out", 2, "not in range 1 to 1000"},
       {"match_20000_beam_scan",
        kShortLog + "awk 'BEGIN{printf \"FLASER 20000\"; for(i=0;i<20000;i++) printf \" 1.0\"; print \" 0 0 0 0 0 0 1.0 "
                    "h 1.0\"}' > '{d}/big.clf'",
@@ -534,15 +554,103 @@ const std::vector<HostileCase>& cases() {
       {"mcl_a_billion_particles", kShortLog + file("o.json", R"({"mcl": {"initial_particles": 1000000000}})"),
        "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
        "MclOptions.initial_particles: expected a number in [1, 1000000], got 1000000000"},
-      {"mcl_particles_at_the_limit",
-       kShortLog + file("o.json", R"({"mcl": {"initial_particles": 1000000, "max_particles": 1000000}})"),
+      {"mcl_particles_at_the_limit_for_one_update",
+       kShortLog +
+           file("o.json",
+                R"({"mcl": {"initial_particles": 1000000, "max_particles": 1000000, "update_min_distance": 1e9}})"),
        "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 0, "mcl/"},
       {"mcl_max_particles_past_the_limit", kShortLog + file("o.json", R"({"mcl": {"max_particles": 1000001}})"),
        "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
        "MclOptions.max_particles: expected a number in [1, 1000000]"},
       {"grid_markov_cells_past_the_limit", kShortLog + file("o.json", R"({"grid_markov": {"max_cells": 1e12}})"),
        "localize --method grid_markov --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
-       "GridMarkovOptions.max_cells: expected a number in [1, 50000000]"},
+       "GridMarkovOptions.max_cells: expected a number in [1, 10000000]"},
+      // 15. Limits that mean fast (issue 26): a row at each limit and one past it. The at-limit
+      // inputs too slow for the sanitizer build are timed by scripts/time_limits.sh instead.
+      {"histogram_500_filled_bins_at_the_limit", kHist500, "diagnose {d}/h.json", 0, "verdict:"},
+      {"histogram_501_filled_bins", kHist500 + "sed -i 's/\"counts\": \\[/\"counts\": [1,/; s/,0\\]}/]}/' '{d}/h.json'",
+       "diagnose {d}/h.json", 2, "counts (bins > 0): 501 exceeds the limit 500"},
+      {"histogram_total_count_at_the_limit",
+       file(
+           "h.json",
+           R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[1000000,2000000,4000000,2000000,1000000]})"),
+       "diagnose {d}/h.json", 0, "verdict:"},
+      {"histogram_total_count_past_the_limit",
+       file(
+           "h.json",
+           R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[1000000,2000000,4000001,2000000,1000000]})"),
+       "diagnose {d}/h.json", 2, "counts (their sum): 1e+07 exceeds the limit 10000000"},
+      {"diagnose_odometry_records_at_the_limit", encoder_log(40000), "diagnose {d}/e.clf", 2, "e.clf"},
+      {"diagnose_odometry_records_past_the_limit", encoder_log(40001), "diagnose {d}/e.clf", 2,
+       "odometry records (ENCODER, ODOM): 40001 exceeds the limit 40000"},
+      {"diagnose_max_records_raises_the_limit", encoder_log(40001), "diagnose {d}/e.clf --max-records 40001", 2,
+       "e.clf"},
+      {"diagnose_max_records_0", encoder_log(10), "diagnose {d}/e.clf --max-records 0", 2, "--max-records: Value 0"},
+      {"simulate_records_at_the_limit",
+       file(
+           "s.json",
+           R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1000}, "drive": {"speed": 1, "pause": 0}, "encoders": {"rate": 1000}})"),
+       "simulate {d}/s.json -o {d}/x.clf", 0, "wrote"},
+      {"simulate_records_past_the_limit",
+       file(
+           "s.json",
+           R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1000}, "drive": {"speed": 1, "pause": 0}, "encoders": {"rate": 1001}})"),
+       "simulate {d}/s.json -o {d}/x.clf", 2, "duration x encoders.rate: 1.001e+06 exceeds the limit 1000000"},
+      {"simulate_truth_records_past_the_limit",
+       file(
+           "s.json",
+           R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1000}, "drive": {"speed": 1, "pause": 0}, "truth": {"rate": 1001}})"),
+       "simulate {d}/s.json -o {d}/x.clf", 2, "duration x truth.rate: 1.001e+06 exceeds the limit 1000000"},
+      {"simulate_laser_ranges_at_the_limit",
+       file(
+           "s.json",
+           R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1000}, "drive": {"speed": 1, "pause": 0}, "laser": {"enabled": true, "rate": 2, "beams": 1000}})"),
+       "simulate {d}/s.json -o {d}/x.clf", 0, "wrote"},
+      {"simulate_laser_ranges_past_the_limit",
+       file(
+           "s.json",
+           R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1000}, "drive": {"speed": 1, "pause": 0}, "laser": {"enabled": true, "rate": 2, "beams": 1001}})"),
+       "simulate {d}/s.json -o {d}/x.clf", 2,
+       "duration x laser.rate x laser.beams: 2.002e+06 exceeds the limit 2000000"},
+      {"match_laser_ranges_at_the_limit", scan_log(200, 10000),
+       "match --map {src}/examples/room_map.json --log {d}/s.clf", 0, "segments_matched"},
+      {"match_laser_ranges_past_the_limit", scan_log(201, 10000),
+       "match --map {src}/examples/room_map.json --log {d}/s.clf", 2,
+       "laser ranges (201 scans): 2.01e+06 exceeds the limit 2000000"},
+      {"localize_laser_ranges_past_the_limit", scan_log(201, 10000),
+       "localize --map {src}/examples/room_map.json --log {d}/s.clf", 2, "laser ranges (201 scans)"},
+      {"agglomerative_beams_squared_past_the_limit", scan_log(3, 10000),
+       "match --map {src}/examples/room_map.json --log {d}/s.clf --matcher agglomerative", 2,
+       "agglomerative is quadratic in them): 3e+08 exceeds the limit 200000000"},
+      {"mcl_work_past_the_limit",
+       kShortLog + file("o.json", R"({"mcl": {"initial_particles": 1000000, "max_particles": 1000000}})"),
+       "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
+       "mcl: 1000000 particles x (20 beams + 40) x"},
+      {"mcl_tiny_kld_bin_past_the_work_limit",
+       kShortLog + file("o.json", R"({"mcl": {"max_particles": 1000000, "kld_bin": [0.0001, 0.0001, 0.0001]}})"),
+       "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
+       "exceeds the limit 200000000"},
+      {"mcl_tiny_kld_bin_within_the_work_limit",
+       kShortLog + file("o.json", R"({"mcl": {"max_particles": 100000, "kld_bin": [0.0001, 0.0001, 0.0001]}})"),
+       "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 0, "mcl/"},
+      {"grid_markov_1_cm_cells", kShortLog + file("o.json", R"({"grid_markov": {"cell_size": 0.01}})"),
+       "localize --method grid_markov --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
+       "cells exceed max_cells"},
+      {"grid_markov_cells_near_the_limit_one_update",
+       kShortLog + file("o.json", R"({"grid_markov": {"cell_size": 0.03, "update_min_distance": 1e9}})"),
+       "localize --method grid_markov --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 0,
+       "grid_markov/"},
+      {"grid_markov_work_past_the_limit",
+       kShortLog +
+           file("o.json", R"({"grid_markov": {"cell_size": 0.03, "update_min_distance": 0, "update_min_angle": 0}})"),
+       "localize --method grid_markov --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
+       "exceeds the limit 1000000000"},
+      {"run_runs_past_the_limit", "", "run odometry/sim_corridor --runs 1001 --out {d}/out", 2,
+       "--runs: Value 1001 not in range 1 to 1000"},
+      {"run_set_runs_past_the_limit", "", "run odometry/sim_corridor --set runs=1001 --out {d}/out", 2,
+       "runs: 1001 exceeds the limit 1000"},
+      {"help_states_the_work_limits", "", "--help", 0, "grid_markov: cells x field.beams x updates <= 1000000000"},
+      {"help_states_the_filled_bins_limit", "", "--help", 0, "histogram bins holding samples (counts > 0) <= 500"},
       // 14. Usability of issue 26.
       {"threads_0_names_the_range", "", "run odometry/sim_corridor --threads 0 --out {d}/out", 2,
        "--threads: Value 0 not in range 1 to 1024"},
