@@ -623,11 +623,17 @@ const std::vector<HostileCase>& cases() {
        "match --map {src}/examples/room_map.json --log {d}/s.clf --matcher agglomerative", 2,
        "agglomerative is quadratic in them): 3e+08 exceeds the limit 200000000"},
       {"mcl_work_past_the_limit",
-       kShortLog + file("o.json", R"({"mcl": {"initial_particles": 1000000, "max_particles": 1000000}})"),
+       kShortLog +
+           file(
+               "o.json",
+               R"({"mcl": {"initial_particles": 1000000, "max_particles": 1000000, "update_min_distance": 0, "update_min_angle": 0}})"),
        "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
        "mcl: 1000000 particles x (20 beams + 40) x"},
       {"mcl_tiny_kld_bin_past_the_work_limit",
-       kShortLog + file("o.json", R"({"mcl": {"max_particles": 1000000, "kld_bin": [0.0001, 0.0001, 0.0001]}})"),
+       kShortLog +
+           file(
+               "o.json",
+               R"({"mcl": {"max_particles": 1000000, "kld_bin": [0.0001, 0.0001, 0.0001], "update_min_distance": 0, "update_min_angle": 0}})"),
        "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
        "exceeds the limit 200000000"},
       {"mcl_tiny_kld_bin_within_the_work_limit",
