@@ -100,10 +100,9 @@ void check_work(const std::string& method, const nlohmann::json& options, const 
     baselines::global::MclOptions o;
     baselines::global::from_json(options.at("mcl"), o);
     const double updates = static_cast<double>(count_updates(steps, o.update_min_distance, o.update_min_angle));
-    const double work = std::max(o.initial_particles, o.max_particles) * static_cast<double>(o.field.beams) * updates;
-    limits::check(work, limits::kMclWork, file,
-                  fmt::format("mcl: {} particles x {} beams x {} updates",
-                              std::max(o.initial_particles, o.max_particles), o.field.beams, updates));
+    const double particles = std::max(o.initial_particles, o.max_particles);
+    limits::check(particles * (o.field.beams + 40.0) * updates, limits::kMclWork, file,
+                  fmt::format("mcl: {} particles x ({} beams + 40) x {} updates", particles, o.field.beams, updates));
   } else if (method == "grid_markov") {
     baselines::global::GridMarkovOptions o;
     baselines::global::from_json(options.at("grid_markov"), o);
