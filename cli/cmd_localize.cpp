@@ -108,8 +108,8 @@ void check_work(const std::string& method, const nlohmann::json& options, const 
     baselines::global::from_json(options.at("grid_markov"), o);
     const double updates = static_cast<double>(count_updates(steps, o.update_min_distance, o.update_min_angle));
     const double cells = static_cast<double>(loc.hypotheses());
-    limits::check(cells * o.field.beams * updates, limits::kGridMarkovWork, file,
-                  fmt::format("grid_markov: {} cells x {} beams x {} updates", cells, o.field.beams, updates));
+    limits::check(cells * (o.field.beams + 10.0) * updates, limits::kGridMarkovWork, file,
+                  fmt::format("grid_markov: {} cells x ({} beams + 10) x {} updates", cells, o.field.beams, updates));
   }
 }
 

@@ -50,7 +50,7 @@ inline constexpr Limit kAgglomerativeWork{"agglomerative matcher: sum over scans
 // `diagnose LOG` costs ~0.2 ms per odometry record (56,000 ENCODER records with TRUEPOS and
 // COMPASS: 12 s). Catalog datasets, named by name, are exempt (their times are measured in the
 // README: 3–32 s); `diagnose --max-records N` raises the limit for one log.
-inline constexpr Limit kDiagnoseOdometryRecords{"diagnose: odometry records of a log file (ENCODER, ODOM)", 40'000,
+inline constexpr Limit kDiagnoseOdometryRecords{"diagnose: odometry records of a log file (ENCODER, ODOM)", 30'000,
                                                 "time of the fits (--max-records raises it)"};
 // Monte-Carlo runs (`run --runs`, "runs" options): odometry/sim_corridor takes ~7 ms a run
 // (100,000 runs: over 120 s; 1,000: 6.8 s); the suite's largest is `--runs 1000`.
@@ -76,13 +76,20 @@ inline constexpr Limit kJsonDepth{"nesting depth of a JSON input (arrays and obj
 // experiments use 50,000 initial particles; grid Markov's default max_cells is the limit.
 inline constexpr Limit kMclParticles{"mcl initial_particles, min_particles, max_particles", 1e6,
                                      "memory and time of each update"};
+// The likelihood field of MCL and grid Markov: (map extent + 2 margin)² / resolution² cells, two
+// floats each plus the distance transform. At 2.5·10^7 cells (1 cm on a 50 m map) it builds in
+// 2.8 s into 400 MB; the old unstated cap, 4·10^8 cells, meant ~6 GB.
+inline constexpr Limit kLikelihoodFieldCells{"likelihood field cells ((extent + 2 margin)^2 / resolution^2)", 2.5e7,
+                                             "memory and time of the field"};
 inline constexpr Limit kGridMarkovCells{"grid_markov max_cells", 1e7, "memory of the grid (8 bytes a cell, twice)"};
 // The work of a whole `localize` run: each update weighs every particle (cell) with
 // field.beams beams; updates are counted from the log's odometry and update_min_distance /
 // update_min_angle before any work. A tiny kld_bin only grows the particles up to max_particles.
 inline constexpr Limit kMclWork{"mcl: max(initial_particles, max_particles) x (field.beams + 40) x updates", 2e8,
                                 "time of the filter (KLD sampling costs ~40 beams a particle)"};
-inline constexpr Limit kGridMarkovWork{"grid_markov: cells x field.beams x updates", 1e9, "time of the filter"};
+// grid Markov: ~7 ns a cell and beam, plus ~70 ns a cell for the action update (10 beams' worth);
+// 4.5·10^6 cells x 20 beams x 10 updates took 10.6 s at the old 10^9 product without the +10.
+inline constexpr Limit kGridMarkovWork{"grid_markov: cells x (field.beams + 10) x updates", 8e8, "time of the filter"};
 
 inline constexpr Limit kAll[] = {kInputFileBytes,
                                  kJsonFileBytes,
@@ -107,6 +114,7 @@ inline constexpr Limit kAll[] = {kInputFileBytes,
                                  kLandmarkObservations,
                                  kMclParticles,
                                  kMclWork,
+                                 kLikelihoodFieldCells,
                                  kGridMarkovCells,
                                  kGridMarkovWork};
 
