@@ -96,5 +96,17 @@ awk '/^FLASER/ && ++n > 25 {next} {print}' a.clf >a25.clf
 timed "localize grid_markov, 1 beam, 25 updates" localize --method grid_markov --map "$src/examples/room_map.json" --log a25.clf --options grid1.json
 grep -o 'grid_markov: .*' out.txt | head -1  # the work, when refused
 
+# Landmarks: noise/landmark_logs (every setting of its grid filters every observation) on a
+# 100 s log with a 10,000-landmark map and 20,000 observations.
+echo '{"preset": "corridor", "motion": {"kind": "straight", "distance": 25}}' >c25.json
+"$exe" simulate c25.json -o c25.clf >/dev/null 2>&1
+awk 'BEGIN{for (i = 1; i <= 10000; i++) printf "%d %.2f %.2f\n", i, (i % 100) * 0.3, int(i / 100) * 0.3}' >lm.txt
+awk 'BEGIN{for (i = 0; i < 20000; i++) printf "%.6f %d 1.5 0.2\n", 0.5 + i * 4.75e-3, 1 + (i % 10000)}' >ob.txt
+timed "noise/landmark_logs, 10^4 landmarks, 2*10^4 obs" run noise/landmark_logs --log c25.clf --landmark-map lm.txt --landmark-observations ob.txt --out lm
+
+# The likelihood field at 2.5·10^7 cells: 2.01 mm cells on the 8 m room (+ 1 m margins), 1 update.
+echo '{"mcl": {"field": {"resolution": 0.00201}, "update_min_distance": 1e9}}' >field.json
+timed "likelihood field, 2.5*10^7 cells" localize --method mcl --map "$src/examples/room_map.json" --log k.clf --options field.json
+
 # run: 1,000 Monte-Carlo runs of the corridor.
 timed "run odometry/sim_corridor --runs 1000" run odometry/sim_corridor --runs 1000 --out runs

@@ -651,6 +651,25 @@ const std::vector<HostileCase>& cases() {
            file("o.json", R"({"grid_markov": {"cell_size": 0.03, "update_min_distance": 0, "update_min_angle": 0}})"),
        "localize --method grid_markov --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
        "exceeds the limit 800000000"},
+      {"landmark_map_at_the_limit",
+       kShortLog + "awk 'BEGIN{for(i=1;i<=10000;i++) printf \"%d %d %d\\n\", i, i % 100, i / 100}' > '{d}/m.txt'",
+       "run odometry/real_logs --log {d}/l.clf --landmark-map {d}/m.txt --out {d}/out", 1, "failed"},
+      {"landmark_map_past_the_limit",
+       kShortLog + "awk 'BEGIN{for(i=1;i<=10001;i++) printf \"%d %d %d\\n\", i, i % 100, i / 100}' > '{d}/m.txt'",
+       "run odometry/real_logs --log {d}/l.clf --landmark-map {d}/m.txt --out {d}/out", 2,
+       "landmarks: 10001 exceeds the limit 10000"},
+      {"landmark_observations_at_the_limit",
+       kShortLog + file("m.txt", "6 0 0") +
+           "awk 'BEGIN{for(i=0;i<20000;i++) printf \"%.5f 6 1.5 0.2\\n\", 0.1 + i * 0.0002}' > '{d}/o.txt'",
+       "run odometry/real_logs --log {d}/l.clf --landmark-map {d}/m.txt --landmark-observations {d}/o.txt --out "
+       "{d}/out",
+       1, "failed"},
+      {"landmark_observations_past_the_limit",
+       kShortLog + file("m.txt", "6 0 0") +
+           "awk 'BEGIN{for(i=0;i<20001;i++) printf \"%.5f 6 1.5 0.2\\n\", 0.1 + i * 0.0002}' > '{d}/o.txt'",
+       "run odometry/real_logs --log {d}/l.clf --landmark-map {d}/m.txt --landmark-observations {d}/o.txt --out "
+       "{d}/out",
+       2, "exceeds the limit 20000"},
       {"run_runs_past_the_limit", "", "run odometry/sim_corridor --runs 1001 --out {d}/out", 2,
        "--runs: Value 1001 not in range 1 to 1000"},
       {"run_set_runs_past_the_limit", "", "run odometry/sim_corridor --set runs=1001 --out {d}/out", 2,
