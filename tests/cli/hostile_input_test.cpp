@@ -626,16 +626,16 @@ const std::vector<HostileCase>& cases() {
        kShortLog +
            file(
                "o.json",
-               R"({"mcl": {"initial_particles": 1000000, "max_particles": 1000000, "update_min_distance": 0, "update_min_angle": 0}})"),
+               R"({"mcl": {"initial_particles": 1000000, "max_particles": 1000000, "kld": false, "update_min_distance": 0, "update_min_angle": 0}})"),
        "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
-       "mcl: 1000000 particles x (20 beams + 40) x"},
-      {"mcl_tiny_kld_bin_past_the_work_limit",
+       "mcl: at least 1000000 particles x (20 beams + 40) over 23 updates (max_particles after the first, no KLD)"},
+      {"mcl_tiny_kld_bin_stops_at_the_work_limit",
        kShortLog +
            file(
                "o.json",
-               R"({"mcl": {"max_particles": 1000000, "kld_bin": [0.0001, 0.0001, 0.0001], "update_min_distance": 0, "update_min_angle": 0}})"),
+               R"({"mcl": {"max_particles": 1000000, "field": {"beams": 200}, "kld_bin": [0.0001, 0.0001, 0.0001], "update_min_distance": 0, "update_min_angle": 0}})"),
        "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
-       "exceeds the limit 200000000"},
+       "particle-beams done after 6 of 23 updates, and the next would pass the limit 200000000"},
       {"mcl_tiny_kld_bin_within_the_work_limit",
        kShortLog + file("o.json", R"({"mcl": {"max_particles": 100000, "kld_bin": [0.0001, 0.0001, 0.0001]}})"),
        "localize --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 0, "mcl/"},
