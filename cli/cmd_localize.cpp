@@ -103,7 +103,7 @@ std::vector<bool> update_flags(const std::vector<g::ScanStep>& steps, double min
 struct WorkBudget {
   std::string method, file;
   std::vector<bool> updates;
-  double per_hypothesis = 0.0;  // field.beams + 40 (MCL)
+  double per_hypothesis = 0.0;  // field.beams + 80 (MCL)
   double done = 0.0;
 };
 
@@ -114,13 +114,13 @@ WorkBudget check_work(const std::string& method, const nlohmann::json& options, 
     baselines::global::MclOptions o;
     baselines::global::from_json(options.at("mcl"), o);
     b.updates = update_flags(steps, o.update_min_distance, o.update_min_angle);
-    b.per_hypothesis = o.field.beams + 40.0;
+    b.per_hypothesis = o.field.beams + 80.0;
     const double updates = static_cast<double>(std::count(b.updates.begin(), b.updates.end(), true));
     const double least =
         (o.initial_particles + std::max(0.0, updates - 1.0) * (o.kld ? o.min_particles : o.max_particles)) *
         b.per_hypothesis;
     limits::check(least, limits::kMclWork, file,
-                  fmt::format("mcl: at least {} particles x ({} beams + 40) over {} updates ({})", o.initial_particles,
+                  fmt::format("mcl: at least {} particles x ({} beams + 80) over {} updates ({})", o.initial_particles,
                               o.field.beams, updates,
                               o.kld ? "min_particles after the first" : "max_particles after the first, no KLD"));
   } else if (method == "grid_markov") {
@@ -136,7 +136,7 @@ WorkBudget check_work(const std::string& method, const nlohmann::json& options, 
 }
 
 // Runs the localizer over every scan, counting MCL's work (the particles weighed with
-// field.beams, and 40 beams' worth each for KLD resampling) against the limit.
+// field.beams, and 80 beams' worth each for KLD resampling) against the limit.
 std::vector<Pose2> run_within_budget(g::Localizer& loc, const std::vector<g::ScanStep>& steps, WorkBudget& b) {
   std::vector<Pose2> out;
   out.reserve(steps.size());
@@ -149,7 +149,7 @@ std::vector<Pose2> run_within_budget(g::Localizer& loc, const std::vector<g::Sca
     if (counted && b.done + before * b.per_hypothesis > limit) {
       throw InputError(b.file, 0,
                        fmt::format("mcl: {:.6g} particle-beams done after {} of {} updates, and the next would pass "
-                                   "the limit {} (particles x (field.beams + 40) summed over the updates; see "
+                                   "the limit {} (particles x (field.beams + 80) summed over the updates; see "
                                    "`locbench --help`, \"Input limits\"): use fewer max_particles, a larger kld_bin "
                                    "or a larger update_min_distance",
                                    b.done, made, total, limits::limit_text(limit)));
@@ -157,7 +157,7 @@ std::vector<Pose2> run_within_budget(g::Localizer& loc, const std::vector<g::Sca
     loc.step(steps[i]);
     out.push_back(loc.pose());
     if (counted) {
-      b.done += before * (b.per_hypothesis - 40.0) + static_cast<double>(loc.hypotheses()) * 40.0;
+      b.done += before * (b.per_hypothesis - 80.0) + static_cast<double>(loc.hypotheses()) * 80.0;
       ++made;
     }
   }
