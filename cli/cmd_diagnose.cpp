@@ -16,6 +16,7 @@
 #include "algorithms/diagnosis/diagnosis.h"
 #include "cli/commands.h"
 #include "core/errors.h"
+#include "core/input_limits.h"
 #include "core/json_file.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/diagnosis/twin_scenario.h"
@@ -39,6 +40,7 @@ struct DiagnoseArgs {
   std::string data;
   double false_alarm = 0.01;
   double window = 1.0;
+  double max_records = limits::kDiagnoseOdometryRecords.max;
 };
 
 bool ends_with(const std::string& s, const std::string& e) {
@@ -122,6 +124,13 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
       log = load_catalog_dataset(*entry, root);
     } else {
       log = load_log(a.input);
+      // ~0.2 ms a record: refused before the fits unless --max-records raises the limit.
+      const double records = static_cast<double>(log.encoders.size() + log.odometry.size());
+      if (records > a.max_records) {
+        limits::check(records,
+                      {limits::kDiagnoseOdometryRecords.key, a.max_records, limits::kDiagnoseOdometryRecords.why},
+                      a.input, "odometry records (ENCODER, ODOM)");
+      }
     }
     if (!a.relations.empty()) attach_relations(log, a.relations);
     if (log.source.empty()) log.source = a.input;
@@ -163,6 +172,10 @@ Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--false-alarm", args->false_alarm,
                   "False-alarm level per log and channel, in [1e-12, 0.5) (default 0.01)");
   cmd->add_option("--window", args->window, "Residual window length [s], in (0, 3600] (default 1)");
+  cmd->add_option("--max-records", args->max_records,
+                  "Diagnose a log file with more odometry records than the limit (~0.2 ms each; catalog datasets "
+                  "are exempt)")
+      ->check(CLI::Range(1.0, 1e8));
   add_data_option(cmd, args->data);
   return [args, command_line] { return diagnose(*args, command_line); };
 }

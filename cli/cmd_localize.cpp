@@ -8,10 +8,15 @@
 // map, e.g. the Freiburg ones. Scored against TRUEPOS when the log has it.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
+#include "baselines/global/grid_markov.h"
+#include "baselines/global/monte_carlo_localization.h"
+#include "baselines/global/odometry_motion_model.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/harness/global_harness.h"
 #include "cli/commands.h"
@@ -74,6 +79,91 @@ auto naming_file(const std::string& file, F f) {
   }
 }
 
+// Which scans a global localizer updates on: the first, then every scan after the odometry
+// moved update_min_distance or turned update_min_angle (as MCL and grid Markov gate).
+std::vector<bool> update_flags(const std::vector<g::ScanStep>& steps, double min_distance, double min_angle) {
+  std::vector<bool> flags(steps.size(), false);
+  std::optional<Pose2> last;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    if (last) {
+      const auto d = baselines::global::odometry_delta(*last, steps[i].odometry);
+      if (baselines::global::moved_less_than(d, *last, steps[i].odometry, min_distance, min_angle)) continue;
+    }
+    last = steps[i].odometry;
+    flags[i] = true;
+  }
+  return flags;
+}
+
+// The run's work against its limit (limits::kMclWork, kGridMarkovWork). Grid Markov's is known
+// before any update (cells × (beams + 10) × updates). MCL's depends on how many particles KLD
+// sampling keeps, so the work every run must do (initial_particles, then min_particles with KLD or
+// max_particles without) is checked before any update, and the work done is counted as the filter
+// runs: the run stops with exit 2 before an update would pass the limit.
+struct WorkBudget {
+  std::string method, file;
+  std::vector<bool> updates;
+  double per_hypothesis = 0.0;  // field.beams + 80 (MCL)
+  double done = 0.0;
+};
+
+WorkBudget check_work(const std::string& method, const nlohmann::json& options, const std::vector<g::ScanStep>& steps,
+                      const g::Localizer& loc, const std::string& file) {
+  WorkBudget b{method, file, {}, 0.0, 0.0};
+  if (method == "mcl") {
+    baselines::global::MclOptions o;
+    baselines::global::from_json(options.at("mcl"), o);
+    b.updates = update_flags(steps, o.update_min_distance, o.update_min_angle);
+    b.per_hypothesis = o.field.beams + 80.0;
+    const double updates = static_cast<double>(std::count(b.updates.begin(), b.updates.end(), true));
+    const double least =
+        (o.initial_particles + std::max(0.0, updates - 1.0) * (o.kld ? o.min_particles : o.max_particles)) *
+        b.per_hypothesis;
+    limits::check(least, limits::kMclWork, file,
+                  fmt::format("mcl: at least {} particles x ({} beams + 80) over {} updates ({})", o.initial_particles,
+                              o.field.beams, updates,
+                              o.kld ? "min_particles after the first" : "max_particles after the first, no KLD"));
+  } else if (method == "grid_markov") {
+    baselines::global::GridMarkovOptions o;
+    baselines::global::from_json(options.at("grid_markov"), o);
+    const auto flags = update_flags(steps, o.update_min_distance, o.update_min_angle);
+    const double updates = static_cast<double>(std::count(flags.begin(), flags.end(), true));
+    const double cells = static_cast<double>(loc.hypotheses());
+    limits::check(cells * (o.field.beams + 10.0) * updates, limits::kGridMarkovWork, file,
+                  fmt::format("grid_markov: {} cells x ({} beams + 10) x {} updates", cells, o.field.beams, updates));
+  }
+  return b;
+}
+
+// Runs the localizer over every scan, counting MCL's work (the particles weighed with
+// field.beams, and 80 beams' worth each for KLD resampling) against the limit.
+std::vector<Pose2> run_within_budget(g::Localizer& loc, const std::vector<g::ScanStep>& steps, WorkBudget& b) {
+  std::vector<Pose2> out;
+  out.reserve(steps.size());
+  const double limit = limits::kMclWork.max;
+  const std::size_t total = static_cast<std::size_t>(std::count(b.updates.begin(), b.updates.end(), true));
+  std::size_t made = 0;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const bool counted = b.method == "mcl" && b.updates[i];
+    const double before = counted ? static_cast<double>(loc.hypotheses()) : 0.0;
+    if (counted && b.done + before * b.per_hypothesis > limit) {
+      throw InputError(b.file, 0,
+                       fmt::format("mcl: {:.6g} particle-beams done after {} of {} updates, and the next would pass "
+                                   "the limit {} (particles x (field.beams + 80) summed over the updates; see "
+                                   "`locbench --help`, \"Input limits\"): use fewer max_particles, a larger kld_bin "
+                                   "or a larger update_min_distance",
+                                   b.done, made, total, limits::limit_text(limit)));
+    }
+    loc.step(steps[i]);
+    out.push_back(loc.pose());
+    if (counted) {
+      b.done += before * (b.per_hypothesis - 80.0) + static_cast<double>(loc.hypotheses()) * 80.0;
+      ++made;
+    }
+  }
+  return out;
+}
+
 int localize(const LocalizeArgs& a, const std::string& command_line) {
   const std::string method = canonical_method(a.method);
   if (!std::isfinite(a.map_from_log) || a.map_from_log < 0.0 || a.map_from_log > 1e6) {
@@ -115,7 +205,8 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
   }
   // The options are read here: their errors name the --options file.
   auto loc = naming_file(a.options, [&] { return g::make_localizer(method, map, options, start, a.seed); });
-  const std::vector<Pose2> est = g::run_localizer(*loc, steps, 0, steps.size());
+  WorkBudget budget = check_work(method, options, steps, *loc, a.options.empty() ? a.log : a.options);
+  const std::vector<Pose2> est = run_within_budget(*loc, steps, budget);
 
   Trajectory traj;
   for (std::size_t i = 0; i < steps.size(); ++i) traj.push_back({steps[i].t, est[i]});

@@ -39,6 +39,11 @@ int match(const MatchArgs& a, const std::string& command_line) {
   const LineMap map = sim::load_world(a.map);
   if (map.segments.empty()) throw InputError(a.map, 0, "a map with at least one segment");
   const Log log = load_scan_log(a.log);
+  if (a.matcher == "agglomerative") {
+    double work = 0.0;
+    for (const LaserReading& reading : log.laser) work += std::pow(static_cast<double>(reading.scan.ranges.size()), 2);
+    limits::check(work, limits::kAgglomerativeWork, a.log, "the scans' beams^2 (agglomerative is quadratic in them)");
+  }
   const auto matchers = experiments::make_matchers({a.matcher}, experiments::default_matcher_options(), &map);
   const laser::SegmentMatcher& matcher = *matchers.front();
   const std::optional<Trajectory> odom =

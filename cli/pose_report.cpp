@@ -19,10 +19,13 @@ Log load_scan_log(const std::string& spec) {
   if (log.laser.empty()) {
     throw InputError(spec, 0, "laser scans (FLASER/ROBOTLASER records); the log has none");
   }
+  double ranges = 0.0;
   for (const LaserReading& reading : log.laser) {
     limits::check(static_cast<double>(reading.scan.ranges.size()), limits::kBeamsPerScan, spec,
                   fmt::format("the scan at t = {} (its beams)", reading.scan.timestamp));
+    ranges += static_cast<double>(reading.scan.ranges.size());
   }
+  limits::check(ranges, limits::kLaserRangesPerLog, spec, fmt::format("laser ranges ({} scans)", log.laser.size()));
   return log;
 }
 

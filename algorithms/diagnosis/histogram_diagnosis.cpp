@@ -67,6 +67,7 @@ ResidualHistogram read_histogram(const nlohmann::json& j, const std::string& fil
   std::size_t filled = 0;
   for (double c : h.counts) n += c, filled += c > 0.0 ? 1 : 0;
   limits::check(n, limits::kHistogramTotalCount, file, "counts (their sum)");
+  limits::check(static_cast<double>(filled), limits::kHistogramFilledBins, file, "counts (bins > 0)");
   if (n < 30) bad(fmt::format("too few samples: {} counted, at least 30 needed", n));
   if (filled < 3) {
     bad(

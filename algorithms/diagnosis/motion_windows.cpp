@@ -82,6 +82,9 @@ std::optional<double> interpolate_compass(const std::vector<CompassReading>& com
 
 namespace {
 
+// Faster than any wheeled robot the suite knows (the simulated ones drive at ≤ 1 m/s) [m/s].
+constexpr double kMaxWheelSpeed = 100.0;
+
 void check_nominal(const Log& log, const NominalModel& m) {
   auto bad = [&](const std::string& what) { throw InputError(log.source, 0, what); };
   if (!(m.wheelbase > 0.0) || !(m.meters_per_tick_left > 0.0) || !(m.meters_per_tick_right > 0.0)) {
@@ -137,6 +140,34 @@ void fill_covariates(MotionData& m, MotionWindow& w) {
   }
 }
 
+// The data judged before any fit (issue 26): a robot that never moves gives no test any power
+// (it was "No significant discrepancy"), and ground truth on another scale than the odometry is
+// not a reference (TRUEPOS × 1e300 got the clean log's verdict).
+void check_motion_and_scale(const MotionData& m, const std::string& file) {
+  double odometry_path = 0.0, odometry_turn = 0.0;
+  for (const MotionWindow& w : m.windows) odometry_path += w.distance, odometry_turn += std::abs(w.turn);
+  if (!(odometry_path > 1e-6) && !(odometry_turn > 1e-6)) {
+    throw InputError(file, 0,
+                     fmt::format("the odometry shows no motion in any of its {} windows (0 m, 0 rad): a robot "
+                                 "that never moves leaves nothing to diagnose",
+                                 m.windows.size()));
+  }
+  if (m.reference != ReferenceKind::kTruePose || !(odometry_path > 1.0)) return;
+  double truth_path = 0.0;
+  for (const MotionWindow& w : m.windows) {
+    const auto a = interpolate_truth(m.truth, w.t0), b = interpolate_truth(m.truth, w.t1);
+    if (a && b) truth_path += std::hypot(b->x - a->x, b->y - a->y);
+  }
+  const double ratio = truth_path / odometry_path;
+  if (!(ratio > 1e-2 && ratio < 1e2)) {
+    throw InputError(file, 0,
+                     fmt::format("TRUEPOS travels {:.6g} m over the windows in which the odometry travels {:.6g} m "
+                                 "(ratio {:.3g}): expected ground truth on the odometry's scale (metres), within a "
+                                 "factor of 100",
+                                 truth_path, odometry_path, ratio));
+  }
+}
+
 }  // namespace
 
 MotionData build_motion_data(const Log& log, const WindowOptions& options) {
@@ -161,6 +192,16 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
                          fmt::format("ENCODER at t = {}: the tick counts jump by more than the "
                                      "64-bit range from the previous record",
                                      b.t));
+      }
+      // A step no wheel can make (a tick glitch, a counter reset) is refused with its time rather
+      // than absorbed by the fits (issue 26: a 1e9-tick glitch passed with the clean log's verdict).
+      const double travel = std::max(std::abs(static_cast<double>(dl) * m.nominal.meters_per_tick_left),
+                                     std::abs(static_cast<double>(dr) * m.nominal.meters_per_tick_right));
+      if (!(travel <= kMaxWheelSpeed * (b.t - a.t) + 1.0)) {
+        throw InputError(file, 0,
+                         fmt::format("ENCODER at t = {}: a wheel travels {:.6g} m in {:.6g} s since the previous "
+                                     "record (more than {} m/s and 1 m): a tick glitch or a counter reset?",
+                                     b.t, travel, b.t - a.t, kMaxWheelSpeed));
       }
       m.steps.push_back({a.t, b.t, static_cast<double>(dl), static_cast<double>(dr)});
     }
@@ -321,6 +362,7 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
                                  "reference overlap, at least {} needed",
                                  m.windows.size(), options.duration, options.min_windows));
   }
+  check_motion_and_scale(m, file);
   return m;
 }
 

@@ -33,7 +33,7 @@ struct GridMarkovOptions {
   double update_min_angle = 0.1745329;  // [rad] (10°)
   double prune_threshold = 1e-9;        // cells below this × the maximum are not moved
   double uniform_mix = 1e-3;            // mass spread uniformly after each perception update
-  double max_cells = 5e7;               // refuse larger grids (memory)
+  double max_cells = 1e7;               // refuse larger grids (memory; limits::kGridMarkovCells)
 };
 void to_json(nlohmann::json& j, const GridMarkovOptions& o);
 void from_json(const nlohmann::json& j, GridMarkovOptions& o);  // strict; UsageError

@@ -1,11 +1,14 @@
 #include "baselines/global/likelihood_field.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "baselines/global/options_fields.h"
 #include "core/errors.h"
+#include "core/input_limits.h"
 #include "core/units.h"
 
 namespace locbench::baselines::global {
@@ -41,8 +44,11 @@ LikelihoodField::LikelihoodField(const LineMap& map, const LikelihoodFieldOption
   inv_res_ = 1.0 / res;
   nx_ = static_cast<int>(std::ceil((map_bounds_.width() + 2.0 * options_.margin) / res)) + 1;
   ny_ = static_cast<int>(std::ceil((map_bounds_.height() + 2.0 * options_.margin) / res)) + 1;
-  if (static_cast<double>(nx_) * ny_ > 4e8) {
-    throw UsageError("likelihood field: more than 4e8 cells; use a coarser resolution");
+  if (const double cells = static_cast<double>(nx_) * ny_; !(cells <= limits::kLikelihoodFieldCells.max)) {
+    throw UsageError(
+        fmt::format("likelihood field: {:.6g} cells exceed the limit {} (field.resolution {} m, "
+                    "field.margin {} m; see `locbench --help`, \"Input limits\"): use a coarser resolution",
+                    cells, limits::limit_text(limits::kLikelihoodFieldCells.max), res, options_.margin));
   }
   const std::size_t n = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
   // Nearest-segment transform: seed the cells the segments pass through, then propagate the

@@ -123,5 +123,34 @@ TEST(MotionWindows, AGapLongerThanMaxGapEndsAWindow) {
   }
 }
 
+// Issue 26: the data are judged before any fit. A robot that never moves leaves no test any
+// power; truth on another scale than the odometry is not a reference.
+TEST(MotionWindows, ARobotThatNeverMovesIsAnErrorNotAVerdict) {
+  Log log = arc_log();
+  for (auto& o : log.odometry) o.pose = {}, o.tv = 0.0, o.rv = 0.0;
+  for (auto& p : log.truth) p.pose = {};
+  try {
+    build_motion_data(log);
+    FAIL() << "a motionless log made windows";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("never moves"), std::string::npos) << e.what();
+  }
+}
+
+TEST(MotionWindows, TruthOnAnotherScaleThanTheOdometryIsAnError) {
+  Log log = arc_log();
+  for (auto& p : log.truth) p.pose.x *= 1000.0, p.pose.y *= 1000.0;
+  try {
+    build_motion_data(log);
+    FAIL() << "truth x1000 made windows";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("TRUEPOS travels"), std::string::npos) << e.what();
+  }
+  // ×50 (a scale error a diagnosis should find, not refuse) is accepted.
+  log = arc_log();
+  for (auto& p : log.truth) p.pose.x *= 50.0, p.pose.y *= 50.0;
+  EXPECT_NO_THROW(build_motion_data(log));
+}
+
 }  // namespace
 }  // namespace locbench::diagnosis

@@ -58,9 +58,9 @@ TEST(LandmarkMap, ARepeatedIdIsAnInputErrorNamingBothLines) {
 
 TEST(LandmarkMap, MoreLandmarksThanTheInputLimitAreAnInputErrorNamingTheLimit) {
   std::string text;
-  for (int i = 0; i <= 100'000; ++i) text += std::to_string(i) + " 0 0\n";
+  for (int i = 0; i <= 10'000; ++i) text += std::to_string(i) + " 0 0\n";
   EXPECT_TRUE(throws_input_error([&] { parse_landmark_map(text, "big.txt"); }, "big.txt", 0,
-                                 {"landmarks: 100001 exceeds the limit 100000"}));
+                                 {"landmarks: 10001 exceeds the limit 10000"}));
 }
 
 TEST(LandmarkObservationsFile, ReadsTimeIdRangeBearingWithTheLineOfEach) {
