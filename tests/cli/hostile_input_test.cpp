@@ -660,16 +660,16 @@ const std::vector<HostileCase>& cases() {
        "landmarks: 10001 exceeds the limit 10000"},
       {"landmark_observations_at_the_limit",
        kShortLog + file("m.txt", "6 0 0") +
-           "awk 'BEGIN{for(i=0;i<10000;i++) printf \"%.5f 6 1.5 0.2\\n\", 0.1 + i * 0.0002}' > '{d}/o.txt'",
+           "awk 'BEGIN{for(i=0;i<200000;i++) printf \"%.5f 6 1.5 0.2\\n\", 0.1 + i * 0.0002}' > '{d}/o.txt'",
        "run odometry/real_logs --log {d}/l.clf --landmark-map {d}/m.txt --landmark-observations {d}/o.txt --out "
        "{d}/out",
        1, "failed"},
       {"landmark_observations_past_the_limit",
        kShortLog + file("m.txt", "6 0 0") +
-           "awk 'BEGIN{for(i=0;i<10001;i++) printf \"%.5f 6 1.5 0.2\\n\", 0.1 + i * 0.0002}' > '{d}/o.txt'",
+           "awk 'BEGIN{for(i=0;i<200001;i++) printf \"%.5f 6 1.5 0.2\\n\", 0.1 + i * 0.0002}' > '{d}/o.txt'",
        "run odometry/real_logs --log {d}/l.clf --landmark-map {d}/m.txt --landmark-observations {d}/o.txt --out "
        "{d}/out",
-       2, "exceeds the limit 10000"},
+       2, "exceeds the limit 200000"},
       {"run_runs_past_the_limit", "", "run odometry/sim_corridor --runs 1001 --out {d}/out", 2,
        "--runs: Value 1001 not in range 1 to 1000"},
       {"run_set_runs_past_the_limit", "", "run odometry/sim_corridor --set runs=1001 --out {d}/out", 2,
