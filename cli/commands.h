@@ -1,6 +1,8 @@
 #pragma once
 // One small file per verb; each registers its sub-command and returns the exit code.
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -35,8 +37,19 @@ inline void add_data_option(CLI::App* cmd, std::string& data) {
 
 // --seed, as every verb that draws random numbers declares it: 0 … 2^53 − 1, the integers a
 // JSON report keeps exactly (a negative seed is refused, not wrapped to 2^64 − 5).
+// Text that is not an integer at all ("abc", "1.5") is named as such before the range check.
 inline CLI::Option* add_seed_option(CLI::App* cmd, std::uint64_t& seed, const std::string& description) {
+  const CLI::Validator integer(
+      [](std::string& text) {
+        const std::size_t digits = !text.empty() && text.front() == '-' ? 1 : 0;
+        const bool ok =
+            text.size() > digits && std::all_of(text.begin() + static_cast<std::ptrdiff_t>(digits), text.end(),
+                                                [](unsigned char c) { return std::isdigit(c) != 0; });
+        return ok ? std::string() : "Value " + text + " is not a whole number";
+      },
+      "INTEGER", "integer");
   return cmd->add_option("--seed", seed, description + " (0 … 2^53 − 1)")
+      ->check(integer)
       ->check(CLI::Range(std::uint64_t{0}, (std::uint64_t{1} << 53) - 1));
 }
 
