@@ -20,6 +20,19 @@ reports::MetricResult count(const std::string& twin, const std::string& variant,
   return r;
 }
 
+reports::Plot scatter_chart(const std::string& name, const std::string& title, const std::string& x_label,
+                            const std::string& x_unit, const std::string& y_label, const std::string& y_unit) {
+  reports::Plot p;
+  p.name = name;
+  p.kind = "scatter";
+  p.title = title;
+  p.x_label = x_label;
+  p.x_unit = x_unit;
+  p.y_label = y_label;
+  p.y_unit = y_unit;
+  return p;
+}
+
 }  // namespace
 
 std::string cell_lines(const std::vector<PredictivityCell>& cells, const std::string& unit) {
@@ -50,13 +63,7 @@ std::vector<reports::MetricResult> predictivity_results(const std::string& metri
 
 reports::Plot interval_plot(const std::string& name, const std::string& title, const std::string& unit,
                             const std::vector<PredictivityCell>& cells) {
-  reports::Plot p;
-  p.name = name;
-  p.kind = "scatter";
-  p.title = title;
-  p.x_label = "method";
-  p.y_label = "value";
-  p.y_unit = unit;
+  reports::Plot p = scatter_chart(name, title, "method", "", "value", unit);
   reports::PlotSeries real{"real", {}, {}}, nominal{"nominal twin intervals", {}, {}},
       extended{"extended twin intervals", {}, {}};
   std::string order;
@@ -74,20 +81,14 @@ reports::Plot interval_plot(const std::string& name, const std::string& title, c
     order += fmt::format("{}{} = {}", i ? ", " : "", i, c.method);
   }
   p.series = {real, nominal, extended};
-  p.note = "x: " + order + "; bars: the twins' 95% predictive intervals (20 seeded runs each)";
+  p.note = fmt::format("x: {}; bars: the twins' 95% predictive intervals ({} seeded runs each)", order,
+                       cells.empty() ? 0 : cells.front().nominal.runs);
   return p;
 }
 
 reports::Plot scatter_plot(const std::string& name, const std::string& title, const std::string& unit,
                            const std::vector<PredictivityCell>& cells) {
-  reports::Plot p;
-  p.name = name;
-  p.kind = "scatter";
-  p.title = title;
-  p.x_label = "real";
-  p.x_unit = unit;
-  p.y_label = "twin's prediction (median)";
-  p.y_unit = unit;
+  reports::Plot p = scatter_chart(name, title, "real", unit, "twin's prediction (median)", unit);
   reports::PlotSeries nominal{"nominal twin", {}, {}}, extended{"extended twin", {}, {}}, identity{"identity", {}, {}};
   double lo = INFINITY, hi = -INFINITY;
   for (const PredictivityCell& c : cells) {
