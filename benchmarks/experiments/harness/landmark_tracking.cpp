@@ -94,9 +94,27 @@ TrackingData tracking_data(const Log& log, double from, double to, double wheelb
   return data;
 }
 
-NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::vector<double>& r, std::size_t lags) {
+namespace {
+
+// var(mean)/σ² of n observations at spacing g under ρ(Δt) = s·e^(−Δt/τ):
+// ((1 − s) + s·S)/n, S = 1 + 2Σ_{k=1}^{n−1}(1 − k/n)a^k = 1 + 2[a/(1 − a) − a(1 − aⁿ)/(n(1 − a)²)].
+double block_mean_variance(double n, double g, double share, double tau) {
+  const double a = std::exp(-g / tau);
+  double pairs = n - 1.0;  // 2Σ as a → 1: every pair fully correlated
+  if (1.0 - a > 1e-9) pairs = 2.0 * (a / (1.0 - a) - a * (1.0 - std::pow(a, n)) / (n * (1.0 - a) * (1.0 - a)));
+  return ((1.0 - share) + share * (1.0 + std::clamp(pairs, 0.0, n - 1.0))) / n;
+}
+
+struct BlockScale {
+  double observed = 0.0;                          // mean over blocks of (block mean − overall mean)² / variance
+  std::vector<std::pair<double, double>> blocks;  // (count, spacing)
+};
+
+}  // namespace
+
+NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::vector<double>& r) {
   NoiseCorrelation none;
-  if (r.size() < 4 * lags || t.size() != r.size() || lags < 1) return none;
+  if (r.size() < 40 || t.size() != r.size()) return none;
   std::vector<double> x = r;
   const double med = quantile(x, 0.5);
   std::vector<double> dev(x.size());
@@ -106,30 +124,61 @@ NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::
   const double m = mean(x);
   double var = 0.0;
   for (double v : x) var += (v - m) * (v - m);
+  var /= static_cast<double>(x.size());
   if (!(var > 0.0)) return none;
-  std::vector<double> rho(lags + 1, 0.0);
-  double sum = 0.0;
-  for (std::size_t k = 1; k <= lags; ++k) {
-    for (std::size_t i = 0; i + k < x.size(); ++i) rho[k] += (x[i] - m) * (x[i + k] - m);
-    rho[k] /= var;
-    sum += rho[k];
-  }
-  if (!(rho[1] > 0.0) || !(sum > 0.0)) return none;
-  const double L = static_cast<double>(lags);
-  const auto model_sum = [&](double a) { return rho[1] * (1.0 - std::pow(a, L)) / (1.0 - a); };
-  double lo = std::min(rho[1], 0.999), hi = 0.999;
-  double a = lo;
-  if (model_sum(hi) <= sum) {
-    a = hi;
-  } else if (model_sum(lo) < sum) {
-    for (int i = 0; i < 60; ++i) {
-      a = 0.5 * (lo + hi);
-      (model_sum(a) < sum ? lo : hi) = a;
+
+  std::vector<BlockScale> scales;
+  for (const double length : kCorrelationScales) {
+    BlockScale scale;
+    double squares = 0.0;
+    for (std::size_t i = 0; i < x.size();) {
+      const double start = t.front() + length * std::floor((t[i] - t.front()) / length);
+      std::size_t j = i;
+      double sum = 0.0;
+      while (j < x.size() && t[j] < start + length) sum += x[j++];
+      const double n = static_cast<double>(j - i);
+      if (j - i >= 2) {
+        scale.blocks.emplace_back(n, (t[j - 1] - t[i]) / (n - 1.0));
+        squares += (sum / n - m) * (sum / n - m) / var;
+      }
+      i = j;
     }
+    if (scale.blocks.size() < kMinBlocksPerScale) continue;
+    scale.observed = squares / static_cast<double>(scale.blocks.size());
+    if (scale.observed > 0.0) scales.push_back(std::move(scale));
   }
-  const double gap = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
-  if (!(gap > 0.0) || !(a > 0.0)) return none;
-  return {std::min(1.0, rho[1] / a), -gap / std::log(a)};
+  if (scales.size() < 2) return none;
+
+  const auto misfit = [&](double share, double tau) {
+    double e = 0.0;
+    for (const BlockScale& scale : scales) {
+      double model = 0.0;
+      for (const auto& [n, g] : scale.blocks) model += block_mean_variance(n, std::max(g, 1e-6), share, tau);
+      const double d = std::log(scale.observed) - std::log(model / static_cast<double>(scale.blocks.size()));
+      e += d * d;
+    }
+    return e;
+  };
+  // A coarse grid, then a finer one around its best: share in [0, 1], τ log-spaced from 0.1 s to the
+  // longest block length (a longer time is not seen by the blocks, and would draw a constant offset).
+  double best_share = 0.0, best_tau = 1.0, best = misfit(0.0, 1.0);
+  const auto search = [&](double s_lo, double s_hi, int s_steps, double ln_lo, double ln_hi, int t_steps) {
+    for (int i = 0; i <= s_steps; ++i) {
+      const double share = s_lo + (s_hi - s_lo) * i / s_steps;
+      for (int j = 0; j <= t_steps; ++j) {
+        const double tau = std::exp(ln_lo + (ln_hi - ln_lo) * j / t_steps);
+        const double e = misfit(share, tau);
+        if (e < best) best = e, best_share = share, best_tau = tau;
+      }
+    }
+  };
+  const double ln_lo = std::log(0.1), ln_hi = std::log(std::end(kCorrelationScales)[-1]);
+  search(0.0, 1.0, 20, ln_lo, ln_hi, 40);
+  const double ds = 0.05, dl = (ln_hi - ln_lo) / 40.0;
+  search(std::max(0.0, best_share - ds), std::min(1.0, best_share + ds), 10, std::max(ln_lo, std::log(best_tau) - dl),
+         std::min(ln_hi, std::log(best_tau) + dl), 10);
+  if (!(best_share > 0.0)) return none;
+  return {best_share, best_tau};
 }
 
 LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSensorModel sensor) {

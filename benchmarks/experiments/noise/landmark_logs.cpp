@@ -79,6 +79,7 @@ struct Options {
   double rmse_tolerance = FamilyOptions{}.rmse_tolerance;
   std::string model_file;  // a `locbench diagnose --report` file: its models instead of fitting the first half
   int twin_runs = 20;      // seeded runs of each twin of the held-out half (0: no twin predictions)
+  bool twin_replays_tuning_half = false;  // the twins replay the tuning half instead (the model's own check)
 };
 template <class V>
 void visit_fields(V& v, Options& o) {
@@ -106,6 +107,9 @@ void visit_fields(V& v, Options& o) {
   v.field("model_file", o.model_file, "", Range{}, "diagnosis report whose models replace the first-half fit");
   v.field("twin_runs", o.twin_runs, "", at_least(0),
           "seeded runs of the nominal and the extended twin of each held-out half (0: no twin predictions)");
+  v.flag("twin_replays_tuning_half", o.twin_replays_tuning_half,
+         "the twins replay the tuning half, the one their models were fitted on, and are scored against the tuned "
+         "methods' real results there: what they miss is the model's own, not a change of the log between halves");
 }
 LOCBENCH_EXPERIMENT_OPTIONS(Options)
 
@@ -164,7 +168,14 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
   o.models.nominal_sensor.structure = {};
   if (o.tuning_noise) o.models.diagnosed_sensor.structure = o.tuning_noise->structure;
   o.motion_structure = fit_motion_noise_structure(train.motion, o.models.diagnosed_motion);
-  if (c.twin_runs > 0) {
+  if (c.twin_runs > 0 && c.twin_replays_tuning_half) {
+    // The model's own check: twins of the half it was fitted on, against the tuned methods' real
+    // results there. What they miss here is the model's, not a change of the log between halves.
+    std::vector<MethodScore> replayed = o.scores;
+    const std::vector<TrackResult> tuning = run_tuned(train, replayed, o.models, family);
+    for (std::size_t i = 0; i < replayed.size(); ++i) replayed[i].heldout = tuning[i];
+    o.twin_cells = twin_predictions(train, replayed, o.models, family, {c.twin_runs, twin_seed}, o.motion_structure);
+  } else if (c.twin_runs > 0) {
     o.twin_cells = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed}, o.motion_structure);
   }
   return o;
@@ -467,10 +478,10 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     out.plots.push_back(error_plot(ds, o, true));
     if (!o.twin_cells.empty()) {
       std::string twins = fmt::format(
-          "{} — twin forecasts of the held-out half: each method at its tuned setting on {} seeded runs of the "
+          "{} — twin forecasts of the {}: each method at its tuned setting on {} seeded runs of the "
           "nominal twin (fitted floor, nominal sensor) and of the extended twin (every diagnosed cause, the fitted "
           "landmark sensor); the real value beside each twin's 95% predictive interval",
-          ds, o.twin_cells.begin()->second.front().nominal.runs);
+          ds, twin_part(c), o.twin_cells.begin()->second.front().nominal.runs);
       for (const auto& [name, m] :
            {std::pair{"nominal", o.models.nominal_sensor}, std::pair{"extended", o.models.diagnosed_sensor}}) {
         twins += fmt::format(
@@ -483,10 +494,17 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         twins += fmt::format("\n  {}:{}", metric, cell_lines(cells, metric_unit(metric)));
       }
       out.notes.push_back(twins);
-      out.plots.push_back(interval_plot(ds + "_twin_intervals_position_rmse",
-                                        ds + ": held-out position RMSE, real and forecast by the twins", "m",
-                                        o.twin_cells.at("position_rmse")));
+      out.plots.push_back(
+          interval_plot(ds + "_twin_intervals_position_rmse",
+                        fmt::format("{}: position RMSE on the {}, real and forecast by the twins", ds, twin_part(c)),
+                        "m", o.twin_cells.at("position_rmse")));
     }
+  }
+
+  // Which half the twins replay (option twin_replays_tuning_half).
+  static const char* twin_part(const Options& c) {
+    return c.twin_replays_tuning_half ? "tuning half (the model's own check: the half it was fitted on)"
+                                      : "held-out half";
   }
 
   static std::string metric_unit(const std::string& metric) {
@@ -505,11 +523,12 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     if (all.empty()) return;
     std::size_t cells_total = 0, covered_nominal = 0, covered_extended = 0;
     std::string text = fmt::format(
-        "Twin predictivity (issue 29), {} seeded runs per twin and log; per metric across methods × logs (never "
+        "Twin predictivity (issue 29) on the {}, {} seeded runs per twin and log; per metric across methods × logs "
+        "(never "
         "pooled across metrics): cells covered by the 95% predictive interval, Pearson r and Spearman ρ of the "
         "prediction (median) against the real value, MMRV of the method ranking per log (relative to the log's "
         "mean real value); cells of a method whose real run diverged are covered or not but not correlated.",
-        c.twin_runs);
+        twin_part(c), c.twin_runs);
     for (const auto& [metric, cells] : all) {
       const MetricPredictivity m = predictivity(cells);
       for (auto& r : predictivity_results(metric, m)) out.results.push_back(std::move(r));
