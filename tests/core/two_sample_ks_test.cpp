@@ -63,5 +63,43 @@ TEST(TwoSampleKs, NonFiniteValuesAreLeftOutAndEmptySamplesGiveNoEvidence) {
   EXPECT_DOUBLE_EQ(r.p_value, 1.0);
 }
 
+// Residuals correlated in time (AR(1), a = 0.9: about 19 values per independent one) from the
+// model itself: the asymptotic p-value, which assumes independence, rejects most of them; the
+// block bootstrap keeps near its level, and still rejects a shift of half a σ.
+TEST(KsBlockBootstrap, CorrelatedSamplesOfTheModelAreRarelyRejectedAndShiftedOnesAre) {
+  Rng rng(4);
+  const auto ar = [&](std::size_t n, double shift) {
+    std::vector<double> v;
+    double x = rng.normal();
+    for (std::size_t i = 0; i < n; ++i) {
+      x = 0.9 * x + std::sqrt(1.0 - 0.81) * rng.normal();
+      v.push_back(x + shift);
+    }
+    return v;
+  };
+  int naive = 0, bootstrap = 0, shifted = 0;
+  const int trials = 40;
+  for (int k = 0; k < trials; ++k) {
+    std::vector<std::vector<double>> runs;
+    for (int j = 0; j < 20; ++j) runs.push_back(ar(400, 0.0));
+    const std::vector<double> same = ar(400, 0.0), moved = ar(400, 1.5);  // 1.5 ≈ 0.5 σ of the block means' spread
+    std::vector<double> pool;
+    for (const auto& r : runs) pool.insert(pool.end(), r.begin(), r.end());
+    naive += ks_two_sample(same, pool).p_value < 0.05 ? 1 : 0;
+    bootstrap += ks_block_bootstrap(same, runs, 40, 200, rng).p_value < 0.05 ? 1 : 0;
+    shifted += ks_block_bootstrap(moved, runs, 40, 200, rng).p_value < 0.05 ? 1 : 0;
+  }
+  EXPECT_GE(naive, trials / 2) << "independence assumed: most correlated samples rejected";
+  EXPECT_LE(bootstrap, 6) << "≈ 2 expected at the 5% level";
+  EXPECT_GE(shifted, trials - 4);
+}
+
+TEST(KsBlockBootstrap, AnEmptySampleOrPoolGivesNoEvidence) {
+  Rng rng(1);
+  const std::vector<double> a{1.0, 2.0}, empty;
+  EXPECT_DOUBLE_EQ(ks_block_bootstrap(empty, {a}, 10, 100, rng).p_value, 1.0);
+  EXPECT_DOUBLE_EQ(ks_block_bootstrap(a, {}, 10, 100, rng).p_value, 1.0);
+}
+
 }  // namespace
 }  // namespace locbench

@@ -1,5 +1,6 @@
 #include "benchmarks/experiments/harness/landmark_twin_runs.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -16,7 +17,18 @@ const char* const kHorizonNames[] = {"rpe_1s", "rpe_10s", "rpe_60s"};
 struct RunMetrics {
   std::map<std::string, std::vector<double>> per_method;  // metric → one value per method
   std::map<std::string, double> dead_reckoning;           // metric → value
+  std::array<std::vector<double>, 3> residuals;           // 1 s window residuals x, y, θ (time order)
 };
+
+std::array<std::vector<double>, 3> window_residuals(const TrackingData& data) {
+  std::array<std::vector<double>, 3> out;
+  for (const diagnosis::MotionWindow& w : data.motion.windows) {
+    const diagnosis::WindowResidual r = diagnosis::window_residual(data.motion, w, diagnosis::OdometryModel{});
+    if (!r.valid || r.heading_only) continue;
+    for (int c = 0; c < 3; ++c) out[c].push_back(r.r(c));
+  }
+  return out;
+}
 
 RunMetrics run_metrics(const TrackingData& data, const std::vector<TrackResult>& results, const FamilyOptions& family) {
   RunMetrics m;
@@ -29,6 +41,7 @@ RunMetrics run_metrics(const TrackingData& data, const std::vector<TrackResult>&
   m.dead_reckoning["dead_reckoning_rmse"] = dead_reckoning(data, family.gate).position_rmse();
   for (std::size_t h = 0; h < std::size(kHorizons); ++h)
     m.dead_reckoning[kHorizonNames[h]] = odometry_rpe(data, kHorizons[h]);
+  m.residuals = window_residuals(data);
   return m;
 }
 
@@ -49,9 +62,9 @@ double odometry_rpe(const TrackingData& data, double horizon_s) {
   return e.segments > 0 ? e.translation_rms : std::numeric_limits<double>::quiet_NaN();
 }
 
-PredictivityCells twin_predictions(const TrackingData& test, const std::vector<MethodScore>& tuned,
-                                   const FilterModels& models, const FamilyOptions& family,
-                                   const TwinRunOptions& options, const MotionNoiseStructure& extended_structure) {
+TwinForecast twin_predictions(const TrackingData& test, const std::vector<MethodScore>& tuned,
+                              const FilterModels& models, const FamilyOptions& family, const TwinRunOptions& options,
+                              const MotionNoiseStructure& extended_structure) {
   std::vector<TrackResult> real_results;
   for (const MethodScore& m : tuned) real_results.push_back(m.heldout);
   const RunMetrics real = run_metrics(test, real_results, family);
@@ -72,7 +85,8 @@ PredictivityCells twin_predictions(const TrackingData& test, const std::vector<M
     for (const RunMetrics& r : runs[j]) v.push_back(value(r));
     return predictive_interval(v);
   };
-  PredictivityCells cells;
+  TwinForecast forecast;
+  PredictivityCells& cells = forecast.cells;
   for (const auto& [metric, values] : real.per_method) {
     for (std::size_t i = 0; i < tuned.size(); ++i) {
       PredictivityCell c;
@@ -94,7 +108,21 @@ PredictivityCells twin_predictions(const TrackingData& test, const std::vector<M
     c.extended = interval(1, [&](const RunMetrics& r) { return r.dead_reckoning.at(metric); });
     cells[metric].push_back(c);
   }
-  return cells;
+  Rng rng(Rng::derive_seed(options.seed, 1u << 20));
+  const char* const components[] = {"x", "y", "theta"};
+  for (int c = 0; c < 3; ++c) {
+    ResidualKs k;
+    k.log = test.log;
+    k.component = components[c];
+    for (int j = 0; j < 2; ++j) {
+      std::vector<std::vector<double>> twin_runs;
+      for (const RunMetrics& r : runs[j]) twin_runs.push_back(r.residuals[c]);
+      (j == 0 ? k.nominal : k.extended) =
+          ks_block_bootstrap(real.residuals[c], twin_runs, kKsBlockWindows, kKsResamples, rng);
+    }
+    forecast.residuals.push_back(std::move(k));
+  }
+  return forecast;
 }
 
 }  // namespace locbench::experiments::landmarks

@@ -20,6 +20,7 @@
 #include "benchmarks/experiments/harness/landmark_family.h"
 #include "benchmarks/experiments/harness/landmark_twin.h"
 #include "benchmarks/experiments/harness/predictivity.h"
+#include "core/two_sample_ks.h"
 
 namespace locbench::experiments::landmarks {
 
@@ -30,11 +31,27 @@ struct TwinRunOptions {
 
 using PredictivityCells = std::map<std::string, std::vector<PredictivityCell>>;  // by metric
 
+// How the part's 1 s window residuals (the logged odometry under the nominal model against the
+// truth; x along, y left, θ) compare with each twin's, pooled over its runs: the KS distance with a
+// block-bootstrap p-value (core/two_sample_ks.h; blocks of kKsBlockWindows windows, so the
+// neighbours' correlation is kept). p > 0.05: the twin's residuals are not distinguishable.
+inline constexpr std::size_t kKsBlockWindows = 10;
+inline constexpr int kKsResamples = 200;
+struct ResidualKs {
+  std::string log, component;  // "x", "y", "theta"
+  KsBootstrap nominal, extended;
+};
+
+struct TwinForecast {
+  PredictivityCells cells;
+  std::vector<ResidualKs> residuals;  // one per component
+};
+
 // `tuned` holds the real held-out results (MethodScore::heldout) on `test`; the extended twin's
 // window residuals are correlated in time by `extended_structure` (the nominal twin's are white).
-PredictivityCells twin_predictions(const TrackingData& test, const std::vector<MethodScore>& tuned,
-                                   const FilterModels& models, const FamilyOptions& family,
-                                   const TwinRunOptions& options, const MotionNoiseStructure& extended_structure = {});
+TwinForecast twin_predictions(const TrackingData& test, const std::vector<MethodScore>& tuned,
+                              const FilterModels& models, const FamilyOptions& family, const TwinRunOptions& options,
+                              const MotionNoiseStructure& extended_structure = {});
 
 // The RMS relative pose error of the logged odometry against the data's truth over chains of
 // windows `horizon_s` long [m] (NaN when no chain fits).

@@ -61,6 +61,17 @@ std::vector<reports::MetricResult> predictivity_results(const std::string& metri
   return out;
 }
 
+std::vector<reports::MetricResult> residual_ks_results(std::size_t cells, std::size_t nominal, std::size_t extended) {
+  std::vector<reports::MetricResult> out;
+  for (const auto& [twin, n] : {std::pair{"nominal_twin", nominal}, std::pair{"extended_twin", extended}}) {
+    out.push_back(count(twin, "residual_ks_indistinguishable_fraction",
+                        cells ? static_cast<double>(n) / static_cast<double>(cells) : 0.0, cells, "higher",
+                        "cells (log × component) whose 1 s window residuals the KS block bootstrap cannot tell "
+                        "from the log's (p > 0.05)"));
+  }
+  return out;
+}
+
 reports::Plot interval_plot(const std::string& name, const std::string& title, const std::string& unit,
                             const std::vector<PredictivityCell>& cells) {
   reports::Plot p = scatter_chart(name, title, "method", "", "value", unit);

@@ -24,6 +24,10 @@ inline constexpr std::size_t kMinCorrelatedCells = 8;
 // Pearson r, Spearman ρ and MMRV.
 std::vector<reports::MetricResult> predictivity_results(const std::string& metric, const MetricPredictivity& m);
 
+// The share of `cells` residual comparisons (log × component) whose twin residuals the KS block
+// bootstrap cannot tell from the log's (p > 0.05), for each twin: "residual_ks_indistinguishable_fraction".
+std::vector<reports::MetricResult> residual_ks_results(std::size_t cells, std::size_t nominal, std::size_t extended);
+
 // The per-log picture: methods along x (in the order of `cells`), the real value as a point and
 // the nominal and extended twins' 95% predictive intervals as bars beside it.
 reports::Plot interval_plot(const std::string& name, const std::string& title, const std::string& unit,

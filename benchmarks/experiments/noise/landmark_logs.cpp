@@ -125,8 +125,9 @@ struct Outcome {
   // The sensor noise measured against the truth on each half (a check of stationarity, used by no
   // method): a held-out half noisier than the tuning half makes every tuned setting overconfident.
   std::optional<LandmarkSensorModel> tuning_noise, heldout_noise;
-  PredictivityCells twin_cells;           // the twins' forecasts of the held-out results (empty: twin_runs 0)
-  MotionNoiseStructure motion_structure;  // of the diagnosed model's window residuals, tuning half
+  PredictivityCells twin_cells;            // the twins' forecasts of the held-out results (empty: twin_runs 0)
+  std::vector<ResidualKs> twin_residuals;  // the twins' 1 s window residuals against the log's
+  MotionNoiseStructure motion_structure;   // of the diagnosed model's window residuals, tuning half
 };
 
 // measured_sensor_noise, or nothing when the span has too few residuals to measure it.
@@ -174,9 +175,13 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
     std::vector<MethodScore> replayed = o.scores;
     const std::vector<TrackResult> tuning = run_tuned(train, replayed, o.models, family);
     for (std::size_t i = 0; i < replayed.size(); ++i) replayed[i].heldout = tuning[i];
-    o.twin_cells = twin_predictions(train, replayed, o.models, family, {c.twin_runs, twin_seed}, o.motion_structure);
+    TwinForecast f = twin_predictions(train, replayed, o.models, family, {c.twin_runs, twin_seed}, o.motion_structure);
+    o.twin_cells = std::move(f.cells);
+    o.twin_residuals = std::move(f.residuals);
   } else if (c.twin_runs > 0) {
-    o.twin_cells = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed}, o.motion_structure);
+    TwinForecast f = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed}, o.motion_structure);
+    o.twin_cells = std::move(f.cells);
+    o.twin_residuals = std::move(f.residuals);
   }
   return o;
 }
@@ -493,6 +498,14 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
       for (const auto& [metric, cells] : o.twin_cells) {
         twins += fmt::format("\n  {}:{}", metric, cell_lines(cells, metric_unit(metric)));
       }
+      twins +=
+          "\n  1 s window residuals of the logged odometry (nominal model) against each twin's, pooled over its "
+          "runs: KS distance D, block-bootstrap p (blocks of 10 windows; p > 0.05: not distinguishable):";
+      for (const ResidualKs& k : o.twin_residuals) {
+        twins +=
+            fmt::format("\n    {:<6} {} windows | nominal twin D {:.3f}, p {:.3f} | extended twin D {:.3f}, p {:.3f}",
+                        k.component, k.extended.n, k.nominal.d, k.nominal.p_value, k.extended.d, k.extended.p_value);
+      }
       out.notes.push_back(twins);
       out.plots.push_back(
           interval_plot(ds + "_twin_intervals_position_rmse",
@@ -556,6 +569,22 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         "\n  All cells: the extended twin covers {} of {} ({:.0f}%; target ≥ 80%), the nominal twin {} ({:.0f}%).",
         covered_extended, cells_total, 100.0 * extended_fraction, covered_nominal,
         cells_total ? 100.0 * covered_nominal / cells_total : 0.0);
+    std::size_t ks_cells = 0, ks_nominal = 0, ks_extended = 0;
+    for (const Outcome& o : outcomes) {
+      for (const ResidualKs& k : o.twin_residuals) {
+        ++ks_cells;
+        ks_nominal += k.nominal.p_value > 0.05 ? 1 : 0;
+        ks_extended += k.extended.p_value > 0.05 ? 1 : 0;
+      }
+    }
+    if (ks_cells > 0) {
+      text += fmt::format(
+          "\n  1 s window residuals (logs × x, y, θ): not distinguishable from the log (block-bootstrap p > 0.05) in "
+          "{} "
+          "of {} cells for the extended twin (target ≥ 2/3, and more than the nominal twin), {} for the nominal twin.",
+          ks_extended, ks_cells, ks_nominal);
+      for (auto& r : residual_ks_results(ks_cells, ks_nominal, ks_extended)) out.results.push_back(std::move(r));
+    }
     if (const auto it = all.find("rpe_60s"); it != all.end()) {
       std::size_t covered = 0;
       for (const PredictivityCell& cell : it->second) covered += cell.extended.covers(cell.real) ? 1 : 0;
