@@ -68,6 +68,16 @@ void add_landmark_causes(std::vector<CauseSpec>& c) {
                  return "the range noise grows with range: σ_r(ρ)² = σ_r² + (" + ci(x, 0) +
                         "·ρ)², which the constant-noise model misses";
                }});
+  c.push_back({.id = cause::kLandmarkTurnNoise,
+               .channel = "landmark",
+               .params = {{"slope", "s", nullptr, 0.01, 1e-3, true, 0.0, 0.5}},
+               .metric = lk,
+               .noise = true,
+               .explains = {"heteroscedasticity:landmark_bearing", "heavy_tails:landmark_bearing"},
+               .explain = [](const Cause& x) {
+                 return "the bearing noise grows with the turn rate ω: σ_b(ω)² = σ_b² + (" + ci(x, 0) +
+                        " s·ω)², which the constant-noise model misses (blur or timing jitter while turning)";
+               }});
   c.push_back({.id = cause::kLandmarkPositionError,
                .channel = "landmark",
                .params = {{"dx_m", "m", nullptr, 0.0, 1e-2, false, -2.0, 2.0},

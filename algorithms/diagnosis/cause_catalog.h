@@ -37,6 +37,7 @@ inline constexpr std::string_view kLandmarkRangeBias = "landmark_range_bias";
 inline constexpr std::string_view kLandmarkBearingBias = "landmark_bearing_bias";
 inline constexpr std::string_view kLandmarkTimeOffset = "landmark_time_offset";
 inline constexpr std::string_view kLandmarkRangeNoise = "landmark_range_dependent_noise";
+inline constexpr std::string_view kLandmarkTurnNoise = "landmark_turn_dependent_bearing_noise";
 inline constexpr std::string_view kLandmarkHeavyTails = "landmark_heavy_tails";
 inline constexpr std::string_view kLandmarkPositionError = "landmark_position_error";
 }  // namespace cause

@@ -39,6 +39,7 @@ LmField field_of(std::string_view id, std::size_t k) {
   if (id == cause::kLandmarkRangeBias) return &LandmarkModel::range_bias;
   if (id == cause::kLandmarkBearingBias) return &LandmarkModel::bearing_bias;
   if (id == cause::kLandmarkRangeNoise) return &LandmarkModel::range_noise_slope;
+  if (id == cause::kLandmarkTurnNoise) return &LandmarkModel::bearing_noise_turn_slope;
   if (id == cause::kLandmarkHeavyTails) return &LandmarkModel::dof;
   if (id == cause::kLandmarkPositionError)
     return k == 0 ? &LandmarkModel::position_error_dx : &LandmarkModel::position_error_dy;

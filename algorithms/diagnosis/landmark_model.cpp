@@ -23,6 +23,8 @@ void visit_fields(V& v, LandmarkModel& m) {
   v.field("sigma_bearing_rad", m.sigma_bearing, "rad", positive(), "σ_b: bearing noise");
   v.field("range_noise_slope", m.range_noise_slope, "m/m", non_negative(),
           "range noise grows with range: Var n_r = σ_r² + (slope·ρ)²");
+  v.field("bearing_noise_turn_slope_s", m.bearing_noise_turn_slope, "s", non_negative(),
+          "bearing noise grows with the turn rate ω: Var n_b = σ_b² + (slope·ω)²");
   v.field("dof", m.dof, "", non_negative(), "Student-t degrees of freedom of both noises; 0 = normal");
   v.field("time_offset_s", m.time_offset, "s", closed(-10.0, 10.0), "observation logged time − true time");
   v.field("position_error_id", m.position_error_id, "", at_least(-1),
@@ -102,7 +104,8 @@ LandmarkResidual landmark_residual(const LandmarkData& d, std::size_t i, const L
   r.bearing = wrap_angle(d.readings[i].bearing - phi - m.bearing_bias);
   const double s = m.range_noise_slope * rho;
   r.var_range = m.sigma_range * m.sigma_range + s * s;
-  r.var_bearing = m.sigma_bearing * m.sigma_bearing;
+  const double sb = m.bearing_noise_turn_slope * g.turn_rate;
+  r.var_bearing = m.sigma_bearing * m.sigma_bearing + sb * sb;
   return r;
 }
 
@@ -133,6 +136,7 @@ double landmark_nll(const LandmarkData& d, const std::vector<LandmarkGeometry>& 
   const double v_r0 = std::max(m.sigma_range * m.sigma_range, 1e-12), v_b = m.sigma_bearing * m.sigma_bearing;
   const double log_v_r0 = std::log(v_r0), log_v_b = std::log(v_b);
   const bool growing = m.range_noise_slope != 0.0;
+  const bool turning = m.bearing_noise_turn_slope != 0.0;
   const std::size_t n = index.empty() ? d.readings.size() : index.size();
   double nll = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
@@ -142,7 +146,8 @@ double landmark_nll(const LandmarkData& d, const std::vector<LandmarkGeometry>& 
       nll -= density(0.0, v_r0, log_v_r0) + density(0.0, v_b, log_v_b);
       continue;
     }
-    nll -= density(r.range, r.var_range, growing ? std::log(r.var_range) : log_v_r0) + density(r.bearing, v_b, log_v_b);
+    nll -= density(r.range, r.var_range, growing ? std::log(r.var_range) : log_v_r0) +
+           density(r.bearing, r.var_bearing, turning ? std::log(r.var_bearing) : log_v_b);
   }
   return nll;
 }

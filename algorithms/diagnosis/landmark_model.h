@@ -6,7 +6,8 @@
 // read at t − time_offset (TRUEPOS interpolated):
 //   ρ = |m + δ − p|,  φ = atan2(m_y + δ_y − y, m_x + δ_x − x) − θ                (prediction)
 //   z_r = range_scale·ρ + range_bias + n_r,   z_b = φ + bearing_bias + n_b        (model)
-//   Var n_r = σ_r² + (range_noise_slope·ρ)²,  Var n_b = σ_b²
+//   Var n_r = σ_r² + (range_noise_slope·ρ)²,  Var n_b = σ_b² + (bearing_noise_turn_slope·ω)²
+// (ω the true turn rate at the observation: a camera's bearing blurs and jitters while turning)
 // with δ = (position_error_dx, _dy) for the one landmark `position_error_id` (true position −
 // surveyed position; δ = 0 for the others) and n_r, n_b independent: normal (dof = 0) or
 // Student-t with `dof` degrees of freedom and those squared scales (heavy tails, outliers).
@@ -19,17 +20,18 @@
 namespace locbench::diagnosis {
 
 struct LandmarkModel {
-  double range_scale = 1.0;        // [1]
-  double range_bias = 0.0;         // [m]
-  double bearing_bias = 0.0;       // [rad]
-  double sigma_range = 0.05;       // σ_r [m]
-  double sigma_bearing = 0.02;     // σ_b [rad]
-  double range_noise_slope = 0.0;  // [m of σ per m of range]
-  double dof = 0.0;                // Student-t degrees of freedom; 0 = normal
-  double time_offset = 0.0;        // observation logged time − true time [s]
-  int position_error_id = -1;      // the landmark whose surveyed position is off; −1 = none
-  double position_error_dx = 0.0;  // true − surveyed [m]
-  double position_error_dy = 0.0;  // [m]
+  double range_scale = 1.0;               // [1]
+  double range_bias = 0.0;                // [m]
+  double bearing_bias = 0.0;              // [rad]
+  double sigma_range = 0.05;              // σ_r [m]
+  double sigma_bearing = 0.02;            // σ_b [rad]
+  double range_noise_slope = 0.0;         // [m of σ per m of range]
+  double bearing_noise_turn_slope = 0.0;  // [rad of σ per rad/s of turn rate]
+  double dof = 0.0;                       // Student-t degrees of freedom; 0 = normal
+  double time_offset = 0.0;               // observation logged time − true time [s]
+  int position_error_id = -1;             // the landmark whose surveyed position is off; −1 = none
+  double position_error_dx = 0.0;         // true − surveyed [m]
+  double position_error_dy = 0.0;         // [m]
 };
 // Strict: an unknown key, a wrong type or a value out of range → UsageError naming the key.
 void to_json(nlohmann::json& j, const LandmarkModel& m);

@@ -18,6 +18,7 @@ std::vector<std::pair<std::string, std::string>> landmark_effect_ids() {
           {"landmark_bearing_bias", "bias [rad]"},
           {"landmark_time_offset", "observation latency [s] (logged − true)"},
           {"landmark_range_dependent_noise", "slope: σ_r(ρ)² = σ_r² + (slope·ρ)² [m/m]"},
+          {"landmark_turn_dependent_bearing_noise", "slope: σ_b(ω)² = σ_b² + (slope·ω)² [s]"},
           {"landmark_heavy_tails", "Student-t degrees of freedom of both noises (integer ≥ 1)"},
           {"landmark_position_error", "one landmark's true − surveyed distance [m] (random direction)"}};
 }
@@ -25,7 +26,7 @@ std::vector<std::pair<std::string, std::string>> landmark_effect_ids() {
 namespace {
 
 struct Camera {
-  double range_scale = 1.0, range_bias = 0.0, bearing_bias = 0.0, offset = 0.0, slope = 0.0;
+  double range_scale = 1.0, range_bias = 0.0, bearing_bias = 0.0, offset = 0.0, slope = 0.0, turn_slope = 0.0;
   int dof = 0;
   int displaced = -1;  // map index
   double dx = 0.0, dy = 0.0;
@@ -53,6 +54,10 @@ Camera camera_of(const std::vector<HiddenEffect>& effects, int landmarks, Rng& r
       if (m < 0.0) throw UsageError("landmark_range_dependent_noise: the slope must be ≥ 0");
       c.slope = m;
       truth["landmark_range_dependent_noise.slope"] = m;
+    } else if (e.id == "landmark_turn_dependent_bearing_noise") {
+      if (m < 0.0) throw UsageError("landmark_turn_dependent_bearing_noise: the slope must be ≥ 0");
+      c.turn_slope = m;
+      truth["landmark_turn_dependent_bearing_noise.slope"] = m;
     } else if (e.id == "landmark_heavy_tails") {
       c.dof = static_cast<int>(std::lround(m));
       if (c.dof < 1) throw UsageError("landmark_heavy_tails: the degrees of freedom must be an integer ≥ 1");
@@ -125,11 +130,14 @@ void observe(GeneratedLog& g, const std::vector<TruePose>& truth, const std::vec
     const double rho = std::hypot(real[k].x - p->x, real[k].y - p->y);
     const double phi = angle_diff(std::atan2(real[k].y - p->y, real[k].x - p->x), p->theta);
     const double sr = std::sqrt(o.sigma_range * o.sigma_range + c.slope * rho * c.slope * rho);
+    const auto before = pose_at(truth, t - 0.05), after = pose_at(truth, t + 0.05);
+    const double turn_rate = before && after ? angle_diff(after->theta, before->theta) / 0.1 : 0.0;
+    const double sb = std::hypot(o.sigma_bearing, c.turn_slope * turn_rate);
     LandmarkReading r;
     r.t = t + c.offset;
     r.subject = real[k].id;
     r.range = std::max(0.0, c.range_scale * rho + c.range_bias + sr * noise(rng, c.dof));
-    r.bearing = wrap_angle(phi + c.bearing_bias + o.sigma_bearing * noise(rng, c.dof));
+    r.bearing = wrap_angle(phi + c.bearing_bias + sb * noise(rng, c.dof));
     g.log.landmarks.push_back(r);
   }
   // A few observations of another robot (subject 2), which the map does not hold.

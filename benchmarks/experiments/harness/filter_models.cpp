@@ -17,6 +17,7 @@ LandmarkSensorModel sensor_of(const diagnosis::LandmarkModel& m) {
   s.range_sigma = m.sigma_range;
   s.bearing_sigma = m.sigma_bearing;
   s.range_noise_slope = m.range_noise_slope;
+  s.bearing_noise_turn_slope = m.bearing_noise_turn_slope;
   s.time_offset = m.time_offset;
   s.dof = m.dof;
   if (m.position_error_id >= 0) s.landmark_shift[m.position_error_id] = {m.position_error_dx, m.position_error_dy};

@@ -290,6 +290,14 @@ double TrackResult::gated_fraction() const {
 
 namespace {
 
+// The odometry's turn rate [rad/s] over the step that holds true time t (0 outside the steps).
+double turn_rate_at(const std::vector<MotionStep>& steps, double t) {
+  const auto it =
+      std::upper_bound(steps.begin(), steps.end(), t, [](double v, const MotionStep& s) { return v < s.t1; });
+  if (it == steps.end() || t < it->t0 || !(it->t1 > it->t0)) return 0.0;
+  return it->turn / (it->t1 - it->t0);
+}
+
 using AnyFilter = std::variant<FixedQEkf, CompassEkf, SageHusaAekf, VbAkf, MotionModelEkf>;
 
 AnyFilter make_filter(const MethodSetup& s, double wheelbase, const Pose2& start) {
@@ -363,7 +371,8 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
     z.landmark_y = m.y();
     const double sr = sm.range_noise_slope * z.range;
     z.range_variance = r_scale * (sm.range_sigma * sm.range_sigma + sr * sr) / (sm.range_scale * sm.range_scale);
-    z.bearing_variance = r_scale * sm.bearing_sigma * sm.bearing_sigma;
+    const double sb = sm.bearing_noise_turn_slope * turn_rate_at(steps, o.t - sm.time_offset);
+    z.bearing_variance = r_scale * (sm.bearing_sigma * sm.bearing_sigma + sb * sb);
     obs.push_back({o.t - sm.time_offset, z});
   }
   std::stable_sort(obs.begin(), obs.end(), [](const Timed& a, const Timed& b) { return a.t < b.t; });

@@ -30,7 +30,8 @@ namespace locbench::experiments::landmarks {
 
 // The landmark sensor a filter assumes: z_r = range_scale·ρ + range_bias + n_r,
 // z_φ = φ + bearing_bias + n_φ, var n_r = range_sigma² + (range_noise_slope·ρ)², var n_φ =
-// bearing_sigma²; an observation logged at t was taken at true time t − time_offset; landmark id's
+// bearing_sigma² + (bearing_noise_turn_slope·ω)² (ω the turn rate: the filter takes the odometry's,
+// the twin its truth's); an observation logged at t was taken at true time t − time_offset; landmark id's
 // true position is the surveyed one plus landmark_shift[id].
 // Noise correlated in time: the share of a channel's variance that is an AR(1) process common to
 // all landmarks, with correlation time time_s (share 0: white noise).
@@ -51,6 +52,7 @@ struct NoiseStructure {
 struct LandmarkSensorModel {
   double range_scale = 1.0, range_bias = 0.0, bearing_bias = 0.0;
   double range_sigma = 0.1, bearing_sigma = 0.05, range_noise_slope = 0.0;
+  double bearing_noise_turn_slope = 0.0;  // [s]
   double time_offset = 0.0;
   std::map<int, Eigen::Vector2d> landmark_shift;
   // Student-t noise with this many degrees of freedom (0: normal): the update is made robust by

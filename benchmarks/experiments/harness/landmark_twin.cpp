@@ -139,12 +139,15 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
     const double rho = std::hypot(l.x() - p->x, l.y() - p->y);
     const double phi = std::atan2(l.y() - p->y, l.x() - p->x) - p->theta;
     const double sigma_r = std::hypot(sensor.range_sigma, sensor.range_noise_slope * rho);
+    const auto before = at.at(o.t - sensor.time_offset - 0.05), after = at.at(o.t - sensor.time_offset + 0.05);
+    const double turn_rate = before && after ? angle_diff(after->theta, before->theta) / 0.1 : 0.0;
+    const double sigma_b = std::hypot(sensor.bearing_sigma, sensor.bearing_noise_turn_slope * turn_rate);
     Observation z = o;
     const auto [range_bias, bearing_bias] = landmark_bias.at(o.id);
     z.range =
         sensor.range_scale * rho + sensor.range_bias + range_bias + sigma_r * range_part.draw(o.t, sensor.dof, rng);
-    z.bearing = wrap_angle(phi + sensor.bearing_bias + bearing_bias +
-                           sensor.bearing_sigma * bearing_part.draw(o.t, sensor.dof, rng));
+    z.bearing =
+        wrap_angle(phi + sensor.bearing_bias + bearing_bias + sigma_b * bearing_part.draw(o.t, sensor.dof, rng));
     twin.observations.push_back(z);
   }
   return twin;

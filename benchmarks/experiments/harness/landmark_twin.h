@@ -20,7 +20,8 @@
 // time_offset, from the twin's pose then, of the landmark at its surveyed position plus the
 // sensor's landmark_shift, and is drawn from the sensor model (landmark_tracking.h):
 //   z_r = range_scale·ρ + range_bias + n_r,  z_φ = φ + bearing_bias + n_φ,
-//   n_r = √(range_sigma² + (range_noise_slope·ρ)²) · u_r,  n_φ = bearing_sigma · u_φ,
+//   n_r = √(range_sigma² + (range_noise_slope·ρ)²) · u_r,
+//   n_φ = √(bearing_sigma² + (bearing_noise_turn_slope·ω)²) · u_φ  (ω: the truth's turn rate, ±0.05 s),
 // u = √(1 − s)·t_ν + √s·b, with s and b the share and the Gauss–Markov process of the channel's
 // NoiseCorrelation (time correlation common to all landmarks; s = 0: white), plus each landmark's
 // own range and bearing bias, drawn once per twin from N(0, landmark σ²) (sensor.structure).

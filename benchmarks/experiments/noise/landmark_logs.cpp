@@ -491,9 +491,9 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
            {std::pair{"nominal", o.models.nominal_sensor}, std::pair{"extended", o.models.diagnosed_sensor}}) {
         twins += fmt::format(
             "\n  {} twin's sensor: range {:.3f}·ρ {:+.3f} m, σ_r {:.3f} m + {:.3f}·ρ, bearing bias {:+.4f} rad, σ_φ "
-            "{:.4f} rad, t dof {:g} (0: normal), time offset {:+.3f} s, {} landmarks moved",
+            "{:.4f} rad + {:.4f} s·ω, t dof {:g} (0: normal), time offset {:+.3f} s, {} landmarks moved",
             name, m.range_scale, m.range_bias, m.range_sigma, m.range_noise_slope, m.bearing_bias, m.bearing_sigma,
-            m.dof, m.time_offset, m.landmark_shift.size());
+            m.bearing_noise_turn_slope, m.dof, m.time_offset, m.landmark_shift.size());
       }
       for (const auto& [metric, cells] : o.twin_cells) {
         twins += fmt::format("\n  {}:{}", metric, cell_lines(cells, metric_unit(metric)));

@@ -102,6 +102,7 @@ INSTANTIATE_TEST_SUITE_P(LandmarkChannel, LandmarkHiddenEffect,
                                            LandmarkCase{"landmark_bearing_bias", 0.02, "bias_rad"},
                                            LandmarkCase{"landmark_time_offset", 0.1, "offset_s"},
                                            LandmarkCase{"landmark_range_dependent_noise", 0.02, "slope"},
+                                           LandmarkCase{"landmark_turn_dependent_bearing_noise", 0.02, "slope"},
                                            LandmarkCase{"landmark_heavy_tails", 3.0, "dof"},
                                            LandmarkCase{"landmark_position_error", 0.3, "dx_m"}),
                          [](const auto& test) { return test.param.id; });
