@@ -77,8 +77,9 @@ PoseT<T> advance(const PoseT<T>& p, const T& dd, const T& dth) {
   return {p.x + chord * cos(heading), p.y + chord * sin(heading), p.theta + dth};
 }
 
-// predict_window of odometry_model.cpp without stalls (the likelihood's mean model).
-PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mean>& s) {
+// predict_window of odometry_model.cpp without stalls (the likelihood's mean model). `increments`
+// (pose odometry, τ not differentiated): the window's drive_increments, constants here.
+PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mean>& s, const double* increments) {
   PoseT<Mean> p;
   if (d.odometry == OdometryKind::kEncoder) {
     const Mean e_d = s(&OdometryModel::E_d), e_o = s(&OdometryModel::E_o);
@@ -94,6 +95,17 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
   const Mean tau = s(&OdometryModel::drive_tau);
   const Mean velocity_scale = s(&OdometryModel::velocity_scale), speed_slope = s(&OdometryModel::speed_slope);
   const Mean turn_scale = s(&OdometryModel::turn_rate_scale), turn_bias = s(&OdometryModel::turn_rate_bias);
+  if (increments != nullptr) {
+    for (std::size_t i = w.first; i < w.last; ++i) {
+      const auto& st = d.steps[i];
+      const double dt = st.t1 - st.t0;
+      const double v = dt > 0.0 ? st.a / dt : 0.0;
+      const double* inc = increments + 2 * (i - w.first);
+      const Mean scale = velocity_scale + speed_slope * std::abs(v);
+      p = advance(p, scale * Mean(inc[0]), turn_scale * Mean(inc[1]) + turn_bias * dt);
+    }
+    return p;
+  }
   std::size_t start = w.first;
   Mean u(0.0), omega(0.0);
   if (tau.v > 0.0) {
@@ -217,6 +229,9 @@ std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m
   auto* references = cache != nullptr ? &cache->references(mean_model) : nullptr;
   auto* predictions = cache != nullptr && mean_fields.empty() ? &cache->predictions(mean_model) : nullptr;
 
+  const bool drive_tau_fitted =
+      std::find(mean_fields.begin(), mean_fields.end(), &OdometryModel::drive_tau) != mean_fields.end();
+  std::vector<double> buffer;  // drive increments without a cache
   Full nll(0.0);
   const std::size_t count = index.empty() ? d.windows.size() : index.size();
   for (std::size_t k = 0; k < count; ++k) {
@@ -244,14 +259,28 @@ std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m
       Pose2 p;
       if (predictions != nullptr) {
         auto& cached = (*predictions)[wi];
-        if (!cached) cached = predict_window(d, w, mean_model);
+        if (!cached) {
+          cached = d.odometry == OdometryKind::kPose
+                       ? predict_window(d, w, mean_model, cache->increments(wi, mean_model.drive_tau))
+                       : predict_window(d, w, mean_model, nullptr);
+        }
         p = *cached;
       } else {
         p = predict_window(d, w, mean_model);
       }
       pred = {Full(p.x), Full(p.y), Full(p.theta)};
     } else {
-      const PoseT<Mean> pm = predict(d, w, mean_seed);
+      const double* increments = nullptr;
+      if (d.odometry == OdometryKind::kPose && !drive_tau_fitted) {
+        if (cache != nullptr) {
+          increments = cache->increments(wi, mean_model.drive_tau);
+        } else {
+          buffer.resize(2 * (w.last - w.first));
+          drive_increments(d, w, mean_model.drive_tau, buffer.data());
+          increments = buffer.data();
+        }
+      }
+      const PoseT<Mean> pm = predict(d, w, mean_seed, increments);
       pred = {lift(pm.x, to_full, n), lift(pm.y, to_full, n), lift(pm.theta, to_full, n)};
     }
     // r = reference − prediction; the heading difference wrapped by its value.

@@ -48,7 +48,38 @@ double expected_stall_loss(const MotionData& d, const MotionWindow& w, const Odo
   return s.p * s.fraction;
 }
 
-Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+void drive_increments(const MotionData& d, const MotionWindow& w, double tau, double* out) {
+  // The drive's state at the window's start: the response run from 4τ before it (e^−4 = 2%).
+  std::size_t start = w.first;
+  double u = 0.0, omega = 0.0;
+  if (tau > 0.0) {
+    double span = 0.0;
+    while (start > 0 && span < 4.0 * tau && d.steps[start - 1].t1 == d.steps[start].t0) {
+      --start;
+      span += d.steps[start].t1 - d.steps[start].t0;
+    }
+    const auto& s0 = d.steps[start];
+    const double dt0 = s0.t1 - s0.t0;
+    u = dt0 > 0.0 ? s0.a / dt0 : 0.0;
+    omega = dt0 > 0.0 ? s0.b / dt0 : 0.0;
+  }
+  for (std::size_t i = start; i < w.last; ++i) {
+    const auto& s = d.steps[i];
+    const double dt = s.t1 - s.t0;
+    const double v = dt > 0.0 ? s.a / dt : 0.0, rate = dt > 0.0 ? s.b / dt : 0.0;
+    double dd = s.a, dth = s.b;
+    if (tau > 0.0 && dt > 0.0) {
+      const double decay = std::exp(-dt / tau);
+      dd = respond(u, v, dt, tau, decay);
+      dth = respond(omega, rate, dt, tau, decay);
+    }
+    if (i < w.first) continue;
+    out[2 * (i - w.first)] = dd;
+    out[2 * (i - w.first) + 1] = dth;
+  }
+}
+
+Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m, const double* increments) {
   Pose2 p;
   if (d.odometry == OdometryKind::kEncoder) {
     const double cl = d.nominal.meters_per_tick_left * m.E_o * 2.0 / (1.0 + m.E_d);
@@ -58,38 +89,25 @@ Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryM
       const double ul = cl * d.steps[i].a, ur = cr * d.steps[i].b;
       p = advance(p, 0.5 * (ul + ur), (ur - ul) / b);
     }
-  } else {
-    // The drive's state at the window's start: the response run from 4τ before it (e^−4 = 2%).
-    std::size_t start = w.first;
-    double u = 0.0, omega = 0.0;
-    if (m.drive_tau > 0.0) {
-      double span = 0.0;
-      while (start > 0 && span < 4.0 * m.drive_tau && d.steps[start - 1].t1 == d.steps[start].t0) {
-        --start;
-        span += d.steps[start].t1 - d.steps[start].t0;
-      }
-      const auto& s0 = d.steps[start];
-      const double dt0 = s0.t1 - s0.t0;
-      u = dt0 > 0.0 ? s0.a / dt0 : 0.0;
-      omega = dt0 > 0.0 ? s0.b / dt0 : 0.0;
-    }
-    const double kept = 1.0 - expected_stall_loss(d, w, m);
-    for (std::size_t i = start; i < w.last; ++i) {
-      const auto& s = d.steps[i];
-      const double dt = s.t1 - s.t0;
-      const double v = dt > 0.0 ? s.a / dt : 0.0, rate = dt > 0.0 ? s.b / dt : 0.0;
-      double dd = s.a, dth = s.b;
-      if (m.drive_tau > 0.0 && dt > 0.0) {
-        const double decay = std::exp(-dt / m.drive_tau);
-        dd = respond(u, v, dt, m.drive_tau, decay);
-        dth = respond(omega, rate, dt, m.drive_tau, decay);
-      }
-      if (i < w.first) continue;
-      const double scale = (m.velocity_scale + m.speed_slope * std::abs(v)) * kept;
-      p = advance(p, scale * dd, m.turn_rate_scale * dth + m.turn_rate_bias * dt);
-    }
+    return p;
+  }
+  const double kept = 1.0 - expected_stall_loss(d, w, m);
+  for (std::size_t i = w.first; i < w.last; ++i) {
+    const auto& s = d.steps[i];
+    const double dt = s.t1 - s.t0;
+    const double v = dt > 0.0 ? s.a / dt : 0.0;
+    const double* inc = increments + 2 * (i - w.first);
+    const double scale = (m.velocity_scale + m.speed_slope * std::abs(v)) * kept;
+    p = advance(p, scale * inc[0], m.turn_rate_scale * inc[1] + m.turn_rate_bias * dt);
   }
   return p;
+}
+
+Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+  if (d.odometry == OdometryKind::kEncoder) return predict_window(d, w, m, nullptr);
+  std::vector<double> increments(2 * (w.last - w.first));
+  drive_increments(d, w, m.drive_tau, increments.data());
+  return predict_window(d, w, m, increments.data());
 }
 
 std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
@@ -143,6 +161,45 @@ std::vector<double> mean_key(const OdometryModel& m) {
 WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
   const auto ref = reference_window(d, w, m);
   return residual_of(d, w, m, ref, ref ? predict_window(d, w, m) : Pose2());
+}
+
+WindowCache::WindowCache(const MotionData& d) : d_(d) {
+  predictions_.reserve(kEntries);
+  references_.reserve(kEntries);
+  increments_.reserve(kEntries);
+  offsets_.reserve(d.windows.size() + 1);
+  std::size_t at = 0;
+  for (const auto& w : d.windows) {
+    offsets_.push_back(at);
+    at += 2 * (w.last - w.first);
+  }
+  offsets_.push_back(at);
+}
+
+const double* WindowCache::increments(std::size_t wi, double tau) {
+  ++clock_;
+  Increments* e = nullptr;
+  for (auto& x : increments_) {
+    if (x.tau == tau) e = &x;
+  }
+  if (e == nullptr) {
+    if (increments_.size() < kEntries) {
+      e = &increments_.emplace_back();
+    } else {
+      e = &*std::min_element(increments_.begin(), increments_.end(),
+                             [](const auto& a, const auto& b) { return a.used < b.used; });
+    }
+    e->tau = tau;
+    e->values.resize(offsets_.back());
+    e->done.assign(d_.windows.size(), false);
+  }
+  e->used = clock_;
+  double* out = e->values.data() + offsets_[wi];
+  if (!e->done[wi]) {
+    drive_increments(d_, d_.windows[wi], tau, out);
+    e->done[wi] = true;
+  }
+  return out;
 }
 
 template <typename T>
@@ -220,7 +277,11 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m, cons
       auto& ref = (*references)[wi];
       if (!ref) ref = reference_window(d, w, mean_model);
       auto& pred = (*predictions)[wi];
-      if (*ref && !pred) pred = predict_window(d, w, mean_model);
+      if (*ref && !pred) {
+        pred = d.odometry == OdometryKind::kPose
+                   ? predict_window(d, w, mean_model, cache->increments(wi, mean_model.drive_tau))
+                   : predict_window(d, w, mean_model, nullptr);
+      }
       res = residual_of(d, w, mean_model, *ref, *ref ? *pred : Pose2());
     } else {
       res = window_residual(d, w, mean_model);
