@@ -74,7 +74,9 @@ PoseT<T> advance(const PoseT<T>& p, const T& dd, const T& dth) {
   const T half = 0.5 * dth;
   const T chord = std::abs(value_of(half)) < 1e-6 ? dd : dd * sin(half) / half;
   const T heading = p.theta + half;
-  return {p.x + chord * cos(heading), p.y + chord * sin(heading), p.theta + dth};
+  T s, c;
+  sincos(heading, s, c);
+  return {p.x + chord * c, p.y + chord * s, p.theta + dth};
 }
 
 // predict_window of odometry_model.cpp without stalls (the likelihood's mean model). `increments`

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "core/angle.h"
 #include "core/units.h"
@@ -163,9 +164,13 @@ WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const
   return residual_of(d, w, m, ref, ref ? predict_window(d, w, m) : Pose2());
 }
 
+namespace {
+constexpr std::size_t kReferenceEntries = 256;  // reference windows at this many time offsets
+}  // namespace
+
 WindowCache::WindowCache(const MotionData& d) : d_(d) {
   predictions_.reserve(kEntries);
-  references_.reserve(kEntries);
+  references_.reserve(kReferenceEntries);
   increments_.reserve(kEntries);
   offsets_.reserve(d.windows.size() + 1);
   std::size_t at = 0;
@@ -210,7 +215,9 @@ std::vector<std::optional<T>>& WindowCache::table(std::vector<Entry<T>>& entries
     if (x.key == key) e = &x;
   }
   if (e == nullptr) {
-    if (entries.size() < kEntries) {
+    // References: the offset profiles scan the same grid of offsets in every round of a fit.
+    const std::size_t limit = std::is_same_v<T, Pose2> ? kEntries : kReferenceEntries;
+    if (entries.size() < limit) {
       e = &entries.emplace_back();
     } else {
       e = &*std::min_element(entries.begin(), entries.end(),
