@@ -106,7 +106,8 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
           continue;
         }
         const Eigen::VectorXd zn = z + dz;
-        const double fn = f(zn);
+        // A step below the resolution of z (strong damping) leaves z as it is, and f(z) = fx.
+        const double fn = zn == z ? fx : f(zn);
         if (fn < fx) {
           const double gain = fx - fn;
           z = zn;

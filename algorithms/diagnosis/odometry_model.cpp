@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 #include "core/angle.h"
@@ -246,10 +247,25 @@ struct Density {
       : dof(nu),
         constant(nu > 0.0 ? std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu) - 0.5 * std::log(nu * kPi) : 0.0) {}
   double operator()(double r, double v) const {
-    if (!(dof > 0.0)) return -0.5 * (r * r / v + std::log(2.0 * kPi * v));
-    return constant - 0.5 * std::log(v) - 0.5 * (dof + 1.0) * std::log1p(r * r / (dof * v));
+    if (!(dof > 0.0)) return -0.5 * (r * r / v + log_of(2.0 * kPi * v));
+    return constant - 0.5 * log_of(v) - 0.5 * (dof + 1.0) * std::log1p(r * r / (dof * v));
+  }
+  // std::log of the last three arguments remembered: without noise growth the three components'
+  // variances are the same in every window.
+  double log_of(double x) const {
+    for (int i = 0; i < 3; ++i) {
+      if (keys[i] == x) return logs[i];
+    }
+    const double l = std::log(x);
+    keys[next] = x;
+    logs[next] = l;
+    next = (next + 1) % 3;
+    return l;
   }
   double dof, constant;
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();  // equal to nothing
+  mutable double keys[3] = {kNone, kNone, kNone}, logs[3] = {0.0, 0.0, 0.0};
+  mutable int next = 0;
 };
 
 double log_density(const Eigen::Vector3d& r, const Eigen::Vector3d& v, bool heading_only, const Density& density) {
