@@ -50,7 +50,7 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
   };
   // Central differences for every coordinate without exact derivatives, and for the rows and
   // columns of those marked `differences` when there are.
-  auto gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
+  auto compute_gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
     const bool have_exact = exact(x, g, h);
     if (!have_exact) {
       g.resize(n);
@@ -79,6 +79,23 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
         h(i, j) = h(j, i) = (f(pp) - f(pm) - f(mp) + f(mm)) / (4.0 * coords.step(i) * coords.step(j));
       }
     }
+  };
+
+  // The last point's derivatives: a fit that stops because no damped step descends, and a restart
+  // from where the last one stopped, ask again at the same point.
+  Eigen::VectorXd last_x;
+  Eigen::VectorXd last_g;
+  Eigen::MatrixXd last_h;
+  auto gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
+    if (last_x.size() == x.size() && last_x == x) {
+      g = last_g;
+      h = last_h;
+      return;
+    }
+    compute_gradient_hessian(x, fx, g, h);
+    last_x = x;
+    last_g = g;
+    last_h = h;
   };
 
   FitResult r;
