@@ -154,8 +154,19 @@ WindowResidual residual_of(const MotionData& d, const MotionWindow& w, const Odo
 }
 
 std::vector<double> mean_key(const OdometryModel& m) {
-  return {m.E_d,         m.E_b,       m.E_o,        m.velocity_scale, m.turn_rate_scale, m.turn_rate_bias,
-          m.speed_slope, m.drive_tau, m.stall_rate, m.stall_duration};
+  // Stalls move the prediction only when both their parameters are positive (stall_odds): the
+  // likelihood's mean model has rate 0, and then any duration predicts the same.
+  const bool stalls = m.stall_rate > 0.0 && m.stall_duration > 0.0;
+  return {m.E_d,
+          m.E_b,
+          m.E_o,
+          m.velocity_scale,
+          m.turn_rate_scale,
+          m.turn_rate_bias,
+          m.speed_slope,
+          m.drive_tau,
+          stalls ? m.stall_rate : 0.0,
+          stalls ? m.stall_duration : 0.0};
 }
 
 }  // namespace
@@ -167,10 +178,13 @@ WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const
 
 namespace {
 constexpr std::size_t kReferenceEntries = 256;  // reference windows at this many time offsets
+// Predictions for this many mean models: a Newton step of a fit with τ differenced asks for τ ± h
+// alone and with ± each other mean parameter, up to 18 models (ml_fit.cpp).
+constexpr std::size_t kPredictionEntries = 32;
 }  // namespace
 
 WindowCache::WindowCache(const MotionData& d) : d_(d) {
-  predictions_.reserve(kEntries);
+  predictions_.reserve(kPredictionEntries);
   references_.reserve(kReferenceEntries);
   increments_.reserve(kEntries);
   offsets_.reserve(d.windows.size() + 1);
@@ -216,8 +230,8 @@ std::vector<std::optional<T>>& WindowCache::table(std::vector<Entry<T>>& entries
     if (x.key == key) e = &x;
   }
   if (e == nullptr) {
-    // References: the offset profiles scan the same grid of offsets in every round of a fit.
-    const std::size_t limit = std::is_same_v<T, Pose2> ? kEntries : kReferenceEntries;
+    // Sizes: see kPredictionEntries and kReferenceEntries.
+    const std::size_t limit = std::is_same_v<T, Pose2> ? kPredictionEntries : kReferenceEntries;
     if (entries.size() < limit) {
       e = &entries.emplace_back();
     } else {
