@@ -159,17 +159,31 @@ struct Density {
   Full dof;
   bool student;
   Full constant{0.0};
+  Full half_dof1{0.0};  // ½(ν + 1)
   explicit Density(const Full& nu) : dof(nu), student(nu.v > 0.0) {
-    if (student) constant = lgamma(0.5 * (nu + 1.0)) - lgamma(0.5 * nu) - 0.5 * log(nu * kPi);
+    if (!student) return;
+    constant = lgamma(0.5 * (nu + 1.0)) - lgamma(0.5 * nu) - 0.5 * log(nu * kPi);
+    half_dof1 = 0.5 * (nu + 1.0);
   }
-  Full operator()(const Full& r, const Full& v) const {
-    if (!student) return -0.5 * (r * r / v + log(2.0 * kPi * v));
-    return constant - 0.5 * log(v) - 0.5 * (dof + 1.0) * log1p(r * r / (dof * v));
+  // The terms that depend on the squared scale v alone (the same v in every window without noise
+  // growth, so computed once then).
+  struct Scale {
+    Full v, head, dof_v;
+  };
+  Scale scale(const Full& v) const {
+    if (!student) return {v, log(2.0 * kPi * v), Full(0.0)};
+    return {v, constant - 0.5 * log(v), dof * v};
+  }
+  // The log-density of r: −½(r²/v + log 2πv), or the Student-t's
+  // constant − ½·log v − ½(ν + 1)·log1p(r²/(ν·v)), evaluated in that order.
+  Full operator()(const Full& r, const Scale& s) const {
+    if (!student) return -0.5 * (r * r / s.v + s.head);
+    return s.head - half_dof1 * log1p(r * r / s.dof_v);
   }
 };
+using Scales = std::array<Density::Scale, 3>;
 
-Full log_density(const std::array<Full, 3>& r, const std::array<Full, 3>& v, bool heading_only,
-                 const Density& density) {
+Full log_density(const std::array<Full, 3>& r, const Scales& v, bool heading_only, const Density& density) {
   Full s(0.0);
   for (int c = heading_only ? 2 : 0; c < 3; ++c) s = s + density(r[c], v[c]);
   return s;
@@ -234,6 +248,10 @@ std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m
   const bool drive_tau_fitted =
       std::find(mean_fields.begin(), mean_fields.end(), &OdometryModel::drive_tau) != mean_fields.end();
   std::vector<double> buffer;  // drive increments without a cache
+  // Without noise growth (k² = 0, not fitted) every window has the same variance.
+  const bool constant_variance = k2.n == 0 && k2.v == 0.0;
+  const Full sxx = sx * sx, syy = sy * sy, stt = st * st;
+  Scales variance;
   Full nll(0.0);
   const std::size_t count = index.empty() ? d.windows.size() : index.size();
   for (std::size_t k = 0; k < count; ++k) {
@@ -247,9 +265,11 @@ std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m
     } else {
       ref = reference_window(d, w, mean_model);
     }
-    const Full growth = k2 * w.wheel_travel;
-    const std::array<Full, 3> variance{sx * sx + growth / 4.0, sy * sy + growth / 4.0,
-                                       st * st + growth / (base * base)};
+    if (!constant_variance || k == 0) {
+      const Full growth = k2 * w.wheel_travel;
+      variance = {density.scale(sxx + growth / 4.0), density.scale(syy + growth / 4.0),
+                  density.scale(stt + growth / (base * base))};
+    }
     const bool heading_only = d.reference == ReferenceKind::kCompass;
     if (!ref) {
       const std::array<Full, 3> zero{Full(0.0), Full(0.0), Full(0.0)};
