@@ -49,6 +49,15 @@ struct HyperDual {
     return r;
   }
   int packed() const { return n * (n + 1) / 2; }
+  // A copy of the n entries in use (a plain copy moves all C + C(C+1)/2 of them).
+  LOCBENCH_HD_INLINE HyperDual used_copy() const {
+    HyperDual r;
+    r.n = n;
+    r.v = v;
+    for (int i = 0; i < n; ++i) r.g[i] = g[i];
+    for (int k = 0; k < packed(); ++k) r.h[k] = h[k];
+    return r;
+  }
   double hessian(int i, int j) const {
     if (i > j) return hessian(j, i);
     return h[i * n - i * (i - 1) / 2 + (j - i)];
@@ -80,11 +89,11 @@ LOCBENCH_HD_INLINE HyperDual<C> operator-(const HyperDual<C>& a) {
 template <int C>
 LOCBENCH_HD_INLINE HyperDual<C> operator+(const HyperDual<C>& a, const HyperDual<C>& b) {
   if (a.n == 0) {
-    HyperDual<C> r = b;
+    HyperDual<C> r = b.used_copy();
     r.v = a.v + b.v;
     return r;
   }
-  HyperDual<C> r = a;
+  HyperDual<C> r = a.used_copy();
   r.v = a.v + b.v;
   if (b.n == 0) return r;
   assert(a.n == b.n);
@@ -99,7 +108,7 @@ LOCBENCH_HD_INLINE HyperDual<C> operator-(const HyperDual<C>& a, const HyperDual
     r.v = a.v - b.v;
     return r;
   }
-  HyperDual<C> r = a;
+  HyperDual<C> r = a.used_copy();
   r.v = a.v - b.v;
   if (b.n == 0) return r;
   assert(a.n == b.n);
@@ -190,6 +199,13 @@ template <int C>
 LOCBENCH_HD_INLINE HyperDual<C> cos(const HyperDual<C>& a) {
   const double c = std::cos(a.v);
   return a.apply(c, -std::sin(a.v), -c);
+}
+// sin and cos of one number with one evaluation of std::sin and std::cos (the same values).
+template <int C>
+LOCBENCH_HD_INLINE void sincos(const HyperDual<C>& a, HyperDual<C>& s, HyperDual<C>& c) {
+  const double sv = std::sin(a.v), cv = std::cos(a.v);
+  s = a.apply(sv, cv, -sv);
+  c = a.apply(cv, -sv, -cv);
 }
 template <int C>
 LOCBENCH_HD_INLINE HyperDual<C> exp(const HyperDual<C>& a) {

@@ -50,7 +50,7 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
   };
   // Central differences for every coordinate without exact derivatives, and for the rows and
   // columns of those marked `differences` when there are.
-  auto gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
+  auto compute_gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
     const bool have_exact = exact(x, g, h);
     if (!have_exact) {
       g.resize(n);
@@ -81,6 +81,23 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
     }
   };
 
+  // The last point's derivatives: a fit that stops because no damped step descends, and a restart
+  // from where the last one stopped, ask again at the same point.
+  Eigen::VectorXd last_x;
+  Eigen::VectorXd last_g;
+  Eigen::MatrixXd last_h;
+  auto gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
+    if (last_x.size() == x.size() && last_x == x) {
+      g = last_g;
+      h = last_h;
+      return;
+    }
+    compute_gradient_hessian(x, fx, g, h);
+    last_x = x;
+    last_g = g;
+    last_h = h;
+  };
+
   FitResult r;
   double fx = f(z);
   Eigen::VectorXd g;
@@ -106,7 +123,8 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
           continue;
         }
         const Eigen::VectorXd zn = z + dz;
-        const double fn = f(zn);
+        // A step below the resolution of z (strong damping) leaves z as it is, and f(z) = fx.
+        const double fn = zn == z ? fx : f(zn);
         if (fn < fx) {
           const double gain = fx - fn;
           z = zn;

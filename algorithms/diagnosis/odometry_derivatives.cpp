@@ -74,11 +74,14 @@ PoseT<T> advance(const PoseT<T>& p, const T& dd, const T& dth) {
   const T half = 0.5 * dth;
   const T chord = std::abs(value_of(half)) < 1e-6 ? dd : dd * sin(half) / half;
   const T heading = p.theta + half;
-  return {p.x + chord * cos(heading), p.y + chord * sin(heading), p.theta + dth};
+  T s, c;
+  sincos(heading, s, c);
+  return {p.x + chord * c, p.y + chord * s, p.theta + dth};
 }
 
-// predict_window of odometry_model.cpp without stalls (the likelihood's mean model).
-PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mean>& s) {
+// predict_window of odometry_model.cpp without stalls (the likelihood's mean model). `increments`
+// (pose odometry, τ not differentiated): the window's drive_increments, constants here.
+PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mean>& s, const double* increments) {
   PoseT<Mean> p;
   if (d.odometry == OdometryKind::kEncoder) {
     const Mean e_d = s(&OdometryModel::E_d), e_o = s(&OdometryModel::E_o);
@@ -94,6 +97,17 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
   const Mean tau = s(&OdometryModel::drive_tau);
   const Mean velocity_scale = s(&OdometryModel::velocity_scale), speed_slope = s(&OdometryModel::speed_slope);
   const Mean turn_scale = s(&OdometryModel::turn_rate_scale), turn_bias = s(&OdometryModel::turn_rate_bias);
+  if (increments != nullptr) {
+    for (std::size_t i = w.first; i < w.last; ++i) {
+      const auto& st = d.steps[i];
+      const double dt = st.t1 - st.t0;
+      const double v = dt > 0.0 ? st.a / dt : 0.0;
+      const double* inc = increments + 2 * (i - w.first);
+      const Mean scale = velocity_scale + speed_slope * std::abs(v);
+      p = advance(p, scale * Mean(inc[0]), turn_scale * Mean(inc[1]) + turn_bias * dt);
+    }
+    return p;
+  }
   std::size_t start = w.first;
   Mean u(0.0), omega(0.0);
   if (tau.v > 0.0) {
@@ -145,17 +159,31 @@ struct Density {
   Full dof;
   bool student;
   Full constant{0.0};
+  Full half_dof1{0.0};  // ½(ν + 1)
   explicit Density(const Full& nu) : dof(nu), student(nu.v > 0.0) {
-    if (student) constant = lgamma(0.5 * (nu + 1.0)) - lgamma(0.5 * nu) - 0.5 * log(nu * kPi);
+    if (!student) return;
+    constant = lgamma(0.5 * (nu + 1.0)) - lgamma(0.5 * nu) - 0.5 * log(nu * kPi);
+    half_dof1 = 0.5 * (nu + 1.0);
   }
-  Full operator()(const Full& r, const Full& v) const {
-    if (!student) return -0.5 * (r * r / v + log(2.0 * kPi * v));
-    return constant - 0.5 * log(v) - 0.5 * (dof + 1.0) * log1p(r * r / (dof * v));
+  // The terms that depend on the squared scale v alone (the same v in every window without noise
+  // growth, so computed once then).
+  struct Scale {
+    Full v, head, dof_v;
+  };
+  Scale scale(const Full& v) const {
+    if (!student) return {v, log(2.0 * kPi * v), Full(0.0)};
+    return {v, constant - 0.5 * log(v), dof * v};
+  }
+  // The log-density of r: −½(r²/v + log 2πv), or the Student-t's
+  // constant − ½·log v − ½(ν + 1)·log1p(r²/(ν·v)), evaluated in that order.
+  Full operator()(const Full& r, const Scale& s) const {
+    if (!student) return -0.5 * (r * r / s.v + s.head);
+    return s.head - half_dof1 * log1p(r * r / s.dof_v);
   }
 };
+using Scales = std::array<Density::Scale, 3>;
 
-Full log_density(const std::array<Full, 3>& r, const std::array<Full, 3>& v, bool heading_only,
-                 const Density& density) {
+Full log_density(const std::array<Full, 3>& r, const Scales& v, bool heading_only, const Density& density) {
   Full s(0.0);
   for (int c = heading_only ? 2 : 0; c < 3; ++c) s = s + density(r[c], v[c]);
   return s;
@@ -217,6 +245,13 @@ std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m
   auto* references = cache != nullptr ? &cache->references(mean_model) : nullptr;
   auto* predictions = cache != nullptr && mean_fields.empty() ? &cache->predictions(mean_model) : nullptr;
 
+  const bool drive_tau_fitted =
+      std::find(mean_fields.begin(), mean_fields.end(), &OdometryModel::drive_tau) != mean_fields.end();
+  std::vector<double> buffer;  // drive increments without a cache
+  // Without noise growth (k² = 0, not fitted) every window has the same variance.
+  const bool constant_variance = k2.n == 0 && k2.v == 0.0;
+  const Full sxx = sx * sx, syy = sy * sy, stt = st * st;
+  Scales variance;
   Full nll(0.0);
   const std::size_t count = index.empty() ? d.windows.size() : index.size();
   for (std::size_t k = 0; k < count; ++k) {
@@ -230,9 +265,11 @@ std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m
     } else {
       ref = reference_window(d, w, mean_model);
     }
-    const Full growth = k2 * w.wheel_travel;
-    const std::array<Full, 3> variance{sx * sx + growth / 4.0, sy * sy + growth / 4.0,
-                                       st * st + growth / (base * base)};
+    if (!constant_variance || k == 0) {
+      const Full growth = k2 * w.wheel_travel;
+      variance = {density.scale(sxx + growth / 4.0), density.scale(syy + growth / 4.0),
+                  density.scale(stt + growth / (base * base))};
+    }
     const bool heading_only = d.reference == ReferenceKind::kCompass;
     if (!ref) {
       const std::array<Full, 3> zero{Full(0.0), Full(0.0), Full(0.0)};
@@ -244,14 +281,28 @@ std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m
       Pose2 p;
       if (predictions != nullptr) {
         auto& cached = (*predictions)[wi];
-        if (!cached) cached = predict_window(d, w, mean_model);
+        if (!cached) {
+          cached = d.odometry == OdometryKind::kPose
+                       ? predict_window(d, w, mean_model, cache->increments(wi, mean_model.drive_tau))
+                       : predict_window(d, w, mean_model, nullptr);
+        }
         p = *cached;
       } else {
         p = predict_window(d, w, mean_model);
       }
       pred = {Full(p.x), Full(p.y), Full(p.theta)};
     } else {
-      const PoseT<Mean> pm = predict(d, w, mean_seed);
+      const double* increments = nullptr;
+      if (d.odometry == OdometryKind::kPose && !drive_tau_fitted) {
+        if (cache != nullptr) {
+          increments = cache->increments(wi, mean_model.drive_tau);
+        } else {
+          buffer.resize(2 * (w.last - w.first));
+          drive_increments(d, w, mean_model.drive_tau, buffer.data());
+          increments = buffer.data();
+        }
+      }
+      const PoseT<Mean> pm = predict(d, w, mean_seed, increments);
       pred = {lift(pm.x, to_full, n), lift(pm.y, to_full, n), lift(pm.theta, to_full, n)};
     }
     // r = reference − prediction; the heading difference wrapped by its value.

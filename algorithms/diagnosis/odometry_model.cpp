@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <type_traits>
 
 #include "core/angle.h"
 #include "core/units.h"
@@ -48,7 +50,38 @@ double expected_stall_loss(const MotionData& d, const MotionWindow& w, const Odo
   return s.p * s.fraction;
 }
 
-Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+void drive_increments(const MotionData& d, const MotionWindow& w, double tau, double* out) {
+  // The drive's state at the window's start: the response run from 4τ before it (e^−4 = 2%).
+  std::size_t start = w.first;
+  double u = 0.0, omega = 0.0;
+  if (tau > 0.0) {
+    double span = 0.0;
+    while (start > 0 && span < 4.0 * tau && d.steps[start - 1].t1 == d.steps[start].t0) {
+      --start;
+      span += d.steps[start].t1 - d.steps[start].t0;
+    }
+    const auto& s0 = d.steps[start];
+    const double dt0 = s0.t1 - s0.t0;
+    u = dt0 > 0.0 ? s0.a / dt0 : 0.0;
+    omega = dt0 > 0.0 ? s0.b / dt0 : 0.0;
+  }
+  for (std::size_t i = start; i < w.last; ++i) {
+    const auto& s = d.steps[i];
+    const double dt = s.t1 - s.t0;
+    const double v = dt > 0.0 ? s.a / dt : 0.0, rate = dt > 0.0 ? s.b / dt : 0.0;
+    double dd = s.a, dth = s.b;
+    if (tau > 0.0 && dt > 0.0) {
+      const double decay = std::exp(-dt / tau);
+      dd = respond(u, v, dt, tau, decay);
+      dth = respond(omega, rate, dt, tau, decay);
+    }
+    if (i < w.first) continue;
+    out[2 * (i - w.first)] = dd;
+    out[2 * (i - w.first) + 1] = dth;
+  }
+}
+
+Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m, const double* increments) {
   Pose2 p;
   if (d.odometry == OdometryKind::kEncoder) {
     const double cl = d.nominal.meters_per_tick_left * m.E_o * 2.0 / (1.0 + m.E_d);
@@ -58,38 +91,25 @@ Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryM
       const double ul = cl * d.steps[i].a, ur = cr * d.steps[i].b;
       p = advance(p, 0.5 * (ul + ur), (ur - ul) / b);
     }
-  } else {
-    // The drive's state at the window's start: the response run from 4τ before it (e^−4 = 2%).
-    std::size_t start = w.first;
-    double u = 0.0, omega = 0.0;
-    if (m.drive_tau > 0.0) {
-      double span = 0.0;
-      while (start > 0 && span < 4.0 * m.drive_tau && d.steps[start - 1].t1 == d.steps[start].t0) {
-        --start;
-        span += d.steps[start].t1 - d.steps[start].t0;
-      }
-      const auto& s0 = d.steps[start];
-      const double dt0 = s0.t1 - s0.t0;
-      u = dt0 > 0.0 ? s0.a / dt0 : 0.0;
-      omega = dt0 > 0.0 ? s0.b / dt0 : 0.0;
-    }
-    const double kept = 1.0 - expected_stall_loss(d, w, m);
-    for (std::size_t i = start; i < w.last; ++i) {
-      const auto& s = d.steps[i];
-      const double dt = s.t1 - s.t0;
-      const double v = dt > 0.0 ? s.a / dt : 0.0, rate = dt > 0.0 ? s.b / dt : 0.0;
-      double dd = s.a, dth = s.b;
-      if (m.drive_tau > 0.0 && dt > 0.0) {
-        const double decay = std::exp(-dt / m.drive_tau);
-        dd = respond(u, v, dt, m.drive_tau, decay);
-        dth = respond(omega, rate, dt, m.drive_tau, decay);
-      }
-      if (i < w.first) continue;
-      const double scale = (m.velocity_scale + m.speed_slope * std::abs(v)) * kept;
-      p = advance(p, scale * dd, m.turn_rate_scale * dth + m.turn_rate_bias * dt);
-    }
+    return p;
+  }
+  const double kept = 1.0 - expected_stall_loss(d, w, m);
+  for (std::size_t i = w.first; i < w.last; ++i) {
+    const auto& s = d.steps[i];
+    const double dt = s.t1 - s.t0;
+    const double v = dt > 0.0 ? s.a / dt : 0.0;
+    const double* inc = increments + 2 * (i - w.first);
+    const double scale = (m.velocity_scale + m.speed_slope * std::abs(v)) * kept;
+    p = advance(p, scale * inc[0], m.turn_rate_scale * inc[1] + m.turn_rate_bias * dt);
   }
   return p;
+}
+
+Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
+  if (d.odometry == OdometryKind::kEncoder) return predict_window(d, w, m, nullptr);
+  std::vector<double> increments(2 * (w.last - w.first));
+  drive_increments(d, w, m.drive_tau, increments.data());
+  return predict_window(d, w, m, increments.data());
 }
 
 std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
@@ -134,8 +154,19 @@ WindowResidual residual_of(const MotionData& d, const MotionWindow& w, const Odo
 }
 
 std::vector<double> mean_key(const OdometryModel& m) {
-  return {m.E_d,         m.E_b,       m.E_o,        m.velocity_scale, m.turn_rate_scale, m.turn_rate_bias,
-          m.speed_slope, m.drive_tau, m.stall_rate, m.stall_duration};
+  // Stalls move the prediction only when both their parameters are positive (stall_odds): the
+  // likelihood's mean model has rate 0, and then any duration predicts the same.
+  const bool stalls = m.stall_rate > 0.0 && m.stall_duration > 0.0;
+  return {m.E_d,
+          m.E_b,
+          m.E_o,
+          m.velocity_scale,
+          m.turn_rate_scale,
+          m.turn_rate_bias,
+          m.speed_slope,
+          m.drive_tau,
+          stalls ? m.stall_rate : 0.0,
+          stalls ? m.stall_duration : 0.0};
 }
 
 }  // namespace
@@ -143,6 +174,52 @@ std::vector<double> mean_key(const OdometryModel& m) {
 WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
   const auto ref = reference_window(d, w, m);
   return residual_of(d, w, m, ref, ref ? predict_window(d, w, m) : Pose2());
+}
+
+namespace {
+constexpr std::size_t kReferenceEntries = 256;  // reference windows at this many time offsets
+// Predictions for this many mean models: a Newton step of a fit with τ differenced asks for τ ± h
+// alone and with ± each other mean parameter, up to 18 models (ml_fit.cpp).
+constexpr std::size_t kPredictionEntries = 32;
+}  // namespace
+
+WindowCache::WindowCache(const MotionData& d) : d_(d) {
+  predictions_.reserve(kPredictionEntries);
+  references_.reserve(kReferenceEntries);
+  increments_.reserve(kEntries);
+  offsets_.reserve(d.windows.size() + 1);
+  std::size_t at = 0;
+  for (const auto& w : d.windows) {
+    offsets_.push_back(at);
+    at += 2 * (w.last - w.first);
+  }
+  offsets_.push_back(at);
+}
+
+const double* WindowCache::increments(std::size_t wi, double tau) {
+  ++clock_;
+  Increments* e = nullptr;
+  for (auto& x : increments_) {
+    if (x.tau == tau) e = &x;
+  }
+  if (e == nullptr) {
+    if (increments_.size() < kEntries) {
+      e = &increments_.emplace_back();
+    } else {
+      e = &*std::min_element(increments_.begin(), increments_.end(),
+                             [](const auto& a, const auto& b) { return a.used < b.used; });
+    }
+    e->tau = tau;
+    e->values.resize(offsets_.back());
+    e->done.assign(d_.windows.size(), false);
+  }
+  e->used = clock_;
+  double* out = e->values.data() + offsets_[wi];
+  if (!e->done[wi]) {
+    drive_increments(d_, d_.windows[wi], tau, out);
+    e->done[wi] = true;
+  }
+  return out;
 }
 
 template <typename T>
@@ -153,7 +230,9 @@ std::vector<std::optional<T>>& WindowCache::table(std::vector<Entry<T>>& entries
     if (x.key == key) e = &x;
   }
   if (e == nullptr) {
-    if (entries.size() < kEntries) {
+    // Sizes: see kPredictionEntries and kReferenceEntries.
+    const std::size_t limit = std::is_same_v<T, Pose2> ? kPredictionEntries : kReferenceEntries;
+    if (entries.size() < limit) {
       e = &entries.emplace_back();
     } else {
       e = &*std::min_element(entries.begin(), entries.end(),
@@ -182,10 +261,25 @@ struct Density {
       : dof(nu),
         constant(nu > 0.0 ? std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu) - 0.5 * std::log(nu * kPi) : 0.0) {}
   double operator()(double r, double v) const {
-    if (!(dof > 0.0)) return -0.5 * (r * r / v + std::log(2.0 * kPi * v));
-    return constant - 0.5 * std::log(v) - 0.5 * (dof + 1.0) * std::log1p(r * r / (dof * v));
+    if (!(dof > 0.0)) return -0.5 * (r * r / v + log_of(2.0 * kPi * v));
+    return constant - 0.5 * log_of(v) - 0.5 * (dof + 1.0) * std::log1p(r * r / (dof * v));
+  }
+  // std::log of the last three arguments remembered: without noise growth the three components'
+  // variances are the same in every window.
+  double log_of(double x) const {
+    for (int i = 0; i < 3; ++i) {
+      if (keys[i] == x) return logs[i];
+    }
+    const double l = std::log(x);
+    keys[next] = x;
+    logs[next] = l;
+    next = (next + 1) % 3;
+    return l;
   }
   double dof, constant;
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();  // equal to nothing
+  mutable double keys[3] = {kNone, kNone, kNone}, logs[3] = {0.0, 0.0, 0.0};
+  mutable int next = 0;
 };
 
 double log_density(const Eigen::Vector3d& r, const Eigen::Vector3d& v, bool heading_only, const Density& density) {
@@ -220,7 +314,11 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m, cons
       auto& ref = (*references)[wi];
       if (!ref) ref = reference_window(d, w, mean_model);
       auto& pred = (*predictions)[wi];
-      if (*ref && !pred) pred = predict_window(d, w, mean_model);
+      if (*ref && !pred) {
+        pred = d.odometry == OdometryKind::kPose
+                   ? predict_window(d, w, mean_model, cache->increments(wi, mean_model.drive_tau))
+                   : predict_window(d, w, mean_model, nullptr);
+      }
       res = residual_of(d, w, mean_model, *ref, *ref ? *pred : Pose2());
     } else {
       res = window_residual(d, w, mean_model);

@@ -77,6 +77,14 @@ struct WindowResidual {
 Eigen::Vector3d window_variance(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
 // The prediction of window w under model m (in the frame of the window's start).
 Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
+// Pose odometry: the true increments (ΔD, Δθ) of window w's own steps [w.first, w.last) through
+// the drive response of time constant `tau` (its state run in from 4τ before the window; the
+// logged increments when tau = 0), two per step into `out`. They depend on τ alone, so the fits
+// reuse them while the scales and the bias move (WindowCache::increments).
+void drive_increments(const MotionData& d, const MotionWindow& w, double tau, double* out);
+// predict_window with w's drive_increments under m.drive_tau given (pose odometry; the same
+// result bit for bit).
+Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m, const double* increments);
 // The reference motion of window w read with the model's time offset.
 std::optional<Pose2> reference_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
 WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
@@ -86,13 +94,13 @@ WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const
 // and many of its steps reuse them. Tied to one MotionData, which must outlive it and not change.
 class WindowCache {
  public:
-  explicit WindowCache(const MotionData& d) : d_(d) {
-    predictions_.reserve(kEntries);
-    references_.reserve(kEntries);
-  }
+  explicit WindowCache(const MotionData& d);
   // Per window, empty until computed; valid until the next call for another model.
   std::vector<std::optional<Pose2>>& predictions(const OdometryModel& m);
   std::vector<std::optional<std::optional<Pose2>>>& references(const OdometryModel& m);
+  // Window wi's drive_increments under τ (pose odometry), memoized by τ; valid until the next call
+  // with another τ.
+  const double* increments(std::size_t wi, double tau);
 
  private:
   static constexpr std::size_t kEntries = 8;
@@ -105,7 +113,16 @@ class WindowCache {
   template <typename T>
   std::vector<std::optional<T>>& table(std::vector<Entry<T>>& entries, const std::vector<double>& key);
 
+  struct Increments {
+    double tau = 0.0;
+    std::vector<double> values;  // two per step of each window, from offsets_
+    std::vector<bool> done;      // per window
+    std::uint64_t used = 0;
+  };
+
   const MotionData& d_;
+  std::vector<std::size_t> offsets_;  // window → its first value in Increments::values
+  std::vector<Increments> increments_;
   std::vector<Entry<Pose2>> predictions_;
   std::vector<Entry<std::optional<Pose2>>> references_;
   std::uint64_t clock_ = 0;
