@@ -24,6 +24,9 @@ packages=(
   parallel             # docs/gnu_parallel.sh: shards on one or several machines (tested)
   clang libclang-rt-14-dev   # fuzz/: libFuzzer targets of the readers (-DLOCBENCH_FUZZ=ON)
   clang-format         # tests: Style.EverySourceIsClangFormatted (.clang-format); `make format`
+  librosbag-storage-dev      # ROS 1 bags (datasets/io/ros1_bag.cpp): rosbag_storage
+  libnav-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev libtf2-msgs-dev   # ROS 1 messages (roscpp serialization)
+  libfastcdr-dev libsqlite3-dev   # ROS 2 bags (datasets/io/ros2_bag.cpp): CDR messages in sqlite3 storage
 )
 
 missing=()
