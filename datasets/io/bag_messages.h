@@ -116,10 +116,8 @@ inline std::string printable(const std::string& text) {
 // A planar pose from a 3D position and a unit quaternion (x, y, z, w): yaw about z.
 PlanarPose planar_pose(double x, double y, double qx, double qy, double qz, double qw);
 
-// The ROS 1 reader and writer (ros1_bag.cpp). Read errors are InputErrors naming the file.
-// The reader first checks the bag's structure (ros1_bag_check.cpp): every record, chunk
-// (decompressed) and index entry, which rosbag_storage would trust.
-void check_ros1_bag_structure(const std::filesystem::path& path);
+// The ROS 1 reader and writer (ros1_bag.cpp; the records are walked by ros1_bag_records.cpp).
+// Read errors are InputErrors naming the file.
 BagMessages read_ros1_bag(const std::filesystem::path& path, const BagRoleChooser& choose);
 // The ROS 2 sqlite3 reader and writer (ros2_bag.cpp): `path` is the bag folder or one .db3 file.
 BagMessages read_ros2_bag(const std::filesystem::path& path, const BagRoleChooser& choose);

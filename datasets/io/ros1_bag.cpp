@@ -1,13 +1,13 @@
-// ROS 1 bags through Debian's rosbag_storage and the message headers' roscpp serialization. The
-// only unit of the project that includes ROS headers (they bring Boost): compiled on its own, outside
-// the unity batches (CMakeLists.txt).
+// ROS 1 bags: the records walked by ros1_bag_records.cpp, the messages deserialized by the message
+// headers' roscpp serialization; written (tests, `simulate --ros1-bag`) by Debian's rosbag_storage.
+// The only unit of the project that includes ROS headers (they bring Boost): compiled on its own,
+// outside the unity batches, as C++17 (CMakeLists.txt).
 #include <console_bridge/console.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
-#include <rosbag/view.h>
 #include <sensor_msgs/LaserScan.h>
 #include <tf2_msgs/TFMessage.h>
 #include <boost/make_shared.hpp>
@@ -24,6 +24,7 @@
 
 #include "core/errors.h"  // C++17 as well
 #include "datasets/io/bag_messages.h"
+#include "datasets/io/ros1_bag_records.h"
 
 namespace locbench::io {
 namespace {
@@ -39,8 +40,17 @@ PlanarPose planar(const geometry_msgs::Transform& t) {
   return planar_pose(t.translation.x, t.translation.y, t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w);
 }
 
-BagStamp stamp_of(const std_msgs::Header& h, const rosbag::MessageInstance& m, std::size_t index) {
-  return {stamp_seconds(h.stamp.sec, h.stamp.nsec), stamp_seconds(m.getTime().sec, m.getTime().nsec), index};
+// One message record of a chosen topic.
+struct RawMessage {
+  const Ros1Connection& connection;
+  double record_time;
+  std::size_t index;  // on its topic, 1-based
+  const std::uint8_t* data;
+  std::uint32_t size;
+};
+
+BagStamp stamp_of(const std_msgs::Header& h, const RawMessage& m) {
+  return {stamp_seconds(h.stamp.sec, h.stamp.nsec), m.record_time, m.index};
 }
 
 // Every string and array length of a serialized message, checked against its size before
@@ -48,15 +58,15 @@ BagStamp stamp_of(const std_msgs::Header& h, const rosbag::MessageInstance& m, s
 // LaserScan asked for 16 GB and spent minutes zero-filling it).
 class LengthCheck {
  public:
-  explicit LengthCheck(const std::vector<std::uint8_t>& bytes) : bytes_(bytes) {}
+  LengthCheck(const std::uint8_t* data, std::uint32_t size) : data_(data), size_(size) {}
   void skip(std::uint64_t n) {
-    if (n > bytes_.size() - at_) throw std::length_error("a field runs past the message's " + size());
+    if (n > size_ - at_) throw std::length_error("a field runs past the message's " + size());
     at_ += n;
   }
   std::uint32_t u32() {
-    if (bytes_.size() - at_ < 4) skip(4);
+    if (size_ - at_ < 4) skip(4);
     std::uint32_t v;
-    std::memcpy(&v, bytes_.data() + at_, 4);
+    std::memcpy(&v, data_ + at_, 4);
     at_ += 4;
     return v;
   }
@@ -72,19 +82,19 @@ class LengthCheck {
     skip(7 * 8);
   }
   void end() const {
-    if (at_ != bytes_.size()) {
-      throw std::length_error(std::to_string(bytes_.size() - at_) + " bytes left over of the message's " + size());
-    }
+    if (at_ != size_)
+      throw std::length_error(std::to_string(size_ - at_) + " bytes left over of the message's " + size());
   }
 
  private:
-  std::string size() const { return std::to_string(bytes_.size()) + " bytes"; }
-  const std::vector<std::uint8_t>& bytes_;
+  std::string size() const { return std::to_string(size_) + " bytes"; }
+  const std::uint8_t* data_;
+  std::uint64_t size_;
   std::uint64_t at_ = 0;
 };
 
-void check_lengths(const std::vector<std::uint8_t>& bytes, const std::string& type) {
-  LengthCheck c(bytes);
+void check_lengths(const RawMessage& m, const std::string& type) {
+  LengthCheck c(m.data, m.size);
   if (type == kOdometryType) {
     c.header();
     c.string();
@@ -110,53 +120,49 @@ void check_lengths(const std::vector<std::uint8_t>& bytes, const std::string& ty
 
 // The message as T, after checking its type (md5 sum) and lengths; InputError otherwise.
 template <class T>
-boost::shared_ptr<T> as(const rosbag::MessageInstance& m, const std::filesystem::path& path, std::size_t index) {
+boost::shared_ptr<T> as(const RawMessage& m, const std::filesystem::path& path) {
   const std::string type = ros::message_traits::DataType<T>::value();
   const auto fail = [&](const std::string& what) {
     throw InputError(path.string(), 0,
-                     "topic " + printable(m.getTopic()) + ", message " + std::to_string(index) + ": " + what);
+                     "topic " + printable(m.connection.topic) + ", message " + std::to_string(m.index) + ": " + what);
   };
-  if (m.getMD5Sum() != ros::message_traits::MD5Sum<T>::value()) {
-    fail("a " + printable(m.getDataType()) + ", expected " + type);
+  if (m.connection.md5sum != ros::message_traits::MD5Sum<T>::value()) {
+    fail("a " + printable(m.connection.type) + ", expected " + type);
   }
-  std::vector<std::uint8_t> bytes(m.size());
-  ros::serialization::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
-  m.write(out);
   try {
-    check_lengths(bytes, type);
+    check_lengths(m, type);
   } catch (const std::length_error& e) {
     fail(std::string("not a serialized ") + type + " (" + e.what() + ")");
   }
   auto msg = boost::make_shared<T>();
-  ros::serialization::IStream in(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  ros::serialization::IStream in(const_cast<std::uint8_t*>(m.data), m.size);  // only read
   ros::serialization::deserialize(in, *msg);
   return msg;
 }
 
-BagPoseMessage pose_message(const rosbag::MessageInstance& m, const std::string& type,
-                            const std::filesystem::path& path, std::size_t index) {
+BagPoseMessage pose_message(const RawMessage& m, const std::string& type, const std::filesystem::path& path) {
   BagPoseMessage out;
   if (type == kOdometryType) {
-    const auto o = as<nav_msgs::Odometry>(m, path, index);
-    out.time = stamp_of(o->header, m, index);
+    const auto o = as<nav_msgs::Odometry>(m, path);
+    out.time = stamp_of(o->header, m);
     out.frame_id = o->header.frame_id;
     out.child_frame_id = o->child_frame_id;
     out.pose = planar(o->pose.pose);
     out.tv = o->twist.twist.linear.x;
     out.rv = o->twist.twist.angular.z;
   } else if (type == kPoseStampedType) {
-    const auto p = as<geometry_msgs::PoseStamped>(m, path, index);
-    out.time = stamp_of(p->header, m, index);
+    const auto p = as<geometry_msgs::PoseStamped>(m, path);
+    out.time = stamp_of(p->header, m);
     out.frame_id = p->header.frame_id;
     out.pose = planar(p->pose);
   } else if (type == kPoseWithCovarianceStampedType) {
-    const auto p = as<geometry_msgs::PoseWithCovarianceStamped>(m, path, index);
-    out.time = stamp_of(p->header, m, index);
+    const auto p = as<geometry_msgs::PoseWithCovarianceStamped>(m, path);
+    out.time = stamp_of(p->header, m);
     out.frame_id = p->header.frame_id;
     out.pose = planar(p->pose.pose);
   } else {
-    const auto t = as<geometry_msgs::TransformStamped>(m, path, index);
-    out.time = stamp_of(t->header, m, index);
+    const auto t = as<geometry_msgs::TransformStamped>(m, path);
+    out.time = stamp_of(t->header, m);
     out.frame_id = t->header.frame_id;
     out.child_frame_id = t->child_frame_id;
     out.pose = planar(t->transform);
@@ -164,10 +170,10 @@ BagPoseMessage pose_message(const rosbag::MessageInstance& m, const std::string&
   return out;
 }
 
-BagScanMessage scan_message(const rosbag::MessageInstance& m, const std::filesystem::path& path, std::size_t index) {
-  const auto s = as<sensor_msgs::LaserScan>(m, path, index);
+BagScanMessage scan_message(const RawMessage& m, const std::filesystem::path& path) {
+  const auto s = as<sensor_msgs::LaserScan>(m, path);
   BagScanMessage out;
-  out.time = stamp_of(s->header, m, index);
+  out.time = stamp_of(s->header, m);
   out.frame_id = s->header.frame_id;
   out.angle_min = s->angle_min;
   out.angle_increment = s->angle_increment;
@@ -177,65 +183,68 @@ BagScanMessage scan_message(const rosbag::MessageInstance& m, const std::filesys
   return out;
 }
 
-// The bag's topics: one entry per topic (the first connection's type), counts and times from
-// the index, without reading the chunks.
-std::vector<BagTopic> bag_topics(const rosbag::Bag& bag) {
-  std::map<std::string, std::string> types;
-  rosbag::View all(bag);
-  for (const rosbag::ConnectionInfo* c : all.getConnections()) types.emplace(c->topic, c->datatype);
-  std::vector<BagTopic> out;
-  for (const auto& [topic, type] : types) {
-    rosbag::View view(bag, rosbag::TopicQuery(topic));
-    BagTopic t;
-    t.name = printable(topic);
-    t.type = type == "tf/tfMessage" ? kTfMessageType : printable(type);  // the same message under its ROS 1 tf name
-    t.count = view.size();
-    if (t.count > 0) {
-      t.first_record = stamp_seconds(view.getBeginTime().sec, view.getBeginTime().nsec);
-      t.last_record = stamp_seconds(view.getEndTime().sec, view.getEndTime().nsec);
-    }
-    out.push_back(std::move(t));
-  }
-  return out;
-}
-
-std::string type_of(const std::vector<BagTopic>& topics, const std::string& name) {
-  for (const BagTopic& t : topics) {
-    if (t.name == name) return t.type;
-  }
-  return {};
+std::string type_name(const std::string& type) {
+  return type == "tf/tfMessage" ? kTfMessageType : printable(type);  // the same message under its ROS 1 tf name
 }
 
 BagMessages read_messages(const std::filesystem::path& path, const BagRoleChooser& choose) {
-  rosbag::Bag bag;
-  bag.open(path.string(), rosbag::bagmode::Read);
   BagMessages out;
-  out.topics = bag_topics(bag);
-  out.roles = choose(out.topics);
-  const BagRoles& r = out.roles;
-  std::vector<std::string> wanted = r.tf;
-  for (const std::string* t : {&r.odom, &r.truth, &r.scan}) {
-    if (!t->empty()) wanted.push_back(*t);
-  }
-  if (wanted.empty()) return out;
-  const std::string truth_type = type_of(out.topics, r.truth);
-  std::map<std::string, std::size_t> counts;
+  std::map<std::uint32_t, Ros1Connection> connections;
+  std::map<std::string, std::size_t> counts;  // messages seen per topic
+  std::map<std::string, BagTopic*> by_name;   // into out.topics
   std::set<std::pair<std::string, std::string>> seen_transforms;
-  rosbag::View view(bag, rosbag::TopicQuery(wanted));
-  for (const rosbag::MessageInstance& m : view) {
-    const std::string& topic = m.getTopic();
+  std::string truth_type;
+  const auto chosen = [&](const std::map<std::uint32_t, Ros1Connection>& all) {
+    connections = all;
+    std::map<std::string, BagTopic> topics;  // one entry per topic: the first connection's type
+    for (const auto& [id, c] : all) {
+      BagTopic& t = topics[printable(c.topic)];
+      t.name = printable(c.topic);
+      if (t.type.empty()) t.type = type_name(c.type);
+      t.count += c.count;
+    }
+    for (auto& [name, t] : topics) out.topics.push_back(t);
+    for (BagTopic& t : out.topics) by_name[t.name] = &t;
+    out.roles = choose(out.topics);
+    if (by_name.count(out.roles.truth)) truth_type = by_name[out.roles.truth]->type;
+    return true;
+  };
+  const auto visit = [&](std::uint32_t id, std::uint32_t sec, std::uint32_t nsec, const std::uint8_t* data,
+                         std::uint32_t size) {
+    const auto c = connections.find(id);
+    if (c == connections.end()) {
+      throw InputError(path.string(), 0,
+                       "a message of connection " + std::to_string(id) + ", which the bag does not declare");
+    }
+    const std::string& topic = c->second.topic;
+    const double record_time = stamp_seconds(sec, nsec);
     const std::size_t index = ++counts[topic];
+    if (BagTopic* t = by_name.count(topic) ? by_name[topic] : nullptr) {
+      if (index == 1) t->first_record = record_time;
+      t->first_record = std::min(t->first_record, record_time);
+      t->last_record = std::max(t->last_record, record_time);
+    }
+    const BagRoles& r = out.roles;
+    const RawMessage m{c->second, record_time, index, data, size};
     // One topic may play two roles (odometry from a simulator's perfect /odom as truth, say).
-    if (topic == r.odom) out.odom.push_back(pose_message(m, kOdometryType, path, index));
-    if (topic == r.truth) out.truth.push_back(pose_message(m, truth_type, path, index));
-    if (topic == r.scan) out.scans.push_back(scan_message(m, path, index));
+    if (topic == r.odom) out.odom.push_back(pose_message(m, kOdometryType, path));
+    if (topic == r.truth) out.truth.push_back(pose_message(m, truth_type, path));
+    if (topic == r.scan) out.scans.push_back(scan_message(m, path));
     if (std::find(r.tf.begin(), r.tf.end(), topic) != r.tf.end()) {
-      const auto tf = as<tf2_msgs::TFMessage>(m, path, index);
+      const auto tf = as<tf2_msgs::TFMessage>(m, path);
       for (const geometry_msgs::TransformStamped& t : tf->transforms) {
         if (seen_transforms.emplace(t.header.frame_id, t.child_frame_id).second) {
           out.transforms.push_back({t.header.frame_id, t.child_frame_id, planar(t.transform)});
         }
       }
+    }
+  };
+  read_ros1_records(path, chosen, visit);
+  for (const BagTopic& t : out.topics) {
+    if (counts[t.name] != t.count) {
+      throw InputError(path.string(), 0,
+                       "topic " + t.name + ": " + std::to_string(counts[t.name]) + " messages, the index says " +
+                           std::to_string(t.count) + " (a damaged bag: `rosbag reindex` rebuilds the index)");
     }
   }
   return out;
@@ -263,14 +272,12 @@ ros::Time record_time(double stamp) { return std::max(ros::Time().fromSec(stamp)
 }  // namespace
 
 BagMessages read_ros1_bag(const std::filesystem::path& path, const BagRoleChooser& choose) {
-  silence_console_bridge();
-  check_ros1_bag_structure(path);
   try {
     return read_messages(path, choose);
   } catch (const InputError&) {
     throw;
-  } catch (const std::exception& e) {  // rosbag::BagException, ros::serialization::StreamOverrunException, …
-    throw InputError(path.string(), 0, "not a readable ROS 1 bag (expected rosbag format 2.0): " + printable(e.what()));
+  } catch (const std::exception& e) {  // ros::serialization::StreamOverrunException, std::bad_alloc, …
+    throw InputError(path.string(), 0, "not a readable ROS 1 bag: " + printable(e.what()));
   }
 }
 
