@@ -267,11 +267,14 @@ Mount laser_mount(const BagSpec& spec, const BagMessages& m) {
     return {*pose, fmt::format("laser mount {} in {} from {}: x = {:.4g} m, y = {:.4g} m, θ = {:.4g} rad",
                                printable(laser), printable(base), joined(m.roles.tf), pose->x, pose->y, pose->theta)};
   }
+  const std::string missing = fmt::format("laser mount: no transform from {} to {} in {}", printable(base),
+                                          laser.empty() ? "(no frame_id)" : printable(laser),
+                                          m.roles.tf.empty() ? "the bag (no /tf_static or /tf)" : joined(m.roles.tf));
+  if (!spec.base_frame.empty() || !spec.laser_frame.empty()) {  // frames the user named: theirs must be there
+    throw InputError(spec.path.string(), 0, missing + " (expected the frames named by #base= and #laser=)");
+  }
   return {Pose2::identity(),
-          fmt::format("laser mount: no transform from {} to {} in {}: the laser is taken to sit at the base frame "
-                      "({}base=FRAME,laser=FRAME to name the frames)",
-                      printable(base), laser.empty() ? "(no frame_id)" : printable(laser),
-                      m.roles.tf.empty() ? "the bag (no /tf_static or /tf)" : joined(m.roles.tf), "#")};
+          missing + ": the laser is taken to sit at the base frame (#base=FRAME,laser=FRAME to name the frames)"};
 }
 
 std::string role_name(const BagRoles& r, const std::string& topic) {

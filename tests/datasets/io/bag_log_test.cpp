@@ -202,6 +202,11 @@ TEST(RosBag, TheLaserMountFollowsAChainOfStaticTransforms) {
   EXPECT_EQ(std::vector<bool>({scan.valid(0), scan.valid(1), scan.valid(2), scan.valid(3), scan.valid(4)}),
             std::vector<bool>({true, true, false, false, true}));
   EXPECT_NEAR(log.laser[0].odom_pose.x, 0.01, 1e-12);  // the odometry at the scan's stamp
+  // Frames named after '#' must be joined by the transforms; the defaults may fall back.
+  EXPECT_NEAR(load_log(dir.file("m.bag").string() + "#laser=mast").laser[0].scan.sensor_pose.x, 0.1, 1e-12);
+  EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("m.bag").string() + "#base=base_footprint"); }, "m.bag", 0,
+                                 {"laser mount: no transform from base_footprint to laser in /tf_static",
+                                  "expected the frames named by #base= and #laser="}));
 }
 
 TEST(RosBag, TheAcesCatalogLogReadsBackFromItsBagsRecordForRecord) {
