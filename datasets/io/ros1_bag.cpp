@@ -216,7 +216,7 @@ BagMessages read_messages(const std::filesystem::path& path, const BagRoleChoose
       throw InputError(path.string(), 0,
                        "a message of connection " + std::to_string(id) + ", which the bag does not declare");
     }
-    const std::string& topic = c->second.topic;
+    const std::string topic = printable(c->second.topic);  // as out.topics names it
     const double record_time = stamp_seconds(sec, nsec);
     const std::size_t index = ++counts[topic];
     if (BagTopic* t = by_name.count(topic) ? by_name[topic] : nullptr) {
