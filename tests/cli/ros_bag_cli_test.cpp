@@ -5,6 +5,8 @@
 #include <fstream>
 #include <string>
 
+#include "datasets/io/bag_log.h"
+#include "datasets/io/log_loader.h"
 #include "tests/cli/cli_helpers.h"
 #include "tests/test_data.h"
 
@@ -80,6 +82,24 @@ TEST_F(RosBagCli, ARealDataExperimentOnABagEqualsItOnTheSameRecordsAsCarmen) {
   EXPECT_NE(carmen.find("diagnose/same/causes_detected"), std::string::npos) << carmen;
   EXPECT_EQ(run("b/same.bag"), carmen);
   EXPECT_EQ(run("f/same"), carmen);
+}
+
+TEST(RosBagCatalogCli, DiagnoseOnTheAcesLogAsABagEqualsDiagnoseOnTheCatalogLog) {
+  LOCBENCH_REQUIRE_DATA("slam_benchmark/clf/aces.from_bag.clf.gz");
+  ScratchDir dir;
+  const std::string relations = (data_root() / "slam_benchmark/relations/aces.relations.gz").string();
+  const Log aces = io::load_log((data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz").string());
+  io::write_bag_log(aces, dir.path() / "aces.bag", io::BagFormat::kRos1);
+  io::write_bag_log(aces, dir.path() / "aces", io::BagFormat::kRos2);
+  const auto diagnose = [&](const std::string& log) {
+    const Outcome o = run_locbench("diagnose " + log + " --relations " + relations);
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    return o.output.substr(o.output.find('\n'));  // without the "log:" line
+  };
+  const std::string carmen = diagnose((data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz").string());
+  EXPECT_NE(carmen.find("verdict: The nominal model misses"), std::string::npos) << carmen;
+  EXPECT_EQ(diagnose((dir.path() / "aces.bag").string()), carmen);
+  EXPECT_EQ(diagnose((dir.path() / "aces").string()), carmen);
 }
 
 }  // namespace
