@@ -1,5 +1,6 @@
 // `locbench list`: experiments, simulator scenarios, and the real datasets found with their
-// record counts and time spans.
+// record counts and time spans. `locbench list LOG`: what locbench reads from one log; for a ROS
+// bag, every topic with its type, count and rate, and the topics locbench uses.
 #include <fmt/format.h>
 
 #include <iostream>
@@ -9,6 +10,8 @@
 #include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"
+#include "datasets/io/bag_log.h"
+#include "datasets/io/log_loader.h"
 #include "datasets/log/data_root.h"
 #include "datasets/sim/presets.h"
 
@@ -19,6 +22,7 @@ using locbench::catalog::calibration_dataset_parts, locbench::catalog::dataset_c
 namespace {
 
 struct ListArgs {
+  std::string log;
   std::string data;
   bool no_load = false;
 };
@@ -40,7 +44,32 @@ std::string counts(const Log& log) {
   return s;
 }
 
+void print_bag(const io::BagSpec& spec) {
+  const io::BagDescription d = io::describe_bag(spec);
+  std::cout << fmt::format("{} {}: {} topics\n", d.format, spec.path.string(), d.topics.size());
+  std::cout << fmt::format("  {:<28} {:<40} {:>8} {:>10}  {}\n", "topic", "type", "messages", "rate", "used as");
+  for (const io::BagTopicUse& t : d.topics) {
+    const std::string rate = t.rate > 0.0 ? fmt::format("{:.4g}", t.rate) : "-";
+    std::cout << fmt::format("  {:<28} {:<40} {:>8} {:>7} Hz  {}\n", t.topic.name, t.topic.type, t.topic.count, rate,
+                             t.role.empty() ? "-" : t.role);
+  }
+  for (const std::string& n : d.notes) std::cout << "  " << n << "\n";
+}
+
+// One log: for a bag its topics, then (any log) the records locbench reads from it.
+int list_log(const ListArgs& args) {
+  if (const auto bag = io::parse_bag_spec(args.log)) {
+    if (!std::filesystem::exists(bag->path)) throw InputError(bag->path.string(), 0, "no such file or folder");
+    print_bag(*bag);
+  }
+  const Log log = io::load_log(args.log);
+  const auto [t0, t1] = log.time_span();
+  std::cout << fmt::format("{}: {:.3f} s from t = {:.3f}: {}\n", args.log, t1 - t0, t0, counts(log));
+  return kExitOk;
+}
+
 int list(const ListArgs& args) {
+  if (!args.log.empty()) return list_log(args);
   std::cout << "Experiments (* = default suite):\n";
   for (const auto& e : experiments::all_experiments()) {
     std::cout << fmt::format("  {} {:<26} {}\n", e->in_default_suite() ? '*' : ' ', e->name(), e->description());
@@ -122,6 +151,9 @@ int list(const ListArgs& args) {
 
 Action add_list_command(CLI::App& app) {
   const auto [cmd, args] = add_verb<ListArgs>(app, "list", "List experiments, scenarios and datasets found");
+  cmd->add_option("log", args->log,
+                  "A log to describe instead: its records; for a ROS bag (LOG.bag, a ROS 2 bag folder) every topic "
+                  "with type, count and rate, and which ones locbench uses (choose with LOG#odom=…,truth=…,scan=…)");
   add_data_option(cmd, args->data);
   cmd->add_flag("--no-load", args->no_load, "Only check that datasets exist; do not read them");
   return [args] { return list(*args); };

@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "core/errors.h"
 #include "core/trajectory.h"
+#include "datasets/io/bag_log.h"
 #include "datasets/io/carmen_writer.h"
 #include "datasets/io/tum_writer.h"
 #include "datasets/sim/presets.h"
@@ -22,6 +23,8 @@ struct SimulateArgs {
   std::uint64_t seed = 1;
   std::string out;
   std::string truth_tum;
+  std::string ros1_bag;
+  std::string ros2_bag;
   bool print_scenario = false;
 };
 
@@ -42,10 +45,18 @@ int simulate(const SimulateArgs& args) {
     std::cout << sim::to_json(scenario).dump(2) << '\n';
     return kExitOk;
   }
-  if (args.out.empty()) throw UsageError("simulate: give the log to write with -o FILE");
-  reports::check_outputs({args.scenario}, {{"-o", args.out}, {"--truth-tum", args.truth_tum}});
+  if (args.out.empty() && args.ros1_bag.empty() && args.ros2_bag.empty()) {
+    throw UsageError("simulate: give the log to write with -o FILE (or --ros1-bag FILE, --ros2-bag FOLDER)");
+  }
+  reports::check_outputs({args.scenario},
+                         {{"-o", args.out}, {"--truth-tum", args.truth_tum}, {"--ros1-bag", args.ros1_bag}});
+  if (!args.ros2_bag.empty() && std::filesystem::exists(args.ros2_bag)) {
+    throw InputError(args.ros2_bag, 0, "exists already (expected a new folder for the ROS 2 bag)");
+  }
   const sim::SimulationResult result = sim::simulate(scenario, args.seed);
-  write_carmen_log(result.log, args.out);
+  if (!args.out.empty()) write_carmen_log(result.log, args.out);
+  if (!args.ros1_bag.empty()) io::write_bag_log(result.log, args.ros1_bag, io::BagFormat::kRos1);
+  if (!args.ros2_bag.empty()) io::write_bag_log(result.log, args.ros2_bag, io::BagFormat::kRos2);
   if (!args.truth_tum.empty()) {
     const Trajectory truth = sim::true_trajectory(result);
     write_tum(truth, args.truth_tum);
@@ -54,8 +65,9 @@ int simulate(const SimulateArgs& args) {
   std::cerr << fmt::format(
       "wrote {}: scenario {}, seed {}, {:.1f} s, {} ENCODER, {} ODOM, {} COMPASS, {} FLASER, {} "
       "TRUEPOS, {} true slip events\n",
-      args.out, scenario.name, args.seed, t1 - t0, result.log.encoders.size(), result.log.odometry.size(),
-      result.log.compass.size(), result.log.laser.size(), result.log.truth.size(), result.slips.size());
+      args.out.empty() ? (args.ros1_bag.empty() ? args.ros2_bag : args.ros1_bag) : args.out, scenario.name, args.seed,
+      t1 - t0, result.log.encoders.size(), result.log.odometry.size(), result.log.compass.size(),
+      result.log.laser.size(), result.log.truth.size(), result.slips.size());
   return kExitOk;
 }
 
@@ -69,6 +81,9 @@ Action add_simulate_command(CLI::App& app) {
   add_seed_option(cmd, args->seed, "Seed of every noise source")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Log file to write (.clf or .clf.gz)");
   cmd->add_option("--truth-tum", args->truth_tum, "Also write the true trajectory in TUM format");
+  cmd->add_option("--ros1-bag", args->ros1_bag,
+                  "Also write the log as a ROS 1 bag: /odom, /ground_truth, /scan, /tf_static (no ENCODER, COMPASS)");
+  cmd->add_option("--ros2-bag", args->ros2_bag, "Also write the log as a ROS 2 sqlite3 bag folder (the same topics)");
   cmd->add_flag("--print-scenario", args->print_scenario,
                 "Print the scenario's full JSON (every option with its value) and exit");
   return [args] { return simulate(*args); };

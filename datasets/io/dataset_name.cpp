@@ -22,8 +22,8 @@ bool strip_suffix(std::string& s, std::string_view suffix) {
 std::string dataset_name_from_file(const std::filesystem::path& path) {
   std::string name = path.filename().string();
   strip_suffix(name, ".gz");
-  constexpr std::array<std::string_view, 7> kExtensions = {".clf", ".log", ".carmen", ".relations",
-                                                           ".dat", ".txt", ".tum"};
+  constexpr std::array<std::string_view, 9> kExtensions = {".clf", ".log", ".carmen", ".relations", ".dat",
+                                                           ".txt", ".tum", ".bag",    ".db3"};
   for (const auto ext : kExtensions) {
     if (strip_suffix(name, ext)) break;
   }

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "core/errors.h"
+#include "datasets/io/bag_log.h"
 #include "datasets/io/carmen_reader.h"
 #include "datasets/io/dataset_name.h"
 #include "datasets/io/mrclam_reader.h"
@@ -16,7 +17,8 @@ namespace {
 
 constexpr const char* kAccepted =
     "accepted: a CARMEN log (.clf, .log or .carmen, optionally .gz), a relations file "
-    "(.relations or .relations.gz), or an MRCLAM dataset folder with an optional #robotN suffix";
+    "(.relations or .relations.gz), an MRCLAM dataset folder with an optional #robotN suffix, a ROS 1 bag (.bag) or "
+    "a ROS 2 sqlite3 bag (a folder with metadata.yaml and .db3 files), topics chosen by #odom=…,truth=…,scan=…";
 
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -55,6 +57,13 @@ bool looks_like_mrclam(const std::filesystem::path& folder) {
 }  // namespace
 
 Log load_log(const std::string& spec) {
+  if (const auto bag = parse_bag_spec(spec)) {
+    std::error_code ec;
+    if (!std::filesystem::exists(bag->path, ec)) {
+      throw InputError(bag->path.string(), 0, std::string("no such file or folder (") + kAccepted + ")");
+    }
+    return read_bag_log(*bag);
+  }
   std::filesystem::path path(spec);
   int robot = 1;
   const auto hash = spec.rfind('#');

@@ -11,7 +11,9 @@ namespace locbench::io {
 // - a CARMEN log file *.clf, *.log or *.carmen, optionally gzip-compressed (*.clf.gz, …);
 // - a Freiburg relations file *.relations(.gz): a Log holding only the relations;
 // - an MRCLAM dataset folder with an optional robot suffix: "…/MRCLAM_Dataset6#robot2"
-//   (robot 1 without a suffix).
+//   (robot 1 without a suffix);
+// - a ROS 1 bag *.bag or a ROS 2 sqlite3 bag (folder or .db3), topics chosen after '#':
+//   "run.bag#odom=/wheel_odom,truth=/vicon/pose" (datasets/io/bag_log.h).
 // Throws InputError for anything else (naming the accepted formats) and for malformed input.
 Log load_log(const std::string& spec);
 

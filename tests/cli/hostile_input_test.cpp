@@ -58,6 +58,11 @@ const std::string kShortLog =
     file("short.json",
          R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1.0}, "laser": {"enabled": true}})") +
     "{exe} simulate '{d}/short.json' --seed 3 -o '{d}/l.clf' >/dev/null 2>&1\n";
+// The same run as a ROS 1 bag (l.bag) and a ROS 2 bag (folder l2) with /odom, /ground_truth, /scan.
+const std::string kShortBags =
+    file("b.json", R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1.0},
+                      "odometry": {"enabled": true}, "laser": {"enabled": true}})") +
+    "{exe} simulate '{d}/b.json' --seed 3 --ros1-bag '{d}/l.bag' --ros2-bag '{d}/l2' >/dev/null 2>&1\n";
 // A valid report (classic UMBmark on the example data).
 const std::string kReport =
     "{exe} calibrate umbmark-classic '{src}/examples/umbmark_trilobot.json' --report '{d}/r.json' >/dev/null 2>&1\n";
@@ -974,7 +979,8 @@ const std::vector<HostileCase>& cases() {
        "calibrate ml {d}/t.tuple", 2, "t.tuple:1: \"T\": expected an interval > 0 s"},
       {"calibrate_ml_unknown_dataset", "", "calibrate ml nothing_like_this", 2,
        "nothing_like_this: cannot open the input file: no such file"},
-      {"list_extra_argument", "", "list extra", 2, "The following argument was not expected: extra"},
+      {"list_extra_argument", "", "list extra more", 2, "The following argument was not expected: more"},
+      {"list_log_missing", "", "list extra", 2, "extra: no such file or folder (accepted: a CARMEN log"},
       {"no_arguments", "", "", 2, "A subcommand is required"},
       // 18. Outputs onto inputs (data loss) and estimates judged before they are reported: UMBmark
       // input that is not geometry, collinear tuples, a robot that never moves, truth x1e300 and a
@@ -1065,6 +1071,29 @@ const std::vector<HostileCase>& cases() {
        "{$2=$2+1000000000} {print}' '{d}/c.clf' > '{d}/g.clf'",
        "diagnose {d}/g.clf", 2,
        "g.clf: ENCODER at t = 19.784: a wheel travels 1.26378e+07 m in 0.317 s since the previous"},
+      // 19. ROS bags (datasets/io/bag_log.h): truncated, a topic missing or of the wrong type, a bad
+      // topic choice, storage not read; every verb through the same opener.
+      {"bag_truncated", kShortBags + "head -c 3000 '{d}/l.bag' > '{d}/t.bag'", "diagnose {d}/t.bag", 2,
+       "t.bag: not a readable ROS 1 bag: byte"},
+      {"bag_truncated_list", kShortBags + "head -c 3000 '{d}/l.bag' > '{d}/t.bag'", "list {d}/t.bag", 2,
+       "t.bag: not a readable ROS 1 bag: byte"},
+      {"bag_truncated_real_log_experiment", kShortBags + "head -c 3000 '{d}/l.bag' > '{d}/t.bag'",
+       "run diagnosis/real_logs --log {d}/t.bag -o {d}/o", 2, "t.bag: not a readable ROS 1 bag"},
+      {"bag_empty", "touch '{d}/e.bag'", "diagnose {d}/e.bag", 2,
+       "e.bag: not a readable ROS 1 bag: byte 0: no \"#ROSBAG V2.0\" line"},
+      {"bag_missing_topic", kShortBags, "diagnose '{d}/l.bag#odom=/wheel_odom'", 2,
+       "l.bag: #odom=/wheel_odom: no such topic in the bag (topics: /ground_truth"},
+      {"bag_wrong_message_type", kShortBags, "diagnose '{d}/l.bag#odom=/scan'", 2,
+       "l.bag: topic /scan (#odom=) is a sensor_msgs/LaserScan, expected nav_msgs/Odometry for the odometry"},
+      {"bag_unknown_topic_key", kShortBags, "diagnose '{d}/l.bag#odometry=/odom'", 2,
+       "'odometry=/odom' after '#': unknown key \"odometry\""},
+      {"bag_no_odometry", kShortBags, "calibrate ml '{d}/l2#odom=none'", 2, "l2: no odometry topic"},
+      {"ros2_bag_truncated_database", kShortBags + "truncate -s 5000 '{d}/l2/l2_0.db3'", "diagnose {d}/l2", 2,
+       "l2_0.db3: reading the bag: database disk image is malformed"},
+      {"ros2_bag_wrong_message_type", kShortBags, "list '{d}/l2#truth=/scan'", 2,
+       "l2: topic /scan (#truth=) is a sensor_msgs/LaserScan, expected geometry_msgs/PoseStamped or"},
+      {"ros2_bag_mcap", "mkdir '{d}/m' && touch '{d}/m/metadata.yaml' '{d}/m/m_0.mcap'", "diagnose {d}/m", 2,
+       "m: a ROS 2 bag in MCAP storage: not read yet"},
   };
   return all;
 }

@@ -9,6 +9,7 @@
 #include "core/input_file.h"
 #include "core/input_limits.h"
 #include "datasets/catalog/dataset_catalog.h"
+#include "datasets/io/bag_log.h"
 #include "datasets/io/landmark_reader.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/tum_reader.h"
@@ -55,8 +56,8 @@ std::size_t robot_suffix_at(const std::string& spec) {
   return suffix == "robot" ? hash : std::string::npos;
 }
 
-// The file part of a load_log spec ("folder#robot2" → "folder").
-std::string file_of(const std::string& spec) { return spec.substr(0, robot_suffix_at(spec)); }
+// The file part of a load_log spec ("folder#robot2" → "folder", "run.bag#odom=/o" → "run.bag").
+std::string file_of(const std::string& spec) { return io::log_spec_path(spec); }
 
 constexpr const char* kKeys[] = {"name", "log", "relations", "ground_truth", "landmark_map", "landmark_observations"};
 
@@ -166,7 +167,7 @@ LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path
     attach_landmark_files(out.log, spec.landmark_map, spec.landmark_observations);
   }
   out.dataset.name = spec.name;
-  out.dataset.checksum = reports::file_checksum(file);  // a file, or an MRCLAM folder
+  out.dataset.checksum = reports::file_checksum(file);  // a file, or an MRCLAM or ROS 2 bag folder
   out.dataset.records = out.log.record_count();
   const auto [t0, t1] = out.log.time_span();
   out.dataset.duration_s = t1 - t0;

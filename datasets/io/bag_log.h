@@ -1,0 +1,75 @@
+#pragma once
+// ROS bags as logs: a ROS 1 bag (*.bag) or a ROS 2 sqlite3 bag (a folder with metadata.yaml and
+// *.db3 files, or one .db3 file), with the topics chosen by name after a '#':
+//   run.bag#odom=/wheel_odom,truth=/vicon/robot/pose,scan=/base_scan,base=base_footprint,laser=laser
+// Without a choice each role takes the first of its default topics present (kDefault…Topics);
+// "none" turns a role off. The header stamps are used, not the record times.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/log.h"
+#include "datasets/io/bag_messages.h"
+
+namespace locbench::io {
+
+inline constexpr const char* kDefaultOdometryTopics[] = {"/odom", "/wheel_odom"};
+// A simulator's ground truth (Stage, Gazebo's p3d plugin) or a motion-capture pose.
+inline constexpr const char* kDefaultTruthTopics[] = {"/ground_truth",       "/base_pose_ground_truth",
+                                                      "/ground_truth/state", "/ground_truth/pose",
+                                                      "/mocap/pose",         "/vicon/pose"};
+inline constexpr const char* kDefaultScanTopics[] = {"/scan", "/base_scan"};
+inline constexpr const char* kTfTopics[] = {"/tf_static", "/tf"};
+
+enum class BagFormat { kRos1, kRos2 };
+
+// A bag spec taken apart: the file or folder, and the choices after '#'.
+struct BagSpec {
+  std::filesystem::path path;
+  BagFormat format = BagFormat::kRos1;
+  std::optional<std::string> odom, truth, scan;  // chosen topic; "" = none; nullopt = the defaults
+  std::string base_frame;                        // default: the odometry's child_frame_id, else base_link
+  std::string laser_frame;                       // default: the scans' frame_id
+};
+
+// The path a log spec names: `spec` without a "#robotN" or "#odom=…" suffix.
+std::string log_spec_path(const std::string& spec);
+
+// The spec as a bag, or nullopt if the path is not a bag (not *.bag, *.db3, nor a folder with
+// metadata.yaml or *.db3). Throws InputError for a bag whose '#' part is not key=value,… with
+// the keys odom, truth, scan, base, laser.
+std::optional<BagSpec> parse_bag_spec(const std::string& spec);
+
+// Reads the chosen topics into a Log: ODOM from nav_msgs/Odometry (pose; tv, rv from the twist),
+// TRUEPOS from PoseStamped, PoseWithCovarianceStamped, TransformStamped or Odometry, FLASER from
+// LaserScan with the laser's mount from /tf_static (or /tf) base → laser. Throws InputError
+// naming the file, topic and message for a missing or mistyped topic, an undecodable message
+// and header stamps out of order.
+Log read_bag_log(const BagSpec& spec);
+
+// What `locbench list LOG` prints for a bag: every topic, the role locbench gives it, and notes.
+struct BagTopicUse {
+  BagTopic topic;
+  std::string role;   // "odometry (ODOM)", "truth (TRUEPOS)", "scan (FLASER)", "laser mount", or ""
+  double rate = 0.0;  // messages per second of record time (0 with fewer than 2)
+};
+struct BagDescription {
+  std::string format;  // "ROS 1 bag" or "ROS 2 bag (sqlite3)"
+  std::vector<BagTopicUse> topics;
+  std::vector<std::string> notes;  // stamps against record times, the laser mount, missing roles
+};
+// Does not throw for a missing role (it is a note); throws InputError for an unreadable bag.
+BagDescription describe_bag(const BagSpec& spec);
+
+// A Log as bag contents on the default topics (frames odom, base_link, laser, map); the laser
+// mount of the first scan becomes the /tf_static transform base_link → laser. A log with ENCODER
+// records and a nominal model but no ODOM gets /odom by dead reckoning, as a ROS robot publishes it.
+BagContents bag_contents(const Log& log);
+
+// Writes a Log's ODOM, TRUEPOS and FLASER records as a ROS 1 bag file or a ROS 2 bag folder
+// (ENCODER, COMPASS and PARAM records have no topic yet and are left out). Written beside the
+// target and renamed into place; a ROS 2 folder that exists already is refused (InputError).
+void write_bag_log(const Log& log, const std::filesystem::path& path, BagFormat format);
+
+}  // namespace locbench::io
