@@ -108,14 +108,9 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
     }
     return p;
   }
-  std::size_t start = w.first;
+  const std::size_t start = drive_run_in_start(d, w, tau.v);
   Mean u(0.0), omega(0.0);
   if (tau.v > 0.0) {
-    double span = 0.0;
-    while (start > 0 && span < 4.0 * tau.v && d.steps[start - 1].t1 == d.steps[start].t0) {
-      --start;
-      span += d.steps[start].t1 - d.steps[start].t0;
-    }
     const auto& s0 = d.steps[start];
     const double dt0 = s0.t1 - s0.t0;
     u = dt0 > 0.0 ? s0.a / dt0 : 0.0;

@@ -50,16 +50,21 @@ double expected_stall_loss(const MotionData& d, const MotionWindow& w, const Odo
   return s.p * s.fraction;
 }
 
+std::size_t drive_run_in_start(const MotionData& d, const MotionWindow& w, double tau) {
+  std::size_t start = w.first;
+  double span = 0.0;
+  while (tau > 0.0 && start > 0 && span < 4.0 * tau && d.steps[start - 1].t1 == d.steps[start].t0) {
+    --start;
+    span += d.steps[start].t1 - d.steps[start].t0;
+  }
+  return start;
+}
+
 void drive_increments(const MotionData& d, const MotionWindow& w, double tau, double* out) {
   // The drive's state at the window's start: the response run from 4τ before it (e^−4 = 2%).
-  std::size_t start = w.first;
+  const std::size_t start = drive_run_in_start(d, w, tau);
   double u = 0.0, omega = 0.0;
   if (tau > 0.0) {
-    double span = 0.0;
-    while (start > 0 && span < 4.0 * tau && d.steps[start - 1].t1 == d.steps[start].t0) {
-      --start;
-      span += d.steps[start].t1 - d.steps[start].t0;
-    }
     const auto& s0 = d.steps[start];
     const double dt0 = s0.t1 - s0.t0;
     u = dt0 > 0.0 ? s0.a / dt0 : 0.0;

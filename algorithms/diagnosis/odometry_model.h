@@ -82,6 +82,9 @@ Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryM
 // logged increments when tau = 0), two per step into `out`. They depend on τ alone, so the fits
 // reuse them while the scales and the bias move (WindowCache::increments).
 void drive_increments(const MotionData& d, const MotionWindow& w, double tau, double* out);
+// The first step of w's drive run-in under τ: steps contiguous before w back to 4τ (e^−4 = 2%);
+// w.first when τ ≤ 0.
+std::size_t drive_run_in_start(const MotionData& d, const MotionWindow& w, double tau);
 // predict_window with w's drive_increments under m.drive_tau given (pose odometry; the same
 // result bit for bit).
 Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m, const double* increments);
