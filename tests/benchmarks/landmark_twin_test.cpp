@@ -149,6 +149,32 @@ TEST(NoiseCorrelation, TheFittedModelDrawsTheVarianceOfTenSecondMeans) {
   EXPECT_LE(c.time_s, 30.0);  // never beyond the longest block
 }
 
+// Three landmarks per camera frame, each with its own white noise (0.5 of the variance) and a part
+// common to the frame that is correlated in time (0.5, τ 3 s). Within a frame only the white part
+// differs, which measures the share; blocks of time means alone cannot tell a fast correlated
+// part from white noise.
+TEST(NoiseCorrelation, TheShareIsMeasuredWithinCameraFrames) {
+  Rng rng(9);
+  std::vector<double> t, r;
+  double b = 0.0;
+  const double a = std::exp(-0.25 / 3.0);
+  for (int frame = 0; frame < 2000; ++frame) {
+    b = a * b + std::sqrt(1.0 - a * a) * rng.normal();
+    for (int k = 0; k < 3; ++k) t.push_back(0.25 * frame), r.push_back(std::sqrt(0.5) * (rng.normal() + b));
+  }
+  const NoiseCorrelation c = fit_noise_correlation(t, r);
+  EXPECT_NEAR(c.share, 0.5, 0.05);
+  EXPECT_NEAR(c.time_s, 3.0, 1.0);
+}
+
+TEST(NoiseCorrelation, WhiteNoiseInCameraFramesHasNone) {
+  Rng rng(10);
+  std::vector<double> t, r;
+  for (int frame = 0; frame < 2000; ++frame)
+    for (int k = 0; k < 3; ++k) t.push_back(0.25 * frame), r.push_back(rng.normal());
+  EXPECT_LT(fit_noise_correlation(t, r).share, 0.05);
+}
+
 TEST(NoiseCorrelation, WhiteNoiseHasNone) {
   Rng rng(6);
   std::vector<double> t, r;

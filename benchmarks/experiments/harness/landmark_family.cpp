@@ -44,10 +44,12 @@ MethodSetup base_setup(Method method, const PartMotion& motion, const FilterMode
     case Method::kNominalModel:
       s.motion = &motion.nominal;
       s.sensor = m.nominal_sensor;
+      s.sensor.structure = {};  // white
       break;
     case Method::kDiagnosedModel:
       s.motion = &motion.diagnosed;
       s.sensor = m.diagnosed_sensor;
+      if (!o.correlated_sensor_noise) s.sensor.structure = {};
       break;
     default:
       s.motion = &motion.logged;

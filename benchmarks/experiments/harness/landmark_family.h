@@ -38,6 +38,9 @@ struct FamilyOptions {
   // With kRmse: settings this close to the lowest RMSE compete on consistency (0: the lowest RMSE
   // alone).
   double rmse_tolerance = 0.0;
+  // The diagnosed model's filter carries its sensor's time-correlated noise share as biases in its
+  // state (LandmarkSensorModel::structure); false: it takes all of the noise as white.
+  bool correlated_sensor_noise = false;
 };
 
 struct MethodScore {

@@ -6,6 +6,7 @@
 #include <limits>
 #include <variant>
 
+#include "algorithms/filters/bias_augmented_ekf.h"
 #include "algorithms/filters/consistency.h"
 #include "algorithms/filters/motion_model_ekf.h"
 #include "core/chi_square.h"
@@ -17,7 +18,8 @@ namespace {
 
 using baselines::filters::FixedQEkf, baselines::filters::FixedQEkfOptions, baselines::filters::SageHusaAekf,
     baselines::filters::SageHusaOptions, baselines::filters::VbAkf, baselines::filters::VbAkfOptions;
-using filters::CompassEkf, filters::CompassEkfOptions, filters::MotionModelEkf, filters::OdometryNoiseForm;
+using filters::BiasAugmentedEkf, filters::CompassEkf, filters::CompassEkfOptions, filters::MotionModelEkf,
+    filters::OdometryNoiseForm;
 
 constexpr double kTruthMargin = 2.0;  // [s]
 
@@ -149,6 +151,24 @@ NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::
   }
   if (scales.size() < 2) return none;
 
+  // Residuals that share a time stamp (several landmarks in one camera frame) share the common
+  // part exactly, so their spread about the frame's mean is the independent part alone: pooled,
+  // Σ_frames Σ(x − x̄)² / Σ_frames (n − 1) estimates the white variance and fixes the share.
+  double within = 0.0, dof = 0.0;
+  for (std::size_t i = 0; i < x.size();) {
+    std::size_t j = i;
+    double sum = 0.0;
+    while (j < x.size() && t[j] == t[i]) sum += x[j++];
+    if (j - i >= 2) {
+      const double frame_mean = sum / static_cast<double>(j - i);
+      for (std::size_t k = i; k < j; ++k) within += (x[k] - frame_mean) * (x[k] - frame_mean);
+      dof += static_cast<double>(j - i - 1);
+    }
+    i = j;
+  }
+  const bool share_from_frames = dof >= static_cast<double>(kMinFramePairs);
+  const double frame_share = share_from_frames ? std::clamp(1.0 - within / dof / var, 0.0, 1.0) : 0.0;
+
   const auto misfit = [&](double share, double tau) {
     double e = 0.0;
     for (const BlockScale& scale : scales) {
@@ -173,10 +193,19 @@ NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::
     }
   };
   const double ln_lo = std::log(0.1), ln_hi = std::log(std::end(kCorrelationScales)[-1]);
-  search(0.0, 1.0, 20, ln_lo, ln_hi, 40);
-  const double ds = 0.05, dl = (ln_hi - ln_lo) / 40.0;
-  search(std::max(0.0, best_share - ds), std::min(1.0, best_share + ds), 10, std::max(ln_lo, std::log(best_tau) - dl),
-         std::min(ln_hi, std::log(best_tau) + dl), 10);
+  const double dl = (ln_hi - ln_lo) / 40.0;
+  if (share_from_frames) {  // the share is measured: the blocks fit τ alone
+    best_share = frame_share;
+    best = misfit(best_share, best_tau);
+    search(frame_share, frame_share, 1, ln_lo, ln_hi, 40);
+    search(frame_share, frame_share, 1, std::max(ln_lo, std::log(best_tau) - dl),
+           std::min(ln_hi, std::log(best_tau) + dl), 10);
+  } else {
+    search(0.0, 1.0, 20, ln_lo, ln_hi, 40);
+    const double ds = 0.05;
+    search(std::max(0.0, best_share - ds), std::min(1.0, best_share + ds), 10, std::max(ln_lo, std::log(best_tau) - dl),
+           std::min(ln_hi, std::log(best_tau) + dl), 10);
+  }
   if (!(best_share > 0.0)) return none;
   return {best_share, best_tau};
 }
@@ -298,7 +327,16 @@ double turn_rate_at(const std::vector<MotionStep>& steps, double t) {
   return it->turn / (it->t1 - it->t0);
 }
 
-using AnyFilter = std::variant<FixedQEkf, CompassEkf, SageHusaAekf, VbAkf, MotionModelEkf>;
+using AnyFilter = std::variant<FixedQEkf, CompassEkf, SageHusaAekf, VbAkf, MotionModelEkf, BiasAugmentedEkf>;
+
+// Does the method estimate R itself (its knob is a forgetting factor, not an R scale)?
+bool estimates_r(Method m) { return m == Method::kSageHusa || m == Method::kVbAkf; }
+
+// The share of a channel's noise that is correlated in time, as a Gauss–Markov bias of the filter's
+// state: variance share·σ² (σ the channel's white-noise σ, in the corrected measurement's units).
+filters::GaussMarkovBias correlated_part(const NoiseCorrelation& c, double sigma, double r_scale) {
+  return {std::sqrt(r_scale * c.share) * sigma, c.time_s > 0.0 ? c.time_s : 1.0};
+}
 
 AnyFilter make_filter(const MethodSetup& s, double wheelbase, const Pose2& start) {
   const Vector3 p0 = s.initial_sigma.cwiseProduct(s.initial_sigma);
@@ -334,13 +372,18 @@ AnyFilter make_filter(const MethodSetup& s, double wheelbase, const Pose2& start
       return VbAkf(o, wheelbase, start);
     }
     case Method::kNominalModel:
-    case Method::kDiagnosedModel: return MotionModelEkf(wheelbase, start, Matrix3(p0.asDiagonal()));
+    case Method::kDiagnosedModel:
+      if (s.sensor.correlated()) {
+        const NoiseStructure& st = s.sensor.structure;
+        return BiasAugmentedEkf(
+            wheelbase, start, Matrix3(p0.asDiagonal()),
+            {correlated_part(st.range_correlation, s.sensor.range_sigma / s.sensor.range_scale, s.knob),
+             correlated_part(st.bearing_correlation, s.sensor.bearing_sigma, s.knob)});
+      }
+      return MotionModelEkf(wheelbase, start, Matrix3(p0.asDiagonal()));
   }
   throw std::logic_error("make_filter: unknown method");
 }
-
-// Does the method estimate R itself (its knob is a forgetting factor, not an R scale)?
-bool estimates_r(Method m) { return m == Method::kSageHusa || m == Method::kVbAkf; }
 
 }  // namespace
 
@@ -355,6 +398,7 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
   // Observations in true time, with the sensor model's corrections (Table 7.2's z, inverted).
   const LandmarkSensorModel& sm = setup.sensor;
   const double r_scale = estimates_r(setup.method) ? 1.0 : setup.knob;
+  const bool carries_bias = std::holds_alternative<BiasAugmentedEkf>(filter);
   struct Timed {
     double t;
     LandmarkRangeBearing z;
@@ -369,10 +413,14 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
     z.bearing = o.bearing - sm.bearing_bias;
     z.landmark_x = m.x();
     z.landmark_y = m.y();
+    // The white part of the noise (all of it unless the filter carries the correlated part as biases).
+    const double range_white = carries_bias ? 1.0 - sm.structure.range_correlation.share : 1.0;
+    const double bearing_white = carries_bias ? 1.0 - sm.structure.bearing_correlation.share : 1.0;
     const double sr = sm.range_noise_slope * z.range;
-    z.range_variance = r_scale * (sm.range_sigma * sm.range_sigma + sr * sr) / (sm.range_scale * sm.range_scale);
+    z.range_variance =
+        r_scale * (range_white * sm.range_sigma * sm.range_sigma + sr * sr) / (sm.range_scale * sm.range_scale);
     const double sb = sm.bearing_noise_turn_slope * turn_rate_at(steps, o.t - sm.time_offset);
-    z.bearing_variance = r_scale * (sm.bearing_sigma * sm.bearing_sigma + sb * sb);
+    z.bearing_variance = r_scale * (bearing_white * sm.bearing_sigma * sm.bearing_sigma + sb * sb);
     obs.push_back({o.t - sm.time_offset, z});
   }
   std::stable_sort(obs.begin(), obs.end(), [](const Timed& a, const Timed& b) { return a.t < b.t; });
@@ -387,10 +435,16 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
       const bool recover = starving >= gate.starve_after;
       LandmarkRangeBearing z = obs[next].z;
       if (sm.dof > 0.0) {  // one reweighting step of the Student-t likelihood
-        const Vector3 x = std::visit([](auto& f) { return f.mean(); }, filter);
-        const Matrix3 p = std::visit([](auto& f) { return f.covariance(); }, filter);
-        const LinearizedMeasurement lin = linearize(z, x);
-        const double nis = measurement_innovation(lin, p, lin.R).nis;
+        const double nis = std::visit(
+            [&](auto& f) {
+              if constexpr (std::is_same_v<std::decay_t<decltype(f)>, BiasAugmentedEkf>) {
+                return f.nis(z);
+              } else {
+                const LinearizedMeasurement lin = linearize(z, f.mean());
+                return measurement_innovation(lin, f.covariance(), lin.R).nis;
+              }
+            },
+            filter);
         const double w = std::max(1.0, (sm.dof + nis) / (sm.dof + 2.0));
         z.range_variance *= w;
         z.bearing_variance *= w;
@@ -418,6 +472,8 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
           using F = std::decay_t<decltype(f)>;
           if constexpr (std::is_same_v<F, MotionModelEkf>) {
             f.predict(u, setup.process_scale * s.body_covariance);
+          } else if constexpr (std::is_same_v<F, BiasAugmentedEkf>) {
+            f.predict(u, setup.process_scale * s.body_covariance, dt);
           } else if constexpr (std::is_same_v<F, CompassEkf>) {
             f.predict(u);
           } else {
