@@ -15,16 +15,16 @@
 #include "baselines/calibration/umbmark_classic.h"
 #include "cli/commands.h"
 #include "cli/estimate_judgement.h"
+#include "core/checksum.h"
 #include "core/errors.h"
+#include "core/output_file.h"
 #include "datasets/catalog/calibration_catalog.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/censi_tuple_reader.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/umbmark_input_reader.h"
-#include "datasets/log/data_root.h"
-#include "reports/checksum.h"
 #include "reports/finish_report.h"
-#include "reports/output_file.h"
 
 namespace locbench::cli {
 using io::attach_relations, io::load_log, io::read_censi_tuples, io::read_umbmark_input;
@@ -62,7 +62,7 @@ reports::ExperimentResults calibrate_umbmark(const CalibrateArgs& a, bool improv
   out.experiment = "calibrate/" + method;
   out.description = improved ? "Improved UMBmark (thesis eq. 2.16–2.27) on a measured square"
                              : "Classic UMBmark (Borenstein & Feng, eq. 2.3–2.13) on a measured square";
-  out.datasets.push_back({"umbmark_input", a.input, reports::file_checksum(a.input), in.runs.size(), 0.0});
+  out.datasets.push_back({"umbmark_input", a.input, file_checksum(a.input), in.runs.size(), 0.0});
   out.configuration = {{"method", method}, {"input", a.input}};
   const UmbmarkCentroids c = umbmark_centroids(in.runs);
   UmbmarkIdentifiabilityOptions idopt;
@@ -142,7 +142,7 @@ reports::ExperimentResults calibrate_umbmark(const CalibrateArgs& a, bool improv
 // per-component noise model (Censi's data also his 4 × 1% outlier rejection); Freiburg
 // relations the odometry-propagated one with a rotation-per-distance term.
 CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCalibrationOptions& o) {
-  const std::filesystem::path root = a.data.empty() ? data_root() : std::filesystem::path(a.data);
+  const std::filesystem::path root = a.data.empty() ? catalog::data_root() : std::filesystem::path(a.data);
   const std::string name = a.input.substr(0, a.input.find(':'));
   const std::string part = a.input.find(':') == std::string::npos ? "" : a.input.substr(a.input.find(':') + 1);
   if (const DatasetEntry* entry = find_dataset(name)) {
@@ -154,7 +154,7 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
     }
     ref = {a.input, (root / e.path).string(), "", 0, 0.0};
     const std::string file = ref.path.substr(0, ref.path.find('#'));
-    ref.checksum = reports::file_checksum(file);
+    ref.checksum = file_checksum(file);
     if (is_calibration_dataset(e)) {
       o.noise.kind = NoiseModelKind::kPerComponent;
       if (e.name == "censi_khepera") o.outliers = {4, 0.01};
@@ -179,7 +179,7 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
                      " is not one");
   }
   // "folder#robot1" (MRCLAM): the folder's checksum, as diagnose reads the same input.
-  ref = {a.input, a.input, reports::file_checksum(a.input.substr(0, a.input.find('#'))), 0, 0.0};
+  ref = {a.input, a.input, file_checksum(a.input.substr(0, a.input.find('#'))), 0, 0.0};
   if (a.input.find(".tuple") != std::string::npos) {
     if (!a.relations.empty()) {
       throw UsageError("--relations " + a.relations + ": a Censi tuple file brings its own reference");
@@ -247,7 +247,7 @@ reports::ExperimentResults calibrate_ml_cmd(const CalibrateArgs& a, std::vector<
 }
 
 int calibrate(const CalibrateArgs& a, const std::string& command_line) {
-  reports::check_outputs({a.input, a.relations}, {{"--report", a.report}});
+  check_outputs({a.input, a.relations}, {{"--report", a.report}});
   // Every flag given is used or refused.
   if (a.method != "ml" && (!a.relations.empty() || !a.data.empty())) {
     throw UsageError(std::string(!a.relations.empty() ? "--relations" : "--data") + " applies to `calibrate ml`, not " +

@@ -18,14 +18,14 @@
 #include "core/errors.h"
 #include "core/input_limits.h"
 #include "core/json_file.h"
+#include "core/output_file.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/diagnosis/twin_scenario.h"
 #include "datasets/io/data_lines.h"
 #include "datasets/io/log_loader.h"
-#include "datasets/log/data_root.h"
 #include "datasets/sim/scenario_json.h"
 #include "reports/finish_report.h"
-#include "reports/output_file.h"
 
 namespace locbench::cli {
 using io::attach_relations, io::load_log;
@@ -108,7 +108,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
   if (!(a.window > 0.0 && a.window <= 3600.0)) {
     throw UsageError(fmt::format("--window {}: expected a length in (0, 3600] s", a.window));
   }
-  reports::check_outputs({a.input, a.relations}, {{"--report", a.report}, {"--scenario", a.scenario}});
+  check_outputs({a.input, a.relations}, {{"--report", a.report}, {"--scenario", a.scenario}});
   diagnosis::Diagnosis d;
   std::optional<Log> log_read;
   if (ends_with(a.input, ".json")) {
@@ -120,7 +120,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
   } else {
     Log log;
     if (const DatasetEntry* entry = find_dataset(a.input)) {
-      const auto root = a.data.empty() ? data_root() : std::filesystem::path(a.data);
+      const auto root = a.data.empty() ? catalog::data_root() : std::filesystem::path(a.data);
       log = load_catalog_dataset(*entry, root);
     } else {
       log = load_log(a.input);
@@ -141,7 +141,7 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
   if (!a.scenario.empty()) {
     const sim::Twin twin = sim::build_twin(*log_read, d);
     print_twin(twin);
-    reports::write_file_atomically(a.scenario, sim::to_json(twin.extended).dump(2) + "\n");
+    write_file_atomically(a.scenario, sim::to_json(twin.extended).dump(2) + "\n");
     std::cerr << "wrote " << a.scenario << " (simulate it with `locbench simulate " << a.scenario << " -o twin.clf`)\n";
   }
   if (!a.report.empty()) {

@@ -9,10 +9,10 @@
 #include "cli/commands.h"
 #include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/bag_log.h"
 #include "datasets/io/log_loader.h"
-#include "datasets/log/data_root.h"
 #include "datasets/sim/presets.h"
 
 namespace locbench::cli {
@@ -106,7 +106,7 @@ int list(const ListArgs& args) {
   for (const sim::PresetInfo& p : sim::preset_list()) {
     std::cout << fmt::format("    {:<26} {}\n", p.name, p.description);
   }
-  const std::filesystem::path root = args.data.empty() ? data_root() : std::filesystem::path(args.data);
+  const std::filesystem::path root = args.data.empty() ? catalog::data_root() : std::filesystem::path(args.data);
   std::cout << "\nDatasets under " << root.string() << ":\n";
   for (const DatasetEntry& d : dataset_catalog()) {
     const std::string path = (root / d.path).string();

@@ -4,9 +4,9 @@ set(rules
   "core:core"
   "algorithms:core|algorithms"
   "baselines:core|algorithms|baselines"
-  "datasets/io:core|datasets/io|datasets/log|reports"
-  "datasets/log:core|datasets/log"
-  "datasets/sim:core|datasets/log|datasets/sim|reports"
+  "datasets/io:core|datasets/io"
+  "datasets/catalog:core|datasets/io|datasets/catalog|algorithms"
+  "datasets/sim:core|datasets/sim"
   "reports:core|reports"
 )
 set(violations "")

@@ -16,11 +16,11 @@
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
 #include "benchmarks/experiments/harness/real_log_harness.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/censi_results_reader.h"
-#include "reports/checksum.h"
 
 namespace locbench::experiments::calibration_real_logs {
 using io::CensiPublishedResult, io::read_censi_results;
@@ -97,7 +97,7 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
       const MlCalibrationResult r = calibrate_ml(data, o);
       const std::string ds = "censi_" + reports::key_part(part);
       out.datasets.push_back({ds, (options.data_root / censi->path / (part + ".tuple.gz")).string(),
-                              reports::file_checksum(options.data_root / censi->path / (part + ".tuple.gz")),
+                              file_checksum(options.data_root / censi->path / (part + ".tuple.gz")),
                               data.samples.size(), 0.0});
       const double published[6] = {pub.left_radius(), pub.right_radius(), pub.axle,
                                    pub.sensor_x,      pub.sensor_y,       pub.sensor_theta};
@@ -145,7 +145,7 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
                         const std::string& path) {
       const HeldOutEvaluation h = evaluate_held_out(d, o, fraction);
       const std::string ds = reports::key_part(name);
-      out.datasets.push_back({ds, path, reports::file_checksum(path.substr(0, path.find('#'))), d.samples.size(), 0.0});
+      out.datasets.push_back({ds, path, file_checksum(path.substr(0, path.find('#'))), d.samples.size(), 0.0});
       for (const CalibratedParameter& p : h.calibration.parameters) {
         reports::MetricResult m = reports::make_estimate("ml_first_half", ds, p.name, "", p.value, p.standard_error,
                                                          h.calibration.samples_used);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "algorithms/calibration/umbmark_design_model.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/rng.h"
 #include "core/statistics.h"
@@ -13,7 +14,6 @@
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/umbmark_input.h"
-#include "reports/checksum.h"
 
 namespace locbench::experiments {
 using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
@@ -258,8 +258,8 @@ reports::ExperimentResults CalibrationUmbmark::summarise(const UmbmarkSetup& u, 
   }
   const auto first = records.front().get<UmbmarkRecord>();
   const std::string dataset = "sim_" + preset_;
-  out.datasets.push_back({"sim/" + u.scenario.name, "simulated",
-                          reports::text_checksum(out.configuration["scenario"].dump()), first.records, first.duration});
+  out.datasets.push_back({"sim/" + u.scenario.name, "simulated", text_checksum(out.configuration["scenario"].dump()),
+                          first.records, first.duration});
   for (int m = 0; m < kMethods; ++m) {
     const std::string method = kMethodNames[m];
     out.results.push_back(

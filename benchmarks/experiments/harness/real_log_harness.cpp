@@ -5,6 +5,7 @@
 #include <iterator>
 #include <set>
 
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/input_file.h"
 #include "core/input_limits.h"
@@ -13,7 +14,6 @@
 #include "datasets/io/landmark_reader.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/tum_reader.h"
-#include "reports/checksum.h"
 
 namespace locbench::experiments {
 using io::attach_landmark_files, io::attach_relations, io::load_log, io::read_tum;
@@ -167,7 +167,7 @@ LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path
     attach_landmark_files(out.log, spec.landmark_map, spec.landmark_observations);
   }
   out.dataset.name = spec.name;
-  out.dataset.checksum = reports::file_checksum(file);  // a file, or an MRCLAM or ROS 2 bag folder
+  out.dataset.checksum = file_checksum(file);  // a file, or an MRCLAM or ROS 2 bag folder
   out.dataset.records = out.log.record_count();
   const auto [t0, t1] = out.log.time_span();
   out.dataset.duration_s = t1 - t0;

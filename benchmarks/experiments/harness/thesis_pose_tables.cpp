@@ -4,11 +4,11 @@
 
 #include <cmath>
 
+#include "core/checksum.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/worlds.h"
-#include "reports/checksum.h"
 
 namespace locbench::experiments::thesis_pose {
 
@@ -70,8 +70,8 @@ reports::ExperimentResults ThesisTableExperiment::summarise(const Setup& s, cons
 reports::ExperimentResults ThesisTableExperiment::start(const Setup& s, const McPlan& plan, std::size_t runs) const {
   reports::ExperimentResults out = start_results(s.configuration);
   for (std::size_t k = 0; k < runs; ++k) out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
-  out.datasets.push_back({"sim/room_laser", "simulated",
-                          reports::text_checksum(sim::to_json(sim::preset("room_laser")).dump()), runs, 0.0});
+  out.datasets.push_back(
+      {"sim/room_laser", "simulated", text_checksum(sim::to_json(sim::preset("room_laser")).dump()), runs, 0.0});
   return out;
 }
 

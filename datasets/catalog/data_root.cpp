@@ -1,8 +1,8 @@
-#include "datasets/log/data_root.h"
+#include "datasets/catalog/data_root.h"
 
 #include <cstdlib>
 
-namespace locbench {
+namespace locbench::catalog {
 
 std::filesystem::path data_root() {
   if (const char* env = std::getenv("LOCBENCH_DATA"); env != nullptr && *env != '\0') {
@@ -11,4 +11,4 @@ std::filesystem::path data_root() {
   return std::filesystem::path("..") / "shared" / "datasets";
 }
 
-}  // namespace locbench
+}  // namespace locbench::catalog

@@ -3,8 +3,8 @@
 // working directory, i.e. beside the project checkout when run from its top).
 #include <filesystem>
 
-namespace locbench {
+namespace locbench::catalog {
 
 std::filesystem::path data_root();
 
-}  // namespace locbench
+}  // namespace locbench::catalog

@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-namespace locbench::reports {
+namespace locbench {
 
 // Writes `text` to `path` atomically (creating its folder). InputError on any failure.
 // AtomicOutput (below) does not create folders.
@@ -80,4 +80,4 @@ class OutputFolderLock {
 // .locbench.lock (a `run --out` or `merge -o` folder it lies in). InputError when one is in use.
 std::vector<std::unique_ptr<OutputFolderLock>> lock_folders_above(const std::filesystem::path& file);
 
-}  // namespace locbench::reports
+}  // namespace locbench

@@ -1,4 +1,4 @@
-#include "reports/output_file.h"
+#include "core/output_file.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -12,7 +12,7 @@
 
 #include "core/errors.h"
 
-namespace locbench::reports {
+namespace locbench {
 namespace fs = std::filesystem;
 namespace {
 
@@ -327,4 +327,4 @@ OutputFolderLock::~OutputFolderLock() {
   if (fd_ >= 0) ::close(fd_);  // releases the flock; the empty lock file stays (harmless)
 }
 
-}  // namespace locbench::reports
+}  // namespace locbench

@@ -1,4 +1,4 @@
-#include "reports/checksum.h"
+#include "core/checksum.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include "core/errors.h"
 #include "tests/test_data.h"
 
-namespace locbench::reports {
+namespace locbench {
 namespace {
 
 TEST(Checksum, IsTheCrc32OfTheBytes) {
@@ -30,4 +30,4 @@ TEST(Checksum, OfAFolderChangesWhenAFileChanges) {
 TEST(Checksum, OfAMissingFileIsAnInputError) { EXPECT_THROW(file_checksum("/nonexistent/file"), InputError); }
 
 }  // namespace
-}  // namespace locbench::reports
+}  // namespace locbench

@@ -1,4 +1,4 @@
-#include "reports/checksum.h"
+#include "core/checksum.h"
 
 #include <zlib.h>
 
@@ -8,7 +8,7 @@
 #include "core/input_file.h"
 #include "core/input_limits.h"
 
-namespace locbench::reports {
+namespace locbench {
 namespace {
 
 std::string hex(uLong crc) {
@@ -52,4 +52,4 @@ std::string text_checksum(std::string_view text) {
   return hex(crc);
 }
 
-}  // namespace locbench::reports
+}  // namespace locbench

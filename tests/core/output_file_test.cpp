@@ -1,6 +1,6 @@
 // The output layer: atomic replacement, checked writes, outputs that would overwrite inputs,
 // and the --out folder lock.
-#include "reports/output_file.h"
+#include "core/output_file.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -13,7 +13,7 @@
 #include "tests/input_error_message.h"
 #include "tests/test_data.h"
 
-namespace locbench::reports {
+namespace locbench {
 namespace {
 
 using testing::input_error_message;
@@ -185,4 +185,4 @@ TEST(OutputFile, AFileWrittenInsideALockedFolderIsRefusedWhileTheFolderIsInUse) 
 }
 
 }  // namespace
-}  // namespace locbench::reports
+}  // namespace locbench
