@@ -15,21 +15,19 @@
 
 #include "algorithms/diagnosis/diagnosis.h"
 #include "cli/commands.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/input_limits.h"
 #include "core/json_file.h"
 #include "core/output_file.h"
 #include "datasets/catalog/data_root.h"
-#include "datasets/catalog/dataset_catalog.h"
+#include "datasets/catalog/log_spec.h"
 #include "datasets/diagnosis/twin_scenario.h"
 #include "datasets/io/data_lines.h"
-#include "datasets/io/log_loader.h"
 #include "datasets/sim/scenario_json.h"
 #include "reports/finish_report.h"
 
 namespace locbench::cli {
-using io::attach_relations, io::load_log;
-using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct DiagnoseArgs {
@@ -110,31 +108,32 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
   }
   check_outputs({a.input, a.relations}, {{"--report", a.report}, {"--scenario", a.scenario}});
   diagnosis::Diagnosis d;
+  DatasetRef input;
   std::optional<Log> log_read;
   if (ends_with(a.input, ".json")) {
     if (!a.scenario.empty()) {
       throw UsageError("--scenario needs a log: a histogram of residuals has no motion to replay");
     }
     const nlohmann::json j = read_json_file(a.input, "residual histogram (JSON)");
-    d = diagnosis::diagnose_histogram(diagnosis::read_histogram(j, a.input), a.input, opt);
+    const diagnosis::ResidualHistogram h = diagnosis::read_histogram(j, a.input);
+    d = diagnosis::diagnose_histogram(h, a.input, opt);
+    input = {a.input, a.input, file_checksum(a.input), h.counts.size(), 0.0};
   } else {
-    Log log;
-    if (const DatasetEntry* entry = find_dataset(a.input)) {
-      const auto root = a.data.empty() ? catalog::data_root() : std::filesystem::path(a.data);
-      log = load_catalog_dataset(*entry, root);
-    } else {
-      log = load_log(a.input);
-      // ~0.2 ms a record: refused before the fits unless --max-records raises the limit.
-      const double records = static_cast<double>(log.encoders.size() + log.odometry.size());
-      if (records > a.max_records) {
-        limits::check(records,
-                      {limits::kDiagnoseOdometryRecords.key, a.max_records, limits::kDiagnoseOdometryRecords.why},
-                      a.input, "odometry records (ENCODER, ODOM)");
-      }
+    catalog::LogSpec spec;
+    spec.log = a.input;
+    spec.relations = a.relations;
+    auto loaded = catalog::load_log_spec(spec, a.data.empty() ? catalog::data_root() : std::filesystem::path(a.data));
+    Log& log = loaded.log;
+    // ~0.2 ms a record: a log file is refused before the fits unless --max-records raises the limit.
+    const double records = static_cast<double>(log.encoders.size() + log.odometry.size());
+    if (loaded.entry == nullptr && records > a.max_records) {
+      limits::check(records,
+                    {limits::kDiagnoseOdometryRecords.key, a.max_records, limits::kDiagnoseOdometryRecords.why},
+                    a.input, "odometry records (ENCODER, ODOM)");
     }
-    if (!a.relations.empty()) attach_relations(log, a.relations);
     if (log.source.empty()) log.source = a.input;
     d = diagnosis::diagnose_log(log, opt);
+    input = loaded.dataset;
     log_read = std::move(log);
   }
   print(d);
@@ -146,6 +145,11 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
   }
   if (!a.report.empty()) {
     nlohmann::json j = diagnosis::to_json(d);
+    j["input"] = {{"name", input.name},
+                  {"path", input.path},
+                  {"checksum", input.checksum},
+                  {"records", input.records},
+                  {"duration_s", input.duration_s}};
     nlohmann::json options;
     diagnosis::to_json(options, opt);
     j["configuration"] = options;

@@ -178,7 +178,8 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
     const nlohmann::json user = read_json_file(a.options, "--options file (JSON)");
     options = naming_file(a.options, [&] { return experiments::merge_config(options, user); });
   }
-  const Log log = load_scan_log(a.log);
+  const catalog::LoadedLog loaded = load_scan_log(a.log);
+  const Log& log = loaded.log;
   std::vector<g::ScanStep> steps = g::scan_steps(log);
   if (steps.empty()) {
     throw InputError(a.log, 0, "odometry (ODOM records or FLASER odometry) covering the scans");
@@ -220,8 +221,7 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
                        {"seed", a.seed},
                        {"method_options", options}};
   out.seeds.push_back(a.seed);
-  out.datasets.push_back({log.name.empty() ? "log" : log.name, a.log, file_checksum(a.log), log.record_count(),
-                          log.time_span().second - log.time_span().first});
+  out.datasets.push_back(loaded.dataset);
   if (!a.map.empty()) {
     out.datasets.push_back(
         {map.name.empty() ? "map" : map.name, a.map, file_checksum(a.map), map.segments.size(), 0.0});

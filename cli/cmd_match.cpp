@@ -38,7 +38,8 @@ int match(const MatchArgs& a, const std::string& command_line) {
   check_outputs({a.map, a.log}, {{"--report", a.report}, {"--tum", a.tum}});
   const LineMap map = sim::load_world(a.map);
   if (map.segments.empty()) throw InputError(a.map, 0, "a map with at least one segment");
-  const Log log = load_scan_log(a.log);
+  const catalog::LoadedLog loaded = load_scan_log(a.log);
+  const Log& log = loaded.log;
   if (a.matcher == "agglomerative") {
     double work = 0.0;
     for (const LaserReading& reading : log.laser) work += std::pow(static_cast<double>(reading.scan.ranges.size()), 2);
@@ -86,8 +87,7 @@ int match(const MatchArgs& a, const std::string& command_line) {
                        {"log", a.log},
                        {"matcher", a.matcher},
                        {"matcher_options", experiments::default_matcher_options()}};
-  out.datasets.push_back({log.name.empty() ? "log" : log.name, a.log, file_checksum(a.log), log.record_count(),
-                          log.time_span().second - log.time_span().first});
+  out.datasets.push_back(loaded.dataset);
   out.datasets.push_back({map.name.empty() ? "map" : map.name, a.map, file_checksum(a.map), map.segments.size(), 0.0});
   const std::string ds = reports::key_part(std::filesystem::path(a.log).filename().string());
   const auto add = [&](const char* variant, const char* unit, const std::vector<double>& v, const char* better) {

@@ -5,19 +5,14 @@
 #include <iterator>
 #include <set>
 
-#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/input_file.h"
 #include "core/input_limits.h"
 #include "datasets/catalog/dataset_catalog.h"
-#include "datasets/io/bag_log.h"
-#include "datasets/io/landmark_reader.h"
-#include "datasets/io/log_loader.h"
-#include "datasets/io/tum_reader.h"
+#include "datasets/catalog/log_spec.h"
 
 namespace locbench::experiments {
-using io::attach_landmark_files, io::attach_relations, io::load_log, io::read_tum;
-using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
+using locbench::catalog::find_dataset;
 namespace {
 
 std::string string_field(const nlohmann::json& item, const char* key, const std::string& where) {
@@ -57,7 +52,7 @@ std::size_t robot_suffix_at(const std::string& spec) {
 }
 
 // The file part of a load_log spec ("folder#robot2" → "folder", "run.bag#odom=/o" → "run.bag").
-std::string file_of(const std::string& spec) { return io::log_spec_path(spec); }
+std::string file_of(const std::string& spec) { return catalog::log_spec_file(spec).string(); }
 
 constexpr const char* kKeys[] = {"name", "log", "relations", "ground_truth", "landmark_map", "landmark_observations"};
 
@@ -131,46 +126,27 @@ std::vector<std::string> real_log_names(const std::vector<RealLogSpec>& specs) {
 
 LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path& data_root) {
   LoadedRealLog out;
-  std::string file;
   if (spec.from_catalog) {
-    const DatasetEntry& entry = *find_dataset(spec.name);
-    const std::string path = (data_root / entry.path).string();
-    file = file_of(path);
-    out.dataset.path = path;
-    if (!std::filesystem::exists(file)) {
+    const std::string path = catalog::catalog_log_spec(*find_dataset(spec.name), data_root);
+    if (!std::filesystem::exists(catalog::log_spec_file(path))) {
       out.status = "skipped";
       out.reason = "dataset not found at " + path + " (set LOCBENCH_DATA)";
+      out.dataset.path = path;
       return out;
     }
-    try {
-      out.log = load_catalog_dataset(entry, data_root);
-    } catch (const InputError& e) {
-      out.status = "failed";
-      out.reason = e.what();
-      return out;
-    }
-  } else {
-    file = file_of(spec.log);
-    out.dataset.path = spec.log;
-    out.log = load_log(spec.log);
-    if (!spec.relations.empty()) attach_relations(out.log, spec.relations);
-    if (!spec.ground_truth.empty()) {
-      out.log.truth.clear();
-      const Trajectory reference = read_tum(spec.ground_truth);  // outlives the loop
-      for (const StampedPose& p : reference.poses()) {
-        TruePose truth;
-        truth.t = p.t;
-        truth.pose = p.pose;
-        out.log.truth.push_back(truth);
-      }
-    }
-    attach_landmark_files(out.log, spec.landmark_map, spec.landmark_observations);
   }
-  out.dataset.name = spec.name;
-  out.dataset.checksum = file_checksum(file);  // a file, or an MRCLAM or ROS 2 bag folder
-  out.dataset.records = out.log.record_count();
-  const auto [t0, t1] = out.log.time_span();
-  out.dataset.duration_s = t1 - t0;
+  const catalog::LogSpec load{spec.name,         spec.from_catalog ? spec.name : spec.log,
+                              spec.relations,    spec.ground_truth,
+                              spec.landmark_map, spec.landmark_observations};
+  try {
+    auto [log, dataset, entry] = catalog::load_log_spec(load, data_root);
+    out.log = std::move(log);
+    out.dataset = std::move(dataset);
+  } catch (const InputError& e) {
+    if (!spec.from_catalog) throw;
+    out.status = "failed";
+    out.reason = e.what();
+  }
   return out;
 }
 
