@@ -40,7 +40,7 @@ using locbench::calibration::analyze_umbmark_design, locbench::calibration::cali
     locbench::calibration::UmbmarkDesign, locbench::calibration::UmbmarkDesignFinding,
     locbench::calibration::UmbmarkIdentifiabilityOptions, locbench::calibration::UmbmarkParameterSet;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::is_calibration_dataset,
-    locbench::catalog::load_catalog_calibration_data, locbench::catalog::load_log_spec, locbench::catalog::LoadedLog,
+    locbench::catalog::load_catalog_calibration_records, locbench::catalog::load_log_spec, locbench::catalog::LoadedLog,
     locbench::catalog::LogSpec;
 namespace {
 
@@ -160,7 +160,7 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
     ref = {a.input, (root / entry->path).string(), file_checksum(root / entry->path), 0, 0.0};
     o.noise.kind = NoiseModelKind::kPerComponent;
     if (entry->name == "censi_khepera") o.outliers = {4, 0.01};
-    return load_catalog_calibration_data(*entry, root, part);
+    return calibration::calibration_data_from_records(load_catalog_calibration_records(*entry, root, part));
   }
   if (entry == nullptr && a.input.find(".tuple") != std::string::npos) {
     if (!a.relations.empty()) {

@@ -5,6 +5,7 @@
 
 #include <iostream>
 
+#include "algorithms/calibration/calibration_data.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "cli/commands.h"
 #include "core/errors.h"
@@ -17,7 +18,7 @@
 
 namespace locbench::cli {
 using locbench::catalog::calibration_dataset_parts, locbench::catalog::dataset_catalog, locbench::catalog::DatasetEntry,
-    locbench::catalog::is_calibration_dataset, locbench::catalog::load_catalog_calibration_data,
+    locbench::catalog::is_calibration_dataset, locbench::catalog::load_catalog_calibration_records,
     locbench::catalog::load_catalog_dataset;
 namespace {
 
@@ -119,7 +120,8 @@ int list(const ListArgs& args) {
       std::size_t samples = 0;
       try {
         for (const std::string& part : calibration_dataset_parts(d)) {
-          samples += load_catalog_calibration_data(d, root, part).samples.size();
+          samples += calibration::calibration_data_from_records(load_catalog_calibration_records(d, root, part))
+                         .samples.size();
           parts += (parts.empty() ? "" : ", ") + (part.empty() ? std::string("all") : part);
         }
         std::cout << fmt::format("    {:<26} calibration samples: {} ({})\n", d.name, samples, parts);

@@ -31,7 +31,7 @@ using locbench::calibration::calibrate_ml, locbench::calibration::CalibratedPara
     locbench::calibration::MlCalibrationResult, locbench::calibration::NoiseModelKind,
     locbench::calibration::RelationSampleOptions, locbench::calibration::SampleIntervalOptions;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset,
-    locbench::catalog::load_catalog_calibration_data;
+    locbench::catalog::load_catalog_calibration_records;
 
 const ExperimentInfo kInfo{.name = "calibration/real_logs",
                            .description =
@@ -89,7 +89,8 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
                              "dataset not found at " + results.string() + " (set LOCBENCH_DATA)"});
         continue;
       }
-      const CalibrationData data = load_catalog_calibration_data(*censi, options.data_root, part);
+      const CalibrationData data =
+          calibration::calibration_data_from_records(load_catalog_calibration_records(*censi, options.data_root, part));
       const CensiPublishedResult pub = read_censi_results(results);
       MlCalibrationOptions o;
       o.noise.kind = NoiseModelKind::kPerComponent;
