@@ -4,7 +4,7 @@
 // LOG is a CARMEN log (ENCODER/ODOM with TRUEPOS or COMPASS), an MRCLAM folder (#robotN), a
 // catalog dataset name (`locbench list`: aces, intel, mrclam6_robot1, …), or a histogram JSON.
 // --scenario writes the log's synthetic twin under the extended model (the nominal model plus
-// every kept cause) as a simulator scenario (datasets/diagnosis/twin_scenario.h).
+// every kept cause) as a simulator scenario (pipelines/twin/twin_scenario.h).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -22,9 +22,9 @@
 #include "core/output_file.h"
 #include "datasets/catalog/data_root.h"
 #include "datasets/catalog/log_spec.h"
-#include "datasets/diagnosis/twin_scenario.h"
 #include "datasets/io/data_lines.h"
 #include "datasets/sim/scenario_json.h"
+#include "pipelines/twin/twin_scenario.h"
 #include "reports/finish_report.h"
 
 namespace locbench::cli {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/two_sample_ks.h"
-#include "datasets/diagnosis/twin_scenario.h"
+#include "pipelines/twin/twin_scenario.h"
 
 namespace locbench::sim {
 

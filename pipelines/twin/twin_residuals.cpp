@@ -1,4 +1,4 @@
-#include "datasets/diagnosis/twin_residuals.h"
+#include "pipelines/twin/twin_residuals.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 
 #include "algorithms/diagnosis/diagnosis.h"
 #include "datasets/diagnosis/hidden_effects.h"
-#include "datasets/diagnosis/twin_comparison.h"
+#include "pipelines/twin/twin_comparison.h"
 
 namespace locbench::sim {
 namespace {

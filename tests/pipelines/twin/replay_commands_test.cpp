@@ -1,6 +1,6 @@
 // Replaying a log's own odometry: the commands it gives, and a simulated robot following them
 // under the nominal model retracing the logged odometry path.
-#include "datasets/diagnosis/replay_commands.h"
+#include "pipelines/twin/replay_commands.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The scenario writer: a diagnosis's kept causes become the extended twin's simulator settings;
 // causes it cannot simulate are listed, never dropped.
-#include "datasets/diagnosis/twin_scenario.h"
+#include "pipelines/twin/twin_scenario.h"
 
 #include <gtest/gtest.h>
 

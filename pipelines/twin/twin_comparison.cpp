@@ -1,4 +1,4 @@
-#include "datasets/diagnosis/twin_comparison.h"
+#include "pipelines/twin/twin_comparison.h"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 
 #include "core/errors.h"
 #include "core/rng.h"
-#include "datasets/diagnosis/twin_residuals.h"
+#include "pipelines/twin/twin_residuals.h"
 
 namespace locbench::sim {
 

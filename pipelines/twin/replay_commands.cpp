@@ -1,4 +1,4 @@
-#include "datasets/diagnosis/replay_commands.h"
+#include "pipelines/twin/replay_commands.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "datasets/diagnosis/twin_scenario.h"
+#include "pipelines/twin/twin_scenario.h"
 
 #include <fmt/format.h>
 
@@ -11,10 +11,10 @@
 #include "core/angle.h"
 #include "core/errors.h"
 #include "core/statistics.h"
-#include "datasets/diagnosis/replay_commands.h"
-#include "datasets/diagnosis/twin_residuals.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/sim/simulator.h"
+#include "pipelines/twin/replay_commands.h"
+#include "pipelines/twin/twin_residuals.h"
 
 namespace locbench::sim {
 using io::interpolate_odometry, io::interpolate_truth;
