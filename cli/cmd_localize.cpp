@@ -18,7 +18,6 @@
 #include "baselines/global/monte_carlo_localization.h"
 #include "baselines/global/odometry_motion_model.h"
 #include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/harness/global_harness.h"
 #include "cli/commands.h"
 #include "cli/pose_report.h"
 #include "core/checksum.h"
@@ -28,6 +27,7 @@
 #include "core/output_file.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/sim/worlds.h"
+#include "pipelines/global_harness.h"
 
 namespace locbench::cli {
 namespace {

@@ -8,7 +8,6 @@
 #include <cmath>
 
 #include "algorithms/pose_correction/pose_correction.h"
-#include "benchmarks/experiments/harness/laser_matchers.h"
 #include "cli/commands.h"
 #include "cli/pose_report.h"
 #include "core/checksum.h"
@@ -19,6 +18,7 @@
 #include "datasets/io/log_loader.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/sim/worlds.h"
+#include "pipelines/laser_matchers.h"
 
 namespace locbench::cli {
 using io::odometry_trajectory;

@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "baselines/laser/extract_then_match.h"
-#include "benchmarks/experiments/harness/laser_correctors.h"
 #include "core/rng.h"
 #include "core/units.h"
 #include "datasets/catalog/data_root.h"
@@ -26,6 +25,7 @@
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
+#include "pipelines/laser_correctors.h"
 
 namespace locbench::speed {
 using io::odometry_trajectory;

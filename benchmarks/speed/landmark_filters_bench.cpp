@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/experiments/harness/landmark_family.h"
 #include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
+#include "pipelines/landmark_family.h"
 
 namespace locbench::speed {
 namespace {

@@ -19,9 +19,9 @@ set(rules
   "pipelines:core|reports|algorithms|baselines|datasets|benchmarks/experiments/framework|pipelines"
   # floor 4: experiments, speed kernels, fuzz targets and the CLI
   "benchmarks/experiments:core|reports|algorithms|baselines|datasets|pipelines|benchmarks/experiments"
-  "benchmarks/speed:core|reports|algorithms|baselines|datasets|pipelines|benchmarks/experiments/harness|benchmarks/speed"
-  "fuzz:core|reports|algorithms|baselines|datasets|pipelines|benchmarks/experiments/framework|benchmarks/experiments/harness|fuzz"
-  "cli:core|reports|algorithms|baselines|datasets|pipelines|benchmarks/experiments/framework|benchmarks/experiments/harness|cli"
+  "benchmarks/speed:core|reports|algorithms|baselines|datasets|pipelines|benchmarks/speed"
+  "fuzz:core|reports|algorithms|baselines|datasets|pipelines|benchmarks/experiments/framework|fuzz"
+  "cli:core|reports|algorithms|baselines|datasets|pipelines|benchmarks/experiments/framework|cli"
 )
 set(violations "")
 foreach(rule IN LISTS rules)

@@ -11,7 +11,6 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
 #include "core/checksum.h"
 #include "core/errors.h"
 #include "core/rng.h"
@@ -20,6 +19,7 @@
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/umbmark_input.h"
+#include "pipelines/scenario_option.h"
 
 namespace locbench::experiments::calibration_identifiability {
 using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;

@@ -15,12 +15,12 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "core/checksum.h"
 #include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/censi_results_reader.h"
+#include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::calibration_real_logs {
 using io::CensiPublishedResult, io::read_censi_results;

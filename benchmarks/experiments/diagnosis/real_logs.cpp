@@ -17,10 +17,10 @@
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/diagnosis_plots.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "core/checksum.h"
 #include "core/errors.h"
+#include "pipelines/diagnosis_plots.h"
+#include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::diagnosis_real_logs {
 

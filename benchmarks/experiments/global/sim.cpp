@@ -17,7 +17,6 @@
 
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/global_harness.h"
 #include "core/checksum.h"
 #include "core/errors.h"
 #include "core/statistics.h"
@@ -25,6 +24,7 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/worlds.h"
+#include "pipelines/global_harness.h"
 
 namespace locbench::experiments::global_sim {
 

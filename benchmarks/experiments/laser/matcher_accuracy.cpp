@@ -12,14 +12,14 @@
 
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/laser_matchers.h"
-#include "benchmarks/experiments/harness/laser_scan_truth.h"
 #include "core/checksum.h"
 #include "core/errors.h"
 #include "core/statistics.h"
 #include "core/units.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
+#include "pipelines/laser_matchers.h"
+#include "pipelines/laser_scan_truth.h"
 
 namespace locbench::experiments::laser_matcher_accuracy {
 

@@ -21,13 +21,13 @@
 #include "baselines/localization/line_observation.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
 #include "core/checksum.h"
 #include "core/diff_drive_odometry.h"
 #include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
+#include "pipelines/scenario_option.h"
 #include "reports/findings.h"
 
 namespace locbench::experiments::laser_tracking_table_6_5 {

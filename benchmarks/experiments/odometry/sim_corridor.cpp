@@ -13,7 +13,6 @@
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/plot_series.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
 #include "core/checksum.h"
 #include "core/dead_reckoning.h"
 #include "core/errors.h"
@@ -22,6 +21,7 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
+#include "pipelines/scenario_option.h"
 
 namespace locbench::experiments::odometry_sim_corridor {
 

@@ -14,8 +14,6 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
-#include "benchmarks/experiments/harness/slip_sim.h"
 #include "core/checksum.h"
 #include "core/errors.h"
 #include "core/rng.h"
@@ -23,6 +21,8 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
+#include "pipelines/scenario_option.h"
+#include "pipelines/slip_sim.h"
 #include "reports/findings.h"
 
 namespace locbench::experiments::slip_compass_ekf_table_3_2 {

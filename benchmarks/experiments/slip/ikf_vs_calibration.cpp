@@ -19,9 +19,6 @@
 #include "baselines/calibration/umbmark_classic.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/calibration_umbmark.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
-#include "benchmarks/experiments/harness/slip_sim.h"
 #include "core/checksum.h"
 #include "core/diff_drive_odometry.h"
 #include "core/errors.h"
@@ -29,6 +26,9 @@
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/umbmark_input.h"
+#include "pipelines/calibration_umbmark.h"
+#include "pipelines/scenario_option.h"
+#include "pipelines/slip_sim.h"
 
 namespace locbench::experiments::slip_ikf_vs_calibration {
 using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;

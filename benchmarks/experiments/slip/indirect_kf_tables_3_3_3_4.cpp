@@ -16,8 +16,6 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
-#include "benchmarks/experiments/harness/slip_sim.h"
 #include "core/checksum.h"
 #include "core/errors.h"
 #include "core/rng.h"
@@ -25,6 +23,8 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
+#include "pipelines/scenario_option.h"
+#include "pipelines/slip_sim.h"
 #include "reports/findings.h"
 
 namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4 {

@@ -9,12 +9,12 @@
 #include <nlohmann/json.hpp>
 
 #include "benchmarks/experiments/framework/experiment_options.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
 #include "core/trajectory.h"
 #include "core/units.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario.h"
 #include "datasets/sim/simulation_result.h"
+#include "pipelines/scenario_option.h"
 #include "reports/report.h"
 
 namespace locbench::experiments {

@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/landmark_family.h"
+#include "pipelines/landmark_family.h"
 
 #include <cmath>
 #include <limits>

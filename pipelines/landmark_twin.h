@@ -29,7 +29,7 @@
 #include <cstdint>
 
 #include "algorithms/diagnosis/odometry_model.h"
-#include "benchmarks/experiments/harness/landmark_tracking.h"
+#include "pipelines/landmark_tracking.h"
 
 namespace locbench::experiments::landmarks {
 

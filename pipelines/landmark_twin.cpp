@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/landmark_twin.h"
+#include "pipelines/landmark_twin.h"
 
 #include <cmath>
 #include <map>

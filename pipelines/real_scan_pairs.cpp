@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/real_scan_pairs.h"
+#include "pipelines/real_scan_pairs.h"
 
 #include <cmath>
 

@@ -1,11 +1,11 @@
-#include "benchmarks/experiments/harness/relation_drawing.h"
+#include "pipelines/relation_drawing.h"
 
 #include <cmath>
 
 #include "algorithms/pose_correction/iterated_correction.h"
 #include "algorithms/pose_correction/pose_correction.h"
-#include "benchmarks/experiments/harness/laser_correctors.h"
-#include "benchmarks/experiments/harness/laser_matchers.h"
+#include "pipelines/laser_correctors.h"
+#include "pipelines/laser_matchers.h"
 
 namespace locbench::experiments {
 namespace {

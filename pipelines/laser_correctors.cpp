@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/laser_correctors.h"
+#include "pipelines/laser_correctors.h"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include "algorithms/pose_correction/iterated_correction.h"
 #include "algorithms/pose_correction/pose_correction.h"
 #include "baselines/laser/pl_icp.h"
-#include "benchmarks/experiments/harness/laser_matchers.h"
 #include "core/angle.h"
 #include "core/errors.h"
+#include "pipelines/laser_matchers.h"
 
 namespace locbench::experiments {
 namespace {

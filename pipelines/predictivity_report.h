@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/experiments/harness/predictivity.h"
+#include "pipelines/predictivity.h"
 #include "reports/report.h"
 
 namespace locbench::experiments {

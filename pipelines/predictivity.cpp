@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/predictivity.h"
+#include "pipelines/predictivity.h"
 
 #include <algorithm>
 #include <cmath>

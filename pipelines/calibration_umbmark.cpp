@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/calibration_umbmark.h"
+#include "pipelines/calibration_umbmark.h"
 
 #include <fmt/format.h>
 

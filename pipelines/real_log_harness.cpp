@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/real_log_harness.h"
+#include "pipelines/real_log_harness.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/predictivity_report.h"
+#include "pipelines/predictivity_report.h"
 
 #include <fmt/format.h>
 

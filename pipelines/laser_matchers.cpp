@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/laser_matchers.h"
+#include "pipelines/laser_matchers.h"
 
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/laser/segment_grid_index.h"

@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/thesis_pose_tables.h"
+#include "pipelines/thesis_pose_tables.h"
 
 #include <fmt/format.h>
 

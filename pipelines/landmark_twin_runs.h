@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/experiments/harness/filter_models.h"
-#include "benchmarks/experiments/harness/landmark_family.h"
-#include "benchmarks/experiments/harness/landmark_twin.h"
-#include "benchmarks/experiments/harness/predictivity.h"
 #include "core/two_sample_ks.h"
+#include "pipelines/filter_models.h"
+#include "pipelines/landmark_family.h"
+#include "pipelines/landmark_twin.h"
+#include "pipelines/predictivity.h"
 
 namespace locbench::experiments::landmarks {
 

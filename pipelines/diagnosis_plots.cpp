@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/diagnosis_plots.h"
+#include "pipelines/diagnosis_plots.h"
 
 #include <fmt/format.h>
 

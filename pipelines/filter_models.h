@@ -10,7 +10,7 @@
 
 #include "algorithms/diagnosis/diagnosis_types.h"
 #include "algorithms/diagnosis/odometry_model.h"
-#include "benchmarks/experiments/harness/landmark_tracking.h"
+#include "pipelines/landmark_tracking.h"
 
 namespace locbench::experiments::landmarks {
 

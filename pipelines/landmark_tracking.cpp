@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/landmark_tracking.h"
+#include "pipelines/landmark_tracking.h"
 
 #include <Eigen/LU>  // Matrix3d::determinant
 #include <algorithm>

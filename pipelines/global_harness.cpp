@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/global_harness.h"
+#include "pipelines/global_harness.h"
 
 #include <cmath>
 

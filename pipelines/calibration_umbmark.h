@@ -15,8 +15,8 @@
 #include "algorithms/calibration/umbmark_improved.h"
 #include "baselines/calibration/umbmark_classic.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
 #include "datasets/sim/scenario.h"
+#include "pipelines/scenario_option.h"
 
 namespace locbench::experiments {
 

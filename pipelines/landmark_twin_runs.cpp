@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/landmark_twin_runs.h"
+#include "pipelines/landmark_twin_runs.h"
 
 #include <array>
 #include <cmath>

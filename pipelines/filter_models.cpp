@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/filter_models.h"
+#include "pipelines/filter_models.h"
 
 #include "algorithms/diagnosis/diagnosis.h"
 #include "core/errors.h"

@@ -14,8 +14,8 @@
 
 #include "algorithms/filters/consistency.h"
 
-#include "benchmarks/experiments/harness/filter_models.h"
-#include "benchmarks/experiments/harness/landmark_tracking.h"
+#include "pipelines/filter_models.h"
+#include "pipelines/landmark_tracking.h"
 
 namespace locbench::experiments::landmarks {
 

@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/laser_scan_truth.h"
+#include "pipelines/laser_scan_truth.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/harness/noise_filters.h"
+#include "pipelines/noise_filters.h"
 
 #include <fmt/format.h>
 
