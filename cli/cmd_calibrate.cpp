@@ -15,19 +15,19 @@
 #include "baselines/calibration/umbmark_classic.h"
 #include "cli/commands.h"
 #include "cli/estimate_judgement.h"
+#include "core/checksum.h"
 #include "core/errors.h"
+#include "core/output_file.h"
 #include "datasets/catalog/calibration_catalog.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
+#include "datasets/catalog/log_spec.h"
 #include "datasets/io/censi_tuple_reader.h"
-#include "datasets/io/log_loader.h"
 #include "datasets/io/umbmark_input_reader.h"
-#include "datasets/log/data_root.h"
-#include "reports/checksum.h"
 #include "reports/finish_report.h"
-#include "reports/output_file.h"
 
 namespace locbench::cli {
-using io::attach_relations, io::load_log, io::read_censi_tuples, io::read_umbmark_input;
+using io::read_censi_tuples, io::read_umbmark_input;
 using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
 using locbench::calibration::analyze_umbmark_design, locbench::calibration::calibrate_ml,
     locbench::calibration::CalibratedParameter, locbench::calibration::calibration_data_from_encoders,
@@ -40,7 +40,8 @@ using locbench::calibration::analyze_umbmark_design, locbench::calibration::cali
     locbench::calibration::UmbmarkDesign, locbench::calibration::UmbmarkDesignFinding,
     locbench::calibration::UmbmarkIdentifiabilityOptions, locbench::calibration::UmbmarkParameterSet;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::is_calibration_dataset,
-    locbench::catalog::load_catalog_calibration_data, locbench::catalog::load_catalog_dataset;
+    locbench::catalog::load_catalog_calibration_records, locbench::catalog::load_log_spec, locbench::catalog::LoadedLog,
+    locbench::catalog::LogSpec;
 namespace {
 
 struct CalibrateArgs {
@@ -62,7 +63,7 @@ reports::ExperimentResults calibrate_umbmark(const CalibrateArgs& a, bool improv
   out.experiment = "calibrate/" + method;
   out.description = improved ? "Improved UMBmark (thesis eq. 2.16–2.27) on a measured square"
                              : "Classic UMBmark (Borenstein & Feng, eq. 2.3–2.13) on a measured square";
-  out.datasets.push_back({"umbmark_input", a.input, reports::file_checksum(a.input), in.runs.size(), 0.0});
+  out.datasets.push_back({"umbmark_input", a.input, file_checksum(a.input), in.runs.size(), 0.0});
   out.configuration = {{"method", method}, {"input", a.input}};
   const UmbmarkCentroids c = umbmark_centroids(in.runs);
   UmbmarkIdentifiabilityOptions idopt;
@@ -142,26 +143,45 @@ reports::ExperimentResults calibrate_umbmark(const CalibrateArgs& a, bool improv
 // per-component noise model (Censi's data also his 4 × 1% outlier rejection); Freiburg
 // relations the odometry-propagated one with a rotation-per-distance term.
 CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCalibrationOptions& o) {
-  const std::filesystem::path root = a.data.empty() ? data_root() : std::filesystem::path(a.data);
+  const std::filesystem::path root = a.data.empty() ? catalog::data_root() : std::filesystem::path(a.data);
   const std::string name = a.input.substr(0, a.input.find(':'));
   const std::string part = a.input.find(':') == std::string::npos ? "" : a.input.substr(a.input.find(':') + 1);
-  if (const DatasetEntry* entry = find_dataset(name)) {
-    const DatasetEntry& e = *entry;
+  const DatasetEntry* entry = find_dataset(name);
+  if (entry != nullptr && !a.relations.empty()) {
+    throw UsageError("--relations " + a.relations + ": " + a.input +
+                     " is a catalog dataset, calibrated against its own reference; --relations applies to a "
+                     "log file");
+  }
+  if (entry == nullptr && !a.data.empty()) {
+    throw UsageError("--data " + a.data + ": applies to a catalog dataset name (`locbench list`), and " + a.input +
+                     " is not one");
+  }
+  if (entry != nullptr && is_calibration_dataset(*entry)) {
+    ref = {a.input, (root / entry->path).string(), file_checksum(root / entry->path), 0, 0.0};
+    o.noise.kind = NoiseModelKind::kPerComponent;
+    if (entry->name == "censi_khepera") o.outliers = {4, 0.01};
+    return calibration::calibration_data_from_records(load_catalog_calibration_records(*entry, root, part));
+  }
+  if (entry == nullptr && a.input.find(".tuple") != std::string::npos) {
     if (!a.relations.empty()) {
-      throw UsageError("--relations " + a.relations + ": " + a.input +
-                       " is a catalog dataset, calibrated against its own reference; --relations applies to a "
-                       "log file");
+      throw UsageError("--relations " + a.relations + ": a Censi tuple file brings its own reference");
     }
-    ref = {a.input, (root / e.path).string(), "", 0, 0.0};
-    const std::string file = ref.path.substr(0, ref.path.find('#'));
-    ref.checksum = reports::file_checksum(file);
-    if (is_calibration_dataset(e)) {
-      o.noise.kind = NoiseModelKind::kPerComponent;
-      if (e.name == "censi_khepera") o.outliers = {4, 0.01};
-      return load_catalog_calibration_data(e, root, part);
-    }
-    const Log log = load_catalog_dataset(e, root);
-    ref.records = log.record_count();
+    o.noise.kind = NoiseModelKind::kPerComponent;
+    o.outliers = {4, 0.01};
+    const auto tuples = read_censi_tuples(a.input);
+    ref = {a.input, a.input, file_checksum(a.input), tuples.size(), 0.0};
+    CalibrationData data = calibration_data_from_wheel_speed_tuples(tuples);
+    data.source = a.input;  // errors about the samples name the file
+    return data;
+  }
+  LogSpec spec;
+  spec.name = a.input;
+  spec.log = entry != nullptr ? entry->name : a.input;
+  spec.relations = a.relations;
+  const LoadedLog loaded = load_log_spec(spec, root);
+  const Log& log = loaded.log;
+  ref = loaded.dataset;
+  if (entry != nullptr) {
     if (!log.relations.empty()) {
       RelationSampleOptions local;
       local.max_duration = 10.0;  // local relations only; loop closures span minutes
@@ -174,27 +194,6 @@ CalibrationData ml_input(const CalibrateArgs& a, reports::DatasetRef& ref, MlCal
     o.noise.kind = NoiseModelKind::kPerComponent;
     return calibration_data_from_velocities(log, intervals);
   }
-  if (!a.data.empty()) {
-    throw UsageError("--data " + a.data + ": applies to a catalog dataset name (`locbench list`), and " + a.input +
-                     " is not one");
-  }
-  // "folder#robot1" (MRCLAM): the folder's checksum, as diagnose reads the same input.
-  ref = {a.input, a.input, reports::file_checksum(a.input.substr(0, a.input.find('#'))), 0, 0.0};
-  if (a.input.find(".tuple") != std::string::npos) {
-    if (!a.relations.empty()) {
-      throw UsageError("--relations " + a.relations + ": a Censi tuple file brings its own reference");
-    }
-    o.noise.kind = NoiseModelKind::kPerComponent;
-    o.outliers = {4, 0.01};
-    const auto tuples = read_censi_tuples(a.input);
-    ref.records = tuples.size();
-    CalibrationData data = calibration_data_from_wheel_speed_tuples(tuples);
-    data.source = a.input;  // errors about the samples name the file
-    return data;
-  }
-  Log log = load_log(a.input);
-  if (!a.relations.empty()) attach_relations(log, a.relations);
-  ref.records = log.record_count();
   // Relations given are used (before a log's own TRUEPOS), never silently ignored.
   if (!a.relations.empty()) return calibration_data_from_relations(log);
   if (!log.encoders.empty() && !log.truth.empty()) return calibration_data_from_encoders(log);
@@ -247,7 +246,7 @@ reports::ExperimentResults calibrate_ml_cmd(const CalibrateArgs& a, std::vector<
 }
 
 int calibrate(const CalibrateArgs& a, const std::string& command_line) {
-  reports::check_outputs({a.input, a.relations}, {{"--report", a.report}});
+  check_outputs({a.input, a.relations}, {{"--report", a.report}});
   // Every flag given is used or refused.
   if (a.method != "ml" && (!a.relations.empty() || !a.data.empty())) {
     throw UsageError(std::string(!a.relations.empty() ? "--relations" : "--data") + " applies to `calibrate ml`, not " +

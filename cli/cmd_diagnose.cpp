@@ -4,7 +4,7 @@
 // LOG is a CARMEN log (ENCODER/ODOM with TRUEPOS or COMPASS), an MRCLAM folder (#robotN), a
 // catalog dataset name (`locbench list`: aces, intel, mrclam6_robot1, …), or a histogram JSON.
 // --scenario writes the log's synthetic twin under the extended model (the nominal model plus
-// every kept cause) as a simulator scenario (datasets/diagnosis/twin_scenario.h).
+// every kept cause) as a simulator scenario (pipelines/twin/twin_scenario.h).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -15,21 +15,19 @@
 
 #include "algorithms/diagnosis/diagnosis.h"
 #include "cli/commands.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/input_limits.h"
 #include "core/json_file.h"
-#include "datasets/catalog/dataset_catalog.h"
-#include "datasets/diagnosis/twin_scenario.h"
+#include "core/output_file.h"
+#include "datasets/catalog/data_root.h"
+#include "datasets/catalog/log_spec.h"
 #include "datasets/io/data_lines.h"
-#include "datasets/io/log_loader.h"
-#include "datasets/log/data_root.h"
 #include "datasets/sim/scenario_json.h"
+#include "pipelines/twin/twin_scenario.h"
 #include "reports/finish_report.h"
-#include "reports/output_file.h"
 
 namespace locbench::cli {
-using io::attach_relations, io::load_log;
-using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench::catalog::load_catalog_dataset;
 namespace {
 
 struct DiagnoseArgs {
@@ -108,44 +106,50 @@ int diagnose(const DiagnoseArgs& a, const std::string& command_line) {
   if (!(a.window > 0.0 && a.window <= 3600.0)) {
     throw UsageError(fmt::format("--window {}: expected a length in (0, 3600] s", a.window));
   }
-  reports::check_outputs({a.input, a.relations}, {{"--report", a.report}, {"--scenario", a.scenario}});
+  check_outputs({a.input, a.relations}, {{"--report", a.report}, {"--scenario", a.scenario}});
   diagnosis::Diagnosis d;
+  DatasetRef input;
   std::optional<Log> log_read;
   if (ends_with(a.input, ".json")) {
     if (!a.scenario.empty()) {
       throw UsageError("--scenario needs a log: a histogram of residuals has no motion to replay");
     }
     const nlohmann::json j = read_json_file(a.input, "residual histogram (JSON)");
-    d = diagnosis::diagnose_histogram(diagnosis::read_histogram(j, a.input), a.input, opt);
+    const diagnosis::ResidualHistogram h = diagnosis::read_histogram(j, a.input);
+    d = diagnosis::diagnose_histogram(h, a.input, opt);
+    input = {a.input, a.input, file_checksum(a.input), h.counts.size(), 0.0};
   } else {
-    Log log;
-    if (const DatasetEntry* entry = find_dataset(a.input)) {
-      const auto root = a.data.empty() ? data_root() : std::filesystem::path(a.data);
-      log = load_catalog_dataset(*entry, root);
-    } else {
-      log = load_log(a.input);
-      // ~0.2 ms a record: refused before the fits unless --max-records raises the limit.
-      const double records = static_cast<double>(log.encoders.size() + log.odometry.size());
-      if (records > a.max_records) {
-        limits::check(records,
-                      {limits::kDiagnoseOdometryRecords.key, a.max_records, limits::kDiagnoseOdometryRecords.why},
-                      a.input, "odometry records (ENCODER, ODOM)");
-      }
+    catalog::LogSpec spec;
+    spec.log = a.input;
+    spec.relations = a.relations;
+    auto loaded = catalog::load_log_spec(spec, a.data.empty() ? catalog::data_root() : std::filesystem::path(a.data));
+    Log& log = loaded.log;
+    // ~0.2 ms a record: a log file is refused before the fits unless --max-records raises the limit.
+    const double records = static_cast<double>(log.encoders.size() + log.odometry.size());
+    if (loaded.entry == nullptr && records > a.max_records) {
+      limits::check(records,
+                    {limits::kDiagnoseOdometryRecords.key, a.max_records, limits::kDiagnoseOdometryRecords.why},
+                    a.input, "odometry records (ENCODER, ODOM)");
     }
-    if (!a.relations.empty()) attach_relations(log, a.relations);
     if (log.source.empty()) log.source = a.input;
     d = diagnosis::diagnose_log(log, opt);
+    input = loaded.dataset;
     log_read = std::move(log);
   }
   print(d);
   if (!a.scenario.empty()) {
     const sim::Twin twin = sim::build_twin(*log_read, d);
     print_twin(twin);
-    reports::write_file_atomically(a.scenario, sim::to_json(twin.extended).dump(2) + "\n");
+    write_file_atomically(a.scenario, sim::to_json(twin.extended).dump(2) + "\n");
     std::cerr << "wrote " << a.scenario << " (simulate it with `locbench simulate " << a.scenario << " -o twin.clf`)\n";
   }
   if (!a.report.empty()) {
     nlohmann::json j = diagnosis::to_json(d);
+    j["input"] = {{"name", input.name},
+                  {"path", input.path},
+                  {"checksum", input.checksum},
+                  {"records", input.records},
+                  {"duration_s", input.duration_s}};
     nlohmann::json options;
     diagnosis::to_json(options, opt);
     j["configuration"] = options;

@@ -4,8 +4,8 @@
 
 #include "cli/commands.h"
 #include "core/errors.h"
+#include "core/output_file.h"
 #include "reports/gate.h"
-#include "reports/output_file.h"
 
 namespace locbench::cli {
 namespace {
@@ -23,7 +23,7 @@ int gate(const GateArgs& args) {
   std::vector<std::string> inputs = args.current;
   inputs.insert(inputs.end(), args.baseline.begin(), args.baseline.end());
   inputs.push_back(args.rules);
-  reports::check_outputs(inputs, {{"--markdown", args.markdown}, {"--json", args.json}}, ".json");
+  check_outputs(inputs, {{"--markdown", args.markdown}, {"--json", args.json}}, ".json");
   const reports::GateInput baseline = reports::load_gate_input(args.baseline);
   const reports::GateInput current = reports::load_gate_input(args.current);
   // Fail closed: nothing to compare against, or two runs mixed in one set, is an error.
@@ -42,9 +42,9 @@ int gate(const GateArgs& args) {
   // its reports may carry different ids, or none).
   if (!args.allow_mixed) reports::fail_mixed_runs(current, verdict);
   std::cout << reports::gate_table(verdict);
-  if (!args.markdown.empty()) reports::write_file_atomically(args.markdown, reports::gate_markdown(verdict));
+  if (!args.markdown.empty()) write_file_atomically(args.markdown, reports::gate_markdown(verdict));
   if (!args.json.empty()) {
-    reports::write_file_atomically(args.json, reports::gate_json(verdict, baseline, current).dump(2) + "\n");
+    write_file_atomically(args.json, reports::gate_json(verdict, baseline, current).dump(2) + "\n");
   }
   return verdict.passed() ? kExitOk : kExitCheckFailed;
 }

@@ -5,19 +5,20 @@
 
 #include <iostream>
 
+#include "algorithms/calibration/calibration_data.h"
 #include "benchmarks/experiments/framework/experiment.h"
 #include "cli/commands.h"
 #include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/bag_log.h"
 #include "datasets/io/log_loader.h"
-#include "datasets/log/data_root.h"
 #include "datasets/sim/presets.h"
 
 namespace locbench::cli {
 using locbench::catalog::calibration_dataset_parts, locbench::catalog::dataset_catalog, locbench::catalog::DatasetEntry,
-    locbench::catalog::is_calibration_dataset, locbench::catalog::load_catalog_calibration_data,
+    locbench::catalog::is_calibration_dataset, locbench::catalog::load_catalog_calibration_records,
     locbench::catalog::load_catalog_dataset;
 namespace {
 
@@ -106,7 +107,7 @@ int list(const ListArgs& args) {
   for (const sim::PresetInfo& p : sim::preset_list()) {
     std::cout << fmt::format("    {:<26} {}\n", p.name, p.description);
   }
-  const std::filesystem::path root = args.data.empty() ? data_root() : std::filesystem::path(args.data);
+  const std::filesystem::path root = args.data.empty() ? catalog::data_root() : std::filesystem::path(args.data);
   std::cout << "\nDatasets under " << root.string() << ":\n";
   for (const DatasetEntry& d : dataset_catalog()) {
     const std::string path = (root / d.path).string();
@@ -119,7 +120,8 @@ int list(const ListArgs& args) {
       std::size_t samples = 0;
       try {
         for (const std::string& part : calibration_dataset_parts(d)) {
-          samples += load_catalog_calibration_data(d, root, part).samples.size();
+          samples += calibration::calibration_data_from_records(load_catalog_calibration_records(d, root, part))
+                         .samples.size();
           parts += (parts.empty() ? "" : ", ") + (part.empty() ? std::string("all") : part);
         }
         std::cout << fmt::format("    {:<26} calibration samples: {} ({})\n", d.name, samples, parts);

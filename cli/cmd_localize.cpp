@@ -18,16 +18,16 @@
 #include "baselines/global/monte_carlo_localization.h"
 #include "baselines/global/odometry_motion_model.h"
 #include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/harness/global_harness.h"
 #include "cli/commands.h"
 #include "cli/pose_report.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/input_limits.h"
 #include "core/json_file.h"
+#include "core/output_file.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/sim/worlds.h"
-#include "reports/checksum.h"
-#include "reports/output_file.h"
+#include "pipelines/global_harness.h"
 
 namespace locbench::cli {
 namespace {
@@ -172,13 +172,14 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
   if (a.map.empty() == (a.map_from_log <= 0.0)) {
     throw UsageError("give exactly one of --map FILE and --map-from-log SECONDS");
   }
-  reports::check_outputs({a.log, a.map, a.options}, {{"--report", a.report}, {"--tum", a.tum}});
+  check_outputs({a.log, a.map, a.options}, {{"--report", a.report}, {"--tum", a.tum}});
   nlohmann::json options = g::default_method_options();
   if (!a.options.empty()) {
     const nlohmann::json user = read_json_file(a.options, "--options file (JSON)");
     options = naming_file(a.options, [&] { return experiments::merge_config(options, user); });
   }
-  const Log log = load_scan_log(a.log);
+  const catalog::LoadedLog loaded = load_scan_log(a.log);
+  const Log& log = loaded.log;
   std::vector<g::ScanStep> steps = g::scan_steps(log);
   if (steps.empty()) {
     throw InputError(a.log, 0, "odometry (ODOM records or FLASER odometry) covering the scans");
@@ -220,11 +221,10 @@ int localize(const LocalizeArgs& a, const std::string& command_line) {
                        {"seed", a.seed},
                        {"method_options", options}};
   out.seeds.push_back(a.seed);
-  out.datasets.push_back({log.name.empty() ? "log" : log.name, a.log, reports::file_checksum(a.log), log.record_count(),
-                          log.time_span().second - log.time_span().first});
+  out.datasets.push_back(loaded.dataset);
   if (!a.map.empty()) {
     out.datasets.push_back(
-        {map.name.empty() ? "map" : map.name, a.map, reports::file_checksum(a.map), map.segments.size(), 0.0});
+        {map.name.empty() ? "map" : map.name, a.map, file_checksum(a.map), map.segments.size(), 0.0});
   }
   const std::string ds = reports::key_part(std::filesystem::path(a.log).filename().string());
   out.results.push_back(reports::make_metric(method, ds, "memory", "bytes", "estimate",

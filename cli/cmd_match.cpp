@@ -8,17 +8,17 @@
 #include <cmath>
 
 #include "algorithms/pose_correction/pose_correction.h"
-#include "benchmarks/experiments/harness/laser_matchers.h"
 #include "cli/commands.h"
 #include "cli/pose_report.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/input_limits.h"
+#include "core/output_file.h"
 #include "core/statistics.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/io/odometry_interpolation.h"
 #include "datasets/sim/worlds.h"
-#include "reports/checksum.h"
-#include "reports/output_file.h"
+#include "pipelines/laser_matchers.h"
 
 namespace locbench::cli {
 using io::odometry_trajectory;
@@ -35,10 +35,11 @@ struct MatchArgs {
 bool is_zero(const Pose2& p) { return p.x == 0.0 && p.y == 0.0 && p.theta == 0.0; }
 
 int match(const MatchArgs& a, const std::string& command_line) {
-  reports::check_outputs({a.map, a.log}, {{"--report", a.report}, {"--tum", a.tum}});
+  check_outputs({a.map, a.log}, {{"--report", a.report}, {"--tum", a.tum}});
   const LineMap map = sim::load_world(a.map);
   if (map.segments.empty()) throw InputError(a.map, 0, "a map with at least one segment");
-  const Log log = load_scan_log(a.log);
+  const catalog::LoadedLog loaded = load_scan_log(a.log);
+  const Log& log = loaded.log;
   if (a.matcher == "agglomerative") {
     double work = 0.0;
     for (const LaserReading& reading : log.laser) work += std::pow(static_cast<double>(reading.scan.ranges.size()), 2);
@@ -86,10 +87,8 @@ int match(const MatchArgs& a, const std::string& command_line) {
                        {"log", a.log},
                        {"matcher", a.matcher},
                        {"matcher_options", experiments::default_matcher_options()}};
-  out.datasets.push_back({log.name.empty() ? "log" : log.name, a.log, reports::file_checksum(a.log), log.record_count(),
-                          log.time_span().second - log.time_span().first});
-  out.datasets.push_back(
-      {map.name.empty() ? "map" : map.name, a.map, reports::file_checksum(a.map), map.segments.size(), 0.0});
+  out.datasets.push_back(loaded.dataset);
+  out.datasets.push_back({map.name.empty() ? "map" : map.name, a.map, file_checksum(a.map), map.segments.size(), 0.0});
   const std::string ds = reports::key_part(std::filesystem::path(a.log).filename().string());
   const auto add = [&](const char* variant, const char* unit, const std::vector<double>& v, const char* better) {
     reports::MetricResult m = reports::make_metric(a.matcher, ds, variant, unit, "scans", v, false);

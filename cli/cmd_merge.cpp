@@ -15,8 +15,8 @@
 #include "cli/commands.h"
 #include "core/errors.h"
 #include "core/json_file.h"
+#include "core/output_file.h"
 #include "reports/finish_report.h"
-#include "reports/output_file.h"
 #include "reports/provenance.h"
 #include "reports/schema_validation.h"
 #include "reports/shard_report.h"
@@ -159,13 +159,13 @@ reports::Report merge_group(const std::vector<const ShardFile*>& group, int thre
 
 int merge(const MergeArgs& args, const std::string& command_line) {
   const bool to_file = args.out.ends_with(".json");
-  reports::check_outputs(args.inputs, {{"-o", to_file ? args.out : ""}}, ".json");
+  check_outputs(args.inputs, {{"-o", to_file ? args.out : ""}}, ".json");
   // -o takes the output folder's lock like `run --out`; a report file, the locks of the folders
   // above it (a folder `run --out` is writing is refused, not written into).
-  std::optional<reports::OutputFolderLock> lock;
-  std::vector<std::unique_ptr<reports::OutputFolderLock>> locks_above;
+  std::optional<OutputFolderLock> lock;
+  std::vector<std::unique_ptr<OutputFolderLock>> locks_above;
   if (to_file) {
-    locks_above = reports::lock_folders_above(args.out);
+    locks_above = lock_folders_above(args.out);
   } else {
     lock.emplace(args.out);
   }

@@ -8,9 +8,9 @@
 #include "cli/commands.h"
 #include "core/errors.h"
 #include "core/json_file.h"
+#include "core/output_file.h"
 #include "reports/gnuplot_svg.h"
 #include "reports/html_report.h"
-#include "reports/output_file.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"
 #include "reports/shard_report.h"
@@ -86,7 +86,7 @@ std::vector<reports::Report> load_all(const std::vector<std::string>& inputs) {
 }
 
 int report(const ReportArgs& args) {
-  reports::check_outputs(args.inputs, {{"-o", args.out}}, ".json");
+  check_outputs(args.inputs, {{"-o", args.out}}, ".json");
   const auto gnuplot = reports::find_gnuplot();
   if (!gnuplot) {
     throw UsageError(
@@ -98,7 +98,7 @@ int report(const ReportArgs& args) {
   options.title = args.title;
   const std::string html = reports::html_report(loaded, reports::gnuplot_batch_renderer(*gnuplot), options);
   const std::filesystem::path out(args.out);
-  reports::write_file_atomically(out, html);
+  write_file_atomically(out, html);
   std::cerr << "wrote " << out.string() << " (" << loaded.size() << " reports, " << html.size() << " bytes)\n";
   return kExitOk;
 }

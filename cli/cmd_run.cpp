@@ -7,15 +7,15 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/shard.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "core/errors.h"
 #include "core/input_limits.h"
 #include "core/json_file.h"
-#include "datasets/log/data_root.h"
+#include "core/output_file.h"
+#include "datasets/catalog/data_root.h"
+#include "pipelines/real_log_harness.h"
 #include "reports/finish_report.h"
-#include "reports/output_file.h"
 #include "reports/shard_report.h"
 #include "reports/summary_table.h"
 
@@ -185,7 +185,7 @@ int run(const RunArgs& args, const std::string& command_line) {
   experiments::RunOptions options;
   options.seed = args.seed;
   if (args.runs > 0) options.runs = args.runs;
-  options.data_root = args.data.empty() ? data_root() : std::filesystem::path(args.data);
+  options.data_root = args.data.empty() ? catalog::data_root() : std::filesystem::path(args.data);
   if (!args.data.empty() && !std::filesystem::is_directory(options.data_root)) {
     throw InputError(args.data, 0, "--data: no such folder (the datasets' folder, see `locbench list`)");
   }
@@ -215,8 +215,8 @@ int run(const RunArgs& args, const std::string& command_line) {
     configs.push_back(std::move(config));
   }
   // Every input file takes part in the overlap check: none may lie in the folder the run writes.
-  reports::check_inputs_outside(inputs, args.out, "--out");
-  const reports::OutputFolderLock lock(args.out);
+  check_inputs_outside(inputs, args.out, "--out");
+  const OutputFolderLock lock(args.out);
 
   std::vector<reports::Report> written;
   std::vector<std::string> missing;   // skipped cases not accepted by --skip-missing

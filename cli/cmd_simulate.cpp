@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "core/errors.h"
+#include "core/output_file.h"
 #include "core/trajectory.h"
 #include "datasets/io/bag_log.h"
 #include "datasets/io/carmen_writer.h"
@@ -12,7 +13,6 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
-#include "reports/output_file.h"
 
 namespace locbench::cli {
 using io::write_carmen_log, io::write_tum;
@@ -48,8 +48,7 @@ int simulate(const SimulateArgs& args) {
   if (args.out.empty() && args.ros1_bag.empty() && args.ros2_bag.empty()) {
     throw UsageError("simulate: give the log to write with -o FILE (or --ros1-bag FILE, --ros2-bag FOLDER)");
   }
-  reports::check_outputs({args.scenario},
-                         {{"-o", args.out}, {"--truth-tum", args.truth_tum}, {"--ros1-bag", args.ros1_bag}});
+  check_outputs({args.scenario}, {{"-o", args.out}, {"--truth-tum", args.truth_tum}, {"--ros1-bag", args.ros1_bag}});
   if (!args.ros2_bag.empty() && std::filesystem::exists(args.ros2_bag)) {
     throw InputError(args.ros2_bag, 0, "exists already (expected a new folder for the ROS 2 bag)");
   }

@@ -7,15 +7,19 @@
 #include "cli/commands.h"
 #include "core/errors.h"
 #include "core/input_limits.h"
-#include "datasets/io/log_loader.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/io/tum_writer.h"
 #include "reports/finish_report.h"
 
 namespace locbench::cli {
-using io::load_log, io::write_tum;
+using io::write_tum;
 
-Log load_scan_log(const std::string& spec) {
-  Log log = load_log(spec);
+catalog::LoadedLog load_scan_log(const std::string& spec) {
+  catalog::LogSpec what;
+  what.log = spec;
+  catalog::LoadedLog loaded = catalog::load_log_spec(what, catalog::data_root());
+  loaded.dataset.name = loaded.log.name.empty() ? "log" : loaded.log.name;
+  const Log& log = loaded.log;
   if (log.laser.empty()) {
     throw InputError(spec, 0, "laser scans (FLASER/ROBOTLASER records); the log has none");
   }
@@ -26,7 +30,7 @@ Log load_scan_log(const std::string& spec) {
     ranges += static_cast<double>(reading.scan.ranges.size());
   }
   limits::check(ranges, limits::kLaserRangesPerLog, spec, fmt::format("laser ranges ({} scans)", log.laser.size()));
-  return log;
+  return loaded;
 }
 
 int finish_pose_report(reports::Report& report, const std::string& verb, const std::string& command_line,

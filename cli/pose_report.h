@@ -4,15 +4,16 @@
 // TUM format when asked.
 #include <string>
 
-#include "core/log.h"
 #include "core/trajectory.h"
+#include "datasets/catalog/log_spec.h"
 #include "reports/report.h"
 
 namespace locbench::cli {
 
-// The log `spec` (datasets/io/log_loader.h), which must hold laser scans, each with at most
-// limits::kBeamsPerScan beams; otherwise InputError naming the log.
-Log load_scan_log(const std::string& spec);
+// The log `spec` (a catalog name or a file: datasets/catalog/log_spec.h) with its dataset record,
+// named after the log; it must hold laser scans, each with at most limits::kBeamsPerScan beams,
+// otherwise InputError naming the log.
+catalog::LoadedLog load_scan_log(const std::string& spec);
 
 // Finishes `report` (reports::finish_report, with the summary printed) and writes `poses` to
 // `tum_path` unless it is empty; returns kExitOk.

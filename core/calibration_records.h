@@ -2,6 +2,9 @@
 // Raw records of the calibration data sets, as their files hold them: plain value types shared
 // by the readers (datasets/io) and the calibration-data builders (calibration_data.h).
 // SI units.
+#include <string>
+#include <vector>
+
 #include "core/pose2.h"
 
 namespace locbench {
@@ -30,6 +33,16 @@ struct TickMotion {
   double left = 0.0;
   double right = 0.0;
   Pose2 reference;
+};
+
+// The records of one calibration data set as read: one of the three kinds, and the file(s)
+// they came from (datasets/catalog/calibration_catalog.h reads them; calibration_data_from_records
+// in algorithms/calibration turns them into samples).
+struct CalibrationRecords {
+  std::string source;                               // the file(s) read, for messages
+  std::vector<WheelSpeedTuple> wheel_speed_tuples;  // censi_khepera
+  std::vector<TickMotion> tick_motions;             // grisetti_diffdrive
+  std::vector<RelativeMotionPair> motion_pairs;     // stachniss_ls_calib
 };
 
 }  // namespace locbench

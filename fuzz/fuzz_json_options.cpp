@@ -1,10 +1,10 @@
 // The JSON-option layer: user options merged over the defaults (--options, --config, --set) and
 // read into every laser matcher's option structs.
 #include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/harness/laser_matchers.h"
 #include "core/json_file.h"
 #include "datasets/sim/worlds.h"
 #include "fuzz/fuzz_input.h"
+#include "pipelines/laser_matchers.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace locbench;

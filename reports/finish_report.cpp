@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "reports/output_file.h"
+#include "core/output_file.h"
 #include "reports/provenance.h"
 #include "reports/report_json.h"
 #include "reports/schema_validation.h"

@@ -13,7 +13,7 @@
 #include <stdexcept>
 
 #include "core/errors.h"
-#include "reports/output_file.h"
+#include "core/output_file.h"
 
 namespace locbench::reports {
 namespace {

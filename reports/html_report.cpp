@@ -144,7 +144,7 @@ std::string gain_text(const KeptCause& c) {
 }
 
 // Rows of the twins' predictivity: the results an experiment reports under methods "nominal_twin"
-// and "extended_twin" on dataset "all_logs" (benchmarks/experiments/harness/predictivity_report.h),
+// and "extended_twin" on dataset "all_logs" (pipelines/predictivity_report.h),
 // one row per metric.
 std::string twin_rows(const std::vector<Report>& reports) {
   std::string rows;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/dataset_ref.h"
 #include "core/statistics.h"
 
 namespace locbench::reports {
@@ -30,13 +31,7 @@ struct Provenance {
   std::string run_id = {};
 };
 
-struct DatasetRef {
-  std::string name;      // e.g. "sim/corridor", "aces"
-  std::string path;      // file or folder read, or "simulated"
-  std::string checksum;  // "crc32:…" of the file bytes, or of the scenario JSON when simulated
-  std::size_t records = 0;
-  double duration_s = 0.0;
-};
+using locbench::DatasetRef;
 
 // One metric of one method on one dataset, summarised over runs (or over samples of one run).
 struct MetricResult {

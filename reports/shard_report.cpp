@@ -1,6 +1,6 @@
 #include "reports/shard_report.h"
 
-#include "reports/output_file.h"
+#include "core/output_file.h"
 
 #include <cmath>
 #include <fstream>

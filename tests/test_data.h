@@ -8,17 +8,17 @@
 #include <sstream>
 #include <string>
 
-#include "datasets/log/data_root.h"
+#include "datasets/catalog/data_root.h"
 
 namespace locbench::testing {
 
 // Skips the current test with a clear message when a dataset file or folder is missing.
-#define LOCBENCH_REQUIRE_DATA(relative_path)                                               \
-  do {                                                                                     \
-    if (!std::filesystem::exists(::locbench::data_root() / (relative_path))) {             \
-      GTEST_SKIP() << "dataset not found: " << (::locbench::data_root() / (relative_path)) \
-                   << " (set LOCBENCH_DATA to the folder holding ../shared/datasets)";     \
-    }                                                                                      \
+#define LOCBENCH_REQUIRE_DATA(relative_path)                                                        \
+  do {                                                                                              \
+    if (!std::filesystem::exists(::locbench::catalog::data_root() / (relative_path))) {             \
+      GTEST_SKIP() << "dataset not found: " << (::locbench::catalog::data_root() / (relative_path)) \
+                   << " (set LOCBENCH_DATA to the folder holding ../shared/datasets)";              \
+    }                                                                                               \
   } while (0)
 
 // The whole content of a file as written (binary); empty when it cannot be opened.

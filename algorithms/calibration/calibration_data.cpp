@@ -327,4 +327,18 @@ bool is_finite(const CalibrationSample& s) {
   });
 }
 
+CalibrationData calibration_data_from_records(const CalibrationRecords& records) {
+  CalibrationData d;
+  if (!records.wheel_speed_tuples.empty()) {
+    d = calibration_data_from_wheel_speed_tuples(records.wheel_speed_tuples);
+  } else if (!records.tick_motions.empty()) {
+    d = calibration_data_from_tick_motions(records.tick_motions);
+  } else {
+    d = calibration_data_from_motion_pairs(records.motion_pairs);
+  }
+  d.source = records.source;
+  if (d.samples.empty()) throw InputError(d.source, 0, "no samples");
+  return d;
+}
+
 }  // namespace locbench::calibration

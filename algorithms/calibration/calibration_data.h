@@ -143,6 +143,10 @@ CalibrationData calibration_data_from_motion_pairs(std::span<const RelativeMotio
 CalibrationData calibration_data_from_tick_motions(std::span<const TickMotion> rows,
                                                    const NominalModel& nominal = {-1.0, 1.0, 1.0});
 
+// The samples of a calibration data set's records, each kind by its function above with its
+// defaults; CalibrationData::source names the file(s). InputError when there is none.
+CalibrationData calibration_data_from_records(const CalibrationRecords& records);
+
 // Odometry displacement (dx, dy, dθ) in its start frame → the circular arc through it:
 // d = chord · (θ/2) / sin(θ/2), signed by the chord's forward component. Exact for arcs.
 OdometryIncrement arc_increment(const Pose2& delta, double dt = 0.0);

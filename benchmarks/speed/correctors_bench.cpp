@@ -18,14 +18,14 @@
 #include <vector>
 
 #include "baselines/laser/extract_then_match.h"
-#include "benchmarks/experiments/harness/laser_correctors.h"
 #include "core/rng.h"
 #include "core/units.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/odometry_interpolation.h"
-#include "datasets/log/data_root.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
+#include "pipelines/laser_correctors.h"
 
 namespace locbench::speed {
 using io::odometry_trajectory;
@@ -68,8 +68,8 @@ const std::vector<PairCase>& intel_pairs() {
   static const std::vector<PairCase> pairs = [] {
     std::vector<PairCase> out;
     const DatasetEntry* e = find_dataset("intel");
-    if (!e || !std::filesystem::exists(data_root() / e->path)) return out;
-    const Log log = load_catalog_dataset(*e, data_root());
+    if (!e || !std::filesystem::exists(catalog::data_root() / e->path)) return out;
+    const Log log = load_catalog_dataset(*e, catalog::data_root());
     const Trajectory odom = odometry_trajectory(log);
     for (std::size_t i = 1; i < log.laser.size() && out.size() < 200; ++i) {
       const Scan& a = log.laser[i - 1].scan;
@@ -93,8 +93,8 @@ const Replay& intel_replay() {
   static const Replay replay = [] {
     Replay out;
     const DatasetEntry* e = find_dataset("intel");
-    if (!e || !std::filesystem::exists(data_root() / e->path)) return out;
-    const Log log = load_catalog_dataset(*e, data_root());
+    if (!e || !std::filesystem::exists(catalog::data_root() / e->path)) return out;
+    const Log log = load_catalog_dataset(*e, catalog::data_root());
     const Trajectory odom = odometry_trajectory(log);
     std::optional<Pose2> previous;
     for (const auto& r : log.laser) {

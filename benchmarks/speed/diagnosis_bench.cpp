@@ -13,9 +13,9 @@
 
 #include "algorithms/diagnosis/diagnosis.h"
 #include "core/units.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/diagnosis/hidden_effects.h"
-#include "datasets/log/data_root.h"
 
 namespace locbench {
 namespace {
@@ -26,7 +26,8 @@ const std::optional<Log>& catalog_log(const std::string& name) {
   if (it != logs.end()) return it->second;
   std::optional<Log> log;
   try {
-    if (const auto* entry = catalog::find_dataset(name)) log = catalog::load_catalog_dataset(*entry, data_root());
+    if (const auto* entry = catalog::find_dataset(name))
+      log = catalog::load_catalog_dataset(*entry, catalog::data_root());
   } catch (const std::exception&) {
     log.reset();  // absent or unreadable: the benchmark says so and skips
   }
@@ -37,7 +38,7 @@ void BM_Diagnose(benchmark::State& state, const std::string& name) {
   const std::optional<Log>& log = catalog_log(name);
   if (!log) {
     state.SkipWithError(
-        ("dataset " + name + " not found under " + data_root().string() + " (set LOCBENCH_DATA)").c_str());
+        ("dataset " + name + " not found under " + catalog::data_root().string() + " (set LOCBENCH_DATA)").c_str());
     return;
   }
   for (auto _ : state) benchmark::DoNotOptimize(diagnosis::diagnose_log(*log));

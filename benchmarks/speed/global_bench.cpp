@@ -17,12 +17,12 @@
 
 #include "baselines/global/grid_markov.h"
 #include "baselines/global/monte_carlo_localization.h"
-#include "benchmarks/experiments/harness/global_harness.h"
 #include "core/units.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/worlds.h"
+#include "pipelines/global_harness.h"
 
 namespace locbench::speed {
 namespace {

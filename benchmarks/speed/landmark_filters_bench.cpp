@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/experiments/harness/landmark_family.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
-#include "datasets/log/data_root.h"
+#include "pipelines/landmark_family.h"
 
 namespace locbench::speed {
 namespace {
@@ -28,8 +28,8 @@ const std::vector<Halves>* robots() {
     try {
       for (int r = 1; r <= 5; ++r) {
         const auto* e = find_dataset("mrclam6_robot" + std::to_string(r));
-        if (!e || !std::filesystem::exists(data_root() / e->path.substr(0, e->path.find('#')))) return v;
-        const Log log = load_catalog_dataset(*e, data_root());
+        if (!e || !std::filesystem::exists(catalog::data_root() / e->path.substr(0, e->path.find('#')))) return v;
+        const Log log = load_catalog_dataset(*e, catalog::data_root());
         const double from = std::max(log.odometry.front().t, log.truth.front().t);
         const double to = std::min(log.odometry.back().t, log.truth.back().t);
         const double mid = 0.5 * (from + to);
@@ -46,7 +46,8 @@ const std::vector<Halves>* robots() {
 void BM_LandmarkFilterFamily_mrclam6(benchmark::State& state) {
   const auto* data = robots();
   if (!data) {
-    state.SkipWithError(("MRCLAM Dataset 6 not found under " + data_root().string() + " (set LOCBENCH_DATA)").c_str());
+    state.SkipWithError(
+        ("MRCLAM Dataset 6 not found under " + catalog::data_root().string() + " (set LOCBENCH_DATA)").c_str());
     return;
   }
   FilterModels models;

@@ -27,9 +27,9 @@
 #include "baselines/laser/extract_then_match.h"
 #include "core/rng.h"
 #include "core/units.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/scan_json_reader.h"
-#include "datasets/log/data_root.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
 
@@ -169,14 +169,14 @@ const std::vector<Scan>* real_scans(const std::string& dataset) {
   try {
     if (dataset == "queens") {
       for (int i = 1; i <= 3; ++i) {
-        const auto p = data_root() / ("laser_scans/kam3k_queens/laser_scan_" + std::to_string(i) + ".json.gz");
+        const auto p = catalog::data_root() / ("laser_scans/kam3k_queens/laser_scan_" + std::to_string(i) + ".json.gz");
         if (!std::filesystem::exists(p)) return nullptr;
         scans.push_back(read_scan_json(p));
       }
     } else {
       const DatasetEntry* e = find_dataset(dataset);
-      if (!e || !std::filesystem::exists(data_root() / e->path)) return nullptr;
-      const Log log = load_catalog_dataset(*e, data_root());
+      if (!e || !std::filesystem::exists(catalog::data_root() / e->path)) return nullptr;
+      const Log log = load_catalog_dataset(*e, catalog::data_root());
       for (std::size_t i = 0; i < log.laser.size() && i < kRealScans; ++i) scans.push_back(log.laser[i].scan);
     }
   } catch (const std::exception&) {
@@ -189,7 +189,7 @@ void BM_RealScans(benchmark::State& state, const std::string& dataset, const std
   const std::vector<Scan>* scans = real_scans(dataset);
   if (!scans || scans->empty()) {
     state.SkipWithError(
-        ("dataset " + dataset + " not found under " + data_root().string() + " (set LOCBENCH_DATA)").c_str());
+        ("dataset " + dataset + " not found under " + catalog::data_root().string() + " (set LOCBENCH_DATA)").c_str());
     return;
   }
   const baselines::laser::SplitAndMergeMatcher sm;

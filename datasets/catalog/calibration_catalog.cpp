@@ -8,9 +8,6 @@
 
 namespace locbench::catalog {
 using io::read_censi_tuples, io::read_relative_motion_pairs, io::read_tick_motions;
-using locbench::calibration::calibration_data_from_motion_pairs,
-    locbench::calibration::calibration_data_from_tick_motions,
-    locbench::calibration::calibration_data_from_wheel_speed_tuples, locbench::calibration::CalibrationData;
 namespace {
 
 // folder/name or folder/name.gz, whichever exists; InputError naming both otherwise.
@@ -37,8 +34,8 @@ std::vector<std::string> calibration_dataset_parts(const DatasetEntry& entry) {
   return {""};
 }
 
-CalibrationData load_catalog_calibration_data(const DatasetEntry& entry, const std::filesystem::path& root,
-                                              const std::string& part) {
+CalibrationRecords load_catalog_calibration_records(const DatasetEntry& entry, const std::filesystem::path& root,
+                                                    const std::string& part) {
   if (!is_calibration_dataset(entry)) {
     throw UsageError("dataset " + entry.name + " is not a calibration data set");
   }
@@ -52,25 +49,21 @@ CalibrationData load_catalog_calibration_data(const DatasetEntry& entry, const s
   if (!std::filesystem::exists(folder)) {
     throw InputError(folder.string(), 0, "dataset " + entry.name + " not found (set LOCBENCH_DATA)");
   }
-  CalibrationData d;
+  CalibrationRecords d;
   if (entry.name == "censi_khepera") {
     const auto file = data_file(folder, part + ".tuple");
-    const auto tuples = read_censi_tuples(file);
-    d = calibration_data_from_wheel_speed_tuples(tuples);
+    d.wheel_speed_tuples = read_censi_tuples(file);
     d.source = file.string();
   } else if (entry.name == "grisetti_diffdrive") {
     const auto file = data_file(folder, "differential_drive_calibration.txt");
-    const auto rows = read_tick_motions(file);
-    d = calibration_data_from_tick_motions(rows);
+    d.tick_motions = read_tick_motions(file);
     d.source = file.string();
   } else {
     const auto odom = data_file(folder, "odom_motions.txt");
     const auto ref = data_file(folder, "scanmatched_motions.txt");
-    const auto pairs = read_relative_motion_pairs(odom, ref);
-    d = calibration_data_from_motion_pairs(pairs);
+    d.motion_pairs = read_relative_motion_pairs(odom, ref);
     d.source = odom.string() + " + " + ref.string();
   }
-  if (d.samples.empty()) throw InputError(d.source, 0, "no samples");
   return d;
 }
 

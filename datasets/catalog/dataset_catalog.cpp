@@ -23,7 +23,8 @@ const std::vector<DatasetEntry>& dataset_catalog() {
                    ""});
     }
     // Not logs: wheel speeds or ticks with reference motions, read as calibration samples.
-    const std::string calib = "load_catalog_calibration_data (calibration samples, not a log; calibration_catalog.h)";
+    const std::string calib =
+        "load_catalog_calibration_records (calibration records, not a log; calibration_catalog.h)";
     e.push_back({"censi_khepera", "calibration/censi_khepera", "",
                  "Khepera III wheel speeds + scan-matched motions (Censi et al. 2013)", calib});
     e.push_back({"grisetti_diffdrive", "calibration/grisetti_diffdrive", "",

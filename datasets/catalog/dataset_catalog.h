@@ -15,7 +15,7 @@ struct DatasetEntry {
   std::string description;
   // Empty when `load_catalog_dataset` can read it; otherwise what reads it (a function, or the
   // issue that brings its reader). The calibration data sets (censi_khepera, grisetti_diffdrive,
-  // stachniss_ls_calib) are read by load_catalog_calibration_data (calibration_catalog.h).
+  // stachniss_ls_calib) are read by load_catalog_calibration_records (calibration_catalog.h).
   std::string reader_pending;
 };
 

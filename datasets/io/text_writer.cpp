@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "core/errors.h"
-#include "reports/output_file.h"
+#include "core/output_file.h"
 
 namespace locbench::io {
 
@@ -18,10 +18,10 @@ bool has_gz_suffix(const std::filesystem::path& path) {
 }
 
 TextWriter::TextWriter(const std::filesystem::path& path)
-    : path_(path.string()), output_(std::make_unique<reports::AtomicOutput>(path)) {
+    : path_(path.string()), output_(std::make_unique<AtomicOutput>(path)) {
   errno = 0;
   // "T": transparent (uncompressed) writing through the same zlib interface. The text goes to a
-  // temporary file beside `path`, renamed over it by close() (reports/output_file.h).
+  // temporary file beside `path`, renamed over it by close() (core/output_file.h).
   file_ = gzopen(output_->temp_path().c_str(), has_gz_suffix(path) ? "wb6" : "wbT");
   if (file_ == nullptr) {
     const int err = errno;

@@ -9,7 +9,7 @@
 
 struct gzFile_s;
 
-namespace locbench::reports {
+namespace locbench {
 class AtomicOutput;
 }
 
@@ -28,7 +28,7 @@ class TextWriter {
 
  private:
   std::string path_;
-  std::unique_ptr<reports::AtomicOutput> output_;
+  std::unique_ptr<AtomicOutput> output_;
   gzFile_s* file_ = nullptr;
 };
 

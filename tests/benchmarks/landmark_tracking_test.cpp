@@ -7,10 +7,10 @@
 #include <limits>
 
 #include "algorithms/diagnosis/diagnosis.h"
-#include "benchmarks/experiments/harness/filter_models.h"
-#include "benchmarks/experiments/harness/landmark_family.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "datasets/diagnosis/landmark_effects.h"
+#include "pipelines/filter_models.h"
+#include "pipelines/landmark_family.h"
 
 namespace locbench::experiments::landmarks {
 namespace {

@@ -7,12 +7,12 @@
 #include <numeric>
 
 #include "algorithms/diagnosis/diagnosis.h"
-#include "benchmarks/experiments/harness/landmark_twin.h"
-#include "benchmarks/experiments/harness/predictivity.h"
 #include "core/rng.h"
 #include "core/statistics.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "datasets/diagnosis/landmark_effects.h"
+#include "pipelines/landmark_twin.h"
+#include "pipelines/predictivity.h"
 
 namespace locbench::experiments::landmarks {
 namespace {

@@ -6,7 +6,7 @@
 #include <map>
 
 #include "benchmarks/experiments/framework/experiment.h"
-#include "datasets/log/data_root.h"
+#include "datasets/catalog/data_root.h"
 #include "reports/report_json.h"
 #include "tests/benchmarks/experiment_test_support.h"
 #include "tests/test_data.h"
@@ -20,7 +20,7 @@ std::map<std::string, reports::MetricResult> run(const Experiment& e, int runs,
   RunOptions o;
   o.seed = 3;
   o.runs = runs;
-  o.data_root = data_root();
+  o.data_root = catalog::data_root();
   const auto r = e.run(config.is_null() ? e.default_config() : config, o);
   std::map<std::string, reports::MetricResult> m;
   for (const auto& x : r.results) m.emplace(x.name(), x);

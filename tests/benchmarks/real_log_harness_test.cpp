@@ -1,6 +1,6 @@
 // The real-log harness: dataset specs (catalog names or a user's files), and every real-data
 // experiment run on a small log the test writes itself.
-#include "benchmarks/experiments/harness/real_log_harness.h"
+#include "pipelines/real_log_harness.h"
 
 #include <gtest/gtest.h>
 

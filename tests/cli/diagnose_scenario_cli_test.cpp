@@ -1,11 +1,13 @@
 // `locbench diagnose LOG --scenario twin.json` writes the log's extended twin as a scenario that
-// `locbench simulate` runs; bad output paths are refused with exit code 2 and touch nothing.
+// `locbench simulate` runs; bad output paths are refused with exit code 2 and touch nothing. The
+// report names its input with the checksum of the bytes read.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
 #include <filesystem>
 
+#include "core/checksum.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "datasets/io/carmen_writer.h"
 #include "datasets/io/log_loader.h"
@@ -50,6 +52,23 @@ TEST_F(DiagnoseScenarioCli, WritesTheExtendedTwinWhichSimulateRuns) {
   const Log real = load_log(log_), sim = load_log(twin);
   EXPECT_EQ(sim.odometry.size(), real.odometry.size());  // the log's odometry, replayed
   EXPECT_GT(sim.truth.size(), 0u);
+}
+
+TEST_F(DiagnoseScenarioCli, TheReportRecordsTheInputItReadWithItsChecksum) {
+  const std::string report = (dir_ / "diagnosis.json").string();
+  const Outcome d = run_locbench("diagnose " + log_ + " --report " + report);
+  ASSERT_EQ(d.exit_code, 0) << d.output;
+  const auto input = read_json(report).at("input");
+  EXPECT_EQ(input.at("name"), log_);
+  EXPECT_EQ(input.at("path"), log_);
+  EXPECT_EQ(input.at("checksum"), file_checksum(log_));
+  EXPECT_EQ(input.at("records").get<std::size_t>(), load_log(log_).record_count());
+  EXPECT_GT(input.at("duration_s").get<double>(), 0.0);
+
+  const std::string histogram = "examples/table_3_1_histogram.json";
+  const Outcome h = run_locbench("diagnose " + histogram + " --report " + report);
+  ASSERT_EQ(h.exit_code, 0) << h.output;
+  EXPECT_EQ(read_json(report).at("input").at("checksum"), file_checksum(histogram));
 }
 
 TEST_F(DiagnoseScenarioCli, RefusesToOverwriteItsInputOrWriteWhereItCannot) {

@@ -72,7 +72,7 @@ TEST(LocalizeCli, BadInputIsAClearErrorWithExitCode2) {
 
 TEST(LocalizeCli, MapFromTheLogsOwnScansOnARealFreiburgLog) {
   LOCBENCH_REQUIRE_DATA("slam_benchmark/clf/mit-csail.clf.gz");
-  const std::string log = (data_root() / "slam_benchmark/clf/mit-csail.clf.gz").string();
+  const std::string log = (catalog::data_root() / "slam_benchmark/clf/mit-csail.clf.gz").string();
   testing::ScratchDir dir;
   const std::string report = dir.file("mit.json").string();
   const Outcome o = run_locbench("localize --method mcl --map-from-log 60 --log " + log + " --report " + report);

@@ -168,8 +168,9 @@ TEST(RealLogCli, LandmarkFilesWithAnMrclamRobotAreReadAndBadOnesExitWith2NamingT
 TEST(RealLogCli, AnMrclamFolderWithARobotSuffixIsAcceptedAsALog) {
   LOCBENCH_REQUIRE_DATA("mrclam/MRCLAM_Dataset6");
   ScratchDir dir;
-  const Outcome o = run_locbench("run odometry/real_logs --log " + (data_root() / "mrclam/MRCLAM_Dataset6").string() +
-                                 "#robot1 -o " + (dir.path() / "out").string());
+  const Outcome o =
+      run_locbench("run odometry/real_logs --log " + (catalog::data_root() / "mrclam/MRCLAM_Dataset6").string() +
+                   "#robot1 -o " + (dir.path() / "out").string());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto r = reports::read_report(dir.path() / "out/odometry/real_logs.json");
   ASSERT_FALSE(r.body.datasets.empty());

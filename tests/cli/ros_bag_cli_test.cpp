@@ -87,8 +87,8 @@ TEST_F(RosBagCli, ARealDataExperimentOnABagEqualsItOnTheSameRecordsAsCarmen) {
 TEST(RosBagCatalogCli, DiagnoseOnTheAcesLogAsABagEqualsDiagnoseOnTheCatalogLog) {
   LOCBENCH_REQUIRE_DATA("slam_benchmark/clf/aces.from_bag.clf.gz");
   ScratchDir dir;
-  const std::string relations = (data_root() / "slam_benchmark/relations/aces.relations.gz").string();
-  const Log aces = io::load_log((data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz").string());
+  const std::string relations = (catalog::data_root() / "slam_benchmark/relations/aces.relations.gz").string();
+  const Log aces = io::load_log((catalog::data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz").string());
   io::write_bag_log(aces, dir.path() / "aces.bag", io::BagFormat::kRos1);
   io::write_bag_log(aces, dir.path() / "aces", io::BagFormat::kRos2);
   const auto diagnose = [&](const std::string& log) {
@@ -96,7 +96,7 @@ TEST(RosBagCatalogCli, DiagnoseOnTheAcesLogAsABagEqualsDiagnoseOnTheCatalogLog) 
     EXPECT_EQ(o.exit_code, 0) << o.output;
     return o.output.substr(o.output.find('\n'));  // without the "log:" line
   };
-  const std::string carmen = diagnose((data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz").string());
+  const std::string carmen = diagnose((catalog::data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz").string());
   EXPECT_NE(carmen.find("verdict: The nominal model misses"), std::string::npos) << carmen;
   EXPECT_EQ(diagnose((dir.path() / "aces.bag").string()), carmen);
   EXPECT_EQ(diagnose((dir.path() / "aces").string()), carmen);

@@ -4,7 +4,7 @@
 if(NOT CLANG_FORMAT)
   message(FATAL_ERROR "clang-format not found: scripts/setup.sh installs it (Debian package clang-format)")
 endif()
-set(folders algorithms baselines benchmarks cli core datasets examples fuzz reports tests)
+set(folders algorithms baselines benchmarks cli core datasets examples fuzz pipelines reports tests)
 set(files)
 foreach(folder IN LISTS folders)
   file(GLOB_RECURSE found LIST_DIRECTORIES false RELATIVE ${SRC} ${SRC}/${folder}/*.cpp ${SRC}/${folder}/*.h)

@@ -11,7 +11,7 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/rng.h"
 #include "core/statistics.h"
@@ -19,7 +19,7 @@
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/umbmark_input.h"
-#include "reports/checksum.h"
+#include "pipelines/scenario_option.h"
 
 namespace locbench::experiments::calibration_identifiability {
 using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
@@ -127,7 +127,7 @@ class CalibrationIdentifiability final : public MonteCarloExperiment<Options, Id
                                        const std::vector<nlohmann::json>& records) const override {
     reports::ExperimentResults out = start_results(u.configuration);
     out.datasets.push_back(
-        {"sim/" + u.base.name, "simulated", reports::text_checksum(out.configuration["scenario"].dump()), 0, 0.0});
+        {"sim/" + u.base.name, "simulated", text_checksum(out.configuration["scenario"].dump()), 0, 0.0});
     UmbmarkIdentifiabilityOptions idopt;
     idopt.runs_per_direction = u.base.motion.runs;
     for (std::size_t c = 0; c < u.cases.size(); ++c) {

@@ -15,12 +15,12 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/censi_results_reader.h"
-#include "reports/checksum.h"
+#include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::calibration_real_logs {
 using io::CensiPublishedResult, io::read_censi_results;
@@ -31,7 +31,7 @@ using locbench::calibration::calibrate_ml, locbench::calibration::CalibratedPara
     locbench::calibration::MlCalibrationResult, locbench::calibration::NoiseModelKind,
     locbench::calibration::RelationSampleOptions, locbench::calibration::SampleIntervalOptions;
 using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset,
-    locbench::catalog::load_catalog_calibration_data;
+    locbench::catalog::load_catalog_calibration_records;
 
 const ExperimentInfo kInfo{.name = "calibration/real_logs",
                            .description =
@@ -89,7 +89,8 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
                              "dataset not found at " + results.string() + " (set LOCBENCH_DATA)"});
         continue;
       }
-      const CalibrationData data = load_catalog_calibration_data(*censi, options.data_root, part);
+      const CalibrationData data =
+          calibration::calibration_data_from_records(load_catalog_calibration_records(*censi, options.data_root, part));
       const CensiPublishedResult pub = read_censi_results(results);
       MlCalibrationOptions o;
       o.noise.kind = NoiseModelKind::kPerComponent;
@@ -97,7 +98,7 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
       const MlCalibrationResult r = calibrate_ml(data, o);
       const std::string ds = "censi_" + reports::key_part(part);
       out.datasets.push_back({ds, (options.data_root / censi->path / (part + ".tuple.gz")).string(),
-                              reports::file_checksum(options.data_root / censi->path / (part + ".tuple.gz")),
+                              file_checksum(options.data_root / censi->path / (part + ".tuple.gz")),
                               data.samples.size(), 0.0});
       const double published[6] = {pub.left_radius(), pub.right_radius(), pub.axle,
                                    pub.sensor_x,      pub.sensor_y,       pub.sensor_theta};
@@ -145,7 +146,7 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
                         const std::string& path) {
       const HeldOutEvaluation h = evaluate_held_out(d, o, fraction);
       const std::string ds = reports::key_part(name);
-      out.datasets.push_back({ds, path, reports::file_checksum(path.substr(0, path.find('#'))), d.samples.size(), 0.0});
+      out.datasets.push_back({ds, path, file_checksum(path.substr(0, path.find('#'))), d.samples.size(), 0.0});
       for (const CalibratedParameter& p : h.calibration.parameters) {
         reports::MetricResult m = reports::make_estimate("ml_first_half", ds, p.name, "", p.value, p.standard_error,
                                                          h.calibration.samples_used);

@@ -17,10 +17,10 @@
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/diagnosis_plots.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
+#include "core/checksum.h"
 #include "core/errors.h"
-#include "reports/checksum.h"
+#include "pipelines/diagnosis_plots.h"
+#include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::diagnosis_real_logs {
 
@@ -181,8 +181,8 @@ class DiagnosisRealLogs final : public OptionsExperiment<Options> {
     options.report_progress(0.9);
     const auto h = diagnosis::read_histogram(cfg.table_3_1, "table_3_1");
     const auto d = diagnosis::diagnose_histogram(h, "thesis Table 3.1", opt);
-    out.datasets.push_back({"thesis_table_3_1", "thesis Table 3.1 (transcribed)",
-                            reports::text_checksum(cfg.table_3_1.dump()), h.counts.size(), 0.0});
+    out.datasets.push_back({"thesis_table_3_1", "thesis Table 3.1 (transcribed)", text_checksum(cfg.table_3_1.dump()),
+                            h.counts.size(), 0.0});
     double n = 0.0;
     for (double c : h.counts) n += c;
     record(d, "thesis_table_3_1", static_cast<std::size_t>(n));

@@ -26,10 +26,10 @@
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "core/errors.h"
-#include "datasets/diagnosis/twin_comparison.h"
 #include "datasets/io/odometry_interpolation.h"
+#include "pipelines/real_log_harness.h"
+#include "pipelines/twin/twin_comparison.h"
 
 namespace locbench::experiments::diagnosis_sim_to_real {
 using io::odometry_trajectory;

@@ -16,10 +16,10 @@
 #include "baselines/laser/pl_icp.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/global_harness.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "core/errors.h"
 #include "core/statistics.h"
+#include "pipelines/global_harness.h"
+#include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::global_real_logs {
 

@@ -17,14 +17,14 @@
 
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/global_harness.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/statistics.h"
 #include "core/units.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/worlds.h"
-#include "reports/checksum.h"
+#include "pipelines/global_harness.h"
 
 namespace locbench::experiments::global_sim {
 
@@ -233,7 +233,7 @@ class GlobalSim final : public MonteCarloExperiment<Options, Setup> {
         duration += r.duration;
       }
       out.datasets.push_back({"sim/global_" + std::string(kWorlds[w]), "simulated",
-                              reports::text_checksum(s.configuration.dump() + kWorlds[w]), steps, duration});
+                              text_checksum(s.configuration.dump() + kWorlds[w]), steps, duration});
       for (std::size_t m = 0; m < s.methods.size(); ++m) {
         const std::string& method = s.methods[m];
         const bool global_method = global::is_global_method(method);

@@ -8,7 +8,7 @@
 #include "baselines/global/topological_markov.h"
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "reports/checksum.h"
+#include "core/checksum.h"
 
 namespace locbench::experiments::global_topological_example {
 
@@ -63,7 +63,7 @@ class GlobalTopological final : public OptionsExperiment<Options> {
     const nlohmann::json config = options_json(o);
     reports::ExperimentResults out = start_results(config);
     out.datasets.push_back(
-        {"slides/dervish_topological", "slides (transcribed)", reports::text_checksum(config.dump()), 6, 0.0});
+        {"slides/dervish_topological", "slides (transcribed)", text_checksum(config.dump()), 6, 0.0});
     const auto add = [&](const char* variant, double v) {
       out.results.push_back(reports::make_estimate("topological_markov", "dervish", variant, "", v, 0.0, 1));
     };

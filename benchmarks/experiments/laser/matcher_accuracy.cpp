@@ -12,14 +12,14 @@
 
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/laser_matchers.h"
-#include "benchmarks/experiments/harness/laser_scan_truth.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/statistics.h"
 #include "core/units.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
-#include "reports/checksum.h"
+#include "pipelines/laser_matchers.h"
+#include "pipelines/laser_scan_truth.h"
 
 namespace locbench::experiments::laser_matcher_accuracy {
 
@@ -223,9 +223,9 @@ class LaserMatcherAccuracy final : public MonteCarloExperiment<Options, Setup> {
       out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
       recs.push_back(records[k].get<Record>());
     }
-    out.datasets.push_back({"sim/room", "simulated", reports::text_checksum("room_world"), 1, 0.0});
-    out.datasets.push_back({"sim/random_room", "simulated",
-                            reports::text_checksum(s.configuration.at("random_room").dump()), records.size(), 0.0});
+    out.datasets.push_back({"sim/room", "simulated", text_checksum("room_world"), 1, 0.0});
+    out.datasets.push_back(
+        {"sim/random_room", "simulated", text_checksum(s.configuration.at("random_room").dump()), records.size(), 0.0});
     for (int w = 0; w < kWorldCount; ++w) {
       for (std::size_t c = 0; c < nc; ++c) {
         const std::string ds = std::string(kWorlds[w]) + "_" + reports::key_part(s.conditions_si[c].name);

@@ -19,13 +19,13 @@
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/plot_series.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/laser_correctors.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
-#include "benchmarks/experiments/harness/real_scan_pairs.h"
-#include "benchmarks/experiments/harness/relation_drawing.h"
 #include "core/errors.h"
 #include "core/statistics.h"
 #include "datasets/io/odometry_interpolation.h"
+#include "pipelines/laser_correctors.h"
+#include "pipelines/real_log_harness.h"
+#include "pipelines/real_scan_pairs.h"
+#include "pipelines/relation_drawing.h"
 
 namespace locbench::experiments::laser_real_logs {
 using io::odometry_trajectory;

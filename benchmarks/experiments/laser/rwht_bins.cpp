@@ -14,12 +14,12 @@
 #include "baselines/laser/rwht.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/laser_scan_truth.h"
+#include "core/checksum.h"
 #include "core/statistics.h"
 #include "core/units.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
-#include "reports/checksum.h"
+#include "pipelines/laser_scan_truth.h"
 
 namespace locbench::experiments::laser_rwht_bins {
 
@@ -150,7 +150,7 @@ class LaserRwhtBins final : public MonteCarloExperiment<Options, Setup> {
       out.seeds.push_back(plan.run_seed(static_cast<int>(k)));
       recs.push_back(records[k].get<Record>());
     }
-    out.datasets.push_back({"sim/room", "simulated", reports::text_checksum("room_world"), records.size(), 0.0});
+    out.datasets.push_back({"sim/room", "simulated", text_checksum("room_world"), records.size(), 0.0});
     std::size_t at = 0;
     std::string line = "Mean over runs (peak cell → refit, |Δρ| mm / |Δβ|°; cells):";
     for (double ab : s.angle_bins) {

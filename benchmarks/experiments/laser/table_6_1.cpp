@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/thesis_pose_tables.h"
 #include "datasets/sim/worlds.h"
+#include "pipelines/thesis_pose_tables.h"
 
 namespace locbench::experiments::thesis_pose::laser_table_6_1 {
 

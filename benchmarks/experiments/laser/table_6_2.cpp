@@ -9,9 +9,9 @@
 #include <optional>
 
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/thesis_pose_tables.h"
 #include "core/statistics.h"
 #include "datasets/sim/worlds.h"
+#include "pipelines/thesis_pose_tables.h"
 
 namespace locbench::experiments::thesis_pose::laser_table_6_2 {
 

@@ -21,13 +21,13 @@
 #include "baselines/localization/line_observation.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
+#include "core/checksum.h"
 #include "core/diff_drive_odometry.h"
 #include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
-#include "reports/checksum.h"
+#include "pipelines/scenario_option.h"
 #include "reports/findings.h"
 
 namespace locbench::experiments::laser_tracking_table_6_5 {
@@ -182,8 +182,8 @@ class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
       full.push_back(r.full_updates);
       heading.push_back(r.heading_updates);
     }
-    out.datasets.push_back({"sim/" + s.scenario.name, "simulated",
-                            reports::text_checksum(sim::to_json(s.scenario).dump()), first.records, first.duration});
+    out.datasets.push_back({"sim/" + s.scenario.name, "simulated", text_checksum(sim::to_json(s.scenario).dump()),
+                            first.records, first.duration});
     const std::string ds = "sim_" + s.scenario.name;
     for (int m = 0; m < kMethods; ++m) {
       out.results.push_back(

@@ -7,12 +7,12 @@
 
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/noise_filters.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
-#include "reports/checksum.h"
+#include "pipelines/noise_filters.h"
 
 namespace locbench::experiments::noise_encoder_resolution_sweep {
 
@@ -76,7 +76,7 @@ class EncoderResolutionSweep final : public MonteCarloExperiment<Options, SweepS
         collect(records[i * static_cast<std::size_t>(plan.runs) + static_cast<std::size_t>(k)].get<FilterRecord>(), fs);
       }
       const std::string key = reports::key_part(fmt::format("sim_corridor_{:.4g}mm_per_tick", u.resolutions[i] * 1e3));
-      out.datasets.push_back({key, "simulated", reports::text_checksum(sim::to_json(u.scenarios[i]).dump()), 0, 0.0});
+      out.datasets.push_back({key, "simulated", text_checksum(sim::to_json(u.scenarios[i]).dump()), 0, 0.0});
       add_filter_results(out, key, fs);
     }
     return out;

@@ -20,15 +20,15 @@
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/filter_models.h"
-#include "benchmarks/experiments/harness/landmark_family.h"
-#include "benchmarks/experiments/harness/landmark_twin_runs.h"
-#include "benchmarks/experiments/harness/predictivity_report.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "core/block_bootstrap.h"
 #include "core/errors.h"
 #include "core/rng.h"
 #include "core/statistics.h"
+#include "pipelines/filter_models.h"
+#include "pipelines/landmark_family.h"
+#include "pipelines/landmark_twin_runs.h"
+#include "pipelines/predictivity_report.h"
+#include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::noise_landmark_logs {
 using namespace landmarks;

@@ -13,13 +13,13 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "core/dead_reckoning.h"
 #include "core/diff_drive_odometry.h"
 #include "core/errors.h"
 #include "core/statistics.h"
 #include "core/trajectory_error.h"
 #include "datasets/io/odometry_interpolation.h"
+#include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::noise_real_logs {
 using io::odometry_trajectory;

@@ -12,12 +12,12 @@
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/plot_series.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/noise_filters.h"
+#include "core/checksum.h"
 #include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
-#include "reports/checksum.h"
+#include "pipelines/noise_filters.h"
 
 namespace locbench::experiments::noise_tables_4_1_4_2 {
 using locbench::filters::ConsistencySummary, locbench::filters::summarize_consistency;
@@ -105,8 +105,8 @@ class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {
       collect(r, s);
     }
     const std::string dataset = "sim_" + scenario.name;
-    out.datasets.push_back({"sim/" + scenario.name, "simulated", reports::text_checksum(sim::to_json(scenario).dump()),
-                            records_count, duration});
+    out.datasets.push_back(
+        {"sim/" + scenario.name, "simulated", text_checksum(sim::to_json(scenario).dump()), records_count, duration});
     add_filter_results(out, dataset, s);
     add_plots(out, plan, records);
     // Tables 4.1/4.2: final error [mm], AEKF / fixed Q / adaptive, 10 runs.

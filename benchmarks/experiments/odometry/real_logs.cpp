@@ -10,11 +10,11 @@
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/plot_series.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/real_log_harness.h"
 #include "core/errors.h"
 #include "core/trajectory_error.h"
 #include "core/units.h"
 #include "datasets/io/odometry_interpolation.h"
+#include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::odometry_real_logs {
 using io::odometry_trajectory;

@@ -13,7 +13,7 @@
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/plot_series.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
+#include "core/checksum.h"
 #include "core/dead_reckoning.h"
 #include "core/errors.h"
 #include "core/rng.h"
@@ -21,7 +21,7 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
-#include "reports/checksum.h"
+#include "pipelines/scenario_option.h"
 
 namespace locbench::experiments::odometry_sim_corridor {
 
@@ -134,8 +134,8 @@ class OdometrySimCorridor final : public MonteCarloExperiment<Options, CorridorS
       }
     }
     // Records and duration of the last run (all runs of the scenario are alike).
-    out.datasets.push_back({"sim/" + s.scenario.name, "simulated",
-                            reports::text_checksum(out.configuration["scenario"].dump()), r.records, r.duration});
+    out.datasets.push_back({"sim/" + s.scenario.name, "simulated", text_checksum(out.configuration["scenario"].dump()),
+                            r.records, r.duration});
     const std::string dataset = "sim_" + s.scenario.name;
     for (int m = 0; m < 2; ++m) {
       out.results.push_back(

@@ -14,15 +14,15 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
-#include "benchmarks/experiments/harness/slip_sim.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/rng.h"
 #include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
-#include "reports/checksum.h"
+#include "pipelines/scenario_option.h"
+#include "pipelines/slip_sim.h"
 #include "reports/findings.h"
 
 namespace locbench::experiments::slip_compass_ekf_table_3_2 {
@@ -215,11 +215,10 @@ class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> 
     const nlohmann::json& first = records.front();
     const auto first_records = first.at("records").get<std::size_t>();
     const auto first_duration = first.at("duration").get<double>();
-    out.datasets.push_back({"sim/" + scenario.name, "simulated",
-                            reports::text_checksum(out.configuration["scenario"].dump()), first_records,
-                            first_duration});
+    out.datasets.push_back({"sim/" + scenario.name, "simulated", text_checksum(out.configuration["scenario"].dump()),
+                            first_records, first_duration});
     out.datasets.push_back({"sim/" + scenario.name + "_disturbed", "simulated",
-                            reports::text_checksum(sim::to_json(u.disturbed).dump()), first_records, first_duration});
+                            text_checksum(sim::to_json(u.disturbed).dump()), first_records, first_duration});
     const std::string ds = "sim_" + scenario.name;
     out.results.push_back(reports::make_metric("ekf_no_slip_correction", ds, "final_position_error", "m",
                                                "monte_carlo_runs", err_without));

@@ -19,16 +19,16 @@
 #include "baselines/calibration/umbmark_classic.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/calibration_umbmark.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
-#include "benchmarks/experiments/harness/slip_sim.h"
+#include "core/checksum.h"
 #include "core/diff_drive_odometry.h"
 #include "core/errors.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/umbmark_input.h"
-#include "reports/checksum.h"
+#include "pipelines/calibration_umbmark.h"
+#include "pipelines/scenario_option.h"
+#include "pipelines/slip_sim.h"
 
 namespace locbench::experiments::slip_ikf_vs_calibration {
 using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
@@ -210,7 +210,7 @@ class SlipIkfVsCalibration final : public MonteCarloExperiment<Options, Setup> {
     }
     const Record first = records.front().get<Record>();
     out.datasets.push_back({"sim/" + s.squares.name + "+" + s.straight.name, "simulated",
-                            reports::text_checksum(s.configuration.dump()), first.records, first.duration});
+                            text_checksum(s.configuration.dump()), first.records, first.duration});
     const std::string ds = "sim_trilobot";
     for (int m = kClassic; m < kTrue; ++m) {
       for (int p = 0; p < 3; ++p) {

@@ -16,15 +16,15 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/monte_carlo.h"
 #include "benchmarks/experiments/framework/registry.h"
-#include "benchmarks/experiments/harness/scenario_option.h"
-#include "benchmarks/experiments/harness/slip_sim.h"
+#include "core/checksum.h"
 #include "core/errors.h"
 #include "core/rng.h"
 #include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
-#include "reports/checksum.h"
+#include "pipelines/scenario_option.h"
+#include "pipelines/slip_sim.h"
 #include "reports/findings.h"
 
 namespace locbench::experiments::slip_indirect_kf_tables_3_3_3_4 {
@@ -220,9 +220,9 @@ class SlipIndirectKf final : public MonteCarloExperiment<Options, IkfSetup> {
         ikf_identifiability(square, 0.0, b, ikf_opt.heading_variance, at_truth, end_var, 1e-10)};
 
     out.configuration["scenario"] = sim::to_json(scenario);
-    out.datasets.push_back(
-        {"sim/" + scenario.name, "simulated", reports::text_checksum(out.configuration["scenario"].dump()),
-         records.front().at("records").get<std::size_t>(), records.front().at("duration").get<double>()});
+    out.datasets.push_back({"sim/" + scenario.name, "simulated", text_checksum(out.configuration["scenario"].dump()),
+                            records.front().at("records").get<std::size_t>(),
+                            records.front().at("duration").get<double>()});
     const std::string ds = "sim_" + scenario.name;
     const char* remedy[3] = {
         "a straight run's headings fix only S_R − S_L; the common scale needs a distance "

@@ -8,8 +8,8 @@
 
 #include "benchmarks/experiments/framework/options_experiment.h"
 #include "benchmarks/experiments/framework/registry.h"
+#include "core/checksum.h"
 #include "core/skewness_kurtosis_normality.h"
-#include "reports/checksum.h"
 
 namespace locbench::experiments::slip_normality_table_3_1 {
 
@@ -43,8 +43,8 @@ class SlipNormality final : public OptionsExperiment<Options> {
     const double alpha = o.alpha;
     const NormalityTestResult r = skewness_kurtosis_test_binned(mid, counts, alpha);
     options.report_progress(1.0);
-    out.datasets.push_back({"thesis_table_3_1", "thesis Table 3.1 (transcribed)", reports::text_checksum(config.dump()),
-                            counts.size(), 0.0});
+    out.datasets.push_back(
+        {"thesis_table_3_1", "thesis Table 3.1 (transcribed)", text_checksum(config.dump()), counts.size(), 0.0});
 
     const std::string method = "skewness_kurtosis_test", ds = "thesis_table_3_1";
     const std::pair<const char*, double> stats[] = {{"B2", r.b2}, {"B3", r.b3},     {"B4", r.b4},        {"g1", r.g1},

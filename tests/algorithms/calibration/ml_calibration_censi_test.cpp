@@ -7,14 +7,14 @@
 
 #include "algorithms/calibration/ml_calibration.h"
 #include "datasets/catalog/calibration_catalog.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/io/censi_results_reader.h"
-#include "datasets/log/data_root.h"
 #include "tests/test_data.h"
 
 namespace locbench::calibration {
 using io::CensiPublishedResult, io::read_censi_results;
 using locbench::catalog::dataset_catalog, locbench::catalog::DatasetEntry,
-    locbench::catalog::load_catalog_calibration_data;
+    locbench::catalog::load_catalog_calibration_records;
 namespace {
 
 const DatasetEntry& censi_entry() {
@@ -35,9 +35,10 @@ class CensiKhepera : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CensiKhepera, AgreesWithThePublishedSolutionWithinTheCombinedUncertainty) {
   LOCBENCH_REQUIRE_DATA("calibration/censi_khepera/" + GetParam() + "_results.json");
-  const CalibrationData data = load_catalog_calibration_data(censi_entry(), data_root(), GetParam());
+  const CalibrationData data = calibration::calibration_data_from_records(
+      load_catalog_calibration_records(censi_entry(), catalog::data_root(), GetParam()));
   const CensiPublishedResult pub =
-      read_censi_results(data_root() / "calibration/censi_khepera" / (GetParam() + "_results.json"));
+      read_censi_results(catalog::data_root() / "calibration/censi_khepera" / (GetParam() + "_results.json"));
   const MlCalibrationResult r = calibrate_ml(data, censi_options());
   const double published[6] = {pub.left_radius(), pub.right_radius(), pub.axle,
                                pub.sensor_x,      pub.sensor_y,       pub.sensor_theta};
@@ -66,8 +67,10 @@ TEST_P(CensiKhepera, AgreesWithThePublishedSolutionWithinTheCombinedUncertainty)
 // one round reproduces the published standard errors.
 TEST(CensiKheperaUncertainty, PublishedL90UncertaintyComesFromResidualsAfterOneRejectionRound) {
   LOCBENCH_REQUIRE_DATA("calibration/censi_khepera/l90_0_results.json");
-  const CalibrationData data = load_catalog_calibration_data(censi_entry(), data_root(), "l90_0");
-  const CensiPublishedResult pub = read_censi_results(data_root() / "calibration/censi_khepera/l90_0_results.json");
+  const CalibrationData data = calibration::calibration_data_from_records(
+      load_catalog_calibration_records(censi_entry(), catalog::data_root(), "l90_0"));
+  const CensiPublishedResult pub =
+      read_censi_results(catalog::data_root() / "calibration/censi_khepera/l90_0_results.json");
   MlCalibrationOptions o = censi_options();
   o.outliers.iterations = 1;
   const MlCalibrationResult one_round = calibrate_ml(data, o);

@@ -12,12 +12,12 @@
 #include "algorithms/calibration/ml_calibration.h"
 #include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
-#include "datasets/log/data_root.h"
+#include "datasets/catalog/data_root.h"
 #include "tests/test_data.h"
 
 namespace locbench::calibration {
 using locbench::catalog::calibration_dataset_parts, locbench::catalog::dataset_catalog, locbench::catalog::DatasetEntry,
-    locbench::catalog::is_calibration_dataset, locbench::catalog::load_catalog_calibration_data,
+    locbench::catalog::is_calibration_dataset, locbench::catalog::load_catalog_calibration_records,
     locbench::catalog::load_catalog_dataset;
 namespace {
 
@@ -80,13 +80,17 @@ TEST(CalibrationCatalog, NamesTheCalibrationDataSetsAndTheirParts) {
   EXPECT_EQ(parts[0], "lstraight");
   EXPECT_EQ(parts[7], "l90_2");
   EXPECT_EQ(calibration_dataset_parts(entry("grisetti_diffdrive")), std::vector<std::string>{""});
-  EXPECT_THROW(load_catalog_calibration_data(entry("aces"), data_root()), UsageError);
-  EXPECT_THROW(load_catalog_calibration_data(entry("censi_khepera"), data_root(), "l45"), UsageError);
+  EXPECT_THROW(
+      calibration::calibration_data_from_records(load_catalog_calibration_records(entry("aces"), catalog::data_root())),
+      UsageError);
+  EXPECT_THROW(calibration::calibration_data_from_records(
+                   load_catalog_calibration_records(entry("censi_khepera"), catalog::data_root(), "l45")),
+               UsageError);
   try {
-    load_catalog_dataset(entry("censi_khepera"), data_root());
+    load_catalog_dataset(entry("censi_khepera"), catalog::data_root());
     ADD_FAILURE() << "a calibration data set loaded as a log";
   } catch (const UsageError& e) {
-    EXPECT_NE(std::string(e.what()).find("load_catalog_calibration_data"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("load_catalog_calibration_records"), std::string::npos);
   }
 }
 
@@ -96,7 +100,8 @@ TEST(CalibrationCatalog, LoadsEveryCensiPartWithItsSampleCount) {
       {"lstraight", 4396}, {"lstraight_0", 1466}, {"lstraight_1", 1465}, {"lstraight_2", 1465},
       {"l90", 3295},       {"l90_0", 1099},       {"l90_1", 1098},       {"l90_2", 1098}};
   for (const auto& [part, n] : counts) {
-    const CalibrationData d = load_catalog_calibration_data(entry("censi_khepera"), data_root(), part);
+    const CalibrationData d = calibration::calibration_data_from_records(
+        load_catalog_calibration_records(entry("censi_khepera"), catalog::data_root(), part));
     EXPECT_EQ(d.samples.size(), n) << part;
     EXPECT_NE(d.source.find(part + ".tuple"), std::string::npos) << d.source;
   }
@@ -108,7 +113,8 @@ struct ScanMatchedFit {
   std::pair<double, double> before, after;
 };
 ScanMatchedFit calibrate_against_scan_matching(const std::string& dataset) {
-  const CalibrationData d = load_catalog_calibration_data(entry(dataset), data_root());
+  const CalibrationData d = calibration::calibration_data_from_records(
+      load_catalog_calibration_records(entry(dataset), catalog::data_root()));
   const MlCalibrationResult r = calibrate_ml(d, scan_matched());
   fmt::print("{}:\n", dataset);
   print(r);
@@ -136,7 +142,7 @@ TEST(MlCalibrationRealData, GrisettiTicksCalibrateAndFitTheirReferenceMuchBetter
 
 TEST(MlCalibrationRealData, AcesCalibratedOnTheFirstHalfIsEvaluatedOnTheSecond) {
   LOCBENCH_REQUIRE_DATA("slam_benchmark/clf/aces.from_bag.clf.gz");
-  const Log log = load_catalog_dataset(entry("aces"), data_root());
+  const Log log = load_catalog_dataset(entry("aces"), catalog::data_root());
   // Relations between nearby scans only (≤ 10 s apart): the loop-closing ones span minutes.
   RelationSampleOptions local;
   local.max_duration = 10.0;
@@ -153,7 +159,7 @@ TEST(MlCalibrationRealData, AcesCalibratedOnTheFirstHalfIsEvaluatedOnTheSecond) 
 
 TEST(MlCalibrationRealData, MrclamRobot1CalibratedOnTheFirstHalfIsEvaluatedOnTheSecond) {
   LOCBENCH_REQUIRE_DATA("mrclam/MRCLAM_Dataset6");
-  const Log log = load_catalog_dataset(entry("mrclam6_robot1"), data_root());
+  const Log log = load_catalog_dataset(entry("mrclam6_robot1"), catalog::data_root());
   SampleIntervalOptions intervals;
   intervals.odometry_time_offset = 0.25;  // the velocities lead the Vicon motion
   const CalibrationData d = calibration_data_from_velocities(log, intervals);

@@ -8,9 +8,9 @@
 #include <ctime>
 
 #include "algorithms/diagnosis/landmark_channel.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/io/data_lines.h"
 #include "datasets/io/mrclam_reader.h"
-#include "datasets/log/data_root.h"
 #include "tests/test_data.h"
 
 namespace locbench::diagnosis {
@@ -29,7 +29,7 @@ std::vector<MapLandmark> read_landmark_map(const std::filesystem::path& file) {
 
 TEST(LandmarkChannelOnMrclam, Dataset6Robot1FindsRangesAbout38mmLongAndHeavyTails) {
   LOCBENCH_REQUIRE_DATA("mrclam/MRCLAM_Dataset6");
-  const auto folder = data_root() / "mrclam/MRCLAM_Dataset6";
+  const auto folder = catalog::data_root() / "mrclam/MRCLAM_Dataset6";
   Log log = io::read_mrclam_robot(folder, 1);
   if (log.landmark_map.empty()) log.landmark_map = read_landmark_map(folder / "Landmark_Groundtruth.dat.gz");
   const LandmarkData d = make_landmark_data(log.landmarks, log.landmark_map, log.truth);

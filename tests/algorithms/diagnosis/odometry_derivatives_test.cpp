@@ -119,7 +119,8 @@ TEST(OdometryDerivatives, DeclineTheTimeOffsetWhichIsProfiled) {
 
 TEST(OdometryDerivatives, EqualCentralDifferencesOnTheIntelLogsFittedModel) {
   LOCBENCH_REQUIRE_DATA("slam_benchmark");
-  const MotionData d = build_motion_data(catalog::load_catalog_dataset(*catalog::find_dataset("intel"), data_root()));
+  const MotionData d =
+      build_motion_data(catalog::load_catalog_dataset(*catalog::find_dataset("intel"), catalog::data_root()));
   Point p;
   p.what = "intel";
   p.model.sigma_x = 0.0123;

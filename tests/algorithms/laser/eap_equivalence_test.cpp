@@ -18,8 +18,8 @@
 #include "core/angle.h"
 #include "core/errors.h"
 #include "core/units.h"
+#include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
-#include "datasets/log/data_root.h"
 #include "eap_test_helpers.h"
 #include "legacy_eap_matcher.h"
 #include "tests/test_data.h"
@@ -196,7 +196,7 @@ void compare_on_log(const std::string& dataset) {
   const DatasetEntry* entry = find_dataset(dataset);
   ASSERT_NE(entry, nullptr) << dataset;
   LOCBENCH_REQUIRE_DATA(entry->path);
-  const Log log = load_catalog_dataset(*entry, data_root());
+  const Log log = load_catalog_dataset(*entry, catalog::data_root());
   const baselines::laser::SplitAndMergeMatcher sm;
   std::vector<LineMap> lines;
   FitDifference diff;

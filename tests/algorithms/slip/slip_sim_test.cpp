@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "algorithms/slip/indirect_kalman_filter.h"
-#include "benchmarks/experiments/harness/slip_sim.h"
 #include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
+#include "pipelines/slip_sim.h"
 
 namespace locbench::slip {
 namespace {

@@ -215,7 +215,7 @@ TEST(RosBag, TheLaserMountFollowsAChainOfStaticTransforms) {
 TEST(RosBag, TheAcesCatalogLogReadsBackFromItsBagsRecordForRecord) {
   LOCBENCH_REQUIRE_DATA("slam_benchmark/clf/aces.from_bag.clf.gz");
   ScratchDir dir;
-  const Log aces = load_log((data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz").string());
+  const Log aces = load_log((catalog::data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz").string());
   ASSERT_GT(aces.odometry.size(), 7000u);
   write_bag_log(aces, dir.file("aces.bag"), BagFormat::kRos1);
   write_bag_log(aces, dir.file("aces"), BagFormat::kRos2);

@@ -189,7 +189,7 @@ RC_GTEST_PROP(RelativeMotionReader, ReadingWhatWasWrittenGivesTheSameRows, ()) {
 
 TEST(CalibrationRealData, CensiKheperaTupleFilesHoldThePublishedSampleCounts) {
   LOCBENCH_REQUIRE_DATA("calibration/censi_khepera");
-  const auto dir = data_root() / "calibration/censi_khepera";
+  const auto dir = catalog::data_root() / "calibration/censi_khepera";
   EXPECT_EQ(read_censi_tuples(dir / "lstraight_0.tuple.gz").size(), 1466u);
   EXPECT_EQ(read_censi_tuples(dir / "lstraight_1.tuple.gz").size(), 1465u);
   EXPECT_EQ(read_censi_tuples(dir / "lstraight_2.tuple.gz").size(), 1465u);
@@ -204,7 +204,7 @@ TEST(CalibrationRealData, CensiKheperaTupleFilesHoldThePublishedSampleCounts) {
 TEST(CalibrationRealData, StachnissAndGrisettiFilesRead) {
   LOCBENCH_REQUIRE_DATA("calibration/stachniss_ls_calib");
   LOCBENCH_REQUIRE_DATA("calibration/grisetti_diffdrive");
-  const auto root = data_root() / "calibration";
+  const auto root = catalog::data_root() / "calibration";
   const auto pairs = read_relative_motion_pairs(root / "stachniss_ls_calib/odom_motions.txt.gz",
                                                 root / "stachniss_ls_calib/scanmatched_motions.txt.gz");
   EXPECT_EQ(pairs.size(), 2000u);

@@ -117,7 +117,7 @@ TEST(MrclamLandmarks, UnknownBarcodesInMoreThanOnePercentAreAnInputErrorAtTheFir
 // Real data: UTIAS MRCLAM dataset 6.
 TEST(MrclamLandmarks, Dataset6Robot1HasFifteenMapLandmarks) {
   LOCBENCH_REQUIRE_DATA("mrclam/MRCLAM_Dataset6");
-  const Log log = read_mrclam_robot(data_root() / "mrclam/MRCLAM_Dataset6", 1);
+  const Log log = read_mrclam_robot(catalog::data_root() / "mrclam/MRCLAM_Dataset6", 1);
   ASSERT_EQ(log.landmark_map.size(), 15u);
   EXPECT_EQ(log.landmark_map.front().id, 6);
   EXPECT_EQ(log.landmark_map.front().x, 0.58831396);
@@ -132,7 +132,7 @@ TEST(MrclamLandmarks, Dataset6RobotsOneToFiveLoadWithTheirFewCameraMisreads) {
   const std::size_t misreads[] = {1, 0, 2, 3, 0};  // barcodes 43; –; 34 twice; 50 three times
   for (int robot = 1; robot <= 5; ++robot) {
     SCOPED_TRACE(robot);
-    const Log log = read_mrclam_robot(data_root() / "mrclam/MRCLAM_Dataset6", robot);
+    const Log log = read_mrclam_robot(catalog::data_root() / "mrclam/MRCLAM_Dataset6", robot);
     EXPECT_EQ(log.landmark_map.size(), 15u);
     EXPECT_EQ(log.params.at("mrclam_unknown_barcode_measurements"), std::to_string(misreads[robot - 1]));
     EXPECT_EQ(log.landmarks.size(), measurements[robot - 1] - misreads[robot - 1]);

@@ -107,7 +107,7 @@ TEST(MrclamReader, RejectsMissingFilesMalformedLinesAndBackwardsTime) {
 // Real data: UTIAS MRCLAM dataset 6, robot 1.
 TEST(MrclamReader, LoadsDataset6Robot1WithPlausibleTimeSpans) {
   LOCBENCH_REQUIRE_DATA("mrclam/MRCLAM_Dataset6");
-  const Log log = read_mrclam_robot(data_root() / "mrclam/MRCLAM_Dataset6", 1);
+  const Log log = read_mrclam_robot(catalog::data_root() / "mrclam/MRCLAM_Dataset6", 1);
   EXPECT_EQ(log.name, "mrclam6/robot1");
   EXPECT_EQ(log.odometry.size(), 61785u);
   EXPECT_EQ(log.truth.size(), 49241u);

@@ -18,7 +18,7 @@ namespace {
 
 Log timed_load(const std::string& relative) {
   const auto start = std::chrono::steady_clock::now();
-  Log log = load_log((data_root() / relative).string());
+  Log log = load_log((catalog::data_root() / relative).string());
   const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
   ::testing::Test::RecordProperty("load_seconds", std::to_string(took.count()));
   fmt::print("{}: {} records loaded in {:.3f} s\n", relative, log.record_count(), took.count());
@@ -88,7 +88,7 @@ TEST_P(RealRelations, LoadWithTheirLineCountAndMatchScanTimestamps) {
   LOCBENCH_REQUIRE_DATA(c.relations);
   LOCBENCH_REQUIRE_DATA(c.log);
   Log log = timed_load(c.log);
-  attach_relations(log, data_root() / c.relations);
+  attach_relations(log, catalog::data_root() / c.relations);
   EXPECT_EQ(log.relations.size(), c.count);
   std::vector<double> scans;
   for (const auto& r : log.laser) scans.push_back(r.scan.timestamp);
@@ -115,7 +115,7 @@ INSTANTIATE_TEST_SUITE_P(Freiburg, RealRelations,
 
 TEST(RealData, AcesSurvivesAWriteReadRoundTrip) {
   LOCBENCH_REQUIRE_DATA("slam_benchmark/clf/aces.from_bag.clf.gz");
-  const Log log = read_carmen_log(data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz");
+  const Log log = read_carmen_log(catalog::data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz");
   testing::ScratchDir dir;
   write_carmen_log(log, dir.file("aces.clf.gz"));
   EXPECT_EQ(testing::log_difference(log, read_carmen_log(dir.file("aces.clf.gz"))), "");

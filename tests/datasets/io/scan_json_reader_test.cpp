@@ -59,7 +59,7 @@ RC_GTEST_PROP(ScanJsonReader, AnyTruncationOfAValidFileIsAnErrorNotACrash, ()) {
 
 TEST(ScanJsonReader, ReadsTheQueensHallwayScans) {
   LOCBENCH_REQUIRE_DATA("laser_scans/kam3k_queens/laser_scan_1.json.gz");
-  const Scan s = read_scan_json(data_root() / "laser_scans/kam3k_queens/laser_scan_1.json.gz");
+  const Scan s = read_scan_json(catalog::data_root() / "laser_scans/kam3k_queens/laser_scan_1.json.gz");
   EXPECT_EQ(s.ranges.size(), 541u);  // SICK LMS, 270° at 0.5°
   EXPECT_NEAR(s.bearings.back() - s.bearings.front(), 3 * kPi / 2, 1e-5);
 }

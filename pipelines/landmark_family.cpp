@@ -1,0 +1,165 @@
+#include "pipelines/landmark_family.h"
+
+#include <cmath>
+#include <limits>
+
+#include "algorithms/filters/consistency.h"
+#include "core/enum_names.h"
+#include "core/statistics.h"
+
+namespace locbench::experiments::landmarks {
+namespace {
+
+constexpr EnumNames<TuningCriterion, 2> kCriteria{
+    {{TuningCriterion::kLogScore, "log_score"}, {TuningCriterion::kRmse, "rmse"}}};
+
+// The observations' true times under a sensor model: where the steps are cut.
+std::vector<double> observation_times(const TrackingData& data, const LandmarkSensorModel& sensor) {
+  std::vector<double> t;
+  t.reserve(data.observations.size());
+  for (const Observation& o : data.observations) t.push_back(o.t - sensor.time_offset);
+  return t;
+}
+
+// The motion each method predicts with on one part of a log: the logged motion (no model), the
+// nominal model's and the diagnosed model's.
+struct PartMotion {
+  std::vector<MotionStep> logged, nominal, diagnosed;
+};
+PartMotion part_motion(const TrackingData& data, const FilterModels& m, const LandmarkSensorModel& plain) {
+  PartMotion p;
+  p.logged = model_motion(data, diagnosis::OdometryModel{}, m.noise_window_s, observation_times(data, plain));
+  p.nominal = model_motion(data, m.nominal_motion, m.noise_window_s, observation_times(data, m.nominal_sensor));
+  p.diagnosed = model_motion(data, m.diagnosed_motion, m.noise_window_s, observation_times(data, m.diagnosed_sensor));
+  return p;
+}
+
+MethodSetup base_setup(Method method, const PartMotion& motion, const FilterModels& m, const FamilyOptions& o) {
+  MethodSetup s;
+  s.method = method;
+  s.fixed_q_per_s = o.fixed_q_per_s;
+  s.adaptive = o.adaptive;
+  s.initial_sigma = o.initial_sigma;
+  switch (method) {
+    case Method::kNominalModel:
+      s.motion = &motion.nominal;
+      s.sensor = m.nominal_sensor;
+      s.sensor.structure = {};  // white
+      break;
+    case Method::kDiagnosedModel:
+      s.motion = &motion.diagnosed;
+      s.sensor = m.diagnosed_sensor;
+      if (!o.correlated_sensor_noise) s.sensor.structure = {};
+      break;
+    default:
+      s.motion = &motion.logged;
+      s.sensor = m.nominal_sensor;
+      s.sensor.time_offset = 0.0;
+  }
+  return s;
+}
+
+const std::vector<double>& knobs(Method m, const FamilyOptions& o) {
+  if (m == Method::kSageHusa) return o.sage_husa_forgetting;
+  if (m == Method::kVbAkf) return o.vb_forgetting;
+  return o.r_scales;
+}
+
+}  // namespace
+
+const char* to_string(TuningCriterion c) { return enum_name(kCriteria, c); }
+TuningCriterion tuning_criterion_from_string(const std::string& s) {
+  return enum_value(kCriteria, s, "tuning criterion must be");
+}
+
+filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const FamilyOptions& options) {
+  const double blocks = std::max(1.0, std::ceil((data.to - data.from) / options.nees_block_s));
+  return filters::average_chi_square_interval(3, static_cast<int>(blocks), 0.95);
+}
+
+std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test, const FilterModels& models,
+                                        const FamilyOptions& options) {
+  const PartMotion train_motion = part_motion(train, models, models.nominal_sensor);
+  const filters::ChiSquareInterval band = tuning_nees_band(train, options);
+  std::vector<MethodScore> scores;
+  for (Method method : kMethods) {
+    MethodScore best;
+    best.method = method;
+    best.tuning_rmse = std::numeric_limits<double>::infinity();
+    MethodSetup s = base_setup(method, train_motion, models, options);
+    struct Run {
+      double q, k, rmse, nees, log_score;
+    };
+    std::vector<Run> runs;
+    for (double q : options.process_scales) {
+      for (double k : knobs(method, options)) {
+        s.process_scale = q;
+        s.knob = k;
+        const TrackResult r = track(train, s, options.gate);
+        const double inf = std::numeric_limits<double>::infinity();
+        runs.push_back(
+            {q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees), r.log_score()});
+      }
+    }
+    best.grid_runs = runs.size();
+    const auto choose = [&](const Run& r) {
+      best.process_scale = r.q;
+      best.knob = r.k;
+      best.tuning_rmse = r.rmse;
+      best.tuning_nees = r.nees;
+      best.tuning_log_score = r.log_score;
+      best.consistent_setting = band.contains(r.nees);
+    };
+    choose(runs.front());  // kept when every setting diverged (reported as such)
+    if (options.criterion == TuningCriterion::kLogScore) {
+      for (const Run& r : runs)
+        if (r.log_score < best.tuning_log_score) choose(r);
+    } else {
+      // The lowest RMSE; among the settings within `rmse_tolerance` of it, the most consistent one
+      // (NEES inside its band first, then closest to 3 on a log scale).
+      double lowest = std::numeric_limits<double>::infinity();
+      for (const Run& r : runs) lowest = std::min(lowest, r.rmse);
+      double best_distance = std::numeric_limits<double>::infinity();
+      for (const Run& r : runs) {
+        if (!(r.rmse <= lowest * (1.0 + options.rmse_tolerance)) && !(r.rmse == lowest)) continue;
+        const double distance = !(std::isfinite(r.nees) && r.nees > 0.0) ? 1e300
+                                : band.contains(r.nees)                  ? 0.0
+                                                                         : std::abs(std::log(r.nees / 3.0));
+        if (distance < best_distance || (distance == best_distance && r.rmse < best.tuning_rmse)) {
+          best_distance = distance;
+          choose(r);
+        }
+      }
+    }
+    scores.push_back(std::move(best));
+  }
+  const std::vector<TrackResult> heldout = run_tuned(test, scores, models, options);
+  for (std::size_t i = 0; i < scores.size(); ++i) scores[i].heldout = heldout[i];
+  return scores;
+}
+
+TrackResult dead_reckoning(const TrackingData& data, const GatePolicy& gate) {
+  TrackingData blind = data;
+  blind.observations.clear();
+  const auto steps = model_motion(blind, diagnosis::OdometryModel{}, 1.0, {});
+  MethodSetup s;
+  s.method = Method::kFixedQ;
+  s.motion = &steps;
+  return track(blind, s, gate);
+}
+
+std::vector<TrackResult> run_tuned(const TrackingData& data, const std::vector<MethodScore>& tuned,
+                                   const FilterModels& models, const FamilyOptions& options) {
+  const PartMotion motion = part_motion(data, models, models.nominal_sensor);
+  std::vector<TrackResult> out;
+  out.reserve(tuned.size());
+  for (const MethodScore& m : tuned) {
+    MethodSetup s = base_setup(m.method, motion, models, options);
+    s.process_scale = m.process_scale;
+    s.knob = m.knob;
+    out.push_back(track(data, s, options.gate));
+  }
+  return out;
+}
+
+}  // namespace locbench::experiments::landmarks

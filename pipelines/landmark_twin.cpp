@@ -1,0 +1,156 @@
+#include "pipelines/landmark_twin.h"
+
+#include <cmath>
+#include <map>
+
+#include "core/angle.h"
+#include "core/errors.h"
+#include "core/rng.h"
+
+namespace locbench::experiments::landmarks {
+namespace {
+
+constexpr double kTwinTruthMargin = 2.0;  // [s] the truth held still beyond the span's ends
+
+diagnosis::MotionWindow block(const diagnosis::MotionData& d, std::size_t first, std::size_t last) {
+  diagnosis::MotionWindow w;
+  w.first = first;
+  w.last = last;
+  w.t0 = d.steps[first].t0;
+  w.t1 = d.steps[last - 1].t1;
+  return w;
+}
+
+// Appends the truth over steps [w.first, w.last) from `start` (true time = logged − offset): the
+// model's partial predictions, the stall's loss and `noise` (the window's residual) spread in
+// proportion to time. Returns the pose at the block's end.
+Pose2 walk_block(const diagnosis::MotionData& d, const diagnosis::MotionWindow& w,
+                 const diagnosis::OdometryModel& mean_model, double keep, const Eigen::Vector3d& noise,
+                 const Pose2& start, std::vector<TruePose>& truth) {
+  const double span = w.t1 - w.t0;
+  Pose2 end = start;
+  for (std::size_t k = w.first; k < w.last; ++k) {
+    const Pose2 p = diagnosis::predict_window(d, block(d, w.first, k + 1), mean_model);
+    const double f = span > 0.0 ? (d.steps[k].t1 - w.t0) / span : 1.0;
+    end = start * Pose2(keep * p.x + f * noise.x(), keep * p.y + f * noise.y(), p.theta + f * noise.z());
+    truth.push_back({d.steps[k].t1 - mean_model.time_offset, end, {}});
+  }
+  return end;
+}
+
+// Unit-variance sensor noise with a share of it correlated in time (NoiseCorrelation): the white
+// part Student-t (normal for dof 0), the shared part a stationary Gauss–Markov process,
+// b ← e^(−Δt/τ)·b + √(1 − e^(−2Δt/τ))·N(0, 1).
+class CorrelatedPart {
+ public:
+  explicit CorrelatedPart(const NoiseCorrelation& c) : c_(c) {}
+  double draw(double t, double dof, Rng& rng) {
+    const double white = rng.student_t(dof);
+    if (!(c_.share > 0.0 && c_.time_s > 0.0)) return white;
+    if (!started_) {
+      b_ = rng.normal();
+      started_ = true;
+    } else {
+      const double a = std::exp(-std::max(t - t_, 0.0) / c_.time_s);
+      b_ = a * b_ + std::sqrt(1.0 - a * a) * rng.normal();
+    }
+    t_ = t;
+    return std::sqrt(1.0 - c_.share) * white + std::sqrt(c_.share) * b_;
+  }
+
+ private:
+  NoiseCorrelation c_;
+  bool started_ = false;
+  double t_ = 0.0, b_ = 0.0;
+};
+
+}  // namespace
+
+MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& data,
+                                                const diagnosis::OdometryModel& model) {
+  std::vector<double> t, x, y, theta;
+  for (const diagnosis::MotionWindow& w : data.windows) {
+    const diagnosis::WindowResidual r = diagnosis::window_residual(data, w, model);
+    if (!r.valid || r.heading_only) continue;
+    t.push_back(w.t0);
+    x.push_back(r.r.x() / std::sqrt(r.variance.x()));
+    y.push_back(r.r.y() / std::sqrt(r.variance.y()));
+    theta.push_back(r.r.z() / std::sqrt(r.variance.z()));
+  }
+  return {fit_noise_correlation(t, x), fit_noise_correlation(t, y), fit_noise_correlation(t, theta)};
+}
+
+TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryModel& motion,
+                           const LandmarkSensorModel& sensor, std::uint64_t seed,
+                           const MotionNoiseStructure& structure) {
+  const diagnosis::MotionData& d = real.motion;
+  if (d.windows.empty() || d.steps.empty()) throw InputError(real.log, 0, "the twin needs the span's motion windows");
+  const auto first = diagnosis::interpolate_truth(d.truth, d.steps.front().t0 - motion.time_offset);
+  const Pose2 origin = first ? *first : d.truth.empty() ? Pose2() : d.truth.front().pose;
+  if (!first && d.truth.empty()) throw InputError(real.log, 0, "no truth at the span's start for the twin");
+
+  Rng rng(seed);
+  diagnosis::OdometryModel mean_model = motion;  // the stalls are drawn, not averaged
+  mean_model.stall_rate = 0.0;
+  mean_model.stall_duration = 0.0;
+
+  TrackingData twin = real;
+  std::vector<TruePose>& truth = twin.motion.truth;
+  truth.clear();
+  const double t_start = d.steps.front().t0 - motion.time_offset;
+  truth.push_back({t_start - kTwinTruthMargin, origin, {}});
+  truth.push_back({t_start, origin, {}});
+  Pose2 pose = origin;
+  CorrelatedPart along(structure.x), left(structure.y), turn(structure.theta);
+  std::size_t next = 0;  // first step not walked yet
+  for (const diagnosis::MotionWindow& w : d.windows) {
+    if (w.first > next)
+      pose = walk_block(d, block(d, next, w.first), mean_model, 1.0, Eigen::Vector3d::Zero(), pose, truth);
+    const Eigen::Vector3d v = diagnosis::window_variance(d, w, motion);
+    const Eigen::Vector3d r(std::sqrt(v.x()) * along.draw(w.t0, motion.dof, rng),
+                            std::sqrt(v.y()) * left.draw(w.t0, motion.dof, rng),
+                            std::sqrt(v.z()) * turn.draw(w.t0, motion.dof, rng));
+    double keep = 1.0;
+    const double length = w.t1 - w.t0;
+    if (motion.stall_rate > 0.0 && motion.stall_duration > 0.0 && length > 0.0 &&
+        rng.bernoulli(1.0 - std::exp(-motion.stall_rate * length))) {
+      keep = 1.0 - std::min(motion.stall_duration / length, 1.0);
+    }
+    pose = walk_block(d, w, mean_model, keep, r, pose, truth);
+    next = w.last;
+  }
+  if (next < d.steps.size())
+    pose = walk_block(d, block(d, next, d.steps.size()), mean_model, 1.0, Eigen::Vector3d::Zero(), pose, truth);
+  truth.push_back({truth.back().t + kTwinTruthMargin, pose, {}});
+
+  twin.observations.clear();
+  diagnosis::TruthInterpolator at(truth);
+  CorrelatedPart range_part(sensor.structure.range_correlation), bearing_part(sensor.structure.bearing_correlation);
+  std::map<int, std::pair<double, double>> landmark_bias;  // drawn per twin: range, bearing
+  for (const auto& [id, position] : real.map) {
+    landmark_bias[id] = {sensor.structure.range_landmark_sigma * rng.normal(),
+                         sensor.structure.bearing_landmark_sigma * rng.normal()};
+  }
+  for (const Observation& o : real.observations) {
+    const auto p = at.at(o.t - sensor.time_offset);
+    if (!p) continue;
+    Eigen::Vector2d l = real.map.at(o.id);
+    if (const auto s = sensor.landmark_shift.find(o.id); s != sensor.landmark_shift.end()) l += s->second;
+    const double rho = std::hypot(l.x() - p->x, l.y() - p->y);
+    const double phi = std::atan2(l.y() - p->y, l.x() - p->x) - p->theta;
+    const double sigma_r = std::hypot(sensor.range_sigma, sensor.range_noise_slope * rho);
+    const auto before = at.at(o.t - sensor.time_offset - 0.05), after = at.at(o.t - sensor.time_offset + 0.05);
+    const double turn_rate = before && after ? angle_diff(after->theta, before->theta) / 0.1 : 0.0;
+    const double sigma_b = std::hypot(sensor.bearing_sigma, sensor.bearing_noise_turn_slope * turn_rate);
+    Observation z = o;
+    const auto [range_bias, bearing_bias] = landmark_bias.at(o.id);
+    z.range =
+        sensor.range_scale * rho + sensor.range_bias + range_bias + sigma_r * range_part.draw(o.t, sensor.dof, rng);
+    z.bearing =
+        wrap_angle(phi + sensor.bearing_bias + bearing_bias + sigma_b * bearing_part.draw(o.t, sensor.dof, rng));
+    twin.observations.push_back(z);
+  }
+  return twin;
+}
+
+}  // namespace locbench::experiments::landmarks

@@ -1,0 +1,52 @@
+#pragma once
+// The twin of a landmark log (issue 29): a synthetic copy of one span that keeps everything the
+// robot was told and when it looked — the logged odometry, the landmark map, the observation
+// schedule (times and landmark ids) — and draws what the world did from a fitted model, so a
+// filter can be run on as many copies of the log as wanted and its real result predicted.
+//
+// One model: the truth is drawn from the diagnosis's own window likelihood, not from a separate
+// simulator mapping. Over each diagnosis window w (diagnosis::MotionData::windows) the true motion,
+// in the frame of the window's start, is
+//   prediction(w) + r,   r_c = √v_c · t_ν  (c = x, y, θ; t_ν Student-t with the model's dof, normal
+//                                           when dof = 0; v from diagnosis::window_variance),
+// with the prediction of diagnosis::predict_window under the model without stalls, and with
+// probability p = 1 − exp(−rate·T) a stall that removes the fraction f = min(duration/T, 1) of its
+// translation — the mixture odometry_model.h defines. Steps between windows (gaps) move as
+// predicted, without noise. Inside a window the truth follows the prediction's partial sums with
+// the window's noise and stall spread in proportion to time. The truth is stamped in true time:
+// logged time − the model's time_offset.
+//
+// Each observation keeps its logged time and landmark; it was taken at true time t − the sensor's
+// time_offset, from the twin's pose then, of the landmark at its surveyed position plus the
+// sensor's landmark_shift, and is drawn from the sensor model (landmark_tracking.h):
+//   z_r = range_scale·ρ + range_bias + n_r,  z_φ = φ + bearing_bias + n_φ,
+//   n_r = √(range_sigma² + (range_noise_slope·ρ)²) · u_r,
+//   n_φ = √(bearing_sigma² + (bearing_noise_turn_slope·ω)²) · u_φ  (ω: the truth's turn rate, ±0.05 s),
+// u = √(1 − s)·t_ν + √s·b, with s and b the share and the Gauss–Markov process of the channel's
+// NoiseCorrelation (time correlation common to all landmarks; s = 0: white), plus each landmark's
+// own range and bearing bias, drawn once per twin from N(0, landmark σ²) (sensor.structure).
+// An observation whose true time the twin's truth does not cover is left out.
+#include <cstdint>
+
+#include "algorithms/diagnosis/odometry_model.h"
+#include "pipelines/landmark_tracking.h"
+
+namespace locbench::experiments::landmarks {
+
+// The time correlation of a motion model's window residuals (x, y, θ), standardized by their
+// model variance: heading error that persists over many windows is what makes long-horizon drift.
+struct MotionNoiseStructure {
+  NoiseCorrelation x, y, theta;
+};
+// Fitted (fit_noise_correlation) on the windows of `data` under `model`.
+MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& data,
+                                                const diagnosis::OdometryModel& model);
+
+// A twin of `real` drawn with `seed`; `structure` correlates its window residuals in time
+// (each component √(1 − s)·t_ν + √s·b with b a Gauss–Markov process over the windows' times). Throws InputError (naming
+// the log) when the span has no diagnosis window or its truth does not cover the span's start.
+TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryModel& motion,
+                           const LandmarkSensorModel& sensor, std::uint64_t seed,
+                           const MotionNoiseStructure& structure = {});
+
+}  // namespace locbench::experiments::landmarks

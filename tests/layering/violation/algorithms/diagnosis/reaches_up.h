@@ -1,3 +1,0 @@
-#pragma once
-// A fixture for the layering check: an algorithm that reaches up into datasets/.
-#include "datasets/log/data_root.h"
