@@ -978,7 +978,7 @@ const std::vector<HostileCase>& cases() {
        "done > '{d}/t.tuple'",
        "calibrate ml {d}/t.tuple", 2, "t.tuple:1: \"T\": expected an interval > 0 s"},
       {"calibrate_ml_unknown_dataset", "", "calibrate ml nothing_like_this", 2,
-       "nothing_like_this: cannot open the input file: no such file"},
+       "nothing_like_this: no such file or folder (accepted: a CARMEN log"},
       {"list_extra_argument", "", "list extra more", 2, "The following argument was not expected: more"},
       {"list_log_missing", "", "list extra", 2, "extra: no such file or folder (accepted: a CARMEN log"},
       {"no_arguments", "", "", 2, "A subcommand is required"},
