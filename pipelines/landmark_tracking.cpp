@@ -210,8 +210,27 @@ NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::
   return {best_share, best_tau};
 }
 
+double noise_level_spread(const std::vector<double>& t, const std::vector<double>& r) {
+  if (t.empty() || t.size() != r.size()) return 0.0;
+  std::vector<double> log_sigma, sampling;
+  for (std::size_t i = 0; i < r.size();) {
+    const double end = t[i] + kLevelBlockS;
+    std::vector<double> block;
+    for (; i < r.size() && t[i] < end; ++i) block.push_back(r[i]);
+    if (block.size() < kMinLevelBlockResiduals) continue;
+    const double med = quantile(block, 0.5);
+    for (double& v : block) v = std::abs(v - med);
+    const double sigma = 1.4826 * quantile(block, 0.5);
+    if (!(sigma > 0.0)) continue;
+    log_sigma.push_back(std::log(sigma));
+    sampling.push_back(1.35 / static_cast<double>(block.size()));
+  }
+  if (log_sigma.size() < 3) return 0.0;
+  return std::sqrt(std::max(0.0, sample_variance(log_sigma) - mean(sampling)));
+}
+
 LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSensorModel sensor) {
-  std::vector<double> range, bearing, times;
+  std::vector<double> range, bearing, times, range_model_sigma;
   std::vector<int> ids;
   diagnosis::TruthInterpolator truth(data.motion.truth);
   for (const Observation& o : data.observations) {
@@ -222,6 +241,8 @@ LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSens
     times.push_back(o.t);
     ids.push_back(o.id);
     range.push_back(o.range - std::hypot(dx, dy));
+    range_model_sigma.push_back(
+        std::max(1e-9, std::hypot(sensor.range_sigma, sensor.range_noise_slope * std::hypot(dx, dy))));
     bearing.push_back(angle_diff(o.bearing, std::atan2(dy, dx) - p->theta));
   }
   if (range.size() < 20) throw InputError(data.log, 0, "fewer than 20 landmark observations with ground truth");
@@ -249,6 +270,12 @@ LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSens
     sensor.structure.range_landmark_sigma = robust_sigma(range_medians);
     sensor.structure.bearing_landmark_sigma = robust_sigma(bearing_medians);
   }
+  // The level's spread on residuals in units of the given sensor's σ(ρ): a range-dependent noise
+  // the sensor already models is not counted again as a level that varies.
+  std::vector<double> range_standardized(range_within.size());
+  for (std::size_t i = 0; i < range_within.size(); ++i) range_standardized[i] = range_within[i] / range_model_sigma[i];
+  sensor.structure.range_level_sigma = noise_level_spread(times, range_standardized);
+  sensor.structure.bearing_level_sigma = noise_level_spread(times, bearing_within);
   sensor.structure.range_correlation = fit_noise_correlation(times, range_within);
   sensor.structure.bearing_correlation = fit_noise_correlation(times, bearing_within);
   return sensor;

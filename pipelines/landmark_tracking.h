@@ -47,6 +47,9 @@ struct NoiseStructure {
   NoiseCorrelation range_correlation, bearing_correlation;
   double range_landmark_sigma = 0.0;    // [m]
   double bearing_landmark_sigma = 0.0;  // [rad]
+  // Noise levels that vary along the log: the spread of ln σ between blocks of kLevelBlockS
+  // (noise_level_spread), drawn anew per block by the twin.
+  double range_level_sigma = 0.0, bearing_level_sigma = 0.0;
 };
 
 struct LandmarkSensorModel {
@@ -95,9 +98,19 @@ TrackingData tracking_data(const Log& log, double from, double to, double wheelb
 // bearing residuals against the truth at the observation times (robust: the residuals have heavy
 // tails), and their structure: the spread of the per-landmark medians (1.4826·MAD over landmarks
 // with ≥ 10 observations) and the time correlation of the residuals less their landmark's median
-// (fit_noise_correlation). Leaves `sensor`'s other fields;
+// (fit_noise_correlation), and how the noise level varies along the span (noise_level_spread; the
+// range residuals in units of `sensor`'s own σ(ρ) = √(range_sigma² + (range_noise_slope·ρ)²)).
+// Leaves `sensor`'s other fields;
 // throws InputError with fewer than 20 residuals.
 LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSensorModel sensor);
+
+// How much a noise level varies along a log: blocks of kLevelBlockS with ≥ kMinLevelBlockResiduals
+// residuals each give σ_b = 1.4826·MAD; the spread is √max(0, var ln σ_b − mean 1.35/n_b), the
+// variance between blocks less what sampling alone gives (the MAD's σ estimate from n values has
+// var ln σ̂ ≈ 1.35/n for normal residuals). 0 with fewer than 3 such blocks.
+inline constexpr double kLevelBlockS = 60.0;
+inline constexpr std::size_t kMinLevelBlockResiduals = 20;
+double noise_level_spread(const std::vector<double>& t, const std::vector<double>& r);
 
 // The block lengths [s] and the fewest blocks per length of fit_noise_correlation.
 inline constexpr double kCorrelationScales[] = {2.0, 5.0, 10.0, 30.0};

@@ -131,6 +131,18 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
     landmark_bias[id] = {sensor.structure.range_landmark_sigma * rng.normal(),
                          sensor.structure.bearing_landmark_sigma * rng.normal()};
   }
+  // Noise levels that vary along the log: one factor per block of kLevelBlockS, e^(s·N(0, 1)).
+  std::map<long, std::pair<double, double>> level;  // block → range, bearing factors
+  const auto level_at = [&](double t) {
+    const long b = static_cast<long>(std::floor((t - real.from) / kLevelBlockS));
+    auto it = level.find(b);
+    if (it == level.end()) {
+      const double fr = std::exp(sensor.structure.range_level_sigma * rng.normal());
+      const double fb = std::exp(sensor.structure.bearing_level_sigma * rng.normal());
+      it = level.emplace(b, std::pair{fr, fb}).first;
+    }
+    return it->second;
+  };
   for (const Observation& o : real.observations) {
     const auto p = at.at(o.t - sensor.time_offset);
     if (!p) continue;
@@ -144,10 +156,12 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
     const double sigma_b = std::hypot(sensor.bearing_sigma, sensor.bearing_noise_turn_slope * turn_rate);
     Observation z = o;
     const auto [range_bias, bearing_bias] = landmark_bias.at(o.id);
-    z.range =
-        sensor.range_scale * rho + sensor.range_bias + range_bias + sigma_r * range_part.draw(o.t, sensor.dof, rng);
-    z.bearing =
-        wrap_angle(phi + sensor.bearing_bias + bearing_bias + sigma_b * bearing_part.draw(o.t, sensor.dof, rng));
+    const bool varies = sensor.structure.range_level_sigma > 0.0 || sensor.structure.bearing_level_sigma > 0.0;
+    const auto [range_level, bearing_level] = varies ? level_at(o.t) : std::pair{1.0, 1.0};
+    z.range = sensor.range_scale * rho + sensor.range_bias + range_bias +
+              range_level * sigma_r * range_part.draw(o.t, sensor.dof, rng);
+    z.bearing = wrap_angle(phi + sensor.bearing_bias + bearing_bias +
+                           bearing_level * sigma_b * bearing_part.draw(o.t, sensor.dof, rng));
     twin.observations.push_back(z);
   }
   return twin;

@@ -97,6 +97,12 @@ TEST(LandmarkTwin, ItsSensorDrawsTheNoiseStructureItIsGiven) {
   EXPECT_NEAR(measured.bearing_sigma, 0.01, 0.0015);
   EXPECT_GT(measured.structure.range_correlation.share, 0.2) << "half the range variance is correlated";
   EXPECT_LT(measured.structure.bearing_correlation.share, 0.1) << "bearing noise was drawn white";
+  EXPECT_LT(measured.structure.range_level_sigma, 0.15) << "one noise level throughout";
+  // A level that varies: the range σ of each minute times e^(0.6·N(0, 1)).
+  sensor.structure.range_level_sigma = 0.6;
+  const TrackingData varying = landmark_twin(b.data, still, sensor, 3);
+  EXPECT_GT(measured_sensor_noise(varying, LandmarkSensorModel{}).structure.range_level_sigma, 0.3)
+      << (b.data.to - b.data.from) << " s";
 }
 
 TEST(NoiseCorrelation, AGaussMarkovShareAndTimeAreRecovered) {
@@ -173,6 +179,23 @@ TEST(NoiseCorrelation, WhiteNoiseInCameraFramesHasNone) {
   for (int frame = 0; frame < 2000; ++frame)
     for (int k = 0; k < 3; ++k) t.push_back(0.25 * frame), r.push_back(rng.normal());
   EXPECT_LT(fit_noise_correlation(t, r).share, 0.05);
+}
+
+// Residuals whose σ changes every minute by a factor e^(0.5·N(0, 1)) give a level spread near
+// 0.5; a constant σ gives one near 0 (the sampling spread of 60 s blocks of 300 residuals is
+// removed).
+TEST(NoiseLevelSpread, ALevelThatChangesEveryMinuteIsMeasuredAndAConstantOneIsNot) {
+  Rng rng(11);
+  std::vector<double> t, varying, constant;
+  double level = 1.0;
+  for (int i = 0; i < 60 * 5 * 30; ++i) {  // 30 minutes at 5 Hz
+    if (i % 300 == 0) level = std::exp(0.5 * rng.normal());
+    t.push_back(0.2 * i);
+    varying.push_back(level * rng.normal());
+    constant.push_back(rng.normal());
+  }
+  EXPECT_NEAR(noise_level_spread(t, varying), 0.5, 0.15);
+  EXPECT_LT(noise_level_spread(t, constant), 0.05);
 }
 
 TEST(NoiseCorrelation, WhiteNoiseHasNone) {

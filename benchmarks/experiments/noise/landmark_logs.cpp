@@ -169,7 +169,13 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
   // share (correlated_sensor_noise); the nominal sensor is white.
   o.models.nominal_sensor.structure = {};
   o.models.diagnosed_sensor.structure = {};
-  if (o.tuning_noise) o.models.diagnosed_sensor.structure = o.tuning_noise->structure;
+  if (o.tuning_noise) {
+    o.models.diagnosed_sensor.structure = o.tuning_noise->structure;
+    // The level's spread relative to the diagnosed sensor's own σ(ρ).
+    if (const auto own = sensor_noise_if_measurable(train, o.models.diagnosed_sensor)) {
+      o.models.diagnosed_sensor.structure.range_level_sigma = own->structure.range_level_sigma;
+    }
+  }
   o.scores = tune_and_score(train, test, o.models, family);
   o.dead_reckoning = dead_reckoning(test, family.gate);  // on the held-out half
   o.from = from, o.mid = mid, o.to = to;
@@ -380,13 +386,15 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
               ? " — the held-out half is noisier than the half every setting was tuned on, so tuned settings "
                 "are overconfident there"
               : "");
-      const NoiseStructure& st = a.structure;
+      const NoiseStructure& st = o.models.diagnosed_sensor.structure;
       table += fmt::format(
           "\n  noise structure on the tuning half (the extended twin draws it): per-landmark biases spread σ "
           "{:.3f} m, {:.4f} rad; time correlation without them: range {:.0f}% of the variance with τ {:.2g} s, "
-          "bearing {:.0f}% with τ {:.2g} s",
+          "bearing {:.0f}% with τ {:.2g} s; noise level between {:.0f} s blocks: ln σ spread range {:.2f}, "
+          "bearing {:.2f}",
           st.range_landmark_sigma, st.bearing_landmark_sigma, 100.0 * st.range_correlation.share,
-          st.range_correlation.time_s, 100.0 * st.bearing_correlation.share, st.bearing_correlation.time_s);
+          st.range_correlation.time_s, 100.0 * st.bearing_correlation.share, st.bearing_correlation.time_s,
+          kLevelBlockS, st.range_level_sigma, st.bearing_level_sigma);
       const MotionNoiseStructure& ms = o.motion_structure;
       table += fmt::format(
           "; the diagnosed motion model's window residuals: along {:.0f}% with τ {:.2g} s, left {:.0f}% with τ "
