@@ -158,8 +158,10 @@ void run_shard(const experiments::Experiment& e, const nlohmann::json& config, e
 int run(const RunArgs& args, const std::string& command_line) {
   const auto chosen = select(args.experiments);
   const nlohmann::json overrides = load_overrides(args.config);
+  std::vector<nlohmann::json> sets;  // each --set, parsed once
   for (const std::string& set : args.sets) {
-    const std::string key = parse_set(set).begin().key();
+    sets.push_back(parse_set(set));
+    const std::string key = sets.back().begin().key();
     bool used = false;
     for (const auto* e : chosen) used = used || e->default_config().contains(key);
     if (!used) throw UsageError("--set " + set + ": no chosen experiment has an option \"" + key + "\"");
@@ -205,8 +207,7 @@ int run(const RunArgs& args, const std::string& command_line) {
       }
     }
     // --set applies to every chosen experiment whose options have the key's first part.
-    for (const std::string& set : args.sets) {
-      const nlohmann::json o = parse_set(set);
+    for (const nlohmann::json& o : sets) {
       if (config.contains(o.begin().key())) config = experiments::merge_config(config, o);
     }
     if (log_override) config = experiments::merge_config(config, *log_override);

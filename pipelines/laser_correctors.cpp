@@ -1,6 +1,7 @@
 #include "pipelines/laser_correctors.h"
 
 #include <Eigen/Eigenvalues>
+#include <atomic>
 #include <cmath>
 
 #include "algorithms/pose_correction/iterated_correction.h"
@@ -140,6 +141,8 @@ class Icp final : public ScanPairCorrector {
   baselines::laser::PlIcpOptions options_;
 };
 
+std::atomic<std::size_t> correctors_calls{0};
+
 template <typename Options>
 Options read_options(const nlohmann::json& all, const char* key) {
   Options o{};
@@ -164,6 +167,7 @@ nlohmann::json default_corrector_options() {
 
 std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vector<std::string>& which,
                                                                 const nlohmann::json& options) {
+  ++correctors_calls;
   const nlohmann::json defaults = default_corrector_options();
   const nlohmann::json& o = options.is_null() ? defaults : options;
   const nlohmann::json matcher_options = o.value("matcher_options", defaults.at("matcher_options"));
@@ -203,6 +207,8 @@ std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vecto
   }
   return out;
 }
+
+std::size_t make_correctors_calls() { return correctors_calls.load(); }
 
 std::size_t points_of(const std::vector<laser::SegmentMatch>& matches) {
   std::size_t n = 0;

@@ -59,8 +59,12 @@ class ScanPairCorrector {
 nlohmann::json default_corrector_options();
 
 // The correctors named in `which`, in order; UsageError for an unknown name or invalid options.
+// Their correct() is const and keeps no state: one set may serve several threads at once.
 std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vector<std::string>& which,
                                                                 const nlohmann::json& options);
+
+// How many times make_correctors has been called in this process (for tests).
+std::size_t make_correctors_calls();
 
 // The scan points behind a set of segment matches.
 std::size_t points_of(const std::vector<laser::SegmentMatch>& matches);

@@ -88,10 +88,13 @@ std::string reason_for(const ResidualTest& t, const std::vector<Cause>& causes,
 }  // namespace
 
 Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options) {
+  return diagnose_log(log, build_motion_data(log, options.windows), options);
+}
+
+Diagnosis diagnose_log(const Log& log, const MotionData& data, const DiagnosisOptions& options) {
   Diagnosis out;
   out.log = log.source.empty() ? log.name : log.source;
   out.false_alarm = options.false_alarm;
-  const MotionData data = build_motion_data(log, options.windows);
   out.reference = data.describe();
   if (data.odometry == OdometryKind::kEncoder) {
     out.nominal_model = {{"odometry", "encoder"},

@@ -25,6 +25,9 @@ namespace locbench::diagnosis {
 
 // Throws InputError for logs without odometry or reference, too short, or with implausible units.
 Diagnosis diagnose_log(const Log& log, const DiagnosisOptions& options = {});
+// The same on the log's motion data, built by the caller with build_motion_data(log,
+// options.windows), so that a caller using the data afterwards builds them once.
+Diagnosis diagnose_log(const Log& log, const MotionData& data, const DiagnosisOptions& options);
 
 // A histogram of residuals (e.g. thesis Table 3.1):
 // {"residual": "...", "unit": "deg"|"rad"|"mm"|"m", "edges": [...], "counts": [...]}.

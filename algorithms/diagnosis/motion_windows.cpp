@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <tuple>
@@ -170,7 +171,14 @@ void check_motion_and_scale(const MotionData& m, const std::string& file) {
 
 }  // namespace
 
+namespace {
+std::atomic<std::size_t> motion_data_calls{0};
+}  // namespace
+
+std::size_t build_motion_data_calls() { return motion_data_calls.load(); }
+
 MotionData build_motion_data(const Log& log, const WindowOptions& options) {
+  ++motion_data_calls;
   MotionData m;
   const std::string file = log.source.empty() ? log.name : log.source;
   if (!log.encoders.empty()) {

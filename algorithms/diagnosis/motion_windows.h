@@ -70,6 +70,9 @@ struct MotionData {
 // per tick above 0.01 m — millimetres by mistake).
 MotionData build_motion_data(const Log& log, const WindowOptions& options = {});
 
+// How many times build_motion_data has been called in this process (for tests).
+std::size_t build_motion_data_calls();
+
 // The reference pose at logged time t (linear interpolation, heading on the circle); nullopt
 // outside the truth's time span.
 std::optional<Pose2> interpolate_truth(const std::vector<TruePose>& truth, double t);

@@ -14,7 +14,7 @@ std::vector<ComponentComparison> compare_twins(const Log& real, const Twin& twin
                                                int runs, std::uint64_t seed) {
   std::vector<diagnosis::MotionData> window_sets;
   for (double w : windows_s) {
-    window_sets.push_back(residual_windows(real, w));
+    window_sets.push_back(w == twin.residual_window_s ? twin.residual_windows : residual_windows(real, w));
     if (window_sets.back().reference == diagnosis::ReferenceKind::kRelations) break;  // one window per relation
   }
   // Each twin is simulated once per run; its truth is read over every window set.

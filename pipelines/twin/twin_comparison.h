@@ -25,7 +25,8 @@ struct ComponentComparison {
 };
 
 // One comparison per window length in `windows_s` (a relations log: only the first, its
-// relations being the windows) and component, in that order. Each twin is simulated `runs`
+// relations being the windows) and component, in that order; `real` is the log `twin` was built
+// from, whose windows of twin.residual_window_s are taken from the twin. Each twin is simulated `runs`
 // times (seeds derived from `seed`) and read over every window set. Throws InputError when fewer
 // than 5 windows are covered by the log's and the twins' references.
 std::vector<ComponentComparison> compare_twins(const Log& real, const Twin& twin, const std::vector<double>& windows_s,

@@ -307,7 +307,9 @@ Twin build_twin(const Log& log, const diagnosis::Diagnosis& d, const TwinOptions
   if (!start && !log.truth.empty()) start = log.truth.front().pose;
   base.start = extended.start = start.value_or(Pose2{});
 
-  const auto windows = residual_windows(log, d.noise_window_s);
+  twin.residual_window_s = d.noise_window_s;
+  twin.residual_windows = residual_windows(log, d.noise_window_s);
+  const diagnosis::MotionData& windows = twin.residual_windows;
   set_floor(base, fit_floor(base, windows, log, twin.time_origin, options.calibration_seed));
   set_floor(extended, fit_floor(extended, windows, log, twin.time_origin, options.calibration_seed));
 

@@ -63,6 +63,9 @@ struct Twin {
   // The nominal floor the diagnosis reported (σ_x, σ_y, σ_θ per noise_window_s), beside the
   // moment-matched floors of both twins: an independent check of the fit.
   double diagnosis_floor[3] = {0.0, 0.0, 0.0};
+  // The log's residual windows of residual_window_s (twin_residuals.h) the floors were fitted on.
+  double residual_window_s = 0.0;
+  diagnosis::MotionData residual_windows;
 };
 
 // The kept causes mapped onto a scenario (no floor fit: motion_noise sigmas are left at 0):

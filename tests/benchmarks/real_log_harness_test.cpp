@@ -11,6 +11,7 @@
 
 #include "benchmarks/experiments/framework/experiment.h"
 #include "core/errors.h"
+#include "pipelines/laser_correctors.h"
 #include "tests/benchmarks/small_real_log.h"
 #include "tests/test_data.h"
 
@@ -217,6 +218,27 @@ TEST(RealLogExperiments, LaserRealLogsCorrectsAUsersLog) {
   }
   EXPECT_NE(pairs[0].title.find("before"), std::string::npos);
   EXPECT_NE(pairs[1].title.find("after"), std::string::npos);
+}
+
+TEST(RealLogExperiments, LaserRealLogsMakesItsCorrectorsOncePerRunForAllLogsAndThreads) {
+  ScratchDir dir;
+  const auto files = write_small_real_log(dir.path());
+  const nlohmann::json log = {{"log", files.log.string()}, {"relations", files.relations.string()}};
+  nlohmann::json first = log, second = log;
+  first["name"] = "first";
+  second["name"] = "second";
+  const Experiment* e = find_experiment("laser/real_logs");
+  ASSERT_NE(e, nullptr);
+  const nlohmann::json config = merge_config(
+      e->default_config(), {{"datasets", {first, second}}, {"matchers", {"eap"}}, {"correctors", {"pl_icp"}}});
+  RunOptions o;
+  o.data_root = "/nonexistent";
+  o.threads = 2;
+  const std::size_t before = make_correctors_calls();
+  const auto r = e->run(config, o);
+  EXPECT_EQ(make_correctors_calls() - before, 1u);
+  ASSERT_TRUE(r.cases.empty()) << r.cases.front().reason;
+  EXPECT_EQ(by_name(r).at("pl_icp/second/rpe_rotation").summary.n, files.relation_count);
 }
 
 // global/real_logs places its map on the scan-matched path: on the small log, whose odometry

@@ -113,8 +113,10 @@ class DiagnosisRealLogs final : public OptionsExperiment<Options> {
         o.note = reports::CaseNote{"diagnosis/" + names[i], loaded.status, loaded.reason};
         return;
       }
+      std::optional<diagnosis::MotionData> motion;
       try {
-        o.diagnosis = diagnosis::diagnose_log(loaded.log, opt);
+        motion = diagnosis::build_motion_data(loaded.log, opt.windows);
+        o.diagnosis = diagnosis::diagnose_log(loaded.log, *motion, opt);
       } catch (const InputError& err) {
         if (!specs[i].from_catalog) throw;  // a user's log: exit 2
         o.note = reports::CaseNote{"diagnosis/" + names[i], "failed", err.what()};
@@ -125,9 +127,8 @@ class DiagnosisRealLogs final : public OptionsExperiment<Options> {
       for (const auto& c : o.diagnosis->causes) {
         if (c.id == "sensor_time_offset" && c.detected && !c.parameters.empty()) offset = c.parameters[0].value;
       }
-      const diagnosis::MotionData motion = diagnosis::build_motion_data(loaded.log, opt.windows);
-      o.checks = diagnosis::scale_checks(motion, offset);
-      o.plots = diagnosis_plots(names[i], motion, *o.diagnosis);
+      o.checks = diagnosis::scale_checks(*motion, offset);
+      o.plots = diagnosis_plots(names[i], *motion, *o.diagnosis);
       o.dataset = loaded.dataset;
       o.samples = loaded.log.odometry.size() + loaded.log.encoders.size();
     });

@@ -54,7 +54,8 @@ class MonteCarloExperiment : public Experiment {
     const Setup s = setup(o, p);
     std::vector<int> all(static_cast<std::size_t>(tasks(s, p)));
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-    const std::vector<nlohmann::json> records = records_of(s, p, options, all);
+    // Summarised in this process: the records need not read back from their text.
+    const std::vector<nlohmann::json> records = records_of(s, p, options, all, Records::kAsBuilt);
     reports::ExperimentResults out = summarise(s, p, records);
     options.report_progress(1.0);
     return out;
@@ -77,7 +78,7 @@ class MonteCarloExperiment : public Experiment {
         throw UsageError(name() + ": task " + std::to_string(t) + " outside 0…" + std::to_string(n - 1));
       }
     }
-    std::vector<nlohmann::json> records = records_of(s, p, options, which);
+    std::vector<nlohmann::json> records = records_of(s, p, options, which, Records::kCanonical);
     options.report_progress(1.0);
     return records;
   }
@@ -114,15 +115,19 @@ class MonteCarloExperiment : public Experiment {
     p.threads = options.threads;
     return p;
   }
-  // Runs `tasks` on options.threads threads; records by position, canonical.
+  // kCanonical: each record as it reads back from a shard file's text (reports::canonical_record);
+  // kAsBuilt: as run_task returned it, which summarises to the same bytes.
+  enum class Records { kCanonical, kAsBuilt };
+  // Runs `tasks` on options.threads threads; records by position.
   std::vector<nlohmann::json> records_of(const Setup& s, const McPlan& p, const RunOptions& options,
-                                         const std::vector<int>& which) const {
+                                         const std::vector<int>& which, Records form) const {
     std::vector<nlohmann::json> records(which.size());
     std::atomic<std::size_t> done{0};
     std::mutex progress_mutex;
     options.report_progress(0.0);
     parallel_tasks(options.threads, which.size(), [&](std::size_t i) {
-      records[i] = reports::canonical_record(run_task(s, p, which[i]));
+      nlohmann::json record = run_task(s, p, which[i]);
+      records[i] = form == Records::kCanonical ? reports::canonical_record(record) : std::move(record);
       const std::size_t d = ++done;
       if (options.progress) {
         const std::lock_guard<std::mutex> lock(progress_mutex);

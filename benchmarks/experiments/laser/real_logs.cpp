@@ -78,6 +78,8 @@ void visit_fields(V& v, Options& o) {
 struct Setup {
   std::vector<RealLogSpec> datasets;
   std::vector<std::string> methods;  // correctors, in order (odometry_raw is added first)
+  // Made once per run and shared by every task: correct() is const and keeps no state.
+  std::vector<std::unique_ptr<ScanPairCorrector>> correctors;
   nlohmann::json corrector_options;
   std::string beam_angles;
   std::optional<Pose2> laser_mount;  // overrides every scan's sensor_pose when set
@@ -141,7 +143,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     for (const auto& m : o.matchers) s.methods.push_back(m + "_ch6_ls");
     for (const auto& c : o.correctors) s.methods.push_back(c);
     s.corrector_options = o.corrector_options;
-    make_correctors(s.methods, s.corrector_options);  // validates names and options
+    s.correctors = make_correctors(s.methods, s.corrector_options);  // validates names and options
     s.beam_angles = o.beam_angles;
     if (s.beam_angles != "log" && s.beam_angles != "bag") {
       throw UsageError(name() + ": beam_angles: expected \"log\" or \"bag\", found \"" + s.beam_angles + "\"");
@@ -179,7 +181,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     const Trajectory odom = odometry_trajectory(log);
     std::map<double, std::size_t> scan_at;
     for (std::size_t i = 0; i < log.laser.size(); ++i) scan_at[log.laser[i].scan.timestamp] = i;
-    const auto correctors = make_correctors(s.methods, s.corrector_options);
+    const auto& correctors = s.correctors;
     const baselines::laser::SplitAndMergeMatcher extractor;
     const std::size_t methods = 1 + correctors.size();
     rec.translation.assign(methods, {});

@@ -56,5 +56,14 @@ TEST(TwinClosedLoop, WithNothingHiddenBothTwinsAreEquallyClose) {
   }
 }
 
+TEST(TwinClosedLoop, TheComparisonAtTheDiagnosisWindowReusesTheWindowsTheFloorsWereFittedOn) {
+  const GeneratedLog g = generate_log({}, 22, velocity_log());
+  const diagnosis::Diagnosis d = diagnosis::diagnose_log(g.log);
+  const std::size_t before = diagnosis::build_motion_data_calls();
+  const Twin twin = build_twin(g.log, d);
+  compare_twins(g.log, twin, {d.noise_window_s}, 1, 3);
+  EXPECT_EQ(diagnosis::build_motion_data_calls() - before, 1u);
+}
+
 }  // namespace
 }  // namespace locbench::sim
