@@ -1,6 +1,6 @@
 #include "benchmarks/experiments/harness/laser_correctors.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
 #include <cmath>
 
 #include "algorithms/pose_correction/iterated_correction.h"
@@ -9,6 +9,7 @@
 #include "benchmarks/experiments/harness/laser_matchers.h"
 #include "core/angle.h"
 #include "core/errors.h"
+#include "core/linear_algebra.h"
 
 namespace locbench::experiments {
 namespace {
@@ -26,9 +27,9 @@ void diagnose(const pose_correction::PoseCorrection& c, ScanPairCorrection& out)
   }
   if (c.position_fixed) {
     // The covariance is s² A⁻¹: its eigenvalues are in the inverse ratio of A's.
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(c.position.covariance);
-    const double hi = es.eigenvalues().maxCoeff();
-    out.position_information_ratio = hi > 0.0 ? es.eigenvalues().minCoeff() / hi : 0.0;
+    const Eigen::Vector2d values = linalg::symmetric_eigen2(c.position.covariance).values;
+    const double hi = values.maxCoeff();
+    out.position_information_ratio = hi > 0.0 ? values.minCoeff() / hi : 0.0;
   }
 }
 
