@@ -1,31 +1,10 @@
 #include "core/linear_algebra.h"
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/QR>
-#include <Eigen/SVD>
 
 namespace locbench::linalg {
-
-Svd jacobi_svd(const Eigen::MatrixXd& a, unsigned int options) {
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, options);
-  Svd out;
-  out.singular_values = svd.singularValues();
-  if (svd.computeU()) out.u = svd.matrixU();
-  if (svd.computeV()) out.v = svd.matrixV();
-  return out;
-}
-
-SymmetricEigen2 symmetric_eigen2(const Eigen::Matrix2d& a) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(a);
-  return {es.eigenvalues(), es.eigenvectors()};
-}
-
-SymmetricEigen symmetric_eigen(const Eigen::MatrixXd& a) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(a);
-  return {es.eigenvalues(), es.eigenvectors()};
-}
 
 Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d& a) { return a.completeOrthogonalDecomposition().pseudoInverse(); }
 
