@@ -3,8 +3,9 @@
 // X = [x, y, θ]ᵀ (eq. 3.27, 4.1), motion model F(X, k−1) with its Jacobian ∇F (eq. 4.1–4.2), and
 // the correction with any absolute measurement of core/pose_measurement.h — the compass
 // Z = H X + V, H = [0 0 1] (eq. 3.28, 4.45), or a landmark's range and bearing — with an optional
-// Mahalanobis gate. Header-only so the 3-state step stays inlinable; SI units (m, rad).
-#include <Eigen/Cholesky>
+// Mahalanobis gate. SI units (m, rad). The steps that factorise or multiply matrices are defined in
+// compass_ekf_model.cpp: inline here, every translation unit including this header instantiated
+// their Eigen templates (LLT, LDLT of the 2×2-capacity S, the mixed-size products) again.
 #include <Eigen/Core>
 #include <limits>
 #include <optional>
@@ -24,27 +25,17 @@ inline Pose2 to_pose(const Vector3& x) { return {x(0), x(1), x(2)}; }
 inline Matrix3 symmetrize(const Matrix3& m) { return 0.5 * (m + m.transpose()); }
 
 // True when the symmetric matrix admits a Cholesky factorisation (all pivots > 0).
-inline bool is_positive_definite(const Matrix3& m) {
-  Eigen::LLT<Matrix3> llt(m);
-  return llt.info() == Eigen::Success;
-}
+bool is_positive_definite(const Matrix3& m);
 
 // F(X̂(k−1), k−1) and ∇F = ∂F/∂X at X̂(k−1) (eq. 4.1–4.2); θ of the mean wrapped to [−π, π).
 struct MotionPrediction {
   Vector3 mean = Vector3::Zero();
   Matrix3 jacobian = Matrix3::Identity();
 };
-inline MotionPrediction predict_motion(const Vector3& x, const WheelDisplacement& u, double wheelbase) {
-  const Pose2 p = to_pose(x);
-  return {to_vector(odometry_step(p, u, wheelbase)), odometry_jacobian_pose(p, u, wheelbase)};
-}
+MotionPrediction predict_motion(const Vector3& x, const WheelDisplacement& u, double wheelbase);
 
 // The EKF prediction X̂(k/k−1) = F(X̂(k−1)), P(k/k−1) = ∇F P ∇Fᵀ + Q (eq. 4.1–4.2), in place.
-inline void ekf_predict(Vector3& x, Matrix3& p, const WheelDisplacement& u, double wheelbase, const Matrix3& q) {
-  const MotionPrediction pred = predict_motion(x, u, wheelbase);
-  x = pred.mean;
-  p = symmetrize(pred.jacobian * p * pred.jacobian.transpose() + q);
-}
+void ekf_predict(Vector3& x, Matrix3& p, const WheelDisplacement& u, double wheelbase, const Matrix3& q);
 
 // No Mahalanobis gate: every measurement is used.
 inline constexpr double kNoGate = std::numeric_limits<double>::infinity();
@@ -59,41 +50,15 @@ struct MeasurementUpdate {
   double nis = 0.0;                         // νᵀ S⁻¹ ν
   bool gated = false;                       // NIS above the gate: not applied
 };
-inline MeasurementUpdate measurement_innovation(const LinearizedMeasurement& m, const Matrix3& p,
-                                                const MeasurementMatrix& r, const MeasurementVector* r_mean = nullptr) {
-  MeasurementUpdate u;
-  u.innovation = m.residual(r_mean);
-  const MeasurementGain ph = p * m.H.transpose();  // P Hᵀ
-  u.innovation_covariance = m.H * ph + r;
-  const Eigen::LDLT<MeasurementMatrix> ldlt(u.innovation_covariance);
-  u.gain = ldlt.solve(ph.transpose()).transpose();
-  u.nis = u.innovation.dot(ldlt.solve(u.innovation));
-  if (!std::isfinite(u.nis)) u.nis = std::numeric_limits<double>::infinity();
-  return u;
-}
+MeasurementUpdate measurement_innovation(const LinearizedMeasurement& m, const Matrix3& p, const MeasurementMatrix& r,
+                                         const MeasurementVector* r_mean = nullptr);
 
 // X̂(k/k) = X̂(k/k−1) + K ν, P(k) = (I − K H) P(k/k−1) (symmetrised).
-inline void apply_measurement_update(Vector3& x, Matrix3& p, const MeasurementUpdate& u,
-                                     const LinearizedMeasurement& m) {
-  x += u.gain * u.innovation;
-  x(2) = wrap_angle(x(2));
-  const Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 2, 3> h_p = m.H * p;  // H P
-  p -= u.gain * h_p;
-  p = symmetrize(p);
-}
+void apply_measurement_update(Vector3& x, Matrix3& p, const MeasurementUpdate& u, const LinearizedMeasurement& m);
 
 // Linearise at X̂, gate on the NIS, correct: the plain EKF update with the measurement's own R.
 // Returns the update (gated = true and nothing changed when NIS > gate).
-inline MeasurementUpdate ekf_update(Vector3& x, Matrix3& p, const PoseMeasurement& z, double gate = kNoGate) {
-  const LinearizedMeasurement m = linearize(z, x);
-  MeasurementUpdate u = measurement_innovation(m, p, m.R);
-  if (u.nis > gate) {
-    u.gated = true;
-    return u;
-  }
-  apply_measurement_update(x, p, u, m);
-  return u;
-}
+MeasurementUpdate ekf_update(Vector3& x, Matrix3& p, const PoseMeasurement& z, double gate = kNoGate);
 
 // One filter step as returned by the compass EKFs: the posterior (or the prediction when no
 // compass reading came) and, when updated, the innovation and its variance for the NIS.

@@ -1,6 +1,6 @@
 #include "pipelines/laser_correctors.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
 #include <atomic>
 #include <cmath>
 
@@ -9,6 +9,7 @@
 #include "baselines/laser/pl_icp.h"
 #include "core/angle.h"
 #include "core/errors.h"
+#include "core/linear_algebra.h"
 #include "pipelines/laser_matchers.h"
 
 namespace locbench::experiments {
@@ -27,9 +28,9 @@ void diagnose(const pose_correction::PoseCorrection& c, ScanPairCorrection& out)
   }
   if (c.position_fixed) {
     // The covariance is s² A⁻¹: its eigenvalues are in the inverse ratio of A's.
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(c.position.covariance);
-    const double hi = es.eigenvalues().maxCoeff();
-    out.position_information_ratio = hi > 0.0 ? es.eigenvalues().minCoeff() / hi : 0.0;
+    const Eigen::Vector2d values = linalg::symmetric_eigen2(c.position.covariance).values;
+    const double hi = values.maxCoeff();
+    out.position_information_ratio = hi > 0.0 ? values.minCoeff() / hi : 0.0;
   }
 }
 

@@ -1,11 +1,12 @@
 #include "algorithms/calibration/closed_form_calibration.h"
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "core/angle.h"
+#include "core/linear_algebra.h"
 
 namespace locbench::calibration {
 namespace {
@@ -33,12 +34,12 @@ Eigen::Vector2d rotation_regressors(const CalibrationData& data, const Calibrati
 // Minimum-norm correction of x0: x0 + A⁺(y − A·x0), A⁺ by SVD with a relative cutoff.
 Eigen::VectorXd min_norm_update(const Eigen::MatrixXd& A, const Eigen::VectorXd& y, const Eigen::VectorXd& x0,
                                 double& condition) {
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::VectorXd s = svd.singularValues();
+  const linalg::Svd svd = linalg::jacobi_svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& s = svd.singular_values;
   condition = std::numeric_limits<double>::infinity();
   if (s.size() == 0 || s(0) <= 0.0) return x0;
   const double cutoff = 1e-9 * s(0);
-  const Eigen::VectorXd b = svd.matrixU().transpose() * (y - A * x0);
+  const Eigen::VectorXd b = svd.u.transpose() * (y - A * x0);
   Eigen::VectorXd z = Eigen::VectorXd::Zero(s.size());
   bool full = true;
   for (Eigen::Index i = 0; i < s.size(); ++i) {
@@ -49,7 +50,7 @@ Eigen::VectorXd min_norm_update(const Eigen::MatrixXd& A, const Eigen::VectorXd&
     }
   }
   if (full) condition = s(0) / s(s.size() - 1);
-  return x0 + svd.matrixV() * z;
+  return x0 + svd.v * z;
 }
 
 }  // namespace
@@ -120,10 +121,10 @@ ClosedFormResult closed_form_calibration(const CalibrationData& data, const Mode
     }
     const Eigen::Matrix3d Muu = M.topLeftCorner<3, 3>();
     const Eigen::Matrix<double, 3, 2> Muv = M.topRightCorner<3, 2>();
-    const Eigen::Matrix3d Muu_inv = Muu.completeOrthogonalDecomposition().pseudoInverse();
+    const Eigen::Matrix3d Muu_inv = linalg::pseudo_inverse(Muu);
     const Eigen::Matrix2d S = M.bottomRightCorner<2, 2>() - Muv.transpose() * Muu_inv * Muv;
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(S);
-    Eigen::Vector2d v = eig.eigenvectors().col(0);  // smallest eigenvalue first
+    const linalg::SymmetricEigen2 eig = linalg::symmetric_eigen2(S);
+    Eigen::Vector2d v = eig.vectors.col(0);  // smallest eigenvalue first
     Eigen::Vector3d u = -Muu_inv * Muv * v;
     if (u(0) < 0.0) {
       v = -v;

@@ -1,11 +1,12 @@
 #include "algorithms/calibration/identifiability.h"
 
 #include <fmt/format.h>
-#include <Eigen/Cholesky>
-#include <Eigen/SVD>
+#include <Eigen/Core>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "core/linear_algebra.h"
 
 namespace locbench::calibration {
 
@@ -18,15 +19,14 @@ IdentifiabilityReport analyze_identifiability(const Eigen::MatrixXd& jacobian,
       measurement_covariance.rows() != jacobian.rows() || measurement_covariance.cols() != jacobian.rows()) {
     throw std::invalid_argument("analyze_identifiability: dimensions do not match");
   }
-  const Eigen::LLT<Eigen::MatrixXd> llt(measurement_covariance);
-  if (llt.info() != Eigen::Success) {
+  // Whitened Jacobian L⁻¹J: F = (L⁻¹J)ᵀ(L⁻¹J); its singular values are √eig(F).
+  Eigen::MatrixXd W;
+  if (!linalg::cholesky_lower_solve(measurement_covariance, jacobian, W)) {
     throw std::invalid_argument("analyze_identifiability: covariance not positive definite");
   }
-  // Whitened Jacobian L⁻¹J: F = (L⁻¹J)ᵀ(L⁻¹J); its singular values are √eig(F).
-  const Eigen::MatrixXd W = llt.matrixL().solve(jacobian);
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(W, Eigen::ComputeFullV);
-  const Eigen::VectorXd s = svd.singularValues();  // descending
-  const Eigen::MatrixXd V = svd.matrixV();
+  linalg::Svd svd = linalg::jacobi_svd(W, Eigen::ComputeFullV);
+  const Eigen::VectorXd s = std::move(svd.singular_values);  // descending
+  const Eigen::MatrixXd V = std::move(svd.v);
 
   IdentifiabilityReport r;
   r.parameter_count = static_cast<int>(p);

@@ -2,7 +2,9 @@
 
 #include <ceres/problem.h>
 
-#include <Eigen/Dense>
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,6 +13,7 @@
 #include "algorithms/calibration/closed_form_calibration.h"
 #include "algorithms/calibration/ml_calibration_solver.h"
 #include "core/errors.h"
+#include "core/linear_algebra.h"
 
 namespace locbench::calibration {
 namespace {
@@ -151,7 +154,7 @@ NoiseState estimate_noise(const NoiseState& start, const std::vector<NoiseShape>
       }
     }
     I.diagonal().array() += 1e-9 * I.diagonal().maxCoeff() + 1e-300;
-    const Eigen::VectorXd step = I.ldlt().solve(-g);
+    const Eigen::VectorXd step = linalg::ldlt_solve(I, -g).x;
     Eigen::Vector3d dir = Eigen::Vector3d::Zero();
     for (Eigen::Index a = 0; a < k; ++a) dir(act[static_cast<std::size_t>(a)]) = step(a);
     const double longest = dir.cwiseAbs().maxCoeff();
@@ -348,8 +351,8 @@ MlCalibrationResult calibrate_ml(const CalibrationData& data, const MlCalibratio
   const Eigen::MatrixXd F = J.transpose() * J;
   // A square root of F (F = RᵀR) carries the same information as the whitened Jacobian itself,
   // in p rows instead of 3n (identifiability.h would otherwise need a 3n × 3n identity).
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(F);
-  const Eigen::MatrixXd R = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * eig.eigenvectors().transpose();
+  const linalg::SymmetricEigen eig = linalg::symmetric_eigen(F);
+  const Eigen::MatrixXd R = eig.values.cwiseMax(0.0).cwiseSqrt().asDiagonal() * eig.vectors.transpose();
   std::vector<std::string> free_names;
   for (int j : pb.free) free_names.push_back(names[static_cast<std::size_t>(j)]);
   res.identifiability = analyze_identifiability(R, Eigen::MatrixXd::Identity(R.rows(), R.rows()), free_names, x,

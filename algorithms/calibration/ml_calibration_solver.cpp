@@ -6,10 +6,12 @@
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <utility>
+
+#include "core/linear_algebra.h"
 
 namespace locbench::calibration::ml_solver {
 
@@ -129,8 +131,7 @@ namespace {
 // x = x₀ + B·u: the solver steps only within the span of B's columns.
 class LinearSubspace final : public ceres::Manifold {
  public:
-  explicit LinearSubspace(Eigen::MatrixXd basis)
-      : basis_(std::move(basis)), inverse_(basis_.completeOrthogonalDecomposition().pseudoInverse()) {}
+  explicit LinearSubspace(Eigen::MatrixXd basis) : basis_(std::move(basis)), inverse_(linalg::pseudo_inverse(basis_)) {}
   int AmbientSize() const override { return static_cast<int>(basis_.rows()); }
   int TangentSize() const override { return static_cast<int>(basis_.cols()); }
   bool Plus(const double* x, const double* delta, double* x_plus_delta) const override {
@@ -175,11 +176,11 @@ void restrict_to_determined(ceres::Problem& problem, Eigen::VectorXd& x) {
   const Eigen::MatrixXd J = whitened_jacobian(problem, rows, x.size());
   const Eigen::MatrixXd H = J.transpose() * J;
   const Eigen::VectorXd d = H.diagonal().cwiseMax(1e-12 * H.diagonal().maxCoeff() + 1e-300).cwiseSqrt().cwiseInverse();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(d.asDiagonal() * H * d.asDiagonal());
-  const double emax = eig.eigenvalues().maxCoeff();
+  const linalg::SymmetricEigen eig = linalg::symmetric_eigen(Eigen::MatrixXd(d.asDiagonal() * H * d.asDiagonal()));
+  const double emax = eig.values.maxCoeff();
   std::vector<Eigen::Index> kept;
   for (Eigen::Index k = 0; k < x.size(); ++k) {
-    if (eig.eigenvalues()(k) > 1e-8 * emax) kept.push_back(k);
+    if (eig.values(k) > 1e-8 * emax) kept.push_back(k);
   }
   if (kept.size() == static_cast<std::size_t>(x.size())) return;
   if (kept.empty()) {
@@ -188,7 +189,7 @@ void restrict_to_determined(ceres::Problem& problem, Eigen::VectorXd& x) {
   }
   Eigen::MatrixXd basis(x.size(), static_cast<Eigen::Index>(kept.size()));
   for (std::size_t c = 0; c < kept.size(); ++c) {
-    basis.col(static_cast<Eigen::Index>(c)) = d.asDiagonal() * eig.eigenvectors().col(kept[c]);
+    basis.col(static_cast<Eigen::Index>(c)) = d.asDiagonal() * eig.vectors.col(kept[c]);
   }
   problem.SetManifold(x.data(), new LinearSubspace(basis));
 }

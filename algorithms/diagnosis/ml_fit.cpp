@@ -1,10 +1,11 @@
 #include "algorithms/diagnosis/ml_fit.h"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "core/linear_algebra.h"
 
 namespace locbench::diagnosis {
 namespace {
@@ -116,9 +117,9 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
       for (int tries = 0; tries < 30 && !improved; ++tries) {
         Eigen::MatrixXd a = h;
         for (std::size_t i = 0; i < n; ++i) a(i, i) += lambda * std::max(std::abs(h(i, i)), 1e-12);
-        Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
-        Eigen::VectorXd dz = -ldlt.solve(g);
-        if (ldlt.info() != Eigen::Success || !dz.allFinite() || !ldlt.isPositive()) {
+        const linalg::LdltSolve solved = linalg::ldlt_solve(a, g);
+        const Eigen::VectorXd dz = -solved.x;
+        if (!solved.ok || !dz.allFinite() || !solved.positive) {
           lambda *= 10.0;
           continue;
         }
@@ -153,10 +154,10 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
   r.covariance = Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::quiet_NaN());
   if (n == 0) return r;
   gradient_hessian(z, fx, g, h);
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (h + h.transpose()));
-  r.hessian_ok = eig.eigenvalues().minCoeff() > 1e-12 * std::max(1.0, eig.eigenvalues().maxCoeff());
+  const linalg::SymmetricEigen eig = linalg::symmetric_eigen(Eigen::MatrixXd(0.5 * (h + h.transpose())));
+  r.hessian_ok = eig.values.minCoeff() > 1e-12 * std::max(1.0, eig.values.maxCoeff());
   if (r.hessian_ok) {
-    r.covariance = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
+    r.covariance = eig.vectors * eig.values.cwiseInverse().asDiagonal() * eig.vectors.transpose();
   }
   for (std::size_t i = 0; i < n; ++i) {
     const double se =

@@ -1,12 +1,12 @@
 #include "algorithms/filters/consistency.h"
 
-#include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "core/angle.h"
 #include "core/chi_square.h"
+#include "core/linear_algebra.h"
 
 namespace locbench::filters {
 
@@ -14,9 +14,8 @@ double nees(const Eigen::Ref<const Eigen::VectorXd>& error, const Eigen::Ref<con
   if (covariance.rows() != error.size() || covariance.cols() != error.size()) {
     throw std::invalid_argument("nees: covariance and error sizes differ");
   }
-  Eigen::LLT<Eigen::MatrixXd> llt(covariance);
-  if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-  const Eigen::VectorXd w = llt.matrixL().solve(error);
+  Eigen::VectorXd w;
+  if (!linalg::cholesky_lower_solve(covariance, error, w)) return std::numeric_limits<double>::infinity();
   return w.squaredNorm();
 }
 

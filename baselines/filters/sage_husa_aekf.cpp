@@ -1,5 +1,6 @@
 #include "baselines/filters/sage_husa_aekf.h"
 
+#include <Eigen/Cholesky>
 #include <cmath>
 
 #include "core/errors.h"

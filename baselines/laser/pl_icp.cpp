@@ -1,6 +1,6 @@
 #include "baselines/laser/pl_icp.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -12,6 +12,7 @@
 
 #include "core/angle.h"
 #include "core/errors.h"
+#include "core/linear_algebra.h"
 #include "core/option_fields.h"
 #include "core/pose_observability.h"
 
@@ -115,8 +116,7 @@ std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& 
           mean /= static_cast<double>(hi - lo + 1);
           Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
           for (std::size_t k = lo; k <= hi; ++k) cov += (ref[k] - mean) * (ref[k] - mean).transpose();
-          const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
-          dir = es.eigenvectors().col(1);
+          dir = linalg::symmetric_eigen2(cov).vectors.col(1);
           origin = mean;
         }
       }

@@ -8,6 +8,7 @@
 #include "core/angle.h"
 #include "core/chi_square.h"
 #include "core/errors.h"
+#include "core/linear_algebra.h"
 #include "core/option_fields.h"
 
 namespace locbench::baselines::localization {
@@ -102,7 +103,7 @@ LineUpdate LineFeatureKalmanLocalizer::update(std::span<const LineObservation> o
     r.block<2, 2>(2 * k, 2 * k) = observations[pair.observation].covariance;
   }
   const Eigen::MatrixXd s = h * p_ * h.transpose() + r;
-  const Eigen::MatrixXd s_inv = s.inverse();
+  const Eigen::MatrixXd s_inv = linalg::inverse(s);
   const Eigen::MatrixXd k = p_ * h.transpose() * s_inv;  // K = Σ_p ∇hᵀ Σ_IN⁻¹
   x_ += k * v;
   x_(2) = wrap_angle(x_(2));

@@ -1,6 +1,7 @@
 #include "baselines/localization/line_feature_kalman_localizer.h"
 
 #include <gtest/gtest.h>
+#include <Eigen/Cholesky>
 
 #include <cmath>
 #include <limits>

@@ -1,0 +1,38 @@
+#include "core/linear_algebra.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+namespace locbench::linalg {
+
+Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d& a) { return a.completeOrthogonalDecomposition().pseudoInverse(); }
+
+Eigen::MatrixXd pseudo_inverse(const Eigen::MatrixXd& a) { return a.completeOrthogonalDecomposition().pseudoInverse(); }
+
+LdltSolve ldlt_solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
+  LdltSolve out;
+  out.x = ldlt.solve(b);
+  out.ok = ldlt.info() == Eigen::Success;
+  out.positive = ldlt.isPositive();
+  return out;
+}
+
+bool cholesky_lower_solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& out) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(a);
+  if (llt.info() != Eigen::Success) return false;
+  out = llt.matrixL().solve(b);
+  return true;
+}
+
+bool cholesky_lower_solve(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, Eigen::MatrixXd& out) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(a);
+  if (llt.info() != Eigen::Success) return false;
+  out = llt.matrixL().solve(b);
+  return true;
+}
+
+Eigen::MatrixXd inverse(const Eigen::MatrixXd& a) { return a.inverse(); }
+
+}  // namespace locbench::linalg
