@@ -210,6 +210,17 @@ NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::
   return {best_share, best_tau};
 }
 
+namespace {
+
+// 1.4826·MAD: the σ of normal residuals, robust to their heavy tails.
+double robust_sigma(std::vector<double> v) {
+  const double med = quantile(v, 0.5);
+  for (double& x : v) x = std::abs(x - med);
+  return 1.4826 * quantile(v, 0.5);
+}
+
+}  // namespace
+
 double noise_level_spread(const std::vector<double>& t, const std::vector<double>& r) {
   if (t.empty() || t.size() != r.size()) return 0.0;
   std::vector<double> log_sigma, sampling;
@@ -218,9 +229,7 @@ double noise_level_spread(const std::vector<double>& t, const std::vector<double
     std::vector<double> block;
     for (; i < r.size() && t[i] < end; ++i) block.push_back(r[i]);
     if (block.size() < kMinLevelBlockResiduals) continue;
-    const double med = quantile(block, 0.5);
-    for (double& v : block) v = std::abs(v - med);
-    const double sigma = 1.4826 * quantile(block, 0.5);
+    const double sigma = robust_sigma(block);
     if (!(sigma > 0.0)) continue;
     log_sigma.push_back(std::log(sigma));
     sampling.push_back(1.35 / static_cast<double>(block.size()));
@@ -246,11 +255,6 @@ LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSens
     bearing.push_back(angle_diff(o.bearing, std::atan2(dy, dx) - p->theta));
   }
   if (range.size() < 20) throw InputError(data.log, 0, "fewer than 20 landmark observations with ground truth");
-  const auto robust_sigma = [](std::vector<double> v) {
-    const double med = quantile(v, 0.5);
-    for (double& x : v) x = std::abs(x - med);
-    return 1.4826 * quantile(v, 0.5);
-  };
   sensor.range_sigma = robust_sigma(range);
   sensor.bearing_sigma = robust_sigma(bearing);
   // Per-landmark medians: their spread, and the residuals without them for the time correlation.
