@@ -89,16 +89,20 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
     MethodSetup s = base_setup(method, train_motion, models, options);
     struct Run {
       double q, k, rmse, nees, log_score;
+      Eigen::Vector2d level_reference;
     };
+    const bool tracks_level = options.track_noise_level && method == Method::kDiagnosedModel;
     std::vector<Run> runs;
     for (double q : options.process_scales) {
       for (double k : knobs(method, options)) {
         s.process_scale = q;
         s.knob = k;
+        s.level_reference.setZero();
+        if (tracks_level) s.level_reference = track(train, s, options.gate).innovation_sigma;
         const TrackResult r = track(train, s, options.gate);
         const double inf = std::numeric_limits<double>::infinity();
-        runs.push_back(
-            {q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees), r.log_score()});
+        runs.push_back({q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees), r.log_score(),
+                        s.level_reference});
       }
     }
     best.grid_runs = runs.size();
@@ -109,6 +113,7 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
       best.tuning_nees = r.nees;
       best.tuning_log_score = r.log_score;
       best.consistent_setting = band.contains(r.nees);
+      best.level_reference = r.level_reference;
     };
     choose(runs.front());  // kept when every setting diverged (reported as such)
     if (options.criterion == TuningCriterion::kLogScore) {
@@ -157,6 +162,7 @@ std::vector<TrackResult> run_tuned(const TrackingData& data, const std::vector<M
     MethodSetup s = base_setup(m.method, motion, models, options);
     s.process_scale = m.process_scale;
     s.knob = m.knob;
+    s.level_reference = m.level_reference;
     out.push_back(track(data, s, options.gate));
   }
   return out;

@@ -41,6 +41,12 @@ struct FamilyOptions {
   // The diagnosed model's filter carries its sensor's time-correlated noise share as biases in its
   // state (LandmarkSensorModel::structure); false: it takes all of the noise as white.
   bool correlated_sensor_noise = false;
+  // The diagnosed model's filter tracks its sensor's noise level along the log
+  // (MethodSetup::level_reference), as the diagnosis measures it varying between blocks
+  // (NoiseStructure::range_level_sigma): each setting on the tuning part is run once untracked for
+  // its reference innovation level, then tracked; the held-out run keeps the tuned setting's
+  // reference.
+  bool track_noise_level = false;
 };
 
 struct MethodScore {
@@ -51,6 +57,7 @@ struct MethodScore {
   double tuning_log_score = 0.0;           // its log score there (TrackResult::log_score)
   bool consistent_setting = false;         // its NEES was inside the band on the tuning part
   std::size_t grid_runs = 0;
+  Eigen::Vector2d level_reference = Eigen::Vector2d::Zero();  // MethodSetup::level_reference of the setting
   TrackResult heldout;
 };
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>  // Matrix3d::determinant
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <variant>
@@ -216,6 +217,13 @@ namespace {
 double robust_sigma(std::vector<double> v) {
   const double med = quantile(v, 0.5);
   for (double& x : v) x = std::abs(x - med);
+  return 1.4826 * quantile(v, 0.5);
+}
+
+// 1.4826·median |v|: the σ of zero-mean normal values, robust to heavy tails; a shared offset
+// (a bias) counts in it, as it should for innovations, whose mean is zero when the filter is right.
+double robust_scale_about_zero(std::vector<double> v) {
+  for (double& x : v) x = std::abs(x);
   return 1.4826 * quantile(v, 0.5);
 }
 
@@ -460,11 +468,36 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
   TrackResult out;
   int starving = 0;
   std::size_t next = 0;
+  const bool tracks_level = setup.level_reference.minCoeff() > 0.0 && !carries_bias &&
+                            (setup.method == Method::kNominalModel || setup.method == Method::kDiagnosedModel);
+  std::vector<double> innovation_t;
+  std::array<std::vector<double>, 2> innovation;  // standardized range and bearing innovations
+  std::size_t window_start = 0;
   const auto observe_until = [&](double t) {
     for (; next < obs.size() && obs[next].t <= t; ++next) {
       ++out.observations;
       const bool recover = starving >= gate.starve_after;
       LandmarkRangeBearing z = obs[next].z;
+      if (const auto* f = std::get_if<MotionModelEkf>(&filter)) {  // the innovations' level
+        const LinearizedMeasurement lin = linearize(z, f->mean());
+        const MeasurementVector nu = lin.residual();
+        const MeasurementMatrix s = lin.H * f->covariance() * lin.H.transpose() + lin.R;
+        const double now = obs[next].t;
+        if (tracks_level) {
+          while (window_start < innovation_t.size() && innovation_t[window_start] < now - kLevelBlockS) ++window_start;
+          if (innovation_t.size() - window_start >= kMinLevelBlockResiduals) {
+            for (int c = 0; c < 2; ++c) {
+              const double sigma = robust_scale_about_zero(std::vector<double>(
+                  innovation[c].begin() + static_cast<std::ptrdiff_t>(window_start), innovation[c].end()));
+              const double ratio = sigma / setup.level_reference(c);
+              const double level = std::clamp(ratio * ratio, 1.0 / kMaxLevelRatio, kMaxLevelRatio);
+              (c == 0 ? z.range_variance : z.bearing_variance) *= level;
+            }
+          }
+        }
+        innovation_t.push_back(now);
+        for (int c = 0; c < 2; ++c) innovation[c].push_back(nu(c) / std::sqrt(s(c, c)));
+      }
       if (sm.dof > 0.0) {  // one reweighting step of the Student-t likelihood
         const double nis = std::visit(
             [&](auto& f) {
@@ -529,6 +562,8 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
     out.log_det_covariance.push_back(std::log(p.determinant()));
     if (e > gate.divergence_error_m) ++far;
   }
+  if (innovation_t.size() >= 20)
+    for (int c = 0; c < 2; ++c) out.innovation_sigma(c) = robust_scale_about_zero(innovation[c]);
   out.diverged = !out.finite || out.position_error.empty() ||
                  static_cast<double>(far) >= 0.05 * static_cast<double>(out.position_error.size());
   return out;

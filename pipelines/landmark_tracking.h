@@ -172,7 +172,15 @@ struct MethodSetup {
   Vector3 fixed_q_per_s{0.0025, 0.0025, 0.0025};  // fixed_q, Q̂(0) of sage_husa, vb_akf's Q [m²/s, m²/s, rad²/s]
   filters::OdometryNoiseOptions adaptive;         // adaptive_thesis / adaptive_jacobian (form set by the method)
   Vector3 initial_sigma{0.02, 0.02, 0.02};        // P(0) = diag(σ²) at the span's true start [m, m, rad]
+  // Noise levels that vary along the log, tracked (fitted models only; 0: not tracked): each
+  // channel's R is multiplied by λ = (σ_w / reference)², σ_w the robust σ (1.4826·MAD) of the
+  // channel's innovations, standardized by their predicted σ under the untracked R, over the last
+  // kLevelBlockS before the observation (≥ kMinLevelBlockResiduals of them; else λ = 1), and the
+  // reference the same σ over a whole run at this setting on the tuning part
+  // (TrackResult::innovation_sigma). λ is kept within [1/kMaxLevelRatio, kMaxLevelRatio].
+  Eigen::Vector2d level_reference = Eigen::Vector2d::Zero();
 };
+inline constexpr double kMaxLevelRatio = 256.0;
 
 struct GatePolicy {
   double gate_probability = 0.999;  // χ²₂ quantile of the Mahalanobis gate
@@ -187,6 +195,9 @@ struct TrackResult {
   std::size_t observations = 0, used = 0, gated = 0, recoveries = 0;
   bool finite = true;
   bool diverged = false;
+  // The robust σ (1.4826·MAD) of the range and bearing innovations over the run, each standardized
+  // by its predicted σ under the untracked R (MethodSetup::level_reference); 0 with < 20.
+  Eigen::Vector2d innovation_sigma = Eigen::Vector2d::Zero();
   double position_rmse() const;
   double heading_rmse() const;
   double gated_fraction() const;

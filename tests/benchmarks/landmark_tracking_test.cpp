@@ -5,8 +5,10 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "algorithms/diagnosis/diagnosis.h"
+#include "core/statistics.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "datasets/diagnosis/landmark_effects.h"
 #include "pipelines/filter_models.h"
@@ -16,6 +18,7 @@ namespace locbench::experiments::landmarks {
 namespace {
 
 struct Family {
+  TrackingData test;
   std::vector<MethodScore> scores;
   FilterModels models;
   const MethodScore& of(Method m) const {
@@ -25,7 +28,23 @@ struct Family {
   }
 };
 
-Family run_family(const std::vector<sim::HiddenEffect>& effects, std::uint64_t seed) {
+// Extra noise on the observations from `from` (true time) on: σ_r and σ_φ added in quadrature.
+void add_sensor_noise_after(Log& log, double from, double range_sigma, double bearing_sigma, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (LandmarkReading& r : log.landmarks) {
+    if (r.t < from) continue;
+    r.range += range_sigma * n(rng);
+    r.bearing += bearing_sigma * n(rng);
+  }
+}
+
+struct FamilyRun {
+  double noise_after_half_m = 0.0;  // extra range noise late in the second half (bearing: /3 rad per m)
+  bool track_noise_level = false;
+};
+
+Family run_family(const std::vector<sim::HiddenEffect>& effects, std::uint64_t seed, const FamilyRun& run = {}) {
   sim::GeneratorOptions g;
   g.velocity_odometry = true;
   g.compass = false;
@@ -34,10 +53,13 @@ Family run_family(const std::vector<sim::HiddenEffect>& effects, std::uint64_t s
   sim::LandmarkLogOptions l;
   l.sigma_range = 0.05;
   sim::add_landmark_observations(log, {}, seed + 1, l);
-  const Log& full = log.log;
+  Log& full = log.log;
   const double from = std::max(full.odometry.front().t, full.truth.front().t);
   const double to = std::min(full.odometry.back().t, full.truth.back().t);
   const double mid = 0.5 * (from + to);
+  if (run.noise_after_half_m > 0.0)
+    add_sensor_noise_after(full, mid + 0.25 * (to - mid), run.noise_after_half_m, run.noise_after_half_m / 3.0,
+                           seed + 2);
   const double b = full.nominal_model() ? full.nominal_model()->wheelbase : 0.3;
   const TrackingData train = tracking_data(full, from, mid, b), test = tracking_data(full, mid, to, b);
   LandmarkSensorModel sensor;
@@ -49,7 +71,9 @@ Family run_family(const std::vector<sim::HiddenEffect>& effects, std::uint64_t s
   options.r_scales = {1.0, 16.0, 256.0};                        // the same for every method
   options.sage_husa_forgetting = {0.9, 0.97, 0.99};
   options.vb_forgetting = {0.97, 0.99, 0.999};
+  options.track_noise_level = run.track_noise_level;
   f.scores = tune_and_score(train, test, f.models, options);
+  f.test = test;
   return f;
 }
 
@@ -80,6 +104,40 @@ TEST(LandmarkFamily, WithNothingHiddenTheDiagnosedModelIsTheNominalOne) {
   const double diagnosed = f.of(Method::kDiagnosedModel).heldout.position_rmse();
   EXPECT_NEAR(diagnosed, nominal, 0.2 * nominal);
   EXPECT_LT(nominal, 0.15);
+}
+
+// |ln(NEES / 3)|: how far a 3-state NEES is from consistent, on a ratio scale.
+double inconsistency(const TrackResult& r) { return std::abs(std::log(mean(r.nees) / 3.0)); }
+
+TEST(LandmarkNoiseLevel, AFilterThatTracksTheLevelStaysConsistentWhenTheSensorGetsNoisier) {
+  // A quarter into the held-out half the camera's range noise goes from 0.05 m to
+  // √(0.05² + 0.3²) = 0.30 m and its bearing noise from 0.01 to 0.10 rad; the filters are tuned on
+  // the first half. Untracked, the diagnosed model's filter trusts the noisier observations as before
+  // and is over-confident; tracked, it scales its R by the innovations' level over the last minute
+  // against the tuning half's. (With the change at the held-out half's very start it is not caught:
+  // the first 20 innovations of a run have no level yet, and a filter thrown off by them recovers
+  // slowly.)
+  FamilyRun noisier{.noise_after_half_m = 0.3};
+  const TrackResult untracked = run_family({}, 8, noisier).of(Method::kDiagnosedModel).heldout;
+  noisier.track_noise_level = true;
+  const Family tracked_family = run_family({}, 8, noisier);
+  const MethodScore& tracked = tracked_family.of(Method::kDiagnosedModel);
+  EXPECT_GT(tracked.level_reference.minCoeff(), 0.0) << "a reference level was measured on the tuning half";
+  EXPECT_GT(mean(untracked.nees), 30.0) << "the untracked filter is over-confident";
+  EXPECT_LT(mean(tracked.heldout.nees), 3.0 * 1.5);
+  EXPECT_LT(inconsistency(tracked.heldout), 0.5 * inconsistency(untracked))
+      << "NEES tracked " << mean(tracked.heldout.nees) << ", untracked " << mean(untracked.nees);
+  EXPECT_LT(tracked.heldout.position_rmse(), 1.1 * untracked.position_rmse());
+  EXPECT_EQ(tracked_family.of(Method::kNominalModel).level_reference.minCoeff(), 0.0)
+      << "only the diagnosed model tracks the level";
+}
+
+TEST(LandmarkNoiseLevel, AtAConstantLevelTrackingChangesLittle) {
+  const TrackResult untracked = run_family({}, 8).of(Method::kDiagnosedModel).heldout;
+  const TrackResult tracked = run_family({}, 8, {.track_noise_level = true}).of(Method::kDiagnosedModel).heldout;
+  EXPECT_NEAR(tracked.position_rmse(), untracked.position_rmse(), 0.15 * untracked.position_rmse());
+  EXPECT_LT(std::abs(std::log(mean(tracked.nees) / mean(untracked.nees))), 0.3)
+      << "NEES tracked " << mean(tracked.nees) << ", untracked " << mean(untracked.nees);
 }
 
 TEST(LandmarkTuning, TheLogScoreIsLowestWhenTheCovarianceMatchesTheErrors) {

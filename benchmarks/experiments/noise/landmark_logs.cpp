@@ -81,6 +81,7 @@ struct Options {
   int twin_runs = 20;      // seeded runs of each twin of the held-out half (0: no twin predictions)
   bool twin_replays_tuning_half = false;  // the twins replay the tuning half instead (the model's own check)
   bool correlated_sensor_noise = false;   // the diagnosed model's filter carries the correlated noise as biases
+  bool track_noise_level = false;         // the diagnosed model's filter tracks its sensor's noise level
 };
 template <class V>
 void visit_fields(V& v, Options& o) {
@@ -115,6 +116,9 @@ void visit_fields(V& v, Options& o) {
          "the diagnosed model's filter carries the sensor noise's time-correlated share, measured on the tuning half, "
          "as Gauss–Markov range and bearing biases in its state (false, the default: all of it white, as every other "
          "method; on MRCLAM Dataset 6 the biases did not improve the held-out halves)");
+  v.flag("track_noise_level", o.track_noise_level,
+         "the diagnosed model's filter scales each channel's R by its innovations' level over the last minute against "
+         "their level on the tuning half (the diagnosis's noise levels that vary along the log)");
 }
 LOCBENCH_EXPERIMENT_OPTIONS(Options)
 
@@ -297,6 +301,7 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     family.criterion = c.tuning_criterion;
     family.rmse_tolerance = c.rmse_tolerance;
     family.correlated_sensor_noise = c.correlated_sensor_noise;
+    family.track_noise_level = c.track_noise_level;
     family.gate.gate_probability = c.gate_probability;
     family.gate.starve_after = c.starve_after;
     family.gate.divergence_error_m = c.divergence_error_m;
