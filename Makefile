@@ -42,6 +42,8 @@ setup:
 # built side by side on the loaded machine) 541 → 476 s; the calibration unit 69.5 → 20.3 s, the
 # experiments' harness 42.9 → 22.2 s, diagnosis 42.9 → 30.5 s. Still about twice what 2 cores can
 # compile in the 110 s the 3-minute `make run` leaves (README, Performance).
+# Clang 14 (Debian 12) measured too, 2026-11-27, Ninja, same flags, same tree: 627 s of compile CPU
+# for the locbench target against g++ 12's 433 s (the diagnosis unit 102 s against 32 s): not adopted.
 build: setup
 	@s=$$(date +%s); cmake -S . -B $(RELEASE) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
 	  -DLOCBENCH_BUILD_TESTS=OFF $(UNITY) $(if $(UNITY),-DCMAKE_UNITY_BUILD_BATCH_SIZE=16) >/dev/null && cmake --build $(RELEASE) -j$(JOBS) --target locbench; rc=$$?; \

@@ -285,7 +285,7 @@ Action add_calibrate_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--relations", args->relations, "ml: reference relations for a log's ODOM");
   add_data_option(cmd, args->data);
-  return [args, command_line] { return calibrate(*args, command_line); };
+  return [args = args, command_line] { return calibrate(*args, command_line); };
 }
 
 }  // namespace locbench::cli

@@ -181,7 +181,7 @@ Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
                   "are exempt)")
       ->check(CLI::Range(1.0, 1e8));
   add_data_option(cmd, args->data);
-  return [args, command_line] { return diagnose(*args, command_line); };
+  return [args = args, command_line] { return diagnose(*args, command_line); };
 }
 
 }  // namespace locbench::cli

@@ -64,7 +64,7 @@ Action add_gate_command(CLI::App& app) {
   cmd->add_flag("--allow-mixed", args->allow_mixed,
                 "Compare reports of different base seeds (or, among the current ones, git revisions or "
                 "run ids); refused by default");
-  return [args] { return gate(*args); };
+  return [args = args] { return gate(*args); };
 }
 
 }  // namespace locbench::cli

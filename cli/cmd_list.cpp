@@ -158,7 +158,7 @@ Action add_list_command(CLI::App& app) {
                   "with type, count and rate, and which ones locbench uses (choose with LOG#odom=…,truth=…,scan=…)");
   add_data_option(cmd, args->data);
   cmd->add_flag("--no-load", args->no_load, "Only check that datasets exist; do not read them");
-  return [args] { return list(*args); };
+  return [args = args] { return list(*args); };
 }
 
 }  // namespace locbench::cli

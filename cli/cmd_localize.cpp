@@ -265,7 +265,7 @@ Action add_localize_command(CLI::App& app, const std::string& command_line) {
   add_seed_option(cmd, args->seed, "Seed of MCL's random numbers (default 1)");
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--tum", args->tum, "Write the estimated poses here (TUM format)");
-  return [args, command_line] { return localize(*args, command_line); };
+  return [args = args, command_line] { return localize(*args, command_line); };
 }
 
 }  // namespace locbench::cli

@@ -119,7 +119,7 @@ Action add_match_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--matcher", args->matcher, "eap (default), eap_indexed, split_and_merge, agglomerative or rwht");
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--tum", args->tum, "Write the corrected poses here (TUM format)");
-  return [args, command_line] { return match(*args, command_line); };
+  return [args = args, command_line] { return match(*args, command_line); };
 }
 
 }  // namespace locbench::cli

@@ -204,7 +204,7 @@ Action add_merge_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("-o,--out", args->out, "Report file (one experiment, ends in .json) or folder (one report each)")
       ->required();
   add_threads_option(cmd, args->threads, "Worker threads for any work of the summary step")->capture_default_str();
-  return [args, command_line] { return merge(*args, command_line); };
+  return [args = args, command_line] { return merge(*args, command_line); };
 }
 
 }  // namespace locbench::cli

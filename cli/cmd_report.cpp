@@ -113,7 +113,7 @@ Action add_report_command(CLI::App& app) {
       ->check(CLI::ExistingPath);
   cmd->add_option("-o,--out", args->out, "HTML file to write")->required();
   cmd->add_option("--title", args->title, "Page title")->capture_default_str();
-  return [args] { return report(*args); };
+  return [args = args] { return report(*args); };
 }
 
 }  // namespace locbench::cli

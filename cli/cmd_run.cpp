@@ -314,7 +314,7 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--skip-missing", args->skip_missing,
                   "Accept that this dataset (or case, or \"all\") is absent; otherwise a case skipped "
                   "for missing data fails the run (exit 2); repeatable");
-  return [args, command_line] { return run(*args, command_line); };
+  return [args = args, command_line] { return run(*args, command_line); };
 }
 
 }  // namespace locbench::cli

@@ -85,7 +85,7 @@ Action add_simulate_command(CLI::App& app) {
   cmd->add_option("--ros2-bag", args->ros2_bag, "Also write the log as a ROS 2 sqlite3 bag folder (the same topics)");
   cmd->add_flag("--print-scenario", args->print_scenario,
                 "Print the scenario's full JSON (every option with its value) and exit");
-  return [args] { return simulate(*args); };
+  return [args = args] { return simulate(*args); };
 }
 
 }  // namespace locbench::cli

@@ -94,8 +94,8 @@ TwinForecast twin_predictions(const TrackingData& test, const std::vector<Method
       c.method = to_string(tuned[i].method);
       c.real = values[i];
       c.real_diverged = tuned[i].heldout.diverged;
-      c.nominal = interval(0, [&](const RunMetrics& r) { return r.per_method.at(metric)[i]; });
-      c.extended = interval(1, [&](const RunMetrics& r) { return r.per_method.at(metric)[i]; });
+      c.nominal = interval(0, [&, &m = metric](const RunMetrics& r) { return r.per_method.at(m)[i]; });
+      c.extended = interval(1, [&, &m = metric](const RunMetrics& r) { return r.per_method.at(m)[i]; });
       cells[metric].push_back(c);
     }
   }
@@ -104,8 +104,8 @@ TwinForecast twin_predictions(const TrackingData& test, const std::vector<Method
     c.log = test.log;
     c.method = "dead_reckoning";
     c.real = value;
-    c.nominal = interval(0, [&](const RunMetrics& r) { return r.dead_reckoning.at(metric); });
-    c.extended = interval(1, [&](const RunMetrics& r) { return r.dead_reckoning.at(metric); });
+    c.nominal = interval(0, [&m = metric](const RunMetrics& r) { return r.dead_reckoning.at(m); });
+    c.extended = interval(1, [&m = metric](const RunMetrics& r) { return r.dead_reckoning.at(m); });
     cells[metric].push_back(c);
   }
   Rng rng(Rng::derive_seed(options.seed, 1u << 20));

@@ -160,7 +160,7 @@ std::string twin_rows(const std::vector<Report>& reports) {
       }
     }
     for (const auto& [metric, stats] : by_metric) {
-      const auto cell = [&](const char* statistic, bool percent) {
+      const auto cell = [&, &stats = stats](const char* statistic, bool percent) {
         const auto it = stats.find(statistic);
         if (it == stats.end()) return std::string("—");
         const auto show = [&](const std::optional<double>& v) {
