@@ -9,6 +9,7 @@
 #include <iterator>
 #include <map>
 
+#include "core/ascii.h"
 #include "core/dead_reckoning.h"
 #include "core/errors.h"
 #include "datasets/io/dataset_name.h"
@@ -60,21 +61,16 @@ PlanarPose planar(const Pose2& p) { return {p.x, p.y, p.theta}; }
 constexpr const char* kChoose =
     "choose topics with LOG#odom=TOPIC,truth=TOPIC,scan=TOPIC (none: off; base=FRAME,laser=FRAME for the mount)";
 
-std::string lower_ascii(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 std::optional<BagFormat> bag_format(const std::filesystem::path& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     if (std::filesystem::exists(path / "metadata.yaml", ec)) return BagFormat::kRos2;
     for (const auto& e : std::filesystem::directory_iterator(path, ec)) {
-      if (lower_ascii(e.path().extension().string()) == ".db3") return BagFormat::kRos2;
+      if (ascii_lowercase(e.path().extension().string()) == ".db3") return BagFormat::kRos2;
     }
     return std::nullopt;
   }
-  const std::string ext = lower_ascii(path.extension().string());
+  const std::string ext = ascii_lowercase(path.extension().string());
   if (ext == ".bag") return BagFormat::kRos1;
   if (ext == ".db3") return BagFormat::kRos2;
   return std::nullopt;
@@ -291,7 +287,7 @@ std::string role_name(const BagRoles& r, const std::string& topic) {
 std::string log_spec_path(const std::string& spec) {
   const auto hash = spec.rfind('#');
   if (hash == std::string::npos) return spec;
-  const std::string suffix = lower_ascii(spec.substr(hash + 1));
+  const std::string suffix = ascii_lowercase(spec.substr(hash + 1));
   if (suffix.rfind("robot", 0) == 0 || suffix.find('=') != std::string::npos) return spec.substr(0, hash);
   return spec;
 }

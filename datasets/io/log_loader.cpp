@@ -4,6 +4,7 @@
 #include <optional>
 #include <string_view>
 
+#include "core/ascii.h"
 #include "core/errors.h"
 #include "datasets/io/bag_log.h"
 #include "datasets/io/carmen_reader.h"
@@ -20,21 +21,16 @@ constexpr const char* kAccepted =
     "(.relations or .relations.gz), an MRCLAM dataset folder with an optional #robotN suffix, a ROS 1 bag (.bag) or "
     "a ROS 2 sqlite3 bag (a folder with metadata.yaml and .db3 files), topics chosen by #odom=…,truth=…,scan=…";
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // The extension that names the format: ".clf" for "aces.clf.gz".
 std::string format_extension(const std::filesystem::path& path) {
   std::filesystem::path p = path.filename();
-  if (lower(p.extension().string()) == ".gz") p = p.stem();
-  return lower(p.extension().string());
+  if (ascii_lowercase(p.extension().string()) == ".gz") p = p.stem();
+  return ascii_lowercase(p.extension().string());
 }
 
 // "#robotN" at the end of a spec → N; nullopt if there is no such suffix.
 std::optional<int> robot_suffix(const std::string& spec, std::size_t hash) {
-  const std::string suffix = lower(spec.substr(hash + 1));
+  const std::string suffix = ascii_lowercase(spec.substr(hash + 1));
   if (suffix.rfind("robot", 0) != 0) return std::nullopt;
   std::int64_t n = 0;
   const std::string_view digits = std::string_view(suffix).substr(5);

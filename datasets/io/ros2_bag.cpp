@@ -1,10 +1,5 @@
 // ROS 2 bags in sqlite3 storage: the topics and messages tables read with sqlite3 (read-only,
-// immutable: nothing is written beside the data), messages decoded from CDR with eProsima Fast CDR.
-#include <fastcdr/Cdr.h>
-#include <fastcdr/FastBuffer.h>
-#include <fastcdr/exceptions/BadParamException.h>
-#include <fastcdr/exceptions/Exception.h>
-#include <fastcdr/exceptions/NotEnoughMemoryException.h>
+// immutable: nothing is written beside the data), the messages decoded by ros2_cdr.h.
 #include <sqlite3.h>
 
 #include <algorithm>
@@ -17,14 +12,13 @@
 #include <string>
 #include <utility>
 
+#include "core/ascii.h"
 #include "core/errors.h"
 #include "datasets/io/bag_messages.h"
+#include "datasets/io/ros2_cdr.h"
 
 namespace locbench::io {
 namespace {
-
-using eprosima::fastcdr::Cdr;
-using eprosima::fastcdr::FastBuffer;
 
 // ---- sqlite3 -------------------------------------------------------------------------------
 
@@ -118,167 +112,6 @@ class Statement {
   sqlite3_stmt* stmt_ = nullptr;
 };
 
-// ---- CDR ------------------------------------------------------------------------------------
-
-// One serialized message: the encapsulation header first, then the fields in declaration order.
-class CdrReader {
- public:
-  CdrReader(const char* data, std::size_t size)
-      : buffer_(const_cast<char*>(data), size), cdr_(buffer_, Cdr::DEFAULT_ENDIAN, Cdr::DDS_CDR) {
-    cdr_.read_encapsulation();
-  }
-  double f64() {
-    double v = 0.0;
-    cdr_.deserialize(v);
-    return v;
-  }
-  float f32() {
-    float v = 0.0F;
-    cdr_.deserialize(v);
-    return v;
-  }
-  std::uint32_t u32() {
-    std::uint32_t v = 0;
-    cdr_.deserialize(v);
-    return v;
-  }
-  std::string str() {
-    std::string s;
-    cdr_.deserialize(s);
-    return s;
-  }
-  std::vector<float> floats() {
-    std::vector<float> v;
-    cdr_.deserialize(v);  // checks the length against the bytes left before allocating
-    return v;
-  }
-  void skip_f64(std::size_t n) {
-    for (std::size_t i = 0; i < n; ++i) f64();
-  }
-  std::size_t bytes_left() const { return buffer_.getBufferSize() - cdr_.getSerializedDataLength(); }
-  // A message of another type may decode without running out of bytes: more than the last
-  // field's alignment left over says it was not this type.
-  void expect_end() const {
-    if (bytes_left() > 7) {
-      throw eprosima::fastcdr::exception::BadParamException("bytes left over after the last field");
-    }
-  }
-
-  // std_msgs/Header: builtin_interfaces/Time stamp (int32 sec, uint32 nanosec), string frame_id.
-  double header(std::string& frame_id) {
-    std::int32_t sec = 0;
-    cdr_.deserialize(sec);
-    const double t = stamp_seconds(sec, u32());
-    frame_id = str();
-    return t;
-  }
-  // geometry_msgs/Pose (Point, Quaternion) or Transform (Vector3, Quaternion), in the plane.
-  PlanarPose pose() {
-    std::array<double, 7> v{};
-    for (double& x : v) x = f64();
-    return planar_pose(v[0], v[1], v[3], v[4], v[5], v[6]);
-  }
-
- private:
-  FastBuffer buffer_;
-  Cdr cdr_;
-};
-
-class CdrWriter {
- public:
-  CdrWriter() : cdr_(buffer_, Cdr::LITTLE_ENDIANNESS, Cdr::DDS_CDR) { cdr_.serialize_encapsulation(); }
-  template <class T>
-  CdrWriter& operator<<(const T& v) {
-    cdr_ << v;
-    return *this;
-  }
-  void header(double t, const std::string& frame_id) {
-    double sec = std::floor(t);
-    auto nsec = static_cast<std::int64_t>(std::llround((t - sec) * 1e9));
-    if (nsec >= 1000000000) {
-      sec += 1.0;
-      nsec -= 1000000000;
-    }
-    cdr_ << static_cast<std::int32_t>(sec) << static_cast<std::uint32_t>(nsec) << frame_id;
-  }
-  void pose(const PlanarPose& p) {
-    cdr_ << p.x << p.y << 0.0 << 0.0 << 0.0 << std::sin(p.yaw / 2.0) << std::cos(p.yaw / 2.0);
-  }
-  void zeros(std::size_t n) {
-    for (std::size_t i = 0; i < n; ++i) cdr_ << 0.0;
-  }
-  std::pair<const char*, std::size_t> bytes() const { return {buffer_.getBuffer(), cdr_.getSerializedDataLength()}; }
-
- private:
-  FastBuffer buffer_;
-  Cdr cdr_;
-};
-
-// ---- decoding -------------------------------------------------------------------------------
-
-BagPoseMessage decode_pose(CdrReader& r, const std::string& type) {
-  BagPoseMessage m;
-  m.time.stamp = r.header(m.frame_id);
-  if (type == kOdometryType) {
-    m.child_frame_id = r.str();
-    m.pose = r.pose();
-    r.skip_f64(36);  // covariance
-    m.tv = r.f64();
-    r.skip_f64(4);
-    m.rv = r.f64();
-    r.skip_f64(36);
-  } else if (type == kPoseStampedType) {
-    m.pose = r.pose();
-  } else if (type == kPoseWithCovarianceStampedType) {
-    m.pose = r.pose();
-    r.skip_f64(36);
-  } else {  // kTransformStampedType
-    m.child_frame_id = r.str();
-    m.pose = r.pose();
-  }
-  return m;
-}
-
-BagScanMessage decode_scan(CdrReader& r) {
-  BagScanMessage m;
-  m.time.stamp = r.header(m.frame_id);
-  m.angle_min = r.f32();
-  r.f32();  // angle_max
-  m.angle_increment = r.f32();
-  r.f32();  // time_increment
-  r.f32();  // scan_time
-  m.range_min = r.f32();
-  m.range_max = r.f32();
-  m.ranges = r.floats();
-  r.floats();  // intensities
-  return m;
-}
-
-void decode_transforms(CdrReader& r, std::set<std::pair<std::string, std::string>>& seen,
-                       std::vector<BagTransform>& out) {
-  const std::uint32_t n = r.u32();
-  if (n > r.bytes_left()) throw eprosima::fastcdr::exception::NotEnoughMemoryException("transforms");
-  for (std::uint32_t i = 0; i < n; ++i) {
-    BagTransform t;
-    r.header(t.parent);
-    t.child = r.str();
-    t.pose = r.pose();
-    if (seen.emplace(t.parent, t.child).second) out.push_back(std::move(t));
-  }
-}
-
-// "nav_msgs/msg/Odometry" → "nav_msgs/Odometry".
-std::string ros1_type_name(std::string type) {
-  const auto at = type.find("/msg/");
-  if (at != std::string::npos) type.erase(at, 4);
-  return type;
-}
-
-std::string lowercase(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // The bag's database files: `path` itself if it is a .db3 file, else the folder's *.db3 files in
 // name order. Compressed and MCAP storage are refused by name.
 std::vector<std::filesystem::path> database_files(const std::filesystem::path& path) {
@@ -304,7 +137,7 @@ std::vector<std::filesystem::path> database_files(const std::filesystem::path& p
   std::vector<std::filesystem::path> files;
   bool mcap = false;
   for (const auto& e : std::filesystem::directory_iterator(path)) {
-    const std::string ext = lowercase(e.path().extension().string());
+    const std::string ext = ascii_lowercase(e.path().extension().string());
     if (ext == ".db3") files.push_back(e.path());
     if (ext == ".mcap") mcap = true;
   }
@@ -348,19 +181,11 @@ void add_topic_counts(const Database& db, const std::map<std::int64_t, TopicRow>
   }
 }
 
-void read_messages(const Database& db, const std::filesystem::path& file, const std::map<std::int64_t, TopicRow>& rows,
-                   BagMessages& out, std::map<std::string, std::size_t>& counts,
-                   std::set<std::pair<std::string, std::string>>& seen) {
-  const BagRoles& r = out.roles;
+void read_messages(const Database& db, const std::map<std::int64_t, TopicRow>& rows, Ros2MessageDecoder& decoder) {
   std::string ids;
   for (const auto& [id, row] : rows) {
-    const bool wanted = row.name == r.odom || row.name == r.truth || row.name == r.scan ||
-                        std::find(r.tf.begin(), r.tf.end(), row.name) != r.tf.end();
-    if (!wanted) continue;
-    if (lowercase(row.format) != "cdr") {
-      throw InputError(file.string(), 0,
-                       "topic " + row.name + ": serialization format \"" + row.format + "\" (expected cdr)");
-    }
+    if (!decoder.wants(row.name)) continue;
+    decoder.check_format(row.name, row.format);
     ids += (ids.empty() ? "" : ",") + std::to_string(id);
   }
   if (ids.empty()) return;
@@ -368,61 +193,12 @@ void read_messages(const Database& db, const std::filesystem::path& file, const 
               "SELECT topic_id, timestamp, data FROM messages WHERE topic_id IN (" + ids + ") ORDER BY timestamp, id");
   while (s.step()) {
     const TopicRow& row = rows.at(s.integer(0));
-    const std::size_t index = ++counts[row.name];
-    const BagStamp when{0.0, nanoseconds_to_seconds(s.integer(1)), index};
     const auto [data, size] = s.blob(2);
-    try {
-      if (row.name == r.odom) {
-        if (row.type != kOdometryType) {
-          throw InputError(file.string(), 0, "topic " + row.name + ": a " + row.type + ", expected " + kOdometryType);
-        }
-        CdrReader reader(data, size);
-        out.odom.push_back(decode_pose(reader, kOdometryType));
-        reader.expect_end();
-        out.odom.back().time = {out.odom.back().time.stamp, when.record_time, index};
-      }
-      if (row.name == r.truth) {
-        CdrReader reader(data, size);
-        out.truth.push_back(decode_pose(reader, row.type));
-        reader.expect_end();
-        out.truth.back().time = {out.truth.back().time.stamp, when.record_time, index};
-      }
-      if (row.name == r.scan) {
-        CdrReader reader(data, size);
-        out.scans.push_back(decode_scan(reader));
-        reader.expect_end();
-        out.scans.back().time = {out.scans.back().time.stamp, when.record_time, index};
-      }
-      if (std::find(r.tf.begin(), r.tf.end(), row.name) != r.tf.end()) {
-        CdrReader reader(data, size);
-        decode_transforms(reader, seen, out.transforms);
-        reader.expect_end();
-      }
-    } catch (const eprosima::fastcdr::exception::Exception& e) {
-      throw InputError(file.string(), 0,
-                       "topic " + row.name + ", message " + std::to_string(index) + ": not a CDR-serialized " +
-                           row.type + " (" + std::to_string(size) + " bytes: " + printable(e.what()) + ")");
-    }
+    decoder.add(row.name, row.type, s.integer(1), data, size);
   }
 }
 
 // ---- writing --------------------------------------------------------------------------------
-
-std::int64_t nanoseconds(double t) { return std::llround(t * 1e9); }
-
-struct Outgoing {
-  std::int64_t topic;
-  std::int64_t time;
-  std::string data;
-};
-
-template <class F>
-void add(std::vector<Outgoing>& out, std::int64_t topic, double time, F&& serialize) {
-  CdrWriter w;
-  serialize(w);
-  const auto [p, n] = w.bytes();
-  out.push_back({topic, nanoseconds(time), std::string(p, n)});
-}
 
 }  // namespace
 
@@ -439,9 +215,11 @@ BagMessages read_ros2_bag(const std::filesystem::path& path, const BagRoleChoose
   BagMessages out;
   for (auto& [name, t] : topics) out.topics.push_back(t);
   out.roles = choose(out.topics);
-  std::map<std::string, std::size_t> counts;
-  std::set<std::pair<std::string, std::string>> seen;
-  for (std::size_t i = 0; i < files.size(); ++i) read_messages(*dbs[i], files[i], rows[i], out, counts, seen);
+  Ros2MessageDecoder decoder(out, files.front());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    decoder.set_file(files[i]);
+    read_messages(*dbs[i], rows[i], decoder);
+  }
   return out;
 }
 
@@ -450,53 +228,9 @@ void write_ros2_bag(const BagContents& c, const std::filesystem::path& folder, c
   const std::string file_name = name + "_0.db3";
   const std::filesystem::path file = folder / file_name;
   std::filesystem::remove(file);
-  struct Topic {
-    const char* name;
-    const char* type;
-    std::size_t count;
-  };
-  const std::array<Topic, 4> topics{{{"/tf_static", "tf2_msgs/msg/TFMessage", c.static_transforms.empty() ? 0u : 1u},
-                                     {"/odom", "nav_msgs/msg/Odometry", c.odom.size()},
-                                     {"/ground_truth", "geometry_msgs/msg/PoseStamped", c.truth.size()},
-                                     {"/scan", "sensor_msgs/msg/LaserScan", c.scans.size()}}};
-  std::vector<Outgoing> messages;
-  if (!c.static_transforms.empty()) {
-    add(messages, 1, 0.0, [&](CdrWriter& w) {
-      w << static_cast<std::uint32_t>(c.static_transforms.size());
-      for (const BagTransform& t : c.static_transforms) {
-        w.header(0.0, t.parent);
-        w << t.child;
-        w.pose(t.pose);
-      }
-    });
-  }
-  for (const BagPoseMessage& m : c.odom) {
-    add(messages, 2, m.time.record_time, [&](CdrWriter& w) {
-      w.header(m.time.stamp, m.frame_id);
-      w << m.child_frame_id;
-      w.pose(m.pose);
-      w.zeros(36);
-      w << m.tv << 0.0 << 0.0 << 0.0 << 0.0 << m.rv;
-      w.zeros(36);
-    });
-  }
-  for (const BagPoseMessage& m : c.truth) {
-    add(messages, 3, m.time.record_time, [&](CdrWriter& w) {
-      w.header(m.time.stamp, m.frame_id);
-      w.pose(m.pose);
-    });
-  }
-  for (const BagScanMessage& m : c.scans) {
-    add(messages, 4, m.time.record_time, [&](CdrWriter& w) {
-      w.header(m.time.stamp, m.frame_id);
-      const double n = static_cast<double>(m.ranges.size());
-      w << static_cast<float>(m.angle_min) << static_cast<float>(m.angle_min + m.angle_increment * (n - 1))
-        << static_cast<float>(m.angle_increment) << 0.0F << 0.0F << static_cast<float>(m.range_min)
-        << static_cast<float>(m.range_max) << m.ranges << std::vector<float>{};
-    });
-  }
-  std::stable_sort(messages.begin(), messages.end(),
-                   [](const Outgoing& a, const Outgoing& b) { return a.time < b.time; });
+  const Ros2Serialized serialized = serialize_ros2(c);
+  const std::vector<Ros2Topic>& topics = serialized.topics;
+  const std::vector<Ros2Message>& messages = serialized.messages;
   {
     Database db(file, true);
     db.exec(
@@ -512,14 +246,14 @@ void write_ros2_bag(const BagContents& c, const std::filesystem::path& folder, c
     for (std::size_t i = 0; i < topics.size(); ++i) {
       if (topics[i].count == 0) continue;  // as a recorder: only topics that had messages
       topic.bind(1, static_cast<std::int64_t>(i + 1));
-      topic.bind(2, std::string(topics[i].name));
-      topic.bind(3, std::string(topics[i].type));
+      topic.bind(2, topics[i].name);
+      topic.bind(3, topics[i].type);
       topic.step();
       topic.reset();
     }
     Statement message(db, "INSERT INTO messages(topic_id,timestamp,data) VALUES(?,?,?)");
-    for (const Outgoing& m : messages) {
-      message.bind(1, m.topic);
+    for (const Ros2Message& m : messages) {
+      message.bind(1, static_cast<std::int64_t>(m.topic + 1));
       message.bind(2, m.time);
       message.bind_blob(3, m.data.data(), m.data.size());
       message.step();
@@ -533,7 +267,7 @@ void write_ros2_bag(const BagContents& c, const std::filesystem::path& folder, c
   yaml << "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
        << "  duration:\n    nanoseconds: " << t1 - t0 << "\n  starting_time:\n    nanoseconds_since_epoch: " << t0
        << "\n  message_count: " << messages.size() << "\n  topics_with_message_count:\n";
-  for (const Topic& t : topics) {
+  for (const Ros2Topic& t : topics) {
     if (t.count == 0) continue;
     yaml << "    - topic_metadata:\n        name: " << t.name << "\n        type: " << t.type
          << "\n        serialization_format: cdr\n        offered_qos_profiles: \"\"\n      message_count: " << t.count
