@@ -25,6 +25,7 @@ struct SimulateArgs {
   std::string truth_tum;
   std::string ros1_bag;
   std::string ros2_bag;
+  std::string mcap;
   bool print_scenario = false;
 };
 
@@ -45,10 +46,13 @@ int simulate(const SimulateArgs& args) {
     std::cout << sim::to_json(scenario).dump(2) << '\n';
     return kExitOk;
   }
-  if (args.out.empty() && args.ros1_bag.empty() && args.ros2_bag.empty()) {
-    throw UsageError("simulate: give the log to write with -o FILE (or --ros1-bag FILE, --ros2-bag FOLDER)");
+  if (args.out.empty() && args.ros1_bag.empty() && args.ros2_bag.empty() && args.mcap.empty()) {
+    throw UsageError(
+        "simulate: give the log to write with -o FILE (or --ros1-bag FILE, --ros2-bag FOLDER, --mcap FILE)");
   }
-  check_outputs({args.scenario}, {{"-o", args.out}, {"--truth-tum", args.truth_tum}, {"--ros1-bag", args.ros1_bag}});
+  check_outputs(
+      {args.scenario},
+      {{"-o", args.out}, {"--truth-tum", args.truth_tum}, {"--ros1-bag", args.ros1_bag}, {"--mcap", args.mcap}});
   if (!args.ros2_bag.empty() && std::filesystem::exists(args.ros2_bag)) {
     throw InputError(args.ros2_bag, 0, "exists already (expected a new folder for the ROS 2 bag)");
   }
@@ -56,6 +60,7 @@ int simulate(const SimulateArgs& args) {
   if (!args.out.empty()) write_carmen_log(result.log, args.out);
   if (!args.ros1_bag.empty()) io::write_bag_log(result.log, args.ros1_bag, io::BagFormat::kRos1);
   if (!args.ros2_bag.empty()) io::write_bag_log(result.log, args.ros2_bag, io::BagFormat::kRos2);
+  if (!args.mcap.empty()) io::write_bag_log(result.log, args.mcap, io::BagFormat::kMcap);
   if (!args.truth_tum.empty()) {
     const Trajectory truth = sim::true_trajectory(result);
     write_tum(truth, args.truth_tum);
@@ -64,9 +69,12 @@ int simulate(const SimulateArgs& args) {
   std::cerr << fmt::format(
       "wrote {}: scenario {}, seed {}, {:.1f} s, {} ENCODER, {} ODOM, {} COMPASS, {} FLASER, {} "
       "TRUEPOS, {} true slip events\n",
-      args.out.empty() ? (args.ros1_bag.empty() ? args.ros2_bag : args.ros1_bag) : args.out, scenario.name, args.seed,
-      t1 - t0, result.log.encoders.size(), result.log.odometry.size(), result.log.compass.size(),
-      result.log.laser.size(), result.log.truth.size(), result.slips.size());
+      !args.out.empty()        ? args.out
+      : !args.ros1_bag.empty() ? args.ros1_bag
+      : !args.ros2_bag.empty() ? args.ros2_bag
+                               : args.mcap,
+      scenario.name, args.seed, t1 - t0, result.log.encoders.size(), result.log.odometry.size(),
+      result.log.compass.size(), result.log.laser.size(), result.log.truth.size(), result.slips.size());
   return kExitOk;
 }
 
@@ -83,6 +91,8 @@ Action add_simulate_command(CLI::App& app) {
   cmd->add_option("--ros1-bag", args->ros1_bag,
                   "Also write the log as a ROS 1 bag: /odom, /ground_truth, /scan, /tf_static (no ENCODER, COMPASS)");
   cmd->add_option("--ros2-bag", args->ros2_bag, "Also write the log as a ROS 2 sqlite3 bag folder (the same topics)");
+  cmd->add_option("--mcap", args->mcap,
+                  "Also write the log as a ROS 2 bag in one MCAP file, zstd chunks (the same topics)");
   cmd->add_flag("--print-scenario", args->print_scenario,
                 "Print the scenario's full JSON (every option with its value) and exit");
   return [args = args] { return simulate(*args); };

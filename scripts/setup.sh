@@ -28,6 +28,7 @@ packages=(
   libbz2-dev libroslz4-dev   # ROS 1 bags: compressed chunks (datasets/io/ros1_bag_records.cpp)
   libnav-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev libtf2-msgs-dev   # ROS 1 messages (roscpp serialization)
   libfastcdr-dev libsqlite3-dev   # ROS 2 bags (datasets/io/ros2_bag.cpp): CDR messages in sqlite3 storage
+  libzstd-dev liblz4-dev     # ROS 2 bags in MCAP storage (datasets/io/mcap_bag.cpp): compressed chunks
 )
 
 missing=()

@@ -64,15 +64,20 @@ constexpr const char* kChoose =
 std::optional<BagFormat> bag_format(const std::filesystem::path& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
-    if (std::filesystem::exists(path / "metadata.yaml", ec)) return BagFormat::kRos2;
+    bool metadata = std::filesystem::exists(path / "metadata.yaml", ec), sqlite = false, mcap = false;
     for (const auto& e : std::filesystem::directory_iterator(path, ec)) {
-      if (ascii_lowercase(e.path().extension().string()) == ".db3") return BagFormat::kRos2;
+      const std::string name = ascii_lowercase(e.path().filename().string());
+      sqlite = sqlite || name.ends_with(".db3");
+      mcap = mcap || name.ends_with(".mcap") || name.ends_with(".mcap.zstd") || name.ends_with(".mcap.lz4");
     }
+    if (mcap && !sqlite) return BagFormat::kMcap;
+    if (metadata || sqlite) return BagFormat::kRos2;
     return std::nullopt;
   }
   const std::string ext = ascii_lowercase(path.extension().string());
   if (ext == ".bag") return BagFormat::kRos1;
   if (ext == ".db3") return BagFormat::kRos2;
+  if (ext == ".mcap") return BagFormat::kMcap;
   return std::nullopt;
 }
 
@@ -168,7 +173,12 @@ BagMessages read_bag(const BagSpec& spec, bool need_odometry) {
   const BagRoleChooser choose = [&](const std::vector<BagTopic>& topics) {
     return choose_roles(spec, topics, need_odometry);
   };
-  return spec.format == BagFormat::kRos1 ? read_ros1_bag(spec.path, choose) : read_ros2_bag(spec.path, choose);
+  switch (spec.format) {
+    case BagFormat::kRos1: return read_ros1_bag(spec.path, choose);
+    case BagFormat::kRos2: return read_ros2_bag(spec.path, choose);
+    case BagFormat::kMcap: return read_mcap_bag(spec.path, choose);
+  }
+  throw std::logic_error("read_bag: unknown format");
 }
 
 // ---- time -----------------------------------------------------------------------------------
@@ -388,7 +398,9 @@ Log read_bag_log(const BagSpec& spec) {
 BagDescription describe_bag(const BagSpec& spec) {
   const BagMessages m = read_bag(spec, false);
   BagDescription out;
-  out.format = spec.format == BagFormat::kRos1 ? "ROS 1 bag" : "ROS 2 bag (sqlite3)";
+  out.format = spec.format == BagFormat::kRos1   ? "ROS 1 bag"
+               : spec.format == BagFormat::kRos2 ? "ROS 2 bag (sqlite3)"
+                                                 : "ROS 2 bag (MCAP)";
   for (const BagTopic& t : m.topics) {
     BagTopicUse u;
     u.topic = t;
@@ -478,6 +490,8 @@ void write_bag_log(const Log& log, const std::filesystem::path& target, BagForma
   std::filesystem::remove_all(partial, ec);
   if (format == BagFormat::kRos1) {
     write_ros1_bag(bag_contents(log), partial);
+  } else if (format == BagFormat::kMcap) {
+    write_mcap_bag(bag_contents(log), partial);
   } else {
     if (std::filesystem::exists(path, ec)) {
       throw InputError(path.string(), 0, "exists already (expected a new folder for the ROS 2 bag)");

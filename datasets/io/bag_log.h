@@ -1,6 +1,7 @@
 #pragma once
-// ROS bags as logs: a ROS 1 bag (*.bag) or a ROS 2 sqlite3 bag (a folder with metadata.yaml and
-// *.db3 files, or one .db3 file), with the topics chosen by name after a '#':
+// ROS bags as logs: a ROS 1 bag (*.bag), a ROS 2 sqlite3 bag (a folder with metadata.yaml and
+// *.db3 files, or one .db3 file) or a ROS 2 MCAP bag (one *.mcap file, or a folder of them), with
+// the topics chosen by name after a '#':
 //   run.bag#odom=/wheel_odom,truth=/vicon/robot/pose,scan=/base_scan,base=base_footprint,laser=laser
 // Without a choice each role takes the first of its default topics present (kDefault…Topics);
 // "none" turns a role off. The header stamps are used, not the record times.
@@ -22,7 +23,7 @@ inline constexpr const char* kDefaultTruthTopics[] = {"/ground_truth",       "/b
 inline constexpr const char* kDefaultScanTopics[] = {"/scan", "/base_scan"};
 inline constexpr const char* kTfTopics[] = {"/tf_static", "/tf"};
 
-enum class BagFormat { kRos1, kRos2 };
+enum class BagFormat { kRos1, kRos2, kMcap };  // kRos2: sqlite3 storage; kMcap: ROS 2 in MCAP
 
 // A bag spec taken apart: the file or folder, and the choices after '#'.
 struct BagSpec {
@@ -36,8 +37,8 @@ struct BagSpec {
 // The path a log spec names: `spec` without a "#robotN" or "#odom=…" suffix.
 std::string log_spec_path(const std::string& spec);
 
-// The spec as a bag, or nullopt if the path is not a bag (not *.bag, *.db3, nor a folder with
-// metadata.yaml or *.db3). Throws InputError for a bag whose '#' part is not key=value,… with
+// The spec as a bag, or nullopt if the path is not a bag (not *.bag, *.db3, *.mcap, nor a folder
+// with metadata.yaml, *.db3 or *.mcap). Throws InputError for a bag whose '#' part is not key=value,… with
 // the keys odom, truth, scan, base, laser.
 std::optional<BagSpec> parse_bag_spec(const std::string& spec);
 
@@ -55,7 +56,7 @@ struct BagTopicUse {
   double rate = 0.0;  // messages per second of record time (0 with fewer than 2)
 };
 struct BagDescription {
-  std::string format;  // "ROS 1 bag" or "ROS 2 bag (sqlite3)"
+  std::string format;  // "ROS 1 bag", "ROS 2 bag (sqlite3)" or "ROS 2 bag (MCAP)"
   std::vector<BagTopicUse> topics;
   std::vector<std::string> notes;  // stamps against record times, the laser mount, missing roles
 };
@@ -67,7 +68,8 @@ BagDescription describe_bag(const BagSpec& spec);
 // records and a nominal model but no ODOM gets /odom by dead reckoning, as a ROS robot publishes it.
 BagContents bag_contents(const Log& log);
 
-// Writes a Log's ODOM, TRUEPOS and FLASER records as a ROS 1 bag file or a ROS 2 bag folder
+// Writes a Log's ODOM, TRUEPOS and FLASER records as a ROS 1 bag file, a ROS 2 bag folder or an
+// MCAP file (zstd chunks)
 // (ENCODER, COMPASS and PARAM records have no topic yet and are left out). Written beside the
 // target and renamed into place; a ROS 2 folder that exists already is refused (InputError).
 void write_bag_log(const Log& log, const std::filesystem::path& path, BagFormat format);

@@ -121,6 +121,8 @@ PlanarPose planar_pose(double x, double y, double qx, double qy, double qz, doub
 BagMessages read_ros1_bag(const std::filesystem::path& path, const BagRoleChooser& choose);
 // The ROS 2 sqlite3 reader and writer (ros2_bag.cpp): `path` is the bag folder or one .db3 file.
 BagMessages read_ros2_bag(const std::filesystem::path& path, const BagRoleChooser& choose);
+// The ROS 2 MCAP reader and writer (mcap_bag.cpp): `path` is one .mcap file or a bag folder of them.
+BagMessages read_mcap_bag(const std::filesystem::path& path, const BagRoleChooser& choose);
 
 // What a writer puts in a bag, on the default topics /odom, /ground_truth, /scan, /tf_static.
 struct BagContents {
@@ -134,5 +136,9 @@ void write_ros1_bag(const BagContents& contents, const std::filesystem::path& pa
                     const std::string& compression = "none");
 // Writes folder/metadata.yaml and folder/<name>_0.db3 (CDR, little-endian), as `ros2 bag record -o name`.
 void write_ros2_bag(const BagContents& contents, const std::filesystem::path& folder, const std::string& name);
+// Writes one .mcap file (profile ros2, CDR messages); compression of its chunks: "zstd" (what
+// `ros2 bag record -s mcap` and the mcap CLI write), "lz4" or "none".
+void write_mcap_bag(const BagContents& contents, const std::filesystem::path& path,
+                    const std::string& compression = "zstd");
 
 }  // namespace locbench::io

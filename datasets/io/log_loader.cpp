@@ -19,7 +19,8 @@ namespace {
 constexpr const char* kAccepted =
     "accepted: a CARMEN log (.clf, .log or .carmen, optionally .gz), a relations file "
     "(.relations or .relations.gz), an MRCLAM dataset folder with an optional #robotN suffix, a ROS 1 bag (.bag) or "
-    "a ROS 2 sqlite3 bag (a folder with metadata.yaml and .db3 files), topics chosen by #odom=…,truth=…,scan=…";
+    "a ROS 2 bag (a folder with metadata.yaml and .db3 or .mcap files, or one .db3 or .mcap file), topics chosen by "
+    "#odom=…,truth=…,scan=…";
 
 // The extension that names the format: ".clf" for "aces.clf.gz".
 std::string format_extension(const std::filesystem::path& path) {

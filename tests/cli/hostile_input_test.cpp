@@ -58,11 +58,13 @@ const std::string kShortLog =
     file("short.json",
          R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1.0}, "laser": {"enabled": true}})") +
     "{exe} simulate '{d}/short.json' --seed 3 -o '{d}/l.clf' >/dev/null 2>&1\n";
-// The same run as a ROS 1 bag (l.bag) and a ROS 2 bag (folder l2) with /odom, /ground_truth, /scan.
+// The same run as a ROS 1 bag (l.bag), a ROS 2 bag (folder l2) and an MCAP file (l.mcap) with /odom,
+// /ground_truth, /scan.
 const std::string kShortBags =
     file("b.json", R"({"preset": "corridor", "motion": {"kind": "straight", "distance": 1.0},
                       "odometry": {"enabled": true}, "laser": {"enabled": true}})") +
-    "{exe} simulate '{d}/b.json' --seed 3 --ros1-bag '{d}/l.bag' --ros2-bag '{d}/l2' >/dev/null 2>&1\n";
+    "{exe} simulate '{d}/b.json' --seed 3 --ros1-bag '{d}/l.bag' --ros2-bag '{d}/l2' --mcap '{d}/l.mcap' >/dev/null "
+    "2>&1\n";
 // A valid report (classic UMBmark on the example data).
 const std::string kReport =
     "{exe} calibrate umbmark-classic '{src}/examples/umbmark_trilobot.json' --report '{d}/r.json' >/dev/null 2>&1\n";
@@ -1092,8 +1094,13 @@ const std::vector<HostileCase>& cases() {
        "l2_0.db3: reading the bag: database disk image is malformed"},
       {"ros2_bag_wrong_message_type", kShortBags, "list '{d}/l2#truth=/scan'", 2,
        "l2: topic /scan (#truth=) is a sensor_msgs/LaserScan, expected geometry_msgs/PoseStamped or"},
-      {"ros2_bag_mcap", "mkdir '{d}/m' && touch '{d}/m/metadata.yaml' '{d}/m/m_0.mcap'", "diagnose {d}/m", 2,
-       "m: a ROS 2 bag in MCAP storage: not read yet"},
+      {"ros2_bag_mcap_empty_file", "mkdir '{d}/m' && touch '{d}/m/metadata.yaml' '{d}/m/m_0.mcap'", "diagnose {d}/m", 2,
+       "m_0.mcap: opening:"},
+      {"mcap_truncated", kShortBags + "truncate -s 3000 '{d}/l.mcap'", "diagnose {d}/l.mcap", 2, "l.mcap: reading its"},
+      {"mcap_wrong_message_type", kShortBags, "list '{d}/l.mcap#truth=/scan'", 2,
+       "l.mcap: topic /scan (#truth=) is a sensor_msgs/LaserScan, expected geometry_msgs/PoseStamped or"},
+      {"mcap_file_compressed", "mkdir '{d}/z' && touch '{d}/z/metadata.yaml' '{d}/z/z_0.mcap.zstd'", "diagnose {d}/z",
+       2, "z_0.mcap.zstd: a ROS 2 bag compressed file by file: not read"},
   };
   return all;
 }

@@ -18,7 +18,7 @@ using testing::run_locbench;
 using testing::run_shell;
 using testing::ScratchDir;
 
-// A corridor run as a CARMEN log, a ROS 1 bag and a ROS 2 bag, and same.clf: the CARMEN log
+// A corridor run as a CARMEN log, a ROS 1 bag, a ROS 2 bag and an MCAP file, and same.clf: the CARMEN log
 // without what a bag does not hold (ENCODER, COMPASS and PARAM records).
 class RosBagCli : public ::testing::Test {
  protected:
@@ -26,7 +26,7 @@ class RosBagCli : public ::testing::Test {
     std::ofstream(dir_.path() / "s.json")
         << R"({"preset": "corridor", "odometry": {"enabled": true}, "laser": {"enabled": true}})";
     const Outcome o = run_locbench("simulate " + path("s.json") + " --seed 7 -o " + path("run.clf") + " --ros1-bag " +
-                                   path("run.bag") + " --ros2-bag " + path("run2"));
+                                   path("run.bag") + " --ros2-bag " + path("run2") + " --mcap " + path("run.mcap"));
     ASSERT_EQ(o.exit_code, 0) << o.output;
     ASSERT_EQ(
         run_shell("grep -v '^ENCODER\\|^COMPASS\\|^PARAM' " + path("run.clf") + " > " + path("same.clf")).exit_code, 0);
@@ -45,7 +45,7 @@ class RosBagCli : public ::testing::Test {
 };
 
 TEST_F(RosBagCli, ListPrintsEachTopicWithTypeCountRateAndUse) {
-  for (const std::string bag : {"run.bag", "run2"}) {
+  for (const std::string bag : {"run.bag", "run2", "run.mcap"}) {
     const Outcome o = run_locbench("list " + path(bag));
     ASSERT_EQ(o.exit_code, 0) << o.output;
     for (const std::string line :
@@ -70,11 +70,15 @@ TEST_F(RosBagCli, DiagnoseOnABagEqualsDiagnoseOnTheSameRecordsAsCarmen) {
   EXPECT_NE(carmen.find("verdict:"), std::string::npos) << carmen;
   EXPECT_EQ(output_of("diagnose " + path("run.bag"), path("run.bag")), carmen);
   EXPECT_EQ(output_of("diagnose " + path("run2"), path("run2")), carmen);
+  EXPECT_EQ(output_of("diagnose " + path("run.mcap"), path("run.mcap")), carmen);
 }
 
 TEST_F(RosBagCli, ARealDataExperimentOnABagEqualsItOnTheSameRecordsAsCarmen) {
   // The dataset is named after its file (same.clf, same.bag and a folder same are all "same").
-  ASSERT_EQ(run_shell("cd " + path("") + " && mkdir b f && cp run.bag b/same.bag && cp -r run2 f/same").exit_code, 0);
+  ASSERT_EQ(run_shell("cd " + path("") +
+                      " && mkdir b f m && cp run.bag b/same.bag && cp -r run2 f/same && cp run.mcap m/same.mcap")
+                .exit_code,
+            0);
   const auto run = [&](const std::string& log) {
     return output_of("run diagnosis/real_logs --log " + path(log) + " -o " + path("out"), path(log));
   };
@@ -82,6 +86,7 @@ TEST_F(RosBagCli, ARealDataExperimentOnABagEqualsItOnTheSameRecordsAsCarmen) {
   EXPECT_NE(carmen.find("diagnose/same/causes_detected"), std::string::npos) << carmen;
   EXPECT_EQ(run("b/same.bag"), carmen);
   EXPECT_EQ(run("f/same"), carmen);
+  EXPECT_EQ(run("m/same.mcap"), carmen);
 }
 
 TEST(RosBagCatalogCli, DiagnoseOnTheAcesLogAsABagEqualsDiagnoseOnTheCatalogLog) {

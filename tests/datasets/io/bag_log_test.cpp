@@ -1,4 +1,4 @@
-// ROS bags as logs: a simulated log written as a ROS 1 or ROS 2 bag and read back is the same
+// ROS bags as logs: a simulated log written as a ROS 1 or ROS 2 bag (sqlite3 or MCAP) and read back is the same
 // log; topics are chosen by name; a bag that is not what it should be is an InputError naming
 // the file, the topic and the message.
 #include "datasets/io/bag_log.h"
@@ -99,6 +99,31 @@ TEST(RosBag, Ros2BagOfASimulatedLogReadsBackAsTheSameLog) {
   expect_same_log(load_log((dir.file("run2") / "run2_0.db3").string()), original);
 }
 
+TEST(RosBag, McapBagOfASimulatedLogReadsBackAsTheSameLog) {
+  ScratchDir dir;
+  const Log original = simulated_log();
+  write_bag_log(original, dir.file("run.mcap"), BagFormat::kMcap);
+  expect_same_log(load_log(dir.file("run.mcap").string()), original);
+  // Chunks compressed with zstd (the default), lz4 or not at all; a ROS 2 bag folder of .mcap files.
+  for (const std::string compression : {"zstd", "lz4", "none"}) {
+    const std::filesystem::path folder = dir.file(compression);
+    std::filesystem::create_directories(folder);
+    std::ofstream(folder / "metadata.yaml") << "rosbag2_bagfile_information:\n  storage_identifier: mcap\n";
+    write_mcap_bag(bag_contents(original), folder / (compression + "_0.mcap"), compression);
+    expect_same_log(load_log(folder.string()), original);
+  }
+  EXPECT_LT(std::filesystem::file_size(dir.file("zstd") / "zstd_0.mcap"),
+            std::filesystem::file_size(dir.file("none") / "none_0.mcap"));
+}
+
+TEST(RosBag, AMcapBagReadsAsTheSameLogAsTheSqliteBagOfTheSameMessages) {
+  ScratchDir dir;
+  const Log original = simulated_log();
+  write_bag_log(original, dir.file("a.mcap"), BagFormat::kMcap);
+  write_bag_log(original, dir.file("a"), BagFormat::kRos2);
+  expect_same_log(load_log(dir.file("a.mcap").string()), load_log(dir.file("a").string()));
+}
+
 TEST(RosBag, CompressedRos1BagsReadBackAsTheSameLog) {
   ScratchDir dir;
   const Log original = simulated_log();
@@ -127,8 +152,8 @@ TEST(RosBag, ACompressedChunkThatLiesAboutItsSizeIsRefused) {
 TEST(RosBag, TopicsAreChosenByNameAfterTheHash) {
   ScratchDir dir;
   const Log original = simulated_log();
-  for (const BagFormat f : {BagFormat::kRos1, BagFormat::kRos2}) {
-    const std::string bag = dir.file(f == BagFormat::kRos1 ? "a.bag" : "a").string();
+  for (const BagFormat f : {BagFormat::kRos1, BagFormat::kRos2, BagFormat::kMcap}) {
+    const std::string bag = dir.file(f == BagFormat::kRos1 ? "a.bag" : f == BagFormat::kRos2 ? "a" : "a.mcap").string();
     write_bag_log(original, bag, f);
     // Odometry as the truth (a nav_msgs/Odometry truth topic), no scans, no leading slash needed.
     const Log log = load_log(bag + "#truth=odom,scan=none");
@@ -258,7 +283,8 @@ TEST(RosBag, AWrongMessageTypeOnTheChosenTopicIsRefused) {
   const Log original = simulated_log();
   write_bag_log(original, dir.file("a.bag"), BagFormat::kRos1);
   write_bag_log(original, dir.file("b"), BagFormat::kRos2);
-  for (const std::string bag : {"a.bag", "b"}) {
+  write_bag_log(original, dir.file("c.mcap"), BagFormat::kMcap);
+  for (const std::string bag : {"a.bag", "b", "c.mcap"}) {
     EXPECT_TRUE(throws_input_error([&] { load_log(dir.file(bag).string() + "#odom=/scan"); }, bag, 0,
                                    {"topic /scan (#odom=) is a sensor_msgs/LaserScan, expected nav_msgs/Odometry"}));
   }
@@ -281,11 +307,17 @@ TEST(RosBag, TruncatedBagsAreInputErrors) {
   const Log original = simulated_log();
   write_bag_log(original, dir.file("a.bag"), BagFormat::kRos1);
   write_bag_log(original, dir.file("b"), BagFormat::kRos2);
+  write_bag_log(original, dir.file("c.mcap"), BagFormat::kMcap);
+  const auto mcap_size = std::filesystem::file_size(dir.file("c.mcap"));
   for (const auto& [file, keep] :
        std::vector<std::pair<std::filesystem::path, std::uintmax_t>>{{dir.file("a.bag"), 5000},
                                                                      {dir.file("a.bag"), 13},
                                                                      {dir.file("b") / "b_0.db3", 9000},
-                                                                     {dir.file("b") / "b_0.db3", 100}}) {
+                                                                     {dir.file("b") / "b_0.db3", 100},
+                                                                     {dir.file("c.mcap"), mcap_size / 2},
+                                                                     {dir.file("c.mcap"), mcap_size - 1},
+                                                                     {dir.file("c.mcap"), 100},
+                                                                     {dir.file("c.mcap"), 5}}) {
     const std::filesystem::path copy = dir.file("t") / std::to_string(keep) / file.filename();
     std::filesystem::create_directories(copy.parent_path());
     std::filesystem::copy_file(file, copy);
@@ -305,6 +337,7 @@ TEST(RosBag, RandomlyCorruptedBagsReadOrAreInputErrorsNamingTheBag) {
   c.truth = c.odom;
   write_ros1_bag(c, dir.file("a.bag"));
   write_ros2_bag(c, dir.file("b"), "b");
+  write_mcap_bag(c, dir.file("c.mcap"), "none");  // uncompressed: the mutations reach the messages too
   const auto read_bytes = [](const std::filesystem::path& f) {
     std::ifstream in(f, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), {});
@@ -312,8 +345,10 @@ TEST(RosBag, RandomlyCorruptedBagsReadOrAreInputErrorsNamingTheBag) {
   Rng rng(26);
   const auto pick = [&](std::size_t n) { return std::min(n - 1, static_cast<std::size_t>(rng.uniform() * n)); };
   int read = 0, refused = 0;
-  for (const auto& [file, name, mutants] : std::vector<std::tuple<std::filesystem::path, std::string, int>>{
-           {dir.file("a.bag"), "m.bag", 300}, {dir.file("b") / "b_0.db3", "m.db3", 100}}) {
+  for (const auto& [file, name, mutants] :
+       std::vector<std::tuple<std::filesystem::path, std::string, int>>{{dir.file("a.bag"), "m.bag", 300},
+                                                                        {dir.file("b") / "b_0.db3", "m.db3", 100},
+                                                                        {dir.file("c.mcap"), "m.mcap", 100}}) {
     const std::string original = read_bytes(file);
     ASSERT_GT(original.size(), 100u);
     for (int k = 0; k < mutants; ++k) {
@@ -342,7 +377,8 @@ TEST(RosBag, StampsOutOfOrderAreRefusedNamingTheMessage) {
   std::swap(c.odom[3].time.stamp, c.odom[4].time.stamp);  // recorded in order, stamped out of order
   write_ros1_bag(c, dir.file("a.bag"));
   write_ros2_bag(c, dir.file("b"), "b");
-  for (const std::string bag : {"a.bag", "b"}) {
+  write_mcap_bag(c, dir.file("c.mcap"));
+  for (const std::string bag : {"a.bag", "b", "c.mcap"}) {
     EXPECT_TRUE(throws_input_error([&] { load_log(dir.file(bag).string()); }, bag, 0,
                                    {"topic /odom, message 5: header stamp", "expected stamps in time order"}));
   }
@@ -357,17 +393,55 @@ TEST(RosBag, ABadTopicChoiceIsRefusedWithTheAcceptedKeys) {
       throws_input_error([&] { load_log(dir.file("a.bag").string() + "#odom="); }, "a.bag#odom=", 0, {"no value"}));
 }
 
-TEST(RosBag, CompressedAndMcapRos2BagsAreRefusedByName) {
+TEST(RosBag, FileCompressedRos2BagsAreRefusedByNameAndAFileThatIsNotMcapIsAnInputError) {
   ScratchDir dir;
   std::filesystem::create_directories(dir.file("z"));
   std::ofstream(dir.file("z") / "metadata.yaml") << "rosbag2_bagfile_information:\n  compression_format: zstd\n";
   std::ofstream(dir.file("z") / "z_0.db3.zstd") << "x";
   EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("z").string()); }, "metadata.yaml", 2,
                                  {"compressed ROS 2 bags are not read"}));
+  std::filesystem::create_directories(dir.file("y"));
+  std::ofstream(dir.file("y") / "metadata.yaml") << "rosbag2_bagfile_information:\n  storage_identifier: mcap\n";
+  std::ofstream(dir.file("y") / "y_0.mcap.zstd") << "x";
+  EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("y").string()); }, "y_0.mcap.zstd", 0,
+                                 {"compressed file by file: not read"}));
   std::filesystem::create_directories(dir.file("m"));
   std::ofstream(dir.file("m") / "metadata.yaml") << "rosbag2_bagfile_information:\n  storage_identifier: mcap\n";
   std::ofstream(dir.file("m") / "m_0.mcap") << "x";
-  EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("m").string()); }, "m", 0, {"MCAP storage: not read yet"}));
+  EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("m").string()); }, "m_0.mcap", 0,
+                                 {"expected an MCAP file of ROS 2 messages"}));
+}
+
+// An MCAP chunk record: opcode 0x06, then its length, message start and end times, and the
+// uncompressed size (little-endian uint64s) this test raises by 1000. A compressed chunk then
+// does not decompress to what it claims; an uncompressed one is read by its records' own length,
+// and the log is the same.
+TEST(RosBag, AnMcapChunkThatLiesAboutItsSizeIsRefused) {
+  ScratchDir dir;
+  const Log original = simulated_log();
+  for (const std::string compression : {"zstd", "lz4", "none"}) {
+    write_mcap_bag(bag_contents(original), dir.file("a.mcap"), compression);
+    std::string bytes = testing::read_bytes(dir.file("a.mcap"));
+    std::size_t at = 8;  // after the magic
+    while (at + 9 <= bytes.size() && bytes[at] != 0x06) {
+      std::uint64_t length = 0;
+      std::memcpy(&length, bytes.data() + at + 1, 8);
+      at += 9 + length;
+    }
+    ASSERT_LT(at + 33, bytes.size()) << "a chunk record";
+    std::uint64_t size = 0;
+    std::memcpy(&size, bytes.data() + at + 25, 8);
+    size += 1000;
+    std::memcpy(bytes.data() + at + 25, &size, 8);
+    testing::write_bytes(dir.file("lie.mcap"), bytes);
+    if (compression == "none") {
+      expect_same_log(load_log(dir.file("lie.mcap").string()), original);
+    } else {
+      EXPECT_TRUE(
+          throws_input_error([&] { load_log(dir.file("lie.mcap").string()); }, "lie.mcap", 0, {"reading its messages"}))
+          << compression;
+    }
+  }
 }
 
 }  // namespace
