@@ -7,6 +7,8 @@
 #include <mcap/writer.hpp>
 
 #include <algorithm>
+#include <cstring>
+#include <fstream>
 #include <map>
 #include <optional>
 #include <string>
@@ -44,6 +46,16 @@ class McapFile {
  public:
   explicit McapFile(std::filesystem::path path) : path_(std::move(path)) {
     check(reader_.open(path_.string()), "opening");
+    // A file cut short (a recorder killed) lacks the closing magic; the library would read the
+    // messages before the cut and say nothing.
+    std::ifstream in(path_, std::ios::binary);
+    char tail[sizeof(mcap::Magic)] = {};
+    in.seekg(-static_cast<std::streamoff>(sizeof(tail)), std::ios::end);
+    if (!in.read(tail, sizeof(tail)) || std::memcmp(tail, mcap::Magic, sizeof(tail)) != 0) {
+      throw InputError(path_.string(), 0,
+                       "does not end with MCAP's closing magic bytes: cut short (a recording that did not finish?) "
+                       "or followed by other data (expected a complete MCAP file)");
+    }
     check(reader_.readSummary(mcap::ReadSummaryMethod::AllowFallbackScan, [&](const mcap::Status& s) { note(s); }),
           "reading its summary");
     rethrow("reading its summary");
@@ -52,12 +64,19 @@ class McapFile {
   McapFile(const McapFile&) = delete;
   McapFile& operator=(const McapFile&) = delete;
 
-  // Calls f(topic, type, log time [ns], data, size) for each message, in log-time order, of the
-  // topics `wanted` accepts.
+  // Calls f(topic, type, log time [ns], data, size) for each message of the topics `wanted`
+  // accepts.
   template <class Wanted, class F>
   void for_each_message(Wanted&& wanted, F&& f) {
     mcap::ReadMessageOptions options;
-    options.readOrder = mcap::ReadMessageOptions::ReadOrder::LogTimeOrder;
+    // In log-time order where the summary indexes the chunks; else (no summary: a file cut short,
+    // or written without one) in file order, which the stamps' order check then judges.
+    const auto& chunks = reader_.chunkIndexes();
+    const bool indexed = !chunks.empty() && std::all_of(chunks.begin(), chunks.end(), [](const mcap::ChunkIndex& c) {
+      return !c.messageIndexOffsets.empty();
+    });
+    options.readOrder =
+        indexed ? mcap::ReadMessageOptions::ReadOrder::LogTimeOrder : mcap::ReadMessageOptions::ReadOrder::FileOrder;
     options.topicFilter = [&](std::string_view topic) { return wanted(std::string(topic)); };
     const auto on_problem = [&](const mcap::Status& s) { note(s); };
     for (const mcap::MessageView& m : reader_.readMessages(on_problem, options)) {
@@ -81,6 +100,9 @@ class McapFile {
     const auto& stats = reader_.statistics();
     const auto& chunks = reader_.chunkIndexes();
     if (!stats || chunks.empty() || reader_.dataSource() == nullptr) return false;
+    for (const mcap::ChunkIndex& chunk : chunks) {
+      if (chunk.messageIndexOffsets.empty()) return false;  // a summary made by scanning the chunks
+    }
     const auto channels = reader_.channels();
     std::uint64_t indexed = 0;
     for (const mcap::ChunkIndex& chunk : chunks) {
