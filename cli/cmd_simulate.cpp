@@ -88,8 +88,9 @@ Action add_simulate_command(CLI::App& app) {
   add_seed_option(cmd, args->seed, "Seed of every noise source")->capture_default_str();
   cmd->add_option("-o,--out", args->out, "Log file to write (.clf or .clf.gz)");
   cmd->add_option("--truth-tum", args->truth_tum, "Also write the true trajectory in TUM format");
-  cmd->add_option("--ros1-bag", args->ros1_bag,
-                  "Also write the log as a ROS 1 bag: /odom, /ground_truth, /scan, /tf_static (no ENCODER, COMPASS)");
+  cmd->add_option(
+      "--ros1-bag", args->ros1_bag,
+      "Also write the log as a ROS 1 bag: /odom, /ground_truth, /scan, /imu (COMPASS), /tf_static (no ENCODER)");
   cmd->add_option("--ros2-bag", args->ros2_bag, "Also write the log as a ROS 2 sqlite3 bag folder (the same topics)");
   cmd->add_option("--mcap", args->mcap,
                   "Also write the log as a ROS 2 bag in one MCAP file, zstd chunks (the same topics)");

@@ -59,7 +59,8 @@ Pose2 pose2(const PlanarPose& p) { return {p.x, p.y, p.yaw}; }
 PlanarPose planar(const Pose2& p) { return {p.x, p.y, p.theta}; }
 
 constexpr const char* kChoose =
-    "choose topics with LOG#odom=TOPIC,truth=TOPIC,scan=TOPIC (none: off; base=FRAME,laser=FRAME for the mount)";
+    "choose topics with LOG#odom=TOPIC,truth=TOPIC,scan=TOPIC,heading=TOPIC (none: off; base=FRAME,laser=FRAME for "
+    "the mount)";
 
 std::optional<BagFormat> bag_format(const std::filesystem::path& path) {
   std::error_code ec;
@@ -147,7 +148,8 @@ std::vector<Role> roles_of(const BagSpec& spec) {
            &spec.truth,
            list(kDefaultTruthTopics),
            {kPoseStampedType, kOdometryType, kPoseWithCovarianceStampedType, kTransformStampedType}},
-          {"scan", "laser scans", &spec.scan, list(kDefaultScanTopics), {kLaserScanType}}};
+          {"scan", "laser scans", &spec.scan, list(kDefaultScanTopics), {kLaserScanType}},
+          {"heading", "heading", &spec.heading, list(kDefaultHeadingTopics), {kImuType}}};
 }
 
 BagRoles choose_roles(const BagSpec& spec, const std::vector<BagTopic>& topics, bool need_odometry) {
@@ -157,6 +159,7 @@ BagRoles choose_roles(const BagSpec& spec, const std::vector<BagTopic>& topics, 
   out.odom = choose_role(roles[0], topics, file);
   out.truth = choose_role(roles[1], topics, file);
   out.scan = choose_role(roles[2], topics, file);
+  out.heading = choose_role(roles[3], topics, file);
   if (need_odometry && out.odom.empty()) {
     throw InputError(file, 0,
                      fmt::format("no odometry topic: none of {} is in the bag ({}); {}", joined(roles[0].defaults),
@@ -288,6 +291,7 @@ std::string role_name(const BagRoles& r, const std::string& topic) {
   if (topic == r.odom) roles.push_back("odometry (ODOM)");
   if (topic == r.truth) roles.push_back("truth (TRUEPOS)");
   if (topic == r.scan) roles.push_back("scan (FLASER)");
+  if (topic == r.heading) roles.push_back("heading (COMPASS)");
   if (std::find(r.tf.begin(), r.tf.end(), topic) != r.tf.end()) roles.push_back("laser mount");
   return joined(roles);
 }
@@ -321,7 +325,7 @@ std::optional<BagSpec> parse_bag_spec(const std::string& spec) {
       throw InputError(
           spec, 0,
           fmt::format("'{}' after '#': {} (expected key=value pairs separated by commas, keys odom, truth, "
-                      "scan, base, laser; e.g. run.bag#odom=/wheel_odom,truth=/vicon/pose)",
+                      "scan, heading, base, laser; e.g. run.bag#odom=/wheel_odom,truth=/vicon/pose)",
                       item, what));
     };
     if (eq == std::string::npos || value.empty()) bad("no value");
@@ -332,6 +336,8 @@ std::optional<BagSpec> parse_bag_spec(const std::string& spec) {
       out.truth = topic;
     } else if (key == "scan") {
       out.scan = topic;
+    } else if (key == "heading") {
+      out.heading = topic;
     } else if (key == "base") {
       out.base_frame = value;
     } else if (key == "laser") {
@@ -360,6 +366,16 @@ Log read_bag_log(const BagSpec& spec) {
     p.t = truth_t[i];
     p.pose = pose2(m.truth[i].pose);
     log.truth.push_back(p);
+  }
+  const std::vector<double> heading_t = message_times(m.headings, m.roles.heading, file);
+  for (std::size_t i = 0; i < m.headings.size(); ++i) {
+    if (!m.headings[i].has_orientation) {
+      throw InputError(file, 0,
+                       fmt::format("topic {}, message {}: the IMU gives no orientation (orientation_covariance[0] = "
+                                   "-1; expected an IMU with an orientation estimate, or #heading=none)",
+                                   m.roles.heading, m.headings[i].time.index));
+    }
+    log.compass.push_back({heading_t[i], m.headings[i].yaw});
   }
   if (!m.scans.empty()) {
     const Pose2 mount = laser_mount(spec, m).pose;
@@ -411,7 +427,7 @@ BagDescription describe_bag(const BagSpec& spec) {
     out.topics.push_back(std::move(u));
   }
   const std::vector<Role> roles = roles_of(spec);
-  const std::string* chosen[] = {&m.roles.odom, &m.roles.truth, &m.roles.scan};
+  const std::string* chosen[] = {&m.roles.odom, &m.roles.truth, &m.roles.scan, &m.roles.heading};
   for (std::size_t i = 0; i < roles.size(); ++i) {
     if (!chosen[i]->empty()) continue;
     out.notes.push_back(*roles[i].chosen ? fmt::format("{}: off (#{}=none)", roles[i].what, roles[i].key)
@@ -421,6 +437,7 @@ BagDescription describe_bag(const BagSpec& spec) {
   if (const auto n = stamp_note(m.odom, m.roles.odom)) out.notes.push_back(*n);
   if (const auto n = stamp_note(m.truth, m.roles.truth)) out.notes.push_back(*n);
   if (const auto n = stamp_note(m.scans, m.roles.scan)) out.notes.push_back(*n);
+  if (const auto n = stamp_note(m.headings, m.roles.heading)) out.notes.push_back(*n);
   if (!m.scans.empty()) out.notes.push_back(laser_mount(spec, m).how);
   out.notes.push_back(kChoose);
   return out;
@@ -461,6 +478,13 @@ BagContents bag_contents(const Log& log) {
     m.frame_id = "map";
     m.pose = planar(p.pose);
     c.truth.push_back(m);
+  }
+  for (const CompassReading& r : log.compass) {
+    BagHeadingMessage m;
+    m.time = {r.t, r.t, 0};
+    m.frame_id = "imu";
+    m.yaw = r.heading;
+    c.headings.push_back(m);
   }
   for (const LaserReading& r : log.laser) {
     const Scan& s = r.scan;

@@ -21,6 +21,7 @@ inline constexpr const char* kDefaultTruthTopics[] = {"/ground_truth",       "/b
                                                       "/ground_truth/state", "/ground_truth/pose",
                                                       "/mocap/pose",         "/vicon/pose"};
 inline constexpr const char* kDefaultScanTopics[] = {"/scan", "/base_scan"};
+inline constexpr const char* kDefaultHeadingTopics[] = {"/imu", "/imu/data"};
 inline constexpr const char* kTfTopics[] = {"/tf_static", "/tf"};
 
 enum class BagFormat { kRos1, kRos2, kMcap };  // kRos2: sqlite3 storage; kMcap: ROS 2 in MCAP
@@ -29,9 +30,9 @@ enum class BagFormat { kRos1, kRos2, kMcap };  // kRos2: sqlite3 storage; kMcap:
 struct BagSpec {
   std::filesystem::path path;
   BagFormat format = BagFormat::kRos1;
-  std::optional<std::string> odom, truth, scan;  // chosen topic; "" = none; nullopt = the defaults
-  std::string base_frame;                        // default: the odometry's child_frame_id, else base_link
-  std::string laser_frame;                       // default: the scans' frame_id
+  std::optional<std::string> odom, truth, scan, heading;  // chosen topic; "" = none; nullopt = the defaults
+  std::string base_frame;                                 // default: the odometry's child_frame_id, else base_link
+  std::string laser_frame;                                // default: the scans' frame_id
 };
 
 // The path a log spec names: `spec` without a "#robotN" or "#odom=…" suffix.
@@ -44,7 +45,8 @@ std::optional<BagSpec> parse_bag_spec(const std::string& spec);
 
 // Reads the chosen topics into a Log: ODOM from nav_msgs/Odometry (pose; tv, rv from the twist),
 // TRUEPOS from PoseStamped, PoseWithCovarianceStamped, TransformStamped or Odometry, FLASER from
-// LaserScan with the laser's mount from /tf_static (or /tf) base → laser. Throws InputError
+// LaserScan with the laser's mount from /tf_static (or /tf) base → laser, COMPASS from
+// sensor_msgs/Imu (the yaw of its orientation, taken as the robot's heading). Throws InputError
 // naming the file, topic and message for a missing or mistyped topic, an undecodable message
 // and header stamps out of order.
 Log read_bag_log(const BagSpec& spec);
@@ -68,10 +70,10 @@ BagDescription describe_bag(const BagSpec& spec);
 // records and a nominal model but no ODOM gets /odom by dead reckoning, as a ROS robot publishes it.
 BagContents bag_contents(const Log& log);
 
-// Writes a Log's ODOM, TRUEPOS and FLASER records as a ROS 1 bag file, a ROS 2 bag folder or an
-// MCAP file (zstd chunks)
-// (ENCODER, COMPASS and PARAM records have no topic yet and are left out). Written beside the
-// target and renamed into place; a ROS 2 folder that exists already is refused (InputError).
+// Writes a Log's ODOM, TRUEPOS, FLASER and COMPASS records (COMPASS as sensor_msgs/Imu on /imu) as
+// a ROS 1 bag file, a ROS 2 bag folder or an MCAP file (zstd chunks); ENCODER and PARAM records
+// have no topic yet and are left out. Written beside the target and renamed into place; a ROS 2 folder that exists
+// already is refused (InputError).
 void write_bag_log(const Log& log, const std::filesystem::path& path, BagFormat format);
 
 }  // namespace locbench::io

@@ -26,6 +26,7 @@ inline constexpr const char* kPoseWithCovarianceStampedType = "geometry_msgs/Pos
 inline constexpr const char* kTransformStampedType = "geometry_msgs/TransformStamped";
 inline constexpr const char* kLaserScanType = "sensor_msgs/LaserScan";
 inline constexpr const char* kTfMessageType = "tf2_msgs/TFMessage";
+inline constexpr const char* kImuType = "sensor_msgs/Imu";
 
 // One topic of a bag: its name, message type, message count and first/last record time [s].
 struct BagTopic {
@@ -63,6 +64,15 @@ struct BagScanMessage {
   std::vector<float> ranges;
 };
 
+// sensor_msgs/Imu's orientation as a heading: the yaw of its quaternion. `has_orientation` is false
+// when the IMU says it gives none (orientation_covariance[0] = −1, the ROS convention).
+struct BagHeadingMessage {
+  BagStamp time;
+  std::string frame_id;
+  double yaw = 0.0;
+  bool has_orientation = true;
+};
+
 // One transform of a tf2_msgs/TFMessage, in the plane: child frame in its parent frame.
 struct BagTransform {
   std::string parent;
@@ -75,6 +85,7 @@ struct BagRoles {
   std::string odom;
   std::string truth;
   std::string scan;
+  std::string heading;
   std::vector<std::string> tf;
 };
 
@@ -86,6 +97,7 @@ struct BagMessages {
   std::vector<BagPoseMessage> odom;
   std::vector<BagPoseMessage> truth;
   std::vector<BagScanMessage> scans;
+  std::vector<BagHeadingMessage> headings;
   std::vector<BagTransform> transforms;
 };
 
@@ -124,11 +136,13 @@ BagMessages read_ros2_bag(const std::filesystem::path& path, const BagRoleChoose
 // The ROS 2 MCAP reader and writer (mcap_bag.cpp): `path` is one .mcap file or a bag folder of them.
 BagMessages read_mcap_bag(const std::filesystem::path& path, const BagRoleChooser& choose);
 
-// What a writer puts in a bag, on the default topics /odom, /ground_truth, /scan, /tf_static.
+// What a writer puts in a bag, on the default topics /odom, /ground_truth, /scan, /imu,
+// /tf_static.
 struct BagContents {
   std::vector<BagPoseMessage> odom;
   std::vector<BagPoseMessage> truth;
   std::vector<BagScanMessage> scans;
+  std::vector<BagHeadingMessage> headings;
   std::vector<BagTransform> static_transforms;
 };
 // compression: "none", "bz2" or "lz4" (rosbag's chunk compression).

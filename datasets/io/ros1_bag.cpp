@@ -8,6 +8,7 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
+#include <sensor_msgs/Imu.h>
 #include <sensor_msgs/LaserScan.h>
 #include <tf2_msgs/TFMessage.h>
 #include <boost/make_shared.hpp>
@@ -114,6 +115,9 @@ void check_lengths(const RawMessage& m, const std::string& type) {
     c.array(4);  // intensities
   } else if (type == kTfMessageType) {
     for (std::uint32_t n = c.u32(); n > 0; --n) c.transform_stamped();
+  } else if (type == kImuType) {
+    c.header();
+    c.skip((4 + 9 + 3 + 9 + 3 + 9) * 8);
   }
   c.end();
 }
@@ -183,6 +187,17 @@ BagScanMessage scan_message(const RawMessage& m, const std::filesystem::path& pa
   return out;
 }
 
+BagHeadingMessage heading_message(const RawMessage& m, const std::filesystem::path& path) {
+  const auto i = as<sensor_msgs::Imu>(m, path);
+  BagHeadingMessage out;
+  out.time = stamp_of(i->header, m);
+  out.frame_id = i->header.frame_id;
+  const auto& q = i->orientation;
+  out.yaw = planar_pose(0.0, 0.0, q.x, q.y, q.z, q.w).yaw;
+  out.has_orientation = i->orientation_covariance[0] != -1.0;
+  return out;
+}
+
 std::string type_name(const std::string& type) {
   return type == "tf/tfMessage" ? kTfMessageType : printable(type);  // the same message under its ROS 1 tf name
 }
@@ -230,6 +245,7 @@ BagMessages read_messages(const std::filesystem::path& path, const BagRoleChoose
     if (topic == r.odom) out.odom.push_back(pose_message(m, kOdometryType, path));
     if (topic == r.truth) out.truth.push_back(pose_message(m, truth_type, path));
     if (topic == r.scan) out.scans.push_back(scan_message(m, path));
+    if (topic == r.heading) out.headings.push_back(heading_message(m, path));
     if (std::find(r.tf.begin(), r.tf.end(), topic) != r.tf.end()) {
       const auto tf = as<tf2_msgs::TFMessage>(m, path);
       for (const geometry_msgs::TransformStamped& t : tf->transforms) {
@@ -328,6 +344,14 @@ void write_ros1_bag(const BagContents& c, const std::filesystem::path& path, con
       s.range_max = static_cast<float>(m.range_max);
       s.ranges = m.ranges;
       bag.write("/scan", record_time(m.time.record_time), s);
+    }
+    for (const BagHeadingMessage& m : c.headings) {
+      sensor_msgs::Imu i;
+      i.header.stamp.fromSec(m.time.stamp);
+      i.header.frame_id = m.frame_id;
+      i.orientation = pose3({0.0, 0.0, m.yaw}).orientation;
+      i.orientation_covariance[0] = m.has_orientation ? 0.0 : -1.0;
+      bag.write("/imu", record_time(m.time.record_time), i);
     }
     bag.close();
   } catch (const std::exception& e) {

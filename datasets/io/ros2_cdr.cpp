@@ -104,8 +104,10 @@ class CdrWriter {
     cdr_ << static_cast<std::int32_t>(sec) << static_cast<std::uint32_t>(nsec) << frame_id;
   }
   void pose(const PlanarPose& p) {
-    cdr_ << p.x << p.y << 0.0 << 0.0 << 0.0 << std::sin(p.yaw / 2.0) << std::cos(p.yaw / 2.0);
+    cdr_ << p.x << p.y << 0.0;
+    quaternion(p.yaw);
   }
+  void quaternion(double yaw) { cdr_ << 0.0 << 0.0 << std::sin(yaw / 2.0) << std::cos(yaw / 2.0); }
   void zeros(std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) cdr_ << 0.0;
   }
@@ -156,6 +158,19 @@ BagScanMessage decode_scan(CdrReader& r) {
   return m;
 }
 
+// sensor_msgs/Imu: header, orientation, its covariance, angular velocity, linear acceleration
+// (each with a covariance).
+BagHeadingMessage decode_imu(CdrReader& r) {
+  BagHeadingMessage m;
+  m.time.stamp = r.header(m.frame_id);
+  std::array<double, 4> q{};
+  for (double& x : q) x = r.f64();
+  m.yaw = planar_pose(0.0, 0.0, q[0], q[1], q[2], q[3]).yaw;
+  m.has_orientation = r.f64() != -1.0;  // orientation_covariance[0]
+  r.skip_f64(8 + 3 + 9 + 3 + 9);
+  return m;
+}
+
 void decode_transforms(CdrReader& r, std::set<std::pair<std::string, std::string>>& seen,
                        std::vector<BagTransform>& out) {
   const std::uint32_t n = r.u32();
@@ -190,7 +205,7 @@ std::string ros1_type_name(std::string type) {
 
 bool Ros2MessageDecoder::wants(const std::string& topic) const {
   const BagRoles& r = out_.roles;
-  return topic == r.odom || topic == r.truth || topic == r.scan ||
+  return topic == r.odom || topic == r.truth || topic == r.scan || topic == r.heading ||
          std::find(r.tf.begin(), r.tf.end(), topic) != r.tf.end();
 }
 
@@ -229,6 +244,12 @@ void Ros2MessageDecoder::add(const std::string& topic, const std::string& type, 
       reader.expect_end();
       out_.scans.back().time = {out_.scans.back().time.stamp, record_time, index};
     }
+    if (topic == r.heading) {
+      CdrReader reader(data, size);
+      out_.headings.push_back(decode_imu(reader));
+      reader.expect_end();
+      out_.headings.back().time = {out_.headings.back().time.stamp, record_time, index};
+    }
     if (std::find(r.tf.begin(), r.tf.end(), topic) != r.tf.end()) {
       CdrReader reader(data, size);
       decode_transforms(reader, seen_, out_.transforms);
@@ -246,7 +267,8 @@ Ros2Serialized serialize_ros2(const BagContents& c) {
   out.topics = {{"/tf_static", "tf2_msgs/msg/TFMessage"},
                 {"/odom", "nav_msgs/msg/Odometry"},
                 {"/ground_truth", "geometry_msgs/msg/PoseStamped"},
-                {"/scan", "sensor_msgs/msg/LaserScan"}};
+                {"/scan", "sensor_msgs/msg/LaserScan"},
+                {"/imu", "sensor_msgs/msg/Imu"}};
   if (!c.static_transforms.empty()) {
     add(out, 0, 0.0, [&](CdrWriter& w) {
       w << static_cast<std::uint32_t>(c.static_transforms.size());
@@ -280,6 +302,14 @@ Ros2Serialized serialize_ros2(const BagContents& c) {
       w << static_cast<float>(m.angle_min) << static_cast<float>(m.angle_min + m.angle_increment * (n - 1))
         << static_cast<float>(m.angle_increment) << 0.0F << 0.0F << static_cast<float>(m.range_min)
         << static_cast<float>(m.range_max) << m.ranges << std::vector<float>{};
+    });
+  }
+  for (const BagHeadingMessage& m : c.headings) {
+    add(out, 4, m.time.record_time, [&](CdrWriter& w) {
+      w.header(m.time.stamp, m.frame_id);
+      w.quaternion(m.yaw);
+      w << (m.has_orientation ? 0.0 : -1.0);  // orientation_covariance[0]
+      w.zeros(8 + 3 + 9 + 3 + 9);             // covariances, angular velocity, linear acceleration
     });
   }
   std::stable_sort(out.messages.begin(), out.messages.end(),

@@ -13,6 +13,7 @@
 #include <tuple>
 #include <typeinfo>
 
+#include "core/angle.h"
 #include "core/rng.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/sim/presets.h"
@@ -122,6 +123,25 @@ TEST(RosBag, AMcapBagReadsAsTheSameLogAsTheSqliteBagOfTheSameMessages) {
   write_bag_log(original, dir.file("a.mcap"), BagFormat::kMcap);
   write_bag_log(original, dir.file("a"), BagFormat::kRos2);
   expect_same_log(load_log(dir.file("a.mcap").string()), load_log(dir.file("a").string()));
+}
+
+TEST(RosBag, ImuOrientationsReadBackAsTheCompassRecordsTheyWereWrittenFrom) {
+  ScratchDir dir;
+  const sim::Scenario s = sim::scenario_from_json(nlohmann::json::parse(R"({"preset": "corridor",
+      "odometry": {"enabled": true}})"));
+  const Log original = sim::simulate(s, 7).log;
+  ASSERT_GT(original.compass.size(), 100u);
+  for (const auto& [bag, format] : std::vector<std::pair<std::string, BagFormat>>{
+           {"c.bag", BagFormat::kRos1}, {"c", BagFormat::kRos2}, {"c.mcap", BagFormat::kMcap}}) {
+    write_bag_log(original, dir.file(bag), format);
+    const Log back = load_log(dir.file(bag).string());
+    ASSERT_EQ(back.compass.size(), original.compass.size()) << bag;
+    for (std::size_t i = 0; i < back.compass.size(); ++i) {
+      EXPECT_EQ(back.compass[i].t, original.compass[i].t) << bag << " " << i;
+      EXPECT_NEAR(angle_diff(back.compass[i].heading, original.compass[i].heading), 0.0, 1e-15) << bag << " " << i;
+    }
+    EXPECT_TRUE(load_log(dir.file(bag).string() + "#heading=none").compass.empty()) << bag;
+  }
 }
 
 TEST(RosBag, CompressedRos1BagsReadBackAsTheSameLog) {
@@ -388,7 +408,7 @@ TEST(RosBag, ABadTopicChoiceIsRefusedWithTheAcceptedKeys) {
   ScratchDir dir;
   write_ros1_bag(odometry_only(3, 0.0), dir.file("a.bag"));
   EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("a.bag").string() + "#odo=/odom"); }, "a.bag#odo=/odom", 0,
-                                 {"unknown key \"odo\"", "keys odom, truth, scan, base, laser"}));
+                                 {"unknown key \"odo\"", "keys odom, truth, scan, heading, base, laser"}));
   EXPECT_TRUE(
       throws_input_error([&] { load_log(dir.file("a.bag").string() + "#odom="); }, "a.bag#odom=", 0, {"no value"}));
 }
@@ -441,6 +461,20 @@ TEST(RosBag, AnMcapChunkThatLiesAboutItsSizeIsRefused) {
           throws_input_error([&] { load_log(dir.file("lie.mcap").string()); }, "lie.mcap", 0, {"reading its messages"}))
           << compression;
     }
+  }
+}
+
+TEST(RosBag, AnImuWithoutAnOrientationIsRefusedAsAHeading) {
+  ScratchDir dir;
+  BagContents c = odometry_only(5, 0.0);
+  for (const BagPoseMessage& o : c.odom) c.headings.push_back({o.time, "imu", 0.3, false});
+  write_ros1_bag(c, dir.file("a.bag"));
+  write_ros2_bag(c, dir.file("b"), "b");
+  write_mcap_bag(c, dir.file("c.mcap"));
+  for (const std::string bag : {"a.bag", "b", "c.mcap"}) {
+    EXPECT_TRUE(throws_input_error([&] { load_log(dir.file(bag).string()); }, bag, 0,
+                                   {"topic /imu, message 1: the IMU gives no orientation"}));
+    EXPECT_TRUE(load_log(dir.file(bag).string() + "#heading=none").compass.empty());
   }
 }
 
