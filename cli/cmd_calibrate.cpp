@@ -13,6 +13,7 @@
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
 #include "baselines/calibration/umbmark_classic.h"
+#include "cli/bag_topic_options.h"
 #include "cli/commands.h"
 #include "cli/estimate_judgement.h"
 #include "core/checksum.h"
@@ -45,6 +46,7 @@ using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench
 namespace {
 
 struct CalibrateArgs {
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
   std::string method;
   std::string input;
   std::string report;
@@ -285,7 +287,11 @@ Action add_calibrate_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--relations", args->relations, "ml: reference relations for a log's ODOM");
   add_data_option(cmd, args->data);
-  return [args = args, command_line] { return calibrate(*args, command_line); };
+  add_bag_topic_options(cmd, args->topics);
+  return [args = args, command_line] {
+    args->input = with_bag_topics(args->input, args->topics);
+    return calibrate(*args, command_line);
+  };
 }
 
 }  // namespace locbench::cli

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "algorithms/diagnosis/diagnosis.h"
+#include "cli/bag_topic_options.h"
 #include "cli/commands.h"
 #include "core/checksum.h"
 #include "core/errors.h"
@@ -31,6 +32,7 @@ namespace locbench::cli {
 namespace {
 
 struct DiagnoseArgs {
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
   std::string input;
   std::string relations;
   std::string report;
@@ -181,7 +183,11 @@ Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
                   "are exempt)")
       ->check(CLI::Range(1.0, 1e8));
   add_data_option(cmd, args->data);
-  return [args = args, command_line] { return diagnose(*args, command_line); };
+  add_bag_topic_options(cmd, args->topics);
+  return [args = args, command_line] {
+    args->input = with_bag_topics(args->input, args->topics);
+    return diagnose(*args, command_line);
+  };
 }
 
 }  // namespace locbench::cli

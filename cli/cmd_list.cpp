@@ -7,6 +7,7 @@
 
 #include "algorithms/calibration/calibration_data.h"
 #include "benchmarks/experiments/framework/experiment.h"
+#include "cli/bag_topic_options.h"
 #include "cli/commands.h"
 #include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
@@ -23,6 +24,7 @@ using locbench::catalog::calibration_dataset_parts, locbench::catalog::dataset_c
 namespace {
 
 struct ListArgs {
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
   std::string log;
   std::string data;
   bool no_load = false;
@@ -158,7 +160,11 @@ Action add_list_command(CLI::App& app) {
                   "with type, count and rate, and which ones locbench uses (choose with LOG#odom=…,truth=…,scan=…)");
   add_data_option(cmd, args->data);
   cmd->add_flag("--no-load", args->no_load, "Only check that datasets exist; do not read them");
-  return [args = args] { return list(*args); };
+  add_bag_topic_options(cmd, args->topics);
+  return [args = args] {
+    args->log = with_bag_topics(args->log, args->topics);
+    return list(*args);
+  };
 }
 
 }  // namespace locbench::cli

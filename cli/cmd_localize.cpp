@@ -18,6 +18,7 @@
 #include "baselines/global/monte_carlo_localization.h"
 #include "baselines/global/odometry_motion_model.h"
 #include "benchmarks/experiments/framework/experiment.h"
+#include "cli/bag_topic_options.h"
 #include "cli/commands.h"
 #include "cli/pose_report.h"
 #include "core/checksum.h"
@@ -35,6 +36,7 @@ namespace {
 namespace g = experiments::global;
 
 struct LocalizeArgs {
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
   std::string method = "mcl";
   std::string map;
   double map_from_log = 0.0;
@@ -265,7 +267,11 @@ Action add_localize_command(CLI::App& app, const std::string& command_line) {
   add_seed_option(cmd, args->seed, "Seed of MCL's random numbers (default 1)");
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--tum", args->tum, "Write the estimated poses here (TUM format)");
-  return [args = args, command_line] { return localize(*args, command_line); };
+  add_bag_topic_options(cmd, args->topics);
+  return [args = args, command_line] {
+    args->log = with_bag_topics(args->log, args->topics);
+    return localize(*args, command_line);
+  };
 }
 
 }  // namespace locbench::cli

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "algorithms/pose_correction/pose_correction.h"
+#include "cli/bag_topic_options.h"
 #include "cli/commands.h"
 #include "cli/pose_report.h"
 #include "core/checksum.h"
@@ -25,6 +26,7 @@ using io::odometry_trajectory;
 namespace {
 
 struct MatchArgs {
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
   std::string map;
   std::string log;
   std::string matcher = "eap";
@@ -119,7 +121,11 @@ Action add_match_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--matcher", args->matcher, "eap (default), eap_indexed, split_and_merge, agglomerative or rwht");
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--tum", args->tum, "Write the corrected poses here (TUM format)");
-  return [args = args, command_line] { return match(*args, command_line); };
+  add_bag_topic_options(cmd, args->topics);
+  return [args = args, command_line] {
+    args->log = with_bag_topics(args->log, args->topics);
+    return match(*args, command_line);
+  };
 }
 
 }  // namespace locbench::cli

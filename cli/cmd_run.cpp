@@ -7,6 +7,7 @@
 #include "benchmarks/experiments/framework/experiment.h"
 #include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "benchmarks/experiments/framework/shard.h"
+#include "cli/bag_topic_options.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "core/errors.h"
@@ -23,6 +24,7 @@ namespace locbench::cli {
 namespace {
 
 struct RunArgs {
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
   std::vector<std::string> experiments;
   std::uint64_t seed = 1;
   int runs = 0;
@@ -314,7 +316,11 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--skip-missing", args->skip_missing,
                   "Accept that this dataset (or case, or \"all\") is absent; otherwise a case skipped "
                   "for missing data fails the run (exit 2); repeatable");
-  return [args = args, command_line] { return run(*args, command_line); };
+  add_bag_topic_options(cmd, args->topics);
+  return [args = args, command_line] {
+    args->log = with_bag_topics(args->log, args->topics);
+    return run(*args, command_line);
+  };
 }
 
 }  // namespace locbench::cli

@@ -74,6 +74,20 @@ TEST_F(RosBagCli, DiagnoseOnABagEqualsDiagnoseOnTheSameRecordsAsCarmen) {
   EXPECT_EQ(output_of("diagnose " + path("run.mcap"), path("run.mcap")), carmen);
 }
 
+TEST_F(RosBagCli, TopicOptionsChooseWhatTheHashSuffixChooses) {
+  for (const std::string bag : {"run.bag", "run2", "run.mcap"}) {
+    const std::string by_suffix =
+        output_of("diagnose '" + path(bag) + "#odom=/odom,truth=/ground_truth,heading=none'", path(bag));
+    const std::string by_options =
+        output_of("diagnose " + path(bag) + " --odom /odom --truth /ground_truth --heading none", path(bag));
+    EXPECT_EQ(by_options.substr(by_options.find('\n')), by_suffix.substr(by_suffix.find('\n'))) << bag;
+    EXPECT_EQ(by_suffix.find("compass"), std::string::npos) << "the heading is off: " << by_suffix;
+  }
+  const Outcome o = run_locbench("diagnose " + path("run.clf") + " --odom /odom");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("run.clf is not a bag"), std::string::npos) << o.output;
+}
+
 TEST_F(RosBagCli, ARealDataExperimentOnABagEqualsItOnTheSameRecordsAsCarmen) {
   // The dataset is named after its file (same.clf, same.bag and a folder same are all "same").
   ASSERT_EQ(run_shell("cd " + path("") +
