@@ -151,7 +151,7 @@ clean:
 # timeout-*, oom-*). `make run` and `make test` never use clang.
 FUZZBUILD := build/fuzz
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := fuzz_carmen fuzz_relations fuzz_tum fuzz_landmarks fuzz_censi fuzz_umbmark_input fuzz_scenario \
+FUZZ_TARGETS := fuzz_carmen fuzz_relations fuzz_tum fuzz_bags fuzz_landmarks fuzz_censi fuzz_umbmark_input fuzz_scenario \
   fuzz_histogram fuzz_reports fuzz_json_options
 .PHONY: fuzz
 fuzz: setup

@@ -142,14 +142,15 @@ std::string choose_role(const Role& role, const std::vector<BagTopic>& topics, c
 
 std::vector<Role> roles_of(const BagSpec& spec) {
   const auto list = [](const auto& names) { return std::vector<std::string>(std::begin(names), std::end(names)); };
-  return {{"odom", "odometry", &spec.odom, list(kDefaultOdometryTopics), {kOdometryType}},
-          {"truth",
-           "ground truth",
-           &spec.truth,
-           list(kDefaultTruthTopics),
-           {kPoseStampedType, kOdometryType, kPoseWithCovarianceStampedType, kTransformStampedType}},
-          {"scan", "laser scans", &spec.scan, list(kDefaultScanTopics), {kLaserScanType}},
-          {"heading", "heading", &spec.heading, list(kDefaultHeadingTopics), {kImuType}}};
+  return {
+      {"odom", "odometry", &spec.odom, list(kDefaultOdometryTopics), {kOdometryType, kTwistStampedType, kTwistType}},
+      {"truth",
+       "ground truth",
+       &spec.truth,
+       list(kDefaultTruthTopics),
+       {kPoseStampedType, kOdometryType, kPoseWithCovarianceStampedType, kTransformStampedType}},
+      {"scan", "laser scans", &spec.scan, list(kDefaultScanTopics), {kLaserScanType}},
+      {"heading", "heading", &spec.heading, list(kDefaultHeadingTopics), {kImuType}}};
 }
 
 BagRoles choose_roles(const BagSpec& spec, const std::vector<BagTopic>& topics, bool need_odometry) {
@@ -359,6 +360,13 @@ Log read_bag_log(const BagSpec& spec) {
   const std::vector<double> odom_t = message_times(m.odom, m.roles.odom, file);
   for (std::size_t i = 0; i < m.odom.size(); ++i) {
     log.odometry.push_back({odom_t[i], pose2(m.odom[i].pose), m.odom[i].tv, m.odom[i].rv});
+  }
+  if (!m.odom.empty() && m.odom.front().velocity_only) {
+    // Velocity commands: the pose each ODOM record carries is their dead reckoning from the origin
+    // (each command held until the next), as a velocity log's (MRCLAM's) is.
+    const Trajectory poses = dead_reckon_velocities(log.odometry, Pose2::identity());
+    for (std::size_t i = 0; i < log.odometry.size() && i < poses.size(); ++i)
+      log.odometry[i].pose = poses.poses()[i].pose;
   }
   const std::vector<double> truth_t = message_times(m.truth, m.roles.truth, file);
   for (std::size_t i = 0; i < m.truth.size(); ++i) {

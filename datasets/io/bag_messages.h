@@ -27,6 +27,8 @@ inline constexpr const char* kTransformStampedType = "geometry_msgs/TransformSta
 inline constexpr const char* kLaserScanType = "sensor_msgs/LaserScan";
 inline constexpr const char* kTfMessageType = "tf2_msgs/TFMessage";
 inline constexpr const char* kImuType = "sensor_msgs/Imu";
+inline constexpr const char* kTwistType = "geometry_msgs/Twist";  // velocity commands: no header
+inline constexpr const char* kTwistStampedType = "geometry_msgs/TwistStamped";
 
 // One topic of a bag: its name, message type, message count and first/last record time [s].
 struct BagTopic {
@@ -47,6 +49,7 @@ struct BagStamp {
 
 // nav_msgs/Odometry, geometry_msgs/PoseStamped, PoseWithCovarianceStamped or TransformStamped,
 // reduced to the plane: yaw from the quaternion; tv, rv from an Odometry's twist (0 otherwise).
+// geometry_msgs/Twist or TwistStamped (velocity commands): tv, rv, no pose (`velocity_only`).
 struct BagPoseMessage {
   BagStamp time;
   std::string frame_id;
@@ -54,6 +57,7 @@ struct BagPoseMessage {
   PlanarPose pose;
   double tv = 0.0;
   double rv = 0.0;
+  bool velocity_only = false;
 };
 
 // sensor_msgs/LaserScan.
@@ -140,6 +144,9 @@ BagMessages read_mcap_bag(const std::filesystem::path& path, const BagRoleChoose
 // /tf_static.
 struct BagContents {
   std::vector<BagPoseMessage> odom;
+  // The type /odom is written as: kOdometryType, or velocity commands, kTwistType (no header: the
+  // record time is the only time) or kTwistStampedType.
+  std::string odom_type = kOdometryType;
   std::vector<BagPoseMessage> truth;
   std::vector<BagScanMessage> scans;
   std::vector<BagHeadingMessage> headings;

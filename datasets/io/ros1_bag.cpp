@@ -6,6 +6,8 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <geometry_msgs/TransformStamped.h>
+#include <geometry_msgs/Twist.h>
+#include <geometry_msgs/TwistStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/Imu.h>
@@ -115,6 +117,11 @@ void check_lengths(const RawMessage& m, const std::string& type) {
     c.array(4);  // intensities
   } else if (type == kTfMessageType) {
     for (std::uint32_t n = c.u32(); n > 0; --n) c.transform_stamped();
+  } else if (type == kTwistType) {
+    c.skip(6 * 8);
+  } else if (type == kTwistStampedType) {
+    c.header();
+    c.skip(6 * 8);
   } else if (type == kImuType) {
     c.header();
     c.skip((4 + 9 + 3 + 9 + 3 + 9) * 8);
@@ -146,7 +153,21 @@ boost::shared_ptr<T> as(const RawMessage& m, const std::filesystem::path& path) 
 
 BagPoseMessage pose_message(const RawMessage& m, const std::string& type, const std::filesystem::path& path) {
   BagPoseMessage out;
-  if (type == kOdometryType) {
+  if (type == kTwistType || type == kTwistStampedType) {  // velocity commands
+    out.velocity_only = true;
+    geometry_msgs::Twist t;
+    if (type == kTwistStampedType) {
+      const auto s = as<geometry_msgs::TwistStamped>(m, path);
+      out.time = stamp_of(s->header, m);
+      out.frame_id = s->header.frame_id;
+      t = s->twist;
+    } else {
+      t = *as<geometry_msgs::Twist>(m, path);
+      out.time = {0.0, m.record_time, m.index};  // no header: the record time is used
+    }
+    out.tv = t.linear.x;
+    out.rv = t.angular.z;
+  } else if (type == kOdometryType) {
     const auto o = as<nav_msgs::Odometry>(m, path);
     out.time = stamp_of(o->header, m);
     out.frame_id = o->header.frame_id;
@@ -208,7 +229,7 @@ BagMessages read_messages(const std::filesystem::path& path, const BagRoleChoose
   std::map<std::string, std::size_t> counts;  // messages seen per topic
   std::map<std::string, BagTopic*> by_name;   // into out.topics
   std::set<std::pair<std::string, std::string>> seen_transforms;
-  std::string truth_type;
+  std::string truth_type, odom_type;
   const auto chosen = [&](const std::map<std::uint32_t, Ros1Connection>& all) {
     connections = all;
     std::map<std::string, BagTopic> topics;  // one entry per topic: the first connection's type
@@ -222,6 +243,7 @@ BagMessages read_messages(const std::filesystem::path& path, const BagRoleChoose
     for (BagTopic& t : out.topics) by_name[t.name] = &t;
     out.roles = choose(out.topics);
     if (by_name.count(out.roles.truth)) truth_type = by_name[out.roles.truth]->type;
+    if (by_name.count(out.roles.odom)) odom_type = by_name[out.roles.odom]->type;
     return true;
   };
   const auto visit = [&](std::uint32_t id, std::uint32_t sec, std::uint32_t nsec, const std::uint8_t* data,
@@ -242,7 +264,7 @@ BagMessages read_messages(const std::filesystem::path& path, const BagRoleChoose
     const BagRoles& r = out.roles;
     const RawMessage m{c->second, record_time, index, data, size};
     // One topic may play two roles (odometry from a simulator's perfect /odom as truth, say).
-    if (topic == r.odom) out.odom.push_back(pose_message(m, kOdometryType, path));
+    if (topic == r.odom) out.odom.push_back(pose_message(m, odom_type, path));
     if (topic == r.truth) out.truth.push_back(pose_message(m, truth_type, path));
     if (topic == r.scan) out.scans.push_back(scan_message(m, path));
     if (topic == r.heading) out.headings.push_back(heading_message(m, path));
@@ -319,6 +341,18 @@ void write_ros1_bag(const BagContents& c, const std::filesystem::path& path, con
       bag.write("/tf_static", ros::TIME_MIN, tf);
     }
     for (const BagPoseMessage& m : c.odom) {
+      if (c.odom_type != kOdometryType) {
+        geometry_msgs::TwistStamped t;
+        t.header = header(m);
+        t.twist.linear.x = m.tv;
+        t.twist.angular.z = m.rv;
+        if (c.odom_type == kTwistStampedType) {
+          bag.write("/odom", record_time(m.time.record_time), t);
+        } else {
+          bag.write("/odom", record_time(m.time.record_time), t.twist);
+        }
+        continue;
+      }
       nav_msgs::Odometry o;
       o.header = header(m);
       o.child_frame_id = m.child_frame_id;

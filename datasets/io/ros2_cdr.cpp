@@ -120,7 +120,19 @@ class CdrWriter {
 
 // ---- decoding -------------------------------------------------------------------------------
 
+// geometry_msgs/Twist (linear, angular: 3 doubles each), after TwistStamped's header.
+BagPoseMessage decode_twist(CdrReader& r, bool stamped) {
+  BagPoseMessage m;
+  if (stamped) m.time.stamp = r.header(m.frame_id);
+  m.velocity_only = true;
+  m.tv = r.f64();
+  r.skip_f64(4);
+  m.rv = r.f64();
+  return m;
+}
+
 BagPoseMessage decode_pose(CdrReader& r, const std::string& type) {
+  if (type == kTwistType || type == kTwistStampedType) return decode_twist(r, type == kTwistStampedType);
   BagPoseMessage m;
   m.time.stamp = r.header(m.frame_id);
   if (type == kOdometryType) {
@@ -224,11 +236,13 @@ void Ros2MessageDecoder::add(const std::string& topic, const std::string& type, 
   const double record_time = nanoseconds_to_seconds(record_ns);
   try {
     if (topic == r.odom) {
-      if (type != kOdometryType) {
-        throw InputError(file_.string(), 0, "topic " + topic + ": a " + type + ", expected " + kOdometryType);
+      if (type != kOdometryType && type != kTwistType && type != kTwistStampedType) {
+        throw InputError(file_.string(), 0,
+                         "topic " + topic + ": a " + type + ", expected " + kOdometryType + ", " + kTwistType + " or " +
+                             kTwistStampedType);
       }
       CdrReader reader(data, size);
-      out_.odom.push_back(decode_pose(reader, kOdometryType));
+      out_.odom.push_back(decode_pose(reader, type));
       reader.expect_end();
       out_.odom.back().time = {out_.odom.back().time.stamp, record_time, index};
     }
@@ -279,7 +293,16 @@ Ros2Serialized serialize_ros2(const BagContents& c) {
       }
     });
   }
+  if (c.odom_type == kTwistType) out.topics[1].type = "geometry_msgs/msg/Twist";
+  if (c.odom_type == kTwistStampedType) out.topics[1].type = "geometry_msgs/msg/TwistStamped";
   for (const BagPoseMessage& m : c.odom) {
+    if (c.odom_type != kOdometryType) {
+      add(out, 1, m.time.record_time, [&](CdrWriter& w) {
+        if (c.odom_type == kTwistStampedType) w.header(m.time.stamp, m.frame_id);
+        w << m.tv << 0.0 << 0.0 << 0.0 << 0.0 << m.rv;
+      });
+      continue;
+    }
     add(out, 1, m.time.record_time, [&](CdrWriter& w) {
       w.header(m.time.stamp, m.frame_id);
       w << m.child_frame_id;

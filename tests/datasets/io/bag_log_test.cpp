@@ -14,6 +14,7 @@
 #include <typeinfo>
 
 #include "core/angle.h"
+#include "core/dead_reckoning.h"
 #include "core/rng.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/sim/presets.h"
@@ -475,6 +476,37 @@ TEST(RosBag, AnImuWithoutAnOrientationIsRefusedAsAHeading) {
     EXPECT_TRUE(throws_input_error([&] { load_log(dir.file(bag).string()); }, bag, 0,
                                    {"topic /imu, message 1: the IMU gives no orientation"}));
     EXPECT_TRUE(load_log(dir.file(bag).string() + "#heading=none").compass.empty());
+  }
+}
+
+// Velocity commands as the odometry: geometry_msgs/Twist (no header: the record times) and
+// TwistStamped (the header stamps); ODOM's tv, rv are the commands and its pose their dead
+// reckoning, each command held until the next, as a velocity log's is.
+TEST(RosBag, VelocityCommandsReadBackAsOdometryWithTheirDeadReckoning) {
+  ScratchDir dir;
+  const Log original = simulated_log();
+  BagContents c = bag_contents(original);
+  for (BagPoseMessage& m : c.odom) m.time.record_time = m.time.stamp + 0.005;  // recorded 5 ms after the stamp
+  const Trajectory expected = dead_reckon_velocities(original.odometry, Pose2::identity());
+  for (const std::string type : {kTwistType, kTwistStampedType}) {
+    c.odom_type = type;
+    write_ros1_bag(c, dir.file("t.bag"));
+    write_ros2_bag(c, dir.file("t" + std::to_string(type.size())), "t");
+    write_mcap_bag(c, dir.file("t.mcap"));
+    for (const std::filesystem::path bag :
+         {dir.file("t.bag"), dir.file("t" + std::to_string(type.size())), dir.file("t.mcap")}) {
+      const Log back = load_log(bag.string());
+      ASSERT_EQ(back.odometry.size(), original.odometry.size()) << type << " " << bag;
+      for (std::size_t i = 0; i < back.odometry.size(); ++i) {
+        const double t = original.odometry[i].t + (type == kTwistType ? 0.005 : 0.0);
+        ASSERT_NEAR(back.odometry[i].t, t, 1e-9) << type << " " << bag << " " << i;
+        ASSERT_EQ(back.odometry[i].tv, original.odometry[i].tv);
+        ASSERT_EQ(back.odometry[i].rv, original.odometry[i].rv);
+        ASSERT_NEAR(back.odometry[i].pose.x, expected.poses()[i].pose.x, 1e-6) << type << " " << bag << " " << i;
+        ASSERT_NEAR(back.odometry[i].pose.y, expected.poses()[i].pose.y, 1e-6) << type << " " << bag << " " << i;
+        ASSERT_NEAR(back.odometry[i].pose.theta, expected.poses()[i].pose.theta, 1e-9);
+      }
+    }
   }
 }
 
