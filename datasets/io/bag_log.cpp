@@ -12,8 +12,10 @@
 #include "core/ascii.h"
 #include "core/dead_reckoning.h"
 #include "core/errors.h"
+#include "core/units.h"
 #include "datasets/io/dataset_name.h"
 #include "datasets/io/odometry_interpolation.h"
+#include "datasets/io/tokenizer.h"
 
 namespace locbench::io {
 
@@ -59,8 +61,8 @@ Pose2 pose2(const PlanarPose& p) { return {p.x, p.y, p.yaw}; }
 PlanarPose planar(const Pose2& p) { return {p.x, p.y, p.theta}; }
 
 constexpr const char* kChoose =
-    "choose topics with LOG#odom=TOPIC,truth=TOPIC,scan=TOPIC,heading=TOPIC (none: off; base=FRAME,laser=FRAME for "
-    "the mount)";
+    "choose topics with LOG#odom=TOPIC,truth=TOPIC,scan=TOPIC,heading=TOPIC,joints=TOPIC (none: off; "
+    "base=FRAME,laser=FRAME for the mount)";
 
 std::optional<BagFormat> bag_format(const std::filesystem::path& path) {
   std::error_code ec;
@@ -150,7 +152,8 @@ std::vector<Role> roles_of(const BagSpec& spec) {
        list(kDefaultTruthTopics),
        {kPoseStampedType, kOdometryType, kPoseWithCovarianceStampedType, kTransformStampedType}},
       {"scan", "laser scans", &spec.scan, list(kDefaultScanTopics), {kLaserScanType}},
-      {"heading", "heading", &spec.heading, list(kDefaultHeadingTopics), {kImuType}}};
+      {"heading", "heading", &spec.heading, list(kDefaultHeadingTopics), {kImuType}},
+      {"joints", "wheel joints", &spec.joints, list(kDefaultJointTopics), {kJointStateType}}};
 }
 
 BagRoles choose_roles(const BagSpec& spec, const std::vector<BagTopic>& topics, bool need_odometry) {
@@ -161,6 +164,7 @@ BagRoles choose_roles(const BagSpec& spec, const std::vector<BagTopic>& topics, 
   out.truth = choose_role(roles[1], topics, file);
   out.scan = choose_role(roles[2], topics, file);
   out.heading = choose_role(roles[3], topics, file);
+  out.joints = choose_role(roles[4], topics, file);
   if (need_odometry && out.odom.empty()) {
     throw InputError(file, 0,
                      fmt::format("no odometry topic: none of {} is in the bag ({}); {}", joined(roles[0].defaults),
@@ -287,12 +291,64 @@ Mount laser_mount(const BagSpec& spec, const BagMessages& m) {
           missing + ": the laser is taken to sit at the base frame (#base=FRAME,laser=FRAME to name the frames)"};
 }
 
+// ---- wheel joints ---------------------------------------------------------------------------
+
+// The wheel joint of a side: the one named, or the first name holding the side's word.
+std::string wheel_joint(const BagSpec& spec, const BagMessages& m, bool left) {
+  const std::string& named = left ? spec.left_joint : spec.right_joint;
+  if (!named.empty()) return named;
+  const char* word = left ? "left" : "right";
+  for (const std::string& name : m.joints.front().names) {
+    if (ascii_lowercase(name).find(word) != std::string::npos) return name;
+  }
+  throw InputError(spec.path.string(), 0,
+                   fmt::format("topic {}: no joint name holds \"{}\" (names: {}; expected #left=JOINT,right=JOINT)",
+                               m.roles.joints, word, printable(joined(m.joints.front().names))));
+}
+
+// ENCODER records from the wheel joints' angles, and the nominal model's PARAM records when the
+// radius and the wheelbase are given.
+void add_wheel_encoders(const BagSpec& spec, const BagMessages& m, Log& log) {
+  if (m.joints.empty()) return;
+  const std::string file = spec.path.string();
+  const std::string left = wheel_joint(spec, m, true), right = wheel_joint(spec, m, false);
+  const std::vector<double> t = message_times(m.joints, m.roles.joints, file);
+  const double per_rad = spec.ticks_per_rev / (2.0 * kPi);
+  for (std::size_t i = 0; i < m.joints.size(); ++i) {
+    const BagJointMessage& j = m.joints[i];
+    const auto ticks = [&](const std::string& name) {
+      const auto at = std::find(j.names.begin(), j.names.end(), name);
+      const auto k = static_cast<std::size_t>(at - j.names.begin());
+      if (at == j.names.end() || k >= j.positions.size()) {
+        throw InputError(file, 0,
+                         fmt::format("topic {}, message {}: no position of joint {} (expected it in every message)",
+                                     m.roles.joints, j.time.index, printable(name)));
+      }
+      const double v = j.positions[k] * per_rad;
+      if (!std::isfinite(v) || std::abs(v) > 1e15) {
+        throw InputError(file, 0,
+                         fmt::format("topic {}, message {}: joint {} at {} rad (expected a finite wheel angle)",
+                                     m.roles.joints, j.time.index, printable(name), j.positions[k]));
+      }
+      return static_cast<std::int64_t>(std::llround(v));
+    };
+    log.encoders.push_back({t[i], ticks(left), ticks(right)});
+  }
+  if (spec.left_radius > 0.0 && spec.right_radius > 0.0 && spec.wheelbase > 0.0) {
+    const auto per_tick = [&](double r) { return fmt::format("{:.17g}", 2.0 * kPi * r / spec.ticks_per_rev); };
+    log.params[kParamMetersPerTickLeft] = per_tick(spec.left_radius);
+    log.params[kParamMetersPerTickRight] = per_tick(spec.right_radius);
+    log.params[kParamWheelbase] = fmt::format("{:.17g}", spec.wheelbase);
+  }
+}
+
 std::string role_name(const BagRoles& r, const std::string& topic) {
   std::vector<std::string> roles;
   if (topic == r.odom) roles.push_back("odometry (ODOM)");
   if (topic == r.truth) roles.push_back("truth (TRUEPOS)");
   if (topic == r.scan) roles.push_back("scan (FLASER)");
   if (topic == r.heading) roles.push_back("heading (COMPASS)");
+  if (topic == r.joints) roles.push_back("wheel joints (ENCODER)");
   if (std::find(r.tf.begin(), r.tf.end(), topic) != r.tf.end()) roles.push_back("laser mount");
   return joined(roles);
 }
@@ -326,7 +382,9 @@ std::optional<BagSpec> parse_bag_spec(const std::string& spec) {
       throw InputError(
           spec, 0,
           fmt::format("'{}' after '#': {} (expected key=value pairs separated by commas, keys odom, truth, "
-                      "scan, heading, base, laser; e.g. run.bag#odom=/wheel_odom,truth=/vicon/pose)",
+                      "scan, heading, joints, left, right, ticks_per_rev, radius, left_radius, right_radius, "
+                      "wheelbase, base, laser; e.g. "
+                      "run.bag#odom=/wheel_odom,truth=/vicon/pose)",
                       item, what));
     };
     if (eq == std::string::npos || value.empty()) bad("no value");
@@ -339,6 +397,20 @@ std::optional<BagSpec> parse_bag_spec(const std::string& spec) {
       out.scan = topic;
     } else if (key == "heading") {
       out.heading = topic;
+    } else if (key == "joints") {
+      out.joints = topic;
+    } else if (key == "left") {
+      out.left_joint = value;
+    } else if (key == "right") {
+      out.right_joint = value;
+    } else if (key == "ticks_per_rev" || key == "radius" || key == "left_radius" || key == "right_radius" ||
+               key == "wheelbase") {
+      double v = 0.0;
+      if (!try_parse_finite(value, v) || !(v > 0.0) || v > 1e12) bad("not a positive number");
+      if (key == "ticks_per_rev") out.ticks_per_rev = v;
+      if (key == "radius" || key == "left_radius") out.left_radius = v;
+      if (key == "radius" || key == "right_radius") out.right_radius = v;
+      if (key == "wheelbase") out.wheelbase = v;
     } else if (key == "base") {
       out.base_frame = value;
     } else if (key == "laser") {
@@ -385,6 +457,7 @@ Log read_bag_log(const BagSpec& spec) {
     }
     log.compass.push_back({heading_t[i], m.headings[i].yaw});
   }
+  add_wheel_encoders(spec, m, log);
   if (!m.scans.empty()) {
     const Pose2 mount = laser_mount(spec, m).pose;
     const std::vector<double> scan_t = message_times(m.scans, m.roles.scan, file);
@@ -435,7 +508,7 @@ BagDescription describe_bag(const BagSpec& spec) {
     out.topics.push_back(std::move(u));
   }
   const std::vector<Role> roles = roles_of(spec);
-  const std::string* chosen[] = {&m.roles.odom, &m.roles.truth, &m.roles.scan, &m.roles.heading};
+  const std::string* chosen[] = {&m.roles.odom, &m.roles.truth, &m.roles.scan, &m.roles.heading, &m.roles.joints};
   for (std::size_t i = 0; i < roles.size(); ++i) {
     if (!chosen[i]->empty()) continue;
     out.notes.push_back(*roles[i].chosen ? fmt::format("{}: off (#{}=none)", roles[i].what, roles[i].key)
@@ -446,6 +519,16 @@ BagDescription describe_bag(const BagSpec& spec) {
   if (const auto n = stamp_note(m.truth, m.roles.truth)) out.notes.push_back(*n);
   if (const auto n = stamp_note(m.scans, m.roles.scan)) out.notes.push_back(*n);
   if (const auto n = stamp_note(m.headings, m.roles.heading)) out.notes.push_back(*n);
+  if (const auto n = stamp_note(m.joints, m.roles.joints)) out.notes.push_back(*n);
+  if (!m.joints.empty()) {
+    out.notes.push_back(fmt::format("wheel joints {} and {} → ENCODER at {:.10g} ticks per revolution; {}",
+                                    wheel_joint(spec, m, true), wheel_joint(spec, m, false), spec.ticks_per_rev,
+                                    spec.left_radius > 0.0 && spec.right_radius > 0.0 && spec.wheelbase > 0.0
+                                        ? fmt::format("nominal model: radii {} m (left), {} m (right), wheelbase {} m",
+                                                      spec.left_radius, spec.right_radius, spec.wheelbase)
+                                        : std::string("no nominal model (#radius=R,wheelbase=B give one; left_radius=, "
+                                                      "right_radius= for unequal wheels)")));
+  }
   if (!m.scans.empty()) out.notes.push_back(laser_mount(spec, m).how);
   out.notes.push_back(kChoose);
   return out;

@@ -22,6 +22,10 @@ inline constexpr const char* kDefaultTruthTopics[] = {"/ground_truth",       "/b
                                                       "/mocap/pose",         "/vicon/pose"};
 inline constexpr const char* kDefaultScanTopics[] = {"/scan", "/base_scan"};
 inline constexpr const char* kDefaultHeadingTopics[] = {"/imu", "/imu/data"};
+inline constexpr const char* kDefaultJointTopics[] = {"/joint_states"};
+// Wheel angles become ENCODER ticks at this resolution unless ticks_per_rev= says otherwise
+// (a micro-radian: the angle kept to its measured precision).
+inline constexpr double kDefaultTicksPerRev = 6283185.307179586;  // 2π·10⁶
 inline constexpr const char* kTfTopics[] = {"/tf_static", "/tf"};
 
 enum class BagFormat { kRos1, kRos2, kMcap };  // kRos2: sqlite3 storage; kMcap: ROS 2 in MCAP
@@ -30,9 +34,15 @@ enum class BagFormat { kRos1, kRos2, kMcap };  // kRos2: sqlite3 storage; kMcap:
 struct BagSpec {
   std::filesystem::path path;
   BagFormat format = BagFormat::kRos1;
-  std::optional<std::string> odom, truth, scan, heading;  // chosen topic; "" = none; nullopt = the defaults
-  std::string base_frame;                                 // default: the odometry's child_frame_id, else base_link
-  std::string laser_frame;                                // default: the scans' frame_id
+  std::optional<std::string> odom, truth, scan, heading, joints;  // chosen topic; "" = none; nullopt = defaults
+  // Wheel encoders from sensor_msgs/JointState: the two wheel joints (default: the first names
+  // holding "left" and "right"), the angle's resolution, and the nominal model (the wheels' radii
+  // and the wheelbase [m]; without them the log has ENCODER records but no nominal model).
+  std::string left_joint, right_joint;
+  double ticks_per_rev = kDefaultTicksPerRev;
+  double left_radius = 0.0, right_radius = 0.0, wheelbase = 0.0;  // radius= sets both radii
+  std::string base_frame;   // default: the odometry's child_frame_id, else base_link
+  std::string laser_frame;  // default: the scans' frame_id
 };
 
 // The path a log spec names: `spec` without a "#robotN" or "#odom=…" suffix.
@@ -46,7 +56,9 @@ std::optional<BagSpec> parse_bag_spec(const std::string& spec);
 // Reads the chosen topics into a Log: ODOM from nav_msgs/Odometry (pose; tv, rv from the twist),
 // TRUEPOS from PoseStamped, PoseWithCovarianceStamped, TransformStamped or Odometry, FLASER from
 // LaserScan with the laser's mount from /tf_static (or /tf) base → laser, COMPASS from
-// sensor_msgs/Imu (the yaw of its orientation, taken as the robot's heading). Throws InputError
+// sensor_msgs/Imu (the yaw of its orientation, taken as the robot's heading), ENCODER from
+// sensor_msgs/JointState wheel angles (ticks = angle·ticks_per_rev/2π) with PARAM records of the
+// nominal model when the radius and wheelbase are given. Throws InputError
 // naming the file, topic and message for a missing or mistyped topic, an undecodable message
 // and header stamps out of order.
 Log read_bag_log(const BagSpec& spec);

@@ -29,6 +29,7 @@ inline constexpr const char* kTfMessageType = "tf2_msgs/TFMessage";
 inline constexpr const char* kImuType = "sensor_msgs/Imu";
 inline constexpr const char* kTwistType = "geometry_msgs/Twist";  // velocity commands: no header
 inline constexpr const char* kTwistStampedType = "geometry_msgs/TwistStamped";
+inline constexpr const char* kJointStateType = "sensor_msgs/JointState";
 
 // One topic of a bag: its name, message type, message count and first/last record time [s].
 struct BagTopic {
@@ -77,6 +78,13 @@ struct BagHeadingMessage {
   bool has_orientation = true;
 };
 
+// sensor_msgs/JointState: joint names and positions [rad] (velocities and efforts are not read).
+struct BagJointMessage {
+  BagStamp time;
+  std::vector<std::string> names;
+  std::vector<double> positions;
+};
+
 // One transform of a tf2_msgs/TFMessage, in the plane: child frame in its parent frame.
 struct BagTransform {
   std::string parent;
@@ -90,6 +98,7 @@ struct BagRoles {
   std::string truth;
   std::string scan;
   std::string heading;
+  std::string joints;
   std::vector<std::string> tf;
 };
 
@@ -102,6 +111,7 @@ struct BagMessages {
   std::vector<BagPoseMessage> truth;
   std::vector<BagScanMessage> scans;
   std::vector<BagHeadingMessage> headings;
+  std::vector<BagJointMessage> joints;
   std::vector<BagTransform> transforms;
 };
 
@@ -150,6 +160,7 @@ struct BagContents {
   std::vector<BagPoseMessage> truth;
   std::vector<BagScanMessage> scans;
   std::vector<BagHeadingMessage> headings;
+  std::vector<BagJointMessage> joints;  // on /joint_states
   std::vector<BagTransform> static_transforms;
 };
 // compression: "none", "bz2" or "lz4" (rosbag's chunk compression).

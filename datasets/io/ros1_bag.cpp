@@ -11,6 +11,7 @@
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/Imu.h>
+#include <sensor_msgs/JointState.h>
 #include <sensor_msgs/LaserScan.h>
 #include <tf2_msgs/TFMessage.h>
 #include <boost/make_shared.hpp>
@@ -75,6 +76,9 @@ class LengthCheck {
   }
   void string() { skip(u32()); }
   void array(std::uint64_t element) { skip(element * u32()); }
+  void strings() {
+    for (std::uint32_t n = u32(); n > 0; --n) string();
+  }
   void header() {
     skip(12);  // seq, stamp
     string();  // frame_id
@@ -122,6 +126,12 @@ void check_lengths(const RawMessage& m, const std::string& type) {
   } else if (type == kTwistStampedType) {
     c.header();
     c.skip(6 * 8);
+  } else if (type == kJointStateType) {
+    c.header();
+    c.strings();
+    c.array(8);  // position
+    c.array(8);  // velocity
+    c.array(8);  // effort
   } else if (type == kImuType) {
     c.header();
     c.skip((4 + 9 + 3 + 9 + 3 + 9) * 8);
@@ -219,6 +229,15 @@ BagHeadingMessage heading_message(const RawMessage& m, const std::filesystem::pa
   return out;
 }
 
+BagJointMessage joint_message(const RawMessage& m, const std::filesystem::path& path) {
+  const auto j = as<sensor_msgs::JointState>(m, path);
+  BagJointMessage out;
+  out.time = stamp_of(j->header, m);
+  out.names = std::move(j->name);
+  out.positions = std::move(j->position);
+  return out;
+}
+
 std::string type_name(const std::string& type) {
   return type == "tf/tfMessage" ? kTfMessageType : printable(type);  // the same message under its ROS 1 tf name
 }
@@ -268,6 +287,7 @@ BagMessages read_messages(const std::filesystem::path& path, const BagRoleChoose
     if (topic == r.truth) out.truth.push_back(pose_message(m, truth_type, path));
     if (topic == r.scan) out.scans.push_back(scan_message(m, path));
     if (topic == r.heading) out.headings.push_back(heading_message(m, path));
+    if (topic == r.joints) out.joints.push_back(joint_message(m, path));
     if (std::find(r.tf.begin(), r.tf.end(), topic) != r.tf.end()) {
       const auto tf = as<tf2_msgs::TFMessage>(m, path);
       for (const geometry_msgs::TransformStamped& t : tf->transforms) {
@@ -378,6 +398,13 @@ void write_ros1_bag(const BagContents& c, const std::filesystem::path& path, con
       s.range_max = static_cast<float>(m.range_max);
       s.ranges = m.ranges;
       bag.write("/scan", record_time(m.time.record_time), s);
+    }
+    for (const BagJointMessage& m : c.joints) {
+      sensor_msgs::JointState j;
+      j.header.stamp.fromSec(m.time.stamp);
+      j.name = m.names;
+      j.position = m.positions;
+      bag.write("/joint_states", record_time(m.time.record_time), j);
     }
     for (const BagHeadingMessage& m : c.headings) {
       sensor_msgs::Imu i;

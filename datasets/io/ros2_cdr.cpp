@@ -54,6 +54,18 @@ class CdrReader {
     cdr_.deserialize(v);  // checks the length against the bytes left before allocating
     return v;
   }
+  std::vector<double> doubles() {
+    std::vector<double> v;
+    cdr_.deserialize(v);
+    return v;
+  }
+  std::vector<std::string> strings() {
+    const std::uint32_t n = u32();
+    if (n > bytes_left()) throw eprosima::fastcdr::exception::NotEnoughMemoryException("names");
+    std::vector<std::string> v;
+    for (std::uint32_t i = 0; i < n; ++i) v.push_back(str());
+    return v;
+  }
   void skip_f64(std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) f64();
   }
@@ -183,6 +195,18 @@ BagHeadingMessage decode_imu(CdrReader& r) {
   return m;
 }
 
+// sensor_msgs/JointState: header, name[], position[], velocity[], effort[].
+BagJointMessage decode_joints(CdrReader& r) {
+  BagJointMessage m;
+  std::string frame;
+  m.time.stamp = r.header(frame);
+  m.names = r.strings();
+  m.positions = r.doubles();
+  r.doubles();  // velocity
+  r.doubles();  // effort
+  return m;
+}
+
 void decode_transforms(CdrReader& r, std::set<std::pair<std::string, std::string>>& seen,
                        std::vector<BagTransform>& out) {
   const std::uint32_t n = r.u32();
@@ -217,7 +241,7 @@ std::string ros1_type_name(std::string type) {
 
 bool Ros2MessageDecoder::wants(const std::string& topic) const {
   const BagRoles& r = out_.roles;
-  return topic == r.odom || topic == r.truth || topic == r.scan || topic == r.heading ||
+  return topic == r.odom || topic == r.truth || topic == r.scan || topic == r.heading || topic == r.joints ||
          std::find(r.tf.begin(), r.tf.end(), topic) != r.tf.end();
 }
 
@@ -258,6 +282,12 @@ void Ros2MessageDecoder::add(const std::string& topic, const std::string& type, 
       reader.expect_end();
       out_.scans.back().time = {out_.scans.back().time.stamp, record_time, index};
     }
+    if (topic == r.joints) {
+      CdrReader reader(data, size);
+      out_.joints.push_back(decode_joints(reader));
+      reader.expect_end();
+      out_.joints.back().time = {out_.joints.back().time.stamp, record_time, index};
+    }
     if (topic == r.heading) {
       CdrReader reader(data, size);
       out_.headings.push_back(decode_imu(reader));
@@ -282,7 +312,8 @@ Ros2Serialized serialize_ros2(const BagContents& c) {
                 {"/odom", "nav_msgs/msg/Odometry"},
                 {"/ground_truth", "geometry_msgs/msg/PoseStamped"},
                 {"/scan", "sensor_msgs/msg/LaserScan"},
-                {"/imu", "sensor_msgs/msg/Imu"}};
+                {"/imu", "sensor_msgs/msg/Imu"},
+                {"/joint_states", "sensor_msgs/msg/JointState"}};
   if (!c.static_transforms.empty()) {
     add(out, 0, 0.0, [&](CdrWriter& w) {
       w << static_cast<std::uint32_t>(c.static_transforms.size());
@@ -333,6 +364,12 @@ Ros2Serialized serialize_ros2(const BagContents& c) {
       w.quaternion(m.yaw);
       w << (m.has_orientation ? 0.0 : -1.0);  // orientation_covariance[0]
       w.zeros(8 + 3 + 9 + 3 + 9);             // covariances, angular velocity, linear acceleration
+    });
+  }
+  for (const BagJointMessage& m : c.joints) {
+    add(out, 5, m.time.record_time, [&](CdrWriter& w) {
+      w.header(m.time.stamp, "");
+      w << m.names << m.positions << std::vector<double>{} << std::vector<double>{};
     });
   }
   std::stable_sort(out.messages.begin(), out.messages.end(),

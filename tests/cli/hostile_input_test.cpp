@@ -1086,7 +1086,9 @@ const std::vector<HostileCase>& cases() {
       {"bag_missing_topic", kShortBags, "diagnose '{d}/l.bag#odom=/wheel_odom'", 2,
        "l.bag: #odom=/wheel_odom: no such topic in the bag (topics: /ground_truth"},
       {"bag_wrong_message_type", kShortBags, "diagnose '{d}/l.bag#odom=/scan'", 2,
-       "l.bag: topic /scan (#odom=) is a sensor_msgs/LaserScan, expected nav_msgs/Odometry for the odometry"},
+       "l.bag: topic /scan (#odom=) is a sensor_msgs/LaserScan, expected nav_msgs/Odometry or "
+       "geometry_msgs/TwistStamped or "
+       "geometry_msgs/Twist for the odometry"},
       {"bag_unknown_topic_key", kShortBags, "diagnose '{d}/l.bag#odometry=/odom'", 2,
        "'odometry=/odom' after '#': unknown key \"odometry\""},
       {"bag_no_odometry", kShortBags, "calibrate ml '{d}/l2#odom=none'", 2, "l2: no odometry topic"},

@@ -3,6 +3,7 @@
 // the file, the topic and the message.
 #include "datasets/io/bag_log.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -16,6 +17,7 @@
 #include "core/angle.h"
 #include "core/dead_reckoning.h"
 #include "core/rng.h"
+#include "core/units.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
@@ -409,7 +411,9 @@ TEST(RosBag, ABadTopicChoiceIsRefusedWithTheAcceptedKeys) {
   ScratchDir dir;
   write_ros1_bag(odometry_only(3, 0.0), dir.file("a.bag"));
   EXPECT_TRUE(throws_input_error([&] { load_log(dir.file("a.bag").string() + "#odo=/odom"); }, "a.bag#odo=/odom", 0,
-                                 {"unknown key \"odo\"", "keys odom, truth, scan, heading, base, laser"}));
+                                 {"unknown key \"odo\"",
+                                  "keys odom, truth, scan, heading, joints, left, right, ticks_per_rev, radius, "
+                                  "left_radius, right_radius, wheelbase, base, laser"}));
   EXPECT_TRUE(
       throws_input_error([&] { load_log(dir.file("a.bag").string() + "#odom="); }, "a.bag#odom=", 0, {"no value"}));
 }
@@ -507,6 +511,50 @@ TEST(RosBag, VelocityCommandsReadBackAsOdometryWithTheirDeadReckoning) {
         ASSERT_NEAR(back.odometry[i].pose.theta, expected.poses()[i].pose.theta, 1e-9);
       }
     }
+  }
+}
+
+// Wheel encoders from sensor_msgs/JointState: a simulated run's ENCODER ticks written as wheel
+// angles (ticks · 2π/N, N = 4096 per revolution) beside other joints, read back with
+// ticks_per_rev=4096 as the same ticks, and with radius= and wheelbase= as the same nominal model.
+TEST(RosBag, WheelJointAnglesReadBackAsTheEncoderTicksTheyWereWrittenFrom) {
+  ScratchDir dir;
+  const sim::Scenario s = sim::scenario_from_json(nlohmann::json::parse(R"({"preset": "corridor",
+      "odometry": {"enabled": true}})"));
+  const Log original = sim::simulate(s, 7).log;
+  ASSERT_GT(original.encoders.size(), 100u);
+  const NominalModel model = *original.nominal_model();
+  constexpr double kTicksPerRev = 4096.0;
+  const double left_radius = model.meters_per_tick_left * kTicksPerRev / (2.0 * kPi);
+  const double right_radius = model.meters_per_tick_right * kTicksPerRev / (2.0 * kPi);
+  BagContents c = bag_contents(original);
+  for (const EncoderReading& e : original.encoders) {
+    c.joints.push_back({{e.t, e.t, 0},
+                        {"caster_joint", "right_wheel_joint", "left_wheel_joint"},
+                        {0.5, 2.0 * kPi * static_cast<double>(e.right) / kTicksPerRev,
+                         2.0 * kPi * static_cast<double>(e.left) / kTicksPerRev}});
+  }
+  write_ros1_bag(c, dir.file("j.bag"));
+  write_ros2_bag(c, dir.file("j"), "j");
+  write_mcap_bag(c, dir.file("j.mcap"));
+  const std::string choice =
+      fmt::format("#ticks_per_rev=4096,left_radius={:.17g},right_radius={:.17g},wheelbase={:.17g}", left_radius,
+                  right_radius, model.wheelbase);
+  for (const std::string bag : {"j.bag", "j", "j.mcap"}) {
+    const Log back = load_log(dir.file(bag).string() + choice);
+    ASSERT_EQ(back.encoders.size(), original.encoders.size()) << bag;
+    for (std::size_t i = 0; i < back.encoders.size(); ++i) {
+      EXPECT_EQ(back.encoders[i].t, original.encoders[i].t) << bag << " " << i;
+      EXPECT_EQ(back.encoders[i].left, original.encoders[i].left) << bag << " " << i;
+      EXPECT_EQ(back.encoders[i].right, original.encoders[i].right) << bag << " " << i;
+    }
+    ASSERT_TRUE(back.nominal_model()) << bag;
+    EXPECT_NEAR(back.nominal_model()->meters_per_tick_left, model.meters_per_tick_left, 1e-15) << bag;
+    EXPECT_NEAR(back.nominal_model()->meters_per_tick_right, model.meters_per_tick_right, 1e-15) << bag;
+    EXPECT_EQ(back.nominal_model()->wheelbase, model.wheelbase) << bag;
+    EXPECT_FALSE(load_log(dir.file(bag).string()).nominal_model()) << "no radius, no model";
+    EXPECT_TRUE(throws_input_error([&] { load_log(dir.file(bag).string() + "#left=front_wheel_joint"); }, bag, 0,
+                                   {"message 1: no position of joint front_wheel_joint"}));
   }
 }
 
