@@ -19,11 +19,18 @@ void add_bag_topic_options(CLI::App* cmd, BagTopicArgs& topics) {
       ->group(group);
   cmd->add_option("--heading", topics.heading, "Heading topic, sensor_msgs/Imu (default /imu, /imu/data)")
       ->group(group);
+  cmd->add_option("--joints", topics.joints,
+                  "Wheel-joint topic, sensor_msgs/JointState, as ENCODER (default /joint_states; wheels, resolution "
+                  "and radii after LOG#: left=,right=,ticks_per_rev=,radius=,wheelbase=)")
+      ->group(group);
 }
 
 std::string with_bag_topics(const std::string& spec, const BagTopicArgs& topics) {
-  const std::vector<std::pair<const char*, const std::string*>> given{
-      {"odom", &topics.odom}, {"truth", &topics.truth}, {"scan", &topics.scan}, {"heading", &topics.heading}};
+  const std::vector<std::pair<const char*, const std::string*>> given{{"odom", &topics.odom},
+                                                                      {"truth", &topics.truth},
+                                                                      {"scan", &topics.scan},
+                                                                      {"heading", &topics.heading},
+                                                                      {"joints", &topics.joints}};
   std::string pairs;
   for (const auto& [key, value] : given) {
     if (value->empty()) continue;
@@ -31,7 +38,7 @@ std::string with_bag_topics(const std::string& spec, const BagTopicArgs& topics)
   }
   if (pairs.empty()) return spec;
   if (!io::parse_bag_spec(spec)) {
-    throw UsageError("--odom, --truth, --scan and --heading choose a ROS bag's topics, and " + spec +
+    throw UsageError("--odom, --truth, --scan, --heading and --joints choose a ROS bag's topics, and " + spec +
                      " is not a bag (expected a .bag, .db3 or .mcap file, or a ROS 2 bag folder)");
   }
   return spec + (io::log_spec_path(spec) == spec ? "#" : ",") + pairs;

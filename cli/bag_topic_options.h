@@ -1,5 +1,5 @@
 #pragma once
-// --odom, --truth, --scan, --heading: a bag's topics chosen by option, as every verb that reads a
+// --odom, --truth, --scan, --heading, --joints: a bag's topics chosen by option, as every verb that reads a
 // log declares them (the same choice as LOG#odom=…,truth=…; datasets/io/bag_log.h).
 #include <CLI/CLI.hpp>
 #include <string>
@@ -7,7 +7,7 @@
 namespace locbench::cli {
 
 struct BagTopicArgs {
-  std::string odom, truth, scan, heading;
+  std::string odom, truth, scan, heading, joints;
 };
 
 void add_bag_topic_options(CLI::App* cmd, BagTopicArgs& topics);

@@ -46,7 +46,7 @@ using locbench::catalog::DatasetEntry, locbench::catalog::find_dataset, locbench
 namespace {
 
 struct CalibrateArgs {
-  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading, --joints
   std::string method;
   std::string input;
   std::string report;

@@ -32,7 +32,7 @@ namespace locbench::cli {
 namespace {
 
 struct DiagnoseArgs {
-  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading, --joints
   std::string input;
   std::string relations;
   std::string report;

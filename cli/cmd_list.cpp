@@ -24,7 +24,7 @@ using locbench::catalog::calibration_dataset_parts, locbench::catalog::dataset_c
 namespace {
 
 struct ListArgs {
-  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading, --joints
   std::string log;
   std::string data;
   bool no_load = false;

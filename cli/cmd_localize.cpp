@@ -36,7 +36,7 @@ namespace {
 namespace g = experiments::global;
 
 struct LocalizeArgs {
-  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading, --joints
   std::string method = "mcl";
   std::string map;
   double map_from_log = 0.0;

@@ -26,7 +26,7 @@ using io::odometry_trajectory;
 namespace {
 
 struct MatchArgs {
-  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading, --joints
   std::string map;
   std::string log;
   std::string matcher = "eap";

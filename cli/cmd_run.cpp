@@ -24,7 +24,7 @@ namespace locbench::cli {
 namespace {
 
 struct RunArgs {
-  BagTopicArgs topics;  // --odom, --truth, --scan, --heading
+  BagTopicArgs topics;  // --odom, --truth, --scan, --heading, --joints
   std::vector<std::string> experiments;
   std::uint64_t seed = 1;
   int runs = 0;

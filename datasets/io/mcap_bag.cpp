@@ -40,12 +40,64 @@ std::vector<std::filesystem::path> mcap_files(const std::filesystem::path& path)
   return files;
 }
 
+// The MCAP library allocates what a chunk record says its records take uncompressed before it
+// decompresses them, so a chunk that lies (a damaged or hostile file) could ask for exabytes. The
+// top-level records are walked first (opcode, length: no data read) and a chunk claiming more than
+// this is refused; writers make chunks of about 1–4 MB (the library's default 768 kB).
+constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{256} << 20;
+constexpr std::uint8_t kOpChunk = 0x06, kOpFooter = 0x02;
+
+void check_chunk_sizes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<std::uint64_t>(std::max<std::streamoff>(in.tellg(), 0));
+  const auto fail = [&](std::uint64_t at, const std::string& what) {
+    throw InputError(path.string(), 0, "byte " + std::to_string(at) + ": " + what + " (a damaged file?)");
+  };
+  std::uint64_t at = sizeof(mcap::Magic);
+  while (at + 9 <= size) {
+    // opcode, length; a chunk's message start and end times, uncompressed size and CRC,
+    // compression (a length-prefixed string) and, when that is empty, the length of its records.
+    unsigned char head[9 + 24 + 4 + 4 + 8] = {};
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(at));
+    const std::uint64_t got = std::min<std::uint64_t>(sizeof(head), size - at);
+    if (!in.read(reinterpret_cast<char*>(head), static_cast<std::streamsize>(got))) return;  // the library says why
+    const auto u64 = [&](std::size_t k) {
+      std::uint64_t v = 0;
+      std::memcpy(&v, head + k, 8);  // little-endian, as MCAP and x86 are
+      return v;
+    };
+    const std::uint64_t length = u64(1);
+    if (head[0] == kOpFooter) return;
+    if (length > size - at - 9) return;  // runs past the end: the library reports it
+    if (head[0] == kOpChunk && length >= 24 + 4 + 4) {
+      const std::uint64_t uncompressed = u64(9 + 16);
+      if (uncompressed > kMaxChunkBytes) {
+        fail(at, "a chunk claims " + std::to_string(uncompressed) + " bytes uncompressed (expected at most " +
+                     std::to_string(kMaxChunkBytes) + ")");
+      }
+      std::uint32_t name_length = 0;
+      std::memcpy(&name_length, head + 9 + 28, 4);
+      if (name_length == 0 && 9 + 32 + 8 <= got) {  // no compression: the records are the claim
+        const std::uint64_t records = u64(9 + 32);
+        if (records != uncompressed) {
+          fail(at,
+               "an uncompressed chunk of " + std::to_string(records) + " bytes claims " + std::to_string(uncompressed));
+        }
+      }
+    }
+    at += 9 + length;
+  }
+}
+
 // Opens one MCAP file for reading; every problem the library reports becomes an InputError
 // naming the file.
 class McapFile {
  public:
   explicit McapFile(std::filesystem::path path) : path_(std::move(path)) {
     check(reader_.open(path_.string()), "opening");
+    check_chunk_sizes(path_);
     // A file cut short (a recorder killed) lacks the closing magic; the library would read the
     // messages before the cut and say nothing.
     std::ifstream in(path_, std::ios::binary);
@@ -111,7 +163,7 @@ class McapFile {
         mcap::Record record;
         mcap::MessageIndex index;
         if (channel == channels.end() || !mcap::McapReader::ReadRecord(*reader_.dataSource(), offset, &record).ok() ||
-            !mcap::McapReader::ParseMessageIndex(record, &index).ok()) {
+            record.opcode != mcap::OpCode::MessageIndex || !mcap::McapReader::ParseMessageIndex(record, &index).ok()) {
           return false;
         }
         Counted& c = out[printable(channel->second->topic)];
