@@ -497,7 +497,7 @@ TEST(RosBag, VelocityCommandsReadBackAsOdometryWithTheirDeadReckoning) {
     write_ros1_bag(c, dir.file("t.bag"));
     write_ros2_bag(c, dir.file("t" + std::to_string(type.size())), "t");
     write_mcap_bag(c, dir.file("t.mcap"));
-    for (const std::filesystem::path bag :
+    for (const std::filesystem::path& bag :
          {dir.file("t.bag"), dir.file("t" + std::to_string(type.size())), dir.file("t.mcap")}) {
       const Log back = load_log(bag.string());
       ASSERT_EQ(back.odometry.size(), original.odometry.size()) << type << " " << bag;
