@@ -285,7 +285,10 @@ void write_mcap_bag(const BagContents& contents, const std::filesystem::path& pa
   std::vector<mcap::ChannelId> channel(serialized.topics.size(), 0);
   for (std::size_t i = 0; i < serialized.topics.size(); ++i) {
     if (serialized.topics[i].count == 0) continue;  // as a recorder: only topics that had messages
-    mcap::Schema schema(serialized.topics[i].type, "ros2msg", "");
+    // The message definition is not embedded (readers of the type, ROS 2 and locbench, know it): a
+    // comment stands in for it (an empty schema made the library fwrite from a null pointer).
+    mcap::Schema schema(serialized.topics[i].type, "ros2msg",
+                        "# " + serialized.topics[i].type + ": the definition is not embedded (written by locbench)\n");
     writer.addSchema(schema);
     mcap::Channel c(serialized.topics[i].name, "cdr", schema.id);
     writer.addChannel(c);
