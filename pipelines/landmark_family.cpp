@@ -98,7 +98,11 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
         s.process_scale = q;
         s.knob = k;
         s.level_reference.setZero();
-        if (tracks_level) s.level_reference = track(train, s, options.gate).innovation_sigma;
+        if (tracks_level) {
+          MethodSetup reference = s;
+          reference.measure_innovation_level = true;
+          s.level_reference = track(train, reference, options.gate).innovation_sigma;
+        }
         const TrackResult r = track(train, s, options.gate);
         const double inf = std::numeric_limits<double>::infinity();
         runs.push_back({q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees), r.log_score(),

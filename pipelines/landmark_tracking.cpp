@@ -470,6 +470,7 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
   std::size_t next = 0;
   const bool tracks_level = setup.level_reference.minCoeff() > 0.0 && !carries_bias &&
                             (setup.method == Method::kNominalModel || setup.method == Method::kDiagnosedModel);
+  const bool measures_level = tracks_level || setup.measure_innovation_level;
   std::vector<double> innovation_t;
   std::array<std::vector<double>, 2> innovation;  // standardized range and bearing innovations
   std::size_t window_start = 0;
@@ -478,7 +479,8 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
       ++out.observations;
       const bool recover = starving >= gate.starve_after;
       LandmarkRangeBearing z = obs[next].z;
-      if (const auto* f = std::get_if<MotionModelEkf>(&filter)) {  // the innovations' level
+      const auto* f = measures_level ? std::get_if<MotionModelEkf>(&filter) : nullptr;
+      if (f != nullptr) {  // the innovations' level
         const LinearizedMeasurement lin = linearize(z, f->mean());
         const MeasurementVector nu = lin.residual();
         const MeasurementMatrix s = lin.H * f->covariance() * lin.H.transpose() + lin.R;

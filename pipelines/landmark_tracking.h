@@ -179,6 +179,8 @@ struct MethodSetup {
   // reference the same σ over a whole run at this setting on the tuning part
   // (TrackResult::innovation_sigma). λ is kept within [1/kMaxLevelRatio, kMaxLevelRatio].
   Eigen::Vector2d level_reference = Eigen::Vector2d::Zero();
+  // Measure TrackResult::innovation_sigma (a fitted model's reference run; tracking measures it too).
+  bool measure_innovation_level = false;
 };
 inline constexpr double kMaxLevelRatio = 256.0;
 
@@ -196,7 +198,8 @@ struct TrackResult {
   bool finite = true;
   bool diverged = false;
   // The robust σ (1.4826·MAD) of the range and bearing innovations over the run, each standardized
-  // by its predicted σ under the untracked R (MethodSetup::level_reference); 0 with < 20.
+  // by its predicted σ under the untracked R (MethodSetup::level_reference); 0 with < 20, or when
+  // neither tracked nor asked for (MethodSetup::measure_innovation_level).
   Eigen::Vector2d innovation_sigma = Eigen::Vector2d::Zero();
   double position_rmse() const;
   double heading_rmse() const;

@@ -40,14 +40,16 @@ std::vector<std::filesystem::path> mcap_files(const std::filesystem::path& path)
   return files;
 }
 
-// The MCAP library allocates what a chunk record says its records take uncompressed before it
-// decompresses them, so a chunk that lies (a damaged or hostile file) could ask for exabytes. The
-// top-level records are walked first (opcode, length: no data read) and a chunk claiming more than
-// this is refused; writers make chunks of about 1–4 MB (the library's default 768 kB).
+// An MCAP file is checked before the library reads it, in one pass over its top-level records
+// (opcode and length; a chunk's size fields). The library allocates what a chunk says its records
+// take uncompressed before it decompresses them, so a chunk that lies (a damaged or hostile file)
+// could ask for exabytes: a claim over this is refused, as is an uncompressed chunk whose records
+// disagree with its claim (which the library asserts). Writers make chunks of about 1–4 MB (the
+// library's default 768 kB). Then the file must end with the closing magic.
 constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{256} << 20;
 constexpr std::uint8_t kOpChunk = 0x06, kOpFooter = 0x02;
 
-void check_chunk_sizes(const std::filesystem::path& path) {
+void check_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   in.seekg(0, std::ios::end);
   const auto size = static_cast<std::uint64_t>(std::max<std::streamoff>(in.tellg(), 0));
@@ -62,15 +64,15 @@ void check_chunk_sizes(const std::filesystem::path& path) {
     in.clear();
     in.seekg(static_cast<std::streamoff>(at));
     const std::uint64_t got = std::min<std::uint64_t>(sizeof(head), size - at);
-    if (!in.read(reinterpret_cast<char*>(head), static_cast<std::streamsize>(got))) return;  // the library says why
+    if (!in.read(reinterpret_cast<char*>(head), static_cast<std::streamsize>(got))) break;  // the library says why
     const auto u64 = [&](std::size_t k) {
       std::uint64_t v = 0;
       std::memcpy(&v, head + k, 8);  // little-endian, as MCAP and x86 are
       return v;
     };
     const std::uint64_t length = u64(1);
-    if (head[0] == kOpFooter) return;
-    if (length > size - at - 9) return;  // runs past the end: the library reports it
+    if (head[0] == kOpFooter) break;
+    if (length > size - at - 9) break;  // runs past the end: the library reports it
     if (head[0] == kOpChunk && length >= 24 + 4 + 4) {
       const std::uint64_t uncompressed = u64(9 + 16);
       if (uncompressed > kMaxChunkBytes) {
@@ -89,6 +91,16 @@ void check_chunk_sizes(const std::filesystem::path& path) {
     }
     at += 9 + length;
   }
+  // A file cut short (a recorder killed) lacks the closing magic; the library would read the
+  // messages before the cut and say nothing.
+  char tail[sizeof(mcap::Magic)] = {};
+  in.clear();
+  in.seekg(-static_cast<std::streamoff>(sizeof(tail)), std::ios::end);
+  if (!in.read(tail, sizeof(tail)) || std::memcmp(tail, mcap::Magic, sizeof(tail)) != 0) {
+    throw InputError(path.string(), 0,
+                     "does not end with MCAP's closing magic bytes: cut short (a recording that did not finish?) "
+                     "or followed by other data (expected a complete MCAP file)");
+  }
 }
 
 // Opens one MCAP file for reading; every problem the library reports becomes an InputError
@@ -97,17 +109,7 @@ class McapFile {
  public:
   explicit McapFile(std::filesystem::path path) : path_(std::move(path)) {
     check(reader_.open(path_.string()), "opening");
-    check_chunk_sizes(path_);
-    // A file cut short (a recorder killed) lacks the closing magic; the library would read the
-    // messages before the cut and say nothing.
-    std::ifstream in(path_, std::ios::binary);
-    char tail[sizeof(mcap::Magic)] = {};
-    in.seekg(-static_cast<std::streamoff>(sizeof(tail)), std::ios::end);
-    if (!in.read(tail, sizeof(tail)) || std::memcmp(tail, mcap::Magic, sizeof(tail)) != 0) {
-      throw InputError(path_.string(), 0,
-                       "does not end with MCAP's closing magic bytes: cut short (a recording that did not finish?) "
-                       "or followed by other data (expected a complete MCAP file)");
-    }
+    check_file(path_);
     check(reader_.readSummary(mcap::ReadSummaryMethod::AllowFallbackScan, [&](const mcap::Status& s) { note(s); }),
           "reading its summary");
     rethrow("reading its summary");

@@ -258,6 +258,13 @@ void Ros2MessageDecoder::add(const std::string& topic, const std::string& type, 
   if (!wants(topic)) return;
   const std::size_t index = ++counts_[topic];
   const double record_time = nanoseconds_to_seconds(record_ns);
+  // One message decoded into `into`, every byte used, stamped with its record time and number.
+  const auto decode = [&](auto& into, auto&& decoder) {
+    CdrReader reader(data, size);
+    into.push_back(decoder(reader));
+    reader.expect_end();
+    into.back().time = {into.back().time.stamp, record_time, index};
+  };
   try {
     if (topic == r.odom) {
       if (type != kOdometryType && type != kTwistType && type != kTwistStampedType) {
@@ -265,35 +272,12 @@ void Ros2MessageDecoder::add(const std::string& topic, const std::string& type, 
                          "topic " + topic + ": a " + type + ", expected " + kOdometryType + ", " + kTwistType + " or " +
                              kTwistStampedType);
       }
-      CdrReader reader(data, size);
-      out_.odom.push_back(decode_pose(reader, type));
-      reader.expect_end();
-      out_.odom.back().time = {out_.odom.back().time.stamp, record_time, index};
+      decode(out_.odom, [&](CdrReader& reader) { return decode_pose(reader, type); });
     }
-    if (topic == r.truth) {
-      CdrReader reader(data, size);
-      out_.truth.push_back(decode_pose(reader, type));
-      reader.expect_end();
-      out_.truth.back().time = {out_.truth.back().time.stamp, record_time, index};
-    }
-    if (topic == r.scan) {
-      CdrReader reader(data, size);
-      out_.scans.push_back(decode_scan(reader));
-      reader.expect_end();
-      out_.scans.back().time = {out_.scans.back().time.stamp, record_time, index};
-    }
-    if (topic == r.joints) {
-      CdrReader reader(data, size);
-      out_.joints.push_back(decode_joints(reader));
-      reader.expect_end();
-      out_.joints.back().time = {out_.joints.back().time.stamp, record_time, index};
-    }
-    if (topic == r.heading) {
-      CdrReader reader(data, size);
-      out_.headings.push_back(decode_imu(reader));
-      reader.expect_end();
-      out_.headings.back().time = {out_.headings.back().time.stamp, record_time, index};
-    }
+    if (topic == r.truth) decode(out_.truth, [&](CdrReader& reader) { return decode_pose(reader, type); });
+    if (topic == r.scan) decode(out_.scans, decode_scan);
+    if (topic == r.joints) decode(out_.joints, decode_joints);
+    if (topic == r.heading) decode(out_.headings, decode_imu);
     if (std::find(r.tf.begin(), r.tf.end(), topic) != r.tf.end()) {
       CdrReader reader(data, size);
       decode_transforms(reader, seen_, out_.transforms);

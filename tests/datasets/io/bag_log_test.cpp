@@ -43,6 +43,13 @@ Log simulated_log() {
   return log;
 }
 
+// The same corridor run with its ENCODER, COMPASS and PARAM records (no laser).
+Log simulated_log_with_encoders_and_compass() {
+  const sim::Scenario s = sim::scenario_from_json(nlohmann::json::parse(R"({"preset": "corridor",
+      "odometry": {"enabled": true}})"));
+  return sim::simulate(s, 7).log;
+}
+
 // The bag's log equals the original: times, positions and velocities exactly, headings to one
 // unit in the last place (a quaternion (sin θ/2, cos θ/2) can stand for two neighbouring doubles;
 // a heading with ≤ 15 digits, as in a text log, comes back exactly: the Aces test), ranges and
@@ -130,9 +137,7 @@ TEST(RosBag, AMcapBagReadsAsTheSameLogAsTheSqliteBagOfTheSameMessages) {
 
 TEST(RosBag, ImuOrientationsReadBackAsTheCompassRecordsTheyWereWrittenFrom) {
   ScratchDir dir;
-  const sim::Scenario s = sim::scenario_from_json(nlohmann::json::parse(R"({"preset": "corridor",
-      "odometry": {"enabled": true}})"));
-  const Log original = sim::simulate(s, 7).log;
+  const Log original = simulated_log_with_encoders_and_compass();
   ASSERT_GT(original.compass.size(), 100u);
   for (const auto& [bag, format] : std::vector<std::pair<std::string, BagFormat>>{
            {"c.bag", BagFormat::kRos1}, {"c", BagFormat::kRos2}, {"c.mcap", BagFormat::kMcap}}) {
@@ -519,9 +524,7 @@ TEST(RosBag, VelocityCommandsReadBackAsOdometryWithTheirDeadReckoning) {
 // ticks_per_rev=4096 as the same ticks, and with radius= and wheelbase= as the same nominal model.
 TEST(RosBag, WheelJointAnglesReadBackAsTheEncoderTicksTheyWereWrittenFrom) {
   ScratchDir dir;
-  const sim::Scenario s = sim::scenario_from_json(nlohmann::json::parse(R"({"preset": "corridor",
-      "odometry": {"enabled": true}})"));
-  const Log original = sim::simulate(s, 7).log;
+  const Log original = simulated_log_with_encoders_and_compass();
   ASSERT_GT(original.encoders.size(), 100u);
   const NominalModel model = *original.nominal_model();
   constexpr double kTicksPerRev = 4096.0;
