@@ -111,6 +111,7 @@ TEST(RosBagCatalogCli, DiagnoseOnTheAcesLogAsABagEqualsDiagnoseOnTheCatalogLog) 
   const Log aces = io::load_log((catalog::data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz").string());
   io::write_bag_log(aces, dir.path() / "aces.bag", io::BagFormat::kRos1);
   io::write_bag_log(aces, dir.path() / "aces", io::BagFormat::kRos2);
+  io::write_bag_log(aces, dir.path() / "aces.mcap", io::BagFormat::kMcap);
   const auto diagnose = [&](const std::string& log) {
     const Outcome o = run_locbench("diagnose " + log + " --relations " + relations);
     EXPECT_EQ(o.exit_code, 0) << o.output;
@@ -120,6 +121,7 @@ TEST(RosBagCatalogCli, DiagnoseOnTheAcesLogAsABagEqualsDiagnoseOnTheCatalogLog) 
   EXPECT_NE(carmen.find("verdict: The nominal model misses"), std::string::npos) << carmen;
   EXPECT_EQ(diagnose((dir.path() / "aces.bag").string()), carmen);
   EXPECT_EQ(diagnose((dir.path() / "aces").string()), carmen);
+  EXPECT_EQ(diagnose((dir.path() / "aces.mcap").string()), carmen);
 }
 
 }  // namespace

@@ -272,7 +272,8 @@ TEST(RosBag, TheAcesCatalogLogReadsBackFromItsBagsRecordForRecord) {
   ASSERT_GT(aces.odometry.size(), 7000u);
   write_bag_log(aces, dir.file("aces.bag"), BagFormat::kRos1);
   write_bag_log(aces, dir.file("aces"), BagFormat::kRos2);
-  for (const std::string bag : {"aces.bag", "aces"}) {
+  write_bag_log(aces, dir.file("aces.mcap"), BagFormat::kMcap);
+  for (const std::string bag : {"aces.bag", "aces", "aces.mcap"}) {
     const Log back = load_log(dir.file(bag).string());
     ASSERT_EQ(back.odometry.size(), aces.odometry.size()) << bag;
     for (std::size_t i = 0; i < aces.odometry.size(); ++i) {
