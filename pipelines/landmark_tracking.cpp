@@ -479,11 +479,11 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
       ++out.observations;
       const bool recover = starving >= gate.starve_after;
       LandmarkRangeBearing z = obs[next].z;
-      const auto* f = measures_level ? std::get_if<MotionModelEkf>(&filter) : nullptr;
-      if (f != nullptr) {  // the innovations' level
-        const LinearizedMeasurement lin = linearize(z, f->mean());
+      const auto* model_ekf = measures_level ? std::get_if<MotionModelEkf>(&filter) : nullptr;
+      if (model_ekf != nullptr) {  // the innovations' level
+        const LinearizedMeasurement lin = linearize(z, model_ekf->mean());
         const MeasurementVector nu = lin.residual();
-        const MeasurementMatrix s = lin.H * f->covariance() * lin.H.transpose() + lin.R;
+        const MeasurementMatrix s = lin.H * model_ekf->covariance() * lin.H.transpose() + lin.R;
         const double now = obs[next].t;
         if (tracks_level) {
           while (window_start < innovation_t.size() && innovation_t[window_start] < now - kLevelBlockS) ++window_start;
