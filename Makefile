@@ -5,15 +5,15 @@ RELEASE := build/release
 TESTBUILD := build/test
 OUT ?= out
 
-BASELINE := benchmarks/baselines/default
-RULES := benchmarks/baselines/rules.json
+BASELINE := benchmarks/reference_results/default
+RULES := benchmarks/reference_results/rules.json
 # Overrides that keep the gate fast under ASan, measured per experiment with the ASan binary on
 # 2026-11-25 (gate 344 s before them): laser/real_logs on the first 50 relations of each log (101 →
 # 55 s), no relations drawn, no per-relation values; calibration/real_logs on Censi's lstraight and
 # l90, aces and MRCLAM robot 2 (175 s with every set: the Ceres solve evaluates the -O0, ASan-
 # instrumented model for its numeric derivatives); diagnosis/real_logs on aces and intel;
 # sim_to_real on aces and robot 2, 120 s each. The baseline is made with the same file.
-GATE_CONFIG := benchmarks/baselines/gate_config.json
+GATE_CONFIG := benchmarks/reference_results/gate_config.json
 # Monte-Carlo runs per experiment in the gate (the baseline is made with the same number).
 GATE_RUNS ?= 3
 
@@ -113,9 +113,9 @@ bench: setup
 	$(BENCHBUILD)/benchmarks/speed/locbench_speed --benchmark_out=$(OUT)/speed.json --benchmark_out_format=json
 
 # The matcher kernels (181 beams, 5 repetitions) gated by same-run speed ratios against the
-# committed benchmarks/baselines/speed/laser.json (rules: benchmarks/baselines/speed_rules.json).
-SPEED_BASELINE := benchmarks/baselines/speed/laser.json
-SPEED_RULES := benchmarks/baselines/speed_rules.json
+# committed benchmarks/reference_results/speed/laser.json (rules: benchmarks/reference_results/speed_rules.json).
+SPEED_BASELINE := benchmarks/reference_results/speed/laser.json
+SPEED_RULES := benchmarks/reference_results/speed_rules.json
 # The 181-beam kernels and EAP / split-and-merge on the first 200 ACES and Intel scans, the scan-pair
 # correctors per Intel scan and the whole Intel replay through EAP + iterated solve (issue 15;
 # real-scan kernels are skipped without the data), 5 repetitions interleaved at random so that

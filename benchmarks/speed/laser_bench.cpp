@@ -13,7 +13,7 @@
 // ≥ 20× faster than agglomerative and ≥ 3× faster than split-and-merge, on this scan and on
 // the first 200 scans of ACES and Intel (BM_RealScans below); indexed EAP at 10 000 segments
 // within 1.2× of its 14-segment time. Compare ratios within one run
-// (benchmarks/baselines/speed_rules.json, `make bench-gate`).
+// (benchmarks/reference_results/speed_rules.json, `make bench-gate`).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

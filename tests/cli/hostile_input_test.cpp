@@ -407,7 +407,7 @@ const std::vector<HostileCase>& cases() {
       {"gate_skip_missing_all_against_the_committed_baseline",
        "mkdir -p '{d}/data' && {exe} run odometry/real_logs --data '{d}/data' --skip-missing all --out '{d}/c' "
        ">/dev/null 2>&1",
-       "gate {d}/c --baseline {src}/benchmarks/baselines/default/odometry/real_logs.json", 1, "none was compared"},
+       "gate {d}/c --baseline {src}/benchmarks/reference_results/default/odometry/real_logs.json", 1, "none was compared"},
 
       // 12. One input opener (issue 26): a regular file or an error naming what it is, never a
       // blocked open or a read without end; bytes capped (decompressed too), JSON nesting capped.
