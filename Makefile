@@ -92,7 +92,7 @@ bench: setup
 	$(BENCHBUILD)/benchmarks/speed/locbench_speed --benchmark_out=$(OUT)/speed.json --benchmark_out_format=json
 
 # The matcher kernels (181 beams, 5 repetitions) gated by same-run speed ratios against the
-# committed benchmarks/reference_results/speed/laser.json (rules: benchmarks/reference_results/speed_rules.json).
+# committed benchmarks/reference_results/speed/laser.json (rules: speed_rules.json beside it).
 SPEED_BASELINE := benchmarks/reference_results/speed/laser.json
 SPEED_RULES := benchmarks/reference_results/speed_rules.json
 # The 181-beam kernels and EAP / split-and-merge on the first 200 ACES and Intel scans, the scan-pair

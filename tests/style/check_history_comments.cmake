@@ -1,7 +1,8 @@
-# Checks that no comment of a source or build file carries history: a date (YYYY-MM-DD), an issue
-# reference (the word issue and a number, or # and a number) or a commit hash (a word of 7 to 40
-# hexadecimal digits with both digits and letters). Such history goes to docs/decisions.md; a comment says
-# what the code does and why. Usage: cmake -DSRC=<folder> -P check_history_comments.cmake
+# Checks that no comment of a source or build file carries history: a date (YYYY-MM-DD), an
+# issue reference (the word issue and a number, or # and a number) or a commit hash (a word of 7
+# to 40 hexadecimal digits with both digits and letters). Such history goes to docs/decisions.md;
+# a comment says what the code does and why.
+# Usage: cmake -DSRC=<folder> -P check_history_comments.cmake
 # Exits non-zero naming file:line of each finding.
 #
 # Comments: // and /* */ in C++ (.cpp, .h; string, character and raw string literals are code);
@@ -11,8 +12,7 @@ if(NOT SRC)
   message(FATAL_ERROR "usage: cmake -DSRC=<folder> -P check_history_comments.cmake")
 endif()
 
-# Files being rewritten on another branch (being split on branch split); their comments follow
-# once it is merged.
+# Temporary: being split on branch split; their comments are done once it is merged.
 set(not_yet
     baselines/laser/rwht.cpp
     algorithms/diagnosis/odometry_channel.cpp
