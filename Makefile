@@ -5,23 +5,19 @@ RELEASE := build/release
 TESTBUILD := build/test
 OUT ?= out
 
-BASELINE := benchmarks/baselines/default
-RULES := benchmarks/baselines/rules.json
-# Overrides that keep the gate fast under ASan, measured per experiment with the ASan binary on
-# 2026-11-25 (gate 344 s before them): laser/real_logs on the first 50 relations of each log (101 →
-# 55 s), no relations drawn, no per-relation values; calibration/real_logs on Censi's lstraight and
-# l90, aces and MRCLAM robot 2 (175 s with every set: the Ceres solve evaluates the -O0, ASan-
-# instrumented model for its numeric derivatives); diagnosis/real_logs on aces and intel;
-# sim_to_real on aces and robot 2, 120 s each. The baseline is made with the same file.
-GATE_CONFIG := benchmarks/baselines/gate_config.json
+BASELINE := benchmarks/reference_results/default
+RULES := benchmarks/reference_results/rules.json
+# Overrides that keep the gate fast under ASan: laser/real_logs on the first 50 relations of each
+# log, no relations drawn, no per-relation values; calibration/real_logs on Censi's lstraight and
+# l90, aces and MRCLAM robot 2; diagnosis/real_logs on aces and intel; sim_to_real on aces and
+# robot 2, 120 s each (what each saves: docs/decisions.md). The baseline is made with the same file.
+GATE_CONFIG := benchmarks/reference_results/gate_config.json
 # Monte-Carlo runs per experiment in the gate (the baseline is made with the same number).
 GATE_RUNS ?= 3
 
 # Unity builds (CMake batches 8 sources of a target into one unit): the headers' inline code
-# (Eigen, nlohmann-json, fmt, gtest) is generated once per batch instead of once per file.
-# Measured on 2026-11-25 (CPU seconds, g++ 12): algorithms/diagnosis at -O1, 13 files, 57.4 s
-# separately vs 26.8 s as one unit; tests/algorithms/diagnosis under ASan/UBSan -g1, 14 files,
-# 80.2 s vs 21.4 s. UNITY= (empty) builds file by file.
+# (Eigen, nlohmann-json, fmt, gtest) is generated once per batch instead of once per file, a
+# half to a quarter of the compile CPU (docs/decisions.md). UNITY= (empty) builds file by file.
 UNITY ?= -DCMAKE_UNITY_BUILD=ON
 
 .PHONY: all setup build run test gate baseline bench bench-gate speed-baseline format clean
@@ -33,17 +29,11 @@ setup:
 	@s=$$(date +%s); ./scripts/setup.sh; rc=$$?; \
 	  echo "make: setup (Debian packages) took $$(( $$(date +%s) - s )) s"; exit $$rc
 
-# Release build of the CLI (no tests), unity batches of 16 sources (2026-11-25, fresh build on
-# 2 cores: 147 s with batches of 8, 140 s with 16). -O1 rather than CMake's -O3: measured on 2 cores, the
-# clean build takes 2 min 16 s instead of 2 min 50 s and the default suite runs in 6.9 s instead
-# of 8.8 s, with identical results (no fast-math; IEEE arithmetic is the same at any level).
-# Eigen's decompositions are instantiated once (core/linear_algebra.h, core/compass_ekf_model.cpp)
-# instead of in every unit using them: compile CPU of this build (Ninja, no ccache, both trees
-# built side by side on the loaded machine) 541 → 476 s; the calibration unit 69.5 → 20.3 s, the
-# experiments' harness 42.9 → 22.2 s, diagnosis 42.9 → 30.5 s. Still about twice what 2 cores can
-# compile in the 110 s the 3-minute `make run` leaves (README, Performance).
-# Clang 14 (Debian 12) measured too, 2026-11-27, Ninja, same flags, same tree: 627 s of compile CPU
-# for the locbench target against g++ 12's 433 s (the diagnosis unit 102 s against 32 s): not adopted.
+# Release build of the CLI (no tests) with g++ (clang needs more compile CPU), unity batches of 16
+# sources (a shorter build than 8), -O1 rather than CMake's -O3: a shorter build and a faster suite
+# with identical results (no fast-math; IEEE arithmetic is the same at any level). Eigen's
+# decompositions are instantiated once (core/linear_algebra.h, core/compass_ekf_model.cpp) instead
+# of in every unit using them. Measurements: docs/decisions.md.
 build: setup
 	@s=$$(date +%s); cmake -S . -B $(RELEASE) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
 	  -DLOCBENCH_BUILD_TESTS=OFF $(UNITY) $(if $(UNITY),-DCMAKE_UNITY_BUILD_BATCH_SIZE=16) >/dev/null && cmake --build $(RELEASE) -j$(JOBS) --target locbench; rc=$$?; \
@@ -52,17 +42,10 @@ build: setup
 # Default suite on embedded defaults → JSON reports under $(OUT)/, a summary table, and the page
 # a person reads, $(OUT)/report.html (tables and gnuplot charts, self-contained). Monte-Carlo
 # runs use every core (THREADS, default all; results are the same for any number).
-# The real-log diagnosis dominates the suite's time (Release, one thread, 2026-11-25: diagnosis/
-# real_logs 198 s of CPU on its 8 logs, sim_to_real 44 s, all 22 others 29 s together), so
-# `make run` diagnoses 2 whole logs (ACES, Intel) and compares twins of ACES and MRCLAM robot 2
-# over their first 120 s, which diagnoses those spans (benchmarks/suites/make_run.json; measured
-# with 2 threads: diagnosis 7.0 s wall, 12.0 s with MRCLAM robot 1 added; twins 4.8 s).
+# The real-log diagnosis dominates the suite's time, so `make run` diagnoses 2 whole logs (ACES,
+# Intel) and compares twins of ACES and MRCLAM robot 2 over their first 120 s, which diagnoses
+# those spans (benchmarks/suites/make_run.json; the timings behind the trim: docs/decisions.md).
 # `make run RUN_CONFIG=` runs every log at full length.
-# Issue 27 (2026-11-27, -O1 dev build, 2 cores at load 5–8 from other builds): `locbench diagnose`
-# of the 8 real logs took 140.3 s of CPU before and 85.1 s after, identical reports (robot 5 49.7 →
-# 29.0 s; algorithms/diagnosis/README.md, "Speed: the same numbers with less work"); the untrimmed
-# suite (`locbench run --threads 2`, no config) then took 186 s of CPU and 331 s wall, over the
-# 60 s target, so the trim stays.
 THREADS ?= $(shell nproc)
 RUN_CONFIG ?= benchmarks/suites/make_run.json
 run: build
@@ -73,14 +56,10 @@ run: build
 
 # Debug + AddressSanitizer + UndefinedBehaviorSanitizer, warnings as errors, every test via CTest,
 # then the default suite gated against the committed baseline. -g1 (line tables: sanitizer reports
-# keep file:line) instead of -g: measured on two heavy units, compile 6.3 → 5.7 s and 12.3 → 10.0 s,
-# objects 27% smaller (faster links). Precompiled headers were measured too and not adopted: on 46
-# units of this build, 781 s of CPU without and 777 s with (the cost is code generation under
-# ASan, not parsing). The numerical libraries are compiled at -O1 (LOCBENCH_OPTIMIZE_NUMERICS),
-# still with both sanitizers: measured on 2026-11-25 under ASan/UBSan, their 14 libraries took
-# 314 s of compile CPU at -O0 and 328 s at -O1 (+5%, within this loaded machine's spread), while
-# MlCalibrationSim.SpreadOverTwentySeeds… ran in 2.6 s of CPU instead of 22.6 s (before the
-# calibration's exact Jacobian) and the compass-diagnosis tests in 16.7 s instead of 21.9 s.
+# keep file:line) instead of -g: faster compiles, smaller objects, faster links. No precompiled
+# headers: the cost is code generation under ASan, not parsing. The numerical libraries are
+# compiled at -O1 (LOCBENCH_OPTIMIZE_NUMERICS), still with both sanitizers: about the same compile
+# CPU, much faster tests. Measurements: docs/decisions.md.
 test: setup
 	@cmake -S . -B $(TESTBUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DLOCBENCH_SANITIZE=ON \
 	  -DLOCBENCH_WERROR=ON -DLOCBENCH_OPTIMIZE_NUMERICS=ON $(UNITY) >/dev/null
@@ -113,11 +92,11 @@ bench: setup
 	$(BENCHBUILD)/benchmarks/speed/locbench_speed --benchmark_out=$(OUT)/speed.json --benchmark_out_format=json
 
 # The matcher kernels (181 beams, 5 repetitions) gated by same-run speed ratios against the
-# committed benchmarks/baselines/speed/laser.json (rules: benchmarks/baselines/speed_rules.json).
-SPEED_BASELINE := benchmarks/baselines/speed/laser.json
-SPEED_RULES := benchmarks/baselines/speed_rules.json
+# committed benchmarks/reference_results/speed/laser.json (rules: speed_rules.json beside it).
+SPEED_BASELINE := benchmarks/reference_results/speed/laser.json
+SPEED_RULES := benchmarks/reference_results/speed_rules.json
 # The 181-beam kernels and EAP / split-and-merge on the first 200 ACES and Intel scans, the scan-pair
-# correctors per Intel scan and the whole Intel replay through EAP + iterated solve (issue 15;
+# correctors per Intel scan and the whole Intel replay through EAP + iterated solve (the
 # real-scan kernels are skipped without the data), 5 repetitions interleaved at random so that
 # load drifts hit every kernel.
 SPEED_ARGS := --benchmark_filter='Match.*/181/|RealScans/(aces|intel)/(eap|split_and_merge)|Correct/(eap_ch6_ls|eap_iterated_pl|pl_icp)/intel|IntelReplay/eap_iterated_pl' \

@@ -1,5 +1,5 @@
 #pragma once
-// Estimates are judged before they are printed (issue 26): a calibration never reports a number
+// Estimates are judged before they are printed: a calibration never reports a number
 // no robot can have, or an interval no finite data give, as a result.
 #include <string>
 #include <vector>

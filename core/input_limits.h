@@ -21,7 +21,7 @@ struct Limit {
 
 // Residual histograms (`diagnose H.json`): bins, bins holding samples and total count (the
 // held-out split draws one coin per sample). Table 3.1 has 10 bins and 809 samples. Measured at
-// -O1 (issue 26): 10,000 bins with 500 filled, spread out, take 5 s; 100,000 bins with 1,000
+// -O1: 10,000 bins with 500 filled, spread out, take 5 s; 100,000 bins with 1,000
 // filled took 25 s, 1,000 filled bins with random counts 10 s.
 inline constexpr Limit kHistogramBins{"histogram bins (len(counts))", 10'000, "time of the fits"};
 inline constexpr Limit kHistogramFilledBins{"histogram bins holding samples (counts > 0)", 500, "time of the fits"};

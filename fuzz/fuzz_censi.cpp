@@ -1,6 +1,6 @@
 // Censi's calibration data: wheel-speed tuples, published results, tick motions. Tuples that
 // parse are calibrated as `calibrate ml` does: too few or motionless samples must be an
-// InputError (they were exit 3, issue 26), never another exception.
+// InputError, never another exception (an internal error, exit 3).
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/ml_calibration.h"
 #include "datasets/io/censi_results_reader.h"

@@ -1,6 +1,6 @@
 // Scenario and world JSON (simulate, match --map), with the input limits checked; a scenario
 // that is accepted and short is simulated and its log written as CARMEN text, as `simulate`
-// does (the even laser.beams of issue 26 failed only there). Longer ones are left to the limits
+// does (an even laser.beams once failed only there). Longer ones are left to the limits
 // (time per input: the fuzzer's -timeout).
 #include "core/json_file.h"
 #include "core/json_options.h"

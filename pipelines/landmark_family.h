@@ -1,5 +1,5 @@
 #pragma once
-// The filter family on one log (issue 25): every method of landmark_tracking.h tuned on one part
+// The filter family on one log: every method of landmark_tracking.h tuned on one part
 // of a log and scored on another, with the same grid budget for every method — two tuned
 // parameters each: the scale of its process noise over `process_scales`, and its second knob
 // (the R scale; the forgetting factor for Sage–Husa and VB-AKF, which estimate R themselves) over

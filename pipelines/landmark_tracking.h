@@ -1,5 +1,5 @@
 #pragma once
-// Landmark localization on a log (issue 25): the filters of chapter 4 driven by the log's
+// Landmark localization on a log: the filters of chapter 4 driven by the log's
 // odometry and corrected by range-bearing observations of surveyed landmarks (Probabilistic
 // Robotics Table 7.2, known correspondence), scored against the log's ground truth.
 //

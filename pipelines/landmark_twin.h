@@ -1,5 +1,5 @@
 #pragma once
-// The twin of a landmark log (issue 29): a synthetic copy of one span that keeps everything the
+// The twin of a landmark log: a synthetic copy of one span that keeps everything the
 // robot was told and when it looked — the logged odometry, the landmark map, the observation
 // schedule (times and landmark ids) — and draws what the world did from a fitted model, so a
 // filter can be run on as many copies of the log as wanted and its real result predicted.

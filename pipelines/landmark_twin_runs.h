@@ -1,5 +1,5 @@
 #pragma once
-// The predictivity cells of one landmark log (issue 29): the real held-out result of every tuned
+// The predictivity cells of one landmark log: the real held-out result of every tuned
 // method and of dead reckoning, beside the results of seeded twins (landmark_twin.h) of the
 // held-out part under the nominal models (the fitted white floor, the nominal sensor) and under
 // the diagnosed ones (every kept cause, the fitted landmark sensor). Every twin run uses the

@@ -1,5 +1,5 @@
 #pragma once
-// Predictivity of a simulator (issue 29): does a twin forecast how each method fares on the real
+// Predictivity of a simulator: does a twin forecast how each method fares on the real
 // log? For one metric, each cell is one method on one log: its real value and the values of
 // seeded twin runs. The twin's 95% predictive interval is the 2.5–97.5% quantiles of its runs
 // (type 7), its prediction their median. Across the cells of one metric (never pooled across

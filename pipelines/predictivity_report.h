@@ -1,7 +1,7 @@
 #pragma once
 // How predictivity cells (predictivity.h) appear in a report: per log and metric a table row per
 // method (real value, each twin's interval, covered or not), the across-log summary per metric as
-// results, and the two pictures of issue 29 — per log the real value of each method beside the
+// results, and two pictures — per log the real value of each method beside the
 // twins' predictive intervals, and per metric the predictions against the real values with the
 // identity line.
 #include <map>

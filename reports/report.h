@@ -22,7 +22,7 @@ struct Provenance {
   std::string compiler_flags;
   std::string build_type;
   std::string host;
-  std::string utc_time;  // ISO 8601, e.g. 2026-11-21T23:59:00Z
+  std::string utc_time;  // ISO 8601, YYYY-MM-DDThh:mm:ssZ
   std::string command_line;
   std::optional<int> threads;  // worker threads of the Monte-Carlo runs (results never depend on it)
   std::optional<int> shards;   // set when the report was merged from this many shard reports

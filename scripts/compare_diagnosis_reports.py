@@ -6,7 +6,8 @@ ratio of the widths).
 
 Usage: compare_diagnosis_reports.py A B [log ...] — reads A_<log>.json and B_<log>.json (written
 by `locbench diagnose <log> --report A_<log>.json`) for the given logs, by default the 8 real
-logs of the catalog. Used for issue 27 (algorithms/diagnosis/README.md, "Speed")."""
+logs of the catalog. Used for before/after diagnosis reports (docs/decisions.md; algorithms/diagnosis/README.md,
+"Speed")."""
 import json, sys
 a_tag, b_tag = sys.argv[1], sys.argv[2]
 logs = sys.argv[3:] or ["aces", "intel", "mit_csail"] + [f"mrclam6_robot{i}" for i in range(1, 6)]

@@ -6,8 +6,8 @@ Usage: diff_json_numbers.py A.json B.json [--rtol 1e-6] [--atol 1e-12] [--ignore
   a number x in A and y in B agree when |x − y| ≤ atol + rtol·max(|x|, |y|);
   --ignore leaves keys of that name out at any depth (e.g. timing fields).
 Strings that differ only in numbers they contain (explanations, the verdict) are compared
-number by number with the same tolerance. Used for issue 27's before/after diagnosis reports
-(algorithms/diagnosis/README.md, "Speed")."""
+number by number with the same tolerance. Used for before/after reports of a change that must not
+change results (docs/decisions.md; algorithms/diagnosis/README.md, "Speed")."""
 import json
 import re
 import sys

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Times every input limit of `locbench --help` AT the limit (issue 26: ≤ 10 s and ≤ 1 GB with the
+# Times every input limit of `locbench --help` AT the limit (the goal: ≤ 10 s and ≤ 1 GB with the
 # Release build of `make build`, -O1). Inputs are generated in a scratch folder (nothing from
 # $LOCBENCH_DATA). Each line: the limit, the at-limit input, the exit code, wall seconds and the
 # peak resident memory (/usr/bin/time -v). The hostile-input table keeps a row at and past each

@@ -36,7 +36,7 @@
 //
 // `work` counts ω1 membership tests.
 //
-// Implementation (issue #17; same matches as before, shown by eap_equivalence_test): segments in
+// Implementation (the same matches as the plain one, shown by eap_equivalence_test): segments in
 // flat arrays (eap_matcher_segments.h) tested band first, branch-free, with the end caps and
 // the nearest-segment comparison on squared distances only; one pass of moments per run
 // (eap_matcher_moments.h) shared by the direction check, the fit and the trim; cos/sin of the

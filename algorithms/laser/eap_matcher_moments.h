@@ -1,5 +1,5 @@
 #pragma once
-// One pass of moments per run of the EAP matcher (issue #17): the run's direction check, the
+// One pass of moments per run of the EAP matcher: the run's direction check, the
 // match's least-squares line and every step of its trim read the same sums, with the
 // direction taken from the 2×2 scatter matrix's eigenvector instead of atan2/cos/sin.
 // The line is the orthogonal least-squares line of line_fit.h (the same quantity; it differs

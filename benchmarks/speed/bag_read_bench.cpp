@@ -1,4 +1,4 @@
-// Google Benchmark kernels of issue 28: reading a ROS bag is not the bottleneck. One synthetic run
+// Google Benchmark kernels showing that reading a ROS bag is not the bottleneck. One synthetic run
 // — 20,000 LaserScans of 1,081 ranges (the bulk, ~87 MB), odometry at 50 Hz, a ground truth at
 // 10 Hz — is written once as a ROS 1 bag, a ROS 2 sqlite3 bag and MCAP files (zstd chunks, and
 // uncompressed), then read as a log two ways: every topic, and only the odometry and the truth

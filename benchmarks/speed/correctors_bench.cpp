@@ -8,8 +8,8 @@
 //     LOCBENCH_DATA has it; skipped otherwise), cycled, the odometry as the guess: per real scan.
 //   BM_IntelReplay/<corrector>: the whole Intel log (13,631 scans) replayed once per iteration,
 //     single-threaded: each scan's split-and-merge lines extracted, then the next scan corrected
-//     against them from the odometry (13,630 pairs; skipped without the data). Issue 15's
-//     target: under 1 s for EAP + solve in Release.
+//     against them from the odometry (13,630 pairs; skipped without the data). Target: under
+//     1 s for EAP + solve in Release.
 #include <benchmark/benchmark.h>
 
 #include <memory>

@@ -1,4 +1,4 @@
-// Google Benchmark kernel of issue 25's filter family on logged data: every method of
+// Google Benchmark kernel of the landmark filter family on logged data: every method of
 // noise/landmark_logs (7 methods × 21 tuning runs on the first half + 1 held-out run on the second)
 // on the five MRCLAM Dataset 6 robots, read from $LOCBENCH_DATA (skipped with a message when
 // absent). The models are the nominal ones with a fixed floor, so the diagnosis (its own cost) is

@@ -9,11 +9,11 @@
 //   the match result (memory per scan; the grid index's own size is `index_bytes`).
 //   BM_Match_band_reference/181/14: the floor of any EAP — the bare band tests |n·p − c| ≤ d_limit
 //   (5.5) of the same points (under the same estimate) against the same segments, nothing else.
-// Targets (issues #5 and #17, 181 beams, 14 segments): EAP within 3× of the band reference;
+// Targets (181 beams, 14 segments): EAP within 3× of the band reference;
 // ≥ 20× faster than agglomerative and ≥ 3× faster than split-and-merge, on this scan and on
 // the first 200 scans of ACES and Intel (BM_RealScans below); indexed EAP at 10 000 segments
 // within 1.2× of its 14-segment time. Compare ratios within one run
-// (benchmarks/baselines/speed_rules.json, `make bench-gate`).
+// (benchmarks/reference_results/speed_rules.json, `make bench-gate`).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The landmark twin (issue 29) draws a log from a model; the diagnosis, run on the drawn log,
+// The landmark twin draws a log from a model; the diagnosis, run on the drawn log,
 // gives the model back. Its sensor draws the noise structure it is given, and the predictivity
 // summary counts coverage, correlation and rank violations as defined.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The hostile-input suite of record (issue 14): one table of inputs a hostile or careless user
+// The hostile-input suite of record: one table of inputs a hostile or careless user
 // gives locbench — input files, arguments, the exit code expected and a substring of the message.
 // Every case runs the real binary under `timeout 10`: no crash, no hang, no "internal error"
 // (exit 3), and every bad input names what was wrong. Add a row for every new hostile case.
@@ -317,7 +317,7 @@ const std::vector<HostileCase>& cases() {
                "sub/s.json",
                R"({"preset": "corridor", "world": {"kind": "file", "file": "room.json"}, "motion": {"kind": "straight", "distance": 0.5}})"),
        "simulate {d}/sub/s.json -o {d}/o.clf", 0, "wrote"},
-      // 11. Fail closed (issue 26): a failed case is a failed run, a gate cannot be fooled, no
+      // 11. Fail closed: a failed case is a failed run, a gate cannot be fooled, no
       // input is overwritten, every flag is used or refused, nonsense is not a result.
       {"run_with_a_corrupt_catalog_log_exits_1",
        "mkdir -p '{d}/data/slam_benchmark/clf' && echo garbage | gzip > "
@@ -407,9 +407,10 @@ const std::vector<HostileCase>& cases() {
       {"gate_skip_missing_all_against_the_committed_baseline",
        "mkdir -p '{d}/data' && {exe} run odometry/real_logs --data '{d}/data' --skip-missing all --out '{d}/c' "
        ">/dev/null 2>&1",
-       "gate {d}/c --baseline {src}/benchmarks/baselines/default/odometry/real_logs.json", 1, "none was compared"},
+       "gate {d}/c --baseline {src}/benchmarks/reference_results/default/odometry/real_logs.json", 1,
+       "none was compared"},
 
-      // 12. One input opener (issue 26): a regular file or an error naming what it is, never a
+      // 12. One input opener: a regular file or an error naming what it is, never a
       // blocked open or a read without end; bytes capped (decompressed too), JSON nesting capped.
       {"fifo_as_scenario", "mkfifo '{d}/s.json'", "simulate {d}/s.json -o {d}/x.clf", 2,
        "s.json: is a named pipe (FIFO): expected the JSON file to be a regular file"},
@@ -511,7 +512,7 @@ const std::vector<HostileCase>& cases() {
        "'{d}/h.json'",
        "diagnose {d}/h.json", 2, "nonsense: unknown key"},
       {"help_states_the_input_caps", "", "--help", 0, "bytes of one input file (decompressed, for gzip) <= 134217728"},
-      // 13. Crashes and internal errors of issue 26: exit 0, or 2 with the reason, never 3.
+      // 13. Crashes and internal errors: exit 0, or 2 with the reason, never 3.
       {"simulate_180_beams", file("s.json", R"({"preset": "corridor", "laser": {"enabled": true, "beams": 180}})"),
        "simulate {d}/s.json -o {d}/x.clf", 0, "wrote"},
       {"simulate_360_beams", file("s.json", R"({"preset": "corridor", "laser": {"enabled": true, "beams": 360}})"),
@@ -576,7 +577,7 @@ const std::vector<HostileCase>& cases() {
       {"grid_markov_cells_past_the_limit", kShortLog + file("o.json", R"({"grid_markov": {"max_cells": 1e12}})"),
        "localize --method grid_markov --map {src}/examples/room_map.json --log {d}/l.clf --options {d}/o.json", 2,
        "GridMarkovOptions.max_cells: expected a number in [1, 10000000]"},
-      // 15. Limits that mean fast (issue 26): a row at each limit and one past it. The at-limit
+      // 15. Limits that mean fast: a row at each limit and one past it. The at-limit
       // inputs too slow for the sanitizer build are timed by scripts/time_limits.sh instead.
       {"histogram_500_filled_bins_at_the_limit", kHist500, "diagnose {d}/h.json", 0, "verdict:"},
       {"histogram_501_filled_bins", kHist500 + "sed -i 's/\"counts\": \\[/\"counts\": [1,/; s/,0\\]}/]}/' '{d}/h.json'",
@@ -688,15 +689,15 @@ const std::vector<HostileCase>& cases() {
       {"help_states_the_work_limits", "", "--help", 0,
        "grid_markov: cells x (field.beams + 10) x updates <= 800000000"},
       {"help_states_the_filled_bins_limit", "", "--help", 0, "histogram bins holding samples (counts > 0) <= 500"},
-      // 14. Usability of issue 26.
+      // 14. Usability.
       {"threads_0_names_the_range", "", "run odometry/sim_corridor --threads 0 --out {d}/out", 2,
        "--threads: Value 0 not in range 1 to 1024"},
       {"threads_past_the_limit", "", "run odometry/sim_corridor --threads 1025 --out {d}/out", 2,
        "not in range 1 to 1024"},
       {"merge_threads_0", "mkdir '{d}/s'", "merge {d}/s -o {d}/o --threads 0", 2, "not in range 1 to 1024"},
       {"unknown_subcommand", "", "frobnicate", 2, "unknown subcommand 'frobnicate': expected one of list, simulate"},
-      // 16. Issue 26, second round: every limit of simulate, match and localize past its value (and
-      // the likelihood field's, new), options out of range, a tracker without a start.
+      // 16. Every limit of simulate, match and localize past its value (and the likelihood
+      // field's), options out of range, a tracker without a start.
       {"simulate_physics_steps_past",
        file(
            "s.json",

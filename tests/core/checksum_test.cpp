@@ -11,7 +11,7 @@ namespace locbench {
 namespace {
 
 TEST(Checksum, IsTheCrc32OfTheBytes) {
-  // CRC-32 of "123456789" is the standard check value cbf43926.
+  // CRC-32 of "123456789" is the standard check value 0xcbf43926.
   EXPECT_EQ(text_checksum("123456789"), "crc32:cbf43926");
   testing::ScratchDir dir;
   std::ofstream(dir.file("a.txt")) << "123456789";

@@ -1,4 +1,4 @@
-// The gate fails closed (issue 26): one test per way a gate was fooled into passing.
+// The gate fails closed: one test per way a gate was fooled into passing.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -3,7 +3,7 @@
 // builds its own: split-and-merge lines of every `map_every`-th scan in the first `window_s`
 // seconds (180 s by default), placed on the window's scan-matched path — PL-ICP of each scan
 // against the previous one, chained from the first odometry pose (`map_poses` =
-// "scan_matched"; "odometry" places them at the raw odometry poses, as before issue 15) — and
+// "scan_matched"; "odometry" places them at the raw odometry poses) — and
 // that path is the reference pose of every scan. A map made from the same scans is kinder than
 // a surveyed one would be. Global methods start
 // uniform over the map; the Kalman trackers at the reference. After the first half of the window
@@ -79,7 +79,7 @@ std::vector<Pose2> scan_matched_path(const std::vector<ScanStep>& w) {
 // The maps of these buildings span tens of metres: the grid runs at 0.3 m × 10° here
 // (150 × 150 × 36 cells for 45 m), to keep the run in minutes (6.5 min for the three logs).
 // MCL: 5000 particles spread over these maps' bounding boxes never came within 0.5 m / 20° of
-// the reference on any log (particle deprivation, issue 15); 50 000, and at least 2000
+// the reference on any log (particle deprivation); 50 000, and at least 2000
 // after KLD shrinking, converge on ACES and MIT CSAIL in a 180 s window.
 nlohmann::json building_method_options() {
   nlohmann::json options = global::default_method_options();

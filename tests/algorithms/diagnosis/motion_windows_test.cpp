@@ -123,7 +123,7 @@ TEST(MotionWindows, AGapLongerThanMaxGapEndsAWindow) {
   }
 }
 
-// Issue 26: the data are judged before any fit. A robot that never moves leaves no test any
+// The data are judged before any fit. A robot that never moves leaves no test any
 // power; truth on another scale than the odometry is not a reference.
 TEST(MotionWindows, ARobotThatNeverMovesIsAnErrorNotAVerdict) {
   Log log = arc_log();

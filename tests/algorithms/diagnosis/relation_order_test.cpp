@@ -1,5 +1,5 @@
 // The order of a relations file's lines is not information: the diagnosis sorts the relations
-// by time, so a reversed or shuffled file gives the same windows and the same verdict (issue 14).
+// by time, so a reversed or shuffled file gives the same windows and the same verdict.
 #include <gtest/gtest.h>
 
 #include <algorithm>

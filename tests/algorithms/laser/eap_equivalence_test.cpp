@@ -1,4 +1,4 @@
-// The faster EapMatcher (issue #17) gives the same matches as the implementation it replaced
+// The faster EapMatcher gives the same matches as the implementation it replaced
 // (legacy_eap_matcher.h, kept here only as the reference): the same segments in the same order,
 // the same points bit for bit (beam, range, bearing, robot and world coordinates), the same
 // `work`, and the same fitted line up to rounding — the fit now comes from one pass of moments

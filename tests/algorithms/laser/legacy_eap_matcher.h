@@ -1,8 +1,8 @@
 #pragma once
-// The EAP matcher as it was before issue #17 made it faster (commit 84a7e1e, EapMatcher::match
-// verbatim): regions as EapRegion objects, nearest-segment ownership by contains() and a square
-// root per point–segment pair, fit_line per run. Kept only as the reference of the equivalence
-// test (eap_equivalence_test.cpp): the new EapMatcher must give the same matches.
+// The EAP matcher as it was before it was made faster (its EapMatcher::match verbatim; the
+// commit is named in docs/decisions.md): regions as EapRegion objects, nearest-segment ownership by contains() and a
+// square root per point–segment pair, fit_line per run. Kept only as the reference of the equivalence test
+// (eap_equivalence_test.cpp): the new EapMatcher must give the same matches.
 #include <memory>
 #include <string>
 
