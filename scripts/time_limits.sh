@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Times every input limit of `locbench --help` AT the limit (the goal: ≤ 10 s and ≤ 1 GB with the
 # Release build of `make build`, -O1). Inputs are generated in a scratch folder (nothing from
-# $LOCBENCH_DATA). Each line: the limit, the at-limit input, the exit code, wall seconds and the
-# peak resident memory (/usr/bin/time -v). The hostile-input table keeps a row at and past each
-# limit; the slowest at-limit shapes (spread-out histograms, MCL and grid Markov at their work
-# limit) are timed only here, since the sanitizer test build runs them several times slower.
+# $LOCBENCH_DATA). Each line: the limit, the at-limit input, the exit code, wall and CPU seconds
+# (CPU: what a loaded machine does not inflate) and the peak resident memory (/usr/bin/time -v). The
+# hostile-input table keeps a row at and past each limit; the slowest at-limit shapes (spread-out
+# histograms, MCL and grid Markov at their work limit) are timed only here, since the sanitizer test
+# build runs them several times slower.
 #
 #   scripts/time_limits.sh [path/to/locbench]      (default build/dev/cli/locbench)
 set -u
@@ -19,10 +20,11 @@ timed() {  # name, then the command's arguments
   shift
   /usr/bin/time -v -o time.txt "$exe" "$@" >out.txt 2>&1
   local rc=$?
-  local s kb
+  local s cpu kb
   s=$(awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, p, ":"); t = 0; for (i = 1; i <= n; ++i) t = t * 60 + p[i]; print t}' time.txt)
+  cpu=$(awk -F': ' '/(User|System) time \(seconds\)/ {t += $2} END {print t}' time.txt)
   kb=$(awk -F': ' '/Maximum resident/ {print $2}' time.txt)
-  printf '%-44s exit %d  %6.2f s  %5d MB\n' "$name" "$rc" "$s" $((kb / 1024))
+  printf '%-44s exit %d  %6.2f s wall  %6.2f s CPU  %5d MB\n' "$name" "$rc" "$s" "$cpu" $((kb / 1024))
 }
 
 # Histograms: 10,000 bins, 500 of them filled (spread out; contiguous with random counts).
