@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "algorithms/laser/eap_matcher_hits.h"
 #include "algorithms/laser/eap_matcher_moments.h"
 #include "algorithms/laser/eap_matcher_points.h"
 #include "algorithms/laser/eap_matcher_segments.h"
@@ -37,17 +38,14 @@ struct IndexRange {
 using detail::BearingCache;
 using detail::EapSegmentTable;
 using detail::FlatPoints;
+using detail::for_each_group;
+using detail::Hit;
 using detail::Moments;
 using detail::PrincipalAxis;
+using detail::same_segments;
 
 constexpr std::uint32_t kNoSegment = static_cast<std::uint32_t>(-1);
 constexpr std::size_t kMaskBits = 64;  // segments per branch-free band-test block
-
-struct Hit {
-  std::uint32_t segment;
-  std::uint32_t point;  // index into the scan's valid points
-  bool operator<(const Hit& o) const { return segment != o.segment ? segment < o.segment : point < o.point; }
-};
 
 struct Run {
   std::uint32_t segment, begin, end;  // points [begin, end)
@@ -322,29 +320,6 @@ class MatchPass {
   double sin_max_direction_;
   MatchResult result_;
 };
-
-// Calls f(segment, points) for each segment with hits, ascending; `hits` sorted.
-template <class F>
-void for_each_group(std::span<const Hit> hits, std::vector<std::uint32_t>& points, F&& f) {
-  std::size_t k = 0;
-  while (k < hits.size()) {
-    const std::uint32_t segment = hits[k].segment;
-    points.clear();
-    for (; k < hits.size() && hits[k].segment == segment; ++k) points.push_back(hits[k].point);
-    f(segment, std::span<const std::uint32_t>(points));
-  }
-}
-
-bool same_segments(const LineMap& a, const LineMap& b) {
-  if (&a == &b) return true;
-  if (a.segments.size() != b.segments.size()) return false;
-  for (std::size_t j = 0; j < a.segments.size(); ++j) {
-    if (a.segments[j].p1 != b.segments[j].p1 || a.segments[j].p2 != b.segments[j].p2) {
-      return false;
-    }
-  }
-  return true;
-}
 
 }  // namespace
 

@@ -7,18 +7,17 @@
 #include <span>
 #include <vector>
 
+#include "algorithms/laser/eap_matcher_hits.h"
 #include "core/errors.h"
 
 namespace locbench::laser::legacy {
 namespace {
 
-constexpr std::uint32_t kNoSegment = static_cast<std::uint32_t>(-1);
+using detail::for_each_group;
+using detail::Hit;
+using detail::same_segments;
 
-struct Hit {
-  std::uint32_t segment;
-  std::uint32_t point;  // index into the scan's valid points
-  bool operator<(const Hit& o) const { return segment != o.segment ? segment < o.segment : point < o.point; }
-};
+constexpr std::uint32_t kNoSegment = static_cast<std::uint32_t>(-1);
 
 // One match() call: the scan's points, the regions, the options and the output.
 class MatchPass {
@@ -173,30 +172,6 @@ class MatchPass {
   std::vector<std::uint32_t> accepted_;  // points of the current segment's accepted runs
   std::vector<Eigen::Vector2d> world_;   // fit_line's input
 };
-
-// Calls f(segment, members) for each segment with members, in ascending segment order; `hits`
-// sorted.
-template <class F>
-void for_each_group(std::span<const Hit> hits, std::vector<std::uint32_t>& members, F&& f) {
-  std::size_t k = 0;
-  while (k < hits.size()) {
-    const std::uint32_t segment = hits[k].segment;
-    members.clear();
-    for (; k < hits.size() && hits[k].segment == segment; ++k) members.push_back(hits[k].point);
-    f(segment, std::span<const std::uint32_t>(members));
-  }
-}
-
-bool same_segments(const LineMap& a, const LineMap& b) {
-  if (&a == &b) return true;
-  if (a.segments.size() != b.segments.size()) return false;
-  for (std::size_t j = 0; j < a.segments.size(); ++j) {
-    if (a.segments[j].p1 != b.segments[j].p1 || a.segments[j].p2 != b.segments[j].p2) {
-      return false;
-    }
-  }
-  return true;
-}
 
 }  // namespace
 

@@ -1,0 +1,43 @@
+#pragma once
+// The EAP matcher's (point, segment) hits grouped by segment, and the check that an index was
+// built for the map being matched.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/line_map.h"
+
+namespace locbench::laser::detail {
+
+struct Hit {
+  std::uint32_t segment;
+  std::uint32_t point;  // index into the scan's valid points
+  bool operator<(const Hit& o) const { return segment != o.segment ? segment < o.segment : point < o.point; }
+};
+
+// Calls f(segment, points) for each segment with hits, ascending; `hits` sorted.
+template <class F>
+void for_each_group(std::span<const Hit> hits, std::vector<std::uint32_t>& points, F&& f) {
+  std::size_t k = 0;
+  while (k < hits.size()) {
+    const std::uint32_t segment = hits[k].segment;
+    points.clear();
+    for (; k < hits.size() && hits[k].segment == segment; ++k) points.push_back(hits[k].point);
+    f(segment, std::span<const std::uint32_t>(points));
+  }
+}
+
+// True when both maps have the same segments (endpoints equal) in the same order.
+inline bool same_segments(const LineMap& a, const LineMap& b) {
+  if (&a == &b) return true;
+  if (a.segments.size() != b.segments.size()) return false;
+  for (std::size_t j = 0; j < a.segments.size(); ++j) {
+    if (a.segments[j].p1 != b.segments[j].p1 || a.segments[j].p2 != b.segments[j].p2) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace locbench::laser::detail
