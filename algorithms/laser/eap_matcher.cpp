@@ -36,6 +36,7 @@ struct IndexRange {
 };
 
 using detail::BearingCache;
+using detail::consecutive;
 using detail::EapSegmentTable;
 using detail::FlatPoints;
 using detail::for_each_group;
@@ -232,15 +233,6 @@ class MatchPass {
   MatchResult take_result() { return std::move(result_); }
 
  private:
-  static bool consecutive(std::uint32_t a, std::uint32_t b, const std::vector<char>* deleted) {
-    if (b == a + 1) return true;
-    if (deleted == nullptr) return false;
-    for (std::uint32_t k = a + 1; k < b; ++k) {
-      if ((*deleted)[k] == 0) return false;
-    }
-    return true;
-  }
-
   // §5.3: score Σ g ≥ C_limit (5.6, w = 1 inside ω1; with g ≡ 1 the point count) and the first
   // and last point more than min_extent apart; ours: the run's LS direction within
   // max_direction_error of the segment's. Cheapest test first. `m` gets the run's moments

@@ -1,6 +1,6 @@
 #pragma once
-// The EAP matcher's (point, segment) hits grouped by segment, and the check that an index was
-// built for the map being matched.
+// The EAP matcher's (point, segment) hits grouped by segment, consecutive points of a run, and
+// the check that an index was built for the map being matched.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -26,6 +26,17 @@ void for_each_group(std::span<const Hit> hits, std::vector<std::uint32_t>& point
     for (; k < hits.size() && hits[k].segment == segment; ++k) points.push_back(hits[k].point);
     f(segment, std::span<const std::uint32_t>(points));
   }
+}
+
+// Points a < b of one segment are consecutive when no point between them is left (`deleted`
+// null: nothing deleted, so only adjacent points are).
+inline bool consecutive(std::uint32_t a, std::uint32_t b, const std::vector<char>* deleted) {
+  if (b == a + 1) return true;
+  if (deleted == nullptr) return false;
+  for (std::uint32_t k = a + 1; k < b; ++k) {
+    if ((*deleted)[k] == 0) return false;
+  }
+  return true;
 }
 
 // True when both maps have the same segments (endpoints equal) in the same order.

@@ -13,6 +13,7 @@
 namespace locbench::laser::legacy {
 namespace {
 
+using detail::consecutive;
 using detail::for_each_group;
 using detail::Hit;
 using detail::same_segments;
@@ -127,15 +128,6 @@ class MatchPass {
       m.fit = fit_line(world_);
     }
     result_.matches.push_back(std::move(m));
-  }
-
-  static bool consecutive(std::uint32_t a, std::uint32_t b, const std::vector<char>* deleted) {
-    if (b == a + 1) return true;
-    if (deleted == nullptr) return false;
-    for (std::uint32_t k = a + 1; k < b; ++k) {
-      if ((*deleted)[k] == 0) return false;
-    }
-    return true;
   }
 
   // §5.3: score Σ g ≥ C_limit (5.6, w = 1 inside ω1; with g ≡ 1 the point count) and the first
