@@ -3,6 +3,7 @@
 // when an expectation fails.
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "algorithms/diagnosis/diagnosis.h"
 
@@ -19,15 +20,22 @@ inline bool detected(const Diagnosis& d, const std::string& id) {
   return std::find(d.detected.begin(), d.detected.end(), id) != d.detected.end();
 }
 
-inline std::string summary(const Diagnosis& d) {
-  std::string s = "detected:";
-  for (const auto& id : d.detected) s += " " + id;
-  for (const auto& c : d.causes) {
+// One line per cause: its id, [D] when kept, its likelihood ratio, threshold and parameters.
+inline std::string causes_summary(const std::vector<Cause>& causes) {
+  std::string s;
+  for (const auto& c : causes) {
     s += "\n  " + c.id + (c.detected ? " [D]" : "") + " LR=" + std::to_string(c.value) +
          " thr=" + std::to_string(c.threshold);
     for (const auto& p : c.parameters)
       s += " " + p.name + "=" + std::to_string(p.value) + "[" + std::to_string(p.lo) + "," + std::to_string(p.hi) + "]";
   }
+  return s;
+}
+
+inline std::string summary(const Diagnosis& d) {
+  std::string s = "detected:";
+  for (const auto& id : d.detected) s += " " + id;
+  s += causes_summary(d.causes);
   for (const auto& u : d.unexplained)
     s += "\n  unexplained " + u.test + " " + u.residual + " " + u.variable + " (" + u.reason + ")";
   return s + "\n  verdict: " + d.verdict;
