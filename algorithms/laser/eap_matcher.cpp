@@ -7,10 +7,10 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/laser/eap_matcher_hits.h"
 #include "algorithms/laser/eap_matcher_moments.h"
 #include "algorithms/laser/eap_matcher_points.h"
 #include "algorithms/laser/eap_matcher_segments.h"
+#include "algorithms/laser/eap_matcher_steps.h"
 #include "core/errors.h"
 
 namespace locbench::laser {
@@ -331,13 +331,7 @@ EapMatcher::EapMatcher(std::shared_ptr<const SegmentGridIndex> index, EapOptions
 }
 
 MatchResult EapMatcher::match(const Scan& scan, const LineMap& map, const Pose2& estimate) const {
-  if (!(std::isfinite(estimate.x) && std::isfinite(estimate.y) && std::isfinite(estimate.theta))) {
-    throw UsageError("EapMatcher: the pose estimate is not finite");
-  }
-  if (scan.bearings.size() != scan.ranges.size()) {
-    throw UsageError("EapMatcher: the scan has " + std::to_string(scan.ranges.size()) + " ranges but " +
-                     std::to_string(scan.bearings.size()) + " bearings");
-  }
+  detail::require_matchable(scan, estimate);
   Workspace& ws = workspace();
   const EapSegmentTable* table = table_.get();
   const SegmentGridIndex* index = index_.get();

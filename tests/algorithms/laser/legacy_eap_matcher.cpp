@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/laser/eap_matcher_hits.h"
+#include "algorithms/laser/eap_matcher_steps.h"
 #include "core/errors.h"
 
 namespace locbench::laser::legacy {
@@ -168,13 +168,7 @@ class MatchPass {
 }  // namespace
 
 MatchResult LegacyEapMatcher::match(const Scan& scan, const LineMap& map, const Pose2& estimate) const {
-  if (!(std::isfinite(estimate.x) && std::isfinite(estimate.y) && std::isfinite(estimate.theta))) {
-    throw UsageError("EapMatcher: the pose estimate is not finite");
-  }
-  if (scan.bearings.size() != scan.ranges.size()) {
-    throw UsageError("EapMatcher: the scan has " + std::to_string(scan.ranges.size()) + " ranges but " +
-                     std::to_string(scan.bearings.size()) + " bearings");
-  }
+  detail::require_matchable(scan, estimate);
   const std::size_t m = map.segments.size();
   // Regions and each point's candidate segments: all of them (plain) or its grid cell's.
   std::vector<EapRegion> own_regions;

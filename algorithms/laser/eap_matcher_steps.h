@@ -1,14 +1,31 @@
 #pragma once
-// The EAP matcher's (point, segment) hits grouped by segment, consecutive points of a run, and
-// the check that an index was built for the map being matched.
+// Steps of the EAP matcher that do not depend on how it is made fast (the legacy reference in
+// tests/ shares them): the input checks, the (point, segment) hits grouped by segment,
+// consecutive points of a run, and the check that an index was built for the map being matched.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
+#include "core/errors.h"
 #include "core/line_map.h"
+#include "core/pose2.h"
+#include "core/scan.h"
 
 namespace locbench::laser::detail {
+
+// UsageError unless the estimate is finite and the scan has a bearing for every range.
+inline void require_matchable(const Scan& scan, const Pose2& estimate) {
+  if (!(std::isfinite(estimate.x) && std::isfinite(estimate.y) && std::isfinite(estimate.theta))) {
+    throw UsageError("EapMatcher: the pose estimate is not finite");
+  }
+  if (scan.bearings.size() != scan.ranges.size()) {
+    throw UsageError("EapMatcher: the scan has " + std::to_string(scan.ranges.size()) + " ranges but " +
+                     std::to_string(scan.bearings.size()) + " bearings");
+  }
+}
 
 struct Hit {
   std::uint32_t segment;
