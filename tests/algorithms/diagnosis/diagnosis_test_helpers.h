@@ -1,11 +1,15 @@
 #pragma once
 // Reading a diagnosis in tests: find a cause, ask whether it was kept, print the whole verdict
-// when an expectation fails.
+// when an expectation fails; what the histogram reader says of malformed input.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "algorithms/diagnosis/diagnosis.h"
+#include "tests/input_error_message.h"
 
 namespace locbench::diagnosis::test_support {
 
@@ -39,6 +43,18 @@ inline std::string summary(const Diagnosis& d) {
   for (const auto& u : d.unexplained)
     s += "\n  unexplained " + u.test + " " + u.residual + " " + u.variable + " (" + u.reason + ")";
   return s + "\n  verdict: " + d.verdict;
+}
+
+// What read_histogram says of the JSON `text` read as h.json (its InputError; empty when it reads).
+inline std::string histogram_error(const char* text) {
+  return testing::input_error_message([&] { read_histogram(nlohmann::json::parse(text), "h.json"); });
+}
+
+// Expects each histogram text's error to say the words given with it.
+inline void expect_histogram_errors(const std::vector<std::pair<const char*, const char*>>& cases) {
+  for (const auto& [text, says] : cases) {
+    EXPECT_NE(histogram_error(text).find(says), std::string::npos) << text << " → " << histogram_error(text);
+  }
 }
 
 }  // namespace locbench::diagnosis::test_support
