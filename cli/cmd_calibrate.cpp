@@ -287,11 +287,8 @@ Action add_calibrate_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--relations", args->relations, "ml: reference relations for a log's ODOM");
   add_data_option(cmd, args->data);
-  add_bag_topic_options(cmd, args->topics);
-  return [args = args, command_line] {
-    args->input = with_bag_topics(args->input, args->topics);
-    return calibrate(*args, command_line);
-  };
+  return bag_topic_action(cmd, args, &CalibrateArgs::input,
+                          [command_line](const CalibrateArgs& a) { return calibrate(a, command_line); });
 }
 
 }  // namespace locbench::cli

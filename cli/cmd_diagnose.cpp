@@ -183,11 +183,8 @@ Action add_diagnose_command(CLI::App& app, const std::string& command_line) {
                   "are exempt)")
       ->check(CLI::Range(1.0, 1e8));
   add_data_option(cmd, args->data);
-  add_bag_topic_options(cmd, args->topics);
-  return [args = args, command_line] {
-    args->input = with_bag_topics(args->input, args->topics);
-    return diagnose(*args, command_line);
-  };
+  return bag_topic_action(cmd, args, &DiagnoseArgs::input,
+                          [command_line](const DiagnoseArgs& a) { return diagnose(a, command_line); });
 }
 
 }  // namespace locbench::cli

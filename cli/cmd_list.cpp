@@ -160,11 +160,7 @@ Action add_list_command(CLI::App& app) {
                   "with type, count and rate, and which ones locbench uses (choose with LOG#odom=…,truth=…,scan=…)");
   add_data_option(cmd, args->data);
   cmd->add_flag("--no-load", args->no_load, "Only check that datasets exist; do not read them");
-  add_bag_topic_options(cmd, args->topics);
-  return [args = args] {
-    args->log = with_bag_topics(args->log, args->topics);
-    return list(*args);
-  };
+  return bag_topic_action(cmd, args, &ListArgs::log, [](const ListArgs& a) { return list(a); });
 }
 
 }  // namespace locbench::cli

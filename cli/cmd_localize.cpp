@@ -267,11 +267,8 @@ Action add_localize_command(CLI::App& app, const std::string& command_line) {
   add_seed_option(cmd, args->seed, "Seed of MCL's random numbers (default 1)");
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--tum", args->tum, "Write the estimated poses here (TUM format)");
-  add_bag_topic_options(cmd, args->topics);
-  return [args = args, command_line] {
-    args->log = with_bag_topics(args->log, args->topics);
-    return localize(*args, command_line);
-  };
+  return bag_topic_action(cmd, args, &LocalizeArgs::log,
+                          [command_line](const LocalizeArgs& a) { return localize(a, command_line); });
 }
 
 }  // namespace locbench::cli

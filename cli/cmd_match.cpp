@@ -121,11 +121,8 @@ Action add_match_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--matcher", args->matcher, "eap (default), eap_indexed, split_and_merge, agglomerative or rwht");
   cmd->add_option("--report", args->report, "Write the report (JSON) here");
   cmd->add_option("--tum", args->tum, "Write the corrected poses here (TUM format)");
-  add_bag_topic_options(cmd, args->topics);
-  return [args = args, command_line] {
-    args->log = with_bag_topics(args->log, args->topics);
-    return match(*args, command_line);
-  };
+  return bag_topic_action(cmd, args, &MatchArgs::log,
+                          [command_line](const MatchArgs& a) { return match(a, command_line); });
 }
 
 }  // namespace locbench::cli

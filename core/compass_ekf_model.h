@@ -83,4 +83,18 @@ struct CompassFilterStep {
   }
 };
 
+// The state every Kalman filter of the pose keeps: X̂ = [x, y, θ]ᵀ and its covariance P.
+class PoseGaussian {
+ public:
+  Pose2 pose() const { return to_pose(x_); }
+  const Vector3& mean() const { return x_; }
+  const Matrix3& covariance() const { return p_; }
+
+ protected:
+  PoseGaussian(const Vector3& x, const Matrix3& p) : x_(x), p_(p) {}
+
+  Vector3 x_;
+  Matrix3 p_;
+};
+
 }  // namespace locbench

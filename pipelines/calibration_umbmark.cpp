@@ -14,6 +14,7 @@
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/umbmark_input.h"
+#include "reports/published_rows.h"
 
 namespace locbench::experiments {
 using locbench::baselines::calibration::classic_umbmark, locbench::baselines::calibration::ClassicUmbmarkResult;
@@ -120,11 +121,10 @@ void add_table_2_1(reports::ExperimentResults& out, const std::vector<std::array
     t.source = "thesis Table 2.1";
     t.quantity = std::string("E_max,syst ") + columns[c];
     t.unit = "mm";
-    for (int i = 0; i < 5; ++i) {
-      reports::PublishedRow row{fmt::format("experiment {}", i + 1), published[i][c], std::nullopt};
-      if (i < static_cast<int>(rows.size())) row.ours = rows[i][c] * 1e3;
-      t.rows.push_back(row);
-    }
+    std::vector<double> published_mm, ours_mm;
+    for (const auto& p : published) published_mm.push_back(p[c]);
+    for (const auto& r : rows) ours_mm.push_back(r[c] * 1e3);
+    t.rows = reports::numbered_rows("experiment", published_mm, ours_mm);
     out.published.push_back(std::move(t));
   }
   // Plain words from the numbers.

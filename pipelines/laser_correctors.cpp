@@ -144,13 +144,6 @@ class Icp final : public ScanPairCorrector {
 
 std::atomic<std::size_t> correctors_calls{0};
 
-template <typename Options>
-Options read_options(const nlohmann::json& all, const char* key) {
-  Options o{};
-  if (all.contains(key)) from_json(all.at(key), o);
-  return o;
-}
-
 }  // namespace
 
 nlohmann::json default_corrector_options() {
@@ -172,7 +165,7 @@ std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vecto
   const nlohmann::json defaults = default_corrector_options();
   const nlohmann::json& o = options.is_null() ? defaults : options;
   const nlohmann::json matcher_options = o.value("matcher_options", defaults.at("matcher_options"));
-  const auto ch6 = read_options<PoseCorrectionOptions>(o, "ch6");
+  const auto ch6 = options_of<PoseCorrectionOptions>(o, "ch6");
   const int rematch = o.value("rematch_iterations", 10);
   if (rematch < 1) throw UsageError("rematch_iterations: must be >= 1");
   std::vector<std::unique_ptr<ScanPairCorrector>> out;
@@ -192,9 +185,9 @@ std::vector<std::unique_ptr<ScanPairCorrector>> make_correctors(const std::vecto
       out.push_back(std::make_unique<Chapter6>(name, matcher("eap"), o6, Chapter6::Mode::kOneShot, 1));
     } else if (name == "eap_iterated_pl") {
       out.push_back(std::make_unique<IteratedPointToLine>(
-          name, matcher("eap"), read_options<pose_correction::IteratedCorrectionOptions>(o, "iterated")));
+          name, matcher("eap"), options_of<pose_correction::IteratedCorrectionOptions>(o, "iterated")));
     } else if (name == "pl_icp") {
-      out.push_back(std::make_unique<Icp>(name, read_options<baselines::laser::PlIcpOptions>(o, "pl_icp")));
+      out.push_back(std::make_unique<Icp>(name, options_of<baselines::laser::PlIcpOptions>(o, "pl_icp")));
     } else if (name == "icp_point_to_point") {
       baselines::laser::PlIcpOptions p;
       p.metric = baselines::laser::IcpMetric::kPointToPoint;

@@ -7,17 +7,6 @@
 #include "core/errors.h"
 
 namespace locbench::experiments {
-namespace {
-
-template <typename Options>
-Options options_of(const nlohmann::json& all, const char* key) {
-  Options o{};
-  if (all.contains(key)) from_json(all.at(key), o);
-  return o;
-}
-
-}  // namespace
-
 nlohmann::json default_matcher_options() {
   nlohmann::json j;
   to_json(j["eap"], laser::EapOptions{});

@@ -12,6 +12,14 @@
 
 namespace locbench::experiments {
 
+// The options under `key` of a configuration object; a missing key keeps the defaults.
+template <typename Options>
+Options options_of(const nlohmann::json& all, const char* key) {
+  Options o{};
+  if (all.contains(key)) from_json(all.at(key), o);
+  return o;
+}
+
 // Every matcher's default options, keyed by its name.
 nlohmann::json default_matcher_options();
 

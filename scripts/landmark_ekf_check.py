@@ -13,25 +13,14 @@ to, so the two held-out RMSEs should agree up to the differences in stepping (lo
 usage: landmark_ekf_check.py REPORT.json [DATA_ROOT]
 """
 import bisect
-import gzip
 import json
 import math
 import statistics
 import sys
 
+from mrclam_raw import rows, wrap
+
 GATE = 13.815510557964274  # χ²₂(0.999)
-
-
-def rows(path):
-    with gzip.open(path, "rt") as f:
-        for line in f:
-            if line.startswith("#") or not line.strip():
-                continue
-            yield [float(x) for x in line.split()]
-
-
-def wrap(a):
-    return math.atan2(math.sin(a), math.cos(a))
 
 
 class Truth:

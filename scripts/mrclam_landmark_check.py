@@ -19,27 +19,12 @@ usage: scripts/mrclam_landmark_check.py [FOLDER] [ROBOT ...]
   FOLDER defaults to $LOCBENCH_DATA/mrclam/MRCLAM_Dataset6, robots to 1 2 3 4 5.
 """
 import bisect
-import gzip
 import math
 import os
 import statistics
 import sys
 
-
-def rows(path):
-    opener = gzip.open if path.endswith(".gz") else open
-    with opener(path, "rt") as f:
-        for line in f:
-            s = line.strip()
-            if s and not s.startswith("#"):
-                yield [float(x) for x in s.split()]
-
-
-def data_file(folder, name):
-    for p in (os.path.join(folder, name), os.path.join(folder, name + ".gz")):
-        if os.path.exists(p):
-            return p
-    raise SystemExit("missing " + os.path.join(folder, name))
+from mrclam_raw import data_file, rows
 
 
 def wrap(a):

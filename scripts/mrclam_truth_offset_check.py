@@ -15,25 +15,18 @@ usage: mrclam_truth_offset_check.py [ROBOT ...] (default 1 2 3 4 5; $LOCBENCH_DA
 """
 import bisect
 import collections
-import gzip
 import math
 import os
 import statistics
 import sys
 
+from mrclam_raw import rows, wrap
+
 ROOT = os.path.join(os.environ.get("LOCBENCH_DATA", "../shared/datasets"), "mrclam", "MRCLAM_Dataset6")
 
 
-def rows(name):
-    with gzip.open(os.path.join(ROOT, name), "rt") as f:
-        for line in f:
-            if line.startswith("#") or not line.strip():
-                continue
-            yield [float(x) for x in line.split()]
-
-
-def wrap(a):
-    return math.atan2(math.sin(a), math.cos(a))
+def rows_of(name):
+    return rows(os.path.join(ROOT, name))
 
 
 def truth_at(truth, times, t):
@@ -77,9 +70,9 @@ def frame_fit(obs, pose, landmarks):
 
 
 def check(robot, landmarks, subject_of):
-    truth = list(rows(f"Robot{robot}_Groundtruth.dat.gz"))
+    truth = list(rows_of(f"Robot{robot}_Groundtruth.dat.gz"))
     times = [p[0] for p in truth]
-    measurements = list(rows(f"Robot{robot}_Measurement.dat.gz"))
+    measurements = list(rows_of(f"Robot{robot}_Measurement.dat.gz"))
     t0 = max(truth[0][0], measurements[0][0])
     mid = (t0 + min(truth[-1][0], measurements[-1][0])) / 2
     frames = collections.defaultdict(list)
@@ -114,8 +107,8 @@ def check(robot, landmarks, subject_of):
 
 
 def main():
-    subject_of = {int(r[1]): int(r[0]) for r in rows("Barcodes.dat.gz")}
-    landmarks = {int(r[0]): (r[1], r[2]) for r in rows("Landmark_Groundtruth.dat.gz")}
+    subject_of = {int(r[1]): int(r[0]) for r in rows_of("Barcodes.dat.gz")}
+    landmarks = {int(r[0]): (r[1], r[2]) for r in rows_of("Landmark_Groundtruth.dat.gz")}
     for robot in [int(a) for a in sys.argv[1:]] or [1, 2, 3, 4, 5]:
         check(robot, landmarks, subject_of)
 

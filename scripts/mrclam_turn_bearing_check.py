@@ -14,32 +14,12 @@ usage: scripts/mrclam_turn_bearing_check.py [FOLDER] [ROBOT ...]
   FOLDER defaults to $LOCBENCH_DATA/mrclam/MRCLAM_Dataset6, robots to 1 2 3 4 5.
 """
 import bisect
-import gzip
 import math
 import os
 import statistics
 import sys
 
-
-def rows(path):
-    opener = gzip.open if path.endswith(".gz") else open
-    with opener(path, "rt") as f:
-        for line in f:
-            if line.startswith("#") or not line.strip():
-                continue
-            yield [float(x) for x in line.split()]
-
-
-def find(folder, name):
-    for candidate in (name, name + ".gz"):
-        path = os.path.join(folder, candidate)
-        if os.path.exists(path):
-            return path
-    sys.exit(f"{folder}: no {name}[.gz]")
-
-
-def wrap(a):
-    return math.atan2(math.sin(a), math.cos(a))
+from mrclam_raw import data_file, rows, wrap
 
 
 def robust_sigma(v):
@@ -51,15 +31,15 @@ def main():
     data = os.environ.get("LOCBENCH_DATA", "../shared/datasets")
     folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(data, "mrclam", "MRCLAM_Dataset6")
     robots = [int(r) for r in sys.argv[2:]] or [1, 2, 3, 4, 5]
-    landmarks = {int(r[0]): (r[1], r[2]) for r in rows(find(folder, "Landmark_Groundtruth.dat"))}
-    subject = {int(r[1]): int(r[0]) for r in rows(find(folder, "Barcodes.dat"))}
+    landmarks = {int(r[0]): (r[1], r[2]) for r in rows(data_file(folder, "Landmark_Groundtruth.dat"))}
+    subject = {int(r[1]): int(r[0]) for r in rows(data_file(folder, "Barcodes.dat"))}
     for robot in robots:
-        truth = list(rows(find(folder, f"Robot{robot}_Groundtruth.dat")))
+        truth = list(rows(data_file(folder, f"Robot{robot}_Groundtruth.dat")))
         truth_t = [p[0] for p in truth]
-        odometry = list(rows(find(folder, f"Robot{robot}_Odometry.dat")))
+        odometry = list(rows(data_file(folder, f"Robot{robot}_Odometry.dat")))
         odometry_t = [o[0] for o in odometry]
         seen = []
-        for r in rows(find(folder, f"Robot{robot}_Measurement.dat")):
+        for r in rows(data_file(folder, f"Robot{robot}_Measurement.dat")):
             s = subject.get(int(r[1]))
             if s not in landmarks:
                 continue

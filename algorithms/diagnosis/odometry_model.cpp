@@ -186,6 +186,21 @@ constexpr std::size_t kReferenceEntries = 256;  // reference windows at this man
 // Predictions for this many mean models: a Newton step of a fit with τ differenced asks for τ ± h
 // alone and with ± each other mean parameter, up to 18 models (ml_fit.cpp).
 constexpr std::size_t kPredictionEntries = 32;
+
+// The entry of `entries` that `matches` (the last such); else a slot for a new one, `is_new` set:
+// appended while fewer than `limit` are held, else the least recently used one.
+template <class Entry, class Matches>
+Entry& entry_or_slot(std::vector<Entry>& entries, std::size_t limit, Matches matches, bool& is_new) {
+  Entry* e = nullptr;
+  for (auto& x : entries) {
+    if (matches(x)) e = &x;
+  }
+  is_new = e == nullptr;
+  if (!is_new) return *e;
+  if (entries.size() < limit) return entries.emplace_back();
+  return *std::min_element(entries.begin(), entries.end(),
+                           [](const auto& a, const auto& b) { return a.used < b.used; });
+}
 }  // namespace
 
 WindowCache::WindowCache(const MotionData& d) : d_(d) {
@@ -203,26 +218,19 @@ WindowCache::WindowCache(const MotionData& d) : d_(d) {
 
 const double* WindowCache::increments(std::size_t wi, double tau) {
   ++clock_;
-  Increments* e = nullptr;
-  for (auto& x : increments_) {
-    if (x.tau == tau) e = &x;
+  bool is_new = false;
+  Increments& e = entry_or_slot(
+      increments_, kEntries, [&](const Increments& x) { return x.tau == tau; }, is_new);
+  if (is_new) {
+    e.tau = tau;
+    e.values.resize(offsets_.back());
+    e.done.assign(d_.windows.size(), false);
   }
-  if (e == nullptr) {
-    if (increments_.size() < kEntries) {
-      e = &increments_.emplace_back();
-    } else {
-      e = &*std::min_element(increments_.begin(), increments_.end(),
-                             [](const auto& a, const auto& b) { return a.used < b.used; });
-    }
-    e->tau = tau;
-    e->values.resize(offsets_.back());
-    e->done.assign(d_.windows.size(), false);
-  }
-  e->used = clock_;
-  double* out = e->values.data() + offsets_[wi];
-  if (!e->done[wi]) {
+  e.used = clock_;
+  double* out = e.values.data() + offsets_[wi];
+  if (!e.done[wi]) {
     drive_increments(d_, d_.windows[wi], tau, out);
-    e->done[wi] = true;
+    e.done[wi] = true;
   }
   return out;
 }
@@ -230,24 +238,17 @@ const double* WindowCache::increments(std::size_t wi, double tau) {
 template <typename T>
 std::vector<std::optional<T>>& WindowCache::table(std::vector<Entry<T>>& entries, const std::vector<double>& key) {
   ++clock_;
-  Entry<T>* e = nullptr;
-  for (auto& x : entries) {
-    if (x.key == key) e = &x;
+  // Sizes: see kPredictionEntries and kReferenceEntries.
+  const std::size_t limit = std::is_same_v<T, Pose2> ? kPredictionEntries : kReferenceEntries;
+  bool is_new = false;
+  Entry<T>& e = entry_or_slot(
+      entries, limit, [&](const Entry<T>& x) { return x.key == key; }, is_new);
+  if (is_new) {
+    e.key = key;
+    e.values.assign(d_.windows.size(), std::nullopt);
   }
-  if (e == nullptr) {
-    // Sizes: see kPredictionEntries and kReferenceEntries.
-    const std::size_t limit = std::is_same_v<T, Pose2> ? kPredictionEntries : kReferenceEntries;
-    if (entries.size() < limit) {
-      e = &entries.emplace_back();
-    } else {
-      e = &*std::min_element(entries.begin(), entries.end(),
-                             [](const auto& a, const auto& b) { return a.used < b.used; });
-    }
-    e->key = key;
-    e->values.assign(d_.windows.size(), std::nullopt);
-  }
-  e->used = clock_;
-  return e->values;
+  e.used = clock_;
+  return e.values;
 }
 
 std::vector<std::optional<Pose2>>& WindowCache::predictions(const OdometryModel& m) {

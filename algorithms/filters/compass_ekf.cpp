@@ -22,17 +22,18 @@ void validate(const CompassEkfOptions& o) { validate_fields(o, "CompassEkfOption
 LOCBENCH_OPTIONS_JSON(CompassEkfOptions)
 
 CompassEkf::CompassEkf(const CompassEkfOptions& options, double wheelbase, const Pose2& start)
-    : options_(options), wheelbase_(wheelbase), x_(to_vector(start)), p_(options.initial_covariance.asDiagonal()) {
+    : PoseGaussian(to_vector(start), options.initial_covariance.asDiagonal()),
+      options_(options),
+      wheelbase_(wheelbase) {
   validate(options);
   require_positive_wheelbase(wheelbase, "CompassEkf");
 }
 
 CompassEkf::CompassEkf(ProcessNoiseModel process_noise, double compass_variance, const Matrix3& initial_covariance,
                        double wheelbase, const Pose2& start)
-    : custom_q_(std::move(process_noise)),
-      wheelbase_(wheelbase),
-      x_(to_vector(start)),
-      p_(symmetrize(initial_covariance)) {
+    : PoseGaussian(to_vector(start), symmetrize(initial_covariance)),
+      custom_q_(std::move(process_noise)),
+      wheelbase_(wheelbase) {
   options_.compass_variance = compass_variance;
   if (!custom_q_) throw UsageError("CompassEkf: empty process-noise model");
   if (!(compass_variance > 0.0)) throw UsageError("CompassEkf: compass_variance must be > 0");

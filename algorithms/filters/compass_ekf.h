@@ -33,7 +33,7 @@ void validate(const CompassEkfOptions& o);
 // Q(k−1) from the previous estimate X̂(k−1), the sample's wheel travel and the wheelbase.
 using ProcessNoiseModel = std::function<Matrix3(const Vector3& x_prev, const WheelDisplacement& u, double wheelbase)>;
 
-class CompassEkf {
+class CompassEkf : public PoseGaussian {
  public:
   // The thesis's adaptive model. Throws UsageError for invalid options or wheelbase <= 0.
   CompassEkf(const CompassEkfOptions& options, double wheelbase, const Pose2& start);
@@ -51,17 +51,12 @@ class CompassEkf {
   // The correction with any absolute measurement (its own R), skipped when NIS > gate.
   MeasurementUpdate update(const PoseMeasurement& z, double gate = kNoGate);
 
-  const Vector3& mean() const { return x_; }
-  const Matrix3& covariance() const { return p_; }
-
  private:
   Matrix3 process_noise(const WheelDisplacement& u) const;
 
   ProcessNoiseModel custom_q_;  // empty: the adaptive model of options_
   CompassEkfOptions options_;
   double wheelbase_;
-  Vector3 x_;
-  Matrix3 p_;
 };
 
 }  // namespace locbench::filters

@@ -17,7 +17,7 @@ Matrix3 body_to_world_covariance(const Matrix3& body, double theta) {
 }
 
 MotionModelEkf::MotionModelEkf(double wheelbase, const Pose2& start, const Matrix3& initial_covariance)
-    : wheelbase_(wheelbase), x_(to_vector(start)), p_(symmetrize(initial_covariance)) {
+    : PoseGaussian(to_vector(start), symmetrize(initial_covariance)), wheelbase_(wheelbase) {
   require_positive_wheelbase(wheelbase, "MotionModelEkf");
   if (!p_.allFinite()) throw UsageError("MotionModelEkf: initial covariance must be finite");
 }

@@ -10,7 +10,7 @@
 
 namespace locbench::filters {
 
-class MotionModelEkf {
+class MotionModelEkf : public PoseGaussian {
  public:
   // Throws UsageError for wheelbase <= 0 or an initial covariance that is not finite.
   MotionModelEkf(double wheelbase, const Pose2& start, const Matrix3& initial_covariance);
@@ -20,13 +20,8 @@ class MotionModelEkf {
   void predict(const WheelDisplacement& u, const Matrix3& body_covariance);
   MeasurementUpdate update(const PoseMeasurement& z, double gate = kNoGate);
 
-  const Vector3& mean() const { return x_; }
-  const Matrix3& covariance() const { return p_; }
-
  private:
   double wheelbase_;
-  Vector3 x_;
-  Matrix3 p_;
 };
 
 // G Σ Gᵀ: a covariance in the robot frame at heading θ expressed in the world frame.

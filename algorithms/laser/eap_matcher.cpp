@@ -10,6 +10,7 @@
 #include "algorithms/laser/eap_matcher_moments.h"
 #include "algorithms/laser/eap_matcher_points.h"
 #include "algorithms/laser/eap_matcher_segments.h"
+#include "algorithms/laser/eap_matcher_steps.h"
 #include "core/errors.h"
 
 namespace locbench::laser {
@@ -35,19 +36,17 @@ struct IndexRange {
 };
 
 using detail::BearingCache;
+using detail::consecutive;
 using detail::EapSegmentTable;
 using detail::FlatPoints;
+using detail::for_each_group;
+using detail::Hit;
 using detail::Moments;
 using detail::PrincipalAxis;
+using detail::same_segments;
 
 constexpr std::uint32_t kNoSegment = static_cast<std::uint32_t>(-1);
 constexpr std::size_t kMaskBits = 64;  // segments per branch-free band-test block
-
-struct Hit {
-  std::uint32_t segment;
-  std::uint32_t point;  // index into the scan's valid points
-  bool operator<(const Hit& o) const { return segment != o.segment ? segment < o.segment : point < o.point; }
-};
 
 struct Run {
   std::uint32_t segment, begin, end;  // points [begin, end)
@@ -234,15 +233,6 @@ class MatchPass {
   MatchResult take_result() { return std::move(result_); }
 
  private:
-  static bool consecutive(std::uint32_t a, std::uint32_t b, const std::vector<char>* deleted) {
-    if (b == a + 1) return true;
-    if (deleted == nullptr) return false;
-    for (std::uint32_t k = a + 1; k < b; ++k) {
-      if ((*deleted)[k] == 0) return false;
-    }
-    return true;
-  }
-
   // §5.3: score Σ g ≥ C_limit (5.6, w = 1 inside ω1; with g ≡ 1 the point count) and the first
   // and last point more than min_extent apart; ours: the run's LS direction within
   // max_direction_error of the segment's. Cheapest test first. `m` gets the run's moments
@@ -323,29 +313,6 @@ class MatchPass {
   MatchResult result_;
 };
 
-// Calls f(segment, points) for each segment with hits, ascending; `hits` sorted.
-template <class F>
-void for_each_group(std::span<const Hit> hits, std::vector<std::uint32_t>& points, F&& f) {
-  std::size_t k = 0;
-  while (k < hits.size()) {
-    const std::uint32_t segment = hits[k].segment;
-    points.clear();
-    for (; k < hits.size() && hits[k].segment == segment; ++k) points.push_back(hits[k].point);
-    f(segment, std::span<const std::uint32_t>(points));
-  }
-}
-
-bool same_segments(const LineMap& a, const LineMap& b) {
-  if (&a == &b) return true;
-  if (a.segments.size() != b.segments.size()) return false;
-  for (std::size_t j = 0; j < a.segments.size(); ++j) {
-    if (a.segments[j].p1 != b.segments[j].p1 || a.segments[j].p2 != b.segments[j].p2) {
-      return false;
-    }
-  }
-  return true;
-}
-
 }  // namespace
 
 EapMatcher::EapMatcher(EapOptions options) : options_(options) { validate(options_); }
@@ -364,13 +331,7 @@ EapMatcher::EapMatcher(std::shared_ptr<const SegmentGridIndex> index, EapOptions
 }
 
 MatchResult EapMatcher::match(const Scan& scan, const LineMap& map, const Pose2& estimate) const {
-  if (!(std::isfinite(estimate.x) && std::isfinite(estimate.y) && std::isfinite(estimate.theta))) {
-    throw UsageError("EapMatcher: the pose estimate is not finite");
-  }
-  if (scan.bearings.size() != scan.ranges.size()) {
-    throw UsageError("EapMatcher: the scan has " + std::to_string(scan.ranges.size()) + " ranges but " +
-                     std::to_string(scan.bearings.size()) + " bearings");
-  }
+  detail::require_matchable(scan, estimate);
   Workspace& ws = workspace();
   const EapSegmentTable* table = table_.get();
   const SegmentGridIndex* index = index_.get();

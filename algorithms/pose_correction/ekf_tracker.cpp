@@ -26,7 +26,9 @@ void validate(const EkfTrackerOptions& o) { validate_fields(o, "EkfTrackerOption
 LOCBENCH_OPTIONS_JSON(EkfTrackerOptions)
 
 EkfTracker::EkfTracker(const EkfTrackerOptions& options, double wheelbase, const Pose2& start)
-    : options_(options), wheelbase_(wheelbase), x_(to_vector(start)), p_(options.initial_covariance.asDiagonal()) {
+    : PoseGaussian(to_vector(start), options.initial_covariance.asDiagonal()),
+      options_(options),
+      wheelbase_(wheelbase) {
   validate(options_);
   require_positive_wheelbase(wheelbase, "EkfTracker");
   if (!x_.allFinite()) throw UsageError("EkfTracker: the start pose is not finite");

@@ -51,7 +51,7 @@ struct TrackerUpdate {
   PoseCorrection correction;
 };
 
-class EkfTracker {
+class EkfTracker : public PoseGaussian {
  public:
   // Throws UsageError for invalid options, wheelbase <= 0 or a non-finite start.
   EkfTracker(const EkfTrackerOptions& options, double wheelbase, const Pose2& start);
@@ -65,15 +65,9 @@ class EkfTracker {
   // Matches `scan` against `map` at the current estimate with `matcher`, then corrects.
   TrackerUpdate correct(const Scan& scan, const LineMap& map, const laser::SegmentMatcher& matcher);
 
-  Pose2 pose() const { return to_pose(x_); }
-  const Vector3& mean() const { return x_; }
-  const Matrix3& covariance() const { return p_; }
-
  private:
   EkfTrackerOptions options_;
   double wheelbase_;
-  Vector3 x_;
-  Matrix3 p_;
 };
 
 }  // namespace locbench::pose_correction

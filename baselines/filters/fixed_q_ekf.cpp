@@ -20,11 +20,10 @@ void validate(const FixedQEkfOptions& o) { validate_fields(o, "FixedQEkfOptions"
 LOCBENCH_OPTIONS_JSON(FixedQEkfOptions)
 
 FixedQEkf::FixedQEkf(const FixedQEkfOptions& options, double wheelbase, const Pose2& start)
-    : q_(options.process_noise.asDiagonal()),
+    : PoseGaussian(to_vector(start), options.initial_covariance.asDiagonal()),
+      q_(options.process_noise.asDiagonal()),
       r_(options.compass_variance),
-      wheelbase_(wheelbase),
-      x_(to_vector(start)),
-      p_(options.initial_covariance.asDiagonal()) {
+      wheelbase_(wheelbase) {
   validate(options);
   require_positive_wheelbase(wheelbase, "FixedQEkf");
 }

@@ -23,7 +23,7 @@ void from_json(const nlohmann::json& j, FixedQEkfOptions& o);
 // Throws UsageError naming the first field out of its range.
 void validate(const FixedQEkfOptions& o);
 
-class FixedQEkf {
+class FixedQEkf : public PoseGaussian {
  public:
   // Throws UsageError for invalid options or wheelbase <= 0.
   FixedQEkf(const FixedQEkfOptions& options, double wheelbase, const Pose2& start);
@@ -38,15 +38,10 @@ class FixedQEkf {
   // The correction with any absolute measurement (its own R), skipped when NIS > gate.
   MeasurementUpdate update(const PoseMeasurement& z, double gate = kNoGate);
 
-  const Vector3& mean() const { return x_; }
-  const Matrix3& covariance() const { return p_; }
-
  private:
   Matrix3 q_;
   double r_;
   double wheelbase_;
-  Vector3 x_;
-  Matrix3 p_;
 };
 
 }  // namespace locbench::baselines::filters

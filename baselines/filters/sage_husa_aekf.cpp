@@ -32,10 +32,9 @@ double deng_forgetting_weight(double b, int k) {
 }
 
 SageHusaAekf::SageHusaAekf(const SageHusaOptions& options, double wheelbase, const Pose2& start)
-    : options_(options),
+    : PoseGaussian(to_vector(start), options.initial_covariance.asDiagonal()),
+      options_(options),
       wheelbase_(wheelbase),
-      x_(to_vector(start)),
-      p_(options.initial_covariance.asDiagonal()),
       q_mean_(options.initial_process_mean),
       q_cov_(options.initial_process_noise.asDiagonal()),
       fpf_(p_) {

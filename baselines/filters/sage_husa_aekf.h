@@ -68,7 +68,7 @@ struct SageHusaStep {
   bool measurement_variance_positive = true;  // R̂(k) > 0
 };
 
-class SageHusaAekf {
+class SageHusaAekf : public PoseGaussian {
  public:
   // Throws UsageError for invalid options or wheelbase <= 0.
   SageHusaAekf(const SageHusaOptions& options, double wheelbase, const Pose2& start);
@@ -84,8 +84,6 @@ class SageHusaAekf {
   // (with R̂ and r̂) exceeds the gate. Fills `stats` (may be null) like step().
   MeasurementUpdate update(const PoseMeasurement& z, double gate = kNoGate, SageHusaStep* stats = nullptr);
 
-  const Vector3& mean() const { return x_; }
-  const Matrix3& covariance() const { return p_; }
   int updates() const { return k_; }
 
  private:
@@ -99,8 +97,6 @@ class SageHusaAekf {
 
   SageHusaOptions options_;
   double wheelbase_;
-  Vector3 x_;
-  Matrix3 p_;
   Vector3 q_mean_;
   Matrix3 q_cov_;
   std::array<MeasurementNoise, kMeasurementKinds> r_;

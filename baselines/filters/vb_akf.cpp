@@ -23,13 +23,12 @@ void validate(const VbAkfOptions& o) { validate_fields(o, "VbAkfOptions"); }
 LOCBENCH_OPTIONS_JSON(VbAkfOptions)
 
 VbAkf::VbAkf(const VbAkfOptions& options, double wheelbase, const Pose2& start)
-    : q_(options.process_noise.asDiagonal()),
+    : PoseGaussian(to_vector(start), options.initial_covariance.asDiagonal()),
+      q_(options.process_noise.asDiagonal()),
       rho_(options.forgetting),
       iterations_(options.iterations),
       initial_shape_(options.initial_shape),
-      wheelbase_(wheelbase),
-      x_(to_vector(start)),
-      p_(options.initial_covariance.asDiagonal()) {
+      wheelbase_(wheelbase) {
   validate(options);
   require_positive_wheelbase(wheelbase, "VbAkf");
   NoisePosterior& compass = noise_[0];  // PoseMeasurement's first kind: CompassHeading

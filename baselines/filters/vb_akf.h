@@ -49,7 +49,7 @@ struct VbAkfStep {
   double measurement_variance = 0.0;  // β/α [rad²]
 };
 
-class VbAkf {
+class VbAkf : public PoseGaussian {
  public:
   // Throws UsageError for invalid options or wheelbase <= 0.
   VbAkf(const VbAkfOptions& options, double wheelbase, const Pose2& start);
@@ -63,8 +63,6 @@ class VbAkf {
   // The VB correction with any measurement, skipped when NIS > gate.
   MeasurementUpdate update(const PoseMeasurement& z, double gate = kNoGate);
 
-  const Vector3& mean() const { return x_; }
-  const Matrix3& covariance() const { return p_; }
   // The compass's plug-in R = β/α.
   double measurement_variance() const { return noise_[0].beta(0) / noise_[0].alpha; }
 
@@ -81,8 +79,6 @@ class VbAkf {
   int iterations_;
   double initial_shape_;
   double wheelbase_;
-  Vector3 x_;
-  Matrix3 p_;
   std::array<NoisePosterior, kMeasurementKinds> noise_;
 };
 

@@ -35,11 +35,10 @@ double validation_gate(double probability) {
 
 LineFeatureKalmanLocalizer::LineFeatureKalmanLocalizer(const LineFeatureKalmanOptions& options, double wheelbase,
                                                        const Pose2& start)
-    : options_(options),
+    : PoseGaussian(to_vector(start), options.initial_covariance.asDiagonal()),
+      options_(options),
       wheelbase_(wheelbase),
-      gate_(0.0),
-      x_(to_vector(start)),
-      p_(options.initial_covariance.asDiagonal()) {
+      gate_(0.0) {
   validate(options_);
   require_positive_wheelbase(wheelbase, "LineFeatureKalmanLocalizer");
   if (!x_.allFinite()) throw UsageError("LineFeatureKalmanLocalizer: the start is not finite");

@@ -57,7 +57,7 @@ struct LineUpdate {
   double gate = 0.0;                   // g²
 };
 
-class LineFeatureKalmanLocalizer {
+class LineFeatureKalmanLocalizer : public PoseGaussian {
  public:
   // Throws UsageError for invalid options, wheelbase <= 0 or a non-finite start.
   LineFeatureKalmanLocalizer(const LineFeatureKalmanOptions& options, double wheelbase, const Pose2& start);
@@ -71,16 +71,10 @@ class LineFeatureKalmanLocalizer {
   // The gate-and-pair step alone, at the current estimate.
   LineUpdate associate(std::span<const LineObservation> observations, const LineMap& map) const;
 
-  Pose2 pose() const { return to_pose(x_); }
-  const Vector3& mean() const { return x_; }
-  const Matrix3& covariance() const { return p_; }
-
  private:
   LineFeatureKalmanOptions options_;
   double wheelbase_;
   double gate_;
-  Vector3 x_;
-  Matrix3 p_;
 };
 
 }  // namespace locbench::baselines::localization

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iterator>
 #include <map>
+#include <utility>
 
 #include "core/ascii.h"
 #include "core/dead_reckoning.h"
@@ -363,6 +364,22 @@ std::string log_spec_path(const std::string& spec) {
   return spec;
 }
 
+namespace {
+
+// The keys after a bag's '#' that choose a topic ("none": no topic), and the field each sets.
+constexpr std::pair<const char*, std::optional<std::string> BagSpec::*> kTopicKeys[] = {{"odom", &BagSpec::odom},
+                                                                                        {"truth", &BagSpec::truth},
+                                                                                        {"scan", &BagSpec::scan},
+                                                                                        {"heading", &BagSpec::heading},
+                                                                                        {"joints", &BagSpec::joints}};
+// The keys that name a joint or a frame.
+constexpr std::pair<const char*, std::string BagSpec::*> kNameKeys[] = {{"left", &BagSpec::left_joint},
+                                                                        {"right", &BagSpec::right_joint},
+                                                                        {"base", &BagSpec::base_frame},
+                                                                        {"laser", &BagSpec::laser_frame}};
+
+}  // namespace
+
 std::optional<BagSpec> parse_bag_spec(const std::string& spec) {
   const std::string file = log_spec_path(spec);
   const auto format = bag_format(file);
@@ -389,20 +406,13 @@ std::optional<BagSpec> parse_bag_spec(const std::string& spec) {
     };
     if (eq == std::string::npos || value.empty()) bad("no value");
     const std::string topic = value == "none" ? "" : with_slash(value);
-    if (key == "odom") {
-      out.odom = topic;
-    } else if (key == "truth") {
-      out.truth = topic;
-    } else if (key == "scan") {
-      out.scan = topic;
-    } else if (key == "heading") {
-      out.heading = topic;
-    } else if (key == "joints") {
-      out.joints = topic;
-    } else if (key == "left") {
-      out.left_joint = value;
-    } else if (key == "right") {
-      out.right_joint = value;
+    const auto named = [&](const auto& keys) {
+      return std::find_if(std::begin(keys), std::end(keys), [&](const auto& k) { return key == k.first; });
+    };
+    if (const auto t = named(kTopicKeys); t != std::end(kTopicKeys)) {
+      out.*(t->second) = topic;
+    } else if (const auto n = named(kNameKeys); n != std::end(kNameKeys)) {
+      out.*(n->second) = value;
     } else if (key == "ticks_per_rev" || key == "radius" || key == "left_radius" || key == "right_radius" ||
                key == "wheelbase") {
       double v = 0.0;
@@ -411,10 +421,6 @@ std::optional<BagSpec> parse_bag_spec(const std::string& spec) {
       if (key == "radius" || key == "left_radius") out.left_radius = v;
       if (key == "radius" || key == "right_radius") out.right_radius = v;
       if (key == "wheelbase") out.wheelbase = v;
-    } else if (key == "base") {
-      out.base_frame = value;
-    } else if (key == "laser") {
-      out.laser_frame = value;
     } else {
       bad("unknown key \"" + key + "\"");
     }

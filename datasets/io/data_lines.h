@@ -12,19 +12,26 @@
 
 namespace locbench::io {
 
-// Calls on_row(fields, ctx) for each data line of `reader`, after checking that it has
-// `field_count` fields.
+// Calls on_row(fields, ctx) for each data line of `reader` (blank lines and # comments skipped).
 template <typename OnRow>
-void for_each_data_line(LineReader& reader, std::size_t field_count, OnRow on_row) {
+void for_each_data_line(LineReader& reader, OnRow on_row) {
   std::vector<std::string_view> tokens;
   std::string_view line;
   while (reader.next(line)) {
     split_fields(line, tokens);
     if (tokens.empty() || tokens[0][0] == '#') continue;
     const FieldContext ctx{reader.source(), reader.line_number(), {}};
-    expect_field_count(tokens, field_count, ctx);
     on_row(tokens, ctx);
   }
+}
+
+// The same after checking that each data line has `field_count` fields.
+template <typename OnRow>
+void for_each_data_line(LineReader& reader, std::size_t field_count, OnRow on_row) {
+  for_each_data_line(reader, [&](const std::vector<std::string_view>& fields, const FieldContext& ctx) {
+    expect_field_count(fields, field_count, ctx);
+    on_row(fields, ctx);
+  });
 }
 
 // The same for N numeric columns named `names`: on_row(values, ctx), every value parsed as a

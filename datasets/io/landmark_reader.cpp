@@ -34,12 +34,7 @@ double parse_sigma(std::string_view token, std::string_view field, const FieldCo
 std::vector<MapLandmark> read_map_lines(LineReader& reader, std::string_view id_name) {
   std::vector<MapLandmark> out;
   std::map<int, std::size_t> line_of_id;
-  std::vector<std::string_view> f;
-  std::string_view line;
-  while (reader.next(line)) {
-    split_fields(line, f);
-    if (f.empty() || f[0][0] == '#') continue;
-    const FieldContext ctx{reader.source(), reader.line_number(), {}};
+  for_each_data_line(reader, [&](const std::vector<std::string_view>& f, const FieldContext& ctx) {
     if (f.size() != 3 && f.size() != 5) {
       fail_input(ctx, "expected 3 fields (" + std::string(id_name) + " x y) or 5 (" + std::string(id_name) +
                           " x y sigma_x sigma_y), found " + std::to_string(f.size()));
@@ -59,7 +54,7 @@ std::vector<MapLandmark> read_map_lines(LineReader& reader, std::string_view id_
                           std::to_string(it->second) + "); landmark ids must be unique");
     }
     out.push_back(m);
-  }
+  });
   return out;
 }
 

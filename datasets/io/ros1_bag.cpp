@@ -57,6 +57,13 @@ BagStamp stamp_of(const std_msgs::Header& h, const RawMessage& m) {
   return {stamp_seconds(h.stamp.sec, h.stamp.nsec), m.record_time, m.index};
 }
 
+// The header's stamp and frame into `out`.
+template <class Message>
+void read_header(Message& out, const std_msgs::Header& h, const RawMessage& m) {
+  out.time = stamp_of(h, m);
+  out.frame_id = h.frame_id;
+}
+
 // Every string and array length of a serialized message, checked against its size before
 // roscpp deserializes it: roscpp resizes a vector to whatever length the bytes say (a corrupted
 // LaserScan asked for 16 GB and spent minutes zero-filling it).
@@ -168,8 +175,7 @@ BagPoseMessage pose_message(const RawMessage& m, const std::string& type, const 
     geometry_msgs::Twist t;
     if (type == kTwistStampedType) {
       const auto s = as<geometry_msgs::TwistStamped>(m, path);
-      out.time = stamp_of(s->header, m);
-      out.frame_id = s->header.frame_id;
+      read_header(out, s->header, m);
       t = s->twist;
     } else {
       t = *as<geometry_msgs::Twist>(m, path);
@@ -179,26 +185,22 @@ BagPoseMessage pose_message(const RawMessage& m, const std::string& type, const 
     out.rv = t.angular.z;
   } else if (type == kOdometryType) {
     const auto o = as<nav_msgs::Odometry>(m, path);
-    out.time = stamp_of(o->header, m);
-    out.frame_id = o->header.frame_id;
+    read_header(out, o->header, m);
     out.child_frame_id = o->child_frame_id;
     out.pose = planar(o->pose.pose);
     out.tv = o->twist.twist.linear.x;
     out.rv = o->twist.twist.angular.z;
   } else if (type == kPoseStampedType) {
     const auto p = as<geometry_msgs::PoseStamped>(m, path);
-    out.time = stamp_of(p->header, m);
-    out.frame_id = p->header.frame_id;
+    read_header(out, p->header, m);
     out.pose = planar(p->pose);
   } else if (type == kPoseWithCovarianceStampedType) {
     const auto p = as<geometry_msgs::PoseWithCovarianceStamped>(m, path);
-    out.time = stamp_of(p->header, m);
-    out.frame_id = p->header.frame_id;
+    read_header(out, p->header, m);
     out.pose = planar(p->pose.pose);
   } else {
     const auto t = as<geometry_msgs::TransformStamped>(m, path);
-    out.time = stamp_of(t->header, m);
-    out.frame_id = t->header.frame_id;
+    read_header(out, t->header, m);
     out.child_frame_id = t->child_frame_id;
     out.pose = planar(t->transform);
   }
@@ -208,8 +210,7 @@ BagPoseMessage pose_message(const RawMessage& m, const std::string& type, const 
 BagScanMessage scan_message(const RawMessage& m, const std::filesystem::path& path) {
   const auto s = as<sensor_msgs::LaserScan>(m, path);
   BagScanMessage out;
-  out.time = stamp_of(s->header, m);
-  out.frame_id = s->header.frame_id;
+  read_header(out, s->header, m);
   out.angle_min = s->angle_min;
   out.angle_increment = s->angle_increment;
   out.range_min = s->range_min;
@@ -221,8 +222,7 @@ BagScanMessage scan_message(const RawMessage& m, const std::filesystem::path& pa
 BagHeadingMessage heading_message(const RawMessage& m, const std::filesystem::path& path) {
   const auto i = as<sensor_msgs::Imu>(m, path);
   BagHeadingMessage out;
-  out.time = stamp_of(i->header, m);
-  out.frame_id = i->header.frame_id;
+  read_header(out, i->header, m);
   const auto& q = i->orientation;
   out.yaw = planar_pose(0.0, 0.0, q.x, q.y, q.z, q.w).yaw;
   out.has_orientation = i->orientation_covariance[0] != -1.0;

@@ -119,17 +119,18 @@ class Walker {
       return static_cast<std::uint8_t>(it->second[0]);
     }
     std::uint64_t u64(Walker& c, std::uint64_t at, const char* name) const {
-      const auto it = values.find(name);
-      if (it == values.end() || it->second.size() != 8) c.fail(at, std::string("record without an 8-byte ") + name);
-      std::uint64_t v;
-      std::memcpy(&v, it->second.data(), 8);
-      return v;
+      return integer<std::uint64_t>(c, at, name, "an 8-byte ");
     }
     std::uint32_t u32(Walker& c, std::uint64_t at, const char* name) const {
+      return integer<std::uint32_t>(c, at, name, "a 4-byte ");
+    }
+    template <class T>
+    T integer(Walker& c, std::uint64_t at, const char* name, const char* size_words) const {
       const auto it = values.find(name);
-      if (it == values.end() || it->second.size() != 4) c.fail(at, std::string("record without a 4-byte ") + name);
-      std::uint32_t v;
-      std::memcpy(&v, it->second.data(), 4);
+      if (it == values.end() || it->second.size() != sizeof(T))
+        c.fail(at, std::string("record without ") + size_words + name);
+      T v;
+      std::memcpy(&v, it->second.data(), sizeof(T));
       return v;
     }
     std::string text(const char* name) const {

@@ -99,20 +99,29 @@ DisturbanceZone read_zone(const json& v, const std::string& path, const std::str
   return z;
 }
 
+// The array `key`, when present, replaces `out`: each element `n` numbers, made into a T by
+// make(numbers). `what` names the elements in the error for a non-array.
+template <class T, class Make>
+void read_rows(StrictJsonReader& o, const char* key, std::size_t n, const std::string& what, std::vector<T>& out,
+               Make make) {
+  const auto* rows = o.raw(key);
+  if (rows == nullptr) return;
+  if (!rows->is_array()) o.fail(key, "expected an array" + what + ", found " + json_type_name(*rows));
+  out.clear();
+  out.reserve(rows->size());
+  for (std::size_t i = 0; i < rows->size(); ++i) {
+    double v[4];
+    read_numbers((*rows)[i], v, n, o.path_of(key) + "[" + std::to_string(i) + "]", o.source());
+    out.push_back(make(v));
+  }
+}
+
 void read_world(StrictJsonReader o, WorldConfig& w) {
   read_enum(o, "kind", kWorldKinds, w.kind);
   o.read("corridor_length", w.corridor_length);
   o.read("corridor_width", w.corridor_width);
   o.read("file", w.file);
-  if (const auto* segs = o.raw("segments")) {
-    if (!segs->is_array()) o.fail("segments", "expected an array, found " + json_type_name(*segs));
-    w.segments.clear();
-    for (std::size_t i = 0; i < segs->size(); ++i) {
-      Eigen::Vector4d s;
-      read_numbers((*segs)[i], s.data(), 4, o.path_of("segments") + "[" + std::to_string(i) + "]", o.source());
-      w.segments.push_back(s);
-    }
-  }
+  read_rows(o, "segments", 4, "", w.segments, [](const double* v) { return Eigen::Vector4d(v[0], v[1], v[2], v[3]); });
   o.finish();
 }
 
@@ -121,25 +130,10 @@ void read_motion(StrictJsonReader o, MotionConfig& m) {
   o.read("distance", m.distance);
   o.read("side", m.side);
   o.read("runs", m.runs);
-  if (const auto* wps = o.raw("waypoints")) {
-    if (!wps->is_array()) o.fail("waypoints", "expected an array, found " + json_type_name(*wps));
-    m.waypoints.clear();
-    for (std::size_t i = 0; i < wps->size(); ++i) {
-      Eigen::Vector2d p;
-      read_numbers((*wps)[i], p.data(), 2, o.path_of("waypoints") + "[" + std::to_string(i) + "]", o.source());
-      m.waypoints.push_back(p);
-    }
-  }
-  if (const auto* cmds = o.raw("commands")) {
-    if (!cmds->is_array()) o.fail("commands", "expected an array of [t, v, omega], found " + json_type_name(*cmds));
-    m.commands.clear();
-    m.commands.reserve(cmds->size());
-    for (std::size_t i = 0; i < cmds->size(); ++i) {
-      double c[3];
-      read_numbers((*cmds)[i], c, 3, o.path_of("commands") + "[" + std::to_string(i) + "]", o.source());
-      m.commands.push_back({c[0], c[1], c[2]});
-    }
-  }
+  read_rows(o, "waypoints", 2, "", m.waypoints, [](const double* v) { return Eigen::Vector2d(v[0], v[1]); });
+  read_rows(o, "commands", 3, " of [t, v, omega]", m.commands, [](const double* v) {
+    return ReplayCommand{v[0], v[1], v[2]};
+  });
   o.finish();
 }
 

@@ -1,8 +1,11 @@
 #include "benchmarks/experiments/framework/plot_series.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "benchmarks/experiments/framework/experiment.h"
 
@@ -85,12 +88,16 @@ const reports::Plot& plot(const reports::ExperimentResults& r, const std::string
   throw std::runtime_error("no plot " + name);
 }
 
+std::vector<std::string> series_names(const reports::Plot& p) {
+  std::vector<std::string> names;
+  for (const auto& s : p.series) names.push_back(s.name);
+  return names;
+}
+
 TEST(ExperimentPlots, CorridorDrawsRunZerosTrajectoriesAndErrorAgainstDistance) {
   const auto r = run_with_defaults("odometry/sim_corridor", 2);
   const auto& traj = plot(r, "trajectories_run_0");
-  ASSERT_EQ(traj.series.size(), 3u);
-  EXPECT_EQ(traj.series[0].name, "truth");
-  EXPECT_EQ(traj.series[1].name, "odometry_nominal");
+  ASSERT_THAT(series_names(traj), ::testing::ElementsAre("truth", "odometry_nominal", ::testing::_));
   // The corridor is 10 m long: the truth ends near x = 10 m.
   EXPECT_NEAR(traj.series[0].x.back() - traj.series[0].x.front(), 10.0, 0.5);
   const auto& dist = plot(r, "error_vs_distance");
@@ -107,11 +114,8 @@ TEST(ExperimentPlots, CorridorDrawsRunZerosTrajectoriesAndErrorAgainstDistance) 
 
 TEST(ExperimentPlots, NoiseTablesDrawTruthOdometryAndTheFourFilters) {
   const auto r = run_with_defaults("noise/tables_4_1_4_2", 1);
-  const auto& traj = plot(r, "trajectories_run_0");
-  ASSERT_EQ(traj.series.size(), 6u);
-  EXPECT_EQ(traj.series[0].name, "truth");
-  EXPECT_EQ(traj.series[1].name, "odometry_nominal");
-  EXPECT_EQ(traj.series[5].name, "vb_akf");
+  EXPECT_THAT(series_names(plot(r, "trajectories_run_0")),
+              ::testing::ElementsAre("truth", "odometry_nominal", ::testing::_, ::testing::_, ::testing::_, "vb_akf"));
   EXPECT_EQ(plot(r, "error_vs_distance").series.size(), 5u);
 }
 

@@ -4,18 +4,13 @@
 
 #include <iostream>
 #include <set>
+#include <stdexcept>
+#include <string>
 
 #include "benchmarks/experiments/framework/experiment.h"
 
 namespace locbench::experiments {
 namespace {
-
-reports::ExperimentResults run_two(const Experiment& e) {
-  RunOptions o;
-  o.seed = 11;
-  o.runs = 2;
-  return e.run(e.default_config(), o);
-}
 
 std::set<std::string> names(const reports::ExperimentResults& r) {
   std::set<std::string> s;
@@ -40,13 +35,28 @@ void dump(const reports::ExperimentResults& r) {
   for (const auto& n : r.notes) std::cout << "NOTE " << n << "\n";
 }
 
-TEST(SlipExperiments, NormalityTable31) {
-  const Experiment* e = find_experiment("slip/normality_table_3_1");
-  ASSERT_NE(e, nullptr);
-  EXPECT_EQ(e->name(), "slip/normality_table_3_1");
-  const auto r = run_two(*e);
+// The registered experiment `name`; an exception (a failed test) when there is none.
+const Experiment& registered(const char* name) {
+  const Experiment* e = find_experiment(name);
+  if (e == nullptr) throw std::runtime_error(std::string("no experiment ") + name);
+  EXPECT_EQ(e->name(), name);
+  return *e;
+}
+
+// `e` with 2 Monte-Carlo runs, printed with LOCBENCH_SLIP_VERBOSE.
+reports::ExperimentResults run_two(const Experiment& e) {
+  RunOptions o;
+  o.seed = 11;
+  o.runs = 2;
+  auto r = e.run(e.default_config(), o);
   dump(r);
-  EXPECT_EQ(r.experiment, e->name());
+  return r;
+}
+
+TEST(SlipExperiments, NormalityTable31) {
+  const Experiment& e = registered("slip/normality_table_3_1");
+  const auto r = run_two(e);
+  EXPECT_EQ(r.experiment, e.name());
   ASSERT_EQ(r.published.size(), 1u);
   EXPECT_EQ(r.published[0].source, "thesis Table 3.1");
   EXPECT_EQ(r.published[0].rows.size(), 9u);
@@ -58,12 +68,9 @@ TEST(SlipExperiments, NormalityTable31) {
 }
 
 TEST(SlipExperiments, CompassEkfTable32) {
-  const Experiment* e = find_experiment("slip/compass_ekf_table_3_2");
-  ASSERT_NE(e, nullptr);
-  EXPECT_EQ(e->name(), "slip/compass_ekf_table_3_2");
-  EXPECT_EQ(e->default_config().at("runs"), 10);
-  const auto r = run_two(*e);
-  dump(r);
+  const Experiment& e = registered("slip/compass_ekf_table_3_2");
+  EXPECT_EQ(e.default_config().at("runs"), 10);
+  const auto r = run_two(e);
   EXPECT_EQ(r.seeds.size(), 2u);
   const auto n = names(r);
   for (const char* want : {"ekf_no_slip_correction/sim_corridor/final_position_error",
@@ -80,11 +87,8 @@ TEST(SlipExperiments, CompassEkfTable32) {
 }
 
 TEST(SlipExperiments, IndirectKfTables3334) {
-  const Experiment* e = find_experiment("slip/indirect_kf_tables_3_3_3_4");
-  ASSERT_NE(e, nullptr);
-  EXPECT_EQ(e->name(), "slip/indirect_kf_tables_3_3_3_4");
-  const auto r = run_two(*e);
-  dump(r);
+  const Experiment& e = registered("slip/indirect_kf_tables_3_3_3_4");
+  const auto r = run_two(e);
   ASSERT_GE(r.published.size(), 2u);
   EXPECT_EQ(r.published[0].source, "thesis Table 3.3");
   EXPECT_EQ(r.published[1].source, "thesis Table 3.4");

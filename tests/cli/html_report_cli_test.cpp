@@ -8,6 +8,8 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "tests/benchmarks/small_real_log.h"
 #include "tests/cli/cli_helpers.h"
@@ -89,6 +91,16 @@ class HtmlReport : public ::testing::Test {
       GTEST_SKIP() << "chromium not installed (scripts/setup.sh installs it)";
     }
   }
+  // `locbench report` of the folder `reports` into `html`, and the page rendered; an exception
+  // (a failed test) when either exits non-zero.
+  Rendered report_and_render(const std::string& reports, const std::filesystem::path& html) {
+    const Outcome o = run_locbench("report " + reports + " -o " + html.string());
+    if (o.exit_code != 0) throw std::runtime_error("locbench report failed: " + o.output);
+    Rendered r = render(html, dir.path() / "profile");
+    if (r.exit_code != 0) throw std::runtime_error("chromium failed: " + r.log);
+    return r;
+  }
+
   testing::ScratchDir dir;
 };
 
@@ -98,14 +110,11 @@ TEST_F(HtmlReport, RendersInChromiumWithItsChartsTablesAndNoConsoleErrors) {
   const std::filesystem::path artifacts(LOCBENCH_ARTIFACT_DIR);
   std::filesystem::create_directories(artifacts);
   const auto html = artifacts / "report.html";
-  const Outcome o = run_locbench("report " + reports + " -o " + html.string());
-  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const Rendered r = report_and_render(reports, html);
   const std::string page = testing::file_contents(html);
   EXPECT_EQ(page.find("<script"), std::string::npos);
   EXPECT_EQ(std::regex_search(page, std::regex(R"((src|href)="?https?:)")), false);
 
-  const Rendered r = render(html, dir.path() / "profile");
-  ASSERT_EQ(r.exit_code, 0) << r.log;
   // Every chart figure holds an SVG with plotted paths: 2 + 2 plots, and histograms of the
   // final errors (5 runs each). (std::regex would recurse too deep on whole SVGs.)
   int charts = 0;
@@ -153,10 +162,7 @@ TEST_F(HtmlReport, DrawsTheWorstRelationsOfAUsersLogAsScanPairs) {
                    " --set 'matchers=[\"eap\"]' --set draw_worst=2 --out " + reports);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const auto html = dir.file("relations.html");
-  const Outcome o = run_locbench("report " + reports + " -o " + html.string());
-  ASSERT_EQ(o.exit_code, 0) << o.output;
-  const Rendered r = render(html, dir.path() / "profile");
-  ASSERT_EQ(r.exit_code, 0) << r.log;
+  const Rendered r = report_and_render(reports, html);
   EXPECT_NE(r.dom.find("Scan pairs drawn: both scans, lines and matches, before and after"), std::string::npos);
   int pairs = 0;
   for (std::size_t at = r.dom.find("data-kind=\"scan_pair\""); at != std::string::npos;
@@ -192,10 +198,7 @@ TEST_F(HtmlReport, OpensOnTheFindingsAndDrawsTheDiagnosisCharts) {
   const Outcome tables = run_locbench("run slip/normality_table_3_1 noise/quantization_sigma --out " + reports);
   ASSERT_EQ(tables.exit_code, 0) << tables.output;
   const auto html = dir.file("findings.html");
-  const Outcome o = run_locbench("report " + reports + " -o " + html.string());
-  ASSERT_EQ(o.exit_code, 0) << o.output;
-  const Rendered r = render(html, dir.path() / "profile");
-  ASSERT_EQ(r.exit_code, 0) << r.log;
+  const Rendered r = report_and_render(reports, html);
   const std::size_t findings = r.dom.find("<section id=\"findings\">");
   const std::size_t index = r.dom.find("<table class=\"overview\">");
   ASSERT_NE(findings, std::string::npos) << r.dom.substr(0, 800);

@@ -53,6 +53,11 @@ Report without_aces(const std::string& reason = "dataset not found at /ci/aces.c
 
 const std::string kAces = "odometry/real_logs:odometry_nominal/aces/final_position_error";
 
+// The gate with the default rules on `now` against real_logs_report() as the baseline.
+GateVerdict gate_against_real_logs(const Report& now, const testing::ScratchDir& dir) {
+  return evaluate_gate(load(real_logs_report(), dir, "a.json"), load(now, dir, "b.json"), default_gate_rules());
+}
+
 // Google Benchmark JSON: BM_Fast and BM_Slow, one repetition each per entry.
 std::string bench(const std::vector<double>& fast, const std::vector<double>& slow) {
   nlohmann::json j = {{"benchmarks", nlohmann::json::array()}};
@@ -104,8 +109,7 @@ TEST(GateFailClosed, ANegativePositionErrorFailsInsteadOfPassingAsImproved) {
   Report now = real_logs_report();
   now.body.results[0] = make_metric("odometry_nominal", "aces", "final_position_error", "m", "runs",
                                     std::vector<double>{-1.0, -1.2, -0.8});
-  const GateVerdict v =
-      evaluate_gate(load(real_logs_report(), dir, "a.json"), load(now, dir, "b.json"), default_gate_rules());
+  const GateVerdict v = gate_against_real_logs(now, dir);
   EXPECT_EQ(find_row(v, kAces)->status, "invalid");
   EXPECT_NE(find_row(v, kAces)->detail.find("cannot be negative"), std::string::npos) << find_row(v, kAces)->detail;
   EXPECT_FALSE(v.passed());
@@ -170,8 +174,7 @@ TEST(GateFailClosed, DeletedResultsWithAnAddedSkippedCaseFailWhenTheReportStillL
   Report forged = real_logs_report();
   forged.body.results.erase(forged.body.results.begin());  // the dataset stays listed as read
   forged.body.cases.push_back({"odometry/aces", "skipped", "dataset not found at /x"});
-  const GateVerdict v =
-      evaluate_gate(load(real_logs_report(), dir, "a.json"), load(forged, dir, "b.json"), default_gate_rules());
+  const GateVerdict v = gate_against_real_logs(forged, dir);
   EXPECT_EQ(find_row(v, kAces)->status, "missing");
   EXPECT_NE(find_row(v, kAces)->detail.find("skip not backed"), std::string::npos) << find_row(v, kAces)->detail;
   EXPECT_FALSE(v.passed());
@@ -179,9 +182,7 @@ TEST(GateFailClosed, DeletedResultsWithAnAddedSkippedCaseFailWhenTheReportStillL
 
 TEST(GateFailClosed, ASkipWhoseReasonIsNotAbsentDataFails) {
   testing::ScratchDir dir;
-  const GateVerdict v =
-      evaluate_gate(load(real_logs_report(), dir, "a.json"),
-                    load(without_aces("I did not feel like it"), dir, "b.json"), default_gate_rules());
+  const GateVerdict v = gate_against_real_logs(without_aces("I did not feel like it"), dir);
   EXPECT_EQ(find_row(v, kAces)->status, "missing");
   EXPECT_FALSE(v.passed());
 }
@@ -200,8 +201,7 @@ TEST(GateFailClosed, ASkipOfSimulatedDataFails) {
 
 TEST(GateFailClosed, ASkipBackedByProvenancePasses) {
   testing::ScratchDir dir;
-  const GateVerdict v =
-      evaluate_gate(load(real_logs_report(), dir, "a.json"), load(without_aces(), dir, "b.json"), default_gate_rules());
+  const GateVerdict v = gate_against_real_logs(without_aces(), dir);
   EXPECT_EQ(find_row(v, kAces)->status, "skipped");
   EXPECT_TRUE(v.passed()) << gate_table(v);
 }
@@ -212,8 +212,7 @@ TEST(GateFailClosed, SkippingEveryRecordedDatasetFailsLikeSkipMissingAll) {
   none.body.results.clear();
   none.body.datasets.clear();
   none.body.cases.push_back({"odometry/intel", "skipped", "dataset not found at /ci/intel.clf.gz"});
-  const GateVerdict v =
-      evaluate_gate(load(real_logs_report(), dir, "a.json"), load(none, dir, "b.json"), default_gate_rules());
+  const GateVerdict v = gate_against_real_logs(none, dir);
   EXPECT_EQ(find_row(v, kAces)->status, "skipped");
   ASSERT_NE(find_row(v, "recorded data"), nullptr) << gate_table(v);
   EXPECT_NE(find_row(v, "recorded data")->detail.find("none was compared"), std::string::npos);

@@ -86,22 +86,18 @@ TEST(Gate, AMissingResultFailsUnlessItsDatasetWasSkipped) {
   EXPECT_EQ(row(missing, kKey).status, "missing");
 }
 
+// One Google Benchmark row: a repetition of `name` that took `us` µs.
+nlohmann::json bench_row(const std::string& name, double us) {
+  return {{"name", name},    {"run_name", name}, {"run_type", "iteration"},
+          {"real_time", us}, {"cpu_time", us},   {"time_unit", "us"}};
+}
+
 // Google Benchmark JSON with `reps` repetitions of two kernels.
 void write_bench(const std::filesystem::path& p, const std::vector<double>& fast, const std::vector<double>& slow) {
   nlohmann::json j = {{"context", {{"library_build_type", "release"}}}, {"benchmarks", nlohmann::json::array()}};
   for (std::size_t i = 0; i < fast.size(); ++i) {
-    j["benchmarks"].push_back({{"name", "BM_Fast"},
-                               {"run_name", "BM_Fast"},
-                               {"run_type", "iteration"},
-                               {"real_time", fast[i]},
-                               {"cpu_time", fast[i]},
-                               {"time_unit", "us"}});
-    j["benchmarks"].push_back({{"name", "BM_Slow"},
-                               {"run_name", "BM_Slow"},
-                               {"run_type", "iteration"},
-                               {"real_time", slow[i]},
-                               {"cpu_time", slow[i]},
-                               {"time_unit", "us"}});
+    j["benchmarks"].push_back(bench_row("BM_Fast", fast[i]));
+    j["benchmarks"].push_back(bench_row("BM_Slow", slow[i]));
   }
   std::ofstream(p) << j.dump();
 }
@@ -157,20 +153,11 @@ TEST(Gate, ARatioWhoseBenchmarkSkippedForMissingDataFails) {
   // BM_Fast skipped (SkipWithError, as the real-scan kernels do without LOCBENCH_DATA): Google
   // Benchmark still writes a row, with error_occurred and a zero time.
   nlohmann::json j = {{"benchmarks", nlohmann::json::array()}};
-  j["benchmarks"].push_back({{"name", "BM_Fast"},
-                             {"run_name", "BM_Fast"},
-                             {"run_type", "iteration"},
-                             {"error_occurred", true},
-                             {"error_message", "intel log not found"},
-                             {"real_time", 0.0},
-                             {"cpu_time", 0.0},
-                             {"time_unit", "us"}});
-  j["benchmarks"].push_back({{"name", "BM_Slow"},
-                             {"run_name", "BM_Slow"},
-                             {"run_type", "iteration"},
-                             {"real_time", 100.0},
-                             {"cpu_time", 100.0},
-                             {"time_unit", "us"}});
+  nlohmann::json skipped = bench_row("BM_Fast", 0.0);
+  skipped["error_occurred"] = true;
+  skipped["error_message"] = "intel log not found";
+  j["benchmarks"].push_back(skipped);
+  j["benchmarks"].push_back(bench_row("BM_Slow", 100.0));
   std::ofstream(dir.file("now.json")) << j.dump();
   const GateVerdict v = evaluate_gate(load_gate_input({dir.file("base.json").string()}),
                                       load_gate_input({dir.file("now.json").string()}), ratio_rules());

@@ -29,6 +29,7 @@
 #include "datasets/sim/simulator.h"
 #include "pipelines/scenario_option.h"
 #include "reports/findings.h"
+#include "reports/published_rows.h"
 
 namespace locbench::experiments::laser_tracking_table_6_5 {
 
@@ -211,11 +212,9 @@ class LaserTracking final : public MonteCarloExperiment<Options, Setup> {
     t.source = "thesis Table 6.5";
     t.quantity = "E_error (6.43) of the chapter-6 EKF per run";
     t.unit = "mm";
-    for (std::size_t i = 0; i < 10; ++i) {
-      reports::PublishedRow row{fmt::format("run {}", i + 1), kTable65[i], std::nullopt};
-      if (i < fin[kEkfEap].size()) row.ours = to_mm(fin[kEkfEap][i]);
-      t.rows.push_back(row);
-    }
+    std::vector<double> ours_mm;
+    for (const double e : fin[kEkfEap]) ours_mm.push_back(to_mm(e));
+    t.rows = reports::numbered_rows("run", kTable65, ours_mm);
     double pub = 0.0;
     for (double x : kTable65) pub += x / 10.0;
     t.rows.push_back({"mean", pub, to_mm(mean(fin[kEkfEap]))});

@@ -18,6 +18,7 @@
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "pipelines/noise_filters.h"
+#include "reports/published_rows.h"
 
 namespace locbench::experiments::noise_tables_4_1_4_2 {
 using locbench::filters::ConsistencySummary, locbench::filters::summarize_consistency;
@@ -151,11 +152,10 @@ class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {
       t.source = "thesis Tables 4.1/4.2";
       t.quantity = std::string("final position error, ") + columns[c];
       t.unit = "mm";
-      for (int i = 0; i < 10; ++i) {
-        reports::PublishedRow row{fmt::format("run {}", i + 1), published[i][c], std::nullopt};
-        if (i < runs) row.ours = s.final_error[ours_index[c]][static_cast<std::size_t>(i)] * 1e3;
-        t.rows.push_back(row);
-      }
+      std::vector<double> published_mm, ours_mm;
+      for (const auto& p : published) published_mm.push_back(p[c]);
+      for (const double e : s.final_error[ours_index[c]]) ours_mm.push_back(e * 1e3);
+      t.rows = reports::numbered_rows("run", published_mm, ours_mm);
       t.note = note;
       out.published.push_back(std::move(t));
     }

@@ -24,6 +24,7 @@
 #include "pipelines/scenario_option.h"
 #include "pipelines/slip_sim.h"
 #include "reports/findings.h"
+#include "reports/published_rows.h"
 
 namespace locbench::experiments::slip_compass_ekf_table_3_2 {
 using locbench::slip::run_slip_ekf, locbench::slip::slip_threshold, locbench::slip::SlipDetectorOptions,
@@ -269,15 +270,11 @@ class SlipCompassEkf final : public MonteCarloExperiment<Options, CompassSetup> 
       t.source = "thesis Table 3.2";
       t.quantity = q[c];
       t.unit = "mm";
+      std::vector<double> ours_mm;
+      for (const double e : *ours[c]) ours_mm.push_back(to_mm(e));
+      t.rows = reports::numbered_rows("run", std::span<const double>(published[c], 10), ours_mm);
       double pub_mean = 0.0;
-      for (std::size_t i = 0; i < 10; ++i) {
-        reports::PublishedRow row;
-        row.label = fmt::format("run {}", i + 1);
-        row.published = published[c][i];
-        pub_mean += published[c][i] / 10.0;
-        if (i < ours[c]->size()) row.ours = to_mm((*ours[c])[i]);
-        t.rows.push_back(row);
-      }
+      for (std::size_t i = 0; i < 10; ++i) pub_mean += published[c][i] / 10.0;
       t.rows.push_back({"mean", pub_mean, to_mm(mean(*ours[c]))});
       t.claim = c == 0 ? "without slip correction the compass EKF ends about half a metre off after 10 m"
                        : "the slip-corrected EKF ends within about 7 cm after 10 m";

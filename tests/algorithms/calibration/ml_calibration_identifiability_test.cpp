@@ -6,20 +6,14 @@
 #include "core/units.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
+#include "pioneer_scenario.h"
 
 namespace locbench::calibration {
 namespace {
 
 // A Pioneer-like robot with wrong nominal wheels and wheelbase on a noisy floor (no slip).
 sim::Scenario pioneer(sim::MotionKind motion) {
-  sim::Scenario s = sim::preset("room_laser");
-  s.world.kind = sim::WorldKind::kNone;
-  s.laser.timing.enabled = false;
-  s.odometry.timing.enabled = false;
-  s.slip = {};
-  s.floor = {0.002, 0.002};
-  s.robot.actual = {mm(192.8), mm(194.1), mm(334.0)};
-  s.start = Pose2(0.0, 0.0, 0.0);
+  sim::Scenario s = test::pioneer_on_a_noisy_floor();
   s.motion.kind = motion;
   s.motion.distance = 10.0;
   s.motion.waypoints = {{3, 0}, {3, 3}, {0, 3}, {0, 0}};

@@ -12,6 +12,7 @@
 #include "core/units.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
+#include "pioneer_scenario.h"
 
 namespace locbench::calibration {
 namespace {
@@ -21,16 +22,9 @@ namespace {
 // noisy floor (k = 0.002 √m per wheel), without slip, with exact ground truth at the encoder
 // instants (10 Hz).
 sim::Scenario loop_scenario() {
-  sim::Scenario s = sim::preset("room_laser");
+  sim::Scenario s = test::pioneer_on_a_noisy_floor();
   s.name = "ml_calibration_loops";
-  s.world.kind = sim::WorldKind::kNone;
-  s.laser.timing.enabled = false;
-  s.odometry.timing.enabled = false;
-  s.slip = {};
-  s.floor = {0.002, 0.002};
   s.robot.nominal = {mm(193.5), mm(193.5), mm(330.0)};
-  s.robot.actual = {mm(192.8), mm(194.1), mm(334.0)};
-  s.start = Pose2(0.0, 0.0, 0.0);
   s.motion.kind = sim::MotionKind::kWaypoints;
   s.motion.waypoints = {{3, 0}, {3, 3}, {0, 3}, {0, 0}, {0, 3}, {3, 3}, {3, 0}, {0, 0}, {2, 1}, {1, 2}, {3, 3}, {0, 0}};
   s.encoders.timing = {true, 10.0, 0.0, 0.0};

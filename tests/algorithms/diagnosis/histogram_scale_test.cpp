@@ -7,6 +7,7 @@
 #include "algorithms/diagnosis/diagnosis.h"
 #include "core/errors.h"
 #include "core/units.h"
+#include "diagnosis_test_helpers.h"
 
 namespace locbench::diagnosis {
 namespace {
@@ -57,23 +58,12 @@ TEST(HistogramScale, TwoHundredFilledBinsAreDiagnosedWithFiniteFits) {
 }
 
 TEST(HistogramScale, CountsMustBeWholeBoundedAndSpread) {
-  const auto err = [](const char* text) {
-    try {
-      read_histogram(nlohmann::json::parse(text), "h.json");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
-  EXPECT_NE(err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[9,9,3.5,9,9]})").find("counts[2]"),
-            std::string::npos);
-  EXPECT_NE(err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[9,9,1e18,9,9]})").find("limit"),
-            std::string::npos);
-  EXPECT_NE(
-      err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[0,0,900,0,0]})").find("at least 3 bins"),
-      std::string::npos);
-  EXPECT_NE(err(R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,1e300],"counts":[9,9,9,9,9]})").find("edges[5]"),
-            std::string::npos);
+  test_support::expect_histogram_errors({
+      {R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[9,9,3.5,9,9]})", "counts[2]"},
+      {R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[9,9,1e18,9,9]})", "limit"},
+      {R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,5],"counts":[0,0,900,0,0]})", "at least 3 bins"},
+      {R"({"residual":"r","unit":"deg","edges":[0,1,2,3,4,1e300],"counts":[9,9,9,9,9]})", "edges[5]"},
+  });
 }
 
 }  // namespace

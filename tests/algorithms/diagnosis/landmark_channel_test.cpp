@@ -11,6 +11,7 @@
 
 #include "core/angle.h"
 #include "datasets/diagnosis/landmark_effects.h"
+#include "diagnosis_test_helpers.h"
 
 namespace locbench::diagnosis {
 namespace {
@@ -21,13 +22,7 @@ using sim::HiddenEffect;
 LandmarkData data_of(const Log& log) { return make_landmark_data(log.landmarks, log.landmark_map, log.truth); }
 
 std::string channel_summary(const LandmarkChannelResult& r) {
-  std::string s;
-  for (const auto& c : r.causes) {
-    s += "\n  " + c.id + (c.detected ? " [D]" : "") + " LR=" + std::to_string(c.value) +
-         " thr=" + std::to_string(c.threshold);
-    for (const auto& p : c.parameters)
-      s += " " + p.name + "=" + std::to_string(p.value) + "[" + std::to_string(p.lo) + "," + std::to_string(p.hi) + "]";
-  }
+  std::string s = test_support::causes_summary(r.causes);
   for (const auto& t : r.remaining)
     s += "\n  remaining " + t.name + ":" + t.residual + " p=" + std::to_string(t.p_value);
   return s;

@@ -43,12 +43,7 @@ struct FitDifference {
 
 void expect_same(const MatchResult& old_r, const MatchResult& new_r, const std::string& what, FitDifference& diff) {
   EXPECT_EQ(old_r.work, new_r.work) << what;
-  ASSERT_EQ(old_r.matches.size(), new_r.matches.size()) << what;
-  for (std::size_t k = 0; k < old_r.matches.size(); ++k) {
-    const SegmentMatch& a = old_r.matches[k];
-    const SegmentMatch& b = new_r.matches[k];
-    ASSERT_EQ(a.map_segment, b.map_segment) << what;
-    ASSERT_EQ(a.points.size(), b.points.size()) << what << ", segment " << a.map_segment;
+  test::expect_same_segments(old_r, new_r, what, [&](const SegmentMatch& a, const SegmentMatch& b) {
     for (std::size_t i = 0; i < a.points.size(); ++i) {
       const ScanPoint& p = a.points[i];
       const ScanPoint& q = b.points[i];
@@ -70,16 +65,13 @@ void expect_same(const MatchResult& old_r, const MatchResult& new_r, const std::
     diff.angle = std::max(diff.angle, dang);
     ++diff.matches;
     diff.points += a.points.size();
-  }
+  });
 }
 
 // Every claim mode, both region rules, all three weightings, the thesis's acceptance rules.
 std::vector<EapOptions> option_variants() {
-  std::vector<EapOptions> v(7);
-  v[1].claim_order = ClaimOrder::kMapOrder;
-  v[2].remove_claimed = false;
-  v[3].region = RegionRule::kStadium;
-  v[3].weighting.kind = HoughWeighting::kRangeIncidence;
+  std::vector<EapOptions> v = test::claim_and_region_variants();
+  v.resize(7);
   v[4].weighting.kind = HoughWeighting::kRange;
   v[5].max_direction_error = 0.0;  // the thesis's rules
   v[5].trim_distance = 0.0;

@@ -13,28 +13,16 @@ namespace locbench::laser {
 namespace {
 
 void expect_identical(const MatchResult& a, const MatchResult& b, const std::string& what) {
-  ASSERT_EQ(a.matches.size(), b.matches.size()) << what;
-  for (std::size_t k = 0; k < a.matches.size(); ++k) {
-    const SegmentMatch& x = a.matches[k];
-    const SegmentMatch& y = b.matches[k];
-    EXPECT_EQ(x.map_segment, y.map_segment) << what;
-    ASSERT_EQ(x.points.size(), y.points.size()) << what << " segment " << x.map_segment;
+  test::expect_same_segments(a, b, what, [&](const SegmentMatch& x, const SegmentMatch& y) {
     for (std::size_t i = 0; i < x.points.size(); ++i) {
       EXPECT_EQ(x.points[i].beam, y.points[i].beam) << what;
     }
     EXPECT_EQ(x.fit.line.rho, y.fit.line.rho) << what;  // same points, same order: bit-equal
     EXPECT_EQ(x.fit.line.beta, y.fit.line.beta) << what;
-  }
+  });
 }
 
-std::vector<EapOptions> option_variants() {
-  std::vector<EapOptions> v(4);
-  v[1].claim_order = ClaimOrder::kMapOrder;
-  v[2].remove_claimed = false;
-  v[3].region = RegionRule::kStadium;
-  v[3].weighting.kind = HoughWeighting::kRangeIncidence;
-  return v;
-}
+std::vector<EapOptions> option_variants() { return test::claim_and_region_variants(); }
 
 // Random pose in [margin, size − margin]² and an estimate off by up to 0.1 m and 3°.
 struct Poses {

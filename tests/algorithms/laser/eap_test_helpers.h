@@ -1,11 +1,15 @@
 #pragma once
 // Scans, maps and comparisons shared by the EAP tests.
+#include <gtest/gtest.h>
+
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
 #include <set>
+#include <string>
 #include <vector>
 
+#include "algorithms/laser/eap_matcher.h"
 #include "algorithms/laser/segment_match.h"
 #include "core/angle.h"
 #include "core/line_map.h"
@@ -113,6 +117,31 @@ inline double signed_beta_error(const LineParams& a, const LineParams& b) {
   double beta_b = b.beta;
   if (std::abs(angle_diff(a.beta, beta_b)) > kPi / 2) beta_b += kPi;
   return angle_diff(a.beta, beta_b);
+}
+
+// Both claim orders, with and without removing claimed points, and the stadium region with the
+// range-incidence weighting.
+inline std::vector<EapOptions> claim_and_region_variants() {
+  std::vector<EapOptions> v(4);
+  v[1].claim_order = ClaimOrder::kMapOrder;
+  v[2].remove_claimed = false;
+  v[3].region = RegionRule::kStadium;
+  v[3].weighting.kind = HoughWeighting::kRangeIncidence;
+  return v;
+}
+
+// Checks that `a` and `b` matched the same segments in the same order with as many points each,
+// then calls check(x, y) on each pair of matches.
+template <class Check>
+void expect_same_segments(const MatchResult& a, const MatchResult& b, const std::string& what, Check&& check) {
+  ASSERT_EQ(a.matches.size(), b.matches.size()) << what;
+  for (std::size_t k = 0; k < a.matches.size(); ++k) {
+    const SegmentMatch& x = a.matches[k];
+    const SegmentMatch& y = b.matches[k];
+    ASSERT_EQ(x.map_segment, y.map_segment) << what;
+    ASSERT_EQ(x.points.size(), y.points.size()) << what << ", segment " << x.map_segment;
+    check(x, y);
+  }
 }
 
 // `count` segments of length 0.3–3 m, uniformly placed and oriented in [0, size]².

@@ -7,18 +7,18 @@
 #include <span>
 #include <vector>
 
+#include "algorithms/laser/eap_matcher_steps.h"
 #include "core/errors.h"
 
 namespace locbench::laser::legacy {
 namespace {
 
-constexpr std::uint32_t kNoSegment = static_cast<std::uint32_t>(-1);
+using detail::consecutive;
+using detail::for_each_group;
+using detail::Hit;
+using detail::same_segments;
 
-struct Hit {
-  std::uint32_t segment;
-  std::uint32_t point;  // index into the scan's valid points
-  bool operator<(const Hit& o) const { return segment != o.segment ? segment < o.segment : point < o.point; }
-};
+constexpr std::uint32_t kNoSegment = static_cast<std::uint32_t>(-1);
 
 // One match() call: the scan's points, the regions, the options and the output.
 class MatchPass {
@@ -130,15 +130,6 @@ class MatchPass {
     result_.matches.push_back(std::move(m));
   }
 
-  static bool consecutive(std::uint32_t a, std::uint32_t b, const std::vector<char>* deleted) {
-    if (b == a + 1) return true;
-    if (deleted == nullptr) return false;
-    for (std::uint32_t k = a + 1; k < b; ++k) {
-      if ((*deleted)[k] == 0) return false;
-    }
-    return true;
-  }
-
   // §5.3: score Σ g ≥ C_limit (5.6, w = 1 inside ω1; with g ≡ 1 the point count) and the first
   // and last point more than min_extent apart.
   bool accepted(std::uint32_t segment, std::span<const std::uint32_t> run) const {
@@ -174,40 +165,10 @@ class MatchPass {
   std::vector<Eigen::Vector2d> world_;   // fit_line's input
 };
 
-// Calls f(segment, members) for each segment with members, in ascending segment order; `hits`
-// sorted.
-template <class F>
-void for_each_group(std::span<const Hit> hits, std::vector<std::uint32_t>& members, F&& f) {
-  std::size_t k = 0;
-  while (k < hits.size()) {
-    const std::uint32_t segment = hits[k].segment;
-    members.clear();
-    for (; k < hits.size() && hits[k].segment == segment; ++k) members.push_back(hits[k].point);
-    f(segment, std::span<const std::uint32_t>(members));
-  }
-}
-
-bool same_segments(const LineMap& a, const LineMap& b) {
-  if (&a == &b) return true;
-  if (a.segments.size() != b.segments.size()) return false;
-  for (std::size_t j = 0; j < a.segments.size(); ++j) {
-    if (a.segments[j].p1 != b.segments[j].p1 || a.segments[j].p2 != b.segments[j].p2) {
-      return false;
-    }
-  }
-  return true;
-}
-
 }  // namespace
 
 MatchResult LegacyEapMatcher::match(const Scan& scan, const LineMap& map, const Pose2& estimate) const {
-  if (!(std::isfinite(estimate.x) && std::isfinite(estimate.y) && std::isfinite(estimate.theta))) {
-    throw UsageError("EapMatcher: the pose estimate is not finite");
-  }
-  if (scan.bearings.size() != scan.ranges.size()) {
-    throw UsageError("EapMatcher: the scan has " + std::to_string(scan.ranges.size()) + " ranges but " +
-                     std::to_string(scan.bearings.size()) + " bearings");
-  }
+  detail::require_matchable(scan, estimate);
   const std::size_t m = map.segments.size();
   // Regions and each point's candidate segments: all of them (plain) or its grid cell's.
   std::vector<EapRegion> own_regions;

@@ -89,6 +89,25 @@ void expect_same_log(const Log& bag, const Log& original) {
   }
 }
 
+// `log` written as a ROS 1 bag STEM.bag, a ROS 2 bag folder STEM and an MCAP file STEM.mcap in
+// `dir`; their names, in that order.
+std::vector<std::string> write_every_bag_format(const Log& log, const ScratchDir& dir, const std::string& stem) {
+  const std::vector<std::string> names{stem + ".bag", stem, stem + ".mcap"};
+  write_bag_log(log, dir.file(names[0]), BagFormat::kRos1);
+  write_bag_log(log, dir.file(names[1]), BagFormat::kRos2);
+  write_bag_log(log, dir.file(names[2]), BagFormat::kMcap);
+  return names;
+}
+
+// The messages written as a ROS 1 bag a.bag, a ROS 2 bag folder b and an MCAP file c.mcap in
+// `dir`; their names, in that order.
+std::vector<std::string> write_every_bag_format(const BagContents& c, const ScratchDir& dir) {
+  write_ros1_bag(c, dir.file("a.bag"));
+  write_ros2_bag(c, dir.file("b"), "b");
+  write_mcap_bag(c, dir.file("c.mcap"));
+  return {"a.bag", "b", "c.mcap"};
+}
+
 TEST(RosBag, Ros1BagOfASimulatedLogReadsBackAsTheSameLog) {
   ScratchDir dir;
   const Log original = simulated_log();
@@ -270,10 +289,7 @@ TEST(RosBag, TheAcesCatalogLogReadsBackFromItsBagsRecordForRecord) {
   ScratchDir dir;
   const Log aces = load_log((catalog::data_root() / "slam_benchmark/clf/aces.from_bag.clf.gz").string());
   ASSERT_GT(aces.odometry.size(), 7000u);
-  write_bag_log(aces, dir.file("aces.bag"), BagFormat::kRos1);
-  write_bag_log(aces, dir.file("aces"), BagFormat::kRos2);
-  write_bag_log(aces, dir.file("aces.mcap"), BagFormat::kMcap);
-  for (const std::string bag : {"aces.bag", "aces", "aces.mcap"}) {
+  for (const std::string& bag : write_every_bag_format(aces, dir, "aces")) {
     const Log back = load_log(dir.file(bag).string());
     ASSERT_EQ(back.odometry.size(), aces.odometry.size()) << bag;
     for (std::size_t i = 0; i < aces.odometry.size(); ++i) {
@@ -309,11 +325,7 @@ TEST(RosBag, AMissingTopicNamesTheTopicAndListsTheBagsTopics) {
 
 TEST(RosBag, AWrongMessageTypeOnTheChosenTopicIsRefused) {
   ScratchDir dir;
-  const Log original = simulated_log();
-  write_bag_log(original, dir.file("a.bag"), BagFormat::kRos1);
-  write_bag_log(original, dir.file("b"), BagFormat::kRos2);
-  write_bag_log(original, dir.file("c.mcap"), BagFormat::kMcap);
-  for (const std::string bag : {"a.bag", "b", "c.mcap"}) {
+  for (const std::string& bag : write_every_bag_format(simulated_log(), dir, "a")) {
     EXPECT_TRUE(throws_input_error([&] { load_log(dir.file(bag).string() + "#odom=/scan"); }, bag, 0,
                                    {"topic /scan (#odom=) is a sensor_msgs/LaserScan, expected nav_msgs/Odometry"}));
   }
@@ -333,20 +345,17 @@ TEST(RosBag, AMessageThatIsNotItsDeclaredTypeIsRefusedByMessageNumber) {
 
 TEST(RosBag, TruncatedBagsAreInputErrors) {
   ScratchDir dir;
-  const Log original = simulated_log();
-  write_bag_log(original, dir.file("a.bag"), BagFormat::kRos1);
-  write_bag_log(original, dir.file("b"), BagFormat::kRos2);
-  write_bag_log(original, dir.file("c.mcap"), BagFormat::kMcap);
-  const auto mcap_size = std::filesystem::file_size(dir.file("c.mcap"));
+  write_every_bag_format(simulated_log(), dir, "a");
+  const auto mcap_size = std::filesystem::file_size(dir.file("a.mcap"));
   for (const auto& [file, keep] :
        std::vector<std::pair<std::filesystem::path, std::uintmax_t>>{{dir.file("a.bag"), 5000},
                                                                      {dir.file("a.bag"), 13},
-                                                                     {dir.file("b") / "b_0.db3", 9000},
-                                                                     {dir.file("b") / "b_0.db3", 100},
-                                                                     {dir.file("c.mcap"), mcap_size / 2},
-                                                                     {dir.file("c.mcap"), mcap_size - 1},
-                                                                     {dir.file("c.mcap"), 100},
-                                                                     {dir.file("c.mcap"), 5}}) {
+                                                                     {dir.file("a") / "a_0.db3", 9000},
+                                                                     {dir.file("a") / "a_0.db3", 100},
+                                                                     {dir.file("a.mcap"), mcap_size / 2},
+                                                                     {dir.file("a.mcap"), mcap_size - 1},
+                                                                     {dir.file("a.mcap"), 100},
+                                                                     {dir.file("a.mcap"), 5}}) {
     const std::filesystem::path copy = dir.file("t") / std::to_string(keep) / file.filename();
     std::filesystem::create_directories(copy.parent_path());
     std::filesystem::copy_file(file, copy);
@@ -404,10 +413,7 @@ TEST(RosBag, StampsOutOfOrderAreRefusedNamingTheMessage) {
   ScratchDir dir;
   BagContents c = odometry_only(6, 0.0);
   std::swap(c.odom[3].time.stamp, c.odom[4].time.stamp);  // recorded in order, stamped out of order
-  write_ros1_bag(c, dir.file("a.bag"));
-  write_ros2_bag(c, dir.file("b"), "b");
-  write_mcap_bag(c, dir.file("c.mcap"));
-  for (const std::string bag : {"a.bag", "b", "c.mcap"}) {
+  for (const std::string& bag : write_every_bag_format(c, dir)) {
     EXPECT_TRUE(throws_input_error([&] { load_log(dir.file(bag).string()); }, bag, 0,
                                    {"topic /odom, message 5: header stamp", "expected stamps in time order"}));
   }
@@ -479,10 +485,7 @@ TEST(RosBag, AnImuWithoutAnOrientationIsRefusedAsAHeading) {
   ScratchDir dir;
   BagContents c = odometry_only(5, 0.0);
   for (const BagPoseMessage& o : c.odom) c.headings.push_back({o.time, "imu", 0.3, false});
-  write_ros1_bag(c, dir.file("a.bag"));
-  write_ros2_bag(c, dir.file("b"), "b");
-  write_mcap_bag(c, dir.file("c.mcap"));
-  for (const std::string bag : {"a.bag", "b", "c.mcap"}) {
+  for (const std::string& bag : write_every_bag_format(c, dir)) {
     EXPECT_TRUE(throws_input_error([&] { load_log(dir.file(bag).string()); }, bag, 0,
                                    {"topic /imu, message 1: the IMU gives no orientation"}));
     EXPECT_TRUE(load_log(dir.file(bag).string() + "#heading=none").compass.empty());

@@ -118,28 +118,16 @@ std::string mutate_bytes(std::string text) {
   return text;
 }
 
-template <class F>
-void read_or_reject(F read) {
-  try {
-    read();
-    RC_TAG("read");
-  } catch (const InputError&) {
-    RC_TAG("rejected");
-  } catch (const std::exception& e) {
-    RC_FAIL(std::string("threw something other than InputError: ") + e.what());
-  }
-}
-
 RC_GTEST_PROP(LandmarkFormats, MutatedMapsAreReadOrRejectedWithInputError, ()) {
   const std::string text = mutate_bytes(format_landmark_map(random_map()) + "6 0.58831396 -4.28264845 4.5e-05 0\n");
-  read_or_reject([&] { parse_landmark_map(text, "map.txt"); });
+  testing::reads_or_rejects([&] { parse_landmark_map(text, "map.txt"); });
 }
 
 RC_GTEST_PROP(LandmarkFormats, MutatedObservationsAreReadOrRejectedWithInputError, ()) {
   const std::string text =
       mutate_bytes("1248444189.599 14 3.787 -0.257\n1248444189.828 61 6.6 -0.022\n" +
                    format_landmark_observations({{1248444190.0, 6, 1.0, 0.5}, {1248444191.0, 7, 0.0, -3.0}}));
-  read_or_reject([&] {
+  testing::reads_or_rejects([&] {
     const auto obs = parse_landmark_observations(text, "obs.txt");
     Log log;
     log.odometry.push_back({1248444189.0, Pose2(), 0.0, 0.0});

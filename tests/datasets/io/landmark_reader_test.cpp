@@ -87,10 +87,15 @@ TEST(LandmarkObservationsFile, MalformedLinesNegativeRangesAndTimesGoingBackAreI
   EXPECT_TRUE(throws_input_error([] { parse_landmark_observations("1 x 1 0\n", "o.txt"); }, "o.txt", 1, {"id:"}));
 }
 
+// attach_landmarks with the map and the observations read from text, as the files map.txt and o.txt.
+void attach_texts(Log& log, const std::string& map, const std::string& observations) {
+  attach_landmarks(log, parse_landmark_map(map, "map.txt"), parse_landmark_observations(observations, "o.txt"),
+                   "map.txt", "o.txt");
+}
+
 TEST(AttachLandmarks, PutsTheMapAndObservationsIntoTheLog) {
   Log log = log_from_10s();
-  attach_landmarks(log, parse_landmark_map("6 1 2\n7 3 4\n", "map.txt"),
-                   parse_landmark_observations("10 7 1 0\n12.5 6 2 0.5\n", "o.txt"), "map.txt", "o.txt");
+  attach_texts(log, "6 1 2\n7 3 4\n", "10 7 1 0\n12.5 6 2 0.5\n");
   ASSERT_EQ(log.landmark_map.size(), 2u);
   EXPECT_EQ(log.landmark_map[1].x, 3.0);
   ASSERT_EQ(log.landmarks.size(), 2u);
@@ -99,23 +104,15 @@ TEST(AttachLandmarks, PutsTheMapAndObservationsIntoTheLog) {
 
 TEST(AttachLandmarks, AnObservationOfAnIdMissingFromTheMapIsAnInputErrorAtItsLine) {
   Log log = log_from_10s();
-  EXPECT_TRUE(throws_input_error(
-      [&] {
-        attach_landmarks(log, parse_landmark_map("6 1 2\n", "map.txt"),
-                         parse_landmark_observations("# h\n10 6 1 0\n11 8 1 0\n", "o.txt"), "map.txt", "o.txt");
-      },
-      "o.txt", 3, {"id: 8 is not a landmark of the map map.txt"}));
+  EXPECT_TRUE(throws_input_error([&] { attach_texts(log, "6 1 2\n", "# h\n10 6 1 0\n11 8 1 0\n"); }, "o.txt", 3,
+                                 {"id: 8 is not a landmark of the map map.txt"}));
   EXPECT_TRUE(log.landmarks.empty());  // nothing attached
 }
 
 TEST(AttachLandmarks, AnObservationBeforeTheFirstOdometryRecordIsAnInputErrorAtItsLine) {
   Log log = log_from_10s();
-  EXPECT_TRUE(throws_input_error(
-      [&] {
-        attach_landmarks(log, parse_landmark_map("6 1 2\n", "map.txt"),
-                         parse_landmark_observations("9.5 6 1 0\n", "o.txt"), "map.txt", "o.txt");
-      },
-      "o.txt", 1, {"time: 9.5 before the first odometry record at 10"}));
+  EXPECT_TRUE(throws_input_error([&] { attach_texts(log, "6 1 2\n", "9.5 6 1 0\n"); }, "o.txt", 1,
+                                 {"time: 9.5 before the first odometry record at 10"}));
 }
 
 TEST(AttachLandmarks, AMapBuiltInCodeWithARepeatedIdIsAnInputError) {

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "core/errors.h"
 #include "core/log.h"
 #include "datasets/io/carmen_laser.h"
 #include "datasets/io/number_format.h"
@@ -103,6 +105,21 @@ inline Log random_carmen_log() {
     log.laser.push_back(std::move(r));
   }
   return log;
+}
+
+// A fuzzed input is read, or rejected with InputError; any other exception fails the property.
+template <class Read>
+void reads_or_rejects(Read&& read) {
+  try {
+    read();
+    RC_TAG("read");
+  } catch (const InputError&) {
+    RC_TAG("rejected");
+  } catch (const std::exception& e) {
+    RC_FAIL(std::string("threw something other than InputError: ") + e.what());
+  } catch (...) {
+    RC_FAIL("threw a non-exception");
+  }
 }
 
 }  // namespace locbench::testing

@@ -5,8 +5,6 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
-#include <functional>
-
 #include "datasets/io/carmen_reader.h"
 #include "datasets/io/carmen_writer.h"
 #include "datasets/io/censi_results_reader.h"
@@ -153,18 +151,7 @@ std::string mutate(std::string text) {
 }
 
 // Runs `read`; fails the property unless it returns or throws InputError.
-void reads_or_rejects(const std::function<void()>& read) {
-  try {
-    read();
-    RC_TAG("read");
-  } catch (const InputError&) {
-    RC_TAG("rejected");
-  } catch (const std::exception& e) {
-    RC_FAIL(std::string("threw something other than InputError: ") + e.what());
-  } catch (...) {
-    RC_FAIL("threw a non-exception");
-  }
-}
+using testing::reads_or_rejects;
 
 RC_GTEST_PROP(CarmenFuzz, MutatedSampleLogIsReadOrRejectedWithInputError, ()) {
   const std::string text = mutate(kSample);

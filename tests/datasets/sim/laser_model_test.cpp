@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "core/statistics.h"
 #include "datasets/sim/worlds.h"
@@ -29,6 +30,16 @@ class LaserModelTest : public ::testing::Test {
   }
   // The noise-free ranges at pose_ under the default config (no random numbers involved).
   std::vector<double> true_ranges() const { return LaserModel(config(), world_, Rng(1)).true_ranges(pose_); }
+  // Calls f(measured, true range) for every beam of `scans` scans from pose_ with the laser `c`.
+  template <class F>
+  void for_each_beam(const LaserConfig& c, std::uint64_t seed, int scans, F f) const {
+    LaserModel m(c, world_, Rng(seed));
+    const auto truth = true_ranges();
+    for (int k = 0; k < scans; ++k) {
+      const Scan s = m.measure(pose_, 0.0);
+      for (std::size_t i = 0; i < s.ranges.size(); ++i) f(s.ranges[i], truth[i]);
+    }
+  }
   LineMap world_ = corridor_world(12.0, 1.8);
   Pose2 pose_{3.0, 0.2, 0.0};
 };
@@ -78,15 +89,10 @@ TEST_F(LaserModelTest, OffsetAndScaleShiftRangesAsConfigured) {
 TEST_F(LaserModelTest, RangeNoiseHasTheConfiguredSigma) {
   LaserConfig c = config();
   c.noise = 0.005;
-  LaserModel noisy(c, world_, Rng(9));
-  const auto truth = true_ranges();
   std::vector<double> err;
-  for (int k = 0; k < 50; ++k) {
-    const Scan s = noisy.measure(pose_, 0.0);
-    for (std::size_t i = 0; i < truth.size(); ++i) {
-      if (truth[i] < c.max_range) err.push_back(s.ranges[i] - truth[i]);
-    }
-  }
+  for_each_beam(c, 9, 50, [&](double range, double truth) {
+    if (truth < c.max_range) err.push_back(range - truth);
+  });
   ASSERT_GT(err.size(), 8000u);
   EXPECT_NEAR(mean(err), 0.0, 0.0003);
   EXPECT_NEAR(sample_stddev(err), 0.005, 0.0002);  // σ measured ≈ 5 mm (±4%)
@@ -95,17 +101,12 @@ TEST_F(LaserModelTest, RangeNoiseHasTheConfiguredSigma) {
 TEST_F(LaserModelTest, DropoutsOccurAtTheConfiguredRate) {
   LaserConfig c = config();
   c.dropout = 0.1;
-  LaserModel m(c, world_, Rng(2));
-  const auto truth = true_ranges();
   int dropped = 0, hits = 0;
-  for (int k = 0; k < 100; ++k) {
-    const Scan s = m.measure(pose_, 0.0);
-    for (std::size_t i = 0; i < s.ranges.size(); ++i) {
-      if (truth[i] >= c.max_range) continue;  // no return anyway
-      ++hits;
-      dropped += s.ranges[i] == c.max_range;
-    }
-  }
+  for_each_beam(c, 2, 100, [&](double range, double truth) {
+    if (truth >= c.max_range) return;  // no return anyway
+    ++hits;
+    dropped += range == c.max_range;
+  });
   // ~17000 beams, binomial standard error 0.0023.
   EXPECT_NEAR(static_cast<double>(dropped) / hits, 0.1, 0.01);
 }
@@ -113,17 +114,12 @@ TEST_F(LaserModelTest, DropoutsOccurAtTheConfiguredRate) {
 TEST_F(LaserModelTest, SpuriousReturnsAreShorterThanTheWall) {
   LaserConfig c = config();
   c.spurious = 0.2;
-  LaserModel m(c, world_, Rng(4));
-  const auto truth = true_ranges();
   int shorter = 0, total = 0;
-  for (int k = 0; k < 100; ++k) {
-    const Scan s = m.measure(pose_, 0.0);
-    for (std::size_t i = 0; i < s.ranges.size(); ++i) {
-      EXPECT_LE(s.ranges[i], truth[i]);
-      ++total;
-      shorter += s.ranges[i] < truth[i];
-    }
-  }
+  for_each_beam(c, 4, 100, [&](double range, double truth) {
+    EXPECT_LE(range, truth);
+    ++total;
+    shorter += range < truth;
+  });
   EXPECT_NEAR(static_cast<double>(shorter) / total, 0.2, 0.015);
 }
 
