@@ -144,10 +144,11 @@ class CompassFitter {
   // then its interval with the others re-fitted (selection.h).
   CompassFit fit(const std::vector<std::string_view>& free, const CompassModel& m) const {
     const bool offset = std::find(free.begin(), free.end(), cause::kTimeOffset) != free.end();
-    auto fit_held = [&](const CompassModel& start, int iterations) { return newton(free, start, iterations); };
-    if (!offset) return fit_held(m, 100);
+    if (!offset) return newton(free, m, 100);
     return fit_with_offset_profile<CompassFit>(
-        m, fit_held, [&](const CompassModel& x) { return nll(x); }, dt_, 100, true, 1);
+        m, [&](const CompassModel& x) { return newton(free, x, 100); },
+        [&](const CompassModel& x) { return newton(free, x, 15).nll; }, [&](const CompassModel& x) { return nll(x); },
+        dt_, 1);
   }
 
  private:

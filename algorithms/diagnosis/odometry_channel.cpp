@@ -82,12 +82,13 @@ class Fitter {
              int max_iterations = 100) const {
     const bool offset =
         std::any_of(active.begin(), active.end(), [](const CauseSpec* c) { return c->id == cause::kTimeOffset; });
-    auto fit_held = [&](const OdometryModel& m, int iterations) { return fit_held_offset(active, m, iterations); };
-    if (!offset) return fit_held(start, max_iterations);
+    if (!offset) return fit_held_offset(active, start, max_iterations);
+    std::function<double(const OdometryModel&)> refit;
+    if (interval) refit = [&](const OdometryModel& m) { return fit_held_offset(active, m, 15).nll; };
     // At least two profiles before the offset counts as settled.
     return fit_with_offset_profile<OdoFit>(
-        start, fit_held, [&](const OdometryModel& m) { return nll(m); }, d_.reference_interval, max_iterations,
-        interval, 2);
+        start, [&](const OdometryModel& m) { return fit_held_offset(active, m, max_iterations); }, refit,
+        [&](const OdometryModel& m) { return nll(m); }, d_.reference_interval, 2);
   }
 
  private:
