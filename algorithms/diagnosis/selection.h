@@ -2,7 +2,8 @@
 // The two search procedures every channel shares, written once:
 //  - forward selection of catalog causes by likelihood ratio (Bonferroni over the candidates);
 //  - the time-offset profile, to a fraction of the reference's sample period, with a 95%
-//    interval from the profile deviance;
+//    interval from the profile deviance, and the fit that alternates it with the other
+//    parameters (fit_with_offset_profile);
 // and the rule that says when an offset is resolved at all.
 #include <cmath>
 #include <cstddef>
