@@ -207,11 +207,11 @@ namespace {
 
 // The fitted mean fields, and where each sits among all fitted fields.
 struct MeanFields {
-  std::vector<Field> fields;
+  std::vector<ad::Field> fields;
   std::vector<int> to_full;
 };
 
-MeanFields mean_fields_of(const std::vector<Field>& fields) {
+MeanFields mean_fields_of(const std::vector<ad::Field>& fields) {
   MeanFields out;
   for (int i = 0; i < static_cast<int>(fields.size()); ++i) {
     if (std::find(ad::kMeanFields.begin(), ad::kMeanFields.end(), fields[i]) != ad::kMeanFields.end()) {
