@@ -157,22 +157,24 @@ void run_shard(const experiments::Experiment& e, const nlohmann::json& config, e
   reports::finish_report(r, tail);
 }
 
-int run(const RunArgs& args, const std::string& command_line) {
-  const auto chosen = select(args.experiments);
-  const nlohmann::json overrides = load_overrides(args.config);
-  std::vector<nlohmann::json> sets;  // each --set, parsed once
-  for (const std::string& set : args.sets) {
+// Each --set, parsed once; a key no chosen experiment has is an error.
+std::vector<nlohmann::json> parse_sets(const std::vector<std::string>& args_sets,
+                                       const std::vector<const experiments::Experiment*>& chosen) {
+  std::vector<nlohmann::json> sets;
+  for (const std::string& set : args_sets) {
     sets.push_back(parse_set(set));
     const std::string key = sets.back().begin().key();
     bool used = false;
     for (const auto* e : chosen) used = used || e->default_config().contains(key);
     if (!used) throw UsageError("--set " + set + ": no chosen experiment has an option \"" + key + "\"");
   }
-  for (const auto& [name, value] : overrides.items()) {
-    if (!experiments::find_experiment(name)) {
-      throw InputError(args.config, 0, "configuration for unknown experiment \"" + name + "\"");
-    }
-  }
+  return sets;
+}
+
+// --log and its companions, as a configuration override of every chosen experiment (which must
+// all take real logs); none without --log.
+std::optional<nlohmann::json> log_override_of(const RunArgs& args,
+                                              const std::vector<const experiments::Experiment*>& chosen) {
   if (args.log.empty() && (!args.relations.empty() || !args.ground_truth.empty() || !args.landmark_map.empty() ||
                            !args.landmark_observations.empty())) {
     throw UsageError("--relations, --ground-truth, --landmark-map and --landmark-observations need --log");
@@ -186,6 +188,10 @@ int run(const RunArgs& args, const std::string& command_line) {
       }
     }
   }
+  return log_override;
+}
+
+experiments::RunOptions run_options_of(const RunArgs& args) {
   experiments::RunOptions options;
   options.seed = args.seed;
   if (args.runs > 0) options.runs = args.runs;
@@ -194,11 +200,16 @@ int run(const RunArgs& args, const std::string& command_line) {
     throw InputError(args.data, 0, "--data: no such folder (the datasets' folder, see `locbench list`)");
   }
   options.threads = args.threads;
-  std::optional<experiments::Shard> shard;
-  if (!args.shard.empty()) shard = experiments::parse_shard(args.shard);
+  return options;
+}
 
+// Each chosen experiment's configuration: its defaults, the --config file's part, every --set
+// whose key it has, the --log override; the dataset files it names join `inputs`.
+std::vector<nlohmann::json> configs_of(const std::vector<const experiments::Experiment*>& chosen,
+                                       const nlohmann::json& overrides, const std::vector<nlohmann::json>& sets,
+                                       const std::optional<nlohmann::json>& log_override, const RunArgs& args,
+                                       std::vector<std::string>& inputs) {
   std::vector<nlohmann::json> configs;
-  std::vector<std::string> inputs = {args.config, args.log, args.relations, args.ground_truth};
   for (const experiments::Experiment* e : chosen) {
     nlohmann::json config = e->default_config();
     if (overrides.contains(e->name())) {
@@ -217,14 +228,74 @@ int run(const RunArgs& args, const std::string& command_line) {
     add_dataset_files(config, inputs);
     configs.push_back(std::move(config));
   }
+  return configs;
+}
+
+// The cases of the reports that did not run: skipped for missing data (accepted by
+// --skip-missing or not) and failed.
+struct CaseOutcomes {
+  std::vector<std::string> missing;   // skipped cases not accepted by --skip-missing
+  std::vector<std::string> accepted;  // skipped cases --skip-missing accepted
+  std::vector<std::string> failed;    // cases that ran and failed (unreadable data, …)
+};
+
+void sort_cases(const reports::ExperimentResults& body, const std::vector<std::string>& skip_missing,
+                CaseOutcomes& cases) {
+  for (const reports::CaseNote& c : body.cases) {
+    if (c.status == "skipped") {
+      (skip_allowed(skip_missing, c.name) ? cases.accepted : cases.missing).push_back(c.name + ": " + c.reason);
+    } else {
+      cases.failed.push_back(c.name + ": " + c.reason);
+    }
+  }
+}
+
+// Says on stderr what did not run, and returns the exit code: a user's bad file or unaccepted
+// missing data, 2; else a failed case, 1.
+int report_case_outcomes(const CaseOutcomes& cases, int exit_code) {
+  if (!cases.accepted.empty()) {
+    std::cerr << "locbench: " << cases.accepted.size()
+              << " case(s) skipped for missing data, accepted by --skip-missing:\n";
+    for (const std::string& m : cases.accepted) std::cerr << "  " << m << '\n';
+  }
+  if (!cases.failed.empty()) {
+    // Fail closed: a case that ran and failed (an unreadable log, a missing file of a catalog
+    // dataset, no relations where they are needed) is a failed run, even when its report was written.
+    std::cerr << "locbench: error: " << cases.failed.size() << " case(s) failed:\n";
+    for (const std::string& f : cases.failed) std::cerr << "  " << f << '\n';
+  }
+  if (!cases.missing.empty()) {
+    // Fail closed: a run whose data went missing must not look like a run that passed.
+    std::cerr << "locbench: error: " << cases.missing.size() << " case(s) skipped for missing data (pass "
+              << "--skip-missing NAME, or --skip-missing all, to accept):\n";
+    for (const std::string& m : cases.missing) std::cerr << "  " << m << '\n';
+  }
+  if (exit_code != kExitOk || !cases.missing.empty()) return kExitBadInput;
+  return cases.failed.empty() ? kExitOk : kExitCheckFailed;
+}
+
+int run(const RunArgs& args, const std::string& command_line) {
+  const auto chosen = select(args.experiments);
+  const nlohmann::json overrides = load_overrides(args.config);
+  const std::vector<nlohmann::json> sets = parse_sets(args.sets, chosen);
+  for (const auto& [name, value] : overrides.items()) {
+    if (!experiments::find_experiment(name)) {
+      throw InputError(args.config, 0, "configuration for unknown experiment \"" + name + "\"");
+    }
+  }
+  const auto log_override = log_override_of(args, chosen);
+  experiments::RunOptions options = run_options_of(args);
+  std::optional<experiments::Shard> shard;
+  if (!args.shard.empty()) shard = experiments::parse_shard(args.shard);
+
+  std::vector<std::string> inputs = {args.config, args.log, args.relations, args.ground_truth};
+  const std::vector<nlohmann::json> configs = configs_of(chosen, overrides, sets, log_override, args, inputs);
   // Every input file takes part in the overlap check: none may lie in the folder the run writes.
   check_inputs_outside(inputs, args.out, "--out");
   const OutputFolderLock lock(args.out);
 
   std::vector<reports::Report> written;
-  std::vector<std::string> missing;   // skipped cases not accepted by --skip-missing
-  std::vector<std::string> accepted;  // skipped cases --skip-missing accepted
-  std::vector<std::string> failed;    // cases that ran and failed (unreadable data, …)
+  CaseOutcomes cases;
   int exit_code = kExitOk;
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     const experiments::Experiment* e = chosen[i];
@@ -245,38 +316,14 @@ int run(const RunArgs& args, const std::string& command_line) {
         continue;
       }
     }
-    for (const reports::CaseNote& c : report.body.cases) {
-      if (c.status == "skipped") {
-        (skip_allowed(args.skip_missing, c.name) ? accepted : missing).push_back(c.name + ": " + c.reason);
-      } else {
-        failed.push_back(c.name + ": " + c.reason);
-      }
-    }
+    sort_cases(report.body, args.skip_missing, cases);
     reports::ReportTail tail(e->name(), command_line, std::filesystem::path(args.out) / (e->name() + ".json"));
     tail.threads = options.threads;
     reports::finish_report(report, tail);
     written.push_back(std::move(report));
   }
   if (!shard) std::cout << reports::summary_table(written);
-  if (!accepted.empty()) {
-    std::cerr << "locbench: " << accepted.size() << " case(s) skipped for missing data, accepted by --skip-missing:\n";
-    for (const std::string& m : accepted) std::cerr << "  " << m << '\n';
-  }
-  if (!failed.empty()) {
-    // Fail closed: a case that ran and failed (an unreadable log, a missing file of a catalog
-    // dataset, no relations where they are needed) is a failed run, even when its report was written.
-    std::cerr << "locbench: error: " << failed.size() << " case(s) failed:\n";
-    for (const std::string& f : failed) std::cerr << "  " << f << '\n';
-  }
-  if (!missing.empty()) {
-    // Fail closed: a run whose data went missing must not look like a run that passed.
-    std::cerr << "locbench: error: " << missing.size() << " case(s) skipped for missing data (pass "
-              << "--skip-missing NAME, or --skip-missing all, to accept):\n";
-    for (const std::string& m : missing) std::cerr << "  " << m << '\n';
-  }
-  // A user's bad file or unaccepted missing data: exit 2; else a failed case: exit 1.
-  if (exit_code != kExitOk || !missing.empty()) return kExitBadInput;
-  return failed.empty() ? kExitOk : kExitCheckFailed;
+  return report_case_outcomes(cases, exit_code);
 }
 
 }  // namespace

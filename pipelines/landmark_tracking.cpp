@@ -424,25 +424,19 @@ AnyFilter make_filter(const MethodSetup& s, double wheelbase, const Pose2& start
   throw std::logic_error("make_filter: unknown method");
 }
 
-}  // namespace
+struct TimedObservation {
+  double t;  // true time [s]
+  LandmarkRangeBearing z;
+};
 
-TrackResult track(const TrackingData& data, const MethodSetup& setup, const GatePolicy& gate) {
-  if (!setup.motion || setup.motion->empty()) throw UsageError("track: no motion steps");
-  const std::vector<MotionStep>& steps = *setup.motion;
-  diagnosis::TruthInterpolator truth(data.motion.truth);
-  const auto start = diagnosis::interpolate_truth(data.motion.truth, steps.front().t0);
-  if (!start) throw InputError(data.log, 0, "the ground truth does not cover the span's start");
-  AnyFilter filter = make_filter(setup, data.wheelbase, *start);
-
-  // Observations in true time, with the sensor model's corrections (Table 7.2's z, inverted).
+// Observations in true time, with the sensor model's corrections (Table 7.2's z, inverted), in
+// time order. `carries_bias`: the filter carries the correlated part of the noise as biases, so
+// the measurement variance holds the white part only.
+std::vector<TimedObservation> timed_observations(const TrackingData& data, const MethodSetup& setup,
+                                                 const std::vector<MotionStep>& steps, bool carries_bias) {
   const LandmarkSensorModel& sm = setup.sensor;
   const double r_scale = estimates_r(setup.method) ? 1.0 : setup.knob;
-  const bool carries_bias = std::holds_alternative<BiasAugmentedEkf>(filter);
-  struct Timed {
-    double t;
-    LandmarkRangeBearing z;
-  };
-  std::vector<Timed> obs;
+  std::vector<TimedObservation> obs;
   obs.reserve(data.observations.size());
   for (const Observation& o : data.observations) {
     Eigen::Vector2d m = data.map.at(o.id);
@@ -462,92 +456,154 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
     z.bearing_variance = r_scale * (bearing_white * sm.bearing_sigma * sm.bearing_sigma + sb * sb);
     obs.push_back({o.t - sm.time_offset, z});
   }
-  std::stable_sort(obs.begin(), obs.end(), [](const Timed& a, const Timed& b) { return a.t < b.t; });
+  std::stable_sort(obs.begin(), obs.end(),
+                   [](const TimedObservation& a, const TimedObservation& b) { return a.t < b.t; });
+  return obs;
+}
 
-  const double threshold = chi_square_quantile(ChiSquareDof(2.0), gate.gate_probability);
-  TrackResult out;
-  int starving = 0;
-  std::size_t next = 0;
-  const bool tracks_level = setup.level_reference.minCoeff() > 0.0 && !carries_bias &&
-                            (setup.method == Method::kNominalModel || setup.method == Method::kDiagnosedModel);
-  const bool measures_level = tracks_level || setup.measure_innovation_level;
-  std::vector<double> innovation_t;
-  std::array<std::vector<double>, 2> innovation;  // standardized range and bearing innovations
-  std::size_t window_start = 0;
-  const auto observe_until = [&](double t) {
-    for (; next < obs.size() && obs[next].t <= t; ++next) {
-      ++out.observations;
-      const bool recover = starving >= gate.starve_after;
-      LandmarkRangeBearing z = obs[next].z;
-      const auto* model_ekf = measures_level ? std::get_if<MotionModelEkf>(&filter) : nullptr;
-      if (model_ekf != nullptr) {  // the innovations' level
-        const LinearizedMeasurement lin = linearize(z, model_ekf->mean());
-        const MeasurementVector nu = lin.residual();
-        const MeasurementMatrix s = lin.H * model_ekf->covariance() * lin.H.transpose() + lin.R;
-        const double now = obs[next].t;
-        if (tracks_level) {
-          while (window_start < innovation_t.size() && innovation_t[window_start] < now - kLevelBlockS) ++window_start;
-          if (innovation_t.size() - window_start >= kMinLevelBlockResiduals) {
-            for (int c = 0; c < 2; ++c) {
-              const double sigma = robust_scale_about_zero(std::vector<double>(
-                  innovation[c].begin() + static_cast<std::ptrdiff_t>(window_start), innovation[c].end()));
-              const double ratio = sigma / setup.level_reference(c);
-              const double level = std::clamp(ratio * ratio, 1.0 / kMaxLevelRatio, kMaxLevelRatio);
-              (c == 0 ? z.range_variance : z.bearing_variance) *= level;
-            }
-          }
+// The standardized range and bearing innovations of the motion-model EKF, and with `tracks` the
+// measurement variances scaled by their level over the last kLevelBlockS seconds against the
+// reference level.
+class InnovationLevel {
+ public:
+  InnovationLevel(bool tracks, const Eigen::Vector2d& reference) : tracks_(tracks), reference_(reference) {}
+
+  void scale_and_record(LandmarkRangeBearing& z, const MotionModelEkf& ekf, double now) {
+    const LinearizedMeasurement lin = linearize(z, ekf.mean());
+    const MeasurementVector nu = lin.residual();
+    const MeasurementMatrix s = lin.H * ekf.covariance() * lin.H.transpose() + lin.R;
+    if (tracks_) {
+      while (window_start_ < t_.size() && t_[window_start_] < now - kLevelBlockS) ++window_start_;
+      if (t_.size() - window_start_ >= kMinLevelBlockResiduals) {
+        for (int c = 0; c < 2; ++c) {
+          const double sigma = robust_scale_about_zero(std::vector<double>(
+              innovation_[c].begin() + static_cast<std::ptrdiff_t>(window_start_), innovation_[c].end()));
+          const double ratio = sigma / reference_(c);
+          const double level = std::clamp(ratio * ratio, 1.0 / kMaxLevelRatio, kMaxLevelRatio);
+          (c == 0 ? z.range_variance : z.bearing_variance) *= level;
         }
-        innovation_t.push_back(now);
-        for (int c = 0; c < 2; ++c) innovation[c].push_back(nu(c) / std::sqrt(s(c, c)));
       }
-      if (sm.dof > 0.0) {  // one reweighting step of the Student-t likelihood
-        const double nis = std::visit(
-            [&](auto& f) {
-              if constexpr (std::is_same_v<std::decay_t<decltype(f)>, BiasAugmentedEkf>) {
-                return f.nis(z);
-              } else {
-                const LinearizedMeasurement lin = linearize(z, f.mean());
-                return measurement_innovation(lin, f.covariance(), lin.R).nis;
-              }
-            },
-            filter);
-        const double w = std::max(1.0, (sm.dof + nis) / (sm.dof + 2.0));
+    }
+    t_.push_back(now);
+    for (int c = 0; c < 2; ++c) innovation_[c].push_back(nu(c) / std::sqrt(s(c, c)));
+  }
+
+  std::size_t count() const { return t_.size(); }
+  const std::vector<double>& innovations(int c) const { return innovation_[static_cast<std::size_t>(c)]; }
+
+ private:
+  bool tracks_;
+  Eigen::Vector2d reference_;
+  std::vector<double> t_;
+  std::array<std::vector<double>, 2> innovation_;
+  std::size_t window_start_ = 0;
+};
+
+// One reweighting step of the Student-t likelihood with `dof` degrees of freedom.
+double student_t_weight(AnyFilter& filter, const LandmarkRangeBearing& z, double dof) {
+  const double nis = std::visit(
+      [&](auto& f) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(f)>, BiasAugmentedEkf>) {
+          return f.nis(z);
+        } else {
+          const LinearizedMeasurement lin = linearize(z, f.mean());
+          return measurement_innovation(lin, f.covariance(), lin.R).nis;
+        }
+      },
+      filter);
+  return std::max(1.0, (dof + nis) / (dof + 2.0));
+}
+
+void predict_step(AnyFilter& filter, const MotionStep& s, const WheelDisplacement& u, double process_scale) {
+  const double dt = s.t1 - s.t0;
+  std::visit(
+      [&](auto& f) {
+        using F = std::decay_t<decltype(f)>;
+        if constexpr (std::is_same_v<F, MotionModelEkf>) {
+          f.predict(u, process_scale * s.body_covariance);
+        } else if constexpr (std::is_same_v<F, BiasAugmentedEkf>) {
+          f.predict(u, process_scale * s.body_covariance, dt);
+        } else if constexpr (std::is_same_v<F, CompassEkf>) {
+          f.predict(u);
+        } else {
+          f.predict(u, dt);  // Q per second
+        }
+      },
+      filter);
+}
+
+// The observations fed to the filter in time order, gated; after `starve_after` gated ones in a
+// row the next is taken ungated (a recovery).
+class ObservationFeed {
+ public:
+  ObservationFeed(std::vector<TimedObservation> obs, const MethodSetup& setup, const GatePolicy& gate,
+                  bool carries_bias)
+      : obs_(std::move(obs)),
+        setup_(setup),
+        gate_(gate),
+        threshold_(chi_square_quantile(ChiSquareDof(2.0), gate.gate_probability)),
+        tracks_level_(setup.level_reference.minCoeff() > 0.0 && !carries_bias &&
+                      (setup.method == Method::kNominalModel || setup.method == Method::kDiagnosedModel)),
+        measures_level_(tracks_level_ || setup.measure_innovation_level),
+        level_(tracks_level_, setup.level_reference) {}
+
+  // Every observation up to time t.
+  void until(double t, AnyFilter& filter, TrackResult& out) {
+    for (; next_ < obs_.size() && obs_[next_].t <= t; ++next_) {
+      ++out.observations;
+      const bool recover = starving_ >= gate_.starve_after;
+      LandmarkRangeBearing z = obs_[next_].z;
+      const auto* model_ekf = measures_level_ ? std::get_if<MotionModelEkf>(&filter) : nullptr;
+      if (model_ekf != nullptr) level_.scale_and_record(z, *model_ekf, obs_[next_].t);
+      if (setup_.sensor.dof > 0.0) {
+        const double w = student_t_weight(filter, z, setup_.sensor.dof);
         z.range_variance *= w;
         z.bearing_variance *= w;
       }
       const MeasurementUpdate u =
-          std::visit([&](auto& f) { return f.update(z, recover ? kNoGate : threshold); }, filter);
+          std::visit([&](auto& f) { return f.update(z, recover ? kNoGate : threshold_); }, filter);
       if (u.gated) {
         ++out.gated;
-        ++starving;
+        ++starving_;
       } else {
         ++out.used;
         if (recover) ++out.recoveries;
-        starving = 0;
+        starving_ = 0;
       }
     }
-  };
+  }
 
-  observe_until(steps.front().t0);
+  const InnovationLevel& level() const { return level_; }
+
+ private:
+  std::vector<TimedObservation> obs_;
+  const MethodSetup& setup_;
+  const GatePolicy& gate_;
+  double threshold_;
+  bool tracks_level_, measures_level_;
+  InnovationLevel level_;
+  std::size_t next_ = 0;
+  int starving_ = 0;
+};
+
+}  // namespace
+
+TrackResult track(const TrackingData& data, const MethodSetup& setup, const GatePolicy& gate) {
+  if (!setup.motion || setup.motion->empty()) throw UsageError("track: no motion steps");
+  const std::vector<MotionStep>& steps = *setup.motion;
+  diagnosis::TruthInterpolator truth(data.motion.truth);
+  const auto start = diagnosis::interpolate_truth(data.motion.truth, steps.front().t0);
+  if (!start) throw InputError(data.log, 0, "the ground truth does not cover the span's start");
+  AnyFilter filter = make_filter(setup, data.wheelbase, *start);
+  const bool carries_bias = std::holds_alternative<BiasAugmentedEkf>(filter);
+  ObservationFeed feed(timed_observations(data, setup, steps, carries_bias), setup, gate, carries_bias);
+
+  TrackResult out;
+  feed.until(steps.front().t0, filter, out);
   std::size_t far = 0;
   for (const MotionStep& s : steps) {
-    const WheelDisplacement u = wheel_travel(s.distance, s.turn, data.wheelbase);
-    const double dt = s.t1 - s.t0;
-    std::visit(
-        [&](auto& f) {
-          using F = std::decay_t<decltype(f)>;
-          if constexpr (std::is_same_v<F, MotionModelEkf>) {
-            f.predict(u, setup.process_scale * s.body_covariance);
-          } else if constexpr (std::is_same_v<F, BiasAugmentedEkf>) {
-            f.predict(u, setup.process_scale * s.body_covariance, dt);
-          } else if constexpr (std::is_same_v<F, CompassEkf>) {
-            f.predict(u);
-          } else {
-            f.predict(u, dt);  // Q per second
-          }
-        },
-        filter);
-    observe_until(s.t1);
+    predict_step(filter, s, wheel_travel(s.distance, s.turn, data.wheelbase), setup.process_scale);
+    feed.until(s.t1, filter, out);
     const Vector3 x = std::visit([](auto& f) { return f.mean(); }, filter);
     const Matrix3 p = std::visit([](auto& f) { return f.covariance(); }, filter);
     if (!x.allFinite() || !p.allFinite()) {
@@ -564,8 +620,8 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
     out.log_det_covariance.push_back(std::log(p.determinant()));
     if (e > gate.divergence_error_m) ++far;
   }
-  if (innovation_t.size() >= 20)
-    for (int c = 0; c < 2; ++c) out.innovation_sigma(c) = robust_scale_about_zero(innovation[c]);
+  if (feed.level().count() >= 20)
+    for (int c = 0; c < 2; ++c) out.innovation_sigma(c) = robust_scale_about_zero(feed.level().innovations(c));
   out.diverged = !out.finite || out.position_error.empty() ||
                  static_cast<double>(far) >= 0.05 * static_cast<double>(out.position_error.size());
   return out;

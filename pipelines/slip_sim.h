@@ -4,7 +4,11 @@
 // (μ, σ of Δθ') from calibration runs, and scores detections against the simulator's true slip
 // events. Header-only, internal to the experiments.
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <vector>
@@ -74,6 +78,83 @@ inline RunData run_data(const sim::SimulationResult& r, const NominalModel& mode
     d.truth.push_back(w1.pose);
   }
   return d;
+}
+
+// What the filters need of a run under any model (the model only turns ticks into wheel travel):
+// each interval's tick increments and the compass reading nearest its end, and the true pose at
+// each encoder sample. A Monte-Carlo record that carries it lets a second pass re-run the
+// filters under models known only once every run is done, without simulating the run again.
+struct RunTicks {
+  std::vector<std::array<std::int64_t, 2>> ticks;  // (ΔN_L, ΔN_R) of interval k−1 → k
+  std::vector<std::optional<double>> compass;      // nearest the end of each interval
+  std::optional<double> initial_compass;           // nearest the first encoder sample
+  std::vector<Pose2> truth;                        // at each encoder sample (size = ticks + 1)
+};
+
+inline RunTicks run_ticks(const sim::SimulationResult& r) {
+  const auto& enc = r.log.encoders;
+  if (enc.size() < 2 || r.wheel_samples.size() != enc.size()) {
+    throw std::logic_error("slip experiment: run without encoder samples");
+  }
+  const double half_period = 0.5 / r.scenario.encoders.timing.rate;
+  RunTicks t;
+  t.initial_compass = nearest_compass(r.log, enc.front().t, half_period);
+  t.truth.push_back(r.wheel_samples.front().pose);
+  for (std::size_t k = 1; k < enc.size(); ++k) {
+    t.ticks.push_back({enc[k].left - enc[k - 1].left, enc[k].right - enc[k - 1].right});
+    t.compass.push_back(nearest_compass(r.log, enc[k].t, half_period));
+    t.truth.push_back(r.wheel_samples[k].pose);
+  }
+  return t;
+}
+
+// As run_data(r, model, {}, nullptr) of the run the ticks were taken from.
+inline RunData run_data(const RunTicks& t, const NominalModel& model) {
+  RunData d;
+  d.wheelbase = model.wheelbase;
+  d.initial_compass = t.initial_compass;
+  d.truth = t.truth;
+  for (std::size_t k = 0; k < t.ticks.size(); ++k) {
+    slip::SlipSample s;
+    s.u = displacement_from_ticks(model, t.ticks[k][0], t.ticks[k][1]);
+    s.compass = t.compass[k];
+    d.samples.push_back(s);
+  }
+  return d;
+}
+
+// As JSON: {"ticks": [[ΔN_L, ΔN_R], …], "compass": [rad or null, …], "initial_compass": rad or
+// null, "truth": [[x, y, θ], …]}; doubles read back exactly.
+inline nlohmann::json run_ticks_json(const RunTicks& t) {
+  auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  nlohmann::json j = {{"ticks", t.ticks}, {"compass", nlohmann::json::array()}, {"truth", nlohmann::json::array()}};
+  for (const auto& c : t.compass) j["compass"].push_back(optional(c));
+  j["initial_compass"] = optional(t.initial_compass);
+  for (const Pose2& p : t.truth) j["truth"].push_back({p.x, p.y, p.theta});
+  return j;
+}
+
+inline RunTicks run_ticks_from_json(const nlohmann::json& j) {
+  auto optional = [](const nlohmann::json& v) {
+    return v.is_null() ? std::optional<double>() : std::optional<double>(v.get<double>());
+  };
+  RunTicks t;
+  t.ticks = j.at("ticks").get<std::vector<std::array<std::int64_t, 2>>>();
+  for (const auto& c : j.at("compass")) t.compass.push_back(optional(c));
+  t.initial_compass = optional(j.at("initial_compass"));
+  for (const auto& p : j.at("truth"))
+    t.truth.push_back({p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>()});
+  if (t.compass.size() != t.ticks.size() || t.truth.size() != t.ticks.size() + 1) {
+    throw std::invalid_argument("slip experiment: a record's run ticks, compass readings and truth disagree in length");
+  }
+  return t;
+}
+
+// The simulations the slip experiments have made in this process (tests: one per run).
+inline std::atomic<std::size_t> simulations{0};
+inline sim::SimulationResult simulate(const sim::Scenario& scenario, std::uint64_t seed) {
+  ++simulations;
+  return sim::simulate(scenario, seed);
 }
 
 // The run as the indirect Kalman filter takes it: each sample's wheel travel with its compass
@@ -160,7 +241,7 @@ inline CalibratedModels calibrate(const sim::Scenario& scenario, std::uint64_t s
   std::vector<double> dp_compass, dp_gyro;
   for (int i = 0; i < runs; ++i) {
     const std::uint64_t s = Rng::derive_seed(seed, kCalibrationSeedBase + static_cast<std::uint64_t>(i));
-    const sim::SimulationResult r = sim::simulate(scenario, s);
+    const sim::SimulationResult r = slip_sim::simulate(scenario, s);
     Rng g = Rng::stream(s, kGyroStream);
     const RunData d = run_data(r, *r.log.nominal_model(), gyro, &g);
     collect_delta_prime(d, false, dp_compass);

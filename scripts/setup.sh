@@ -24,6 +24,7 @@ packages=(
   parallel             # docs/gnu_parallel.sh: shards on one or several machines (tested)
   clang libclang-rt-14-dev   # fuzz/: libFuzzer targets of the readers (-DLOCBENCH_FUZZ=ON)
   clang-format         # tests: Style.EverySourceIsClangFormatted (.clang-format); `make format`
+  universal-ctags      # tests: Style.NoFunctionIsOver120Lines finds each function's extent
   librosbag-storage-dev      # ROS 1 bags: rosbag_storage writes them (tests, simulate --ros1-bag)
   libbz2-dev libroslz4-dev   # ROS 1 bags: compressed chunks (datasets/io/ros1_bag_records.cpp)
   libnav-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev libtf2-msgs-dev   # ROS 1 messages (roscpp serialization)

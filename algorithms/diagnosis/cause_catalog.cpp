@@ -103,9 +103,9 @@ void add_landmark_causes(std::vector<CauseSpec>& c) {
                }});
 }
 
-std::vector<CauseSpec> build() {
+// The wheels' geometry and slip, seen through encoder odometry.
+void add_wheel_causes(std::vector<CauseSpec>& c) {
   using M = OdometryModel;
-  std::vector<CauseSpec> c;
   c.push_back({.id = cause::kWheelDiameterRatio,
                .channel = "odometry",
                .params = {{"E_d", "1", &M::E_d, 1.0, 1e-3, false, 0.9, 1.1}},
@@ -149,6 +149,11 @@ std::vector<CauseSpec> build() {
                  return "occasional wheel slip: " + ci(x, 0) + " events per metre of wheel travel, each losing " +
                         ci(x, 1) + " of one sample's travel of one wheel (§3.2) — heavy tails in the heading residual";
                }});
+}
+
+// The drive against logged velocities.
+void add_velocity_causes(std::vector<CauseSpec>& c) {
+  using M = OdometryModel;
   c.push_back({.id = cause::kVelocityScale,
                .channel = "odometry",
                .params = {{"scale", "1", &M::velocity_scale, 1.0, 1e-3, false, 0.5, 1.5}},
@@ -216,6 +221,11 @@ std::vector<CauseSpec> build() {
                         "with time constant τ = " +
                         ci(x, 0) + " s (a lag that smooths, unlike a pure time offset)";
                }});
+}
+
+// The noise, timing and resolution of any odometry.
+void add_noise_and_timing_causes(std::vector<CauseSpec>& c) {
+  using M = OdometryModel;
   c.push_back({.id = cause::kNoiseGrowth,
                .channel = "odometry",
                .params = {{"k2_m", "m", &M::k2, 1e-6, 1e-6, true, 0.0, 1.0}},
@@ -257,6 +267,9 @@ std::vector<CauseSpec> build() {
                .explain = [](const Cause& x) {
                  return "the encoders count in steps of " + ci(x, 0) + " m, coarser than the declared tick";
                }});
+}
+
+void add_compass_causes(std::vector<CauseSpec>& c) {
   // A lattice's round-off does not average out over a path with few headings: the moment tests
   // of the compass residual (mean, dependence on position) see it; the likelihood causes
   // (compass_bias, compass_disturbance) use the quantized density and judge those instead.
@@ -285,6 +298,14 @@ std::vector<CauseSpec> build() {
                .explain = [](const Cause& x) {
                  return "the compass is disturbed in a region (see `region`): extra bias " + ci(x, 0) + " rad there";
                }});
+}
+
+std::vector<CauseSpec> build() {
+  std::vector<CauseSpec> c;
+  add_wheel_causes(c);
+  add_velocity_causes(c);
+  add_noise_and_timing_causes(c);
+  add_compass_causes(c);
   add_landmark_causes(c);
   return c;
 }

@@ -142,38 +142,16 @@ class CompassFitter {
 
   // Newton on σ, bias and zone bias; a free offset profiled with the others held, alternating,
   // then its interval with the others re-fitted (selection.h).
-  CompassFit fit(const std::vector<std::string_view>& free, CompassModel m) const {
+  CompassFit fit(const std::vector<std::string_view>& free, const CompassModel& m) const {
     const bool offset = std::find(free.begin(), free.end(), cause::kTimeOffset) != free.end();
-    CompassFit f = newton(free, m, 100);
-    if (!offset) return f;
-    for (int round = 0; round < 4; ++round) {
-      const CompassModel held = f.model;
-      const auto prof = profile_offset([&](double o) { return at_offset(held, o); }, {}, dt_);
-      const double moved = std::abs(prof.value - held.time_offset);
-      m = held;
-      m.time_offset = prof.value;
-      f = newton(free, m, 100);
-      if (moved < 0.5 * prof.step) break;
-    }
-    const CompassModel best = f.model;
-    f.offset = profile_offset([&](double o) { return at_offset(best, o); },
-                              [&](double o) {
-                                CompassModel x = best;
-                                x.time_offset = o;
-                                return newton(free, x, 15).nll;
-                              },
-                              dt_);
-    f.model.time_offset = f.offset.value;
-    f.has_offset = true;
-    f.nll = nll(f.model);
-    return f;
+    if (!offset) return newton(free, m, 100);
+    return fit_with_offset_profile<CompassFit>(
+        m, [&](const CompassModel& x) { return newton(free, x, 100); },
+        [&](const CompassModel& x) { return newton(free, x, 15).nll; }, [&](const CompassModel& x) { return nll(x); },
+        dt_, 1);
   }
 
  private:
-  double at_offset(CompassModel m, double o) const {
-    m.time_offset = o;
-    return nll(m);
-  }
   CompassFit newton(const std::vector<std::string_view>& free, const CompassModel& m, int iterations) const {
     std::vector<FitParameter> fp{{"sigma", m.sigma, 0.0, true}};
     for (const auto& id : free) {
@@ -201,102 +179,176 @@ class CompassFitter {
   double dt_;
 };
 
-}  // namespace
-
-ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt) {
-  ChannelResult out;
+// The compass data of a motion log, with its readings split into training and held-out ones.
+struct CompassSplit {
   CompassData d;
-  d.readings = md.compass;
-  d.truth = md.truth;
-  d.declared_step = md.compass_step;
   std::vector<std::size_t> train, test;
-  split_windows(d.readings.size(), opt.block, train, test);
-  const auto res = compass_residuals(d, 0.0);
-  std::vector<double> r, x, y, w, readings;
-  for (std::size_t k : train) {
+};
+
+CompassSplit split_compass_data(const MotionData& md, std::size_t block) {
+  CompassSplit s;
+  s.d.readings = md.compass;
+  s.d.truth = md.truth;
+  s.d.declared_step = md.compass_step;
+  split_windows(s.d.readings.size(), block, s.train, s.test);
+  return s;
+}
+
+// Residuals of the training readings, with where they were taken and the turn rate there.
+struct ResidualColumns {
+  std::vector<double> r, x, y, turn_rate;
+};
+
+// Raw residuals at zero offset (bias and zone not removed).
+ResidualColumns raw_training_residuals(const CompassSplit& s) {
+  const auto res = compass_residuals(s.d, 0.0);
+  ResidualColumns c;
+  for (std::size_t k : s.train) {
     if (!res[k].valid) continue;
-    r.push_back(res[k].r);
-    x.push_back(res[k].x);
-    y.push_back(res[k].y);
-    w.push_back(res[k].turn_rate);
+    c.r.push_back(res[k].r);
+    c.x.push_back(res[k].x);
+    c.y.push_back(res[k].y);
+    c.turn_rate.push_back(res[k].turn_rate);
   }
+  return c;
+}
+
+// Residuals left by a model, standardized by its σ.
+ResidualColumns standardized_training_residuals(const CompassSplit& s, const CompassModel& cm) {
+  const auto fr = compass_residuals(s.d, cm.time_offset);
+  ResidualColumns c;
+  for (std::size_t k : s.train) {
+    if (!fr[k].valid) continue;
+    const bool in = cm.zone.enabled && std::hypot(fr[k].x - cm.zone.x, fr[k].y - cm.zone.y) <= cm.zone.radius;
+    c.r.push_back(wrap_angle(fr[k].r - cm.bias - (in ? cm.zone.bias : 0.0)) / std::max(cm.sigma, 1e-9));
+    c.x.push_back(fr[k].x);
+    c.y.push_back(fr[k].y);
+    c.turn_rate.push_back(fr[k].turn_rate);
+  }
+  return c;
+}
+
+// Predictive likelihood per held-out reading, before and after.
+Gain heldout_gain(const CompassSplit& s, const CompassModel& before, const CompassModel& after) {
+  const double n_test = static_cast<double>(std::max<std::size_t>(s.test.size(), 1));
+  return Gain{"heldout_nll_per_reading", compass_nll(s.d, before, s.test) / n_test,
+              compass_nll(s.d, after, s.test) / n_test};
+}
+
+// The battery on the nominal model's standardized residuals.
+std::vector<ResidualTest> nominal_battery(const ResidualColumns& raw, double sigma) {
+  std::vector<double> rs = raw.r;
+  for (auto& v : rs) v /= sigma;
+  std::vector<ResidualTest> tests;
+  tests.push_back(bias_test(rs, "compass"));
+  tests.push_back(dependence_test(rs, raw.x, "position_dependence", "compass", "x"));
+  tests.push_back(dependence_test(rs, raw.y, "position_dependence", "compass", "y"));
+  tests.push_back(dependence_test(rs, raw.turn_rate, "lead_lag", "compass", "turn rate"));
+  tests.push_back(heavy_tail_test(rs, "compass"));
+  return tests;
+}
+
+// The printed readings' lattice, when coarser than the declared step.
+struct ReadingLattice {
+  std::optional<Lattice> lattice;
+  bool coarser = false;
+  ResidualTest test;
+};
+
+ReadingLattice reading_lattice(const CompassData& d) {
+  std::vector<double> readings;
   for (const auto& c : d.readings) readings.push_back(c.heading);
-  if (r.size() < 40) return out;
-  const double dt = md.reference_interval;
-  const CompassFitter fitter(d, train, dt);
-  const double n_test = static_cast<double>(std::max<std::size_t>(test.size(), 1));
-  auto heldout = [&](const CompassModel& before, const CompassModel& after) {
-    return Gain{"heldout_nll_per_reading", compass_nll(d, before, test) / n_test, compass_nll(d, after, test) / n_test};
-  };
-
-  CompassModel declared;
-  declared.step = d.declared_step;
-  declared.sigma = std::max(sample_stddev(r), 1e-4);
-  const CompassFit nominal = fitter.fit({}, declared);
-
-  std::vector<double> rs = r;
-  for (auto& v : rs) v /= nominal.model.sigma;
-  out.tests.push_back(bias_test(rs, "compass"));
-  out.tests.push_back(dependence_test(rs, x, "position_dependence", "compass", "x"));
-  out.tests.push_back(dependence_test(rs, y, "position_dependence", "compass", "y"));
-  out.tests.push_back(dependence_test(rs, w, "lead_lag", "compass", "turn rate"));
-  out.tests.push_back(heavy_tail_test(rs, "compass"));
-  const auto lat = find_lattice(readings);
-  const bool coarser = lat && lat->step > d.declared_step * 1.01 + 1e-9;
+  ReadingLattice out;
+  out.lattice = find_lattice(readings);
+  const auto& lat = out.lattice;
+  out.coarser = lat && lat->step > d.declared_step * 1.01 + 1e-9;
   ResidualTest lt{"quantization_lattice", "compass_readings", "", "lattice_fraction"};
   lt.value = lat ? lat->on_lattice_fraction : 0.0;
   lt.strength = lat ? lat->step : 0.0;
-  lt.p_value = coarser ? std::pow(2e-3, static_cast<double>(lat->n) * lat->on_lattice_fraction) : 1.0;
-  out.tests.push_back(lt);
+  lt.p_value = out.coarser ? std::pow(2e-3, static_cast<double>(lat->n) * lat->on_lattice_fraction) : 1.0;
+  out.test = lt;
+  return out;
+}
 
-  // Quantization first (a lattice is exact evidence), then the likelihood causes.
-  CompassFit base = nominal;
-  {
-    Cause c{std::string(cause::kCompassQuantization), "compass", coarser};
-    c.statistic = "lattice_fraction";
-    c.value = lt.value;
-    c.threshold = 0.99;
-    if (coarser) {
-      c.parameters.push_back(
-          {"step_rad", lat->step, lat->step - lat->step_uncertainty, lat->step + lat->step_uncertainty});
-      c.parameters.push_back(
-          {"offset_rad", lat->offset, lat->offset - lat->step_uncertainty, lat->offset + lat->step_uncertainty});
-      CompassModel with = declared;
-      with.step = lat->step;
-      with.sigma = std::max(
-          1e-4, std::sqrt(std::max(0.0, nominal.model.sigma * nominal.model.sigma - lat->step * lat->step / 12.0)));
-      base = fitter.fit({}, with);
-      c.gains.push_back(heldout(nominal.model, base.model));
-    }
-    c.explanation = explain(c);
-    out.causes.push_back(c);
+// The quantization cause, and the fit the likelihood causes start from: the nominal one, or
+// with the lattice's step when the lattice is coarser than declared.
+struct QuantizationFit {
+  Cause cause;
+  CompassFit base;
+};
+
+QuantizationFit fit_quantization(const ReadingLattice& rl, const CompassFit& nominal, const CompassModel& declared,
+                                 const CompassFitter& fitter, const CompassSplit& s) {
+  QuantizationFit out{{std::string(cause::kCompassQuantization), "compass", rl.coarser}, nominal};
+  Cause& c = out.cause;
+  const auto& lat = rl.lattice;
+  c.statistic = "lattice_fraction";
+  c.value = rl.test.value;
+  c.threshold = 0.99;
+  if (rl.coarser) {
+    c.parameters.push_back(
+        {"step_rad", lat->step, lat->step - lat->step_uncertainty, lat->step + lat->step_uncertainty});
+    c.parameters.push_back(
+        {"offset_rad", lat->offset, lat->offset - lat->step_uncertainty, lat->offset + lat->step_uncertainty});
+    CompassModel with = declared;
+    with.step = lat->step;
+    with.sigma = std::max(
+        1e-4, std::sqrt(std::max(0.0, nominal.model.sigma * nominal.model.sigma - lat->step * lat->step / 12.0)));
+    out.base = fitter.fit({}, with);
+    c.gains.push_back(heldout_gain(s, nominal.model, out.base.model));
   }
-  const auto& ids = compass_candidates();
-  std::map<std::vector<std::size_t>, CompassFit> fits;
-  std::map<std::size_t, std::size_t> discs;  // disc scans: candidates searched
-  std::function<const CompassFit&(std::vector<std::size_t>)> fit_set =
-      [&](std::vector<std::size_t> active) -> const CompassFit& {
-    if (active.empty()) return base;
+  c.explanation = explain(c);
+  return out;
+}
+
+// Fits by active set (indices into compass_candidates()), each started from the fit of the set
+// without its last member; the disturbance's disc searched first, and the number of discs searched
+// kept for its threshold.
+class CompassFitsBySet {
+ public:
+  CompassFitsBySet(const CompassFitter& fitter, const CompassSplit& s, CompassFit base)
+      : fitter_(fitter), s_(s), base_(std::move(base)) {}
+
+  const CompassFit& operator()(const std::vector<std::size_t>& active) {
+    const auto& ids = compass_candidates();
+    if (active.empty()) return base_;
     std::vector<std::size_t> key = active;
     std::sort(key.begin(), key.end());
-    if (auto it = fits.find(key); it != fits.end()) return it->second;
-    CompassModel start = fit_set(std::vector<std::size_t>(active.begin(), active.end() - 1)).model;
+    if (auto it = fits_.find(key); it != fits_.end()) return it->second;
+    CompassModel start = (*this)(std::vector<std::size_t>(active.begin(), active.end() - 1)).model;
     std::vector<std::string_view> free;
     for (std::size_t i : key) free.push_back(ids[i]);
     if (ids[active.back()] == cause::kCompassDisturbance) {
-      start.zone = best_compass_zone(d, start, train);
-      discs[active.back()] = std::max<std::size_t>(start.zone.candidates, 1);
-      if (!start.zone.enabled) return fits[key] = CompassFit{start, {}, {}, false, fit_set({}).nll};
+      start.zone = best_compass_zone(s_.d, start, s_.train);
+      discs_[active.back()] = std::max<std::size_t>(start.zone.candidates, 1);
+      if (!start.zone.enabled) return fits_[key] = CompassFit{start, {}, {}, false, (*this)({}).nll};
     }
-    return fits[key] = fitter.fit(free, start);
-  };
-  const Selection sel = forward_select(
-      ids.size(), base.nll,
+    return fits_[key] = fitter_.fit(free, start);
+  }
+
+  // How many discs were searched for candidate i (1 when it is not the disturbance or not yet fitted).
+  double discs_searched(std::size_t i) const {
+    const auto it = discs_.find(i);
+    return compass_candidates()[i] == cause::kCompassDisturbance && it != discs_.end() ? static_cast<double>(it->second)
+                                                                                       : 1.0;
+  }
+
+ private:
+  const CompassFitter& fitter_;
+  const CompassSplit& s_;
+  CompassFit base_;
+  std::map<std::vector<std::size_t>, CompassFit> fits_;
+  std::map<std::size_t, std::size_t> discs_;  // disc scans: candidates searched
+};
+
+Selection select_compass_causes(CompassFitsBySet& fit_set, double false_alarm) {
+  const auto& ids = compass_candidates();
+  return forward_select(
+      ids.size(), fit_set({}).nll,
       [&](std::size_t i) {
         // The disc is the best of those searched: its bias is judged at the level divided over them.
-        const double scan =
-            ids[i] == cause::kCompassDisturbance && discs.count(i) ? static_cast<double>(discs[i]) : 1.0;
-        return chi_square_upper_quantile(ChiSquareDof(1.0), opt.false_alarm / (static_cast<double>(ids.size()) * scan));
+        const double scan = fit_set.discs_searched(i);
+        return chi_square_upper_quantile(ChiSquareDof(1.0), false_alarm / (static_cast<double>(ids.size()) * scan));
       },
       [&](const std::vector<std::size_t>& active) {
         const CompassFit& f = fit_set(active);
@@ -305,6 +357,18 @@ ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt
         if (ids[active.back()] == cause::kCompassDisturbance) admissible = f.model.zone.enabled;
         return SelectionFit{f.nll, admissible};
       });
+}
+
+// Every candidate as a cause, with its estimate; one that entered is validated by its held-out
+// gain (drop-one), and says so in a note when it fails.
+struct DescribedCauses {
+  std::vector<Cause> causes;
+  std::vector<std::pair<std::string, std::string>> heldout_notes;
+};
+
+DescribedCauses describe_compass_causes(const Selection& sel, CompassFitsBySet& fit_set, const CompassSplit& s) {
+  const auto& ids = compass_candidates();
+  DescribedCauses out;
   const CompassFit& full = fit_set(sel.entered);
   for (std::size_t i = 0; i < ids.size(); ++i) {
     const bool entered = std::find(sel.entered.begin(), sel.entered.end(), i) != sel.entered.end();
@@ -323,7 +387,7 @@ ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt
       for (std::size_t j : sel.entered) {
         if (j != i) others.push_back(j);
       }
-      c.gains.push_back(heldout(fit_set(others).model, full.model));
+      c.gains.push_back(heldout_gain(s, fit_set(others).model, full.model));
       c.validated = c.gains.front().relative() > 0.0;
       c.detected = *c.validated;
       if (!c.detected) {
@@ -336,41 +400,71 @@ ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt
     c.explanation = explain(c);
     out.causes.push_back(c);
   }
-  std::stable_sort(out.causes.begin(), out.causes.end(),
-                   [](const Cause& a, const Cause& b) { return a.detected > b.detected; });
+  return out;
+}
+
+// The entered causes that were detected, in order of entry.
+std::vector<std::size_t> kept_causes(const Selection& sel, const std::vector<Cause>& causes) {
+  const auto& ids = compass_candidates();
   std::vector<std::size_t> kept;
   for (std::size_t i : sel.entered) {
-    for (const auto& c : out.causes) {
+    for (const auto& c : causes) {
       if (c.id == ids[i] && c.detected) kept.push_back(i);
     }
   }
-  const CompassFit& final_fit = fit_set(kept);
-  if (coarser || !kept.empty()) out.overall_gain.push_back(heldout(nominal.model, final_fit.model));
+  return kept;
+}
 
-  // What remains after the kept causes.
-  const CompassModel& cm = final_fit.model;
-  const auto fr = compass_residuals(d, cm.time_offset);
-  std::vector<double> rr, fx, fy, fw;
-  for (std::size_t k : train) {
-    if (!fr[k].valid) continue;
-    const bool in = cm.zone.enabled && std::hypot(fr[k].x - cm.zone.x, fr[k].y - cm.zone.y) <= cm.zone.radius;
-    rr.push_back(wrap_angle(fr[k].r - cm.bias - (in ? cm.zone.bias : 0.0)) / std::max(cm.sigma, 1e-9));
-    fx.push_back(fr[k].x);
-    fy.push_back(fr[k].y);
-    fw.push_back(fr[k].turn_rate);
-  }
-  out.remaining.push_back(bias_test(rr, "compass"));
-  out.remaining.push_back(dependence_test(rr, fx, "position_dependence", "compass", "x"));
-  out.remaining.push_back(dependence_test(rr, fy, "position_dependence", "compass", "y"));
+// The battery on what remains after the kept causes.
+std::vector<ResidualTest> remaining_battery(const ResidualColumns& rest, bool lattice_kept,
+                                            bool offset_resolved_alone) {
+  std::vector<ResidualTest> remaining;
+  remaining.push_back(bias_test(rest.r, "compass"));
+  remaining.push_back(dependence_test(rest.r, rest.x, "position_dependence", "compass", "x"));
+  remaining.push_back(dependence_test(rest.r, rest.y, "position_dependence", "compass", "y"));
   // A kept lattice accounts for the moment tests its round-off disturbs (cause_catalog.cpp).
-  if (coarser) {
-    std::erase_if(out.remaining,
+  if (lattice_kept) {
+    std::erase_if(remaining,
                   [](const ResidualTest& t) { return accounts_for(cause_spec(cause::kCompassQuantization), t); });
   }
   // Lead/lag only when the best offset is beyond the resolution (see the odometry channel).
-  if (offset_resolved(fit_set({1}).model.time_offset)) {
-    out.remaining.push_back(dependence_test(rr, fw, "lead_lag", "compass", "turn rate"));
+  if (offset_resolved_alone) {
+    remaining.push_back(dependence_test(rest.r, rest.turn_rate, "lead_lag", "compass", "turn rate"));
   }
+  return remaining;
+}
+
+}  // namespace
+
+ChannelResult diagnose_compass(const MotionData& md, const DiagnosisOptions& opt) {
+  ChannelResult out;
+  const CompassSplit s = split_compass_data(md, opt.block);
+  const ResidualColumns raw = raw_training_residuals(s);
+  if (raw.r.size() < 40) return out;
+  const CompassFitter fitter(s.d, s.train, md.reference_interval);
+  CompassModel declared;
+  declared.step = s.d.declared_step;
+  declared.sigma = std::max(sample_stddev(raw.r), 1e-4);
+  const CompassFit nominal = fitter.fit({}, declared);
+  out.tests = nominal_battery(raw, nominal.model.sigma);
+  const ReadingLattice rl = reading_lattice(s.d);
+  out.tests.push_back(rl.test);
+
+  // Quantization first (a lattice is exact evidence), then the likelihood causes.
+  QuantizationFit quantization = fit_quantization(rl, nominal, declared, fitter, s);
+  out.causes.push_back(quantization.cause);
+  CompassFitsBySet fit_set(fitter, s, std::move(quantization.base));
+  const Selection sel = select_compass_causes(fit_set, opt.false_alarm);
+  DescribedCauses described = describe_compass_causes(sel, fit_set, s);
+  out.causes.insert(out.causes.end(), described.causes.begin(), described.causes.end());
+  out.heldout_notes = std::move(described.heldout_notes);
+  std::stable_sort(out.causes.begin(), out.causes.end(),
+                   [](const Cause& a, const Cause& b) { return a.detected > b.detected; });
+  const std::vector<std::size_t> kept = kept_causes(sel, out.causes);
+  const CompassFit& final_fit = fit_set(kept);
+  if (rl.coarser || !kept.empty()) out.overall_gain.push_back(heldout_gain(s, nominal.model, final_fit.model));
+  out.remaining = remaining_battery(standardized_training_residuals(s, final_fit.model), rl.coarser,
+                                    offset_resolved(fit_set({1}).model.time_offset));
   return out;
 }
 

@@ -95,32 +95,16 @@ class LmFitter {
   LmFit fit(const std::vector<const CauseSpec*>& free, LandmarkModel m, bool interval, bool hold_offset = false) const {
     const bool offset =
         std::any_of(free.begin(), free.end(), [](const CauseSpec* c) { return c->id == cause::kLandmarkTimeOffset; });
-    LmFit f = newton(free, m, 100);
-    if (!offset || hold_offset) return f;
-    const double dt = d_.reference_interval;
-    for (int round = 0; round < 4; ++round) {
-      const LandmarkModel held = f.model;
-      const auto prof = profile_offset([&](double o) { return at_offset(held, o); }, {}, dt);
-      const double moved = std::abs(prof.value - held.time_offset);
-      m = held;
-      m.time_offset = prof.value;
-      f = newton(free, m, 100);
-      if (moved < 0.5 * prof.step) break;
-    }
-    const LandmarkModel best = f.model;
-    std::function<double(double)> profiled;
+    if (!offset || hold_offset) return newton(free, m, 100);
+    std::function<double(const LandmarkModel&)> refit;
     if (interval) {
-      profiled = [&](double o) {
-        LandmarkModel x = best;
-        x.time_offset = o;
-        return newton({}, x, 3).nll;  // σ_r, σ_b re-fitted (the offset trades against them)
-      };
+      refit = [&](const LandmarkModel& x) {
+        return newton({}, x, 3).nll;
+      };  // σ_r, σ_b re-fitted (the offset trades against them)
     }
-    f.offset = profile_offset([&](double o) { return at_offset(best, o); }, profiled, dt);
-    f.model.time_offset = f.offset.value;
-    f.has_offset = true;
-    f.nll = nll(f.model);
-    return f;
+    return fit_with_offset_profile<LmFit>(
+        m, [&](const LandmarkModel& x) { return newton(free, x, 100); }, refit,
+        [&](const LandmarkModel& x) { return nll(x); }, d_.reference_interval, 1);
   }
 
   // Each landmark with ≥ 10 observations: (dx, dy) fitted on its own observations, the rest of
@@ -158,10 +142,6 @@ class LmFitter {
   }
 
  private:
-  double at_offset(LandmarkModel m, double o) const {
-    m.time_offset = o;
-    return nll(m);
-  }
   LmFit newton(const std::vector<const CauseSpec*>& free, const LandmarkModel& m, int iterations) const {
     LmFit out;
     // σ_r on a linear scale, used as |σ_r| (the variance holds σ_r²): beside a range-dependent
@@ -233,6 +213,211 @@ bool lm_plausible(const CauseSpec& spec, const LmFit& f) {
   return true;
 }
 
+// Selection fits, by the ordered list of candidates entered: each adds the last candidate's
+// parameters to the model of the list without it and fits them with σ_r, σ_b, holding the
+// parameters already in (a time offset, once profiled, among them). The likelihood ratio is
+// then that of the added cause at the others' earlier values — a little conservative — and a
+// fit costs a few parameters instead of all of them (MRCLAM: ~4000 observations per robot).
+// Joint fits of a set of causes: every parameter free, started from the selection fit (a time
+// offset held there), and with `interval` the offset profiled again with its 95% interval.
+class LandmarkFits {
+ public:
+  LandmarkFits(const LmFitter& fitter, const std::vector<const CauseSpec*>& candidates, const LmFit& nominal)
+      : fitter_(fitter), candidates_(candidates), nominal_(nominal) {}
+
+  const LmFit& step(const std::vector<std::size_t>& active) {
+    if (active.empty()) return nominal_;
+    if (auto it = steps_.find(active); it != steps_.end()) return it->second;
+    LandmarkModel m = step(std::vector<std::size_t>(active.begin(), active.end() - 1)).model;
+    const CauseSpec* added = candidates_[active.back()];
+    if (added->id == cause::kLandmarkPositionError) {
+      const LmDisplacement x = fitter_.displaced(m);
+      searched_ = std::max<std::size_t>(x.searched, 1);
+      if (x.id < 0) return steps_[active] = LmFit{m, {}, {}, {}, false, nominal_.nll};
+      m.position_error_id = x.id;
+      m.position_error_dx = x.dx;
+      m.position_error_dy = x.dy;
+    }
+    return steps_[active] = fitter_.fit({added}, m, false);
+  }
+
+  const LmFit& joint(std::vector<std::size_t> set, bool interval) {
+    std::vector<std::size_t> ordered;  // in order of entry when entered, else as given
+    for (std::size_t i : entry_order_) {
+      if (std::find(set.begin(), set.end(), i) != set.end()) ordered.push_back(i);
+    }
+    for (std::size_t i : set) {
+      if (std::find(ordered.begin(), ordered.end(), i) == ordered.end()) ordered.push_back(i);
+    }
+    std::sort(set.begin(), set.end());
+    if (set.empty()) return nominal_;
+    if (auto it = joints_.find({set, interval}); it != joints_.end()) return it->second;
+    std::vector<const CauseSpec*> specs;
+    for (std::size_t i : set) specs.push_back(candidates_[i]);
+    const LmFit& entry_fit = step(ordered);
+    if (entry_fit.model.position_error_id < 0 && std::any_of(set.begin(), set.end(), [&](std::size_t i) {
+          return candidates_[i]->id == cause::kLandmarkPositionError;
+        })) {
+      return joints_[{set, interval}] = entry_fit;
+    }
+    LmFit f = fitter_.fit(specs, entry_fit.model, false, true);
+    if (interval) f = fitter_.fit(specs, f.model, true);
+    return joints_[{set, interval}] = f;
+  }
+
+  // The candidates entered so far, in order (joint fits start from their selection fit).
+  void set_entry_order(const std::vector<std::size_t>& entered) { entry_order_ = entered; }
+  // Landmarks searched for the displaced one.
+  std::size_t searched() const { return searched_; }
+
+ private:
+  const LmFitter& fitter_;
+  const std::vector<const CauseSpec*>& candidates_;
+  const LmFit& nominal_;
+  std::vector<std::size_t> entry_order_;
+  std::map<std::vector<std::size_t>, LmFit> steps_;
+  std::map<std::pair<std::vector<std::size_t>, bool>, LmFit> joints_;
+  std::size_t searched_ = 1;
+};
+
+// Specific causes first, then the generic heavy-tail model; once it has entered, the specific
+// causes are tried again under it (a range bias that outliers hide from the normal model shows
+// under the Student-t one), until a round adds nothing.
+Selection select_landmark_causes(LandmarkFits& fits, const std::vector<const CauseSpec*>& candidates,
+                                 double false_alarm) {
+  const double m = static_cast<double>(candidates.size());
+  auto threshold = [&](std::size_t i) {
+    const double scan = candidates[i]->id == cause::kLandmarkPositionError ? static_cast<double>(fits.searched()) : 1.0;
+    return chi_square_upper_quantile(ChiSquareDof(static_cast<double>(candidates[i]->params.size())),
+                                     false_alarm / (m * scan));
+  };
+  Selection sel;
+  sel.evidence.resize(candidates.size());
+  for (int round = 0; round < 3; ++round) {
+    const std::size_t entered_before = sel.entered.size();
+    for (const bool generic : {false, true}) {
+      std::vector<std::size_t> pool;
+      for (std::size_t i = 0; i < candidates.size(); ++i) {
+        const bool in = std::find(sel.entered.begin(), sel.entered.end(), i) != sel.entered.end();
+        if (candidates[i]->generic == generic && !in) pool.push_back(i);
+      }
+      if (pool.empty()) continue;
+      const std::vector<std::size_t> before = sel.entered;
+      const Selection phase = forward_select(
+          pool.size(), fits.step(before).nll, [&](std::size_t k) { return threshold(pool[k]); },
+          [&](const std::vector<std::size_t>& active) {
+            std::vector<std::size_t> all = before;
+            for (std::size_t k : active) all.push_back(pool[k]);
+            const LmFit& f = fits.step(all);
+            const CauseSpec& last = *candidates[all.back()];
+            bool admissible = lm_plausible(last, f);
+            if (last.id == cause::kLandmarkTimeOffset) admissible = admissible && offset_resolved(f.model.time_offset);
+            if (last.id == cause::kLandmarkPositionError) admissible = admissible && f.model.position_error_id >= 0;
+            return SelectionFit{f.nll, admissible};
+          });
+      for (std::size_t k : phase.entered) sel.entered.push_back(pool[k]);
+      fits.set_entry_order(sel.entered);
+      for (std::size_t k = 0; k < pool.size(); ++k) sel.evidence[pool[k]] = phase.evidence[k];
+    }
+    if (sel.entered.size() == entered_before) break;
+  }
+  return sel;
+}
+
+// The full model without one cause: its parameters back to nominal, σ_r and σ_b re-fitted on
+// the training observations; the other causes' parameters kept at their joint values (re-fitting
+// them all costs several joint fits).
+LandmarkModel without_cause(const LmFitter& fitter, const LandmarkModel& full, const CauseSpec& spec) {
+  LandmarkModel reduced = full;
+  const LandmarkModel nominal_values;
+  for (std::size_t k = 0; k < spec.params.size(); ++k) {
+    if (const LmField f = field_of(spec.id, k)) reduced.*f = nominal_values.*f;
+  }
+  if (spec.id == cause::kLandmarkTimeOffset) reduced.time_offset = 0.0;
+  if (spec.id == cause::kLandmarkPositionError) reduced.position_error_id = -1;
+  // σ_r may have gone to ~0 beside a range-dependent noise: start its re-fit from a usable value.
+  reduced.sigma_range = std::max(reduced.sigma_range, 0.01);
+  return fitter.fit({}, reduced, false).model;
+}
+
+struct LandmarkHeldOutCheck {
+  std::vector<std::size_t> kept;
+  std::map<std::size_t, std::vector<Gain>> gains;
+  std::vector<std::pair<std::string, std::string>> notes;  // per cause that failed
+};
+
+// The held-out check, drop-one: the full model against the same model without the cause.
+LandmarkHeldOutCheck landmark_heldout_check(const LmFitter& fitter, const LandmarkData& d, const LmFit& full,
+                                            const std::vector<const CauseSpec*>& candidates, const Selection& sel,
+                                            const std::vector<std::size_t>& test) {
+  LandmarkHeldOutCheck out;
+  for (std::size_t i : sel.entered) {
+    out.gains[i] = lm_heldout(fitter, d, without_cause(fitter, full.model, *candidates[i]), full.model, test);
+    if (out.gains[i].front().relative() > 0.0) {
+      out.kept.push_back(i);
+    } else {
+      const Gain& g = out.gains[i].front();
+      out.notes.emplace_back(
+          std::string(candidates[i]->id),
+          fmt::format("{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not improve the held-out "
+                      "observations ({:.4g} → {:.4g})",
+                      candidates[i]->id, sel.evidence[i].lr, sel.evidence[i].threshold, g.before, g.after));
+    }
+  }
+  return out;
+}
+
+// Every candidate as a cause: a kept one at the final fit, an entered one at the joint fit of
+// those entered, any other at its joint fit alone.
+std::vector<Cause> describe_landmark_causes(LandmarkFits& fits, const std::vector<const CauseSpec*>& candidates,
+                                            const Selection& sel, const LandmarkHeldOutCheck& check,
+                                            const LmFit& final_fit) {
+  std::vector<Cause> causes;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const CauseSpec& spec = *candidates[i];
+    const bool entered = std::find(sel.entered.begin(), sel.entered.end(), i) != sel.entered.end();
+    const bool keep = std::find(check.kept.begin(), check.kept.end(), i) != check.kept.end();
+    Cause c{std::string(spec.id), "landmark", keep};
+    c.value = sel.evidence[i].lr;
+    c.threshold = sel.evidence[i].threshold;
+    const LmFit& f = keep ? final_fit : fits.joint(entered ? sel.entered : std::vector<std::size_t>{i}, true);
+    for (std::size_t k = 0; k < spec.params.size(); ++k) {
+      if (auto e = f.estimate(spec, k)) c.parameters.push_back(*e);
+    }
+    if (spec.id == cause::kLandmarkPositionError && f.model.position_error_id >= 0) {
+      c.extra["landmark"] = f.model.position_error_id;
+      c.extra["landmarks_searched"] = fits.searched();
+    }
+    if (entered) {
+      c.validated = keep;
+      c.gains = check.gains.at(i);
+    }
+    c.explanation = explain(c);
+    causes.push_back(c);
+  }
+  return causes;
+}
+
+// What remains after the kept causes; a kept noise cause accounts for the shape tests it names.
+// Lead/lag only when the best offset alone is beyond the resolution (see the compass channel).
+std::vector<ResidualTest> remaining_battery(const LandmarkData& d, const LmFitter& fitter, LandmarkFits& fits,
+                                            const std::vector<const CauseSpec*>& candidates,
+                                            const std::vector<std::size_t>& kept, const LmFit& final_fit,
+                                            const std::vector<std::size_t>& train) {
+  std::vector<ResidualTest> remaining =
+      landmark_battery(d, fitter.geometry(final_fit.model.time_offset), final_fit.model, train);
+  for (std::size_t i : kept) {
+    if (!candidates[i]->noise) continue;
+    std::erase_if(remaining, [&](const ResidualTest& t) { return accounts_for(*candidates[i], t); });
+  }
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (candidates[i]->id == cause::kLandmarkTimeOffset && !offset_resolved(fits.step({i}).model.time_offset)) {
+      std::erase_if(remaining, [](const ResidualTest& t) { return t.name == "lead_lag"; });
+    }
+  }
+  return remaining;
+}
+
 }  // namespace
 
 LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisOptions& opt) {
@@ -260,170 +445,18 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
   out.tests = landmark_battery(d, g0, nominal.model, train);
 
   const auto candidates = landmark_causes();
-  std::vector<std::size_t> sel_order;  // the candidates entered so far, in order
-  // Selection fits, by the ordered list of candidates entered: each adds the last candidate's
-  // parameters to the model of the list without it and fits them with σ_r, σ_b, holding the
-  // parameters already in (a time offset, once profiled, among them). The likelihood ratio is
-  // then that of the added cause at the others' earlier values — a little conservative — and a
-  // fit costs a few parameters instead of all of them (MRCLAM: ~4000 observations per robot).
-  std::map<std::vector<std::size_t>, LmFit> steps;
-  std::size_t searched = 1;  // landmarks searched for the displaced one
-  std::function<const LmFit&(const std::vector<std::size_t>&)> step_fit =
-      [&](const std::vector<std::size_t>& active) -> const LmFit& {
-    if (active.empty()) return nominal;
-    if (auto it = steps.find(active); it != steps.end()) return it->second;
-    LandmarkModel m = step_fit(std::vector<std::size_t>(active.begin(), active.end() - 1)).model;
-    const CauseSpec* added = candidates[active.back()];
-    if (added->id == cause::kLandmarkPositionError) {
-      const LmDisplacement x = fitter.displaced(m);
-      searched = std::max<std::size_t>(x.searched, 1);
-      if (x.id < 0) return steps[active] = LmFit{m, {}, {}, {}, false, nominal.nll};
-      m.position_error_id = x.id;
-      m.position_error_dx = x.dx;
-      m.position_error_dy = x.dy;
-    }
-    return steps[active] = fitter.fit({added}, m, false);
-  };
-  // Joint fits of a set of causes (every parameter free, started from the selection fit; a time
-  // offset held there), and with `interval` the offset profiled again with its 95% interval.
-  std::map<std::pair<std::vector<std::size_t>, bool>, LmFit> joints;
-  auto joint_fit = [&](std::vector<std::size_t> set, bool interval) -> const LmFit& {
-    std::vector<std::size_t> ordered;  // in order of entry when entered, else as given
-    for (std::size_t i : sel_order) {
-      if (std::find(set.begin(), set.end(), i) != set.end()) ordered.push_back(i);
-    }
-    for (std::size_t i : set) {
-      if (std::find(ordered.begin(), ordered.end(), i) == ordered.end()) ordered.push_back(i);
-    }
-    std::sort(set.begin(), set.end());
-    if (set.empty()) return nominal;
-    if (auto it = joints.find({set, interval}); it != joints.end()) return it->second;
-    std::vector<const CauseSpec*> specs;
-    for (std::size_t i : set) specs.push_back(candidates[i]);
-    const LmFit& entry_fit = step_fit(ordered);
-    if (entry_fit.model.position_error_id < 0 && std::any_of(set.begin(), set.end(), [&](std::size_t i) {
-          return candidates[i]->id == cause::kLandmarkPositionError;
-        })) {
-      return joints[{set, interval}] = entry_fit;
-    }
-    LmFit f = fitter.fit(specs, entry_fit.model, false, true);
-    if (interval) f = fitter.fit(specs, f.model, true);
-    return joints[{set, interval}] = f;
-  };
-
-  const double m = static_cast<double>(candidates.size());
-  auto threshold = [&](std::size_t i) {
-    const double scan = candidates[i]->id == cause::kLandmarkPositionError ? static_cast<double>(searched) : 1.0;
-    return chi_square_upper_quantile(ChiSquareDof(static_cast<double>(candidates[i]->params.size())),
-                                     opt.false_alarm / (m * scan));
-  };
-  // Specific causes first, then the generic heavy-tail model; once it has entered, the specific
-  // causes are tried again under it (a range bias that outliers hide from the normal model shows
-  // under the Student-t one), until a round adds nothing.
-  Selection sel;
-  sel.evidence.resize(candidates.size());
-  for (int round = 0; round < 3; ++round) {
-    const std::size_t entered_before = sel.entered.size();
-    for (const bool generic : {false, true}) {
-      std::vector<std::size_t> pool;
-      for (std::size_t i = 0; i < candidates.size(); ++i) {
-        const bool in = std::find(sel.entered.begin(), sel.entered.end(), i) != sel.entered.end();
-        if (candidates[i]->generic == generic && !in) pool.push_back(i);
-      }
-      if (pool.empty()) continue;
-      const std::vector<std::size_t> before = sel.entered;
-      const Selection phase = forward_select(
-          pool.size(), step_fit(before).nll, [&](std::size_t k) { return threshold(pool[k]); },
-          [&](const std::vector<std::size_t>& active) {
-            std::vector<std::size_t> all = before;
-            for (std::size_t k : active) all.push_back(pool[k]);
-            const LmFit& f = step_fit(all);
-            const CauseSpec& last = *candidates[all.back()];
-            bool admissible = lm_plausible(last, f);
-            if (last.id == cause::kLandmarkTimeOffset) admissible = admissible && offset_resolved(f.model.time_offset);
-            if (last.id == cause::kLandmarkPositionError) admissible = admissible && f.model.position_error_id >= 0;
-            return SelectionFit{f.nll, admissible};
-          });
-      for (std::size_t k : phase.entered) sel.entered.push_back(pool[k]);
-      sel_order = sel.entered;
-      for (std::size_t k = 0; k < pool.size(); ++k) sel.evidence[pool[k]] = phase.evidence[k];
-    }
-    if (sel.entered.size() == entered_before) break;
-  }
-
-  // The held-out check, drop-one: the full model against the same model without the cause (its
-  // parameters back to nominal, σ_r and σ_b re-fitted on the training observations; the other
-  // causes' parameters kept at their joint values — re-fitting them all costs several joint fits).
-  const LmFit& full = joint_fit(sel.entered, true);
-  auto without = [&](std::size_t i) {
-    LandmarkModel reduced = full.model;
-    const LandmarkModel nominal_values;
-    const CauseSpec& spec = *candidates[i];
-    for (std::size_t k = 0; k < spec.params.size(); ++k) {
-      if (const LmField f = field_of(spec.id, k)) reduced.*f = nominal_values.*f;
-    }
-    if (spec.id == cause::kLandmarkTimeOffset) reduced.time_offset = 0.0;
-    if (spec.id == cause::kLandmarkPositionError) reduced.position_error_id = -1;
-    // σ_r may have gone to ~0 beside a range-dependent noise: start its re-fit from a usable value.
-    reduced.sigma_range = std::max(reduced.sigma_range, 0.01);
-    return fitter.fit({}, reduced, false).model;
-  };
-  std::vector<std::size_t> kept;
-  std::map<std::size_t, std::vector<Gain>> gains;
-  for (std::size_t i : sel.entered) {
-    gains[i] = lm_heldout(fitter, d, without(i), full.model, test);
-    if (gains[i].front().relative() > 0.0) {
-      kept.push_back(i);
-    } else {
-      const Gain& g = gains[i].front();
-      out.heldout_notes.emplace_back(
-          std::string(candidates[i]->id),
-          fmt::format("{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not improve the held-out "
-                      "observations ({:.4g} → {:.4g})",
-                      candidates[i]->id, sel.evidence[i].lr, sel.evidence[i].threshold, g.before, g.after));
-    }
-  }
-  const LmFit& final_fit = joint_fit(kept, true);
+  LandmarkFits fits(fitter, candidates, nominal);
+  const Selection sel = select_landmark_causes(fits, candidates, opt.false_alarm);
+  const LmFit& full = fits.joint(sel.entered, true);
+  LandmarkHeldOutCheck check = landmark_heldout_check(fitter, d, full, candidates, sel, test);
+  out.heldout_notes = std::move(check.notes);
+  const LmFit& final_fit = fits.joint(check.kept, true);
   out.final_fit = final_fit.model;
-
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    const CauseSpec& spec = *candidates[i];
-    const bool entered = std::find(sel.entered.begin(), sel.entered.end(), i) != sel.entered.end();
-    const bool keep = std::find(kept.begin(), kept.end(), i) != kept.end();
-    Cause c{std::string(spec.id), "landmark", keep};
-    c.value = sel.evidence[i].lr;
-    c.threshold = sel.evidence[i].threshold;
-    const LmFit& f = keep ? final_fit : joint_fit(entered ? sel.entered : std::vector<std::size_t>{i}, true);
-    for (std::size_t k = 0; k < spec.params.size(); ++k) {
-      if (auto e = f.estimate(spec, k)) c.parameters.push_back(*e);
-    }
-    if (spec.id == cause::kLandmarkPositionError && f.model.position_error_id >= 0) {
-      c.extra["landmark"] = f.model.position_error_id;
-      c.extra["landmarks_searched"] = searched;
-    }
-    if (entered) {
-      c.validated = keep;
-      c.gains = gains[i];
-    }
-    c.explanation = explain(c);
-    out.causes.push_back(c);
-  }
+  out.causes = describe_landmark_causes(fits, candidates, sel, check, final_fit);
   std::stable_sort(out.causes.begin(), out.causes.end(),
                    [](const Cause& a, const Cause& b) { return a.detected > b.detected; });
-  if (!kept.empty()) out.overall_gain = lm_heldout(fitter, d, nominal.model, final_fit.model, test);
-
-  // What remains after the kept causes; a kept noise cause accounts for the shape tests it names.
-  out.remaining = landmark_battery(d, fitter.geometry(final_fit.model.time_offset), final_fit.model, train);
-  for (std::size_t i : kept) {
-    if (!candidates[i]->noise) continue;
-    std::erase_if(out.remaining, [&](const ResidualTest& t) { return accounts_for(*candidates[i], t); });
-  }
-  // Lead/lag only when the best offset alone is beyond the resolution (see the compass channel).
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (candidates[i]->id == cause::kLandmarkTimeOffset && !offset_resolved(step_fit({i}).model.time_offset)) {
-      std::erase_if(out.remaining, [](const ResidualTest& t) { return t.name == "lead_lag"; });
-    }
-  }
+  if (!check.kept.empty()) out.overall_gain = lm_heldout(fitter, d, nominal.model, final_fit.model, test);
+  out.remaining = remaining_battery(d, fitter, fits, candidates, check.kept, final_fit, train);
   return out;
 }
 

@@ -20,140 +20,163 @@ struct Coordinates {
   double step(std::size_t i) const { return p[i].positive ? 1e-4 : 1e-4 * p[i].scale; }
 };
 
-}  // namespace
+// The NLL over the fitted coordinates z (log scale for positive parameters) with its gradient and
+// Hessian: exact where the caller gives derivatives, central differences elsewhere.
+class Surface {
+ public:
+  Surface(const NegLogLikelihood& nll, const std::vector<FitParameter>& params, const NllDerivatives& derivatives)
+      : nll_(nll), params_(params), derivatives_(derivatives), coords_{params}, n_(params.size()) {}
 
-FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params, int max_iterations,
-                             const NllDerivatives& derivatives) {
-  const std::size_t n = params.size();
-  const Coordinates coords{params};
-  Eigen::VectorXd z(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    z[i] = params[i].positive ? std::log(std::max(params[i].initial, 1e-300)) : params[i].initial;
-  }
-  auto f = [&](const Eigen::VectorXd& x) {
-    const double v = nll(coords.values(x));
+  double operator()(const Eigen::VectorXd& x) const {
+    const double v = nll_(coords_.values(x));
     return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
-  };
+  }
+
+  // The last point's derivatives: a fit that stops because no damped step descends, and a restart
+  // from where the last one stopped, ask again at the same point.
+  void gradient_hessian(const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
+    if (last_x_.size() == x.size() && last_x_ == x) {
+      g = last_g_;
+      h = last_h_;
+      return;
+    }
+    compute_gradient_hessian(x, fx, g, h);
+    last_x_ = x;
+    last_g_ = g;
+    last_h_ = h;
+  }
+
+  const Coordinates& coords() const { return coords_; }
+
+ private:
   // Exact derivatives with respect to the values, mapped to the fitted coordinates z (v = e^z
   // for positive parameters: ∂f/∂z = v·∂f/∂v, ∂²f/∂z_i∂z_j = v_i·v_j·∂²f/∂v_i∂v_j + δ_ij·v_i·∂f/∂v_i).
-  auto exact = [&](const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
-    if (!derivatives) return false;
-    const std::vector<double> v = coords.values(x);
-    if (!derivatives(v, g, h) || !g.allFinite() || !h.allFinite()) return false;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!params[i].positive) continue;
+  bool exact(const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& h) const {
+    if (!derivatives_) return false;
+    const std::vector<double> v = coords_.values(x);
+    if (!derivatives_(v, g, h) || !g.allFinite() || !h.allFinite()) return false;
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (!params_[i].positive) continue;
       h.row(i) *= v[i];
       h.col(i) *= v[i];
       h(i, i) += v[i] * g[i];
       g[i] *= v[i];
     }
     return true;
-  };
+  }
+
   // Central differences for every coordinate without exact derivatives, and for the rows and
   // columns of those marked `differences` when there are.
-  auto compute_gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
+  void compute_gradient_hessian(const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) const {
+    const auto& f = *this;
+    const std::size_t n = n_;
     const bool have_exact = exact(x, g, h);
     if (!have_exact) {
       g.resize(n);
       h.resize(n, n);
     }
-    auto differenced = [&](std::size_t i) { return !have_exact || params[i].differences; };
+    auto differenced = [&](std::size_t i) { return !have_exact || params_[i].differences; };
     std::vector<double> fp(n), fm(n);
     for (std::size_t i = 0; i < n; ++i) {
       if (!differenced(i)) continue;
       Eigen::VectorXd a = x, b = x;
-      a[i] += coords.step(i);
-      b[i] -= coords.step(i);
+      a[i] += coords_.step(i);
+      b[i] -= coords_.step(i);
       fp[i] = f(a);
       fm[i] = f(b);
-      g[i] = (fp[i] - fm[i]) / (2.0 * coords.step(i));
-      h(i, i) = (fp[i] - 2.0 * fx + fm[i]) / (coords.step(i) * coords.step(i));
+      g[i] = (fp[i] - fm[i]) / (2.0 * coords_.step(i));
+      h(i, i) = (fp[i] - 2.0 * fx + fm[i]) / (coords_.step(i) * coords_.step(i));
     }
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = i + 1; j < n; ++j) {
         if (!differenced(i) && !differenced(j)) continue;
         Eigen::VectorXd pp = x, pm = x, mp = x, mm = x;
-        pp[i] += coords.step(i), pp[j] += coords.step(j);
-        pm[i] += coords.step(i), pm[j] -= coords.step(j);
-        mp[i] -= coords.step(i), mp[j] += coords.step(j);
-        mm[i] -= coords.step(i), mm[j] -= coords.step(j);
-        h(i, j) = h(j, i) = (f(pp) - f(pm) - f(mp) + f(mm)) / (4.0 * coords.step(i) * coords.step(j));
+        pp[i] += coords_.step(i), pp[j] += coords_.step(j);
+        pm[i] += coords_.step(i), pm[j] -= coords_.step(j);
+        mp[i] -= coords_.step(i), mp[j] += coords_.step(j);
+        mm[i] -= coords_.step(i), mm[j] -= coords_.step(j);
+        h(i, j) = h(j, i) = (f(pp) - f(pm) - f(mp) + f(mm)) / (4.0 * coords_.step(i) * coords_.step(j));
       }
     }
-  };
+  }
 
-  // The last point's derivatives: a fit that stops because no damped step descends, and a restart
-  // from where the last one stopped, ask again at the same point.
-  Eigen::VectorXd last_x;
-  Eigen::VectorXd last_g;
-  Eigen::MatrixXd last_h;
-  auto gradient_hessian = [&](const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
-    if (last_x.size() == x.size() && last_x == x) {
-      g = last_g;
-      h = last_h;
-      return;
+  const NegLogLikelihood& nll_;
+  const std::vector<FitParameter>& params_;
+  const NllDerivatives& derivatives_;
+  const Coordinates coords_;
+  const std::size_t n_;
+  Eigen::VectorXd last_x_;
+  Eigen::VectorXd last_g_;
+  Eigen::MatrixXd last_h_;
+};
+
+// Where the descent stands: the point, its NLL, the damping.
+struct Descent {
+  Eigen::VectorXd z;
+  double fx = 0.0;
+  double lambda = 1e-3;
+};
+
+// One Newton iteration: Levenberg damping on the scaled diagonal, raised until the step lowers
+// the NLL (at most 30 tries). Returns whether it did; sets `converged` when an (almost) undamped
+// step gains next to nothing (relative 1e-9).
+bool damped_newton_step(const Surface& f, const Eigen::VectorXd& g, const Eigen::MatrixXd& h, Descent& d,
+                        bool& converged) {
+  const std::size_t n = static_cast<std::size_t>(g.size());
+  for (int tries = 0; tries < 30; ++tries) {
+    Eigen::MatrixXd a = h;
+    for (std::size_t i = 0; i < n; ++i) a(i, i) += d.lambda * std::max(std::abs(h(i, i)), 1e-12);
+    const linalg::LdltSolve solved = linalg::ldlt_solve(a, g);
+    const Eigen::VectorXd dz = -solved.x;
+    if (!solved.ok || !dz.allFinite() || !solved.positive) {
+      d.lambda *= 10.0;
+      continue;
     }
-    compute_gradient_hessian(x, fx, g, h);
-    last_x = x;
-    last_g = g;
-    last_h = h;
-  };
+    const Eigen::VectorXd zn = d.z + dz;
+    // A step below the resolution of z (strong damping) leaves z as it is, and f(z) = fx.
+    const double fn = zn == d.z ? d.fx : f(zn);
+    if (fn < d.fx) {
+      const double gain = d.fx - fn;
+      d.z = zn;
+      d.fx = fn;
+      if (gain < 1e-9 * (1.0 + std::abs(d.fx)) && d.lambda <= 1e-2) converged = true;
+      d.lambda = std::max(d.lambda / 10.0, 1e-9);
+      return true;
+    }
+    d.lambda *= 10.0;
+  }
+  return false;
+}
 
-  FitResult r;
-  double fx = f(z);
+// Damped Newton from `d`, restarted (damping reset) until a restart gains nothing: a damped step
+// that stalls far from the optimum would otherwise inflate the likelihood-ratio statistics
+// computed against it.
+void descend(Surface& f, Descent& d, int max_iterations, FitResult& r) {
   Eigen::VectorXd g;
   Eigen::MatrixXd h;
-  double lambda = 1e-3;
-  // Restarted (damping reset) until a restart gains nothing: a damped step that stalls far from
-  // the optimum would otherwise inflate the likelihood-ratio statistics computed against it.
-  for (int restart = 0; restart < 4 && n > 0; ++restart) {
-    const double before_restart = fx;
-    lambda = 1e-3;
+  for (int restart = 0; restart < 4 && d.z.size() > 0; ++restart) {
+    const double before_restart = d.fx;
+    d.lambda = 1e-3;
     r.converged = false;
     for (int it = 0; it < max_iterations; ++it, ++r.iterations) {
-      gradient_hessian(z, fx, g, h);
-      // Levenberg damping on the scaled diagonal until the step lowers the NLL.
-      bool improved = false;
-      for (int tries = 0; tries < 30 && !improved; ++tries) {
-        Eigen::MatrixXd a = h;
-        for (std::size_t i = 0; i < n; ++i) a(i, i) += lambda * std::max(std::abs(h(i, i)), 1e-12);
-        const linalg::LdltSolve solved = linalg::ldlt_solve(a, g);
-        const Eigen::VectorXd dz = -solved.x;
-        if (!solved.ok || !dz.allFinite() || !solved.positive) {
-          lambda *= 10.0;
-          continue;
-        }
-        const Eigen::VectorXd zn = z + dz;
-        // A step below the resolution of z (strong damping) leaves z as it is, and f(z) = fx.
-        const double fn = zn == z ? fx : f(zn);
-        if (fn < fx) {
-          const double gain = fx - fn;
-          z = zn;
-          fx = fn;
-          // Converged when an (almost) undamped Newton step gains next to nothing (relative 1e-9).
-          if (gain < 1e-9 * (1.0 + std::abs(fx)) && lambda <= 1e-2) r.converged = true;
-          lambda = std::max(lambda / 10.0, 1e-9);
-          improved = true;
-        } else {
-          lambda *= 10.0;
-        }
-      }
-      if (!improved) {
+      f.gradient_hessian(d.z, d.fx, g, h);
+      if (!damped_newton_step(f, g, h, d, r.converged)) {
         r.converged = true;  // no descent step exists at this resolution: a (local) minimum
         break;
       }
       if (r.converged) break;
     }
-    if (before_restart - fx < 1e-9 * (1.0 + std::abs(fx))) break;
+    if (before_restart - d.fx < 1e-9 * (1.0 + std::abs(d.fx))) break;
   }
-  r.nll = fx;
-  r.values = coords.values(z);
-  r.ci_low.assign(n, 0.0);
-  r.ci_high.assign(n, 0.0);
-  r.standard_errors.assign(n, std::numeric_limits<double>::infinity());
-  r.covariance = Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::quiet_NaN());
-  if (n == 0) return r;
-  gradient_hessian(z, fx, g, h);
+}
+
+// Standard errors, 95% intervals and correlations from the Hessian at the optimum z.
+void fill_intervals(Surface& f, const Eigen::VectorXd& z, double fx, const std::vector<FitParameter>& params,
+                    FitResult& r) {
+  const std::size_t n = params.size();
+  Eigen::VectorXd g;
+  Eigen::MatrixXd h;
+  f.gradient_hessian(z, fx, g, h);
   const linalg::SymmetricEigen eig = linalg::symmetric_eigen(Eigen::MatrixXd(0.5 * (h + h.transpose())));
   r.hessian_ok = eig.values.minCoeff() > 1e-12 * std::max(1.0, eig.values.maxCoeff());
   if (r.hessian_ok) {
@@ -176,6 +199,30 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
     }
   }
   if (!r.hessian_ok) r.max_abs_correlation = 1.0;
+}
+
+}  // namespace
+
+FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params, int max_iterations,
+                             const NllDerivatives& derivatives) {
+  const std::size_t n = params.size();
+  Surface f(nll, params, derivatives);
+  Descent d;
+  d.z.resize(static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    d.z[i] = params[i].positive ? std::log(std::max(params[i].initial, 1e-300)) : params[i].initial;
+  }
+  d.fx = f(d.z);
+  FitResult r;
+  descend(f, d, max_iterations, r);
+  r.nll = d.fx;
+  r.values = f.coords().values(d.z);
+  r.ci_low.assign(n, 0.0);
+  r.ci_high.assign(n, 0.0);
+  r.standard_errors.assign(n, std::numeric_limits<double>::infinity());
+  r.covariance = Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::quiet_NaN());
+  if (n == 0) return r;
+  fill_intervals(f, d.z, d.fx, params, r);
   return r;
 }
 

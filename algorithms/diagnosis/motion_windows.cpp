@@ -119,7 +119,7 @@ OdometryStep pose_step(const OdometryReading& a, const OdometryReading& b) {
   return {a.t, b.t, d, dth};
 }
 
-void fill_covariates(MotionData& m, MotionWindow& w) {
+void fill_covariates(const MotionData& m, MotionWindow& w) {
   const double base = m.nominal.wheelbase > 0.0 ? m.nominal.wheelbase : 0.5;
   for (std::size_t i = w.first; i < w.last; ++i) {
     const auto& s = m.steps[i];
@@ -177,10 +177,39 @@ std::atomic<std::size_t> motion_data_calls{0};
 
 std::size_t build_motion_data_calls() { return motion_data_calls.load(); }
 
-MotionData build_motion_data(const Log& log, const WindowOptions& options) {
-  ++motion_data_calls;
+namespace {
+
+// Encoder steps (ΔN_L, ΔN_R), each checked for a step no wheel can make.
+std::vector<OdometryStep> encoder_steps(const Log& log, const NominalModel& nominal, const std::string& file) {
+  std::vector<OdometryStep> steps;
+  for (std::size_t i = 1; i < log.encoders.size(); ++i) {
+    const auto& a = log.encoders[i - 1];
+    const auto& b = log.encoders[i];
+    std::int64_t dl = 0, dr = 0;
+    if (__builtin_sub_overflow(b.left, a.left, &dl) || __builtin_sub_overflow(b.right, a.right, &dr)) {
+      throw InputError(file, 0,
+                       fmt::format("ENCODER at t = {}: the tick counts jump by more than the "
+                                   "64-bit range from the previous record",
+                                   b.t));
+    }
+    // A step no wheel can make (a tick glitch, a counter reset) is refused with its time rather
+    // than absorbed by the fits (issue 26: a 1e9-tick glitch passed with the clean log's verdict).
+    const double travel = std::max(std::abs(static_cast<double>(dl) * nominal.meters_per_tick_left),
+                                   std::abs(static_cast<double>(dr) * nominal.meters_per_tick_right));
+    if (!(travel <= kMaxWheelSpeed * (b.t - a.t) + 1.0)) {
+      throw InputError(file, 0,
+                       fmt::format("ENCODER at t = {}: a wheel travels {:.6g} m in {:.6g} s since the previous "
+                                   "record (more than {} m/s and 1 m): a tick glitch or a counter reset?",
+                                   b.t, travel, b.t - a.t, kMaxWheelSpeed));
+    }
+    steps.push_back({a.t, b.t, static_cast<double>(dl), static_cast<double>(dr)});
+  }
+  return steps;
+}
+
+// The log's odometry as steps: encoder ticks, ODOM poses, or the poses logged with the scans.
+MotionData odometry_of(const Log& log, const std::string& file) {
   MotionData m;
-  const std::string file = log.source.empty() ? log.name : log.source;
   if (!log.encoders.empty()) {
     m.odometry = OdometryKind::kEncoder;
     const auto nominal = log.nominal_model();
@@ -191,28 +220,7 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
     }
     m.nominal = *nominal;
     check_nominal(log, m.nominal);
-    for (std::size_t i = 1; i < log.encoders.size(); ++i) {
-      const auto& a = log.encoders[i - 1];
-      const auto& b = log.encoders[i];
-      std::int64_t dl = 0, dr = 0;
-      if (__builtin_sub_overflow(b.left, a.left, &dl) || __builtin_sub_overflow(b.right, a.right, &dr)) {
-        throw InputError(file, 0,
-                         fmt::format("ENCODER at t = {}: the tick counts jump by more than the "
-                                     "64-bit range from the previous record",
-                                     b.t));
-      }
-      // A step no wheel can make (a tick glitch, a counter reset) is refused with its time rather
-      // than absorbed by the fits (issue 26: a 1e9-tick glitch passed with the clean log's verdict).
-      const double travel = std::max(std::abs(static_cast<double>(dl) * m.nominal.meters_per_tick_left),
-                                     std::abs(static_cast<double>(dr) * m.nominal.meters_per_tick_right));
-      if (!(travel <= kMaxWheelSpeed * (b.t - a.t) + 1.0)) {
-        throw InputError(file, 0,
-                         fmt::format("ENCODER at t = {}: a wheel travels {:.6g} m in {:.6g} s since the previous "
-                                     "record (more than {} m/s and 1 m): a tick glitch or a counter reset?",
-                                     b.t, travel, b.t - a.t, kMaxWheelSpeed));
-      }
-      m.steps.push_back({a.t, b.t, static_cast<double>(dl), static_cast<double>(dr)});
-    }
+    m.steps = encoder_steps(log, m.nominal, file);
   } else if (log.odometry.size() >= 2) {
     m.odometry = OdometryKind::kPose;
     if (const auto nominal = log.nominal_model()) m.nominal = *nominal;
@@ -233,137 +241,168 @@ MotionData build_motion_data(const Log& log, const WindowOptions& options) {
     throw InputError(file, 0,
                      "no odometry: expected ENCODER records, at least two ODOM records or FLASER odometry poses");
   }
-  // Merge consecutive samples into sub-steps of at least `min_step` seconds: the model is linear
-  // in each step's ΔN (or ΔD, Δθ), so only the arc integration within a sub-step is coarser.
-  if (options.min_step > 0.0 && m.steps.size() > 1) {
-    std::vector<OdometryStep> merged{m.steps.front()};
-    for (std::size_t i = 1; i < m.steps.size(); ++i) {
-      OdometryStep& last = merged.back();
-      const OdometryStep& st = m.steps[i];
-      if (last.t1 - last.t0 < options.min_step && st.t0 == last.t1 && st.t1 - st.t0 <= options.max_gap) {
-        last.t1 = st.t1;
-        last.a += st.a;
-        last.b += st.b;
-      } else {
-        merged.push_back(st);
-      }
+  return m;
+}
+
+// Merge consecutive samples into sub-steps of at least `min_step` seconds: the model is linear
+// in each step's ΔN (or ΔD, Δθ), so only the arc integration within a sub-step is coarser.
+std::vector<OdometryStep> merge_short_steps(std::vector<OdometryStep> steps, const WindowOptions& options) {
+  if (!(options.min_step > 0.0 && steps.size() > 1)) return steps;
+  std::vector<OdometryStep> merged{steps.front()};
+  for (std::size_t i = 1; i < steps.size(); ++i) {
+    OdometryStep& last = merged.back();
+    const OdometryStep& st = steps[i];
+    if (last.t1 - last.t0 < options.min_step && st.t0 == last.t1 && st.t1 - st.t0 <= options.max_gap) {
+      last.t1 = st.t1;
+      last.a += st.a;
+      last.b += st.b;
+    } else {
+      merged.push_back(st);
     }
-    m.steps = std::move(merged);
   }
+  return merged;
+}
+
+// PARAM compass_resolution [rad], 0 when not declared.
+double declared_compass_step(const Log& log, const std::string& file) {
+  double step = 0.0;
+  if (auto it = log.params.find("compass_resolution"); it != log.params.end()) {
+    char* end = nullptr;
+    step = std::strtod(it->second.c_str(), &end);
+    if (end == it->second.c_str() || *end != '\0' || !std::isfinite(step) || step < 0.0) {
+      throw InputError(
+          file, 0, "PARAM compass_resolution: expected a non-negative number of radians, found '" + it->second + "'");
+    }
+    if (step > 0.5) {
+      throw InputError(file, 0,
+                       fmt::format("PARAM compass_resolution = {} is implausible: expected radians "
+                                   "(degrees by mistake?)",
+                                   step));
+    }
+  }
+  return step;
+}
+
+ReferenceKind reference_of(const Log& log, const std::string& file) {
+  if (log.truth.size() >= 2) return ReferenceKind::kTruePose;
+  if (!log.relations.empty()) return ReferenceKind::kRelations;
+  if (log.compass.size() >= 2) return ReferenceKind::kCompass;
+  throw InputError(file, 0,
+                   "no reference to take residuals against: expected TRUEPOS ground truth, "
+                   "reference relations (--relations) or COMPASS headings");
+}
+
+// One window per relation: the odometry between t1 and t2, the first and last samples cut at
+// the relation's stamps (a step's ΔN or ΔD, Δθ split in proportion to time). The steps become
+// the windows' cut steps.
+MotionData relation_windows(MotionData m, std::vector<Relation> relations) {
+  const std::vector<OdometryStep> all = std::move(m.steps);
+  m.steps.clear();
+  // In time order, whatever the file's line order (the held-out split depends on it).
+  std::sort(relations.begin(), relations.end(), [](const Relation& x, const Relation& y) {
+    return std::tie(x.t1, x.t2, x.delta.x, x.delta.y, x.delta.theta) <
+           std::tie(y.t1, y.t2, y.delta.x, y.delta.y, y.delta.theta);
+  });
+  for (const auto& r : relations) {
+    if (r.t2 - r.t1 > 10.0 || !(r.t2 > r.t1)) continue;  // local relations (loop closures span minutes)
+    if (r.t1 < all.front().t0 || r.t2 > all.back().t1) continue;
+    auto it =
+        std::upper_bound(all.begin(), all.end(), r.t1, [](double v, const OdometryStep& st) { return v < st.t1; });
+    MotionWindow w;
+    w.first = m.steps.size();
+    for (; it != all.end() && it->t0 < r.t2; ++it) {
+      const double a = std::max(it->t0, r.t1), b = std::min(it->t1, r.t2);
+      const double span = it->t1 - it->t0;
+      const double f = span > 0.0 ? (b - a) / span : 1.0;
+      if (f <= 0.0) continue;
+      m.steps.push_back({a, b, f * it->a, f * it->b});
+    }
+    w.last = m.steps.size();
+    if (w.last == w.first) continue;
+    w.t0 = r.t1;
+    w.t1 = r.t2;
+    w.reference = r.delta;
+    fill_covariates(m, w);
+    m.windows.push_back(w);
+  }
+  return m;
+}
+
+// Windows of up to `duration` seconds of consecutive steps the reference (truth or compass)
+// covers, without a gap over `max_gap`.
+std::vector<MotionWindow> timed_windows(const MotionData& m, const WindowOptions& options) {
+  std::vector<MotionWindow> windows;
+  auto covered = [&](double t) {
+    if (m.reference == ReferenceKind::kTruePose) return interpolate_truth(m.truth, t).has_value();
+    return interpolate_compass(m.compass, t).has_value();
+  };
+  std::size_t i = 0;
+  while (i < m.steps.size()) {
+    if (!covered(m.steps[i].t0)) {
+      ++i;
+      continue;
+    }
+    MotionWindow w;
+    w.first = i;
+    w.t0 = m.steps[i].t0;
+    std::size_t j = i;
+    while (j < m.steps.size() && m.steps[j].t1 - w.t0 <= options.duration + 1e-9 &&
+           m.steps[j].t1 - m.steps[j].t0 <= options.max_gap && covered(m.steps[j].t1)) {
+      ++j;
+    }
+    if (j == i) {
+      i = i + 1;
+      continue;
+    }
+    w.last = j;
+    w.t1 = m.steps[j - 1].t1;
+    if (m.reference == ReferenceKind::kTruePose) {
+      const Pose2 p = *interpolate_truth(m.truth, w.t0);
+      w.heading = p.theta;
+      w.x = p.x;
+      w.y = p.y;
+    } else {
+      w.heading = *interpolate_compass(m.compass, w.t0);
+    }
+    fill_covariates(m, w);
+    windows.push_back(w);
+    i = j;
+  }
+  return windows;
+}
+
+template <class Records>
+double median_interval(const Records& r) {
+  std::vector<double> dt;
+  for (std::size_t i = 1; i < r.size(); ++i) dt.push_back(r[i].t - r[i - 1].t);
+  if (dt.empty()) return 0.0;
+  std::nth_element(dt.begin(), dt.begin() + static_cast<long>(dt.size() / 2), dt.end());
+  return dt[dt.size() / 2];
+}
+
+}  // namespace
+
+MotionData build_motion_data(const Log& log, const WindowOptions& options) {
+  ++motion_data_calls;
+  const std::string file = log.source.empty() ? log.name : log.source;
+  MotionData m = odometry_of(log, file);
+  m.steps = merge_short_steps(std::move(m.steps), options);
   for (const auto& s : m.steps) {
     if (!(s.t1 >= s.t0)) {
       throw InputError(file, 0, fmt::format("odometry timestamps go backwards at t = {}", s.t1));
     }
   }
-
   m.compass = log.compass;
-  if (auto it = log.params.find("compass_resolution"); it != log.params.end()) {
-    char* end = nullptr;
-    m.compass_step = std::strtod(it->second.c_str(), &end);
-    if (end == it->second.c_str() || *end != '\0' || !std::isfinite(m.compass_step) || m.compass_step < 0.0) {
-      throw InputError(
-          file, 0, "PARAM compass_resolution: expected a non-negative number of radians, found '" + it->second + "'");
-    }
-    if (m.compass_step > 0.5) {
-      throw InputError(file, 0,
-                       fmt::format("PARAM compass_resolution = {} is implausible: expected radians "
-                                   "(degrees by mistake?)",
-                                   m.compass_step));
-    }
-  }
-  if (log.truth.size() >= 2) {
-    m.reference = ReferenceKind::kTruePose;
-    m.truth = log.truth;
-  } else if (!log.relations.empty()) {
-    m.reference = ReferenceKind::kRelations;
-  } else if (log.compass.size() >= 2) {
-    m.reference = ReferenceKind::kCompass;
-  } else {
-    throw InputError(file, 0,
-                     "no reference to take residuals against: expected TRUEPOS ground truth, "
-                     "reference relations (--relations) or COMPASS headings");
-  }
-
+  m.compass_step = declared_compass_step(log, file);
+  m.reference = reference_of(log, file);
+  if (m.reference == ReferenceKind::kTruePose) m.truth = log.truth;
   if (m.reference == ReferenceKind::kRelations) {
-    // One window per relation: the odometry between t1 and t2, the first and last samples cut at
-    // the relation's stamps (a step's ΔN or ΔD, Δθ split in proportion to time).
-    const std::vector<OdometryStep> all = std::move(m.steps);
-    m.steps.clear();
-    // In time order, whatever the file's line order (the held-out split depends on it).
-    std::vector<Relation> relations = log.relations;
-    std::sort(relations.begin(), relations.end(), [](const Relation& x, const Relation& y) {
-      return std::tie(x.t1, x.t2, x.delta.x, x.delta.y, x.delta.theta) <
-             std::tie(y.t1, y.t2, y.delta.x, y.delta.y, y.delta.theta);
-    });
-    for (const auto& r : relations) {
-      if (r.t2 - r.t1 > 10.0 || !(r.t2 > r.t1)) continue;  // local relations (loop closures span minutes)
-      if (r.t1 < all.front().t0 || r.t2 > all.back().t1) continue;
-      auto it =
-          std::upper_bound(all.begin(), all.end(), r.t1, [](double v, const OdometryStep& st) { return v < st.t1; });
-      MotionWindow w;
-      w.first = m.steps.size();
-      for (; it != all.end() && it->t0 < r.t2; ++it) {
-        const double a = std::max(it->t0, r.t1), b = std::min(it->t1, r.t2);
-        const double span = it->t1 - it->t0;
-        const double f = span > 0.0 ? (b - a) / span : 1.0;
-        if (f <= 0.0) continue;
-        m.steps.push_back({a, b, f * it->a, f * it->b});
-      }
-      w.last = m.steps.size();
-      if (w.last == w.first) continue;
-      w.t0 = r.t1;
-      w.t1 = r.t2;
-      w.reference = r.delta;
-      fill_covariates(m, w);
-      m.windows.push_back(w);
-    }
+    m = relation_windows(std::move(m), log.relations);
   } else {
-    auto covered = [&](double t) {
-      if (m.reference == ReferenceKind::kTruePose) return interpolate_truth(m.truth, t).has_value();
-      return interpolate_compass(m.compass, t).has_value();
-    };
-    std::size_t i = 0;
-    while (i < m.steps.size()) {
-      if (!covered(m.steps[i].t0)) {
-        ++i;
-        continue;
-      }
-      MotionWindow w;
-      w.first = i;
-      w.t0 = m.steps[i].t0;
-      std::size_t j = i;
-      while (j < m.steps.size() && m.steps[j].t1 - w.t0 <= options.duration + 1e-9 &&
-             m.steps[j].t1 - m.steps[j].t0 <= options.max_gap && covered(m.steps[j].t1)) {
-        ++j;
-      }
-      if (j == i) {
-        i = i + 1;
-        continue;
-      }
-      w.last = j;
-      w.t1 = m.steps[j - 1].t1;
-      if (m.reference == ReferenceKind::kTruePose) {
-        const Pose2 p = *interpolate_truth(m.truth, w.t0);
-        w.heading = p.theta;
-        w.x = p.x;
-        w.y = p.y;
-      } else {
-        w.heading = *interpolate_compass(m.compass, w.t0);
-      }
-      fill_covariates(m, w);
-      m.windows.push_back(w);
-      i = j;
-    }
+    m.windows = timed_windows(m, options);
   }
-  auto median_dt = [](const auto& r) {
-    std::vector<double> dt;
-    for (std::size_t i = 1; i < r.size(); ++i) dt.push_back(r[i].t - r[i - 1].t);
-    if (dt.empty()) return 0.0;
-    std::nth_element(dt.begin(), dt.begin() + static_cast<long>(dt.size() / 2), dt.end());
-    return dt[dt.size() / 2];
-  };
-  if (m.reference == ReferenceKind::kTruePose) m.reference_interval = median_dt(m.truth);
-  if (m.reference == ReferenceKind::kCompass) m.reference_interval = median_dt(m.compass);
+  if (m.reference == ReferenceKind::kTruePose) m.reference_interval = median_interval(m.truth);
+  if (m.reference == ReferenceKind::kCompass) m.reference_interval = median_interval(m.compass);
   if (m.windows.size() < options.min_windows) {
     throw InputError(file, 0,
                      fmt::format("too short a log: {} windows of {} s where the odometry and the "

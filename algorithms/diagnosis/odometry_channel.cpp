@@ -83,43 +83,15 @@ class Fitter {
     const bool offset =
         std::any_of(active.begin(), active.end(), [](const CauseSpec* c) { return c->id == cause::kTimeOffset; });
     if (!offset) return fit_held_offset(active, start, max_iterations);
-    // Alternate: the others at a held offset, the offset profiled with the others held, until the
-    // offset moves less than half a fine step; then the interval with the others re-fitted.
-    OdometryModel m = start;
-    OdoFit f;
-    OffsetProfile prof;
-    for (int round = 0; round < 4; ++round) {
-      f = fit_held_offset(active, m, max_iterations);
-      const OdometryModel held = f.model;
-      prof = profile_offset([&](double o) { return with_offset(held, o); }, {}, d_.reference_interval);
-      const double moved = std::abs(prof.value - m.time_offset);
-      m = f.model;
-      m.time_offset = prof.value;
-      if (round > 0 && moved < 0.5 * prof.step) break;
-    }
-    f = fit_held_offset(active, m, max_iterations);
-    const OdometryModel best = f.model;
-    std::function<double(double)> profiled;
-    if (interval) {
-      profiled = [&](double o) {
-        OdometryModel x = best;
-        x.time_offset = o;
-        return fit_held_offset(active, x, 15).nll;
-      };
-    }
-    f.offset = profile_offset([&](double o) { return with_offset(best, o); }, profiled, d_.reference_interval);
-    f.model.time_offset = f.offset.value;
-    f.has_offset = true;
-    f.nll = nll(f.model);
-    return f;
+    std::function<double(const OdometryModel&)> refit;
+    if (interval) refit = [&](const OdometryModel& m) { return fit_held_offset(active, m, 15).nll; };
+    // At least two profiles before the offset counts as settled.
+    return fit_with_offset_profile<OdoFit>(
+        start, [&](const OdometryModel& m) { return fit_held_offset(active, m, max_iterations); }, refit,
+        [&](const OdometryModel& m) { return nll(m); }, d_.reference_interval, 2);
   }
 
  private:
-  double with_offset(OdometryModel m, double o) const {
-    m.time_offset = o;
-    return nll(m);
-  }
-
   OdoFit fit_held_offset(const std::vector<const CauseSpec*>& active, const OdometryModel& start,
                          int max_iterations) const {
     OdoFit out;
@@ -271,56 +243,64 @@ void encoder_lattice(const MotionData& d, const OdometryModel& nominal_fit, cons
   out.causes.push_back(cause);
 }
 
-}  // namespace
+// ---------------------------------------------------------------- fits by active set
+// Fits by active set (sorted indices into the candidates), each started from the fit of the set
+// without its last member when there is one; `reported` the same with the offset's interval
+// profiled, for the fits the report shows.
+class OdoFitsBySet {
+ public:
+  OdoFitsBySet(const Fitter& fitter, const std::vector<const CauseSpec*>& candidates, const OdoFit& nominal)
+      : fitter_(fitter), candidates_(candidates), nominal_(nominal) {}
 
-OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOptions& opt) {
-  OdometryChannelResult out;
-  std::vector<std::size_t> train, test;
-  split_windows(d.windows.size(), opt.block, train, test);
-  const bool heading_only = d.reference == ReferenceKind::kCompass;
-  const auto candidates = odometry_causes(d);
-  const Fitter fitter(d, train, opt.exact_derivatives);
-  const OdoFit nominal = fitter.fit({}, initial_noise(d, train), false);
-  out.nominal_fit = nominal.model;
-  out.tests = odometry_battery(d, odometry_residuals(d, nominal.model, train));
-
-  // Fits by active set (sorted indices), each started from the fit of the set without its last
-  // member when there is one.
-  std::map<std::vector<std::size_t>, OdoFit> fits;
-  std::function<const OdoFit&(std::vector<std::size_t>)> fit_set =
-      [&](std::vector<std::size_t> active) -> const OdoFit& {
-    if (active.empty()) return nominal;
+  const OdoFit& operator()(const std::vector<std::size_t>& active) {
+    if (active.empty()) return nominal_;
     std::vector<std::size_t> key = active;
     std::sort(key.begin(), key.end());
-    if (auto it = fits.find(key); it != fits.end()) return it->second;
+    if (auto it = fits_.find(key); it != fits_.end()) return it->second;
     std::vector<std::size_t> without(active.begin(), active.end() - 1);
-    const OdometryModel start = fit_set(without).model;
-    std::vector<const CauseSpec*> specs;
-    for (std::size_t i : key) specs.push_back(candidates[i]);
-    return fits[key] = fitter.fit(specs, start, false);
-  };
-  // The same with the offset's interval profiled, for the fits the report shows.
-  std::map<std::vector<std::size_t>, OdoFit> reported;
-  auto report_fit = [&](std::vector<std::size_t> active) -> const OdoFit& {
+    const OdometryModel start = (*this)(without).model;
+    return fits_[key] = fitter_.fit(specs(key), start, false);
+  }
+
+  const OdoFit& reported(std::vector<std::size_t> active) {
     std::sort(active.begin(), active.end());
     const bool offset = std::any_of(active.begin(), active.end(),
-                                    [&](std::size_t i) { return candidates[i]->id == cause::kTimeOffset; });
-    if (!offset) return fit_set(active);
-    if (auto it = reported.find(active); it != reported.end()) return it->second;
-    std::vector<const CauseSpec*> specs;
-    for (std::size_t i : active) specs.push_back(candidates[i]);
-    return reported[active] = fitter.fit(specs, fit_set(active).model, true);
-  };
-  // Forward selection of the specific causes, then of the generic ones given those (a specific
-  // cause that explains a symptom is named before a generic model of the symptom).
+                                    [&](std::size_t i) { return candidates_[i]->id == cause::kTimeOffset; });
+    if (!offset) return (*this)(active);
+    if (auto it = reported_.find(active); it != reported_.end()) return it->second;
+    return reported_[active] = fitter_.fit(specs(active), (*this)(active).model, true);
+  }
+
+  std::vector<const CauseSpec*> specs(const std::vector<std::size_t>& active) const {
+    std::vector<const CauseSpec*> out;
+    for (std::size_t i : active) out.push_back(candidates_[i]);
+    return out;
+  }
+
+ private:
+  const Fitter& fitter_;
+  const std::vector<const CauseSpec*>& candidates_;
+  const OdoFit& nominal_;
+  std::map<std::vector<std::size_t>, OdoFit> fits_, reported_;
+};
+
+// ---------------------------------------------------------------- selection
+struct OdometrySelection {
+  Selection sel;
+  std::map<std::size_t, std::string> implausible_notes;  // the last implausible fit of a candidate
+};
+
+// Forward selection of the specific causes, then of the generic ones given those (a specific
+// cause that explains a symptom is named before a generic model of the symptom).
+OdometrySelection select_odometry_causes(OdoFitsBySet& fit_set, const std::vector<const CauseSpec*>& candidates,
+                                         double false_alarm) {
   const double m = static_cast<double>(candidates.size());
   auto threshold = [&](std::size_t i) {
-    return chi_square_upper_quantile(ChiSquareDof(static_cast<double>(candidates[i]->params.size())),
-                                     opt.false_alarm / m);
+    return chi_square_upper_quantile(ChiSquareDof(static_cast<double>(candidates[i]->params.size())), false_alarm / m);
   };
-  Selection sel;
+  OdometrySelection out;
+  Selection& sel = out.sel;
   sel.evidence.resize(candidates.size());
-  std::map<std::size_t, std::string> implausible_notes;  // the last implausible fit of a candidate
   for (const bool generic : {false, true}) {
     std::vector<std::size_t> pool;
     for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -336,7 +316,7 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
           const CauseSpec& last = *candidates[all.back()];
           const bool offset = last.id == cause::kTimeOffset;
           if (const auto why = implausible(last, f.model)) {
-            implausible_notes[all.back()] = *why;
+            out.implausible_notes[all.back()] = *why;
             return SelectionFit{f.nll, false};
           }
           return SelectionFit{f.nll, !offset || offset_resolved(f.model.time_offset)};
@@ -344,23 +324,28 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
     for (std::size_t k : phase.entered) sel.entered.push_back(pool[k]);
     for (std::size_t k = 0; k < pool.size(); ++k) sel.evidence[pool[k]] = phase.evidence[k];
   }
+  return out;
+}
 
-  // A candidate that never entered because its fit left the plausible range says so: the
-  // structure it would explain is then reported with that reason, not as "unexplained" alone.
-  for (const auto& [i, why] : implausible_notes) {
-    if (std::find(sel.entered.begin(), sel.entered.end(), i) == sel.entered.end()) {
-      out.heldout_notes.emplace_back(std::string(candidates[i]->id), why);
-    }
-  }
-
-  // The held-out check, per cause in its own metric: the model with the other causes against the
-  // same model without this one (drop-one), both fitted on the training windows. Backward
-  // elimination: two causes that act alike (a velocity scale and drive stalls both shorten the
-  // mean distance) each look useless beside the other, so the worst cause without a gain is
-  // dropped and the rest are judged again, until every remaining cause earns its place.
-  std::vector<std::size_t> kept = sel.entered;
-  std::map<std::size_t, std::vector<Gain>> gains;
+// ---------------------------------------------------------------- held-out check
+struct HeldOutCheck {
+  std::vector<std::size_t> kept;                                          // the causes that earned their place
+  std::map<std::size_t, std::vector<Gain>> gains;                         // per cause, in its own metric first
   std::vector<std::pair<std::size_t, std::vector<std::size_t>>> dropped;  // cause, the set it was judged in
+};
+
+// The held-out check, per cause in its own metric: the model with the other causes against the
+// same model without this one (drop-one), both fitted on the training windows. Backward
+// elimination: two causes that act alike (a velocity scale and drive stalls both shorten the
+// mean distance) each look useless beside the other, so the worst cause without a gain is
+// dropped and the rest are judged again, until every remaining cause earns its place.
+HeldOutCheck eliminate_causes_without_gain(const MotionData& d, OdoFitsBySet& fit_set,
+                                           const std::vector<const CauseSpec*>& candidates,
+                                           const std::vector<std::size_t>& entered,
+                                           const std::vector<std::size_t>& test, std::size_t chain, bool heading_only) {
+  HeldOutCheck out;
+  std::vector<std::size_t>& kept = out.kept;
+  kept = entered;
   while (!kept.empty()) {
     const OdoFit& full = fit_set(kept);
     std::optional<std::size_t> worst;
@@ -369,77 +354,97 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
       for (std::size_t j : kept) {
         if (j != i) others.push_back(j);
       }
-      gains[i] = ordered_gains(heldout(d, fit_set(others).model, full.model, test, opt.rpe_chain),
-                               candidates[i]->metric, heading_only);
-      if (gains[i].front().relative() <= 0.0 &&
-          (!worst || gains[i].front().relative() < gains[*worst].front().relative())) {
+      auto& g = out.gains[i];
+      g = ordered_gains(heldout(d, fit_set(others).model, full.model, test, chain), candidates[i]->metric,
+                        heading_only);
+      if (g.front().relative() <= 0.0 && (!worst || g.front().relative() < out.gains[*worst].front().relative())) {
         worst = i;
       }
     }
     if (!worst) break;
-    dropped.emplace_back(*worst, kept);
+    out.dropped.emplace_back(*worst, kept);
     std::erase(kept, *worst);
   }
-  for (const auto& [i, judged_in] : dropped) {
-    // Why not: do the halves of the log agree on the cause's parameter?
-    const OdoFit& full = fit_set(judged_in);
-    const auto& p = candidates[i]->params.front();
-    std::vector<std::size_t> first(train.begin(), train.begin() + static_cast<long>(train.size() / 2));
-    std::vector<std::size_t> second(train.begin() + static_cast<long>(train.size() / 2), train.end());
-    std::vector<const CauseSpec*> specs;
-    for (std::size_t j : judged_in) specs.push_back(candidates[j]);
-    const auto a = Fitter(d, first, opt.exact_derivatives).fit(specs, full.model, false).estimate(p);
-    const auto b = Fitter(d, second, opt.exact_derivatives).fit(specs, full.model, false).estimate(p);
-    const Gain& g = gains[i].front();
-    std::string note = fmt::format(
-        "{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not reduce the held-out {} "
-        "({:.4g} → {:.4g})",
-        candidates[i]->id, sel.evidence[i].lr, sel.evidence[i].threshold, g.metric, g.before, g.after);
-    if (a && b && a->lo < a->hi && b->lo < b->hi && (a->hi < b->lo || b->hi < a->lo)) {
-      note += fmt::format(": non-stationary, the halves of the log disagree on {}: {} vs {}", p.name,
-                          format_estimate(*a), format_estimate(*b));
-    }
-    out.heldout_notes.emplace_back(std::string(candidates[i]->id), note);
-  }
-  const OdoFit& final_fit = report_fit(kept);
-  out.final_fit = final_fit.model;
+  return out;
+}
 
-  auto describe = [&](std::size_t i, const OdoFit& f, bool detected) {
-    const CauseSpec& spec = *candidates[i];
-    Cause c{std::string(spec.id), "odometry", detected};
-    c.value = sel.evidence[i].lr;
-    c.threshold = sel.evidence[i].threshold;
-    for (const auto& p : spec.params) {
-      if (auto e = f.estimate(p)) c.parameters.push_back(*e);
-    }
-    if (spec.id == cause::kTimeOffset) c.extra["sensor"] = heading_only ? "odometry_vs_compass" : "odometry";
-    if (spec.id == cause::kDriveStall) c.extra["mean_distance_scale"] = mean_distance_scale(d, f.model);
-    return c;
-  };
+// Why a cause that passed the likelihood ratio was dropped: do the halves of the log agree on the
+// cause's parameter?
+std::string dropped_cause_note(const MotionData& d, OdoFitsBySet& fit_set, const CauseSpec& spec,
+                               const std::vector<std::size_t>& judged_in, const std::vector<std::size_t>& train,
+                               const Evidence& evidence, const Gain& g, bool exact_derivatives) {
+  const OdoFit& full = fit_set(judged_in);
+  const auto& p = spec.params.front();
+  std::vector<std::size_t> first(train.begin(), train.begin() + static_cast<long>(train.size() / 2));
+  std::vector<std::size_t> second(train.begin() + static_cast<long>(train.size() / 2), train.end());
+  const std::vector<const CauseSpec*> specs = fit_set.specs(judged_in);
+  const auto a = Fitter(d, first, exact_derivatives).fit(specs, full.model, false).estimate(p);
+  const auto b = Fitter(d, second, exact_derivatives).fit(specs, full.model, false).estimate(p);
+  std::string note = fmt::format(
+      "{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not reduce the held-out {} "
+      "({:.4g} → {:.4g})",
+      spec.id, evidence.lr, evidence.threshold, g.metric, g.before, g.after);
+  if (a && b && a->lo < a->hi && b->lo < b->hi && (a->hi < b->lo || b->hi < a->lo)) {
+    note += fmt::format(": non-stationary, the halves of the log disagree on {}: {} vs {}", p.name, format_estimate(*a),
+                        format_estimate(*b));
+  }
+  return note;
+}
+
+// ---------------------------------------------------------------- causes
+Cause describe_cause(const MotionData& d, const CauseSpec& spec, const Evidence& evidence, const OdoFit& f,
+                     bool detected, bool heading_only) {
+  Cause c{std::string(spec.id), "odometry", detected};
+  c.value = evidence.lr;
+  c.threshold = evidence.threshold;
+  for (const auto& p : spec.params) {
+    if (auto e = f.estimate(p)) c.parameters.push_back(*e);
+  }
+  if (spec.id == cause::kTimeOffset) c.extra["sensor"] = heading_only ? "odometry_vs_compass" : "odometry";
+  if (spec.id == cause::kDriveStall) c.extra["mean_distance_scale"] = mean_distance_scale(d, f.model);
+  return c;
+}
+
+// Every candidate as a cause: the entered ones first, in order of entry, with their held-out
+// gains (the kept ones at the final fit), then the others at their fit alone.
+std::vector<Cause> describe_causes(const MotionData& d, OdoFitsBySet& fit_set,
+                                   const std::vector<const CauseSpec*>& candidates, const Selection& sel,
+                                   const HeldOutCheck& check, const OdoFit& final_fit, bool heading_only) {
+  std::vector<Cause> causes;
   for (std::size_t i : sel.entered) {
-    const bool keep = std::find(kept.begin(), kept.end(), i) != kept.end();
-    Cause c = describe(i, keep ? final_fit : report_fit(sel.entered), keep);
+    const bool keep = std::find(check.kept.begin(), check.kept.end(), i) != check.kept.end();
+    Cause c = describe_cause(d, *candidates[i], sel.evidence[i], keep ? final_fit : fit_set.reported(sel.entered), keep,
+                             heading_only);
     c.validated = keep;
-    c.gains = gains[i];
-    out.causes.push_back(c);
+    c.gains = check.gains.at(i);
+    causes.push_back(c);
   }
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (std::find(sel.entered.begin(), sel.entered.end(), i) != sel.entered.end()) continue;
-    out.causes.push_back(describe(i, candidates[i]->id == cause::kTimeOffset ? report_fit({i}) : fit_set({i}), false));
+    const OdoFit& alone = candidates[i]->id == cause::kTimeOffset ? fit_set.reported({i}) : fit_set({i});
+    causes.push_back(describe_cause(d, *candidates[i], sel.evidence[i], alone, false, heading_only));
   }
+  return causes;
+}
 
-  // Confounding: a kept cause whose estimate is (almost) perfectly correlated with another
-  // candidate's that also explains the data alone cannot be told apart from it by these data.
+// Confounding: a kept cause whose estimate is (almost) perfectly correlated with another
+// candidate's that also explains the data alone cannot be told apart from it by these data. The
+// causes of a group are marked not identifiable.
+std::vector<ConfoundedGroup> confounded_groups(OdoFitsBySet& fit_set, const std::vector<const CauseSpec*>& candidates,
+                                               const std::vector<std::size_t>& kept, double nominal_nll,
+                                               double false_alarm, std::vector<Cause>& causes) {
+  const double m = static_cast<double>(candidates.size());
+  std::vector<ConfoundedGroup> confounded;
   for (std::size_t a : kept) {
     const CauseSpec& sa = *candidates[a];
     for (std::size_t c = 0; c < candidates.size(); ++c) {
       const CauseSpec& sc = *candidates[c];
       if (c == a || sc.noise || sa.noise || sc.params.size() != 1 || sa.params.size() != 1) continue;
-      if (2.0 * (nominal.nll - fit_set({c}).nll) <= chi_square_upper_quantile(ChiSquareDof(1.0), opt.false_alarm / m))
+      if (2.0 * (nominal_nll - fit_set({c}).nll) <= chi_square_upper_quantile(ChiSquareDof(1.0), false_alarm / m))
         continue;
       const OdoFit& both = fit_set({a, c});
       if (both.fit.max_abs_correlation < 0.98) continue;
-      const bool seen = std::any_of(out.confounded.begin(), out.confounded.end(), [&](const ConfoundedGroup& g) {
+      const bool seen = std::any_of(confounded.begin(), confounded.end(), [&](const ConfoundedGroup& g) {
         return std::find(g.ids.begin(), g.ids.end(), std::string(sc.id)) != g.ids.end();
       });
       if (seen) continue;
@@ -456,35 +461,79 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
           "{} and {} act on these residuals the same way (the reference has no independent "
           "distance or turn measurement that separates them); only their combination is determined",
           sa.id, sc.id);
-      out.confounded.push_back(g);
-      for (auto& cause : out.causes) {
+      confounded.push_back(g);
+      for (auto& cause : causes) {
         if (cause.id == sa.id || cause.id == sc.id) cause.identifiable = false;
       }
     }
   }
+  return confounded;
+}
+
+// What remains after the kept causes. A kept noise cause accounts for the shape tests it names
+// (standardized residuals stay heavy-tailed under a Student-t or slip model by design). Lead/lag
+// is the signature of a time offset; an offset within the resolution is neither a cause nor
+// structure.
+std::vector<ResidualTest> remaining_battery(const MotionData& d, OdoFitsBySet& fit_set,
+                                            const std::vector<const CauseSpec*>& candidates,
+                                            const std::vector<std::size_t>& kept, const OdometryModel& final_model,
+                                            const std::vector<std::size_t>& train) {
+  std::vector<ResidualTest> remaining = odometry_battery(d, odometry_residuals(d, final_model, train));
+  for (std::size_t i : kept) {
+    if (!candidates[i]->noise) continue;
+    std::erase_if(remaining, [&](const ResidualTest& t) { return accounts_for(*candidates[i], t); });
+  }
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (candidates[i]->id != cause::kTimeOffset) continue;
+    if (!offset_resolved(fit_set({i}).model.time_offset)) {
+      std::erase_if(remaining, [](const ResidualTest& t) { return t.name == "lead_lag"; });
+    }
+  }
+  return remaining;
+}
+
+}  // namespace
+
+OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOptions& opt) {
+  OdometryChannelResult out;
+  std::vector<std::size_t> train, test;
+  split_windows(d.windows.size(), opt.block, train, test);
+  const bool heading_only = d.reference == ReferenceKind::kCompass;
+  const auto candidates = odometry_causes(d);
+  const Fitter fitter(d, train, opt.exact_derivatives);
+  const OdoFit nominal = fitter.fit({}, initial_noise(d, train), false);
+  out.nominal_fit = nominal.model;
+  out.tests = odometry_battery(d, odometry_residuals(d, nominal.model, train));
+
+  OdoFitsBySet fit_set(fitter, candidates, nominal);
+  const OdometrySelection selection = select_odometry_causes(fit_set, candidates, opt.false_alarm);
+  const Selection& sel = selection.sel;
+  // A candidate that never entered because its fit left the plausible range says so: the
+  // structure it would explain is then reported with that reason, not as "unexplained" alone.
+  for (const auto& [i, why] : selection.implausible_notes) {
+    if (std::find(sel.entered.begin(), sel.entered.end(), i) == sel.entered.end()) {
+      out.heldout_notes.emplace_back(std::string(candidates[i]->id), why);
+    }
+  }
+  const HeldOutCheck check =
+      eliminate_causes_without_gain(d, fit_set, candidates, sel.entered, test, opt.rpe_chain, heading_only);
+  for (const auto& [i, judged_in] : check.dropped) {
+    out.heldout_notes.emplace_back(std::string(candidates[i]->id),
+                                   dropped_cause_note(d, fit_set, *candidates[i], judged_in, train, sel.evidence[i],
+                                                      check.gains.at(i).front(), opt.exact_derivatives));
+  }
+  const OdoFit& final_fit = fit_set.reported(check.kept);
+  out.final_fit = final_fit.model;
+  out.causes = describe_causes(d, fit_set, candidates, sel, check, final_fit, heading_only);
+  out.confounded = confounded_groups(fit_set, candidates, check.kept, nominal.nll, opt.false_alarm, out.causes);
   for (auto& c : out.causes) c.explanation = explain(c);
-  if (!kept.empty()) {
+  if (!check.kept.empty()) {
     const HeldOut h = heldout(d, nominal.model, final_fit.model, test, opt.rpe_chain);
     out.overall_gain = heading_only ? std::vector<Gain>{h.heading, h.likelihood}
                                     : std::vector<Gain>{h.translation, h.heading, h.likelihood};
   }
   if (d.odometry == OdometryKind::kEncoder) encoder_lattice(d, nominal.model, test, opt.rpe_chain, out);
-
-  // What remains after the kept causes. A kept noise cause accounts for the shape tests it names
-  // (standardized residuals stay heavy-tailed under a Student-t or slip model by design).
-  out.remaining = odometry_battery(d, odometry_residuals(d, final_fit.model, train));
-  for (std::size_t i : kept) {
-    if (!candidates[i]->noise) continue;
-    std::erase_if(out.remaining, [&](const ResidualTest& t) { return accounts_for(*candidates[i], t); });
-  }
-  // Lead/lag is the signature of a time offset; an offset within the resolution is neither a
-  // cause nor structure.
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (candidates[i]->id != cause::kTimeOffset) continue;
-    if (!offset_resolved(fit_set({i}).model.time_offset)) {
-      std::erase_if(out.remaining, [](const ResidualTest& t) { return t.name == "lead_lag"; });
-    }
-  }
+  out.remaining = remaining_battery(d, fit_set, candidates, check.kept, final_fit.model, train);
   return out;
 }
 

@@ -204,6 +204,129 @@ Full log_sum_exp(const std::array<Full, N>& l) {
 }  // namespace
 
 namespace {
+
+// The fitted mean fields, and where each sits among all fitted fields.
+struct MeanFields {
+  std::vector<ad::Field> fields;
+  std::vector<int> to_full;
+};
+
+MeanFields mean_fields_of(const std::vector<ad::Field>& fields) {
+  MeanFields out;
+  for (int i = 0; i < static_cast<int>(fields.size()); ++i) {
+    if (std::find(ad::kMeanFields.begin(), ad::kMeanFields.end(), fields[i]) != ad::kMeanFields.end()) {
+      out.fields.push_back(fields[i]);
+      out.to_full.push_back(i);
+    }
+  }
+  return out;
+}
+
+// The noise parameters, seeded as variables where fitted.
+struct NoiseSeeds {
+  ad::Full b;  // the wheelbase [m]
+  ad::Full sx, sy, st, k2;
+  ad::Full slip_rate, slip_loss;
+  ad::Full stall_rate, stall_duration;
+};
+
+NoiseSeeds noise_seeds(const ad::Seeded<ad::Full>& seed, double base) {
+  return {base * seed(&OdometryModel::E_b),  seed(&OdometryModel::sigma_x),    seed(&OdometryModel::sigma_y),
+          seed(&OdometryModel::sigma_theta), seed(&OdometryModel::k2),         seed(&OdometryModel::slip_rate),
+          seed(&OdometryModel::slip_loss),   seed(&OdometryModel::stall_rate), seed(&OdometryModel::stall_duration)};
+}
+
+// The reference of window `wi`, from the cache when there is one.
+std::optional<Pose2> window_reference(const MotionData& d, std::size_t wi, const OdometryModel& mean_model,
+                                      std::vector<std::optional<std::optional<Pose2>>>* references) {
+  const MotionWindow& w = d.windows[wi];
+  if (references == nullptr) return reference_window(d, w, mean_model);
+  auto& cached = (*references)[wi];
+  if (!cached) cached = reference_window(d, w, mean_model);
+  return *cached;
+}
+
+// The predicted pose of window `wi`: values (cached) when no mean field is fitted, else
+// differentiated in the mean fields and lifted to all fitted fields.
+struct Prediction {
+  const MotionData& d;
+  const OdometryModel& mean_model;
+  const ad::Seeded<ad::Mean>& mean_seed;
+  const MeanFields& mean;
+  int n;
+  WindowCache* cache;
+  std::vector<std::optional<Pose2>>* predictions;
+  bool drive_tau_fitted;
+
+  ad::PoseT<ad::Full> operator()(std::size_t wi, std::vector<double>& buffer) const {
+    using namespace ad;
+    const MotionWindow& w = d.windows[wi];
+    if (mean.fields.empty()) {
+      Pose2 p;
+      if (predictions != nullptr) {
+        auto& cached = (*predictions)[wi];
+        if (!cached) {
+          cached = d.odometry == OdometryKind::kPose
+                       ? predict_window(d, w, mean_model, cache->increments(wi, mean_model.drive_tau))
+                       : predict_window(d, w, mean_model, nullptr);
+        }
+        p = *cached;
+      } else {
+        p = predict_window(d, w, mean_model);
+      }
+      return {Full(p.x), Full(p.y), Full(p.theta)};
+    }
+    const double* increments = nullptr;
+    if (d.odometry == OdometryKind::kPose && !drive_tau_fitted) {
+      if (cache != nullptr) {
+        increments = cache->increments(wi, mean_model.drive_tau);
+      } else {
+        buffer.resize(2 * (w.last - w.first));
+        drive_increments(d, w, mean_model.drive_tau, buffer.data());
+        increments = buffer.data();
+      }
+    }
+    const PoseT<Mean> pm = predict(d, w, mean_seed, increments);
+    return {lift(pm.x, mean.to_full, n), lift(pm.y, mean.to_full, n), lift(pm.theta, mean.to_full, n)};
+  }
+};
+
+// The window's log-likelihood as a mixture with a slip of either wheel (§3.2).
+ad::Full with_slip(const ad::Full& ll, const std::array<ad::Full, 3>& r, const MotionData& d, const MotionWindow& w,
+                   const NoiseSeeds& s, const ad::Scales& variance, bool heading_only, const ad::Density& density) {
+  using namespace ad;
+  const Full p = 1.0 - exp(-s.slip_rate * 0.5 * w.wheel_travel);
+  if (!(p.v > 0.0)) return ll;
+  double ul = 0.0, ur = 0.0;
+  for (std::size_t i = w.first; i < w.last; ++i) {
+    ul += d.steps[i].a * d.nominal.meters_per_tick_left;
+    ur += d.steps[i].b * d.nominal.meters_per_tick_right;
+  }
+  const double ns = static_cast<double>(w.last - w.first);
+  ul /= ns;
+  ur /= ns;
+  const std::array<Full, 3> left{-s.slip_loss * ul / 2.0, Full(0.0), s.slip_loss * ul / s.b};
+  const std::array<Full, 3> right{-s.slip_loss * ur / 2.0, Full(0.0), -s.slip_loss * ur / s.b};
+  const Full half_p = log(0.5 * p);
+  return log_sum_exp<3>({log1p(-p) + ll, half_p + log_density(shifted(r, left), variance, heading_only, density),
+                         half_p + log_density(shifted(r, right), variance, heading_only, density)});
+}
+
+// The window's log-likelihood as a mixture with a drive stall that shortens the window's motion.
+ad::Full with_stall(const ad::Full& ll, const std::array<ad::Full, 3>& r, const ad::PoseT<ad::Full>& pred,
+                    const MotionWindow& w, const NoiseSeeds& s, const ad::Scales& variance,
+                    const ad::Density& density) {
+  using namespace ad;
+  const double span = w.t1 - w.t0;
+  if (!(span > 0.0)) return ll;
+  const Full p = -expm1(-s.stall_rate * span);
+  const Full ratio = s.stall_duration / span;
+  const Full fraction = ratio.v < 1.0 ? ratio : Full(1.0);
+  if (!(p.v > 0.0)) return ll;
+  const std::array<Full, 3> shift{-fraction * pred.x, -fraction * pred.y, Full(0.0)};
+  return log_sum_exp<2>({log1p(-p) + ll, log(p) + log_density(shifted(r, shift), variance, false, density)});
+}
+
 std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m, const std::vector<std::size_t>& index,
                                      const std::vector<double OdometryModel::*>& fields, Eigen::VectorXd& gradient,
                                      Eigen::MatrixXd& hessian, WindowCache* cache) {
@@ -217,51 +340,33 @@ std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m
   OdometryModel mean_model = m;
   if (stalls) mean_model.stall_rate = 0.0;
 
-  // The fitted mean fields, and where each sits among all fitted fields.
-  std::vector<Field> mean_fields;
-  std::vector<int> to_full;
-  for (int i = 0; i < n; ++i) {
-    if (std::find(kMeanFields.begin(), kMeanFields.end(), fields[i]) != kMeanFields.end()) {
-      mean_fields.push_back(fields[i]);
-      to_full.push_back(i);
-    }
-  }
-  if (mean_fields.size() > static_cast<std::size_t>(Mean::kCapacity)) return std::nullopt;
-  const Seeded<Mean> mean_seed{mean_model, mean_fields, static_cast<int>(mean_fields.size())};
+  const MeanFields mean = mean_fields_of(fields);
+  if (mean.fields.size() > static_cast<std::size_t>(Mean::kCapacity)) return std::nullopt;
+  const Seeded<Mean> mean_seed{mean_model, mean.fields, static_cast<int>(mean.fields.size())};
   const Seeded<Full> seed{m, fields, n};
 
   const double base = d.nominal.wheelbase > 0.0 ? d.nominal.wheelbase : 0.5;
-  const Full b = base * seed(&OdometryModel::E_b);
   const Density density(seed(&OdometryModel::dof));
-  const Full sx = seed(&OdometryModel::sigma_x), sy = seed(&OdometryModel::sigma_y),
-             st = seed(&OdometryModel::sigma_theta), k2 = seed(&OdometryModel::k2);
-  const Full slip_rate = seed(&OdometryModel::slip_rate), slip_loss = seed(&OdometryModel::slip_loss);
-  const Full stall_rate = seed(&OdometryModel::stall_rate), stall_duration = seed(&OdometryModel::stall_duration);
+  const NoiseSeeds s = noise_seeds(seed, base);
   auto* references = cache != nullptr ? &cache->references(mean_model) : nullptr;
-  auto* predictions = cache != nullptr && mean_fields.empty() ? &cache->predictions(mean_model) : nullptr;
-
+  auto* predictions = cache != nullptr && mean.fields.empty() ? &cache->predictions(mean_model) : nullptr;
   const bool drive_tau_fitted =
-      std::find(mean_fields.begin(), mean_fields.end(), &OdometryModel::drive_tau) != mean_fields.end();
+      std::find(mean.fields.begin(), mean.fields.end(), &OdometryModel::drive_tau) != mean.fields.end();
+  const Prediction predicted{d, mean_model, mean_seed, mean, n, cache, predictions, drive_tau_fitted};
+
   std::vector<double> buffer;  // drive increments without a cache
   // Without noise growth (k² = 0, not fitted) every window has the same variance.
-  const bool constant_variance = k2.n == 0 && k2.v == 0.0;
-  const Full sxx = sx * sx, syy = sy * sy, stt = st * st;
+  const bool constant_variance = s.k2.n == 0 && s.k2.v == 0.0;
+  const Full sxx = s.sx * s.sx, syy = s.sy * s.sy, stt = s.st * s.st;
   Scales variance;
   Full nll(0.0);
   const std::size_t count = index.empty() ? d.windows.size() : index.size();
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t wi = index.empty() ? k : index[k];
     const MotionWindow& w = d.windows[wi];
-    std::optional<Pose2> ref;
-    if (references != nullptr) {
-      auto& cached = (*references)[wi];
-      if (!cached) cached = reference_window(d, w, mean_model);
-      ref = *cached;
-    } else {
-      ref = reference_window(d, w, mean_model);
-    }
+    const std::optional<Pose2> ref = window_reference(d, wi, mean_model, references);
     if (!constant_variance || k == 0) {
-      const Full growth = k2 * w.wheel_travel;
+      const Full growth = s.k2 * w.wheel_travel;
       variance = {density.scale(sxx + growth / 4.0), density.scale(syy + growth / 4.0),
                   density.scale(stt + growth / (base * base))};
     }
@@ -271,35 +376,7 @@ std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m
       nll = nll - log_density(zero, variance, heading_only, density);
       continue;
     }
-    PoseT<Full> pred;
-    if (mean_fields.empty()) {
-      Pose2 p;
-      if (predictions != nullptr) {
-        auto& cached = (*predictions)[wi];
-        if (!cached) {
-          cached = d.odometry == OdometryKind::kPose
-                       ? predict_window(d, w, mean_model, cache->increments(wi, mean_model.drive_tau))
-                       : predict_window(d, w, mean_model, nullptr);
-        }
-        p = *cached;
-      } else {
-        p = predict_window(d, w, mean_model);
-      }
-      pred = {Full(p.x), Full(p.y), Full(p.theta)};
-    } else {
-      const double* increments = nullptr;
-      if (d.odometry == OdometryKind::kPose && !drive_tau_fitted) {
-        if (cache != nullptr) {
-          increments = cache->increments(wi, mean_model.drive_tau);
-        } else {
-          buffer.resize(2 * (w.last - w.first));
-          drive_increments(d, w, mean_model.drive_tau, buffer.data());
-          increments = buffer.data();
-        }
-      }
-      const PoseT<Mean> pm = predict(d, w, mean_seed, increments);
-      pred = {lift(pm.x, to_full, n), lift(pm.y, to_full, n), lift(pm.theta, to_full, n)};
-    }
+    const PoseT<Full> pred = predicted(wi, buffer);
     // r = reference − prediction; the heading difference wrapped by its value.
     Full rt = -pred.theta;
     rt.v = angle_diff(ref->theta, pred.theta.v);
@@ -307,35 +384,9 @@ std::optional<double> derivatives_of(const MotionData& d, const OdometryModel& m
     if (heading_only) r[0] = r[1] = Full(0.0);
     Full ll = log_density(r, variance, heading_only, density);
     if (m.slip_rate > 0.0 && m.slip_loss != 0.0 && d.odometry == OdometryKind::kEncoder && w.last > w.first) {
-      const Full p = 1.0 - exp(-slip_rate * 0.5 * w.wheel_travel);
-      if (p.v > 0.0) {
-        double ul = 0.0, ur = 0.0;
-        for (std::size_t i = w.first; i < w.last; ++i) {
-          ul += d.steps[i].a * d.nominal.meters_per_tick_left;
-          ur += d.steps[i].b * d.nominal.meters_per_tick_right;
-        }
-        const double ns = static_cast<double>(w.last - w.first);
-        ul /= ns;
-        ur /= ns;
-        const std::array<Full, 3> left{-slip_loss * ul / 2.0, Full(0.0), slip_loss * ul / b};
-        const std::array<Full, 3> right{-slip_loss * ur / 2.0, Full(0.0), -slip_loss * ur / b};
-        const Full half_p = log(0.5 * p);
-        ll = log_sum_exp<3>({log1p(-p) + ll, half_p + log_density(shifted(r, left), variance, heading_only, density),
-                             half_p + log_density(shifted(r, right), variance, heading_only, density)});
-      }
+      ll = with_slip(ll, r, d, w, s, variance, heading_only, density);
     }
-    if (stalls && !heading_only) {
-      const double span = w.t1 - w.t0;
-      if (span > 0.0) {
-        const Full p = -expm1(-stall_rate * span);
-        const Full ratio = stall_duration / span;
-        const Full fraction = ratio.v < 1.0 ? ratio : Full(1.0);
-        if (p.v > 0.0) {
-          const std::array<Full, 3> shift{-fraction * pred.x, -fraction * pred.y, Full(0.0)};
-          ll = log_sum_exp<2>({log1p(-p) + ll, log(p) + log_density(shifted(r, shift), variance, false, density)});
-        }
-      }
-    }
+    if (stalls && !heading_only) ll = with_stall(ll, r, pred, w, s, variance, density);
     nll = nll - ll;
   }
   gradient.resize(n);

@@ -2,10 +2,13 @@
 // The two search procedures every channel shares, written once:
 //  - forward selection of catalog causes by likelihood ratio (Bonferroni over the candidates);
 //  - the time-offset profile, to a fraction of the reference's sample period, with a 95%
-//    interval from the profile deviance;
+//    interval from the profile deviance, and the fit that alternates it with the other
+//    parameters (fit_with_offset_profile);
 // and the rule that says when an offset is resolved at all.
+#include <cmath>
 #include <cstddef>
 #include <functional>
+#include <type_traits>
 #include <vector>
 
 namespace locbench::diagnosis {
@@ -52,5 +55,49 @@ struct OffsetProfile {
 };
 OffsetProfile profile_offset(const std::function<double(double)>& nll_fixed,
                              const std::function<double(double)>& nll_profiled, double dt, double range = 0.5);
+
+// A channel's fit with a free time offset, alternating: `fit_held(model)` fits the other
+// parameters at the model's offset, then the offset is profiled with them held, until the offset
+// moves less than half a fine step (judged from the `min_rounds`-th profile on, at most 4
+// profiles); then the offset's 95% interval from `refit(model)`, the NLL with the other
+// parameters re-fitted at the model's offset (empty: no interval). `Fit` has `model` (with
+// `time_offset`), `offset`, `has_offset` and `nll`; `nll(model)` is the channel's likelihood with
+// every parameter held. Each channel's fits (compass, odometry, landmark) use it.
+template <class Fit, class Model, class FitHeld, class Nll>
+Fit fit_with_offset_profile(const Model& start, const FitHeld& fit_held,
+                            const std::type_identity_t<std::function<double(const Model&)>>& refit, const Nll& nll,
+                            double dt, int min_rounds) {
+  auto at_offset = [&nll](const Model& held) {
+    return [&nll, held](double o) {
+      Model m = held;
+      m.time_offset = o;
+      return nll(m);
+    };
+  };
+  Fit f = fit_held(start);
+  for (int round = 0; round < 4; ++round) {
+    const Model held = f.model;
+    const OffsetProfile prof = profile_offset(at_offset(held), {}, dt);
+    const double moved = std::abs(prof.value - held.time_offset);
+    Model next = held;
+    next.time_offset = prof.value;
+    f = fit_held(next);
+    if (round + 1 >= min_rounds && moved < 0.5 * prof.step) break;
+  }
+  const Model best = f.model;
+  std::function<double(double)> profiled;
+  if (refit) {
+    profiled = [&](double o) {
+      Model m = best;
+      m.time_offset = o;
+      return refit(m);
+    };
+  }
+  f.offset = profile_offset(at_offset(best), profiled, dt);
+  f.model.time_offset = f.offset.value;
+  f.has_offset = true;
+  f.nll = nll(f.model);
+  return f;
+}
 
 }  // namespace locbench::diagnosis

@@ -93,34 +93,19 @@ struct Candidate {
   std::size_t k, j;
 };
 
-}  // namespace
+constexpr std::size_t kFree = static_cast<std::size_t>(-1);
 
-void validate(const RwhtOptions& o) { validate_fields(o, "RwhtOptions"); }
+// The scan as the phases see it: sensor-frame points and the breakpoint run of each.
+struct ScanView {
+  std::span<const ScanPoint> points;
+  std::vector<Eigen::Vector2d> s;
+  std::vector<std::size_t> run_of;
+  std::size_t n = 0;
+  std::size_t gap = 0;  // max_gap_points
+};
 
-RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame, const RwhtOptions& options) {
-  validate(options);
-  RwhtExtraction out;
-  std::size_t& work = out.extraction.work;
-  const std::size_t n = points.size();
-  if (n < options.acceptance.min_points || n < 2) return out;
-  const std::vector<Eigen::Vector2d> s = detail::sensor_points(points);
-  const std::vector<IndexRange> runs = detail::breakpoint_runs(points, options.breakpoints);
-  const std::vector<std::size_t> run_of = detail::run_index(runs, n);
-  work += n;
-
-  // 1. vote
-  double r_max = 0.0;
-  for (const ScanPoint& p : points) r_max = std::max(r_max, p.range);
-  const double n_cells = std::ceil(2.0 * kPi / options.angle_bin) * (std::floor(r_max / options.range_bin) + 1.0);
-  detail::require(n_cells <= kMaxCells, "RwhtOptions: angle_bin and range_bin give " + std::to_string(n_cells) +
-                                            " cells (max " + std::to_string(kMaxCells) + ")");
-  Accumulator acc(options.angle_bin, options.range_bin, r_max);
-  out.cells = acc.n_alpha * acc.n_r;
-  const double dphi = beam_spacing(points);
-  for (std::size_t i = 0; i < n; ++i) acc.vote(s[i], points[i].range * dphi);
-  work += n * acc.n_alpha;
-
-  // 2. peaks with non-maximum suppression, strongest first
+// Peaks with non-maximum suppression, strongest first.
+std::vector<Candidate> peak_candidates(const Accumulator& acc, const RwhtOptions& options) {
   std::vector<Candidate> candidates;
   for (std::size_t k = 0; k < acc.n_alpha; ++k) {
     for (std::size_t j = 0; j < acc.n_r; ++j) {
@@ -138,174 +123,219 @@ RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame, co
       if (acc.is_peak(k, j, options.nms_radius)) candidates.push_back({acc.votes[c], k, j});
     }
   }
-  work += out.cells;
   std::sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
     return a.votes != b.votes ? a.votes > b.votes : acc.cell(a.k, a.j) < acc.cell(b.k, b.j);
   });
+  return candidates;
+}
 
-  // 3. points of each peak: band, refit, inliers, contiguous pieces. A point belongs to one
-  // line; a later line may take the end point of an earlier one's stretch when it lies nearer
-  // to it (the stronger line would otherwise keep the first beam past a corner).
-  constexpr std::size_t kFree = static_cast<std::size_t>(-1);
-  std::vector<std::size_t> owner(n, kFree);
-  std::vector<LineParams> line_of;  // sensor-frame fit of every line, when it was accepted
-  std::vector<std::size_t> peak_of;
-  std::vector<std::size_t> members, previous, all;
+LineParams fit_points(const std::vector<std::size_t>& members, const ScanView& v) {
   std::vector<Eigen::Vector2d> scratch;
-  const double half_sin = std::sin(0.5 * acc.d_alpha);
-  const auto gap = static_cast<std::size_t>(options.max_gap_points);
-  // Whether point i ends its line's stretch of the scan (only such points can change lines).
-  const auto at_end = [&](std::size_t i) {
-    return i == 0 || i + 1 == n || owner[i - 1] != owner[i] || owner[i + 1] != owner[i];
-  };
-  const auto fit_members = [&]() {
-    scratch.clear();
-    for (const std::size_t i : members) scratch.push_back(s[i]);
-    return fit_line(scratch).line;
-  };
-  for (const Candidate& c : candidates) {
-    const RwhtPeak peak{{acc.r(c.j), acc.alpha(c.k)}, c.votes};
-    members.clear();
-    const detail::LineNormal cell(peak.cell);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double band = 0.5 * acc.d_r + points[i].range * half_sin + 3.0 * options.breakpoints.range_sigma;
-      if (cell.distance(s[i]) <= band) {
-        members.push_back(i);
-      }
-    }
-    work += n;
-    if (members.size() < options.acceptance.min_points) continue;
-    // The band also catches stray points of other walls crossing it: start from its largest
-    // contiguous stretch and trim it until all its points are within inlier_distance.
-    {
-      const std::vector<IndexRange> pieces = detail::contiguous_pieces(members, run_of, gap);
-      const IndexRange largest = *std::max_element(
-          pieces.begin(), pieces.end(), [](const IndexRange& a, const IndexRange& b) { return a.size() < b.size(); });
-      members.erase(members.begin() + static_cast<std::ptrdiff_t>(largest.end), members.end());
-      members.erase(members.begin(), members.begin() + static_cast<std::ptrdiff_t>(largest.begin));
-    }
-    while (members.size() >= options.acceptance.min_points) {
-      // Of the first, the last and the farthest point, drop the one whose removal leaves the
-      // smallest largest residual: a stray point at an end of the stretch has the leverage to
-      // pull the fit onto itself and need not be the farthest.
-      const auto worst_residual = [&](std::size_t skip, std::size_t& at) {
-        scratch.clear();
-        for (std::size_t m = 0; m < members.size(); ++m) {
-          if (m != skip) scratch.push_back(s[members[m]]);
-        }
-        const detail::LineNormal l(fit_line(scratch).line);
-        double worst = -1.0;
-        for (std::size_t m = 0; m < members.size(); ++m) {
-          const double d = m == skip ? -1.0 : l.distance(s[members[m]]);
-          if (d > worst) worst = d, at = m;
-        }
-        work += 2 * members.size();
-        return worst;
-      };
-      std::size_t farthest = 0, ignored = 0;
-      if (worst_residual(members.size(), farthest) <= options.inlier_distance) break;
-      std::size_t drop = farthest;
-      double best = worst_residual(farthest, ignored);
-      for (const std::size_t end_point : {std::size_t{0}, members.size() - 1}) {
-        const double r = worst_residual(end_point, ignored);
-        if (r < best) best = r, drop = end_point;
-      }
-      members.erase(members.begin() + static_cast<std::ptrdiff_t>(drop));
-    }
-    if (members.size() < options.acceptance.min_points) continue;
-    for (int round = 0; round < 3; ++round) {
-      const detail::LineNormal fitted(fit_members());
-      previous.swap(members);
-      members.clear();
-      for (std::size_t i = 0; i < n; ++i) {
-        if (fitted.distance(s[i]) <= options.inlier_distance) members.push_back(i);
-      }
-      work += n;
-      if (members == previous || members.size() < options.acceptance.min_points) break;
-    }
-    if (members.size() < options.acceptance.min_points) continue;
-    // A second peak of a line already found (its butterfly spreads over neighbouring cells).
-    const LineParams line = fit_members();
-    if (std::any_of(line_of.begin(), line_of.end(), [&](const LineParams& l) {
-          return std::abs(angle_diff(l.beta, line.beta)) < acc.d_alpha && std::abs(l.rho - line.rho) < acc.d_r;
-        })) {
-      continue;
-    }
-    // A held end point moves when it is nearer to this line than to its holder's, both lines
-    // fitted without it (a point must not pull the line it is judged against towards itself).
-    LineParams own = line;
-    previous.clear();
-    for (const std::size_t i : members) {
-      if (owner[i] == kFree) previous.push_back(i);
-    }
-    if (previous.size() >= 2 && previous.size() < members.size()) {
-      scratch.clear();
-      for (const std::size_t i : previous) scratch.push_back(s[i]);
-      own = fit_line(scratch).line;
-    }
-    std::erase_if(members, [&](std::size_t i) {
-      if (owner[i] == kFree) return false;
-      if (!at_end(i)) return true;
-      scratch.clear();  // the holder's line without i, for the same reason
-      for (std::size_t j = 0; j < n; ++j) {
-        if (owner[j] == owner[i] && j != i) scratch.push_back(s[j]);
-      }
-      work += n;
-      const LineParams holder = scratch.size() >= 2 ? fit_line(scratch).line : line_of[owner[i]];
-      return !(detail::LineNormal(own).distance(s[i]) < detail::LineNormal(holder).distance(s[i]));
-    });
-    all = members;
-    bool produced = false;
-    for (const IndexRange& piece : detail::contiguous_pieces(all, run_of, gap)) {
-      const auto idx = std::span<const std::size_t>(all).subspan(piece.begin, piece.size());
-      const std::optional<LineFit> fit = detail::accepted_fit(idx, s, options.acceptance, scratch);
-      if (!fit) continue;
-      for (const std::size_t i : idx) owner[i] = line_of.size();
-      line_of.push_back(fit->line);
-      peak_of.push_back(out.peaks.size());
-      produced = true;
-    }
-    if (produced) out.peaks.push_back(peak);
-  }
+  for (const std::size_t i : members) scratch.push_back(v.s[i]);
+  return fit_line(scratch).line;
+}
 
-  // The lines as their points finally stand: a line that lost points is cut and checked again,
-  // and points left without a line join the line of a neighbour in the scan within
-  // inlier_distance (the last step of the agglomerative extractor too).
-  std::vector<std::vector<std::size_t>> held(line_of.size());
-  for (std::size_t i = 0; i < n; ++i) {
+// The points within the peak cell's band (half a range bin, the cell's angular width at the
+// point's range and 3σ of range noise), cut to its largest contiguous stretch: the band also
+// catches stray points of other walls crossing it.
+std::vector<std::size_t> band_stretch(const ScanView& v, const Accumulator& acc, const RwhtPeak& peak,
+                                      const RwhtOptions& options) {
+  const double half_sin = std::sin(0.5 * acc.d_alpha);
+  std::vector<std::size_t> members;
+  const detail::LineNormal cell(peak.cell);
+  for (std::size_t i = 0; i < v.n; ++i) {
+    const double band = 0.5 * acc.d_r + v.points[i].range * half_sin + 3.0 * options.breakpoints.range_sigma;
+    if (cell.distance(v.s[i]) <= band) {
+      members.push_back(i);
+    }
+  }
+  if (members.size() < options.acceptance.min_points) return members;
+  const std::vector<IndexRange> pieces = detail::contiguous_pieces(members, v.run_of, v.gap);
+  const IndexRange largest = *std::max_element(
+      pieces.begin(), pieces.end(), [](const IndexRange& a, const IndexRange& b) { return a.size() < b.size(); });
+  members.erase(members.begin() + static_cast<std::ptrdiff_t>(largest.end), members.end());
+  members.erase(members.begin(), members.begin() + static_cast<std::ptrdiff_t>(largest.begin));
+  return members;
+}
+
+// The stretch trimmed until all its points are within inlier_distance: of the first, the last
+// and the farthest point, drop the one whose removal leaves the smallest largest residual (a
+// stray point at an end of the stretch has the leverage to pull the fit onto itself and need
+// not be the farthest).
+std::vector<std::size_t> trim_to_inliers(std::vector<std::size_t> members, const ScanView& v,
+                                         const RwhtOptions& options, std::size_t& work) {
+  std::vector<Eigen::Vector2d> scratch;
+  while (members.size() >= options.acceptance.min_points) {
+    const auto worst_residual = [&](std::size_t skip, std::size_t& at) {
+      scratch.clear();
+      for (std::size_t m = 0; m < members.size(); ++m) {
+        if (m != skip) scratch.push_back(v.s[members[m]]);
+      }
+      const detail::LineNormal l(fit_line(scratch).line);
+      double worst = -1.0;
+      for (std::size_t m = 0; m < members.size(); ++m) {
+        const double d = m == skip ? -1.0 : l.distance(v.s[members[m]]);
+        if (d > worst) worst = d, at = m;
+      }
+      work += 2 * members.size();
+      return worst;
+    };
+    std::size_t farthest = 0, ignored = 0;
+    if (worst_residual(members.size(), farthest) <= options.inlier_distance) break;
+    std::size_t drop = farthest;
+    double best = worst_residual(farthest, ignored);
+    for (const std::size_t end_point : {std::size_t{0}, members.size() - 1}) {
+      const double r = worst_residual(end_point, ignored);
+      if (r < best) best = r, drop = end_point;
+    }
+    members.erase(members.begin() + static_cast<std::ptrdiff_t>(drop));
+  }
+  return members;
+}
+
+// Refit and take every point of the scan within inlier_distance, up to three rounds or until the
+// inliers stay the same.
+std::vector<std::size_t> refit_inliers(std::vector<std::size_t> members, const ScanView& v, const RwhtOptions& options,
+                                       std::size_t& work) {
+  std::vector<std::size_t> previous;
+  for (int round = 0; round < 3; ++round) {
+    const detail::LineNormal fitted(fit_points(members, v));
+    previous.swap(members);
+    members.clear();
+    for (std::size_t i = 0; i < v.n; ++i) {
+      if (fitted.distance(v.s[i]) <= options.inlier_distance) members.push_back(i);
+    }
+    work += v.n;
+    if (members == previous || members.size() < options.acceptance.min_points) break;
+  }
+  return members;
+}
+
+// Which line holds each point, each line's sensor-frame fit and the peak it came from. A point
+// belongs to one line; a later line may take the end point of an earlier one's stretch when it
+// lies nearer to it (the stronger line would otherwise keep the first beam past a corner).
+struct Claims {
+  std::vector<std::size_t> owner;
+  std::vector<LineParams> line_of;
+  std::vector<std::size_t> peak_of;
+};
+
+// Whether point i ends its line's stretch of the scan (only such points can change lines).
+bool at_end(const Claims& c, std::size_t i) {
+  const std::size_t n = c.owner.size();
+  return i == 0 || i + 1 == n || c.owner[i - 1] != c.owner[i] || c.owner[i + 1] != c.owner[i];
+}
+
+// The new line's members without the held points it may not take: a held end point moves when
+// it is nearer to this line than to its holder's, both lines fitted without it (a point must not
+// pull the line it is judged against towards itself).
+std::vector<std::size_t> contest_held_points(std::vector<std::size_t> members, const LineParams& line,
+                                             const Claims& claims, const ScanView& v, std::size_t& work) {
+  LineParams own = line;
+  std::vector<std::size_t> free_members;
+  for (const std::size_t i : members) {
+    if (claims.owner[i] == kFree) free_members.push_back(i);
+  }
+  if (free_members.size() >= 2 && free_members.size() < members.size()) own = fit_points(free_members, v);
+  std::vector<Eigen::Vector2d> scratch;
+  std::erase_if(members, [&](std::size_t i) {
+    if (claims.owner[i] == kFree) return false;
+    if (!at_end(claims, i)) return true;
+    scratch.clear();  // the holder's line without i, for the same reason
+    for (std::size_t j = 0; j < v.n; ++j) {
+      if (claims.owner[j] == claims.owner[i] && j != i) scratch.push_back(v.s[j]);
+    }
+    work += v.n;
+    const LineParams holder = scratch.size() >= 2 ? fit_line(scratch).line : claims.line_of[claims.owner[i]];
+    return !(detail::LineNormal(own).distance(v.s[i]) < detail::LineNormal(holder).distance(v.s[i]));
+  });
+  return members;
+}
+
+// The points of one peak: band, trim, refit, inliers, then contiguous pieces claimed as lines
+// when accepted. Returns whether the peak produced a line.
+bool claim_peak(const Candidate& c, std::size_t peak_index, const Accumulator& acc, const ScanView& v,
+                const RwhtOptions& options, Claims& claims, std::size_t& work) {
+  const RwhtPeak peak{{acc.r(c.j), acc.alpha(c.k)}, c.votes};
+  std::vector<std::size_t> members = band_stretch(v, acc, peak, options);
+  work += v.n;
+  if (members.size() < options.acceptance.min_points) return false;
+  members = trim_to_inliers(std::move(members), v, options, work);
+  if (members.size() < options.acceptance.min_points) return false;
+  members = refit_inliers(std::move(members), v, options, work);
+  if (members.size() < options.acceptance.min_points) return false;
+  // A second peak of a line already found (its butterfly spreads over neighbouring cells).
+  const LineParams line = fit_points(members, v);
+  if (std::any_of(claims.line_of.begin(), claims.line_of.end(), [&](const LineParams& l) {
+        return std::abs(angle_diff(l.beta, line.beta)) < acc.d_alpha && std::abs(l.rho - line.rho) < acc.d_r;
+      })) {
+    return false;
+  }
+  const std::vector<std::size_t> all = contest_held_points(std::move(members), line, claims, v, work);
+  std::vector<Eigen::Vector2d> scratch;
+  bool produced = false;
+  for (const IndexRange& piece : detail::contiguous_pieces(all, v.run_of, v.gap)) {
+    const auto idx = std::span<const std::size_t>(all).subspan(piece.begin, piece.size());
+    const std::optional<LineFit> fit = detail::accepted_fit(idx, v.s, options.acceptance, scratch);
+    if (!fit) continue;
+    for (const std::size_t i : idx) claims.owner[i] = claims.line_of.size();
+    claims.line_of.push_back(fit->line);
+    claims.peak_of.push_back(peak_index);
+    produced = true;
+  }
+  return produced;
+}
+
+std::vector<std::vector<std::size_t>> points_by_line(const std::vector<std::size_t>& owner, std::size_t lines) {
+  std::vector<std::vector<std::size_t>> held(lines);
+  for (std::size_t i = 0; i < owner.size(); ++i) {
     if (owner[i] != kFree) held[owner[i]].push_back(i);
   }
-  std::fill(owner.begin(), owner.end(), kFree);
+  return held;
+}
+
+// The owners as the lines finally stand: a line that lost points is cut and checked again, and
+// points left without a line join the line of a neighbour in the scan within inlier_distance
+// (the last step of the agglomerative extractor too).
+std::vector<std::size_t> settled_owners(const Claims& claims, const ScanView& v, const RwhtOptions& options,
+                                        std::size_t& work) {
+  const std::vector<std::vector<std::size_t>> held = points_by_line(claims.owner, claims.line_of.size());
+  std::vector<std::size_t> owner(v.n, kFree);
+  std::vector<Eigen::Vector2d> scratch;
   for (std::size_t l = 0; l < held.size(); ++l) {
-    for (const IndexRange& piece : detail::contiguous_pieces(held[l], run_of, gap)) {
+    for (const IndexRange& piece : detail::contiguous_pieces(held[l], v.run_of, v.gap)) {
       const auto idx = std::span<const std::size_t>(held[l]).subspan(piece.begin, piece.size());
-      if (!detail::accepted_fit(idx, s, options.acceptance, scratch)) continue;
+      if (!detail::accepted_fit(idx, v.s, options.acceptance, scratch)) continue;
       for (const std::size_t i : idx) owner[i] = l;
     }
   }
   const std::vector<std::size_t> settled = owner;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < v.n; ++i) {
     if (settled[i] != kFree) continue;
     double best = options.inlier_distance;
     for (const std::size_t j : {i - 1, i + 1}) {  // i − 1 wraps to a huge index at i = 0
-      if (j >= n || settled[j] == kFree || run_of[j] != run_of[i]) continue;
+      if (j >= v.n || settled[j] == kFree || v.run_of[j] != v.run_of[i]) continue;
       ++work;
-      const double d = detail::LineNormal(line_of[settled[j]]).distance(s[i]);
+      const double d = detail::LineNormal(claims.line_of[settled[j]]).distance(v.s[i]);
       if (d <= best) best = d, owner[i] = settled[j];
     }
   }
-  for (auto& h : held) h.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (owner[i] != kFree) held[owner[i]].push_back(i);
-  }
+  return owner;
+}
+
+// The accepted pieces of each line in order of their first beam, with the peak of each.
+void append_lines_in_beam_order(const std::vector<std::size_t>& owner, const Claims& claims, const ScanView& v,
+                                LineFrame frame, const RwhtOptions& options, RwhtExtraction& out) {
+  const std::vector<std::vector<std::size_t>> held = points_by_line(owner, claims.line_of.size());
+  std::vector<Eigen::Vector2d> scratch;
   std::vector<std::pair<std::size_t, std::size_t>> order;  // (first beam, line)
   std::vector<ExtractedLine> lines;
   std::vector<std::size_t> line_peak;
   for (std::size_t l = 0; l < held.size(); ++l) {
-    for (const IndexRange& piece : detail::contiguous_pieces(held[l], run_of, gap)) {
+    for (const IndexRange& piece : detail::contiguous_pieces(held[l], v.run_of, v.gap)) {
       const auto idx = std::span<const std::size_t>(held[l]).subspan(piece.begin, piece.size());
-      if (detail::append_if_accepted(points, idx, s, frame, options.acceptance, scratch, lines)) {
-        line_peak.push_back(peak_of[l]);
+      if (detail::append_if_accepted(v.points, idx, v.s, frame, options.acceptance, scratch, lines)) {
+        line_peak.push_back(claims.peak_of[l]);
         order.emplace_back(lines.back().points.front().beam, lines.size() - 1);
       }
     }
@@ -315,6 +345,48 @@ RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame, co
     out.extraction.lines.push_back(std::move(lines[l]));
     out.line_peak.push_back(line_peak[l]);
   }
+}
+
+}  // namespace
+
+void validate(const RwhtOptions& o) { validate_fields(o, "RwhtOptions"); }
+
+RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame, const RwhtOptions& options) {
+  validate(options);
+  RwhtExtraction out;
+  std::size_t& work = out.extraction.work;
+  const std::size_t n = points.size();
+  if (n < options.acceptance.min_points || n < 2) return out;
+  ScanView v{points, detail::sensor_points(points), {}, n, static_cast<std::size_t>(options.max_gap_points)};
+  v.run_of = detail::run_index(detail::breakpoint_runs(points, options.breakpoints), n);
+  work += n;
+
+  // 1. vote
+  double r_max = 0.0;
+  for (const ScanPoint& p : points) r_max = std::max(r_max, p.range);
+  const double n_cells = std::ceil(2.0 * kPi / options.angle_bin) * (std::floor(r_max / options.range_bin) + 1.0);
+  detail::require(n_cells <= kMaxCells, "RwhtOptions: angle_bin and range_bin give " + std::to_string(n_cells) +
+                                            " cells (max " + std::to_string(kMaxCells) + ")");
+  Accumulator acc(options.angle_bin, options.range_bin, r_max);
+  out.cells = acc.n_alpha * acc.n_r;
+  const double dphi = beam_spacing(points);
+  for (std::size_t i = 0; i < n; ++i) acc.vote(v.s[i], points[i].range * dphi);
+  work += n * acc.n_alpha;
+
+  // 2. peaks with non-maximum suppression, strongest first
+  const std::vector<Candidate> candidates = peak_candidates(acc, options);
+  work += out.cells;
+
+  // 3. the points of each peak, claimed as lines
+  Claims claims{std::vector<std::size_t>(n, kFree), {}, {}};
+  for (const Candidate& c : candidates) {
+    if (claim_peak(c, out.peaks.size(), acc, v, options, claims, work)) {
+      out.peaks.push_back({{acc.r(c.j), acc.alpha(c.k)}, c.votes});
+    }
+  }
+
+  // 4. the lines as their points finally stand
+  append_lines_in_beam_order(settled_owners(claims, v, options, work), claims, v, frame, options, out);
   return out;
 }
 

@@ -66,10 +66,9 @@ void distort_velocity_odometry(Log& log, double vscale, double wscale, double wb
   log.odometry = out;
 }
 
-}  // namespace
-
-GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_t seed, const GeneratorOptions& o) {
-  Rng rng = Rng::stream(seed, 0);
+// The random path the effects are hidden in: waypoints in the square of side `area` (drawn from
+// `rng`), encoders, truth at every physics step, velocity odometry and compass as asked.
+Scenario random_path_scenario(const GeneratorOptions& o, Rng& rng) {
   Scenario s;
   s.name = "hidden_effects";
   s.world.kind = WorldKind::kNone;
@@ -90,10 +89,20 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
     s.compass.timing = SensorTiming{true, 10.0, 0.0, 0.005};  // between the truth samples, as on a real robot
     s.compass.noise = deg(0.2);
   }
-  GeneratedLog g;
-  g.effects = effects;
-  double vscale = 1.0, wscale = 1.0, wbias = 0.0;
-  std::int64_t tick_step = 1;
+  return s;
+}
+
+// What the effects do to the log after the simulation.
+struct LogDistortion {
+  double vscale = 1.0, wscale = 1.0, wbias = 0.0;  // velocity odometry
+  std::int64_t tick_step = 1;                      // encoder quantization
+};
+
+// Each effect put into the scenario (or into the distortion of the log), with the true value of
+// its parameters in `truth`; a disturbance's disc is centred on a waypoint drawn from `rng`.
+LogDistortion hide_effects(const std::vector<HiddenEffect>& effects, const GeneratorOptions& o, Rng& rng, Scenario& s,
+                           std::map<std::string, double>& truth) {
+  LogDistortion out;
   const double dn = s.robot.nominal.mean_diameter();
   for (const auto& e : effects) {
     if (!known(e.id)) throw UsageError("hidden effect: unknown id '" + e.id + "'");
@@ -104,25 +113,25 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
       const double mean = s.robot.actual.mean_diameter();
       s.robot.actual.diameter_left = mean * 2.0 / (1.0 + ed);
       s.robot.actual.diameter_right = mean * 2.0 * ed / (1.0 + ed);
-      g.truth["wheel_diameter_ratio.E_d"] = ed;
+      truth["wheel_diameter_ratio.E_d"] = ed;
     } else if (e.id == "wheelbase_scale") {
       s.robot.actual.wheelbase = s.robot.nominal.wheelbase * (1.0 + m);
-      g.truth["wheelbase_scale.E_b"] = 1.0 + m;
+      truth["wheelbase_scale.E_b"] = 1.0 + m;
     } else if (e.id == "mean_diameter_scale") {
       s.robot.actual.diameter_left *= 1.0 + m;
       s.robot.actual.diameter_right *= 1.0 + m;
-      g.truth["mean_diameter_scale.E_o"] = 1.0 + m;
+      truth["mean_diameter_scale.E_o"] = 1.0 + m;
     } else if (e.id == "encoder_quantization") {
-      tick_step = static_cast<std::int64_t>(std::llround(m));
-      if (tick_step < 2) throw UsageError("encoder_quantization: the step must be an integer ≥ 2 ticks");
-      g.truth["encoder_quantization.step_m"] =
-          static_cast<double>(tick_step) * kPi * dn / s.robot.encoder.counts_per_wheel_rev();
+      out.tick_step = static_cast<std::int64_t>(std::llround(m));
+      if (out.tick_step < 2) throw UsageError("encoder_quantization: the step must be an integer ≥ 2 ticks");
+      truth["encoder_quantization.step_m"] =
+          static_cast<double>(out.tick_step) * kPi * dn / s.robot.encoder.counts_per_wheel_rev();
     } else if (e.id == "compass_quantization") {
       s.compass.resolution = 2.0 * kPi / std::round(2.0 * kPi / m);  // a divisor of 2π
-      g.truth["compass_quantization.step_rad"] = s.compass.resolution;
+      truth["compass_quantization.step_rad"] = s.compass.resolution;
     } else if (e.id == "compass_bias") {
       s.compass.bias = m;
-      g.truth["compass_bias.bias_rad"] = m;
+      truth["compass_bias.bias_rad"] = m;
     } else if (e.id == "compass_disturbance") {
       DisturbanceZone z;
       z.shape = DisturbanceZone::Shape::kCircle;
@@ -131,36 +140,86 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
       z.radius = 1.5;
       z.bias = m;
       s.compass.zones.push_back(z);
-      g.truth["compass_disturbance.max_bias_rad"] = m;
-      g.truth["compass_disturbance.center_x"] = z.center.x();
-      g.truth["compass_disturbance.center_y"] = z.center.y();
+      truth["compass_disturbance.max_bias_rad"] = m;
+      truth["compass_disturbance.center_x"] = z.center.x();
+      truth["compass_disturbance.center_y"] = z.center.y();
     } else if (e.id == "wheel_slip") {
       s.slip.unit = SlipRateUnit::kPerMetre;
       s.slip.straight = {m, 0.2, 0.4};
       s.slip.turn = {m, 0.2, 0.4};
-      g.truth["wheel_slip.rate_per_m"] = m;
-      g.truth["wheel_slip.mean_loss"] = 0.3;
+      truth["wheel_slip.rate_per_m"] = m;
+      truth["wheel_slip.mean_loss"] = 0.3;
     } else if (e.id == "odometry_noise_growth") {
       if (m < 0.0) throw UsageError("odometry_noise_growth: k² must be ≥ 0");
       s.floor.k_left = s.floor.k_right = std::sqrt(m);
-      g.truth["odometry_noise_growth.k2_m"] = m;
+      truth["odometry_noise_growth.k2_m"] = m;
     } else if (e.id == "velocity_scale") {
-      vscale = 1.0 + m;
-      g.truth["velocity_scale.scale"] = vscale;
+      out.vscale = 1.0 + m;
+      truth["velocity_scale.scale"] = out.vscale;
     } else if (e.id == "turn_rate_scale") {
-      wscale = 1.0 + m;
-      g.truth["turn_rate_scale.scale"] = wscale;
+      out.wscale = 1.0 + m;
+      truth["turn_rate_scale.scale"] = out.wscale;
     } else if (e.id == "turn_rate_bias") {
-      wbias = m;
-      g.truth["turn_rate_bias.bias_rad_s"] = m;
+      out.wbias = m;
+      truth["turn_rate_bias.bias_rad_s"] = m;
     } else if (e.id == "sensor_time_offset") {
       if (o.velocity_odometry)
         s.odometry.timing.latency = m;
       else
         s.encoders.timing.latency = m;
-      g.truth["sensor_time_offset.offset_s"] = m;
+      truth["sensor_time_offset.offset_s"] = m;
     }
   }
+  return out;
+}
+
+// Encoder counts rounded down to multiples of `step` ticks.
+void quantize_encoders(std::vector<EncoderReading>& encoders, std::int64_t step) {
+  for (auto& e : encoders) {
+    auto q = [&](std::int64_t n) { return (n >= 0 ? n / step : -((-n + step - 1) / step)) * step; };
+    e.left = q(e.left);
+    e.right = q(e.right);
+  }
+}
+
+// Relations between odometry instants about 1 s apart, from the (noisy) truth.
+std::vector<Relation> relations_from_truth(const Log& log) {
+  std::vector<Relation> relations;
+  std::vector<double> times;
+  for (const auto& e : log.encoders) times.push_back(e.t);
+  for (const auto& e : log.odometry) times.push_back(e.t);
+  std::optional<double> t1;
+  auto pose_at = [&](double t) -> std::optional<Pose2> {
+    auto it =
+        std::lower_bound(log.truth.begin(), log.truth.end(), t, [](const TruePose& p, double v) { return p.t < v; });
+    if (it == log.truth.begin() || it == log.truth.end()) return std::nullopt;
+    const auto& b = *it;
+    const auto& a = *(it - 1);
+    const double f = (t - a.t) / (b.t - a.t);
+    return Pose2(a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
+                 a.pose.theta + f * angle_diff(b.pose.theta, a.pose.theta));
+  };
+  for (double t : times) {
+    if (!t1) {
+      t1 = t;
+      continue;
+    }
+    if (t - *t1 < 1.0) continue;
+    const auto a = pose_at(*t1), b = pose_at(t);
+    if (a && b) relations.push_back({*t1, t, between(*a, *b)});
+    t1 = t;
+  }
+  return relations;
+}
+
+}  // namespace
+
+GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_t seed, const GeneratorOptions& o) {
+  Rng rng = Rng::stream(seed, 0);
+  Scenario s = random_path_scenario(o, rng);
+  GeneratedLog g;
+  g.effects = effects;
+  const LogDistortion distortion = hide_effects(effects, o, rng, s, g.truth);
   g.log = simulate(s, Rng::derive_seed(seed, 1)).log;
   Log& log = g.log;
   log.name = "sim/hidden_effects";
@@ -170,18 +229,10 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
     it = it->first.rfind("sim_", 0) == 0 ? log.params.erase(it) : std::next(it);
   }
   if (o.compass) log.params["compass_resolution"] = "0";
-  if (tick_step > 1) {
-    for (auto& e : log.encoders) {
-      auto q = [&](std::int64_t n) {
-        return (n >= 0 ? n / tick_step : -((-n + tick_step - 1) / tick_step)) * tick_step;
-      };
-      e.left = q(e.left);
-      e.right = q(e.right);
-    }
-  }
+  if (distortion.tick_step > 1) quantize_encoders(log.encoders, distortion.tick_step);
   if (o.velocity_odometry) {
     log.encoders.clear();
-    distort_velocity_odometry(log, vscale, wscale, wbias);
+    distort_velocity_odometry(log, distortion.vscale, distortion.wscale, distortion.wbias);
   } else {
     log.odometry.clear();
   }
@@ -193,31 +244,7 @@ GeneratedLog generate_log(const std::vector<HiddenEffect>& effects, std::uint64_
   }
   log.laser.clear();
   if (o.reference == GeneratedReference::kRelations) {
-    // Relations between odometry instants about 1 s apart, from the (noisy) truth.
-    std::vector<double> times;
-    for (const auto& e : log.encoders) times.push_back(e.t);
-    for (const auto& e : log.odometry) times.push_back(e.t);
-    std::optional<double> t1;
-    auto pose_at = [&](double t) -> std::optional<Pose2> {
-      auto it =
-          std::lower_bound(log.truth.begin(), log.truth.end(), t, [](const TruePose& p, double v) { return p.t < v; });
-      if (it == log.truth.begin() || it == log.truth.end()) return std::nullopt;
-      const auto& b = *it;
-      const auto& a = *(it - 1);
-      const double f = (t - a.t) / (b.t - a.t);
-      return Pose2(a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
-                   a.pose.theta + f * angle_diff(b.pose.theta, a.pose.theta));
-    };
-    for (double t : times) {
-      if (!t1) {
-        t1 = t;
-        continue;
-      }
-      if (t - *t1 < 1.0) continue;
-      const auto a = pose_at(*t1), b = pose_at(t);
-      if (a && b) log.relations.push_back({*t1, t, between(*a, *b)});
-      t1 = t;
-    }
+    log.relations = relations_from_truth(log);
     log.truth.clear();
   } else if (o.reference == GeneratedReference::kCompass) {
     log.truth.clear();

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "benchmarks/experiments/framework/experiment.h"
+#include "pipelines/slip_sim.h"
 
 namespace locbench::experiments {
 namespace {
@@ -102,6 +103,22 @@ TEST(SlipExperiments, IndirectKfTables3334) {
     }
   }
   EXPECT_TRUE(saw_db);
+}
+
+// Table 3.4 re-runs the EKF under models that need every run's estimates: the records carry each
+// run's ticks, so that second pass simulates nothing, on any number of threads.
+TEST(SlipExperiments, IndirectKfSimulatesEachRunOnce) {
+  const Experiment* e = find_experiment("slip/indirect_kf_tables_3_3_3_4");
+  ASSERT_NE(e, nullptr);
+  const nlohmann::json config = merge_config(e->default_config(), {{"calibration_runs", 1}});
+  RunOptions o;
+  o.seed = 11;
+  o.runs = 3;
+  o.threads = 2;
+  const std::size_t before = slip_sim::simulations;
+  const auto r = e->run(config, o);
+  EXPECT_EQ(slip_sim::simulations - before, 3u + 1u);  // the runs and the calibration run
+  ASSERT_GE(r.published.size(), 2u);
 }
 
 // The full default configuration (10 runs), only when LOCBENCH_SLIP_FULL is set (for the

@@ -65,6 +65,97 @@ void visit_fields(V& v, Options& o) {
           "share of each log calibrated on (the rest evaluates)");
 }
 
+// Parameter estimates that agree with Censi et al.'s published ones, of those compared.
+struct Agreement {
+  int agree = 0, compared = 0;
+};
+
+// One of Censi et al.'s Khepera sets, calibrated with their noise model (per-component) and
+// outlier rejection (4 × 1%) and compared with their published solution.
+void compare_with_censi(const std::string& part, const DatasetEntry& censi, const std::filesystem::path& data_root,
+                        reports::ExperimentResults& out, Agreement& agreement) {
+  const std::filesystem::path results = data_root / censi.path / (part + "_results.json");
+  if (!std::filesystem::exists(results)) {
+    // The case name ends in the results' dataset key, so gates know these were skipped.
+    out.cases.push_back({"calibration/censi_" + reports::key_part(part), "skipped",
+                         "dataset not found at " + results.string() + " (set LOCBENCH_DATA)"});
+    return;
+  }
+  const CalibrationData data =
+      calibration::calibration_data_from_records(load_catalog_calibration_records(censi, data_root, part));
+  const CensiPublishedResult pub = read_censi_results(results);
+  MlCalibrationOptions o;
+  o.noise.kind = NoiseModelKind::kPerComponent;
+  o.outliers = {4, 0.01};
+  const MlCalibrationResult r = calibrate_ml(data, o);
+  const std::string ds = "censi_" + reports::key_part(part);
+  out.datasets.push_back({ds, (data_root / censi.path / (part + ".tuple.gz")).string(),
+                          file_checksum(data_root / censi.path / (part + ".tuple.gz")), data.samples.size(), 0.0});
+  const double published[6] = {pub.left_radius(), pub.right_radius(), pub.axle,
+                               pub.sensor_x,      pub.sensor_y,       pub.sensor_theta};
+  const char* names[6] = {"r_L", "r_R", "b", "sensor_x", "sensor_y", "sensor_theta"};
+  const char* units[6] = {"m", "m", "m", "m", "m", "rad"};
+  reports::PublishedComparison t{
+      "Censi et al. 2013, " + part + "_results.json", "calibrated parameters", "m, rad", {}, ""};
+  std::string worst;
+  double worst_ratio = 0.0;
+  for (int i = 0; i < 6; ++i) {
+    const CalibratedParameter& p = r.parameter(names[i]);
+    reports::MetricResult m =
+        reports::make_estimate("ml", ds, names[i], units[i], p.value, p.standard_error, r.samples_used);
+    m.identifiable = p.identifiable;
+    if (!p.identifiable) m.note = p.reason;
+    out.results.push_back(std::move(m));
+    const double bound = 2.0 * std::hypot(pub.standard_error(i), p.standard_error);
+    t.rows.push_back({names[i], published[i], p.value});
+    if (std::isfinite(bound)) t.rows.back().tolerance = bound;
+    const double ratio = std::abs(p.value - published[i]) / bound;
+    ++agreement.compared;
+    if (ratio <= 1.0) ++agreement.agree;
+    if (ratio > worst_ratio) {
+      worst_ratio = ratio;
+      worst = names[i];
+    }
+  }
+  t.note = fmt::format(
+      "Agreement criterion per parameter: |ours − published| ≤ 2·√(σ_pub² + σ_ours²). "
+      "Largest ratio to that bound: {:.2f} ({}); {} of {} samples used after 4 × 1% outlier "
+      "rejection.",
+      worst_ratio, worst, r.samples_used, r.samples_used + r.samples_rejected);
+  t.claim = "Censi et al.'s ML calibration of the Khepera (wheel radii, axle, laser pose) on " + part;
+  t.tolerance_basis = "per parameter 2·√(σ_pub² + σ_ours²), both estimates' standard errors";
+  out.published.push_back(std::move(t));
+}
+
+// A log calibrated on its first `fraction` and evaluated on the rest.
+void record_held_out(const std::string& name, const CalibrationData& d, const MlCalibrationOptions& o,
+                     const std::string& path, double fraction, reports::ExperimentResults& out) {
+  const HeldOutEvaluation h = evaluate_held_out(d, o, fraction);
+  const std::string ds = reports::key_part(name);
+  out.datasets.push_back({ds, path, file_checksum(path.substr(0, path.find('#'))), d.samples.size(), 0.0});
+  for (const CalibratedParameter& p : h.calibration.parameters) {
+    reports::MetricResult m =
+        reports::make_estimate("ml_first_half", ds, p.name, "", p.value, p.standard_error, h.calibration.samples_used);
+    m.identifiable = p.identifiable;
+    if (!p.identifiable) m.note = p.reason;
+    out.results.push_back(std::move(m));
+  }
+  out.results.push_back(
+      one_value("odometry_nominal", ds, "held_out_rpe_translation_rmse", "m", h.nominal_translation.rmse));
+  out.results.push_back(
+      one_value("odometry_calibrated", ds, "held_out_rpe_translation_rmse", "m", h.calibrated_translation.rmse));
+  out.results.push_back(
+      one_value("odometry_nominal", ds, "held_out_rpe_rotation_rmse", "rad", h.nominal_rotation.rmse));
+  out.results.push_back(
+      one_value("odometry_calibrated", ds, "held_out_rpe_rotation_rmse", "rad", h.calibrated_rotation.rmse));
+  out.notes.push_back(
+      fmt::format("{}: calibrated on {} samples, evaluated on {}: translation RMSE {:.4g} → {:.4g} m "
+                  "({:+.1f}%), rotation RMSE {:.4g} → {:.4g} rad ({:+.1f}%).",
+                  name, h.training_samples, h.evaluation_samples, h.nominal_translation.rmse,
+                  h.calibrated_translation.rmse, -100 * h.translation_rmse_reduction, h.nominal_rotation.rmse,
+                  h.calibrated_rotation.rmse, -100 * h.rotation_rmse_reduction));
+}
+
 class CalibrationRealLogs final : public OptionsExperiment<Options> {
  public:
   reports::ExperimentResults run_with(const Options& c, const RunOptions& options) const override {
@@ -72,103 +163,23 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
     const std::vector<std::string>& parts = c.censi_parts;
     const auto rel_logs = real_log_specs(c.relations_logs, name() + ": relations_logs");
     const auto vel_logs = real_log_specs(c.velocity_logs, name() + ": velocity_logs");
-    const double fraction = c.training_fraction;
     const std::size_t total = parts.size() + rel_logs.size() + vel_logs.size();
     std::size_t done = 0;
     auto progress = [&] { options.report_progress(static_cast<double>(done++) / total); };
 
-    // Censi et al.'s data: their noise model (per-component) and outlier rejection (4 × 1%).
     const DatasetEntry* censi = find_dataset("censi_khepera");
-    int agree = 0, compared = 0;
+    Agreement agreement;
     for (const std::string& part : parts) {
       progress();
-      const std::filesystem::path results = options.data_root / censi->path / (part + "_results.json");
-      if (!std::filesystem::exists(results)) {
-        // The case name ends in the results' dataset key, so gates know these were skipped.
-        out.cases.push_back({"calibration/censi_" + reports::key_part(part), "skipped",
-                             "dataset not found at " + results.string() + " (set LOCBENCH_DATA)"});
-        continue;
-      }
-      const CalibrationData data =
-          calibration::calibration_data_from_records(load_catalog_calibration_records(*censi, options.data_root, part));
-      const CensiPublishedResult pub = read_censi_results(results);
-      MlCalibrationOptions o;
-      o.noise.kind = NoiseModelKind::kPerComponent;
-      o.outliers = {4, 0.01};
-      const MlCalibrationResult r = calibrate_ml(data, o);
-      const std::string ds = "censi_" + reports::key_part(part);
-      out.datasets.push_back({ds, (options.data_root / censi->path / (part + ".tuple.gz")).string(),
-                              file_checksum(options.data_root / censi->path / (part + ".tuple.gz")),
-                              data.samples.size(), 0.0});
-      const double published[6] = {pub.left_radius(), pub.right_radius(), pub.axle,
-                                   pub.sensor_x,      pub.sensor_y,       pub.sensor_theta};
-      const char* names[6] = {"r_L", "r_R", "b", "sensor_x", "sensor_y", "sensor_theta"};
-      const char* units[6] = {"m", "m", "m", "m", "m", "rad"};
-      reports::PublishedComparison t{
-          "Censi et al. 2013, " + part + "_results.json", "calibrated parameters", "m, rad", {}, ""};
-      std::string worst;
-      double worst_ratio = 0.0;
-      for (int i = 0; i < 6; ++i) {
-        const CalibratedParameter& p = r.parameter(names[i]);
-        reports::MetricResult m =
-            reports::make_estimate("ml", ds, names[i], units[i], p.value, p.standard_error, r.samples_used);
-        m.identifiable = p.identifiable;
-        if (!p.identifiable) m.note = p.reason;
-        out.results.push_back(std::move(m));
-        const double bound = 2.0 * std::hypot(pub.standard_error(i), p.standard_error);
-        t.rows.push_back({names[i], published[i], p.value});
-        if (std::isfinite(bound)) t.rows.back().tolerance = bound;
-        const double ratio = std::abs(p.value - published[i]) / bound;
-        ++compared;
-        if (ratio <= 1.0) ++agree;
-        if (ratio > worst_ratio) {
-          worst_ratio = ratio;
-          worst = names[i];
-        }
-      }
-      t.note = fmt::format(
-          "Agreement criterion per parameter: |ours − published| ≤ 2·√(σ_pub² + σ_ours²). "
-          "Largest ratio to that bound: {:.2f} ({}); {} of {} samples used after 4 × 1% outlier "
-          "rejection.",
-          worst_ratio, worst, r.samples_used, r.samples_used + r.samples_rejected);
-      t.claim = "Censi et al.'s ML calibration of the Khepera (wheel radii, axle, laser pose) on " + part;
-      t.tolerance_basis = "per parameter 2·√(σ_pub² + σ_ours²), both estimates' standard errors";
-      out.published.push_back(std::move(t));
+      compare_with_censi(part, *censi, options.data_root, out, agreement);
     }
-    if (compared > 0) {
+    if (agreement.compared > 0) {
       out.notes.push_back(
           fmt::format("Censi's Khepera data: {} of {} parameter estimates agree with the published solutions "
                       "within 2·√(σ_pub² + σ_ours²).",
-                      agree, compared));
+                      agreement.agree, agreement.compared));
     }
 
-    auto held_out = [&](const std::string& name, const CalibrationData& d, const MlCalibrationOptions& o,
-                        const std::string& path) {
-      const HeldOutEvaluation h = evaluate_held_out(d, o, fraction);
-      const std::string ds = reports::key_part(name);
-      out.datasets.push_back({ds, path, file_checksum(path.substr(0, path.find('#'))), d.samples.size(), 0.0});
-      for (const CalibratedParameter& p : h.calibration.parameters) {
-        reports::MetricResult m = reports::make_estimate("ml_first_half", ds, p.name, "", p.value, p.standard_error,
-                                                         h.calibration.samples_used);
-        m.identifiable = p.identifiable;
-        if (!p.identifiable) m.note = p.reason;
-        out.results.push_back(std::move(m));
-      }
-      out.results.push_back(
-          one_value("odometry_nominal", ds, "held_out_rpe_translation_rmse", "m", h.nominal_translation.rmse));
-      out.results.push_back(
-          one_value("odometry_calibrated", ds, "held_out_rpe_translation_rmse", "m", h.calibrated_translation.rmse));
-      out.results.push_back(
-          one_value("odometry_nominal", ds, "held_out_rpe_rotation_rmse", "rad", h.nominal_rotation.rmse));
-      out.results.push_back(
-          one_value("odometry_calibrated", ds, "held_out_rpe_rotation_rmse", "rad", h.calibrated_rotation.rmse));
-      out.notes.push_back(
-          fmt::format("{}: calibrated on {} samples, evaluated on {}: translation RMSE {:.4g} → {:.4g} m "
-                      "({:+.1f}%), rotation RMSE {:.4g} → {:.4g} rad ({:+.1f}%).",
-                      name, h.training_samples, h.evaluation_samples, h.nominal_translation.rmse,
-                      h.calibrated_translation.rmse, -100 * h.translation_rmse_reduction, h.nominal_rotation.rmse,
-                      h.calibrated_rotation.rmse, -100 * h.rotation_rmse_reduction));
-    };
     // Calibrates on each log of `specs` that loads; a missing catalog log is a skipped case.
     auto each_loaded = [&](const std::vector<RealLogSpec>& specs, const MlCalibrationOptions& o,
                            const auto& samples_of) {
@@ -181,7 +192,7 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
               {"calibration/" + spec.name, loaded.status, "dataset not found at " + loaded.dataset.path});
           continue;
         }
-        held_out(spec.name, samples_of(loaded.log), o, loaded.dataset.path);
+        record_held_out(spec.name, samples_of(loaded.log), o, loaded.dataset.path, c.training_fraction, out);
       }
     };
     RelationSampleOptions local;

@@ -367,6 +367,17 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     out.notes.push_back(text);
   }
 
+  // A part of a log's summary: lines of its note and the results they report, in order.
+  struct Section {
+    std::string text;
+    std::vector<reports::MetricResult> results;
+  };
+
+  static void append(Section&& section, std::string& table, reports::ExperimentResults& out) {
+    table += section.text;
+    for (auto& r : section.results) out.results.push_back(std::move(r));
+  }
+
   static void summarise_log(const std::string& ds, const Outcome& o, const Options& c, const RunOptions& options,
                             reports::ExperimentResults& out, Tallies& tallies) {
     if (o.note) out.cases.push_back(*o.note);
@@ -380,159 +391,182 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         ds, o.to - o.mid, o.to - o.from, o.observations, o.other_robot_observations, o.models.source,
         o.models.causes.empty() ? "none" : fmt::format("{}", fmt::join(o.models.causes, ", ")),
         o.dead_reckoning.position_rmse());
-    if (o.tuning_noise && o.heldout_noise) {
-      const LandmarkSensorModel &a = *o.tuning_noise, &b = *o.heldout_noise;
-      table += fmt::format(
-          "\n  sensor noise against the truth (1.4826·MAD, a stationarity check no method uses): range σ {:.3f} m "
-          "tuning, {:.3f} m held-out (×{:.2f}); bearing σ {:.4f} rad, {:.4f} rad (×{:.2f}){}",
-          a.range_sigma, b.range_sigma, b.range_sigma / a.range_sigma, a.bearing_sigma, b.bearing_sigma,
-          b.bearing_sigma / a.bearing_sigma,
-          std::max(b.range_sigma / a.range_sigma, b.bearing_sigma / a.bearing_sigma) > 1.5
-              ? " — the held-out half is noisier than the half every setting was tuned on, so tuned settings "
-                "are overconfident there"
-              : "");
-      const NoiseStructure& st = o.models.diagnosed_sensor.structure;
-      table += fmt::format(
-          "\n  noise structure on the tuning half (the extended twin draws it): per-landmark biases spread σ "
-          "{:.3f} m, {:.4f} rad; time correlation without them: range {:.0f}% of the variance with τ {:.2g} s, "
-          "bearing {:.0f}% with τ {:.2g} s; noise level between {:.0f} s blocks: ln σ spread range {:.2f}, "
-          "bearing {:.2f}",
-          st.range_landmark_sigma, st.bearing_landmark_sigma, 100.0 * st.range_correlation.share,
-          st.range_correlation.time_s, 100.0 * st.bearing_correlation.share, st.bearing_correlation.time_s,
-          kLevelBlockS, st.range_level_sigma, st.bearing_level_sigma);
-      const MotionNoiseStructure& ms = o.motion_structure;
-      table += fmt::format(
-          "; the diagnosed motion model's window residuals: along {:.0f}% with τ {:.2g} s, left {:.0f}% with τ "
-          "{:.2g} s, heading {:.0f}% with τ {:.2g} s",
-          100.0 * ms.x.share, ms.x.time_s, 100.0 * ms.y.share, ms.y.time_s, 100.0 * ms.theta.share, ms.theta.time_s);
-      for (const auto& [variant, value] :
-           {std::pair{"tuning_range_sigma", a.range_sigma}, std::pair{"heldout_range_sigma", b.range_sigma}}) {
-        out.results.push_back(reports::make_estimate("sensor_noise", ds, variant, "m", value, 0.0, 1));
-      }
-      for (const auto& [variant, value] :
-           {std::pair{"tuning_bearing_sigma", a.bearing_sigma}, std::pair{"heldout_bearing_sigma", b.bearing_sigma}}) {
-        out.results.push_back(reports::make_estimate("sensor_noise", ds, variant, "rad", value, 0.0, 1));
-      }
-    }
+    if (o.tuning_noise && o.heldout_noise) append(noise_section(ds, o), table, out);
     out.results.push_back(rmse_metric("dead_reckoning", ds, "heldout_position_rmse", "m", o.dead_reckoning,
                                       o.dead_reckoning.position_error, o.mid, c.block_s, blocks, c.bootstrap_resamples,
                                       seed));
     const MethodScore* nominal = nullptr;
     const MethodScore* diagnosed = nullptr;
     for (const MethodScore& m : o.scores) {
-      const std::string method = to_string(m.method);
-      const TrackResult& r = m.heldout;
-      auto pos = rmse_metric(method, ds, "heldout_position_rmse", "m", r, r.position_error, o.mid, c.block_s, blocks,
-                             c.bootstrap_resamples, seed);
-      out.results.push_back(pos);
-      out.results.push_back(rmse_metric(method, ds, "heldout_heading_rmse", "rad", r, r.heading_error, o.mid, c.block_s,
-                                        blocks, c.bootstrap_resamples, seed));
-      const double nees = r.nees.empty() ? std::numeric_limits<double>::infinity() : mean(r.nees);
-      const filters::ChiSquareInterval band =
-          filters::average_chi_square_interval(3, static_cast<int>(std::max<std::size_t>(blocks, 1)), 0.95);
-      const bool inside = std::isfinite(nees) && band.contains(nees);
-      auto nees_metric = reports::make_estimate(method, ds, "heldout_nees_time_average", "", nees, 0.0, r.nees.size());
-      nees_metric.better = "stable";
-      nees_metric.note = fmt::format("3 for a consistent filter; 95% band [{:.3g}, {:.3g}] over {} blocks of {:g} s",
-                                     band.lower, band.upper, blocks, c.block_s);
-      if (std::isfinite(nees)) out.results.push_back(nees_metric);
-      auto inside_metric =
-          reports::make_estimate(method, ds, "heldout_nees_inside_band", "", inside ? 1.0 : 0.0, 0.0, r.nees.size());
-      inside_metric.better = "higher";
-      out.results.push_back(inside_metric);
-      auto gated =
-          reports::make_estimate(method, ds, "heldout_gated_fraction", "", r.gated_fraction(), 0.0, r.observations);
-      gated.better = "lower";
-      out.results.push_back(gated);
-      auto div = reports::make_estimate(method, ds, "heldout_diverged", "", r.diverged ? 1.0 : 0.0, 0.0, 1);
-      div.better = "lower";
-      out.results.push_back(div);
-      auto q = reports::make_estimate(method, ds, "tuned_process_scale", "", m.process_scale, 0.0, m.grid_runs);
-      q.better = "stable";
-      out.results.push_back(q);
-      auto k = reports::make_estimate(method, ds, "tuned_second_knob", "", m.knob, 0.0, m.grid_runs);
-      k.better = "stable";
-      out.results.push_back(k);
-      table += fmt::format(
-          "\n  {:<18} Q×{:<8.4g} {}={:<6.4g} tuning {:.3f} m, NEES {:.3g}{} | held-out {:.3f} m [{:.3f}, {:.3f}], "
-          "heading {:.4f} "
-          "rad, NEES {:.3g} ({} [{:.3g}, {:.3g}]), gated {:.1f}% of {}, {} recoveries{}",
-          method, m.process_scale, m.method == Method::kSageHusa || m.method == Method::kVbAkf ? "forget" : "R×",
-          m.knob, m.tuning_rmse, m.tuning_nees, m.consistent_setting ? " (inside)" : " (outside)", pos.summary.mean,
-          pos.summary.ci95_low, pos.summary.ci95_high, r.heading_rmse(), nees, inside ? "inside" : "outside",
-          band.lower, band.upper, 100.0 * r.gated_fraction(), r.observations, r.recoveries,
-          r.diverged ? ", DIVERGED" : "");
-      Tally& tally = tallies[method];
-      tally.rmse.push_back(pos.summary.mean);
-      tally.diverged += r.diverged ? 1 : 0;
-      tally.consistent += inside ? 1 : 0;
-      if (m.method != Method::kFixedQ && !o.scores.empty() && o.scores.front().method == Method::kFixedQ) {
-        BootstrapInterval ci;
-        out.results.push_back(paired_difference(method + "_minus_fixed_q", ds, r, o.scores.front().heldout, o.mid,
-                                                c.block_s, blocks, c.bootstrap_resamples, seed, ci));
-        tally.better += ci.high < 0.0 ? 1 : 0;
-        tally.worse += ci.low > 0.0 ? 1 : 0;
-        table += fmt::format(" — vs fixed Q {:+.3f} m [{:+.3f}, {:+.3f}]: {}", out.results.back().summary.mean, ci.low,
-                             ci.high, verdict_word(ci));
-      }
+      append(method_section(ds, o, m, c, blocks, seed, tallies[to_string(m.method)]), table, out);
       if (m.method == Method::kNominalModel) nominal = &m;
       if (m.method == Method::kDiagnosedModel) diagnosed = &m;
     }
-    if (nominal && diagnosed) {
-      BootstrapInterval d;
-      out.results.push_back(paired_difference("diagnosed_minus_nominal", ds, diagnosed->heldout, nominal->heldout,
-                                              o.mid, c.block_s, blocks, c.bootstrap_resamples, seed, d));
-      table += fmt::format("\n  diagnosed − nominal model: {:+.3f} m [{:+.3f}, {:+.3f}] (paired): {}",
-                           out.results.back().summary.mean, d.low, d.high, verdict_word(d));
-      if (!(d.high < 0.0)) {  // why not: where the model helped and where it did not
-        table += fmt::format(
-            "\n  Why not better: on the tuning half, where the diagnosis was fitted, the diagnosed model reaches "
-            "{:.3f} m against the nominal model's {:.3f} m ({}); on the held-out half {:.3f} m against {:.3f} m, "
-            "NEES {:.3g} against {:.3g}, gated {:.1f}% against {:.1f}% — {}.",
-            diagnosed->tuning_rmse, nominal->tuning_rmse,
-            diagnosed->tuning_rmse < nominal->tuning_rmse ? "better" : "not better", diagnosed->heldout.position_rmse(),
-            nominal->heldout.position_rmse(), diagnosed->heldout.nees.empty() ? 0.0 : mean(diagnosed->heldout.nees),
-            nominal->heldout.nees.empty() ? 0.0 : mean(nominal->heldout.nees),
-            100.0 * diagnosed->heldout.gated_fraction(), 100.0 * nominal->heldout.gated_fraction(),
-            diagnosed->tuning_rmse < nominal->tuning_rmse
-                ? "what the causes gain where they were fitted does not carry over to the other half"
-                : "the extended model does not help the filter even on the half it was fitted on");
-      }
-    }
+    if (nominal && diagnosed) append(diagnosed_vs_nominal(ds, o, *nominal, *diagnosed, c, blocks, seed), table, out);
     out.notes.push_back(table);
     out.plots.push_back(error_plot(ds, o, false));
     out.plots.push_back(error_plot(ds, o, true));
     if (!o.twin_cells.empty()) {
-      std::string twins = fmt::format(
-          "{} — twin forecasts of the {}: each method at its tuned setting on {} seeded runs of the "
-          "nominal twin (fitted floor, nominal sensor) and of the extended twin (every diagnosed cause, the fitted "
-          "landmark sensor); the real value beside each twin's 95% predictive interval",
-          ds, twin_part(c), o.twin_cells.begin()->second.front().nominal.runs);
-      for (const auto& [name, m] :
-           {std::pair{"nominal", o.models.nominal_sensor}, std::pair{"extended", o.models.diagnosed_sensor}}) {
-        twins += fmt::format(
-            "\n  {} twin's sensor: range {:.3f}·ρ {:+.3f} m, σ_r {:.3f} m + {:.3f}·ρ, bearing bias {:+.4f} rad, σ_φ "
-            "{:.4f} rad + {:.4f} s·ω, t dof {:g} (0: normal), time offset {:+.3f} s, {} landmarks moved",
-            name, m.range_scale, m.range_bias, m.range_sigma, m.range_noise_slope, m.bearing_bias, m.bearing_sigma,
-            m.bearing_noise_turn_slope, m.dof, m.time_offset, m.landmark_shift.size());
-      }
-      for (const auto& [metric, cells] : o.twin_cells) {
-        twins += fmt::format("\n  {}:{}", metric, cell_lines(cells, metric_unit(metric)));
-      }
-      twins +=
-          "\n  1 s window residuals of the logged odometry (nominal model) against each twin's, pooled over its "
-          "runs: KS distance D, block-bootstrap p (blocks of 10 windows; p > 0.05: not distinguishable):";
-      for (const ResidualKs& k : o.twin_residuals) {
-        twins +=
-            fmt::format("\n    {:<6} {} windows | nominal twin D {:.3f}, p {:.3f} | extended twin D {:.3f}, p {:.3f}",
-                        k.component, k.extended.n, k.nominal.d, k.nominal.p_value, k.extended.d, k.extended.p_value);
-      }
-      out.notes.push_back(twins);
+      out.notes.push_back(twin_note(ds, o, c));
       out.plots.push_back(
           interval_plot(ds + "_twin_intervals_position_rmse",
                         fmt::format("{}: position RMSE on the {}, real and forecast by the twins", ds, twin_part(c)),
                         "m", o.twin_cells.at("position_rmse")));
     }
+  }
+
+  // The sensor noise of both halves against the truth, and the noise structure the twins draw.
+  static Section noise_section(const std::string& ds, const Outcome& o) {
+    Section s;
+    const LandmarkSensorModel &a = *o.tuning_noise, &b = *o.heldout_noise;
+    s.text += fmt::format(
+        "\n  sensor noise against the truth (1.4826·MAD, a stationarity check no method uses): range σ {:.3f} m "
+        "tuning, {:.3f} m held-out (×{:.2f}); bearing σ {:.4f} rad, {:.4f} rad (×{:.2f}){}",
+        a.range_sigma, b.range_sigma, b.range_sigma / a.range_sigma, a.bearing_sigma, b.bearing_sigma,
+        b.bearing_sigma / a.bearing_sigma,
+        std::max(b.range_sigma / a.range_sigma, b.bearing_sigma / a.bearing_sigma) > 1.5
+            ? " — the held-out half is noisier than the half every setting was tuned on, so tuned settings "
+              "are overconfident there"
+            : "");
+    const NoiseStructure& st = o.models.diagnosed_sensor.structure;
+    s.text += fmt::format(
+        "\n  noise structure on the tuning half (the extended twin draws it): per-landmark biases spread σ "
+        "{:.3f} m, {:.4f} rad; time correlation without them: range {:.0f}% of the variance with τ {:.2g} s, "
+        "bearing {:.0f}% with τ {:.2g} s; noise level between {:.0f} s blocks: ln σ spread range {:.2f}, "
+        "bearing {:.2f}",
+        st.range_landmark_sigma, st.bearing_landmark_sigma, 100.0 * st.range_correlation.share,
+        st.range_correlation.time_s, 100.0 * st.bearing_correlation.share, st.bearing_correlation.time_s, kLevelBlockS,
+        st.range_level_sigma, st.bearing_level_sigma);
+    const MotionNoiseStructure& ms = o.motion_structure;
+    s.text += fmt::format(
+        "; the diagnosed motion model's window residuals: along {:.0f}% with τ {:.2g} s, left {:.0f}% with τ "
+        "{:.2g} s, heading {:.0f}% with τ {:.2g} s",
+        100.0 * ms.x.share, ms.x.time_s, 100.0 * ms.y.share, ms.y.time_s, 100.0 * ms.theta.share, ms.theta.time_s);
+    for (const auto& [variant, value] :
+         {std::pair{"tuning_range_sigma", a.range_sigma}, std::pair{"heldout_range_sigma", b.range_sigma}}) {
+      s.results.push_back(reports::make_estimate("sensor_noise", ds, variant, "m", value, 0.0, 1));
+    }
+    for (const auto& [variant, value] :
+         {std::pair{"tuning_bearing_sigma", a.bearing_sigma}, std::pair{"heldout_bearing_sigma", b.bearing_sigma}}) {
+      s.results.push_back(reports::make_estimate("sensor_noise", ds, variant, "rad", value, 0.0, 1));
+    }
+    return s;
+  }
+
+  // One method on the held-out half: its metrics, its line of the table, and its tally.
+  static Section method_section(const std::string& ds, const Outcome& o, const MethodScore& m, const Options& c,
+                                std::size_t blocks, std::uint64_t seed, Tally& tally) {
+    Section s;
+    const std::string method = to_string(m.method);
+    const TrackResult& r = m.heldout;
+    auto pos = rmse_metric(method, ds, "heldout_position_rmse", "m", r, r.position_error, o.mid, c.block_s, blocks,
+                           c.bootstrap_resamples, seed);
+    s.results.push_back(pos);
+    s.results.push_back(rmse_metric(method, ds, "heldout_heading_rmse", "rad", r, r.heading_error, o.mid, c.block_s,
+                                    blocks, c.bootstrap_resamples, seed));
+    const double nees = r.nees.empty() ? std::numeric_limits<double>::infinity() : mean(r.nees);
+    const filters::ChiSquareInterval band =
+        filters::average_chi_square_interval(3, static_cast<int>(std::max<std::size_t>(blocks, 1)), 0.95);
+    const bool inside = std::isfinite(nees) && band.contains(nees);
+    auto nees_metric = reports::make_estimate(method, ds, "heldout_nees_time_average", "", nees, 0.0, r.nees.size());
+    nees_metric.better = "stable";
+    nees_metric.note = fmt::format("3 for a consistent filter; 95% band [{:.3g}, {:.3g}] over {} blocks of {:g} s",
+                                   band.lower, band.upper, blocks, c.block_s);
+    if (std::isfinite(nees)) s.results.push_back(nees_metric);
+    auto inside_metric =
+        reports::make_estimate(method, ds, "heldout_nees_inside_band", "", inside ? 1.0 : 0.0, 0.0, r.nees.size());
+    inside_metric.better = "higher";
+    s.results.push_back(inside_metric);
+    auto gated =
+        reports::make_estimate(method, ds, "heldout_gated_fraction", "", r.gated_fraction(), 0.0, r.observations);
+    gated.better = "lower";
+    s.results.push_back(gated);
+    auto div = reports::make_estimate(method, ds, "heldout_diverged", "", r.diverged ? 1.0 : 0.0, 0.0, 1);
+    div.better = "lower";
+    s.results.push_back(div);
+    auto q = reports::make_estimate(method, ds, "tuned_process_scale", "", m.process_scale, 0.0, m.grid_runs);
+    q.better = "stable";
+    s.results.push_back(q);
+    auto k = reports::make_estimate(method, ds, "tuned_second_knob", "", m.knob, 0.0, m.grid_runs);
+    k.better = "stable";
+    s.results.push_back(k);
+    s.text += fmt::format(
+        "\n  {:<18} Q×{:<8.4g} {}={:<6.4g} tuning {:.3f} m, NEES {:.3g}{} | held-out {:.3f} m [{:.3f}, {:.3f}], "
+        "heading {:.4f} "
+        "rad, NEES {:.3g} ({} [{:.3g}, {:.3g}]), gated {:.1f}% of {}, {} recoveries{}",
+        method, m.process_scale, m.method == Method::kSageHusa || m.method == Method::kVbAkf ? "forget" : "R×", m.knob,
+        m.tuning_rmse, m.tuning_nees, m.consistent_setting ? " (inside)" : " (outside)", pos.summary.mean,
+        pos.summary.ci95_low, pos.summary.ci95_high, r.heading_rmse(), nees, inside ? "inside" : "outside", band.lower,
+        band.upper, 100.0 * r.gated_fraction(), r.observations, r.recoveries, r.diverged ? ", DIVERGED" : "");
+    tally.rmse.push_back(pos.summary.mean);
+    tally.diverged += r.diverged ? 1 : 0;
+    tally.consistent += inside ? 1 : 0;
+    if (m.method != Method::kFixedQ && !o.scores.empty() && o.scores.front().method == Method::kFixedQ) {
+      BootstrapInterval ci;
+      s.results.push_back(paired_difference(method + "_minus_fixed_q", ds, r, o.scores.front().heldout, o.mid,
+                                            c.block_s, blocks, c.bootstrap_resamples, seed, ci));
+      tally.better += ci.high < 0.0 ? 1 : 0;
+      tally.worse += ci.low > 0.0 ? 1 : 0;
+      s.text += fmt::format(" — vs fixed Q {:+.3f} m [{:+.3f}, {:+.3f}]: {}", s.results.back().summary.mean, ci.low,
+                            ci.high, verdict_word(ci));
+    }
+    return s;
+  }
+
+  // The diagnosed motion model against the nominal one (paired), and why not better when it is not.
+  static Section diagnosed_vs_nominal(const std::string& ds, const Outcome& o, const MethodScore& nominal,
+                                      const MethodScore& diagnosed, const Options& c, std::size_t blocks,
+                                      std::uint64_t seed) {
+    Section s;
+    BootstrapInterval d;
+    s.results.push_back(paired_difference("diagnosed_minus_nominal", ds, diagnosed.heldout, nominal.heldout, o.mid,
+                                          c.block_s, blocks, c.bootstrap_resamples, seed, d));
+    s.text += fmt::format("\n  diagnosed − nominal model: {:+.3f} m [{:+.3f}, {:+.3f}] (paired): {}",
+                          s.results.back().summary.mean, d.low, d.high, verdict_word(d));
+    if (!(d.high < 0.0)) {  // why not: where the model helped and where it did not
+      s.text += fmt::format(
+          "\n  Why not better: on the tuning half, where the diagnosis was fitted, the diagnosed model reaches "
+          "{:.3f} m against the nominal model's {:.3f} m ({}); on the held-out half {:.3f} m against {:.3f} m, "
+          "NEES {:.3g} against {:.3g}, gated {:.1f}% against {:.1f}% — {}.",
+          diagnosed.tuning_rmse, nominal.tuning_rmse,
+          diagnosed.tuning_rmse < nominal.tuning_rmse ? "better" : "not better", diagnosed.heldout.position_rmse(),
+          nominal.heldout.position_rmse(), diagnosed.heldout.nees.empty() ? 0.0 : mean(diagnosed.heldout.nees),
+          nominal.heldout.nees.empty() ? 0.0 : mean(nominal.heldout.nees), 100.0 * diagnosed.heldout.gated_fraction(),
+          100.0 * nominal.heldout.gated_fraction(),
+          diagnosed.tuning_rmse < nominal.tuning_rmse
+              ? "what the causes gain where they were fitted does not carry over to the other half"
+              : "the extended model does not help the filter even on the half it was fitted on");
+    }
+    return s;
+  }
+
+  // The twins' forecasts of the log beside the real values, and their residuals' KS distances.
+  static std::string twin_note(const std::string& ds, const Outcome& o, const Options& c) {
+    std::string twins = fmt::format(
+        "{} — twin forecasts of the {}: each method at its tuned setting on {} seeded runs of the "
+        "nominal twin (fitted floor, nominal sensor) and of the extended twin (every diagnosed cause, the fitted "
+        "landmark sensor); the real value beside each twin's 95% predictive interval",
+        ds, twin_part(c), o.twin_cells.begin()->second.front().nominal.runs);
+    for (const auto& [name, m] :
+         {std::pair{"nominal", o.models.nominal_sensor}, std::pair{"extended", o.models.diagnosed_sensor}}) {
+      twins += fmt::format(
+          "\n  {} twin's sensor: range {:.3f}·ρ {:+.3f} m, σ_r {:.3f} m + {:.3f}·ρ, bearing bias {:+.4f} rad, σ_φ "
+          "{:.4f} rad + {:.4f} s·ω, t dof {:g} (0: normal), time offset {:+.3f} s, {} landmarks moved",
+          name, m.range_scale, m.range_bias, m.range_sigma, m.range_noise_slope, m.bearing_bias, m.bearing_sigma,
+          m.bearing_noise_turn_slope, m.dof, m.time_offset, m.landmark_shift.size());
+    }
+    for (const auto& [metric, cells] : o.twin_cells) {
+      twins += fmt::format("\n  {}:{}", metric, cell_lines(cells, metric_unit(metric)));
+    }
+    twins +=
+        "\n  1 s window residuals of the logged odometry (nominal model) against each twin's, pooled over its "
+        "runs: KS distance D, block-bootstrap p (blocks of 10 windows; p > 0.05: not distinguishable):";
+    for (const ResidualKs& k : o.twin_residuals) {
+      twins +=
+          fmt::format("\n    {:<6} {} windows | nominal twin D {:.3f}, p {:.3f} | extended twin D {:.3f}, p {:.3f}",
+                      k.component, k.extended.n, k.nominal.d, k.nominal.p_value, k.extended.d, k.extended.p_value);
+    }
+    return twins;
   }
 
   // Which half the twins replay (option twin_replays_tuning_half).
