@@ -363,11 +363,7 @@ Action add_run_command(CLI::App& app, const std::string& command_line) {
   cmd->add_option("--skip-missing", args->skip_missing,
                   "Accept that this dataset (or case, or \"all\") is absent; otherwise a case skipped "
                   "for missing data fails the run (exit 2); repeatable");
-  add_bag_topic_options(cmd, args->topics);
-  return [args = args, command_line] {
-    args->log = with_bag_topics(args->log, args->topics);
-    return run(*args, command_line);
-  };
+  return bag_topic_action(cmd, args, &RunArgs::log, [command_line](const RunArgs& a) { return run(a, command_line); });
 }
 
 }  // namespace locbench::cli

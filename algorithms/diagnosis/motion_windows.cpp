@@ -141,9 +141,9 @@ void fill_covariates(const MotionData& m, MotionWindow& w) {
   }
 }
 
-// The data judged before any fit (issue 26): a robot that never moves gives no test any power
-// (it was "No significant discrepancy"), and ground truth on another scale than the odometry is
-// not a reference (TRUEPOS × 1e300 got the clean log's verdict).
+// The data judged before any fit: a robot that never moves gives no test any power (nothing could
+// be found, so "no significant discrepancy" would mislead), and ground truth on another scale than
+// the odometry is not a reference (TRUEPOS × 1e300 would get the clean log's verdict).
 void check_motion_and_scale(const MotionData& m, const std::string& file) {
   double odometry_path = 0.0, odometry_turn = 0.0;
   for (const MotionWindow& w : m.windows) odometry_path += w.distance, odometry_turn += std::abs(w.turn);
@@ -193,7 +193,7 @@ std::vector<OdometryStep> encoder_steps(const Log& log, const NominalModel& nomi
                                    b.t));
     }
     // A step no wheel can make (a tick glitch, a counter reset) is refused with its time rather
-    // than absorbed by the fits (issue 26: a 1e9-tick glitch passed with the clean log's verdict).
+    // than absorbed by the fits (a 1e9-tick glitch would otherwise pass with the clean verdict).
     const double travel = std::max(std::abs(static_cast<double>(dl) * nominal.meters_per_tick_left),
                                    std::abs(static_cast<double>(dr) * nominal.meters_per_tick_right));
     if (!(travel <= kMaxWheelSpeed * (b.t - a.t) + 1.0)) {

@@ -1,4 +1,4 @@
-// Experiment noise/landmark_logs: the thesis's filters on logged data (issue 25). Each log with
+// Experiment noise/landmark_logs: the thesis's filters on logged data. Each log with
 // landmark observations and ground truth (MRCLAM Dataset 6 robots 1–5, or a user's log with a
 // landmark map) is split in time: the first part tunes every method (the same 7 × 3 grid each)
 // and fits the diagnosis, the rest is held out and scored against the truth. Methods: fixed-Q EKF,
