@@ -297,14 +297,7 @@ ad::Full with_slip(const ad::Full& ll, const std::array<ad::Full, 3>& r, const M
   using namespace ad;
   const Full p = 1.0 - exp(-s.slip_rate * 0.5 * w.wheel_travel);
   if (!(p.v > 0.0)) return ll;
-  double ul = 0.0, ur = 0.0;
-  for (std::size_t i = w.first; i < w.last; ++i) {
-    ul += d.steps[i].a * d.nominal.meters_per_tick_left;
-    ur += d.steps[i].b * d.nominal.meters_per_tick_right;
-  }
-  const double ns = static_cast<double>(w.last - w.first);
-  ul /= ns;
-  ur /= ns;
+  const auto [ul, ur] = mean_wheel_steps(d, w);
   const std::array<Full, 3> left{-s.slip_loss * ul / 2.0, Full(0.0), s.slip_loss * ul / s.b};
   const std::array<Full, 3> right{-s.slip_loss * ur / 2.0, Full(0.0), -s.slip_loss * ur / s.b};
   const Full half_p = log(0.5 * p);

@@ -45,6 +45,18 @@ StallOdds stall_odds(const MotionData& d, const MotionWindow& w, const OdometryM
 
 }  // namespace
 
+WheelStepMeans mean_wheel_steps(const MotionData& d, const MotionWindow& w) {
+  WheelStepMeans m;
+  for (std::size_t i = w.first; i < w.last; ++i) {
+    m.left += d.steps[i].a * d.nominal.meters_per_tick_left;
+    m.right += d.steps[i].b * d.nominal.meters_per_tick_right;
+  }
+  const double ns = static_cast<double>(w.last - w.first);
+  m.left /= ns;
+  m.right /= ns;
+  return m;
+}
+
 double expected_stall_loss(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
   const StallOdds s = stall_odds(d, w, m);
   return s.p * s.fraction;
@@ -337,14 +349,7 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m, cons
     if (m.slip_rate > 0.0 && m.slip_loss != 0.0 && d.odometry == OdometryKind::kEncoder && w.last > w.first) {
       const double p = 1.0 - std::exp(-m.slip_rate * 0.5 * w.wheel_travel);
       if (p > 0.0) {
-        double ul = 0.0, ur = 0.0;
-        for (std::size_t i = w.first; i < w.last; ++i) {
-          ul += d.steps[i].a * d.nominal.meters_per_tick_left;
-          ur += d.steps[i].b * d.nominal.meters_per_tick_right;
-        }
-        const double ns = static_cast<double>(w.last - w.first);
-        ul /= ns;
-        ur /= ns;
+        const auto [ul, ur] = mean_wheel_steps(d, w);
         const Eigen::Vector3d shift_left{-m.slip_loss * ul / 2.0, 0.0, m.slip_loss * ul / b};
         const Eigen::Vector3d shift_right{-m.slip_loss * ur / 2.0, 0.0, -m.slip_loss * ur / b};
         const double l0 = std::log1p(-p) + ll;

@@ -60,6 +60,13 @@ void to_json(nlohmann::json& j, const OdometryModel& m);
 void from_json(const nlohmann::json& j, OdometryModel& m);
 void validate(const OdometryModel& m);
 
+// A window's mean travel of the left and right wheel per encoder step [m] (the slip mixture's
+// shift scales with it).
+struct WheelStepMeans {
+  double left = 0.0, right = 0.0;
+};
+WheelStepMeans mean_wheel_steps(const MotionData& d, const MotionWindow& w);
+
 // The expected fraction of a window's translation lost to drive stalls, p·f above (0 when the
 // model has none or the odometry is encoder counts).
 double expected_stall_loss(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
