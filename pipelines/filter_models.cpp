@@ -13,6 +13,9 @@ LandmarkSensorModel sensor_of(const diagnosis::LandmarkModel& m) {
   LandmarkSensorModel s;
   s.range_scale = m.range_scale;
   s.range_bias = m.range_bias;
+  s.range_off_axis_linear = m.range_off_axis_linear;
+  s.range_off_axis = m.range_off_axis;
+  s.field_of_view = m.field_of_view;
   s.bearing_bias = m.bearing_bias;
   s.range_sigma = m.sigma_range;
   s.bearing_sigma = m.sigma_bearing;

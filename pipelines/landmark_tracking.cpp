@@ -251,16 +251,17 @@ LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSens
   std::vector<int> ids;
   diagnosis::TruthInterpolator truth(data.motion.truth);
   for (const Observation& o : data.observations) {
-    const auto p = truth.at(o.t);
+    const auto p = truth.at(o.t - sensor.time_offset);
     if (!p) continue;
-    const Eigen::Vector2d m = data.map.at(o.id);
+    Eigen::Vector2d m = data.map.at(o.id);
+    if (const auto it = sensor.landmark_shift.find(o.id); it != sensor.landmark_shift.end()) m += it->second;
     const double dx = m.x() - p->x, dy = m.y() - p->y;
+    const double rho = std::hypot(dx, dy), phi = wrap_angle(std::atan2(dy, dx) - p->theta);
     times.push_back(o.t);
     ids.push_back(o.id);
-    range.push_back(o.range - std::hypot(dx, dy));
-    range_model_sigma.push_back(
-        std::max(1e-9, std::hypot(sensor.range_sigma, sensor.range_noise_slope * std::hypot(dx, dy))));
-    bearing.push_back(angle_diff(o.bearing, std::atan2(dy, dx) - p->theta));
+    range.push_back(o.range - (sensor.range_scale_at(phi) * rho + sensor.range_bias));
+    range_model_sigma.push_back(std::max(1e-9, std::hypot(sensor.range_sigma, sensor.range_noise_slope * rho)));
+    bearing.push_back(angle_diff(o.bearing, phi + sensor.bearing_bias));
   }
   if (range.size() < 20) throw InputError(data.log, 0, "fewer than 20 landmark observations with ground truth");
   sensor.range_sigma = robust_sigma(range);
@@ -442,16 +443,17 @@ std::vector<TimedObservation> timed_observations(const TrackingData& data, const
     Eigen::Vector2d m = data.map.at(o.id);
     if (const auto it = sm.landmark_shift.find(o.id); it != sm.landmark_shift.end()) m += it->second;
     LandmarkRangeBearing z;
-    z.range = (o.range - sm.range_bias) / sm.range_scale;
     z.bearing = o.bearing - sm.bearing_bias;
+    // The scale at the measured bearing (its noise moves the scale by ~2k·φ·σ_φ, negligible).
+    const double scale = sm.range_scale_at(wrap_angle(z.bearing));
+    z.range = (o.range - sm.range_bias) / scale;
     z.landmark_x = m.x();
     z.landmark_y = m.y();
     // The white part of the noise (all of it unless the filter carries the correlated part as biases).
     const double range_white = carries_bias ? 1.0 - sm.structure.range_correlation.share : 1.0;
     const double bearing_white = carries_bias ? 1.0 - sm.structure.bearing_correlation.share : 1.0;
     const double sr = sm.range_noise_slope * z.range;
-    z.range_variance =
-        r_scale * (range_white * sm.range_sigma * sm.range_sigma + sr * sr) / (sm.range_scale * sm.range_scale);
+    z.range_variance = r_scale * (range_white * sm.range_sigma * sm.range_sigma + sr * sr) / (scale * scale);
     const double sb = sm.bearing_noise_turn_slope * turn_rate_at(steps, o.t - sm.time_offset);
     z.bearing_variance = r_scale * (bearing_white * sm.bearing_sigma * sm.bearing_sigma + sb * sb);
     obs.push_back({o.t - sm.time_offset, z});

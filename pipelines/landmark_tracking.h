@@ -15,6 +15,7 @@
 // - nominal_model, diagnosed_model: a fitted motion model (diagnosis::OdometryModel: velocity and
 //   turn scales, turn bias, drive lag, time offset, stalls, k² growth, the white floor) used for
 //   both the prediction and the process noise, and its fitted landmark sensor model.
+#include <algorithm>
 #include <map>
 #include <vector>
 
@@ -28,7 +29,8 @@
 
 namespace locbench::experiments::landmarks {
 
-// The landmark sensor a filter assumes: z_r = range_scale·ρ + range_bias + n_r,
+// The landmark sensor a filter assumes: z_r = s(φ)·ρ + range_bias + n_r with the range scale
+// s(φ) = range_scale + range_off_axis_linear·φ + range_off_axis·φ² off the sensor's axis,
 // z_φ = φ + bearing_bias + n_φ, var n_r = range_sigma² + (range_noise_slope·ρ)², var n_φ =
 // bearing_sigma² + (bearing_noise_turn_slope·ω)² (ω the turn rate: the filter takes the odometry's,
 // the twin its truth's); an observation logged at t was taken at true time t − time_offset; landmark id's
@@ -54,6 +56,12 @@ struct NoiseStructure {
 
 struct LandmarkSensorModel {
   double range_scale = 1.0, range_bias = 0.0, bearing_bias = 0.0;
+  double range_off_axis_linear = 0.0, range_off_axis = 0.0;  // [1/rad], [1/rad²]
+  double field_of_view = 3.141592653589793;                  // [rad]: s(φ) held at its value beyond ±field_of_view
+  double range_scale_at(double phi) const {
+    const double p = std::clamp(phi, -field_of_view, field_of_view);
+    return range_scale + (range_off_axis_linear + range_off_axis * p) * p;
+  }
   double range_sigma = 0.1, bearing_sigma = 0.05, range_noise_slope = 0.0;
   double bearing_noise_turn_slope = 0.0;  // [s]
   double time_offset = 0.0;
@@ -94,8 +102,9 @@ struct TrackingData {
 // no landmark map, no observation of a map landmark in the span, or no usable odometry or truth.
 TrackingData tracking_data(const Log& log, double from, double to, double wheelbase);
 
-// The nominal sensor's noise measured on a span: σ_r and σ_φ = 1.4826·MAD of the range and
-// bearing residuals against the truth at the observation times (robust: the residuals have heavy
+// A sensor's noise measured on a span: σ_r and σ_φ = 1.4826·MAD of the range and bearing
+// residuals against the truth under `sensor`'s deterministic part (scale, off-axis scale, biases,
+// time offset, moved landmarks; for the nominal sensor the raw residuals) (robust: the residuals have heavy
 // tails), and their structure: the spread of the per-landmark medians (1.4826·MAD over landmarks
 // with ≥ 10 observations) and the time correlation of the residuals less their landmark's median
 // (fit_noise_correlation), and how the noise level varies along the span (noise_level_spread; the

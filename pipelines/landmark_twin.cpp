@@ -158,7 +158,7 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
     const auto [range_bias, bearing_bias] = landmark_bias.at(o.id);
     const bool varies = sensor.structure.range_level_sigma > 0.0 || sensor.structure.bearing_level_sigma > 0.0;
     const auto [range_level, bearing_level] = varies ? level_at(o.t) : std::pair{1.0, 1.0};
-    z.range = sensor.range_scale * rho + sensor.range_bias + range_bias +
+    z.range = sensor.range_scale_at(wrap_angle(phi)) * rho + sensor.range_bias + range_bias +
               range_level * sigma_r * range_part.draw(o.t, sensor.dof, rng);
     z.bearing = wrap_angle(phi + sensor.bearing_bias + bearing_bias +
                            bearing_level * sigma_b * bearing_part.draw(o.t, sensor.dof, rng));

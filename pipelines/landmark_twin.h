@@ -19,7 +19,7 @@
 // Each observation keeps its logged time and landmark; it was taken at true time t − the sensor's
 // time_offset, from the twin's pose then, of the landmark at its surveyed position plus the
 // sensor's landmark_shift, and is drawn from the sensor model (landmark_tracking.h):
-//   z_r = range_scale·ρ + range_bias + n_r,  z_φ = φ + bearing_bias + n_φ,
+//   z_r = range_scale_at(φ)·ρ + range_bias + n_r,  z_φ = φ + bearing_bias + n_φ,
 //   n_r = √(range_sigma² + (range_noise_slope·ρ)²) · u_r,
 //   n_φ = √(bearing_sigma² + (bearing_noise_turn_slope·ω)²) · u_φ  (ω: the truth's turn rate, ±0.05 s),
 // u = √(1 − s)·t_ν + √s·b, with s and b the share and the Gauss–Markov process of the channel's

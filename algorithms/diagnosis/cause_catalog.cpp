@@ -40,6 +40,17 @@ void add_landmark_causes(std::vector<CauseSpec>& c) {
                .metric = lk,
                .explains = {"bias:landmark_range"},
                .explain = [](const Cause& x) { return "the measured ranges carry a bias of " + ci(x, 0) + " m"; }});
+  c.push_back({.id = cause::kLandmarkRangeOffAxis,
+               .channel = "landmark",
+               .params = {{"per_rad", "1/rad", nullptr, 0.0, 1e-3, false, -1.0, 1.0},
+                          {"per_rad2", "1/rad²", nullptr, 0.0, 1e-3, false, -2.0, 2.0}},
+               .metric = lk,
+               .explains = {"off_axis_dependence:landmark_range"},
+               .explain = [](const Cause& x) {
+                 return "the range scale changes off the sensor's axis by " + ci(x, 0) + " per rad and " + ci(x, 1) +
+                        " per rad² of bearing (z_r = (scale + k₁·φ + k₂·φ²)·ρ + bias): a camera reading range from "
+                        "a landmark's apparent size, with lens distortion towards the image's edges";
+               }});
   c.push_back({.id = cause::kLandmarkBearingBias,
                .channel = "landmark",
                .params = {{"bias_rad", "rad", nullptr, 0.0, 1e-3, false, -0.3, 0.3}},

@@ -34,6 +34,7 @@ inline constexpr std::string_view kCompassBias = "compass_bias";
 inline constexpr std::string_view kCompassDisturbance = "compass_disturbance";
 inline constexpr std::string_view kLandmarkRangeScale = "landmark_range_scale";
 inline constexpr std::string_view kLandmarkRangeBias = "landmark_range_bias";
+inline constexpr std::string_view kLandmarkRangeOffAxis = "landmark_range_off_axis_scale";
 inline constexpr std::string_view kLandmarkBearingBias = "landmark_bearing_bias";
 inline constexpr std::string_view kLandmarkTimeOffset = "landmark_time_offset";
 inline constexpr std::string_view kLandmarkRangeNoise = "landmark_range_dependent_noise";

@@ -142,7 +142,8 @@ Diagnosis diagnose_log(const Log& log, const MotionData& data, const DiagnosisOp
     channels.push_back(&landmarks);
   } else {
     out.not_testable.push_back(
-        "landmark_range_scale, landmark_range_bias, landmark_bearing_bias, landmark_time_offset, "
+        "landmark_range_scale, landmark_range_bias, landmark_range_off_axis_scale, landmark_bearing_bias, "
+        "landmark_time_offset, "
         "landmark_range_dependent_noise, landmark_heavy_tails, landmark_position_error: need at least 40 landmark "
         "observations of mapped landmarks, a landmark map and TRUEPOS");
   }

@@ -41,7 +41,7 @@ ResidualTest landmark_dependence_test(const std::vector<double>& z, const std::v
 
 std::vector<ResidualTest> landmark_battery(const LandmarkData& d, const std::vector<LandmarkGeometry>& geometry,
                                            const LandmarkModel& m, const std::vector<std::size_t>& index) {
-  std::vector<double> zr, zb, rho, turn, turn_speed;
+  std::vector<double> zr, zb, rho, off_axis, turn, turn_speed;
   std::vector<int> lm;
   for (std::size_t i : index) {
     const LandmarkResidual r = landmark_residual(d, i, geometry[i], m);
@@ -49,6 +49,7 @@ std::vector<ResidualTest> landmark_battery(const LandmarkData& d, const std::vec
     zr.push_back(r.range / std::sqrt(r.var_range));
     zb.push_back(r.bearing / std::sqrt(r.var_bearing));
     rho.push_back(r.rho);
+    off_axis.push_back(r.rho * r.phi * r.phi);
     turn.push_back(geometry[i].turn_rate);
     turn_speed.push_back(std::abs(geometry[i].turn_rate));
     lm.push_back(d.landmark[i]);
@@ -58,6 +59,7 @@ std::vector<ResidualTest> landmark_battery(const LandmarkData& d, const std::vec
   out.push_back(bias_test(zr, kLandmarkRange));
   out.push_back(bias_test(zb, kLandmarkBearing));
   out.push_back(dependence_test(zr, rho, "range_dependence", kLandmarkRange, "predicted range"));
+  out.push_back(dependence_test(zr, off_axis, "off_axis_dependence", kLandmarkRange, "ρ·φ² (range off the axis)"));
   out.push_back(heteroscedasticity_test(zr, rho, kLandmarkRange, "predicted range"));
   out.push_back(heteroscedasticity_test(zb, turn_speed, kLandmarkBearing, "|turn rate|"));
   out.push_back(heavy_tail_test(zr, kLandmarkRange));

@@ -37,6 +37,8 @@ using LmField = double LandmarkModel::*;
 LmField field_of(std::string_view id, std::size_t k) {
   if (id == cause::kLandmarkRangeScale) return &LandmarkModel::range_scale;
   if (id == cause::kLandmarkRangeBias) return &LandmarkModel::range_bias;
+  if (id == cause::kLandmarkRangeOffAxis)
+    return k == 0 ? &LandmarkModel::range_off_axis_linear : &LandmarkModel::range_off_axis;
   if (id == cause::kLandmarkBearingBias) return &LandmarkModel::bearing_bias;
   if (id == cause::kLandmarkRangeNoise) return &LandmarkModel::range_noise_slope;
   if (id == cause::kLandmarkTurnNoise) return &LandmarkModel::bearing_noise_turn_slope;
@@ -452,6 +454,9 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
   out.heldout_notes = std::move(check.notes);
   const LmFit& final_fit = fits.joint(check.kept, true);
   out.final_fit = final_fit.model;
+  double widest = 0.0;
+  for (const LandmarkReading& r : d.readings) widest = std::max(widest, std::abs(wrap_angle(r.bearing)));
+  if (widest > 0.0) out.final_fit.field_of_view = widest;
   out.causes = describe_landmark_causes(fits, candidates, sel, check, final_fit);
   std::stable_sort(out.causes.begin(), out.causes.end(),
                    [](const Cause& a, const Cause& b) { return a.detected > b.detected; });

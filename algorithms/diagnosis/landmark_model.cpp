@@ -16,7 +16,14 @@ namespace locbench::diagnosis {
 // LandmarkModel's fields, stated once (landmark_model.h gives the equations).
 template <class V>
 void visit_fields(V& v, LandmarkModel& m) {
-  v.field("range_scale", m.range_scale, "", positive(), "z_r = range_scale·ρ + range_bias + n_r");
+  v.field("range_scale", m.range_scale, "", positive(),
+          "z_r = (range_scale + off_axis_linear·φ + off_axis·φ²)·ρ + range_bias + n_r");
+  v.field("range_off_axis_per_rad", m.range_off_axis_linear, "1/rad", any_finite(),
+          "the range scale's change with the bearing φ (off the sensor's axis)");
+  v.field("range_off_axis_per_rad2", m.range_off_axis, "1/rad²", any_finite(),
+          "the range scale's change with the squared bearing φ²");
+  v.field("field_of_view_rad", m.field_of_view, "rad", positive(),
+          "the largest |bearing| reported; the range scale is held at its value there beyond it");
   v.field("range_bias_m", m.range_bias, "m", any_finite(), "added to every range");
   v.field("bearing_bias_rad", m.bearing_bias, "rad", any_finite(), "added to every bearing");
   v.field("sigma_range_m", m.sigma_range, "m", non_negative(), "σ_r: range noise at range 0 (0 with a slope > 0)");
@@ -100,7 +107,8 @@ LandmarkResidual landmark_residual(const LandmarkData& d, std::size_t i, const L
   }
   r.valid = true;
   r.rho = rho;
-  r.range = d.readings[i].range - (m.range_scale * rho + m.range_bias);
+  r.phi = wrap_angle(phi);
+  r.range = d.readings[i].range - (m.range_scale_at(r.phi) * rho + m.range_bias);
   r.bearing = wrap_angle(d.readings[i].bearing - phi - m.bearing_bias);
   const double s = m.range_noise_slope * rho;
   r.var_range = m.sigma_range * m.sigma_range + s * s;

@@ -5,13 +5,15 @@
 // An observation (t, id, z_r, z_b) of map landmark m = (m_x, m_y) from the true pose p = (x, y, θ)
 // read at t − time_offset (TRUEPOS interpolated):
 //   ρ = |m + δ − p|,  φ = atan2(m_y + δ_y − y, m_x + δ_x − x) − θ                (prediction)
-//   z_r = range_scale·ρ + range_bias + n_r,   z_b = φ + bearing_bias + n_b        (model)
+//   z_r = s(φ)·ρ + range_bias + n_r,  s(φ) = range_scale + off_axis_linear·φ + off_axis·φ²   (model)
+//   z_b = φ + bearing_bias + n_b
 //   Var n_r = σ_r² + (range_noise_slope·ρ)²,  Var n_b = σ_b² + (bearing_noise_turn_slope·ω)²
 // (ω the true turn rate at the observation: a camera's bearing blurs and jitters while turning)
 // with δ = (position_error_dx, _dy) for the one landmark `position_error_id` (true position −
 // surveyed position; δ = 0 for the others) and n_r, n_b independent: normal (dof = 0) or
 // Student-t with `dof` degrees of freedom and those squared scales (heavy tails, outliers).
 // Residuals are z − prediction, the bearing wrapped to [−π, π). SI: m, rad, s.
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -20,8 +22,20 @@
 namespace locbench::diagnosis {
 
 struct LandmarkModel {
-  double range_scale = 1.0;               // [1]
-  double range_bias = 0.0;                // [m]
+  double range_scale = 1.0;  // [1]
+  double range_bias = 0.0;   // [m]
+  // How the range scale changes off the sensor's axis, s(φ) above (a camera that reads range from
+  // a landmark's apparent size, with lens distortion towards the image's edges whose centre need
+  // not be at bearing 0).
+  double range_off_axis_linear = 0.0;  // [1/rad]
+  double range_off_axis = 0.0;         // [1/rad²]
+  // The largest |bearing| the sensor reported [rad]: s(φ) is held at its value there beyond it (a
+  // twin's drifted pose can put a landmark outside the view the polynomial was fitted on).
+  double field_of_view = 3.141592653589793;
+  double range_scale_at(double phi) const {
+    const double p = std::clamp(phi, -field_of_view, field_of_view);
+    return range_scale + (range_off_axis_linear + range_off_axis * p) * p;
+  }
   double bearing_bias = 0.0;              // [rad]
   double sigma_range = 0.05;              // σ_r [m]
   double sigma_bearing = 0.02;            // σ_b [rad]
@@ -64,6 +78,7 @@ struct LandmarkResidual {
   double range = 0.0, bearing = 0.0;          // z − prediction (scale, biases, δ applied)
   double var_range = 0.0, var_bearing = 0.0;  // the model's squared scales
   double rho = 0.0;                           // predicted range [m]
+  double phi = 0.0;                           // predicted bearing (no bias) [rad]
   bool valid = false;
 };
 LandmarkResidual landmark_residual(const LandmarkData& d, std::size_t i, const LandmarkGeometry& g,

@@ -13,20 +13,23 @@
 namespace locbench::sim {
 
 std::vector<std::pair<std::string, std::string>> landmark_effect_ids() {
-  return {{"landmark_range_scale", "scale − 1 (measured = scale × true range)"},
-          {"landmark_range_bias", "bias [m]"},
-          {"landmark_bearing_bias", "bias [rad]"},
-          {"landmark_time_offset", "observation latency [s] (logged − true)"},
-          {"landmark_range_dependent_noise", "slope: σ_r(ρ)² = σ_r² + (slope·ρ)² [m/m]"},
-          {"landmark_turn_dependent_bearing_noise", "slope: σ_b(ω)² = σ_b² + (slope·ω)² [s]"},
-          {"landmark_heavy_tails", "Student-t degrees of freedom of both noises (integer ≥ 1)"},
-          {"landmark_position_error", "one landmark's true − surveyed distance [m] (random direction)"}};
+  return {
+      {"landmark_range_scale", "scale − 1 (measured = scale × true range)"},
+      {"landmark_range_bias", "bias [m]"},
+      {"landmark_range_off_axis_scale", "k₂: measured = (1 + 0.1·k₂·φ + k₂·φ²) × true range, φ the bearing [1/rad²]"},
+      {"landmark_bearing_bias", "bias [rad]"},
+      {"landmark_time_offset", "observation latency [s] (logged − true)"},
+      {"landmark_range_dependent_noise", "slope: σ_r(ρ)² = σ_r² + (slope·ρ)² [m/m]"},
+      {"landmark_turn_dependent_bearing_noise", "slope: σ_b(ω)² = σ_b² + (slope·ω)² [s]"},
+      {"landmark_heavy_tails", "Student-t degrees of freedom of both noises (integer ≥ 1)"},
+      {"landmark_position_error", "one landmark's true − surveyed distance [m] (random direction)"}};
 }
 
 namespace {
 
 struct Camera {
-  double range_scale = 1.0, range_bias = 0.0, bearing_bias = 0.0, offset = 0.0, slope = 0.0, turn_slope = 0.0;
+  double range_scale = 1.0, range_bias = 0.0, off_axis = 0.0, bearing_bias = 0.0, offset = 0.0, slope = 0.0,
+         turn_slope = 0.0;
   int dof = 0;
   int displaced = -1;  // map index
   double dx = 0.0, dy = 0.0;
@@ -44,6 +47,10 @@ Camera camera_of(const std::vector<HiddenEffect>& effects, int landmarks, Rng& r
     } else if (e.id == "landmark_range_bias") {
       c.range_bias = m;
       truth["landmark_range_bias.bias_m"] = m;
+    } else if (e.id == "landmark_range_off_axis_scale") {
+      c.off_axis = m;
+      truth["landmark_range_off_axis_scale.per_rad"] = 0.1 * m;  // a distortion centred off bearing 0
+      truth["landmark_range_off_axis_scale.per_rad2"] = m;
     } else if (e.id == "landmark_bearing_bias") {
       c.bearing_bias = m;
       truth["landmark_bearing_bias.bias_rad"] = m;
@@ -136,7 +143,8 @@ void observe(GeneratedLog& g, const std::vector<TruePose>& truth, const std::vec
     LandmarkReading r;
     r.t = t + c.offset;
     r.subject = real[k].id;
-    r.range = std::max(0.0, c.range_scale * rho + c.range_bias + sr * noise(rng, c.dof));
+    r.range =
+        std::max(0.0, (c.range_scale + c.off_axis * (0.1 + phi) * phi) * rho + c.range_bias + sr * noise(rng, c.dof));
     r.bearing = wrap_angle(phi + c.bearing_bias + sb * noise(rng, c.dof));
     g.log.landmarks.push_back(r);
   }

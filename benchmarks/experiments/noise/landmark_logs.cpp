@@ -169,16 +169,13 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
   o.tuning_noise = sensor_noise_if_measurable(train, sensor);
   o.heldout_noise = sensor_noise_if_measurable(test, sensor);
   // The sensor noise's structure measured on the tuning half (per-landmark biases, time
-  // correlation): the extended twin draws it, the diagnosed model's filter carries its correlated
-  // share (correlated_sensor_noise); the nominal sensor is white.
+  // correlation, level) on the residuals of the diagnosed sensor model, so that what the model
+  // explains is not counted again: the extended twin draws it, the diagnosed model's filter
+  // carries its correlated share (correlated_sensor_noise); the nominal sensor is white.
   o.models.nominal_sensor.structure = {};
   o.models.diagnosed_sensor.structure = {};
-  if (o.tuning_noise) {
-    o.models.diagnosed_sensor.structure = o.tuning_noise->structure;
-    // The level's spread relative to the diagnosed sensor's own σ(ρ).
-    if (const auto own = sensor_noise_if_measurable(train, o.models.diagnosed_sensor)) {
-      o.models.diagnosed_sensor.structure.range_level_sigma = own->structure.range_level_sigma;
-    }
+  if (const auto own = sensor_noise_if_measurable(train, o.models.diagnosed_sensor)) {
+    o.models.diagnosed_sensor.structure = own->structure;
   }
   o.scores = tune_and_score(train, test, o.models, family);
   o.dead_reckoning = dead_reckoning(test, family.gate);  // on the held-out half
@@ -415,9 +412,19 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     }
   }
 
+  // A landmark sensor model in one line.
+  static std::string sensor_text(const LandmarkSensorModel& m) {
+    return fmt::format(
+        "range ({:.4f} {:+.3f}·φ {:+.3f}·φ²)·ρ {:+.3f} m, σ_r {:.3f} m + {:.3f}·ρ, bearing bias {:+.4f} rad, σ_φ "
+        "{:.4f} rad + {:.4f} s·ω, t dof {:g} (0: normal), time offset {:+.3f} s, {} landmarks moved",
+        m.range_scale, m.range_off_axis_linear, m.range_off_axis, m.range_bias, m.range_sigma, m.range_noise_slope,
+        m.bearing_bias, m.bearing_sigma, m.bearing_noise_turn_slope, m.dof, m.time_offset, m.landmark_shift.size());
+  }
+
   // The sensor noise of both halves against the truth, and the noise structure the twins draw.
   static Section noise_section(const std::string& ds, const Outcome& o) {
     Section s;
+    s.text += "\n  the diagnosed model's sensor (fitted on the tuning half): " + sensor_text(o.models.diagnosed_sensor);
     const LandmarkSensorModel &a = *o.tuning_noise, &b = *o.heldout_noise;
     s.text += fmt::format(
         "\n  sensor noise against the truth (1.4826·MAD, a stationarity check no method uses): range σ {:.3f} m "
@@ -549,11 +556,7 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         ds, twin_part(c), o.twin_cells.begin()->second.front().nominal.runs);
     for (const auto& [name, m] :
          {std::pair{"nominal", o.models.nominal_sensor}, std::pair{"extended", o.models.diagnosed_sensor}}) {
-      twins += fmt::format(
-          "\n  {} twin's sensor: range {:.3f}·ρ {:+.3f} m, σ_r {:.3f} m + {:.3f}·ρ, bearing bias {:+.4f} rad, σ_φ "
-          "{:.4f} rad + {:.4f} s·ω, t dof {:g} (0: normal), time offset {:+.3f} s, {} landmarks moved",
-          name, m.range_scale, m.range_bias, m.range_sigma, m.range_noise_slope, m.bearing_bias, m.bearing_sigma,
-          m.bearing_noise_turn_slope, m.dof, m.time_offset, m.landmark_shift.size());
+      twins += fmt::format("\n  {} twin's sensor: {}", name, sensor_text(m));
     }
     for (const auto& [metric, cells] : o.twin_cells) {
       twins += fmt::format("\n  {}:{}", metric, cell_lines(cells, metric_unit(metric)));

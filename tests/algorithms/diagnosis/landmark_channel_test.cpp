@@ -94,6 +94,7 @@ TEST_P(LandmarkHiddenEffect, IsNamedWithTheTrueValueInsideItsInterval) {
 INSTANTIATE_TEST_SUITE_P(LandmarkChannel, LandmarkHiddenEffect,
                          ::testing::Values(LandmarkCase{"landmark_range_scale", 0.03, "scale"},
                                            LandmarkCase{"landmark_range_bias", 0.04, "bias_m"},
+                                           LandmarkCase{"landmark_range_off_axis_scale", -0.3, "per_rad2"},
                                            LandmarkCase{"landmark_bearing_bias", 0.02, "bias_rad"},
                                            LandmarkCase{"landmark_time_offset", 0.1, "offset_s"},
                                            LandmarkCase{"landmark_range_dependent_noise", 0.02, "slope"},
