@@ -16,13 +16,12 @@ as a spread that shrinks when k1, k2 are fitted.
 usage: scripts/mrclam_off_axis_range_check.py [FOLDER] [ROBOT ...]
   FOLDER defaults to $LOCBENCH_DATA/mrclam/MRCLAM_Dataset6, robots to 1 2 3 4 5.
 """
-import bisect
 import math
 import os
 import statistics
 import sys
 
-from mrclam_raw import data_file, rows, wrap
+from mrclam_raw import landmark_sightings, wrap
 
 
 def robust_sigma(v):
@@ -57,25 +56,10 @@ def fit(columns, y):
     return c, spread
 
 
-def observations(folder, robot, landmarks, subject):
-    truth = list(rows(data_file(folder, f"Robot{robot}_Groundtruth.dat")))
-    truth_t = [p[0] for p in truth]
+def observations(folder, robot):
     out = []
-    for r in rows(data_file(folder, f"Robot{robot}_Measurement.dat")):
-        s = subject.get(int(r[1]))
-        if s not in landmarks:
-            continue
-        i = bisect.bisect_left(truth_t, r[0])
-        if i <= 0 or i >= len(truth):
-            continue
-        a, b = truth[i - 1], truth[i]
-        f = (r[0] - a[0]) / (b[0] - a[0])
-        x = a[1] + f * (b[1] - a[1])
-        y = a[2] + f * (b[2] - a[2])
-        theta = a[3] + f * wrap(b[3] - a[3])
-        lx, ly = landmarks[s]
-        rho = math.hypot(lx - x, ly - y)
-        out.append((rho, wrap(math.atan2(ly - y, lx - x) - theta), r[2]))
+    for _, z, _, (x, y, theta), (lx, ly) in landmark_sightings(folder, robot):
+        out.append((math.hypot(lx - x, ly - y), wrap(math.atan2(ly - y, lx - x) - theta), z))
     return out
 
 
@@ -83,10 +67,8 @@ def main():
     data = os.environ.get("LOCBENCH_DATA", "../shared/datasets")
     folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(data, "mrclam", "MRCLAM_Dataset6")
     robots = [int(r) for r in sys.argv[2:]] or [1, 2, 3, 4, 5]
-    landmarks = {int(r[0]): (r[1], r[2]) for r in rows(data_file(folder, "Landmark_Groundtruth.dat"))}
-    subject = {int(r[1]): int(r[0]) for r in rows(data_file(folder, "Barcodes.dat"))}
     for robot in robots:
-        seen = observations(folder, robot, landmarks, subject)
+        seen = observations(folder, robot)
         bins = {}
         for rho, phi, z in seen:
             bins.setdefault(round(phi / 0.1), []).append((z - rho) / rho)

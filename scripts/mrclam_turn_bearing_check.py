@@ -19,7 +19,7 @@ import os
 import statistics
 import sys
 
-from mrclam_raw import data_file, rows, wrap
+from mrclam_raw import data_file, landmark_sightings, rows, wrap
 
 
 def robust_sigma(v):
@@ -31,31 +31,17 @@ def main():
     data = os.environ.get("LOCBENCH_DATA", "../shared/datasets")
     folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(data, "mrclam", "MRCLAM_Dataset6")
     robots = [int(r) for r in sys.argv[2:]] or [1, 2, 3, 4, 5]
-    landmarks = {int(r[0]): (r[1], r[2]) for r in rows(data_file(folder, "Landmark_Groundtruth.dat"))}
-    subject = {int(r[1]): int(r[0]) for r in rows(data_file(folder, "Barcodes.dat"))}
     for robot in robots:
-        truth = list(rows(data_file(folder, f"Robot{robot}_Groundtruth.dat")))
-        truth_t = [p[0] for p in truth]
         odometry = list(rows(data_file(folder, f"Robot{robot}_Odometry.dat")))
         odometry_t = [o[0] for o in odometry]
         seen = []
-        for r in rows(data_file(folder, f"Robot{robot}_Measurement.dat")):
-            s = subject.get(int(r[1]))
-            if s not in landmarks:
+        for t, z_range, z_bearing, (x, y, theta), (lx, ly) in landmark_sightings(folder, robot):
+            j = bisect.bisect_left(odometry_t, t)
+            if j <= 0:
                 continue
-            i = bisect.bisect_left(truth_t, r[0])
-            j = bisect.bisect_left(odometry_t, r[0])
-            if i <= 0 or i >= len(truth) or j <= 0:
-                continue
-            a, b = truth[i - 1], truth[i]
-            f = (r[0] - a[0]) / (b[0] - a[0])
-            x = a[1] + f * (b[1] - a[1])
-            y = a[2] + f * (b[2] - a[2])
-            theta = a[3] + f * wrap(b[3] - a[3])
-            lx, ly = landmarks[s]
             rho = math.hypot(lx - x, ly - y)
-            bearing = wrap(r[3] - wrap(math.atan2(ly - y, lx - x) - theta))
-            seen.append((abs(odometry[j - 1][2]), bearing, r[2] - rho))
+            bearing = wrap(z_bearing - wrap(math.atan2(ly - y, lx - x) - theta))
+            seen.append((abs(odometry[j - 1][2]), bearing, z_range - rho))
         seen.sort(key=lambda p: p[0])  # by |ω| only (ties keep time order)
         n = len(seen)
         print(f"robot {robot}: {n} observations; per quartile of |turn rate|: median |ω| [rad/s], "
