@@ -65,20 +65,57 @@ std::uint64_t fingerprint(const std::vector<Correspondence>& cs) {
   return h;
 }
 
-Eigen::Vector2d rotate(double theta, const Eigen::Vector2d& p) {
-  const double c = std::cos(theta), s = std::sin(theta);
-  return {c * p.x() - s * p.y(), s * p.x() + c * p.y()};
+// The line through reference point j1 (point-to-line, step 2 of pl_icp.h).
+struct ReferenceLine {
+  bool valid = false;  // j1 has a beam-order neighbour that is not across a depth jump
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();
+};
+
+// With `line_points` > 2 the least-squares line of j1's beam-order neighbourhood (none across a
+// depth jump), or the segment to its one neighbour when the neighbourhood has two points: it
+// does not depend on the query point, so it is computed once per reference point and call.
+std::vector<ReferenceLine> neighbourhood_lines(const std::vector<Eigen::Vector2d>& ref, const PlIcpOptions& o) {
+  std::vector<ReferenceLine> lines(ref.size());
+  const auto half = static_cast<std::size_t>(o.line_points / 2);
+  const auto near = [&](std::size_t a, std::size_t b) { return (ref[a] - ref[b]).norm() <= o.max_neighbour_gap; };
+  for (std::size_t j1 = 0; j1 < ref.size(); ++j1) {
+    std::size_t lo = j1, hi = j1;
+    while (j1 - lo < half && lo > 0 && near(lo - 1, lo)) --lo;
+    while (hi - j1 < half && hi + 1 < ref.size() && near(hi + 1, hi)) ++hi;
+    if (hi == lo) continue;
+    ReferenceLine& line = lines[j1];
+    line.valid = true;
+    Eigen::Vector2d dir = (ref[lo == j1 ? hi : lo] - ref[j1]).normalized();
+    Eigen::Vector2d origin = ref[j1];
+    if (hi - lo + 1 >= 3) {
+      Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+      for (std::size_t k = lo; k <= hi; ++k) mean += ref[k];
+      mean /= static_cast<double>(hi - lo + 1);
+      Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+      for (std::size_t k = lo; k <= hi; ++k) cov += (ref[k] - mean) * (ref[k] - mean).transpose();
+      dir = linalg::symmetric_eigen2(cov).vectors.col(1);
+      origin = mean;
+    }
+    line.normal = {-dir.y(), dir.x()};
+    line.origin = origin;
+  }
+  return lines;
 }
 
-// Correspondences of the current points under `motion`, trimmed (step 2–3 of pl_icp.h).
+// Correspondences of the current points under `motion`, trimmed (step 2–3 of pl_icp.h). `lines`:
+// neighbourhood_lines (with line_points > 2), else empty.
 std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& ref, const KdTree& tree,
+                                            const std::vector<ReferenceLine>& lines,
                                             const std::vector<Eigen::Vector2d>& cur, const Pose2& motion,
                                             const PlIcpOptions& o) {
   std::vector<Correspondence> out;
   out.reserve(cur.size());
   const double max_d2 = o.max_correspondence_distance * o.max_correspondence_distance;
+  const double cos_t = std::cos(motion.theta), sin_t = std::sin(motion.theta);
   for (std::size_t i = 0; i < cur.size(); ++i) {
-    const Eigen::Vector2d q = motion * cur[i];
+    const Eigen::Vector2d& p = cur[i];
+    const Eigen::Vector2d q(motion.x + cos_t * p.x() - sin_t * p.y(), motion.y + sin_t * p.x() + cos_t * p.y());
     std::size_t j1 = 0;
     double d2 = 0.0;
     const double query[2] = {q.x(), q.y()};
@@ -86,7 +123,13 @@ std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& 
     Correspondence c;
     c.current = i;
     c.reference = ref[j1];
-    if (o.metric == IcpMetric::kPointToLine) {
+    if (o.metric == IcpMetric::kPointToLine && !lines.empty()) {
+      const ReferenceLine& line = lines[j1];
+      if (!line.valid) continue;
+      c.normal = line.normal;
+      c.reference = line.origin;
+      c.error = std::abs(c.normal.dot(q - line.origin));
+    } else if (o.metric == IcpMetric::kPointToLine) {
       // j2: the beam-order neighbour of j1 nearer to q, if it is not across a depth jump.
       double best = std::numeric_limits<double>::infinity();
       std::size_t j2 = j1;
@@ -99,30 +142,9 @@ std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& 
         }
       }
       if (j2 == j1) continue;
-      Eigen::Vector2d dir = (ref[j2] - ref[j1]).normalized();
-      Eigen::Vector2d origin = ref[j1];
-      if (o.line_points > 2) {
-        // The least-squares line of j1's beam-order neighbourhood (line_points points, none
-        // across a depth jump) instead of the segment j1–j2.
-        const auto half = static_cast<std::size_t>(o.line_points / 2);
-        std::size_t lo = j1, hi = j1;
-        while (j1 - lo < half && lo > 0 && (ref[lo - 1] - ref[lo]).norm() <= o.max_neighbour_gap) --lo;
-        while (hi - j1 < half && hi + 1 < ref.size() && (ref[hi + 1] - ref[hi]).norm() <= o.max_neighbour_gap) {
-          ++hi;
-        }
-        if (hi - lo + 1 >= 3) {
-          Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-          for (std::size_t k = lo; k <= hi; ++k) mean += ref[k];
-          mean /= static_cast<double>(hi - lo + 1);
-          Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-          for (std::size_t k = lo; k <= hi; ++k) cov += (ref[k] - mean) * (ref[k] - mean).transpose();
-          dir = linalg::symmetric_eigen2(cov).vectors.col(1);
-          origin = mean;
-        }
-      }
+      const Eigen::Vector2d dir = (ref[j2] - ref[j1]).normalized();
       c.normal = {-dir.y(), dir.x()};
-      c.reference = origin;
-      c.error = std::abs(c.normal.dot(q - origin));
+      c.error = std::abs(c.normal.dot(q - ref[j1]));
     } else {
       c.error = std::sqrt(d2);
     }
@@ -148,8 +170,10 @@ struct NormalEquations {
 NormalEquations normal_equations(const std::vector<Correspondence>& cs, const std::vector<Eigen::Vector2d>& cur,
                                  const Pose2& motion, IcpMetric metric) {
   NormalEquations n;
+  const double cos_t = std::cos(motion.theta), sin_t = std::sin(motion.theta);
   for (const Correspondence& c : cs) {
-    const Eigen::Vector2d rq = rotate(motion.theta, cur[c.current]);
+    const Eigen::Vector2d& p = cur[c.current];
+    const Eigen::Vector2d rq(cos_t * p.x() - sin_t * p.y(), sin_t * p.x() + cos_t * p.y());
     const Eigen::Vector2d e2 = rq + motion.translation() - c.reference;
     const Eigen::Vector2d d_theta(-rq.y(), rq.x());  // ∂(R q)/∂θ
     if (metric == IcpMetric::kPointToLine) {
@@ -222,11 +246,14 @@ PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& init
 
   const PointCloud cloud{ref};
   const KdTree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  const std::vector<ReferenceLine> lines = options.metric == IcpMetric::kPointToLine && options.line_points > 2
+                                               ? neighbourhood_lines(ref, options)
+                                               : std::vector<ReferenceLine>{};
   Pose2 motion = initial;
   std::vector<Correspondence> cs;
   std::vector<std::uint64_t> seen;  // the correspondence sets of the earlier iterations
   for (int it = 0; it < options.max_iterations; ++it) {
-    cs = correspondences(ref, tree, cur, motion, options);
+    cs = correspondences(ref, tree, lines, cur, motion, options);
     out.iterations = it + 1;
     if (cs.size() < min_n) return out;  // valid = false, motion = initial
     // A set of correspondences met before means the iterations cycle (the trimming swaps the same
