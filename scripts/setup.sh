@@ -17,7 +17,6 @@ packages=(
   librapidcheck-dev    # property tests of the readers
   libboost-dev         # Boost.Math distributions (t, normal, chi-square quantiles), header-only
   libtbb-dev           # oneTBB: Monte-Carlo runs on all cores (task arena + parallel_for)
-  libnanoflann-dev     # k-d tree: PL-ICP's nearest-neighbour correspondences (header-only)
   libceres-dev         # Ceres Solver 2.1: the ML calibration's least squares and the diagnosis's likelihood fits
   gnuplot-nox          # `locbench report`: charts as SVG, inlined into the HTML page
   chromium             # tests: render the HTML report headless, check charts and console

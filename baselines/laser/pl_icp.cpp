@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <nanoflann.hpp>
 #include <vector>
 
+#include "baselines/laser/angular_index.h"
 #include "core/angle.h"
 #include "core/errors.h"
 #include "core/linear_algebra.h"
@@ -28,19 +28,6 @@ std::vector<Eigen::Vector2d> robot_points(const Scan& scan) {
   }
   return out;
 }
-
-// nanoflann's dataset adaptor over a vector of 2-D points.
-struct PointCloud {
-  const std::vector<Eigen::Vector2d>& points;
-  std::size_t kdtree_get_point_count() const { return points.size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t dim) const { return points[i][static_cast<Eigen::Index>(dim)]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-using KdTree =
-    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>, PointCloud, 2, std::size_t>;
 
 struct Correspondence {
   std::size_t current = 0;                              // index into the current points
@@ -105,7 +92,7 @@ std::vector<ReferenceLine> neighbourhood_lines(const std::vector<Eigen::Vector2d
 
 // Correspondences of the current points under `motion`, trimmed (step 2–3 of pl_icp.h). `lines`:
 // neighbourhood_lines (with line_points > 2), else empty.
-std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& ref, const KdTree& tree,
+std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& ref, const AngularIndex& index,
                                             const std::vector<ReferenceLine>& lines,
                                             const std::vector<Eigen::Vector2d>& cur, const Pose2& motion,
                                             const PlIcpOptions& o) {
@@ -118,8 +105,7 @@ std::vector<Correspondence> correspondences(const std::vector<Eigen::Vector2d>& 
     const Eigen::Vector2d q(motion.x + cos_t * p.x() - sin_t * p.y(), motion.y + sin_t * p.x() + cos_t * p.y());
     std::size_t j1 = 0;
     double d2 = 0.0;
-    const double query[2] = {q.x(), q.y()};
-    if (tree.knnSearch(query, 1, &j1, &d2) != 1 || d2 > max_d2) continue;
+    if (!index.nearest(q, max_d2, j1, d2)) continue;
     Correspondence c;
     c.current = i;
     c.reference = ref[j1];
@@ -244,8 +230,7 @@ PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& init
   for (const auto& p : cur) ss += p.squaredNorm();
   const double length = std::max(std::sqrt(ss / static_cast<double>(cur.size())), 0.1);
 
-  const PointCloud cloud{ref};
-  const KdTree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  const AngularIndex index(ref);
   const std::vector<ReferenceLine> lines = options.metric == IcpMetric::kPointToLine && options.line_points > 2
                                                ? neighbourhood_lines(ref, options)
                                                : std::vector<ReferenceLine>{};
@@ -253,7 +238,7 @@ PlIcpResult pl_icp(const Scan& reference, const Scan& current, const Pose2& init
   std::vector<Correspondence> cs;
   std::vector<std::uint64_t> seen;  // the correspondence sets of the earlier iterations
   for (int it = 0; it < options.max_iterations; ++it) {
-    cs = correspondences(ref, tree, lines, cur, motion, options);
+    cs = correspondences(ref, index, lines, cur, motion, options);
     out.iterations = it + 1;
     if (cs.size() < min_n) return out;  // valid = false, motion = initial
     // A set of correspondences met before means the iterations cycle (the trimming swaps the same

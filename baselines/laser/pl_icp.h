@@ -6,7 +6,7 @@
 // Given a reference scan, a current scan and a first guess of the current robot pose in the
 // reference robot frame (the odometry's relative motion), each iteration:
 //   1. transforms the current scan's points with the motion estimate;
-//   2. finds each point's nearest reference point j1 (nanoflann k-d tree) and, for PL-ICP, the
+//   2. finds each point's nearest reference point j1 (angular_index.h, CSM's ordered search) and, for PL-ICP, the
 //      beam-order neighbour j2 of j1 nearer to the point: the point's line is j1–j2 (Censi), or
 //      by default the least-squares line of j1's beam-order neighbourhood (`line_points`);
 //   3. trims: correspondences farther than `max_correspondence_distance` are dropped, then only
