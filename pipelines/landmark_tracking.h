@@ -15,10 +15,10 @@
 // - nominal_model, diagnosed_model: a fitted motion model (diagnosis::OdometryModel: velocity and
 //   turn scales, turn bias, drive lag, time offset, stalls, k² growth, the white floor) used for
 //   both the prediction and the process noise, and its fitted landmark sensor model.
-#include <algorithm>
 #include <map>
 #include <vector>
 
+#include "algorithms/diagnosis/landmark_model.h"
 #include "algorithms/diagnosis/motion_windows.h"
 #include "algorithms/diagnosis/odometry_model.h"
 #include "algorithms/filters/compass_ekf.h"
@@ -57,10 +57,9 @@ struct NoiseStructure {
 struct LandmarkSensorModel {
   double range_scale = 1.0, range_bias = 0.0, bearing_bias = 0.0;
   double range_off_axis_linear = 0.0, range_off_axis = 0.0;  // [1/rad], [1/rad²]
-  double field_of_view = 3.141592653589793;                  // [rad]: s(φ) held at its value beyond ±field_of_view
+  double field_of_view = kPi;                                // [rad]: s(φ) held at its value beyond ±field_of_view
   double range_scale_at(double phi) const {
-    const double p = std::clamp(phi, -field_of_view, field_of_view);
-    return range_scale + (range_off_axis_linear + range_off_axis * p) * p;
+    return diagnosis::off_axis_range_scale(range_scale, range_off_axis_linear, range_off_axis, field_of_view, phi);
   }
   double range_sigma = 0.1, bearing_sigma = 0.05, range_noise_slope = 0.0;
   double bearing_noise_turn_slope = 0.0;  // [s]

@@ -17,9 +17,17 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "core/angle.h"
 #include "core/sensor_data.h"
 
 namespace locbench::diagnosis {
+
+// s(φ) = scale + linear·φ + quadratic·φ² with φ held within ±field_of_view (the model below; the
+// filter's sensor model, pipelines/landmark_tracking.h, evaluates it the same way).
+inline double off_axis_range_scale(double scale, double linear, double quadratic, double field_of_view, double phi) {
+  const double p = std::clamp(phi, -field_of_view, field_of_view);
+  return scale + (linear + quadratic * p) * p;
+}
 
 struct LandmarkModel {
   double range_scale = 1.0;  // [1]
@@ -31,10 +39,9 @@ struct LandmarkModel {
   double range_off_axis = 0.0;         // [1/rad²]
   // The largest |bearing| the sensor reported [rad]: s(φ) is held at its value there beyond it (a
   // twin's drifted pose can put a landmark outside the view the polynomial was fitted on).
-  double field_of_view = 3.141592653589793;
+  double field_of_view = kPi;
   double range_scale_at(double phi) const {
-    const double p = std::clamp(phi, -field_of_view, field_of_view);
-    return range_scale + (range_off_axis_linear + range_off_axis * p) * p;
+    return off_axis_range_scale(range_scale, range_off_axis_linear, range_off_axis, field_of_view, phi);
   }
   double bearing_bias = 0.0;              // [rad]
   double sigma_range = 0.05;              // σ_r [m]
