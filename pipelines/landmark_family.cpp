@@ -1,7 +1,9 @@
 #include "pipelines/landmark_family.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "algorithms/filters/consistency.h"
 #include "core/enum_names.h"
@@ -10,8 +12,9 @@
 namespace locbench::experiments::landmarks {
 namespace {
 
-constexpr EnumNames<TuningCriterion, 2> kCriteria{
-    {{TuningCriterion::kLogScore, "log_score"}, {TuningCriterion::kRmse, "rmse"}}};
+constexpr EnumNames<TuningCriterion, 3> kCriteria{{{TuningCriterion::kLogScore, "log_score"},
+                                                   {TuningCriterion::kRmse, "rmse"},
+                                                   {TuningCriterion::kConsistentLogScore, "consistent_log_score"}}};
 
 // The observations' true times under a sensor model: where the steps are cut.
 std::vector<double> observation_times(const TrackingData& data, const LandmarkSensorModel& sensor) {
@@ -77,22 +80,54 @@ filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const Fami
   return filters::average_chi_square_interval(3, static_cast<int>(blocks), 0.95);
 }
 
+std::size_t choose_setting(const std::vector<GridRun>& runs, const filters::ChiSquareInterval& band,
+                           TuningCriterion criterion, double rmse_tolerance) {
+  std::size_t pick = 0;  // the first when every setting diverged (reported as such)
+  if (criterion == TuningCriterion::kLogScore) {
+    for (std::size_t i = 0; i < runs.size(); ++i)
+      if (runs[i].log_score < runs[pick].log_score) pick = i;
+    return pick;
+  }
+  if (criterion == TuningCriterion::kConsistentLogScore) {
+    auto consistent = [&](const GridRun& r) { return std::isfinite(r.rmse) && band.contains(r.nees); };
+    const bool any_consistent = std::any_of(runs.begin(), runs.end(), consistent);
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      if (any_consistent && !consistent(runs[i])) continue;
+      if (!best || runs[i].log_score < runs[*best].log_score) best = i;
+    }
+    return best.value_or(0);
+  }
+  // The lowest RMSE; among the settings within `rmse_tolerance` of it, the most consistent one
+  // (NEES inside its band first, then closest to 3 on a log scale).
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const GridRun& r : runs) lowest = std::min(lowest, r.rmse);
+  double best_distance = std::numeric_limits<double>::infinity(), best_rmse = best_distance;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const GridRun& r = runs[i];
+    if (!(r.rmse <= lowest * (1.0 + rmse_tolerance)) && !(r.rmse == lowest)) continue;
+    const double distance = !(std::isfinite(r.nees) && r.nees > 0.0) ? 1e300
+                            : band.contains(r.nees)                  ? 0.0
+                                                                     : std::abs(std::log(r.nees / 3.0));
+    if (distance < best_distance || (distance == best_distance && r.rmse < best_rmse)) {
+      best_distance = distance;
+      best_rmse = r.rmse;
+      pick = i;
+    }
+  }
+  return pick;
+}
+
 std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test, const FilterModels& models,
                                         const FamilyOptions& options) {
   const PartMotion train_motion = part_motion(train, models, models.nominal_sensor);
   const filters::ChiSquareInterval band = tuning_nees_band(train, options);
   std::vector<MethodScore> scores;
   for (Method method : kMethods) {
-    MethodScore best;
-    best.method = method;
-    best.tuning_rmse = std::numeric_limits<double>::infinity();
     MethodSetup s = base_setup(method, train_motion, models, options);
-    struct Run {
-      double q, k, rmse, nees, log_score;
-      Eigen::Vector2d level_reference;
-    };
     const bool tracks_level = options.track_noise_level && method == Method::kDiagnosedModel;
-    std::vector<Run> runs;
+    std::vector<GridRun> runs;
+    std::vector<Eigen::Vector2d> level_references;
     for (double q : options.process_scales) {
       for (double k : knobs(method, options)) {
         s.process_scale = q;
@@ -105,41 +140,22 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
         }
         const TrackResult r = track(train, s, options.gate);
         const double inf = std::numeric_limits<double>::infinity();
-        runs.push_back({q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees), r.log_score(),
-                        s.level_reference});
+        runs.push_back(
+            {q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees), r.log_score()});
+        level_references.push_back(s.level_reference);
       }
     }
+    const std::size_t i = choose_setting(runs, band, options.criterion, options.rmse_tolerance);
+    MethodScore best;
+    best.method = method;
     best.grid_runs = runs.size();
-    const auto choose = [&](const Run& r) {
-      best.process_scale = r.q;
-      best.knob = r.k;
-      best.tuning_rmse = r.rmse;
-      best.tuning_nees = r.nees;
-      best.tuning_log_score = r.log_score;
-      best.consistent_setting = band.contains(r.nees);
-      best.level_reference = r.level_reference;
-    };
-    choose(runs.front());  // kept when every setting diverged (reported as such)
-    if (options.criterion == TuningCriterion::kLogScore) {
-      for (const Run& r : runs)
-        if (r.log_score < best.tuning_log_score) choose(r);
-    } else {
-      // The lowest RMSE; among the settings within `rmse_tolerance` of it, the most consistent one
-      // (NEES inside its band first, then closest to 3 on a log scale).
-      double lowest = std::numeric_limits<double>::infinity();
-      for (const Run& r : runs) lowest = std::min(lowest, r.rmse);
-      double best_distance = std::numeric_limits<double>::infinity();
-      for (const Run& r : runs) {
-        if (!(r.rmse <= lowest * (1.0 + options.rmse_tolerance)) && !(r.rmse == lowest)) continue;
-        const double distance = !(std::isfinite(r.nees) && r.nees > 0.0) ? 1e300
-                                : band.contains(r.nees)                  ? 0.0
-                                                                         : std::abs(std::log(r.nees / 3.0));
-        if (distance < best_distance || (distance == best_distance && r.rmse < best.tuning_rmse)) {
-          best_distance = distance;
-          choose(r);
-        }
-      }
-    }
+    best.process_scale = runs[i].process_scale;
+    best.knob = runs[i].knob;
+    best.tuning_rmse = runs[i].rmse;
+    best.tuning_nees = runs[i].nees;
+    best.tuning_log_score = runs[i].log_score;
+    best.consistent_setting = band.contains(runs[i].nees);
+    best.level_reference = level_references[i];
     scores.push_back(std::move(best));
   }
   const std::vector<TrackResult> heldout = run_tuned(test, scores, models, options);

@@ -3,12 +3,14 @@
 // of a log and scored on another, with the same grid budget for every method — two tuned
 // parameters each: the scale of its process noise over `process_scales`, and its second knob
 // (the R scale; the forgetting factor for Sage–Husa and VB-AKF, which estimate R themselves) over
-// six values. The setting chosen on the tuning part is the one with the lowest log score (the
-// mean negative log-likelihood of the truth under the filter's estimate and covariance, a proper
-// scoring rule that rewards both a small error and a covariance that matches it; a diverged run
-// counts as +∞), or with `criterion` "rmse" the lowest position RMSE, with ties within
-// `rmse_tolerance` going to the most consistent NEES. It is run on the held-out part from the
-// truth's pose at its start.
+// six values. The setting chosen on the tuning part is, by default ("consistent_log_score"), the
+// one with the lowest log score (the mean negative log-likelihood of the truth under the filter's
+// estimate and covariance, a proper scoring rule that rewards both a small error and a covariance
+// that matches it; a diverged run counts as +∞) among the settings consistent on the tuning part
+// (time-averaged NEES inside its χ² band, not diverged), among all settings when none is;
+// "log_score" drops the consistency condition; "rmse" takes the lowest position RMSE, with ties
+// within `rmse_tolerance` going to the most consistent NEES. It is run on the held-out part from
+// the truth's pose at its start.
 #include <string>
 #include <vector>
 
@@ -20,7 +22,7 @@
 namespace locbench::experiments::landmarks {
 
 // What picks a method's setting on the tuning part (see the top of this file).
-enum class TuningCriterion { kLogScore, kRmse };
+enum class TuningCriterion { kLogScore, kRmse, kConsistentLogScore };
 const char* to_string(TuningCriterion c);
 TuningCriterion tuning_criterion_from_string(const std::string& s);
 
@@ -34,7 +36,7 @@ struct FamilyOptions {
   Vector3 initial_sigma{0.02, 0.02, 0.02};
   GatePolicy gate;
   double nees_block_s = 10.0;  // the NEES band counts one independent value per block
-  TuningCriterion criterion = TuningCriterion::kLogScore;
+  TuningCriterion criterion = TuningCriterion::kConsistentLogScore;
   // With kRmse: settings this close to the lowest RMSE compete on consistency (0: the lowest RMSE
   // alone).
   double rmse_tolerance = 0.0;
@@ -64,6 +66,19 @@ struct MethodScore {
 // The χ² band of a time-averaged NEES over `data`: K = ⌈duration / nees_block_s⌉ independent
 // values, [χ²_{0.025}(3K)/K, χ²_{0.975}(3K)/K].
 filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const FamilyOptions& options);
+
+// One setting of a method's grid, run on the tuning part.
+struct GridRun {
+  double process_scale = 1.0, knob = 1.0;
+  double rmse = 0.0;       // position RMSE [m]; +∞ when the run diverged
+  double nees = 0.0;       // time-averaged NEES; +∞ without one
+  double log_score = 0.0;  // TrackResult::log_score
+};
+
+// The index of the setting `criterion` picks among `runs` (non-empty), `band` being the tuning
+// part's NEES band (see the top of this file).
+std::size_t choose_setting(const std::vector<GridRun>& runs, const filters::ChiSquareInterval& band,
+                           TuningCriterion criterion, double rmse_tolerance = 0.0);
 
 // Every method of kMethods tuned on `train` and scored on `test`.
 std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test, const FilterModels& models,

@@ -170,5 +170,36 @@ TEST(LandmarkTuning, ADivergedRunHasAnInfiniteLogScore) {
   EXPECT_EQ(r.log_score(), std::numeric_limits<double>::infinity());
 }
 
+// A grid of three settings on a tuning part whose NEES band is [2.3, 3.8]: the lowest log score
+// (−5.0) belongs to an overconfident setting (NEES 6.0); a consistent one (NEES 3.1) scores −4.0,
+// another consistent one −3.0, and a diverged one has NEES 3.0 but no finite RMSE.
+const filters::ChiSquareInterval kBand{2.3, 3.8};
+const std::vector<GridRun> kGrid = {{.process_scale = 0.25, .knob = 4.0, .rmse = 0.10, .nees = 6.0, .log_score = -5.0},
+                                    {.process_scale = 1.0, .knob = 4.0, .rmse = 0.12, .nees = 3.1, .log_score = -4.0},
+                                    {.process_scale = 4.0, .knob = 4.0, .rmse = 0.15, .nees = 2.5, .log_score = -3.0},
+                                    {.process_scale = 64.0,
+                                     .knob = 4.0,
+                                     .rmse = std::numeric_limits<double>::infinity(),
+                                     .nees = 3.0,
+                                     .log_score = std::numeric_limits<double>::infinity()}};
+
+TEST(LandmarkTuning, TheConsistentLogScorePicksTheBestScoringSettingWhoseNeesIsInsideItsBand) {
+  EXPECT_EQ(choose_setting(kGrid, kBand, TuningCriterion::kConsistentLogScore), 1u);
+  EXPECT_EQ(choose_setting(kGrid, kBand, TuningCriterion::kLogScore), 0u) << "the plain log score ignores the band";
+}
+
+TEST(LandmarkTuning, WithNoConsistentSettingTheConsistentLogScoreFallsBackToTheLowestLogScore) {
+  std::vector<GridRun> grid = kGrid;
+  grid[1].nees = 5.0;
+  grid[2].nees = 1.5;
+  EXPECT_EQ(choose_setting(grid, kBand, TuningCriterion::kConsistentLogScore), 0u)
+      << "the diverged setting's NEES of 3.0 does not make it consistent";
+}
+
+TEST(LandmarkTuning, TheRmseCriterionPicksTheLowestRmseAndAmongNearTiesTheConsistentOne) {
+  EXPECT_EQ(choose_setting(kGrid, kBand, TuningCriterion::kRmse), 0u);
+  EXPECT_EQ(choose_setting(kGrid, kBand, TuningCriterion::kRmse, 0.25), 1u) << "0.12 m is within 25% of 0.10 m";
+}
+
 }  // namespace
 }  // namespace locbench::experiments::landmarks
