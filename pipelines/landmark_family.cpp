@@ -7,6 +7,7 @@
 
 #include "algorithms/filters/consistency.h"
 #include "core/enum_names.h"
+#include "core/errors.h"
 #include "core/statistics.h"
 
 namespace locbench::experiments::landmarks {
@@ -75,8 +76,8 @@ TuningCriterion tuning_criterion_from_string(const std::string& s) {
   return enum_value(kCriteria, s, "tuning criterion must be");
 }
 
-filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const FamilyOptions& options) {
-  const double blocks = std::max(1.0, std::ceil((data.to - data.from) / options.nees_block_s));
+filters::ChiSquareInterval tuning_nees_band(double duration_s, const FamilyOptions& options) {
+  const double blocks = std::max(1.0, std::ceil(duration_s / options.nees_block_s));
   return filters::average_chi_square_interval(3, static_cast<int>(blocks), 0.95);
 }
 
@@ -118,31 +119,77 @@ std::size_t choose_setting(const std::vector<GridRun>& runs, const filters::ChiS
   return pick;
 }
 
-std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test, const FilterModels& models,
-                                        const FamilyOptions& options) {
-  const PartMotion train_motion = part_motion(train, models, models.nominal_sensor);
-  const filters::ChiSquareInterval band = tuning_nees_band(train, options);
+namespace {
+
+// One run over several parts, as if end to end: the steps of `b` after those of `a`.
+void append(TrackResult& a, const TrackResult& b) {
+  const auto join = [](std::vector<double>& x, const std::vector<double>& y) { x.insert(x.end(), y.begin(), y.end()); };
+  join(a.t, b.t);
+  join(a.position_error, b.position_error);
+  join(a.heading_error, b.heading_error);
+  join(a.nees, b.nees);
+  join(a.log_det_covariance, b.log_det_covariance);
+  a.observations += b.observations;
+  a.used += b.used;
+  a.gated += b.gated;
+  a.recoveries += b.recoveries;
+  a.finite = a.finite && b.finite;
+  a.diverged = a.diverged || b.diverged;
+}
+
+// The setting (q, k) of `method` run over every tuning part with that part's models.
+struct PartRuns {
+  TrackResult result;
+  Eigen::Vector2d level_reference = Eigen::Vector2d::Zero();  // the parts' mean
+};
+PartRuns run_parts(Method method, double q, double k, const std::vector<TuningPart>& parts,
+                   const std::vector<PartMotion>& motions, const FamilyOptions& options) {
+  PartRuns out;
+  const bool tracks_level = options.track_noise_level && method == Method::kDiagnosedModel;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    MethodSetup s = base_setup(method, motions[p], parts[p].models, options);
+    s.process_scale = q;
+    s.knob = k;
+    if (tracks_level) {
+      MethodSetup reference = s;
+      reference.measure_innovation_level = true;
+      s.level_reference = track(parts[p].data, reference, options.gate).innovation_sigma;
+      out.level_reference += s.level_reference / static_cast<double>(parts.size());
+    }
+    const TrackResult r = track(parts[p].data, s, options.gate);
+    if (p == 0) {
+      out.result = r;
+    } else {
+      append(out.result, r);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<MethodScore> tune_and_score(const std::vector<TuningPart>& tuning, const TrackingData& test,
+                                        const FilterModels& models, const FamilyOptions& options) {
+  if (tuning.empty()) throw UsageError("tune_and_score: no tuning part");
+  std::vector<PartMotion> motions;
+  double duration = 0.0;
+  for (const TuningPart& p : tuning) {
+    motions.push_back(part_motion(p.data, p.models, p.models.nominal_sensor));
+    duration += p.data.to - p.data.from;
+  }
+  const filters::ChiSquareInterval band = tuning_nees_band(duration, options);
   std::vector<MethodScore> scores;
   for (Method method : kMethods) {
-    MethodSetup s = base_setup(method, train_motion, models, options);
-    const bool tracks_level = options.track_noise_level && method == Method::kDiagnosedModel;
     std::vector<GridRun> runs;
     std::vector<Eigen::Vector2d> level_references;
     for (double q : options.process_scales) {
       for (double k : knobs(method, options)) {
-        s.process_scale = q;
-        s.knob = k;
-        s.level_reference.setZero();
-        if (tracks_level) {
-          MethodSetup reference = s;
-          reference.measure_innovation_level = true;
-          s.level_reference = track(train, reference, options.gate).innovation_sigma;
-        }
-        const TrackResult r = track(train, s, options.gate);
+        const PartRuns pr = run_parts(method, q, k, tuning, motions, options);
+        const TrackResult& r = pr.result;
         const double inf = std::numeric_limits<double>::infinity();
         runs.push_back(
             {q, k, r.diverged ? inf : r.position_rmse(), r.nees.empty() ? inf : mean(r.nees), r.log_score()});
-        level_references.push_back(s.level_reference);
+        level_references.push_back(pr.level_reference);
       }
     }
     const std::size_t i = choose_setting(runs, band, options.criterion, options.rmse_tolerance);
@@ -161,6 +208,11 @@ std::vector<MethodScore> tune_and_score(const TrackingData& train, const Trackin
   const std::vector<TrackResult> heldout = run_tuned(test, scores, models, options);
   for (std::size_t i = 0; i < scores.size(); ++i) scores[i].heldout = heldout[i];
   return scores;
+}
+
+std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test, const FilterModels& models,
+                                        const FamilyOptions& options) {
+  return tune_and_score(std::vector<TuningPart>{{train, models}}, test, models, options);
 }
 
 TrackResult dead_reckoning(const TrackingData& data, const GatePolicy& gate) {

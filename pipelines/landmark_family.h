@@ -63,9 +63,9 @@ struct MethodScore {
   TrackResult heldout;
 };
 
-// The χ² band of a time-averaged NEES over `data`: K = ⌈duration / nees_block_s⌉ independent
+// The χ² band of a NEES averaged over `duration_s`: K = ⌈duration / nees_block_s⌉ independent
 // values, [χ²_{0.025}(3K)/K, χ²_{0.975}(3K)/K].
-filters::ChiSquareInterval tuning_nees_band(const TrackingData& data, const FamilyOptions& options);
+filters::ChiSquareInterval tuning_nees_band(double duration_s, const FamilyOptions& options);
 
 // One setting of a method's grid, run on the tuning part.
 struct GridRun {
@@ -79,6 +79,19 @@ struct GridRun {
 // part's NEES band (see the top of this file).
 std::size_t choose_setting(const std::vector<GridRun>& runs, const filters::ChiSquareInterval& band,
                            TuningCriterion criterion, double rmse_tolerance = 0.0);
+
+// A part of the tuning data and the models every method runs with there. Cross-fitted tuning
+// runs each part with models fitted on another part, so that a setting is judged on data its
+// models did not see, as the held-out part will be.
+struct TuningPart {
+  TrackingData data;
+  FilterModels models;
+};
+
+// Every method of kMethods tuned over the `tuning` parts (each setting's runs on all parts joined
+// into one score) and scored on `test` with `models`.
+std::vector<MethodScore> tune_and_score(const std::vector<TuningPart>& tuning, const TrackingData& test,
+                                        const FilterModels& models, const FamilyOptions& options);
 
 // Every method of kMethods tuned on `train` and scored on `test`.
 std::vector<MethodScore> tune_and_score(const TrackingData& train, const TrackingData& test, const FilterModels& models,

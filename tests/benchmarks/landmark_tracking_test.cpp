@@ -18,7 +18,7 @@ namespace locbench::experiments::landmarks {
 namespace {
 
 struct Family {
-  TrackingData test;
+  TrackingData train, test;
   std::vector<MethodScore> scores;
   FilterModels models;
   const MethodScore& of(Method m) const {
@@ -44,6 +44,15 @@ struct FamilyRun {
   bool track_noise_level = false;
 };
 
+FamilyOptions small_grid() {
+  FamilyOptions options;
+  options.process_scales = {1.0 / 16.0, 0.25, 1.0, 4.0, 16.0};  // a smaller grid than the experiment's,
+  options.r_scales = {1.0, 16.0, 256.0};                        // the same for every method
+  options.sage_husa_forgetting = {0.9, 0.97, 0.99};
+  options.vb_forgetting = {0.97, 0.99, 0.999};
+  return options;
+}
+
 Family run_family(const std::vector<sim::HiddenEffect>& effects, std::uint64_t seed, const FamilyRun& run = {}) {
   sim::GeneratorOptions g;
   g.velocity_odometry = true;
@@ -66,15 +75,33 @@ Family run_family(const std::vector<sim::HiddenEffect>& effects, std::uint64_t s
   Family f;
   f.models =
       filter_models(diagnosis::diagnose_log(restrict_log(full, from, mid)), measured_sensor_noise(train, sensor));
-  FamilyOptions options;
-  options.process_scales = {1.0 / 16.0, 0.25, 1.0, 4.0, 16.0};  // a smaller grid than the experiment's,
-  options.r_scales = {1.0, 16.0, 256.0};                        // the same for every method
-  options.sage_husa_forgetting = {0.9, 0.97, 0.99};
-  options.vb_forgetting = {0.97, 0.99, 0.999};
+  FamilyOptions options = small_grid();
   options.track_noise_level = run.track_noise_level;
   f.scores = tune_and_score(train, test, f.models, options);
+  f.train = train;
   f.test = test;
   return f;
+}
+
+TEST(LandmarkTuning, ASettingRunOnTwoTuningPartsIsScoredOnBothJoined) {
+  // The tuning half given twice, as two parts: each setting's steps are those of one part twice
+  // over, so its RMSE, mean NEES and log score are those of one part, and the same settings win
+  // (the NEES band is that of twice the duration, narrower, which picks the same setting here).
+  const Family f = run_family({{"velocity_scale", 0.15}}, 21);
+  const std::vector<MethodScore> twice =
+      tune_and_score({{f.train, f.models}, {f.train, f.models}}, f.test, f.models, small_grid());
+  ASSERT_EQ(twice.size(), f.scores.size());
+  for (std::size_t i = 0; i < twice.size(); ++i) {
+    EXPECT_EQ(twice[i].grid_runs, f.scores[i].grid_runs);
+    if (!std::isfinite(f.scores[i].tuning_rmse)) continue;
+    if (twice[i].process_scale != f.scores[i].process_scale || twice[i].knob != f.scores[i].knob) continue;
+    const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(1.0, std::abs(b)); };
+    EXPECT_TRUE(near(twice[i].tuning_rmse, f.scores[i].tuning_rmse)) << to_string(twice[i].method);
+    EXPECT_TRUE(near(twice[i].tuning_nees, f.scores[i].tuning_nees)) << to_string(twice[i].method);
+    EXPECT_TRUE(near(twice[i].tuning_log_score, f.scores[i].tuning_log_score)) << to_string(twice[i].method);
+  }
+  EXPECT_EQ(twice.back().process_scale, f.scores.back().process_scale) << "the diagnosed model's setting";
+  EXPECT_EQ(twice.back().knob, f.scores.back().knob);
 }
 
 TEST(LandmarkFamily, TheDiagnosedVelocityScaleMakesTheFilterBetterThanTheNominalModel) {

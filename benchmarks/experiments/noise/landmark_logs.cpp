@@ -84,6 +84,7 @@ struct Options {
   bool twin_replays_tuning_half = false;  // the twins replay the tuning half instead (the model's own check)
   bool correlated_sensor_noise = false;   // the diagnosed model's filter carries the correlated noise as biases
   bool track_noise_level = false;         // the diagnosed model's filter tracks its sensor's noise level
+  bool cross_fit_tuning = false;          // tune on each quarter with the models fitted on the other
 };
 template <class V>
 void visit_fields(V& v, Options& o) {
@@ -119,6 +120,10 @@ void visit_fields(V& v, Options& o) {
          "the diagnosed model's filter carries the sensor noise's time-correlated share, measured on the tuning half, "
          "as Gauss–Markov range and bearing biases in its state (false, the default: all of it white, as every other "
          "method; on MRCLAM Dataset 6 the biases did not improve the held-out halves)");
+  v.flag("cross_fit_tuning", o.cross_fit_tuning,
+         "each setting is tuned on the two quarters of the tuning half, each run with the models (diagnosis, "
+         "measured sensor noise) fitted on the other quarter, so that settings are chosen on data the models did not "
+         "see; the held-out half runs with the models of the whole tuning half");
   v.flag("track_noise_level", o.track_noise_level,
          "the diagnosed model's filter scales each channel's R by its innovations' level over the last minute against "
          "their level on the tuning half (the diagnosis's noise levels that vary along the log)");
@@ -152,6 +157,38 @@ std::optional<LandmarkSensorModel> sensor_noise_if_measurable(const TrackingData
   }
 }
 
+// The sensor noise's structure (per-landmark biases, time correlation, level) measured on `part`
+// on the residuals of the diagnosed sensor model, so that what the model explains is not counted
+// again: the extended twin draws it, the diagnosed model's filter carries its correlated share
+// (correlated_sensor_noise); the nominal sensor is white.
+void measure_own_noise_structure(FilterModels& m, const TrackingData& part) {
+  m.nominal_sensor.structure = {};
+  m.diagnosed_sensor.structure = {};
+  if (const auto own = sensor_noise_if_measurable(part, m.diagnosed_sensor))
+    m.diagnosed_sensor.structure = own->structure;
+}
+
+// The models fitted on `part` of the log: the diagnosis, and the nominal sensor's noise measured
+// there (every method's starting R; or `sensor` as given).
+FilterModels fitted_models(const Log& log, const TrackingData& part, const Options& c,
+                           const LandmarkSensorModel& sensor) {
+  const LandmarkSensorModel measured = c.measure_sensor_noise ? measured_sensor_noise(part, sensor) : sensor;
+  FilterModels m = filter_models(diagnosis::diagnose_log(restrict_log(log, part.from, part.to)), measured);
+  measure_own_noise_structure(m, part);
+  return m;
+}
+
+// The tuning parts: the whole tuning half with its own models, or (cross_fit_tuning, models fitted
+// on the log) its two quarters, each with the models fitted on the other.
+std::vector<TuningPart> tuning_parts(const Log& log, const TrackingData& train, const FilterModels& models,
+                                     double wheelbase, const Options& c, const LandmarkSensorModel& sensor) {
+  if (!c.cross_fit_tuning || !c.model_file.empty()) return {{train, models}};
+  const double quarter = 0.5 * (train.from + train.to);
+  const TrackingData a = tracking_data(log, train.from, quarter, wheelbase);
+  const TrackingData b = tracking_data(log, quarter, train.to, wheelbase);
+  return {{a, fitted_models(log, b, c, sensor)}, {b, fitted_models(log, a, c, sensor)}};
+}
+
 Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, const LandmarkSensorModel& sensor,
                 std::uint64_t twin_seed) {
   Outcome o;
@@ -164,23 +201,16 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
   const double wheelbase = log.nominal_model() ? log.nominal_model()->wheelbase : c.wheelbase_m;
   const TrackingData train = tracking_data(log, from, mid, wheelbase);
   const TrackingData test = tracking_data(log, mid, to, wheelbase);
-  // The nominal sensor's noise, measured on the tuning half, is every method's starting R.
-  const LandmarkSensorModel measured = c.measure_sensor_noise ? measured_sensor_noise(train, sensor) : sensor;
-  o.models = c.model_file.empty() ? filter_models(diagnosis::diagnose_log(restrict_log(log, from, mid)), measured)
-                                  : read_filter_models(c.model_file, measured);
-  if (!c.model_file.empty()) o.models.source = c.model_file;
+  if (c.model_file.empty()) {
+    o.models = fitted_models(log, train, c, sensor);
+  } else {
+    o.models = read_filter_models(c.model_file, c.measure_sensor_noise ? measured_sensor_noise(train, sensor) : sensor);
+    o.models.source = c.model_file;
+    measure_own_noise_structure(o.models, train);
+  }
   o.tuning_noise = sensor_noise_if_measurable(train, sensor);
   o.heldout_noise = sensor_noise_if_measurable(test, sensor);
-  // The sensor noise's structure measured on the tuning half (per-landmark biases, time
-  // correlation, level) on the residuals of the diagnosed sensor model, so that what the model
-  // explains is not counted again: the extended twin draws it, the diagnosed model's filter
-  // carries its correlated share (correlated_sensor_noise); the nominal sensor is white.
-  o.models.nominal_sensor.structure = {};
-  o.models.diagnosed_sensor.structure = {};
-  if (const auto own = sensor_noise_if_measurable(train, o.models.diagnosed_sensor)) {
-    o.models.diagnosed_sensor.structure = own->structure;
-  }
-  o.scores = tune_and_score(train, test, o.models, family);
+  o.scores = tune_and_score(tuning_parts(log, train, o.models, wheelbase, c, sensor), test, o.models, family);
   o.dead_reckoning = dead_reckoning(test, family.gate);  // on the held-out half
   o.from = from, o.mid = mid, o.to = to;
   o.other_robot_observations = train.other_robot_observations + test.other_robot_observations;
