@@ -1,5 +1,7 @@
 #include "algorithms/diagnosis/diagnosis.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -109,7 +111,23 @@ Diagnosis diagnose_log(const Log& log, const MotionData& data, const DiagnosisOp
   }
   out.nominal_model["noise"] = "constant white noise per window component (fitted)";
 
-  OdometryChannelResult odometry = diagnose_odometry(data, options);
+  // The channels are independent: they run side by side (each deterministic, so the report is
+  // the same for any number of threads).
+  const bool compass_testable = data.compass.size() >= 40 && data.truth.size() >= 2;
+  const bool landmarks_testable = !log.landmarks.empty() && !log.landmark_map.empty() && log.truth.size() >= 2;
+  OdometryChannelResult odometry;
+  ChannelResult compass;
+  LandmarkChannelResult landmarks;
+  tbb::parallel_invoke([&] { odometry = diagnose_odometry(data, options); },
+                       [&] {
+                         if (compass_testable) compass = diagnose_compass(data, options);
+                       },
+                       [&] {
+                         if (landmarks_testable) {
+                           landmarks = diagnose_landmarks(
+                               make_landmark_data(log.landmarks, log.landmark_map, log.truth), options);
+                         }
+                       });
   out.noise_window_s = options.windows.duration;
   out.noise_sigma_x = odometry.nominal_fit.sigma_x;
   out.noise_sigma_y = odometry.nominal_fit.sigma_y;
@@ -119,18 +137,12 @@ Diagnosis diagnose_log(const Log& log, const MotionData& data, const DiagnosisOp
   out.odometry_model = odometry.final_fit;
   out.odometry_kind = data.odometry == OdometryKind::kEncoder ? "encoder" : "velocity";
   std::vector<const ChannelResult*> channels{&odometry};
-  ChannelResult compass;
-  if (data.compass.size() >= 40 && data.truth.size() >= 2) {
+  if (compass_testable) {
     out.nominal_model["compass_resolution_rad"] = data.compass_step;
     out.reference += "; compass against TRUEPOS";
-    compass = diagnose_compass(data, options);
     channels.push_back(&compass);
   } else {
     out.not_testable.push_back("compass_bias, compass_quantization, compass_disturbance: need COMPASS and TRUEPOS");
-  }
-  LandmarkChannelResult landmarks;
-  if (!log.landmarks.empty() && !log.landmark_map.empty() && log.truth.size() >= 2) {
-    landmarks = diagnose_landmarks(make_landmark_data(log.landmarks, log.landmark_map, log.truth), options);
   }
   if (landmarks.testable) {
     out.nominal_model["landmark"] = "z_r = ρ, z_b = φ (map positions, truth at the observation time), white noise";

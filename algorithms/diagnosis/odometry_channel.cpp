@@ -1,6 +1,8 @@
 #include "algorithms/diagnosis/odometry_channel.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cmath>
@@ -262,6 +264,36 @@ class OdoFitsBySet {
     return fits_[key] = fitter_.fit(specs(key), start, false);
   }
 
+  // The fits of `sets` not fitted yet, side by side (each from the fit without its last member,
+  // those fitted first, side by side, the same way), each with its own copy of the fitter's window
+  // cache: the same fits on any number of threads.
+  void prefit(const std::vector<std::vector<std::size_t>>& sets) {
+    struct Job {
+      std::vector<std::size_t> key;
+      OdometryModel start;
+    };
+    std::vector<Job> jobs;
+    RoundSets starts;
+    for (const auto& active : sets) {
+      if (active.empty()) continue;
+      std::vector<std::size_t> key = active;
+      std::sort(key.begin(), key.end());
+      const bool queued = std::any_of(jobs.begin(), jobs.end(), [&](const Job& j) { return j.key == key; });
+      if (fits_.count(key) != 0 || queued) continue;
+      jobs.push_back({key, {}});
+      starts.emplace_back(active.begin(), active.end() - 1);
+    }
+    if (jobs.empty()) return;
+    prefit(starts);
+    for (std::size_t i = 0; i < jobs.size(); ++i) jobs[i].start = (*this)(starts[i]).model;
+    std::vector<OdoFit> fitted(jobs.size());
+    tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t i) {
+      const Fitter own = fitter_;
+      fitted[i] = own.fit(specs(jobs[i].key), jobs[i].start, false);
+    });
+    for (std::size_t i = 0; i < jobs.size(); ++i) fits_.emplace(jobs[i].key, std::move(fitted[i]));
+  }
+
   const OdoFit& reported(std::vector<std::size_t> active) {
     std::sort(active.begin(), active.end());
     const bool offset = std::any_of(active.begin(), active.end(),
@@ -320,6 +352,14 @@ OdometrySelection select_odometry_causes(OdoFitsBySet& fit_set, const std::vecto
             return SelectionFit{f.nll, false};
           }
           return SelectionFit{f.nll, !offset || offset_resolved(f.model.time_offset)};
+        },
+        [&](const RoundSets& round) {
+          RoundSets sets;
+          for (const auto& active : round) {
+            sets.push_back(before);
+            for (std::size_t k : active) sets.back().push_back(pool[k]);
+          }
+          fit_set.prefit(sets);
         });
     for (std::size_t k : phase.entered) sel.entered.push_back(pool[k]);
     for (std::size_t k = 0; k < pool.size(); ++k) sel.evidence[pool[k]] = phase.evidence[k];
@@ -348,6 +388,14 @@ HeldOutCheck eliminate_causes_without_gain(const MotionData& d, OdoFitsBySet& fi
   kept = entered;
   while (!kept.empty()) {
     const OdoFit& full = fit_set(kept);
+    RoundSets drop_one;
+    for (std::size_t i : kept) {
+      drop_one.emplace_back();
+      for (std::size_t j : kept) {
+        if (j != i) drop_one.back().push_back(j);
+      }
+    }
+    fit_set.prefit(drop_one);
     std::optional<std::size_t> worst;
     for (std::size_t i : kept) {
       std::vector<std::size_t> others;
@@ -378,8 +426,9 @@ std::string dropped_cause_note(const MotionData& d, OdoFitsBySet& fit_set, const
   std::vector<std::size_t> first(train.begin(), train.begin() + static_cast<long>(train.size() / 2));
   std::vector<std::size_t> second(train.begin() + static_cast<long>(train.size() / 2), train.end());
   const std::vector<const CauseSpec*> specs = fit_set.specs(judged_in);
-  const auto a = Fitter(d, first, exact_derivatives).fit(specs, full.model, false).estimate(p);
-  const auto b = Fitter(d, second, exact_derivatives).fit(specs, full.model, false).estimate(p);
+  std::optional<Estimate> a, b;
+  tbb::parallel_invoke([&] { a = Fitter(d, first, exact_derivatives).fit(specs, full.model, false).estimate(p); },
+                       [&] { b = Fitter(d, second, exact_derivatives).fit(specs, full.model, false).estimate(p); });
   std::string note = fmt::format(
       "{} passed the likelihood ratio (LR {:.1f} ≥ {:.1f}) but did not reduce the held-out {} "
       "({:.4g} → {:.4g})",
@@ -434,14 +483,25 @@ std::vector<ConfoundedGroup> confounded_groups(OdoFitsBySet& fit_set, const std:
                                                const std::vector<std::size_t>& kept, double nominal_nll,
                                                double false_alarm, std::vector<Cause>& causes) {
   const double m = static_cast<double>(candidates.size());
+  // The pairs fitted together: a kept one-parameter cause with another that passes alone.
+  const auto paired = [&](std::size_t a, std::size_t c) {
+    const CauseSpec &sa = *candidates[a], &sc = *candidates[c];
+    if (c == a || sc.noise || sa.noise || sc.params.size() != 1 || sa.params.size() != 1) return false;
+    return 2.0 * (nominal_nll - fit_set({c}).nll) > chi_square_upper_quantile(ChiSquareDof(1.0), false_alarm / m);
+  };
+  RoundSets pairs;
+  for (std::size_t a : kept) {
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      if (paired(a, c)) pairs.push_back({a, c});
+    }
+  }
+  fit_set.prefit(pairs);
   std::vector<ConfoundedGroup> confounded;
   for (std::size_t a : kept) {
     const CauseSpec& sa = *candidates[a];
     for (std::size_t c = 0; c < candidates.size(); ++c) {
       const CauseSpec& sc = *candidates[c];
-      if (c == a || sc.noise || sa.noise || sc.params.size() != 1 || sa.params.size() != 1) continue;
-      if (2.0 * (nominal_nll - fit_set({c}).nll) <= chi_square_upper_quantile(ChiSquareDof(1.0), false_alarm / m))
-        continue;
+      if (!paired(a, c)) continue;
       const OdoFit& both = fit_set({a, c});
       if (both.fit.max_abs_correlation < 0.98) continue;
       const bool seen = std::any_of(confounded.begin(), confounded.end(), [&](const ConfoundedGroup& g) {

@@ -10,17 +10,23 @@ bool offset_resolved(double offset) { return std::abs(offset) > kOffsetResolutio
 
 Selection forward_select(std::size_t candidates, double nominal_nll,
                          const std::function<double(std::size_t)>& threshold,
-                         const std::function<SelectionFit(const std::vector<std::size_t>&)>& fit) {
+                         const std::function<SelectionFit(const std::vector<std::size_t>&)>& fit,
+                         const std::function<void(const RoundSets&)>& prepare) {
   Selection s;
   s.evidence.resize(candidates);
   double current = nominal_nll;
   for (;;) {
     std::size_t best = candidates;
     double best_margin = 0.0, best_nll = current;
+    RoundSets round;
     for (std::size_t i = 0; i < candidates; ++i) {
       if (std::find(s.entered.begin(), s.entered.end(), i) != s.entered.end()) continue;
-      auto active = s.entered;
-      active.push_back(i);
+      round.push_back(s.entered);
+      round.back().push_back(i);
+    }
+    if (prepare) prepare(round);
+    for (const auto& active : round) {
+      const std::size_t i = active.back();
       const SelectionFit f = fit(active);
       Evidence& e = s.evidence[i];
       e.lr = 2.0 * (current - f.nll);

@@ -32,14 +32,17 @@ struct Selection {
 // Candidates enter one at a time, the one with the largest LR − threshold margin first, while
 // some margin is positive. `fit(active)` returns the NLL of the model with those candidates
 // (indices) active, and whether the last candidate's fit is admissible; `threshold(i)` is
-// candidate i's χ² quantile.
+// candidate i's χ² quantile. `prepare`, when given, is called with every active set of a round
+// before `fit` is asked for any of them (a caller can fit them side by side).
 struct SelectionFit {
   double nll = 0.0;
   bool admissible = true;
 };
+using RoundSets = std::vector<std::vector<std::size_t>>;
 Selection forward_select(std::size_t candidates, double nominal_nll,
                          const std::function<double(std::size_t)>& threshold,
-                         const std::function<SelectionFit(const std::vector<std::size_t>&)>& fit);
+                         const std::function<SelectionFit(const std::vector<std::size_t>&)>& fit,
+                         const std::function<void(const RoundSets&)>& prepare = {});
 
 // Offset profile over ±`range` s. The likelihood is bumpy between the reference's samples (the
 // reference is interpolated between them), so it is scanned, not descended: a coarse grid of step

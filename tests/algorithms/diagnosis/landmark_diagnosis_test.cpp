@@ -2,6 +2,7 @@
 // map and TRUEPOS, and is "not testable" otherwise; the report carries the fitted models, which
 // read back strictly (a filter loads them from `diagnose --report` output).
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 
@@ -48,6 +49,30 @@ TEST(LandmarkDiagnosis, ALogWithLandmarksAMapAndTruthGetsTheChannelAndItsModelIn
   EXPECT_DOUBLE_EQ(m.odometry->sigma_theta, d.odometry_model->sigma_theta);
   EXPECT_EQ(m.odometry_kind, "velocity");
   EXPECT_DOUBLE_EQ(m.odometry_window_s, 1.0);
+}
+
+TEST(DiagnosisThreads, TheReportIsTheSameOnOneThreadAsOnMany) {
+  // The channels run side by side, and the odometry channel fits each selection round's candidates
+  // side by side: a log with causes in both channels, diagnosed on 1 thread and on 4, gives the
+  // same report to the last bit.
+  sim::GeneratorOptions o;
+  o.velocity_odometry = true;
+  o.compass = false;
+  sim::GeneratedLog g = sim::generate_log({{"velocity_scale", 0.05}, {"turn_rate_scale", 0.05}}, 12, o);
+  sim::add_landmark_observations(g, {{"landmark_range_bias", 0.05}}, 12);
+  nlohmann::json one, many;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = to_json(diagnose_log(g.log));
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 4);
+    many = to_json(diagnose_log(g.log));
+  }
+  one.erase("provenance");
+  many.erase("provenance");
+  ASSERT_GE(one.at("detected").size(), 2u) << one.at("detected").dump();
+  EXPECT_EQ(one.dump(), many.dump());
 }
 
 TEST(LandmarkDiagnosis, TheOdometryModelHoldsOnlyTheDetectedOdometryCausesWithTheirFittedValues) {
