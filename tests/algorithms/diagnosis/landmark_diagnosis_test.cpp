@@ -58,6 +58,7 @@ TEST(DiagnosisThreads, TheReportIsTheSameOnOneThreadAsOnMany) {
   sim::GeneratorOptions o;
   o.velocity_odometry = true;
   o.compass = false;
+  o.waypoints = 8;
   sim::GeneratedLog g = sim::generate_log({{"velocity_scale", 0.05}, {"turn_rate_scale", 0.05}}, 12, o);
   sim::add_landmark_observations(g, {{"landmark_range_bias", 0.05}}, 12);
   nlohmann::json one, many;
