@@ -296,11 +296,32 @@ class OdoFitsBySet {
 
   const OdoFit& reported(std::vector<std::size_t> active) {
     std::sort(active.begin(), active.end());
-    const bool offset = std::any_of(active.begin(), active.end(),
-                                    [&](std::size_t i) { return candidates_[i]->id == cause::kTimeOffset; });
-    if (!offset) return (*this)(active);
+    if (!has_offset(active)) return (*this)(active);
     if (auto it = reported_.find(active); it != reported_.end()) return it->second;
     return reported_[active] = fitter_.fit(specs(active), (*this)(active).model, true);
+  }
+
+  // The reported fits of `sets` (those with a profiled offset interval, not made yet) side by
+  // side, as `prefit` does for the plain ones.
+  void prefit_reported(RoundSets sets) {
+    std::vector<std::pair<std::vector<std::size_t>, OdometryModel>> jobs;
+    for (auto& active : sets) {
+      std::sort(active.begin(), active.end());
+      const bool queued = std::any_of(jobs.begin(), jobs.end(), [&](const auto& j) { return j.first == active; });
+      if (!has_offset(active) || reported_.count(active) != 0 || queued) continue;
+      jobs.emplace_back(active, (*this)(active).model);
+    }
+    std::vector<OdoFit> fitted(jobs.size());
+    tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t i) {
+      const Fitter own = fitter_;
+      fitted[i] = own.fit(specs(jobs[i].first), jobs[i].second, true);
+    });
+    for (std::size_t i = 0; i < jobs.size(); ++i) reported_.emplace(jobs[i].first, std::move(fitted[i]));
+  }
+
+  bool has_offset(const std::vector<std::size_t>& active) const {
+    return std::any_of(active.begin(), active.end(),
+                       [&](std::size_t i) { return candidates_[i]->id == cause::kTimeOffset; });
   }
 
   std::vector<const CauseSpec*> specs(const std::vector<std::size_t>& active) const {
@@ -577,6 +598,14 @@ OdometryChannelResult diagnose_odometry(const MotionData& d, const DiagnosisOpti
   }
   const HeldOutCheck check =
       eliminate_causes_without_gain(d, fit_set, candidates, sel.entered, test, opt.rpe_chain, heading_only);
+  // The fits the report shows with an offset interval (describe_causes): the kept set's, the
+  // entered set's when a cause was dropped, an offset that did not enter alone.
+  RoundSets shown{check.kept};
+  if (check.kept.size() != sel.entered.size()) shown.push_back(sel.entered);
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (std::find(sel.entered.begin(), sel.entered.end(), i) == sel.entered.end()) shown.push_back({i});
+  }
+  fit_set.prefit_reported(shown);
   for (const auto& [i, judged_in] : check.dropped) {
     out.heldout_notes.emplace_back(std::string(candidates[i]->id),
                                    dropped_cause_note(d, fit_set, *candidates[i], judged_in, train, sel.evidence[i],
