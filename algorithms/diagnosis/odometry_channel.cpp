@@ -268,17 +268,13 @@ class OdoFitsBySet {
   // those fitted first, side by side, the same way), each with its own copy of the fitter's window
   // cache: the same fits on any number of threads.
   void prefit(const std::vector<std::vector<std::size_t>>& sets) {
-    struct Job {
-      std::vector<std::size_t> key;
-      OdometryModel start;
-    };
-    std::vector<Job> jobs;
+    std::vector<FitJob> jobs;
     RoundSets starts;
     for (const auto& active : sets) {
       if (active.empty()) continue;
       std::vector<std::size_t> key = active;
       std::sort(key.begin(), key.end());
-      const bool queued = std::any_of(jobs.begin(), jobs.end(), [&](const Job& j) { return j.key == key; });
+      const bool queued = std::any_of(jobs.begin(), jobs.end(), [&](const FitJob& j) { return j.key == key; });
       if (fits_.count(key) != 0 || queued) continue;
       jobs.push_back({key, {}});
       starts.emplace_back(active.begin(), active.end() - 1);
@@ -286,12 +282,7 @@ class OdoFitsBySet {
     if (jobs.empty()) return;
     prefit(starts);
     for (std::size_t i = 0; i < jobs.size(); ++i) jobs[i].start = (*this)(starts[i]).model;
-    std::vector<OdoFit> fitted(jobs.size());
-    tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t i) {
-      const Fitter own = fitter_;
-      fitted[i] = own.fit(specs(jobs[i].key), jobs[i].start, false);
-    });
-    for (std::size_t i = 0; i < jobs.size(); ++i) fits_.emplace(jobs[i].key, std::move(fitted[i]));
+    fit_side_by_side(jobs, false, fits_);
   }
 
   const OdoFit& reported(std::vector<std::size_t> active) {
@@ -304,19 +295,32 @@ class OdoFitsBySet {
   // The reported fits of `sets` (those with a profiled offset interval, not made yet) side by
   // side, as `prefit` does for the plain ones.
   void prefit_reported(RoundSets sets) {
-    std::vector<std::pair<std::vector<std::size_t>, OdometryModel>> jobs;
+    std::vector<FitJob> jobs;
     for (auto& active : sets) {
       std::sort(active.begin(), active.end());
-      const bool queued = std::any_of(jobs.begin(), jobs.end(), [&](const auto& j) { return j.first == active; });
+      const bool queued = std::any_of(jobs.begin(), jobs.end(), [&](const FitJob& j) { return j.key == active; });
       if (!has_offset(active) || reported_.count(active) != 0 || queued) continue;
-      jobs.emplace_back(active, (*this)(active).model);
+      jobs.push_back({active, (*this)(active).model});
     }
+    fit_side_by_side(jobs, true, reported_);
+  }
+
+  // A fit to make: the sorted active set and its start.
+  struct FitJob {
+    std::vector<std::size_t> key;
+    OdometryModel start;
+  };
+
+  // The fits of `jobs` in parallel, each with its own copy of the fitter's window cache, entered
+  // into `into` in the order of `jobs`.
+  void fit_side_by_side(const std::vector<FitJob>& jobs, bool interval,
+                        std::map<std::vector<std::size_t>, OdoFit>& into) const {
     std::vector<OdoFit> fitted(jobs.size());
     tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t i) {
       const Fitter own = fitter_;
-      fitted[i] = own.fit(specs(jobs[i].first), jobs[i].second, true);
+      fitted[i] = own.fit(specs(jobs[i].key), jobs[i].start, interval);
     });
-    for (std::size_t i = 0; i < jobs.size(); ++i) reported_.emplace(jobs[i].first, std::move(fitted[i]));
+    for (std::size_t i = 0; i < jobs.size(); ++i) into.emplace(jobs[i].key, std::move(fitted[i]));
   }
 
   bool has_offset(const std::vector<std::size_t>& active) const {
