@@ -6,7 +6,6 @@
 #include <iostream>
 
 #include "algorithms/calibration/calibration_data.h"
-#include "benchmarks/experiments/framework/experiment.h"
 #include "cli/bag_topic_options.h"
 #include "cli/commands.h"
 #include "core/errors.h"
@@ -16,6 +15,7 @@
 #include "datasets/io/bag_log.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/sim/presets.h"
+#include "experiment_framework/experiment.h"
 
 namespace locbench::cli {
 using locbench::catalog::calibration_dataset_parts, locbench::catalog::dataset_catalog, locbench::catalog::DatasetEntry,

@@ -17,7 +17,6 @@
 #include "baselines/global/grid_markov.h"
 #include "baselines/global/monte_carlo_localization.h"
 #include "baselines/global/odometry_motion_model.h"
-#include "benchmarks/experiments/framework/experiment.h"
 #include "cli/bag_topic_options.h"
 #include "cli/commands.h"
 #include "cli/pose_report.h"
@@ -28,6 +27,7 @@
 #include "core/output_file.h"
 #include "datasets/io/log_loader.h"
 #include "datasets/sim/worlds.h"
+#include "experiment_framework/experiment.h"
 #include "pipelines/global_harness.h"
 
 namespace locbench::cli {

@@ -9,13 +9,13 @@
 #include <map>
 #include <optional>
 
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/parallel_tasks.h"
-#include "benchmarks/experiments/framework/shard.h"
 #include "cli/commands.h"
 #include "core/errors.h"
 #include "core/json_file.h"
 #include "core/output_file.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/parallel_tasks.h"
+#include "experiment_framework/shard.h"
 #include "reports/finish_report.h"
 #include "reports/provenance.h"
 #include "reports/schema_validation.h"

@@ -4,11 +4,11 @@
 #include <iostream>
 #include <set>
 
-#include "benchmarks/experiments/framework/experiment.h"
 #include "cli/commands.h"
 #include "core/errors.h"
 #include "core/json_file.h"
 #include "core/output_file.h"
+#include "experiment_framework/experiment.h"
 #include "reports/gnuplot_svg.h"
 #include "reports/html_report.h"
 #include "reports/report_json.h"

@@ -4,9 +4,6 @@
 #include <cmath>
 #include <iostream>
 
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/parallel_tasks.h"
-#include "benchmarks/experiments/framework/shard.h"
 #include "cli/bag_topic_options.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
@@ -15,6 +12,9 @@
 #include "core/json_file.h"
 #include "core/output_file.h"
 #include "datasets/catalog/data_root.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/parallel_tasks.h"
+#include "experiment_framework/shard.h"
 #include "pipelines/real_log_harness.h"
 #include "reports/finish_report.h"
 #include "reports/shard_report.h"

@@ -1,8 +1,8 @@
 // The JSON-option layer: user options merged over the defaults (--options, --config, --set) and
 // read into every laser matcher's option structs.
-#include "benchmarks/experiments/framework/experiment.h"
 #include "core/json_file.h"
 #include "datasets/sim/worlds.h"
+#include "experiment_framework/experiment.h"
 #include "fuzz/fuzz_input.h"
 #include "pipelines/laser_matchers.h"
 

@@ -14,8 +14,8 @@
 
 #include "algorithms/calibration/umbmark_improved.h"
 #include "baselines/calibration/umbmark_classic.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
 #include "datasets/sim/scenario.h"
+#include "experiment_framework/monte_carlo.h"
 #include "pipelines/scenario_option.h"
 
 namespace locbench::experiments {

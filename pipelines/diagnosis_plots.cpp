@@ -8,8 +8,8 @@
 
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/odometry_model.h"
-#include "benchmarks/experiments/framework/plot_series.h"
 #include "core/units.h"
+#include "experiment_framework/plot_series.h"
 
 namespace locbench::experiments {
 namespace {

@@ -8,12 +8,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "benchmarks/experiments/framework/experiment_options.h"
 #include "core/trajectory.h"
 #include "core/units.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario.h"
 #include "datasets/sim/simulation_result.h"
+#include "experiment_framework/experiment_options.h"
 #include "pipelines/scenario_option.h"
 #include "reports/report.h"
 

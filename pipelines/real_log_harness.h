@@ -22,8 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/experiments/framework/experiment.h"
 #include "core/log.h"
+#include "experiment_framework/experiment.h"
 #include "reports/report.h"
 
 namespace locbench::experiments {

@@ -1,5 +1,5 @@
 #pragma once
-// A simulator scenario as an experiment's option (framework/experiment_options.h `coded`):
+// A simulator scenario as an experiment's option (experiment_framework/experiment_options.h `coded`):
 //   v.coded("scenario", o.scenario, scenario_json, scenario_option, "…");
 // written by sim::to_json and read back, checked, by sim::scenario_from_json.
 #include <nlohmann/json.hpp>

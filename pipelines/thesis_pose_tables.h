@@ -17,11 +17,11 @@
 
 #include "algorithms/laser/eap_matcher.h"
 #include "algorithms/pose_correction/pose_correction.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
 #include "core/line_map.h"
 #include "core/pose2.h"
 #include "core/scan.h"
 #include "core/units.h"
+#include "experiment_framework/monte_carlo.h"
 
 namespace locbench::experiments::thesis_pose {
 

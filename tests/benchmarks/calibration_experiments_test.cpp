@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "benchmarks/experiments/framework/experiment.h"
+#include "experiment_framework/experiment.h"
 #include "tests/benchmarks/experiment_test_support.h"
 
 namespace locbench::experiments {

@@ -3,11 +3,11 @@
 #include <gtest/gtest.h>
 
 #include "algorithms/diagnosis/motion_windows.h"
-#include "benchmarks/experiments/framework/experiment.h"
 #include "datasets/io/carmen_writer.h"
 #include "datasets/io/tum_writer.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
+#include "experiment_framework/experiment.h"
 #include "tests/test_data.h"
 
 namespace locbench::experiments {

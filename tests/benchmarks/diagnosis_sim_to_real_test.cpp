@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "benchmarks/experiments/framework/experiment.h"
+#include "experiment_framework/experiment.h"
 #include "tests/benchmarks/experiment_test_support.h"
 
 namespace locbench::experiments {

@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/experiment_options.h"
 #include "core/errors.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/experiment_options.h"
 
 namespace locbench::experiments {
 namespace {

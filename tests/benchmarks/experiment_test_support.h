@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "benchmarks/experiments/framework/experiment.h"
+#include "experiment_framework/experiment.h"
 #include "reports/report_json.h"
 
 namespace locbench::experiments::test_support {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <map>
 
-#include "benchmarks/experiments/framework/experiment.h"
 #include "datasets/catalog/data_root.h"
+#include "experiment_framework/experiment.h"
 #include "reports/report_json.h"
 #include "tests/benchmarks/experiment_test_support.h"
 #include "tests/test_data.h"

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "benchmarks/experiments/framework/experiment.h"
+#include "experiment_framework/experiment.h"
 #include "tests/benchmarks/experiment_test_support.h"
 
 namespace locbench::experiments {

@@ -2,9 +2,9 @@
 // merged (the records pass through the shard file's JSON text, as on a batch system).
 #include <gtest/gtest.h>
 
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/shard.h"
 #include "core/errors.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/shard.h"
 #include "reports/report_json.h"
 #include "reports/shard_report.h"
 

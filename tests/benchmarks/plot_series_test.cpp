@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/framework/plot_series.h"
+#include "experiment_framework/plot_series.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/experiments/framework/experiment.h"
+#include "experiment_framework/experiment.h"
 
 namespace locbench::experiments {
 namespace {

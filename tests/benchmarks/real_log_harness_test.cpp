@@ -9,8 +9,8 @@
 #include <fstream>
 #include <map>
 
-#include "benchmarks/experiments/framework/experiment.h"
 #include "core/errors.h"
+#include "experiment_framework/experiment.h"
 #include "pipelines/laser_correctors.h"
 #include "tests/benchmarks/small_real_log.h"
 #include "tests/test_data.h"

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/registry.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/registry.h"
 
 namespace locbench::experiments {
 namespace {
@@ -20,13 +20,13 @@ std::vector<std::string> registered_names() {
   return names;
 }
 
-// "topic/name" of every benchmarks/experiments/<topic>/<name>.cpp outside framework/ and harness/.
+// "topic/name" of every benchmarks/experiments/<topic>/<name>.cpp.
 std::set<std::string> experiment_files() {
   const std::filesystem::path root = std::filesystem::path(LOCBENCH_SOURCE_DIR) / "benchmarks" / "experiments";
   std::set<std::string> names;
   for (const auto& topic : std::filesystem::directory_iterator(root)) {
     const std::string t = topic.path().filename().string();
-    if (!topic.is_directory() || t == "framework" || t == "harness") continue;
+    if (!topic.is_directory()) continue;
     for (const auto& f : std::filesystem::directory_iterator(topic.path())) {
       if (f.path().extension() == ".cpp") names.insert(t + "/" + f.path().stem().string());
     }

@@ -1,12 +1,12 @@
-#include "benchmarks/experiments/framework/shard.h"
+#include "experiment_framework/shard.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <stdexcept>
 
-#include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "core/errors.h"
+#include "experiment_framework/parallel_tasks.h"
 
 namespace locbench::experiments {
 namespace {

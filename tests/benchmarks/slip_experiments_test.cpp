@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "benchmarks/experiments/framework/experiment.h"
+#include "experiment_framework/experiment.h"
 #include "pipelines/slip_sim.h"
 
 namespace locbench::experiments {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "benchmarks/experiments/framework/experiment.h"
+#include "experiment_framework/experiment.h"
 #include "reports/report_json.h"
 #include "tests/benchmarks/experiment_test_support.h"
 

@@ -8,9 +8,6 @@
 #include "algorithms/calibration/umbmark_design_model.h"
 #include "algorithms/calibration/umbmark_improved.h"
 #include "baselines/calibration/umbmark_classic.h"
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/checksum.h"
 #include "core/errors.h"
 #include "core/rng.h"
@@ -19,6 +16,9 @@
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/umbmark_input.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/scenario_option.h"
 
 namespace locbench::experiments::calibration_identifiability {

@@ -12,14 +12,14 @@
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/held_out_evaluation.h"
 #include "algorithms/calibration/ml_calibration.h"
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/options_experiment.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/checksum.h"
 #include "core/errors.h"
 #include "datasets/catalog/calibration_catalog.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/io/censi_results_reader.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/options_experiment.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::calibration_real_logs {

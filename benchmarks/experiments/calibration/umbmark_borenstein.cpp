@@ -1,6 +1,6 @@
 // Experiment calibration/umbmark_borenstein: UMBmark, classic and improved, on a LabMate-like robot on Borenstein &
 // Feng's 4 m square. The experiment is harness/calibration_umbmark.h, shared with the other robot.
-#include "benchmarks/experiments/framework/registry.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/calibration_umbmark.h"
 
 namespace locbench::experiments::calibration_umbmark_borenstein {

@@ -9,10 +9,10 @@
 #include <map>
 
 #include "algorithms/diagnosis/diagnosis.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "datasets/diagnosis/hidden_effects.h"
 #include "datasets/diagnosis/physical_log_generator.h"
+#include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/registry.h"
 
 namespace locbench::experiments::diagnosis_false_alarms {
 

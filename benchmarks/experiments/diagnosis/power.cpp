@@ -11,10 +11,10 @@
 #include <cmath>
 
 #include "algorithms/diagnosis/diagnosis.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/units.h"
 #include "datasets/diagnosis/hidden_effects.h"
+#include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/registry.h"
 
 namespace locbench::experiments::diagnosis_power {
 

@@ -13,12 +13,12 @@
 
 #include "algorithms/diagnosis/diagnosis.h"
 #include "algorithms/diagnosis/scale_checks.h"
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/options_experiment.h"
-#include "benchmarks/experiments/framework/parallel_tasks.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/checksum.h"
 #include "core/errors.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/options_experiment.h"
+#include "experiment_framework/parallel_tasks.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/diagnosis_plots.h"
 #include "pipelines/real_log_harness.h"
 

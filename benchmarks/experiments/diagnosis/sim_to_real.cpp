@@ -22,12 +22,12 @@
 #include <optional>
 
 #include "algorithms/diagnosis/diagnosis.h"
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/options_experiment.h"
-#include "benchmarks/experiments/framework/parallel_tasks.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/errors.h"
 #include "datasets/io/odometry_interpolation.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/options_experiment.h"
+#include "experiment_framework/parallel_tasks.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/real_log_harness.h"
 #include "pipelines/twin/twin_comparison.h"
 

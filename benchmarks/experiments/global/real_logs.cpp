@@ -14,10 +14,10 @@
 #include <limits>
 
 #include "baselines/laser/pl_icp.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/errors.h"
 #include "core/statistics.h"
+#include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/global_harness.h"
 #include "pipelines/real_log_harness.h"
 

@@ -15,8 +15,6 @@
 #include <cmath>
 #include <limits>
 
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/checksum.h"
 #include "core/errors.h"
 #include "core/statistics.h"
@@ -24,6 +22,8 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/simulator.h"
 #include "datasets/sim/worlds.h"
+#include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/global_harness.h"
 
 namespace locbench::experiments::global_sim {

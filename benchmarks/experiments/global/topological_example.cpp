@@ -6,9 +6,9 @@
 #include <fmt/format.h>
 
 #include "baselines/global/topological_markov.h"
-#include "benchmarks/experiments/framework/options_experiment.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/checksum.h"
+#include "experiment_framework/options_experiment.h"
+#include "experiment_framework/registry.h"
 
 namespace locbench::experiments::global_topological_example {
 

@@ -16,12 +16,12 @@
 #include <optional>
 
 #include "baselines/laser/extract_then_match.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/plot_series.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/errors.h"
 #include "core/statistics.h"
 #include "datasets/io/odometry_interpolation.h"
+#include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/plot_series.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/laser_correctors.h"
 #include "pipelines/real_log_harness.h"
 #include "pipelines/real_scan_pairs.h"

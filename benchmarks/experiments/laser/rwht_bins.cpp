@@ -12,13 +12,13 @@
 #include <map>
 
 #include "baselines/laser/rwht.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/checksum.h"
 #include "core/statistics.h"
 #include "core/units.h"
 #include "datasets/sim/laser_model.h"
 #include "datasets/sim/worlds.h"
+#include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/laser_scan_truth.h"
 
 namespace locbench::experiments::laser_rwht_bins {

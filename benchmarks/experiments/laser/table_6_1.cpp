@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "benchmarks/experiments/framework/registry.h"
 #include "datasets/sim/worlds.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/thesis_pose_tables.h"
 
 namespace locbench::experiments::thesis_pose::laser_table_6_1 {

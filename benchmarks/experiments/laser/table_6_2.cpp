@@ -8,9 +8,9 @@
 #include <cmath>
 #include <optional>
 
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/statistics.h"
 #include "datasets/sim/worlds.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/thesis_pose_tables.h"
 
 namespace locbench::experiments::thesis_pose::laser_table_6_2 {

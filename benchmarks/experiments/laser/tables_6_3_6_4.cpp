@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "benchmarks/experiments/framework/registry.h"
 #include "datasets/sim/worlds.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/thesis_pose_tables.h"
 
 namespace locbench::experiments::thesis_pose::laser_tables_6_3_6_4 {

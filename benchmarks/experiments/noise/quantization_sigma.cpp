@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "algorithms/filters/quantization_noise.h"
-#include "benchmarks/experiments/framework/options_experiment.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/errors.h"
+#include "experiment_framework/options_experiment.h"
+#include "experiment_framework/registry.h"
 
 namespace locbench::experiments::noise_quantization_sigma {
 using locbench::filters::compare_quantization_sigma, locbench::filters::l2_optimal_sigma_closed_form,

@@ -10,15 +10,15 @@
 
 #include "algorithms/filters/consistency.h"
 #include "algorithms/filters/odometry_noise_model.h"
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/options_experiment.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/dead_reckoning.h"
 #include "core/diff_drive_odometry.h"
 #include "core/errors.h"
 #include "core/statistics.h"
 #include "core/trajectory_error.h"
 #include "datasets/io/odometry_interpolation.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/options_experiment.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::noise_real_logs {

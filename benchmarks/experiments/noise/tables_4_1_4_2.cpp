@@ -9,14 +9,14 @@
 #include <vector>
 
 #include "algorithms/filters/consistency.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/plot_series.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/checksum.h"
 #include "core/statistics.h"
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
+#include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/plot_series.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/noise_filters.h"
 #include "reports/published_rows.h"
 

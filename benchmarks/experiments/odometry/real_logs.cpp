@@ -6,14 +6,14 @@
 
 #include <cmath>
 
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/options_experiment.h"
-#include "benchmarks/experiments/framework/plot_series.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/errors.h"
 #include "core/trajectory_error.h"
 #include "core/units.h"
 #include "datasets/io/odometry_interpolation.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/options_experiment.h"
+#include "experiment_framework/plot_series.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/real_log_harness.h"
 
 namespace locbench::experiments::odometry_real_logs {

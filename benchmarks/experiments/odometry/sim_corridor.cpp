@@ -9,10 +9,6 @@
 #include <array>
 #include <cmath>
 
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/plot_series.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/checksum.h"
 #include "core/dead_reckoning.h"
 #include "core/errors.h"
@@ -21,6 +17,10 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/plot_series.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/scenario_option.h"
 
 namespace locbench::experiments::odometry_sim_corridor {

@@ -11,9 +11,6 @@
 #include <cmath>
 
 #include "algorithms/slip/slip_compass_ekf.h"
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/monte_carlo.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/checksum.h"
 #include "core/errors.h"
 #include "core/rng.h"
@@ -21,6 +18,9 @@
 #include "datasets/sim/presets.h"
 #include "datasets/sim/scenario_json.h"
 #include "datasets/sim/simulator.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/registry.h"
 #include "pipelines/scenario_option.h"
 #include "pipelines/slip_sim.h"
 #include "reports/findings.h"

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <vector>
 
-#include "benchmarks/experiments/framework/options_experiment.h"
-#include "benchmarks/experiments/framework/registry.h"
 #include "core/checksum.h"
 #include "core/skewness_kurtosis_normality.h"
+#include "experiment_framework/options_experiment.h"
+#include "experiment_framework/registry.h"
 
 namespace locbench::experiments::slip_normality_table_3_1 {
 

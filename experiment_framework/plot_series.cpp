@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/framework/plot_series.h"
+#include "experiment_framework/plot_series.h"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // The registry behind Registration (registry.h) and all_experiments() (experiment.h).
-#include "benchmarks/experiments/framework/registry.h"
+#include "experiment_framework/registry.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -4,8 +4,8 @@
 // strict reader before handing it to run_with.
 #include <nlohmann/json.hpp>
 
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/experiment_options.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/experiment_options.h"
 
 namespace locbench::experiments {
 

@@ -13,11 +13,11 @@
 #include <mutex>
 #include <vector>
 
-#include "benchmarks/experiments/framework/experiment.h"
-#include "benchmarks/experiments/framework/experiment_options.h"
-#include "benchmarks/experiments/framework/parallel_tasks.h"
 #include "core/errors.h"
 #include "core/rng.h"
+#include "experiment_framework/experiment.h"
+#include "experiment_framework/experiment_options.h"
+#include "experiment_framework/parallel_tasks.h"
 #include "reports/shard_report.h"
 
 namespace locbench::experiments {

@@ -21,7 +21,7 @@
 #include <memory>
 #include <vector>
 
-#include "benchmarks/experiments/framework/experiment.h"
+#include "experiment_framework/experiment.h"
 
 namespace locbench::experiments {
 

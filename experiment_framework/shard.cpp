@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/framework/shard.h"
+#include "experiment_framework/shard.h"
 
 #include <charconv>
 

@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/framework/parallel_tasks.h"
+#include "experiment_framework/parallel_tasks.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

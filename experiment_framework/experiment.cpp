@@ -1,4 +1,4 @@
-#include "benchmarks/experiments/framework/experiment.h"
+#include "experiment_framework/experiment.h"
 
 #include "core/errors.h"
 #include "reports/report_json.h"
