@@ -17,7 +17,10 @@ namespace locbench::experiments::landmarks {
 struct FilterModels {
   diagnosis::OdometryModel nominal_motion, diagnosed_motion;
   LandmarkSensorModel nominal_sensor, diagnosed_sensor;
-  double noise_window_s = 1.0;      // the floor's σ are per window of this length
+  double noise_window_s = 1.0;  // the floor's σ are per window of this length
+  // The time correlation of the diagnosed motion model's window residuals (on the data the models
+  // were fitted on; none: white).
+  MotionNoiseStructure diagnosed_motion_structure;
   std::vector<std::string> causes;  // the detected causes in the diagnosed model
   std::string source;               // where they come from
 };

@@ -54,6 +54,8 @@ MethodSetup base_setup(Method method, const PartMotion& motion, const FilterMode
       s.motion = &motion.diagnosed;
       s.sensor = m.diagnosed_sensor;
       if (!o.correlated_sensor_noise) s.sensor.structure = {};
+      if (o.correlated_motion_noise) s.motion_structure = m.diagnosed_motion_structure;
+      s.noise_window_s = m.noise_window_s;
       break;
     default:
       s.motion = &motion.logged;

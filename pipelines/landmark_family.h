@@ -42,7 +42,10 @@ struct FamilyOptions {
   double rmse_tolerance = 0.0;
   // The diagnosed model's filter carries its sensor's time-correlated noise share as biases in its
   // state (LandmarkSensorModel::structure); false: it takes all of the noise as white.
-  bool correlated_sensor_noise = false;
+  bool correlated_sensor_noise = true;
+  // The diagnosed model's filter carries its motion noise's time-correlated share
+  // (FilterModels::diagnosed_motion_structure) as motion-error states; false: all of it white.
+  bool correlated_motion_noise = true;
   // The diagnosed model's filter tracks its sensor's noise level along the log
   // (MethodSetup::level_reference), as the diagnosis measures it varying between blocks
   // (NoiseStructure::range_level_sigma): each setting on the tuning part is run once untracked for

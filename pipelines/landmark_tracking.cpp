@@ -378,6 +378,17 @@ filters::GaussMarkovBias correlated_part(const NoiseCorrelation& c, double sigma
   return {std::sqrt(r_scale * c.share) * sigma, c.time_s > 0.0 ? c.time_s : 1.0};
 }
 
+filters::MotionNoiseCorrelation motion_correlation(const MotionNoiseStructure& m, double window_s) {
+  filters::MotionNoiseCorrelation c;
+  const NoiseCorrelation* parts[] = {&m.x, &m.y, &m.theta};
+  for (int j = 0; j < 3; ++j) {
+    c.share(j) = std::clamp(parts[j]->share, 0.0, 0.99);
+    c.time_s(j) = parts[j]->time_s > 0.0 ? parts[j]->time_s : 1.0;
+  }
+  c.window_s = window_s;
+  return c;
+}
+
 AnyFilter make_filter(const MethodSetup& s, double wheelbase, const Pose2& start) {
   const Vector3 p0 = s.initial_sigma.cwiseProduct(s.initial_sigma);
   switch (s.method) {
@@ -413,12 +424,13 @@ AnyFilter make_filter(const MethodSetup& s, double wheelbase, const Pose2& start
     }
     case Method::kNominalModel:
     case Method::kDiagnosedModel:
-      if (s.sensor.correlated()) {
+      if (s.sensor.correlated() || s.motion_structure.correlated()) {
         const NoiseStructure& st = s.sensor.structure;
         return BiasAugmentedEkf(
             wheelbase, start, Matrix3(p0.asDiagonal()),
             {correlated_part(st.range_correlation, s.sensor.range_sigma / s.sensor.range_scale, s.knob),
-             correlated_part(st.bearing_correlation, s.sensor.bearing_sigma, s.knob)});
+             correlated_part(st.bearing_correlation, s.sensor.bearing_sigma, s.knob)},
+            motion_correlation(s.motion_structure, s.noise_window_s));
       }
       return MotionModelEkf(wheelbase, start, Matrix3(p0.asDiagonal()));
   }
@@ -470,10 +482,10 @@ class InnovationLevel {
  public:
   InnovationLevel(bool tracks, const Eigen::Vector2d& reference) : tracks_(tracks), reference_(reference) {}
 
-  void scale_and_record(LandmarkRangeBearing& z, const MotionModelEkf& ekf, double now) {
-    const LinearizedMeasurement lin = linearize(z, ekf.mean());
-    const MeasurementVector nu = lin.residual();
-    const MeasurementMatrix s = lin.H * ekf.covariance() * lin.H.transpose() + lin.R;
+  // `innovation`: z's innovation and its covariance at the filter's state, before any scaling.
+  void scale_and_record(LandmarkRangeBearing& z, const MeasurementUpdate& innovation, double now) {
+    const MeasurementVector& nu = innovation.innovation;
+    const MeasurementMatrix& s = innovation.innovation_covariance;
     if (tracks_) {
       while (window_start_ < t_.size() && t_[window_start_] < now - kLevelBlockS) ++window_start_;
       if (t_.size() - window_start_ >= kMinLevelBlockResiduals) {
@@ -538,13 +550,12 @@ void predict_step(AnyFilter& filter, const MotionStep& s, const WheelDisplacemen
 // row the next is taken ungated (a recovery).
 class ObservationFeed {
  public:
-  ObservationFeed(std::vector<TimedObservation> obs, const MethodSetup& setup, const GatePolicy& gate,
-                  bool carries_bias)
+  ObservationFeed(std::vector<TimedObservation> obs, const MethodSetup& setup, const GatePolicy& gate)
       : obs_(std::move(obs)),
         setup_(setup),
         gate_(gate),
         threshold_(chi_square_quantile(ChiSquareDof(2.0), gate.gate_probability)),
-        tracks_level_(setup.level_reference.minCoeff() > 0.0 && !carries_bias &&
+        tracks_level_(setup.level_reference.minCoeff() > 0.0 &&
                       (setup.method == Method::kNominalModel || setup.method == Method::kDiagnosedModel)),
         measures_level_(tracks_level_ || setup.measure_innovation_level),
         level_(tracks_level_, setup.level_reference) {}
@@ -555,8 +566,14 @@ class ObservationFeed {
       ++out.observations;
       const bool recover = starving_ >= gate_.starve_after;
       LandmarkRangeBearing z = obs_[next_].z;
-      const auto* model_ekf = measures_level_ ? std::get_if<MotionModelEkf>(&filter) : nullptr;
-      if (model_ekf != nullptr) level_.scale_and_record(z, *model_ekf, obs_[next_].t);
+      if (measures_level_) {
+        if (const auto* ekf = std::get_if<MotionModelEkf>(&filter)) {
+          const LinearizedMeasurement lin = linearize(z, ekf->mean());
+          level_.scale_and_record(z, measurement_innovation(lin, ekf->covariance(), lin.R), obs_[next_].t);
+        } else if (const auto* augmented = std::get_if<BiasAugmentedEkf>(&filter)) {
+          level_.scale_and_record(z, augmented->innovation(z), obs_[next_].t);
+        }
+      }
       if (setup_.sensor.dof > 0.0) {
         const double w = student_t_weight(filter, z, setup_.sensor.dof);
         z.range_variance *= w;
@@ -598,7 +615,7 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
   if (!start) throw InputError(data.log, 0, "the ground truth does not cover the span's start");
   AnyFilter filter = make_filter(setup, data.wheelbase, *start);
   const bool carries_bias = std::holds_alternative<BiasAugmentedEkf>(filter);
-  ObservationFeed feed(timed_observations(data, setup, steps, carries_bias), setup, gate, carries_bias);
+  ObservationFeed feed(timed_observations(data, setup, steps, carries_bias), setup, gate);
 
   TrackResult out;
   feed.until(steps.front().t0, filter, out);

@@ -42,6 +42,13 @@ struct NoiseCorrelation {
   double time_s = 0.0;
 };
 
+// The time correlation of a motion model's window residuals (x, y, θ), standardized by their
+// model variance: heading error that persists over many windows is what makes long-horizon drift.
+struct MotionNoiseStructure {
+  NoiseCorrelation x, y, theta;
+  bool correlated() const { return x.share > 0.0 || y.share > 0.0 || theta.share > 0.0; }
+};
+
 // The sensor noise's structure beyond white noise, measured on residuals against the truth:
 // biases that differ between landmarks (drawn anew per landmark, normal with these spreads) and a
 // time correlation common to all landmarks (after each landmark's bias is removed).
@@ -180,6 +187,11 @@ struct MethodSetup {
   Vector3 fixed_q_per_s{0.0025, 0.0025, 0.0025};  // fixed_q, Q̂(0) of sage_husa, vb_akf's Q [m²/s, m²/s, rad²/s]
   filters::OdometryNoiseOptions adaptive;         // adaptive_thesis / adaptive_jacobian (form set by the method)
   Vector3 initial_sigma{0.02, 0.02, 0.02};        // P(0) = diag(σ²) at the span's true start [m, m, rad]
+  // The fitted model's motion noise correlated in time (fitted models only; none: white), carried
+  // as motion-error states of the filter (filters::BiasAugmentedEkf) whose share of each step's
+  // covariance is taken out of its white noise; the model's noise window [s].
+  MotionNoiseStructure motion_structure;
+  double noise_window_s = 1.0;
   // Noise levels that vary along the log, tracked (fitted models only; 0: not tracked): each
   // channel's R is multiplied by λ = (σ_w / reference)², σ_w the robust σ (1.4826·MAD) of the
   // channel's innovations, standardized by their predicted σ under the untracked R, over the last

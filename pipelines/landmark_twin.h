@@ -33,11 +33,6 @@
 
 namespace locbench::experiments::landmarks {
 
-// The time correlation of a motion model's window residuals (x, y, θ), standardized by their
-// model variance: heading error that persists over many windows is what makes long-horizon drift.
-struct MotionNoiseStructure {
-  NoiseCorrelation x, y, theta;
-};
 // Fitted (fit_noise_correlation) on the windows of `data` under `model`.
 MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& data,
                                                 const diagnosis::OdometryModel& model);

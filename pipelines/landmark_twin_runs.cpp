@@ -63,8 +63,7 @@ double odometry_rpe(const TrackingData& data, double horizon_s) {
 }
 
 TwinForecast twin_predictions(const TrackingData& test, const std::vector<MethodScore>& tuned,
-                              const FilterModels& models, const FamilyOptions& family, const TwinRunOptions& options,
-                              const MotionNoiseStructure& extended_structure) {
+                              const FilterModels& models, const FamilyOptions& family, const TwinRunOptions& options) {
   std::vector<TrackResult> real_results;
   for (const MethodScore& m : tuned) real_results.push_back(m.heldout);
   const RunMetrics real = run_metrics(test, real_results, family);
@@ -76,7 +75,7 @@ TwinForecast twin_predictions(const TrackingData& test, const std::vector<Method
     const LandmarkSensorModel& sensor = j == 0 ? models.nominal_sensor : models.diagnosed_sensor;
     for (int k = 0; k < options.runs; ++k) {
       const TrackingData twin = landmark_twin(test, motion, sensor, Rng::derive_seed(options.seed, 2 * k + j),
-                                              j == 0 ? MotionNoiseStructure{} : extended_structure);
+                                              j == 0 ? MotionNoiseStructure{} : models.diagnosed_motion_structure);
       runs[j].push_back(run_metrics(twin, run_tuned(twin, tuned, models, family), family));
     }
   }

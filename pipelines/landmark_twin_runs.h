@@ -48,10 +48,10 @@ struct TwinForecast {
 };
 
 // `tuned` holds the real held-out results (MethodScore::heldout) on `test`; the extended twin's
-// window residuals are correlated in time by `extended_structure` (the nominal twin's are white).
+// window residuals are correlated in time by models.diagnosed_motion_structure (the nominal
+// twin's are white).
 TwinForecast twin_predictions(const TrackingData& test, const std::vector<MethodScore>& tuned,
-                              const FilterModels& models, const FamilyOptions& family, const TwinRunOptions& options,
-                              const MotionNoiseStructure& extended_structure = {});
+                              const FilterModels& models, const FamilyOptions& family, const TwinRunOptions& options);
 
 // The RMS relative pose error of the logged odometry against the data's truth over chains of
 // windows `horizon_s` long [m] (NaN when no chain fits).

@@ -1,13 +1,20 @@
 #pragma once
-// The EKF of a fitted motion model whose landmark sensor has noise correlated in time: the pose
-// state is augmented by a range bias and a bearing bias shared by all landmarks, each a first-order
-// Gauss–Markov process (state augmentation for coloured measurement noise; Gelb, "Applied Optimal
-// Estimation", 1974, §4.5):
-//   X = [x, y, θ, b_r, b_φ]ᵀ,  b(k) = a·b(k−1) + w,  a = e^(−Δt/τ),  var w = σ_b²(1 − a²),
-//   z = h(x, y, θ) + [b_r, b_φ]ᵀ + v,  v white with the measurement's own R.
-// The pose part predicts exactly as MotionModelEkf (eq. 4.1–4.2 with the model's covariance in the
-// robot frame); a compass reading sees no bias. With σ_b = 0 the biases stay 0 and the filter is
-// MotionModelEkf.
+// The EKF of a fitted motion model whose noise is correlated in time, in its landmark sensor, its
+// motion, or both: the pose state is augmented by first-order Gauss–Markov processes (state
+// augmentation for coloured noise; Gelb, "Applied Optimal Estimation", 1974, §4.5):
+//   X = [x, y, θ, b_r, b_φ, m_x, m_y, m_θ]ᵀ,  b(k) = a·b(k−1) + w,  a = e^(−Δt/τ),  var w = σ_b²(1 − a²).
+// - b_r, b_φ: a range and a bearing bias shared by all landmarks,
+//   z = h(x, y, θ) + [b_r, b_φ]ᵀ + v,  v white with the measurement's own R; a compass reading sees
+//   no bias.
+// - m_x, m_y, m_θ: the motion error that persists between steps, each of unit variance. A step's
+//   model covariance Σ (in the robot frame at its start, diagonal) splits into a white part
+//   (1 − s)·Σ and a correlated part: the increment in the robot frame moves by
+//   A·m, A = diag(√(s·Σ_jj·Δt / w)), so that over a window of length w the correlated part has
+//   variance s·Σ_w, the share s of the window residuals' variance that the diagnosis finds
+//   correlated over windows, with correlation time τ (what the extended twin draws).
+// The pose part predicts as MotionModelEkf (eq. 4.1–4.2 with the model's covariance in the robot
+// frame) plus A·m rotated into the world frame. With σ_b = 0 and s = 0 the added states stay 0
+// and the filter is MotionModelEkf.
 #include <Eigen/Core>
 
 #include "core/compass_ekf_model.h"
@@ -24,39 +31,55 @@ struct MeasurementBiasModel {
   GaussMarkovBias range, bearing;
 };
 
+// The correlated share s and correlation time τ of the motion noise along, left and in heading,
+// for the model's noise window w (diagnosis: noise_window_s).
+struct MotionNoiseCorrelation {
+  Vector3 share = Vector3::Zero();
+  Vector3 time_s = Vector3::Ones();  // [s]
+  double window_s = 1.0;             // [s]
+};
+
 class BiasAugmentedEkf {
  public:
-  using Vector5 = Eigen::Matrix<double, 5, 1>;
-  using Matrix5 = Eigen::Matrix<double, 5, 5>;
+  static constexpr int kStates = 8;
+  using Vector8 = Eigen::Matrix<double, kStates, 1>;
+  using Matrix8 = Eigen::Matrix<double, kStates, kStates>;
 
-  // The biases start at 0 with their stationary variance. Throws UsageError for wheelbase <= 0,
-  // an initial covariance that is not finite, or a bias with σ < 0 or τ <= 0.
+  // The added states start at 0 with their stationary variance. Throws UsageError for wheelbase
+  // <= 0, an initial covariance that is not finite, a bias with σ < 0 or τ <= 0, or a motion
+  // share outside [0, 1), τ <= 0 or w <= 0.
   BiasAugmentedEkf(double wheelbase, const Pose2& start, const Matrix3& initial_covariance,
-                   const MeasurementBiasModel& bias);
+                   const MeasurementBiasModel& bias, const MotionNoiseCorrelation& motion = {});
 
   // Predict over dt [s] with the wheel travel u of the model's increment and its covariance in
-  // the robot frame at the step's start; the biases decay toward 0 over dt.
+  // the robot frame at the step's start (its correlated share moved by the motion states); the
+  // added states decay toward 0 over dt.
   void predict(const WheelDisplacement& u, const Matrix3& body_covariance, double dt);
   MeasurementUpdate update(const PoseMeasurement& z, double gate = kNoGate);
-  // νᵀS⁻¹ν of z at the current state, the biases' uncertainty included (nothing changes).
+  // The innovation ν of z at the current state and its covariance S, the added states'
+  // uncertainty included (nothing changes; no gain).
+  MeasurementUpdate innovation(const PoseMeasurement& z) const;
+  // νᵀS⁻¹ν of z at the current state (nothing changes).
   double nis(const PoseMeasurement& z) const;
 
   Vector3 mean() const { return x_.head<3>(); }
   Matrix3 covariance() const { return p_.topLeftCorner<3, 3>(); }
-  Eigen::Vector2d bias() const { return x_.tail<2>(); }
+  Eigen::Vector2d bias() const { return x_.segment<2>(3); }
+  Vector3 motion_error() const { return x_.tail<3>(); }  // m_x, m_y, m_θ (unit variance)
 
  private:
   struct Linearized {
     LinearizedMeasurement pose;  // h and H of the pose part
     MeasurementVector offset;    // the biases the measurement sees
-    Eigen::Matrix<double, Eigen::Dynamic, 5, 0, 2, 5> H;
+    Eigen::Matrix<double, Eigen::Dynamic, kStates, 0, 2, kStates> H;
   };
   Linearized linearize_full(const PoseMeasurement& z) const;
 
   double wheelbase_;
   MeasurementBiasModel bias_;
-  Vector5 x_;
-  Matrix5 p_;
+  MotionNoiseCorrelation motion_;
+  Vector8 x_;
+  Matrix8 p_;
 };
 
 }  // namespace locbench::filters

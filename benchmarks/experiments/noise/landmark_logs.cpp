@@ -82,9 +82,10 @@ struct Options {
   std::string model_file;  // a `locbench diagnose --report` file: its models instead of fitting the first half
   int twin_runs = 20;      // seeded runs of each twin of the held-out half (0: no twin predictions)
   bool twin_replays_tuning_half = false;  // the twins replay the tuning half instead (the model's own check)
-  bool correlated_sensor_noise = false;   // the diagnosed model's filter carries the correlated noise as biases
-  bool track_noise_level = false;         // the diagnosed model's filter tracks its sensor's noise level
-  bool cross_fit_tuning = false;          // tune on each quarter with the models fitted on the other
+  bool correlated_sensor_noise = true;  // the diagnosed model's filter carries the sensor's correlated noise as biases
+  bool correlated_motion_noise = true;  // … and its motion noise's correlated share as states
+  bool track_noise_level = false;       // the diagnosed model's filter tracks its sensor's noise level
+  bool cross_fit_tuning = false;        // tune on each quarter with the models fitted on the other
 };
 template <class V>
 void visit_fields(V& v, Options& o) {
@@ -118,8 +119,12 @@ void visit_fields(V& v, Options& o) {
          "methods' real results there: what they miss is the model's own, not a change of the log between halves");
   v.flag("correlated_sensor_noise", o.correlated_sensor_noise,
          "the diagnosed model's filter carries the sensor noise's time-correlated share, measured on the tuning half, "
-         "as Gauss–Markov range and bearing biases in its state (false, the default: all of it white, as every other "
-         "method; on MRCLAM Dataset 6 the biases did not improve the held-out halves)");
+         "as Gauss–Markov range and bearing biases in its state (what the extended twin draws); false: all of it "
+         "white, as every other method");
+  v.flag("correlated_motion_noise", o.correlated_motion_noise,
+         "the diagnosed model's filter carries the time-correlated share of its motion noise, measured on the "
+         "tuning half's window residuals, as Gauss–Markov motion-error states (what the extended twin draws); false: "
+         "all of it white");
   v.flag("cross_fit_tuning", o.cross_fit_tuning,
          "each setting is tuned on the two quarters of the tuning half, each run with the models (diagnosis, "
          "measured sensor noise) fitted on the other quarter, so that settings are chosen on data the models did not "
@@ -144,7 +149,6 @@ struct Outcome {
   std::optional<LandmarkSensorModel> tuning_noise, heldout_noise;
   PredictivityCells twin_cells;            // the twins' forecasts of the held-out results (empty: twin_runs 0)
   std::vector<ResidualKs> twin_residuals;  // the twins' 1 s window residuals against the log's
-  MotionNoiseStructure motion_structure;   // of the diagnosed model's window residuals, tuning half
 };
 
 // measured_sensor_noise, or nothing when the span has too few residuals to measure it.
@@ -159,13 +163,15 @@ std::optional<LandmarkSensorModel> sensor_noise_if_measurable(const TrackingData
 
 // The sensor noise's structure (per-landmark biases, time correlation, level) measured on `part`
 // on the residuals of the diagnosed sensor model, so that what the model explains is not counted
-// again: the extended twin draws it, the diagnosed model's filter carries its correlated share
-// (correlated_sensor_noise); the nominal sensor is white.
+// again, and the time correlation of the diagnosed motion model's window residuals there: the
+// extended twin draws both, the diagnosed model's filter carries their correlated shares
+// (correlated_motion_noise, correlated_sensor_noise); the nominal models are white.
 void measure_own_noise_structure(FilterModels& m, const TrackingData& part) {
   m.nominal_sensor.structure = {};
   m.diagnosed_sensor.structure = {};
   if (const auto own = sensor_noise_if_measurable(part, m.diagnosed_sensor))
     m.diagnosed_sensor.structure = own->structure;
+  m.diagnosed_motion_structure = fit_motion_noise_structure(part.motion, m.diagnosed_motion);
 }
 
 // The models fitted on `part` of the log: the diagnosis, and the nominal sensor's noise measured
@@ -215,18 +221,17 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
   o.from = from, o.mid = mid, o.to = to;
   o.other_robot_observations = train.other_robot_observations + test.other_robot_observations;
   o.observations = train.observations.size() + test.observations.size();
-  o.motion_structure = fit_motion_noise_structure(train.motion, o.models.diagnosed_motion);
   if (c.twin_runs > 0 && c.twin_replays_tuning_half) {
     // The model's own check: twins of the half it was fitted on, against the tuned methods' real
     // results there. What they miss here is the model's, not a change of the log between halves.
     std::vector<MethodScore> replayed = o.scores;
     const std::vector<TrackResult> tuning = run_tuned(train, replayed, o.models, family);
     for (std::size_t i = 0; i < replayed.size(); ++i) replayed[i].heldout = tuning[i];
-    TwinForecast f = twin_predictions(train, replayed, o.models, family, {c.twin_runs, twin_seed}, o.motion_structure);
+    TwinForecast f = twin_predictions(train, replayed, o.models, family, {c.twin_runs, twin_seed});
     o.twin_cells = std::move(f.cells);
     o.twin_residuals = std::move(f.residuals);
   } else if (c.twin_runs > 0) {
-    TwinForecast f = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed}, o.motion_structure);
+    TwinForecast f = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed});
     o.twin_cells = std::move(f.cells);
     o.twin_residuals = std::move(f.residuals);
   }
@@ -331,6 +336,7 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     family.criterion = c.tuning_criterion;
     family.rmse_tolerance = c.rmse_tolerance;
     family.correlated_sensor_noise = c.correlated_sensor_noise;
+    family.correlated_motion_noise = c.correlated_motion_noise;
     family.track_noise_level = c.track_noise_level;
     family.gate.gate_probability = c.gate_probability;
     family.gate.starve_after = c.starve_after;
@@ -477,7 +483,7 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         st.range_landmark_sigma, st.bearing_landmark_sigma, 100.0 * st.range_correlation.share,
         st.range_correlation.time_s, 100.0 * st.bearing_correlation.share, st.bearing_correlation.time_s, kLevelBlockS,
         st.range_level_sigma, st.bearing_level_sigma);
-    const MotionNoiseStructure& ms = o.motion_structure;
+    const MotionNoiseStructure& ms = o.models.diagnosed_motion_structure;
     s.text += fmt::format(
         "; the diagnosed motion model's window residuals: along {:.0f}% with τ {:.2g} s, left {:.0f}% with τ "
         "{:.2g} s, heading {:.0f}% with τ {:.2g} s",
@@ -491,6 +497,24 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
       s.results.push_back(reports::make_estimate("sensor_noise", ds, variant, "rad", value, 0.0, 1));
     }
     return s;
+  }
+
+  // Where a NEES above its band comes from: its mean over each block of the held-out half, the
+  // median of those means (inside the band: an episode, not the whole half) and the worst one.
+  static std::string nees_blocks_text(const TrackResult& r, double t0, double block_s, std::size_t blocks) {
+    std::vector<double> root(r.nees.size());
+    std::transform(r.nees.begin(), r.nees.end(), root.begin(), [](double n) { return std::sqrt(std::max(0.0, n)); });
+    const ErrorBlocks b = error_blocks(r.t, root, t0, block_s, blocks);
+    std::vector<double> means;
+    std::size_t worst = 0;
+    for (std::size_t i = 0; i < b.counts.size(); ++i) {
+      if (b.counts[i] <= 0.0) continue;
+      means.push_back(b.squares[i] / b.counts[i]);
+      if (b.squares[i] / b.counts[i] > b.squares[worst] / std::max(1.0, b.counts[worst])) worst = i;
+    }
+    if (means.empty()) return "";
+    return fmt::format("; by {:g} s block: median {:.3g}, worst {:.3g} at +{:.0f} s", block_s, quantile(means, 0.5),
+                       b.squares[worst] / std::max(1.0, b.counts[worst]), (static_cast<double>(worst) + 0.5) * block_s);
   }
 
   // One method on the held-out half: its metrics, its line of the table, and its tally.
@@ -533,11 +557,12 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     s.text += fmt::format(
         "\n  {:<18} Q×{:<8.4g} {}={:<6.4g} tuning {:.3f} m, NEES {:.3g}{} | held-out {:.3f} m [{:.3f}, {:.3f}], "
         "heading {:.4f} "
-        "rad, NEES {:.3g} ({} [{:.3g}, {:.3g}]), gated {:.1f}% of {}, {} recoveries{}",
+        "rad, NEES {:.3g} ({} [{:.3g}, {:.3g}]{}), gated {:.1f}% of {}, {} recoveries{}",
         method, m.process_scale, m.method == Method::kSageHusa || m.method == Method::kVbAkf ? "forget" : "R×", m.knob,
         m.tuning_rmse, m.tuning_nees, m.consistent_setting ? " (inside)" : " (outside)", pos.summary.mean,
         pos.summary.ci95_low, pos.summary.ci95_high, r.heading_rmse(), nees, inside ? "inside" : "outside", band.lower,
-        band.upper, 100.0 * r.gated_fraction(), r.observations, r.recoveries, r.diverged ? ", DIVERGED" : "");
+        band.upper, std::isfinite(nees) && nees > band.upper ? nees_blocks_text(r, o.mid, c.block_s, blocks) : "",
+        100.0 * r.gated_fraction(), r.observations, r.recoveries, r.diverged ? ", DIVERGED" : "");
     tally.rmse.push_back(pos.summary.mean);
     tally.diverged += r.diverged ? 1 : 0;
     tally.consistent += inside ? 1 : 0;
