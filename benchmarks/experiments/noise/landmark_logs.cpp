@@ -122,9 +122,7 @@ void visit_fields(V& v, Options& o) {
          "as Gauss–Markov range and bearing biases in its state (what the extended twin draws); false: all of it "
          "white, as every other method");
   v.flag("correlated_motion_noise", o.correlated_motion_noise,
-         "the diagnosed model's filter carries the time-correlated share of its motion noise, measured on the "
-         "tuning half's window residuals, as Gauss–Markov motion-error states (what the extended twin draws); false: "
-         "all of it white");
+         "… and that of its motion noise (the tuning half's window residuals) as three Gauss–Markov motion errors");
   v.flag("cross_fit_tuning", o.cross_fit_tuning,
          "each setting is tuned on the two quarters of the tuning half, each run with the models (diagnosis, "
          "measured sensor noise) fitted on the other quarter, so that settings are chosen on data the models did not "
