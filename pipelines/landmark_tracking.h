@@ -14,7 +14,9 @@
 //   (eq. 4.36–4.44, diagonal or full-Jacobian form) of the step's wheel travel;
 // - nominal_model, diagnosed_model: a fitted motion model (diagnosis::OdometryModel: velocity and
 //   turn scales, turn bias, drive lag, time offset, stalls, k² growth, the white floor) used for
-//   both the prediction and the process noise, and its fitted landmark sensor model.
+//   both the prediction and the process noise, and its fitted landmark sensor model; noise
+//   correlated in time (MethodSetup::motion_structure, LandmarkSensorModel::structure) is carried
+//   as Gauss–Markov states of the filter (filters::BiasAugmentedEkf).
 #include <map>
 #include <vector>
 
