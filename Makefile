@@ -92,21 +92,22 @@ bench: setup
 	$(BENCHBUILD)/benchmarks/speed/locbench_speed --benchmark_out=$(OUT)/speed.json --benchmark_out_format=json
 
 # The matcher kernels (181 beams, 5 repetitions) gated by same-run speed ratios against the
-# committed benchmarks/reference_results/speed/laser.json (rules: speed_rules.json beside it).
-SPEED_BASELINE := benchmarks/reference_results/speed/laser.json
+# committed benchmarks/reference_results/speed/kernels.json (rules: speed_rules.json beside it).
+SPEED_BASELINE := benchmarks/reference_results/speed/kernels.json
 SPEED_RULES := benchmarks/reference_results/speed_rules.json
 # The 181-beam kernels and EAP / split-and-merge on the first 200 ACES and Intel scans, the scan-pair
-# correctors per Intel scan and the whole Intel replay through EAP + iterated solve (the
-# real-scan kernels are skipped without the data), 5 repetitions interleaved at random so that
-# load drifts hit every kernel.
-SPEED_ARGS := --benchmark_filter='Match.*/181/|RealScans/(aces|intel)/(eap|split_and_merge)|Correct/(eap_ch6_ls|eap_iterated_pl|pl_icp)/intel|IntelReplay/eap_iterated_pl' \
+# correctors per Intel scan, the whole Intel replay through EAP + iterated solve, and the
+# diagnosis of one real log per kind (Intel: relations; MRCLAM robot 1: TRUEPOS) and of a
+# synthetic one (the real-log kernels are skipped without the data), 5 repetitions interleaved at
+# random so that load drifts hit every kernel.
+SPEED_ARGS := --benchmark_filter='Match.*/181/|RealScans/(aces|intel)/(eap|split_and_merge)|Correct/(eap_ch6_ls|eap_iterated_pl|pl_icp)/intel|IntelReplay/eap_iterated_pl|Diagnose/(intel_relations|mrclam6_robot1_truepos)|DiagnoseHiddenEffects' \
   --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true --benchmark_min_time=0.05
 bench-gate: build
 	@cmake -S . -B $(BENCHBUILD) -DCMAKE_BUILD_TYPE=Release -DLOCBENCH_BUILD_TESTS=OFF >/dev/null
 	@cmake --build $(BENCHBUILD) -j$(JOBS) --target locbench_speed
 	@mkdir -p $(OUT)
-	$(BENCHBUILD)/benchmarks/speed/locbench_speed $(SPEED_ARGS) --benchmark_out=$(OUT)/speed_laser.json --benchmark_out_format=json
-	$(RELEASE)/cli/locbench gate $(OUT)/speed_laser.json --baseline $(SPEED_BASELINE) --rules $(SPEED_RULES)
+	$(BENCHBUILD)/benchmarks/speed/locbench_speed $(SPEED_ARGS) --benchmark_out=$(OUT)/speed_kernels.json --benchmark_out_format=json
+	$(RELEASE)/cli/locbench gate $(OUT)/speed_kernels.json --baseline $(SPEED_BASELINE) --rules $(SPEED_RULES)
 
 # Refresh the speed baseline deliberately (same machine class as the gate; review, commit).
 speed-baseline: setup
