@@ -382,7 +382,7 @@ filters::MotionNoiseCorrelation motion_correlation(const MotionNoiseStructure& m
   filters::MotionNoiseCorrelation c;
   const NoiseCorrelation* parts[] = {&m.x, &m.y, &m.theta};
   for (int j = 0; j < 3; ++j) {
-    c.share(j) = std::clamp(parts[j]->share, 0.0, 0.99);
+    c.share(j) = std::clamp(parts[j]->share, 0.0, 0.99);  // a white remainder: the filter needs s < 1
     c.time_s(j) = parts[j]->time_s > 0.0 ? parts[j]->time_s : 1.0;
   }
   c.window_s = window_s;
@@ -443,10 +443,10 @@ struct TimedObservation {
 };
 
 // Observations in true time, with the sensor model's corrections (Table 7.2's z, inverted), in
-// time order. `carries_bias`: the filter carries the correlated part of the noise as biases, so
+// time order. `carries_correlated_noise`: the filter carries the correlated part of the noise as states, so
 // the measurement variance holds the white part only.
 std::vector<TimedObservation> timed_observations(const TrackingData& data, const MethodSetup& setup,
-                                                 const std::vector<MotionStep>& steps, bool carries_bias) {
+                                                 const std::vector<MotionStep>& steps, bool carries_correlated_noise) {
   const LandmarkSensorModel& sm = setup.sensor;
   const double r_scale = estimates_r(setup.method) ? 1.0 : setup.knob;
   std::vector<TimedObservation> obs;
@@ -462,8 +462,8 @@ std::vector<TimedObservation> timed_observations(const TrackingData& data, const
     z.landmark_x = m.x();
     z.landmark_y = m.y();
     // The white part of the noise (all of it unless the filter carries the correlated part as biases).
-    const double range_white = carries_bias ? 1.0 - sm.structure.range_correlation.share : 1.0;
-    const double bearing_white = carries_bias ? 1.0 - sm.structure.bearing_correlation.share : 1.0;
+    const double range_white = carries_correlated_noise ? 1.0 - sm.structure.range_correlation.share : 1.0;
+    const double bearing_white = carries_correlated_noise ? 1.0 - sm.structure.bearing_correlation.share : 1.0;
     const double sr = sm.range_noise_slope * z.range;
     z.range_variance = r_scale * (range_white * sm.range_sigma * sm.range_sigma + sr * sr) / (scale * scale);
     const double sb = sm.bearing_noise_turn_slope * turn_rate_at(steps, o.t - sm.time_offset);
@@ -614,8 +614,8 @@ TrackResult track(const TrackingData& data, const MethodSetup& setup, const Gate
   const auto start = diagnosis::interpolate_truth(data.motion.truth, steps.front().t0);
   if (!start) throw InputError(data.log, 0, "the ground truth does not cover the span's start");
   AnyFilter filter = make_filter(setup, data.wheelbase, *start);
-  const bool carries_bias = std::holds_alternative<BiasAugmentedEkf>(filter);
-  ObservationFeed feed(timed_observations(data, setup, steps, carries_bias), setup, gate);
+  const bool carries_correlated_noise = std::holds_alternative<BiasAugmentedEkf>(filter);
+  ObservationFeed feed(timed_observations(data, setup, steps, carries_correlated_noise), setup, gate);
 
   TrackResult out;
   feed.until(steps.front().t0, filter, out);

@@ -54,8 +54,8 @@ class CarmenParser {
   explicit CarmenParser(const std::string& source) : source_(source) {}
 
   void parse_line(std::string_view line, std::size_t line_no) {
+    if (is_blank_or_comment(line)) return;
     split_fields(line, tokens_);
-    if (tokens_.empty() || tokens_[0][0] == '#') return;
     const std::string_view tag = tokens_[0];
     const Fields f = Fields(tokens_).subspan(1);
     const FieldContext ctx{source_, line_no, tag};

@@ -18,8 +18,8 @@ void for_each_data_line(LineReader& reader, OnRow on_row) {
   std::vector<std::string_view> tokens;
   std::string_view line;
   while (reader.next(line)) {
+    if (is_blank_or_comment(line)) continue;
     split_fields(line, tokens);
-    if (tokens.empty() || tokens[0][0] == '#') continue;
     const FieldContext ctx{reader.source(), reader.line_number(), {}};
     on_row(tokens, ctx);
   }

@@ -46,6 +46,12 @@ void split_fields(std::string_view line, std::vector<std::string_view>& out) {
   }
 }
 
+bool is_blank_or_comment(std::string_view line) {
+  std::size_t i = 0;
+  while (i < line.size() && is_space(line[i])) ++i;
+  return i == line.size() || line[i] == '#';
+}
+
 std::string quote_token(std::string_view token) {
   constexpr std::size_t kMax = 40;
   std::string out = "'";

@@ -23,6 +23,9 @@ struct FieldContext {
 // Splits on spaces, tabs, \r, \v and \f (any run of them); `out` is cleared first and its
 // capacity reused. The views point into `line`.
 void split_fields(std::string_view line, std::vector<std::string_view>& out);
+// True when the line has no field or its first field starts with '#' (a comment): such a line
+// need not be split.
+bool is_blank_or_comment(std::string_view line);
 
 // A token as printed in error messages: quoted, non-printable bytes escaped, long ones cut.
 std::string quote_token(std::string_view token);

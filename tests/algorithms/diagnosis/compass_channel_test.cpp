@@ -28,11 +28,11 @@ CompassData readings(double bias, double sigma, double zone_bias, unsigned seed)
   CompassData d;
   d.truth = straight_run(80.0);
   std::mt19937 rng(seed);
-  std::normal_distribution<double> n(0.0, sigma);
+  std::normal_distribution<double> n(0.0, 1.0);  // scaled below: σ may be 0
   for (int k = 0; k <= 400; ++k) {
     const double t = 0.2 * k, x = 0.5 * t;
     const double extra = x >= 18.0 && x <= 22.0 ? zone_bias : 0.0;
-    d.readings.push_back({t, kTurnRate * t + bias + extra + n(rng)});
+    d.readings.push_back({t, kTurnRate * t + bias + extra + sigma * n(rng)});
   }
   return d;
 }

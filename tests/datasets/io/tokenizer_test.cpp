@@ -21,6 +21,24 @@ TEST(Tokenizer, SplitsOnRunsOfSpacesTabsAndCarriageReturns) {
   EXPECT_TRUE(f.empty());
 }
 
+TEST(Tokenizer, ABlankLineOrOneWhoseFirstFieldStartsWithHashIsACommentAndNothingElseIs) {
+  EXPECT_TRUE(is_blank_or_comment(""));
+  EXPECT_TRUE(is_blank_or_comment(" \t\r"));
+  EXPECT_TRUE(is_blank_or_comment("# a comment"));
+  EXPECT_TRUE(is_blank_or_comment("  \t#ODOM 1 2 3"));
+  EXPECT_FALSE(is_blank_or_comment("ODOM 1 2 3 # trailing"));
+  EXPECT_FALSE(is_blank_or_comment(" x#"));
+  // The same verdict as splitting and looking at the first field, on every short line of these bytes.
+  const std::string bytes = " \t\r#a";
+  std::vector<std::string_view> f;
+  for (int n = 0; n < 6 * 6 * 6 * 6; ++n) {
+    std::string line;
+    for (int k = n, i = 0; i < 4; ++i, k /= 6) line.push_back(bytes[static_cast<std::size_t>(k % 6)]);
+    split_fields(line, f);
+    EXPECT_EQ(is_blank_or_comment(line), f.empty() || f[0][0] == '#') << '"' << line << '"';
+  }
+}
+
 TEST(Tokenizer, ParsesDecimalAndExponentForms) {
   EXPECT_EQ(parse_finite("1", "x", kCtx), 1.0);
   EXPECT_EQ(parse_finite("-2.5e3", "x", kCtx), -2500.0);

@@ -1992,6 +1992,12 @@ bool IndexedMessageReader::next() {
       if (!status_.ok()) {
         return false;
       }
+      if (!record.has_value()) {
+        status_ = Status(StatusCode::InvalidRecord,
+                         internal::StrCat("message index offset ", readMessageJob.offset.offset,
+                                          " is past the end of its chunk"));
+        return false;
+      }
       if (record->opcode != OpCode::Message) {
         status_ =
           Status(StatusCode::InvalidRecord,
