@@ -31,7 +31,8 @@ struct SymmetricEigen {
 };
 SymmetricEigen symmetric_eigen(const Eigen::MatrixXd& a);
 
-// The Moore–Penrose pseudo-inverse by Eigen::CompleteOrthogonalDecomposition.
+// The Moore–Penrose pseudo-inverse by Eigen::CompleteOrthogonalDecomposition<MatrixXd> (the 3×3
+// one too).
 Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d& a);
 Eigen::MatrixXd pseudo_inverse(const Eigen::MatrixXd& a);
 
