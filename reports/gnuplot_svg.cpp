@@ -2,12 +2,12 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -73,6 +73,13 @@ std::optional<std::filesystem::path> find_gnuplot() {
   return std::nullopt;
 }
 
+// `text` in single quotes for the shell, each ' written as '\''.
+std::string shell_quoted(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 std::string run_gnuplot(const std::filesystem::path& gnuplot, const std::string& script) {
   TempDir dir;
   const auto script_path = dir.path / "chart.gp";
@@ -80,7 +87,7 @@ std::string run_gnuplot(const std::filesystem::path& gnuplot, const std::string&
   const auto err_path = dir.path / "stderr.txt";
   write_file_atomically(script_path, script);  // checked: a full $TMPDIR is an error, exit 2
   // Paths are ours (no quotes in them); gnuplot's path may come from $LOCBENCH_GNUPLOT.
-  const std::string quoted = "'" + std::regex_replace(gnuplot.string(), std::regex("'"), "'\\''") + "'";
+  const std::string quoted = shell_quoted(gnuplot.string());
   const std::string cmd =
       quoted + " '" + script_path.string() + "' > '" + svg_path.string() + "' 2> '" + err_path.string() + "'";
   const int status = std::system(cmd.c_str());
@@ -107,7 +114,7 @@ std::vector<std::string> run_gnuplot_batch(const std::filesystem::path& gnuplot,
     all += "unset output\n";
   }
   write_file_atomically(script_path, all);
-  const std::string quoted = "'" + std::regex_replace(gnuplot.string(), std::regex("'"), "'\\''") + "'";
+  const std::string quoted = shell_quoted(gnuplot.string());
   const std::string cmd = quoted + " '" + script_path.string() + "' > /dev/null 2> '" + err_path.string() + "'";
   const int status = std::system(cmd.c_str());
   std::vector<std::string> svgs;
@@ -125,15 +132,30 @@ std::vector<std::string> run_gnuplot_batch(const std::filesystem::path& gnuplot,
   return svgs;
 }
 
+std::set<std::string> element_ids(const std::string& svg) {
+  std::set<std::string> ids;
+  std::size_t p = svg.find("id=");
+  while (p != std::string::npos) {
+    std::size_t next = p + 3;
+    const bool starts_word = p == 0 || !(std::isalnum(static_cast<unsigned char>(svg[p - 1])) || svg[p - 1] == '_');
+    const std::size_t open = p + 3;
+    if (starts_word && open < svg.size() && (svg[open] == '"' || svg[open] == '\'')) {
+      const std::size_t close = svg.find_first_of("'\"", open + 1);
+      if (close != std::string::npos && svg[close] == svg[open] && close > open + 1) {
+        ids.insert(svg.substr(open + 1, close - open - 1));
+        next = close + 1;  // matches do not overlap
+      }
+    }
+    p = svg.find("id=", next);
+  }
+  return ids;
+}
+
 std::string inline_svg(const std::string& svg, const std::string& prefix) {
   std::string s = svg;
   const auto start = s.find("<svg");
   if (start != std::string::npos) s = s.substr(start);
-  static const std::regex id_re(R"re(\bid=(['"])([^'"]+)\1)re");
-  std::set<std::string> ids;
-  for (auto it = std::sregex_iterator(s.begin(), s.end(), id_re); it != std::sregex_iterator(); ++it) {
-    ids.insert((*it)[2].str());
-  }
+  const std::set<std::string> ids = element_ids(s);
   for (const std::string& id : ids) {
     const std::string to = prefix + id;
     for (const std::string& q : {std::string("'"), std::string("\"")}) {

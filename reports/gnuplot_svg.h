@@ -2,6 +2,7 @@
 // Runs Debian's gnuplot (gnuplot-nox) to draw charts as SVG for the HTML report.
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,11 @@ std::string run_gnuplot(const std::filesystem::path& gnuplot, const std::string&
 // page. std::runtime_error-derived InputError with gnuplot's messages when it fails.
 std::vector<std::string> run_gnuplot_batch(const std::filesystem::path& gnuplot,
                                            const std::vector<std::string>& scripts);
+
+// The values of the id="…" and id='…' attributes of `svg`, as the regular expression
+// \bid=(['"])([^'"]+)\1 finds them: an "id=" after a letter, digit or '_' (as in "grid=") is not
+// one, and matches do not overlap.
+std::set<std::string> element_ids(const std::string& svg);
 
 // An SVG document made fit to inline into HTML: the XML declaration dropped and every id made
 // unique with `prefix` (references included), so several charts can share one page.
