@@ -100,6 +100,18 @@ std::string scan_log(int scans, int beams) {
          "printf \" 2 2 0.3 2 2 0.3 %.1f locbench %.1f\\n\", s * 0.2, s * 0.2}}' > '{d}/s.clf'\n";
 }
 
+// Google Benchmark results of A and B: b.json, the baseline (A 50 ns, B 100 ns), c.json, the
+// current run (A `current_a`, B `current_b` ns), and rules.json, a rule on the speed ratio A/B.
+std::string speed_ratio_gate(const std::string& current_a, const std::string& current_b) {
+  const auto benchmarks = [](const std::string& a, const std::string& b) {
+    return R"({"benchmarks": [{"name": "A", "real_time": )" + a +
+           R"(, "time_unit": "ns"}, {"name": "B", "real_time": )" + b + R"(, "time_unit": "ns"}]})";
+  };
+  return file("b.json", benchmarks("50", "100")) + file("c.json", benchmarks(current_a, current_b)) +
+         file("rules.json",
+              R"({"speed_ratios": [{"name": "a_vs_b", "numerator": "bench:A", "denominator": "bench:B"}]})");
+}
+
 const std::vector<HostileCase>& cases() {
   static const std::vector<HostileCase> all = {
       // 1. The histogram crash, the superlinear fits, counts validation.
@@ -367,25 +379,9 @@ const std::vector<HostileCase>& cases() {
       {"calibrate_ml_data_on_a_log_file", kShortLog, "calibrate ml {d}/l.clf --data /tmp", 2, "--data"},
       {"calibrate_ml_negative_wheelbase_is_not_converged",
        "{exe} simulate corridor --seed 7 -o '{d}/c.clf' >/dev/null 2>&1", "calibrate ml {d}/c.clf", 1, "is impossible"},
-      {"gate_zero_ns_speed_pair",
-       file(
-           "b.json",
-           R"({"benchmarks": [{"name": "A", "real_time": 50, "time_unit": "ns"}, {"name": "B", "real_time": 100, "time_unit": "ns"}]})") +
-           file(
-               "c.json",
-               R"({"benchmarks": [{"name": "A", "real_time": 0, "time_unit": "ns"}, {"name": "B", "real_time": 0, "time_unit": "ns"}]})") +
-           file("rules.json",
-                R"({"speed_ratios": [{"name": "a_vs_b", "numerator": "bench:A", "denominator": "bench:B"}]})"),
+      {"gate_zero_ns_speed_pair", speed_ratio_gate("0", "0"),
        "gate {d}/c.json --baseline {d}/b.json --rules {d}/rules.json", 1, "≤ 0 ns"},
-      {"gate_negative_ns_times",
-       file(
-           "b.json",
-           R"({"benchmarks": [{"name": "A", "real_time": 50, "time_unit": "ns"}, {"name": "B", "real_time": 100, "time_unit": "ns"}]})") +
-           file(
-               "c.json",
-               R"({"benchmarks": [{"name": "A", "real_time": -50, "time_unit": "ns"}, {"name": "B", "real_time": 100, "time_unit": "ns"}]})") +
-           file("rules.json",
-                R"({"speed_ratios": [{"name": "a_vs_b", "numerator": "bench:A", "denominator": "bench:B"}]})"),
+      {"gate_negative_ns_times", speed_ratio_gate("-50", "100"),
        "gate {d}/c.json --baseline {d}/b.json --rules {d}/rules.json", 1, "≤ 0 ns"},
       {"gate_values_contradicting_the_mean",
        "{exe} run odometry/sim_corridor --runs 3 --out '{d}/b' >/dev/null 2>&1 && cp -r '{d}/b' '{d}/c' && "

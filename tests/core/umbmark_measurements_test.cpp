@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "tests/core/umbmark_inputs.h"
+
 namespace locbench {
 namespace {
 
@@ -49,15 +51,9 @@ TEST(UmbmarkCentroids, ADirectionWithoutRunsHasAZeroCentroid) {
   EXPECT_NEAR(c.e_max_syst, 0.5, 1e-15);
 }
 
+// A Trilobot-like robot on a 1.6 m square, one run per direction.
 UmbmarkInput valid_input() {
-  UmbmarkInput in;
-  in.side_length = 1.6;
-  in.nominal = {0.0885, 0.0885, 0.198};
-  in.encoder = {1.0, 22.0};
-  in.leg_ticks_left = 127;
-  in.leg_ticks_right = 127;
-  in.runs = {{kCw, 0.1, 0.2}, {kCcw, -0.1, 0.2}};
-  return in;
+  return testing::umbmark_square(1.6, {0.0885, 0.0885, 0.198}, {1.0, 22.0}, 127, {{kCw, 0.1, 0.2}, {kCcw, -0.1, 0.2}});
 }
 
 void expect_rejected(const UmbmarkInput& in, bool need_ticks, const std::string& field) {

@@ -35,6 +35,12 @@ std::string sample_page() {
   return html_report({testing::sample_report()}, stub.renderer());
 }
 
+// Expects the page of the sample report to hold each of `parts`, and prints the page when one is missing.
+void expect_sample_page_holds(const std::vector<std::string>& parts) {
+  const std::string h = sample_page();
+  for (const auto& part : parts) EXPECT_NE(h.find(part), std::string::npos) << "no \"" << part << "\" in:\n" << h;
+}
+
 TEST(HtmlReport, IsOneSelfContainedPageWithoutScriptOrExternalResources) {
   StubRenderer stub;
   const std::string h = html_report({report_with_chart()}, stub.renderer());
@@ -46,32 +52,24 @@ TEST(HtmlReport, IsOneSelfContainedPageWithoutScriptOrExternalResources) {
 }
 
 TEST(HtmlReport, ShowsMeanWithIts95PercentIntervalPerMetricAndMethod) {
-  const std::string h = sample_page();
   // values 0.10, 0.12, 0.08: mean 0.1, s = 0.02, t(0.975, 2) = 4.303 → ± 0.04968.
-  EXPECT_NE(h.find("<td>final_position_error</td><td>odometry_nominal</td><td>sim_corridor</td>"
-                   "<td class=n>0.1 ± 0.04968 m</td>"),
-            std::string::npos)
-      << h;
+  expect_sample_page_holds(
+      {"<td>final_position_error</td><td>odometry_nominal</td><td>sim_corridor</td>"
+       "<td class=n>0.1 ± 0.04968 m</td>"});
 }
 
 TEST(HtmlReport, PutsPublishedBesideOursWithTheDifference) {
-  const std::string h = sample_page();
-  EXPECT_NE(h.find("Published vs ours: thesis Table 3.2 — final error [mm]"), std::string::npos);
   // 512.3 − 580 = −67.7; 512.3 / 580 = 0.8833.
-  EXPECT_NE(h.find("<td>run 1</td><td class=n>580</td><td class=n>512.3</td><td class=n>-67.7</td>"
-                   "<td class=n>0.8833</td>"),
-            std::string::npos)
-      << h;
-  EXPECT_NE(h.find("<td>run 2</td><td class=n>551</td><td class=n>—</td>"), std::string::npos);
+  expect_sample_page_holds({"Published vs ours: thesis Table 3.2 — final error [mm]",
+                            "<td>run 1</td><td class=n>580</td><td class=n>512.3</td><td class=n>-67.7</td>"
+                            "<td class=n>0.8833</td>",
+                            "<td>run 2</td><td class=n>551</td><td class=n>—</td>"});
 }
 
 TEST(HtmlReport, ListsEstimatesWithIntervalsAndSaysWhichAreNotIdentifiable) {
-  const std::string h = sample_page();
-  EXPECT_NE(h.find("<h3>Estimates</h3>"), std::string::npos);
-  EXPECT_NE(h.find("<span class=bad>not identifiable</span></td><td class=note>only E_o/E_b is "
-                   "determined by the square</td>"),
-            std::string::npos)
-      << h;
+  expect_sample_page_holds({"<h3>Estimates</h3>",
+                            "<span class=bad>not identifiable</span></td><td class=note>only E_o/E_b is "
+                            "determined by the square</td>"});
 }
 
 TEST(HtmlReport, DrawsTheReportsPlotsThenHistogramsOfPerRunErrors) {

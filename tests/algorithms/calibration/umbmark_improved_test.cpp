@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/units.h"
+#include "tests/core/umbmark_inputs.h"
 
 namespace locbench::calibration {
 namespace {
@@ -15,19 +16,9 @@ namespace {
 constexpr auto kCw = UmbmarkDirection::kClockwise;
 constexpr auto kCcw = UmbmarkDirection::kCounterClockwise;
 
-// 4 m square, D_n = 150 mm, B = 340 mm, n = 1, C_e = 1000 counts per revolution:
-// c_n = π·0.15/1000 = 4.712388980e-4 m/tick, a 4 m leg is round(8488.26) = 8488 counts.
-// Centroids cw (−0.30, −0.35), ccw (0.10, −0.10).
-UmbmarkInput labmate_case() {
-  UmbmarkInput in;
-  in.side_length = 4.0;
-  in.nominal = {0.15, 0.15, 0.34};
-  in.encoder = {1.0, 1000.0};
-  in.leg_ticks_left = 8488;
-  in.leg_ticks_right = 8488;
-  in.runs = {{kCw, -0.30, -0.35}, {kCcw, 0.10, -0.10}};
-  return in;
-}
+// The LabMate's 4 m square: c_n = π·0.15/1000 = 4.712388980e-4 m/tick, a 4 m leg is
+// round(8488.26) = 8488 counts. Centroids cw (−0.30, −0.35), ccw (0.10, −0.10).
+UmbmarkInput labmate_case() { return testing::labmate_square(8488, {{kCw, -0.30, -0.35}, {kCcw, 0.10, -0.10}}); }
 
 TEST(ImprovedUmbmark, HandComputedCaseFollowsEquations2_16To2_27) {
   // 1) β = (−0.30 − 0.10)/(−16) = 0.025 rad                                          (2.3a)

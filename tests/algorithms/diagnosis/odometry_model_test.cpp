@@ -22,12 +22,24 @@ MotionData straight_steps(std::size_t n, double (*v)(std::size_t)) {
   return d;
 }
 
+// One second of velocity odometry at a constant 0.4 m/s.
+MotionData one_second_at_0_4_m_per_s() {
+  return straight_steps(10, [](std::size_t) { return 0.4; });
+}
+
+// The window over steps [first, last), its logged end at `t1` (0: its times left unset).
+MotionWindow window_over(std::size_t first, std::size_t last, double t1 = 0.0) {
+  MotionWindow w;
+  w.first = first;
+  w.last = last;
+  w.t1 = t1;
+  return w;
+}
+
 TEST(OdometryModel, TheDriveResponseMovesAsAFineEulerIntegrationOfTheFirstOrderLag) {
   // The logged speed jumps from 0 to 0.5 m/s at step 20; τ = 0.3 s.
   const MotionData d = straight_steps(40, [](std::size_t i) { return i < 20 ? 0.0 : 0.5; });
-  MotionWindow w;
-  w.first = 20;
-  w.last = 30;  // the first second after the jump
+  const MotionWindow w = window_over(20, 30);  // the first second after the jump
   OdometryModel m;
   m.drive_tau = 0.3;
   const Pose2 p = predict_window(d, w, m);
@@ -41,10 +53,8 @@ TEST(OdometryModel, TheDriveResponseMovesAsAFineEulerIntegrationOfTheFirstOrderL
 }
 
 TEST(OdometryModel, ScalesActOnTheLoggedMotionAndTheSpeedSlopeOnItsSpeed) {
-  const MotionData d = straight_steps(10, [](std::size_t) { return 0.4; });
-  MotionWindow w;
-  w.first = 0;
-  w.last = 10;
+  const MotionData d = one_second_at_0_4_m_per_s();
+  const MotionWindow w = window_over(0, 10);
   OdometryModel m;
   m.velocity_scale = 0.95;
   EXPECT_NEAR(predict_window(d, w, m).x, 0.95 * 0.4, 1e-12);
@@ -54,10 +64,8 @@ TEST(OdometryModel, ScalesActOnTheLoggedMotionAndTheSpeedSlopeOnItsSpeed) {
 
 TEST(OdometryModel, StallsShortenTheMeanPredictionByTheirExpectedLoss) {
   // 1 s at 0.4 m/s; stalls at 0.2/s of 0.5 s: p = 1 − e^(−0.2) = 0.1813, f = 0.5, mean 0.4·(1 − p·f).
-  const MotionData d = straight_steps(10, [](std::size_t) { return 0.4; });
-  MotionWindow w;
-  w.last = 10;
-  w.t1 = 1.0;
+  const MotionData d = one_second_at_0_4_m_per_s();
+  const MotionWindow w = window_over(0, 10, 1.0);
   OdometryModel m;
   m.stall_rate = 0.2;
   m.stall_duration = 0.5;
@@ -69,10 +77,8 @@ TEST(OdometryModel, StallsShortenTheMeanPredictionByTheirExpectedLoss) {
 }
 
 TEST(OdometryModel, TheStallLikelihoodIsTheTwoComponentMixtureOfTheMovingPrediction) {
-  MotionData d = straight_steps(10, [](std::size_t) { return 0.4; });
-  MotionWindow w;
-  w.last = 10;
-  w.t1 = 1.0;
+  MotionData d = one_second_at_0_4_m_per_s();
+  MotionWindow w = window_over(0, 10, 1.0);
   w.reference = Pose2(0.25, 0.01, 0.02);  // a window that lost 0.15 m of 0.4
   d.windows = {w};
   OdometryModel m;

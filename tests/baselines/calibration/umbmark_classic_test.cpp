@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/units.h"
+#include "tests/core/umbmark_inputs.h"
 
 namespace locbench::baselines::calibration {
 namespace {
@@ -15,15 +16,11 @@ namespace {
 constexpr auto kCw = UmbmarkDirection::kClockwise;
 constexpr auto kCcw = UmbmarkDirection::kCounterClockwise;
 
-// A LabMate-like robot on Borenstein's 4 m square: D_n = 150 mm, B = 340 mm.
-// Centroids: cw (−0.30, −0.35), ccw (0.10, −0.10) [m], from two runs each.
+// The LabMate's 4 m square without leg counts. Centroids: cw (−0.30, −0.35), ccw (0.10, −0.10) [m],
+// from two runs each.
 UmbmarkInput labmate_case() {
-  UmbmarkInput in;
-  in.side_length = 4.0;
-  in.nominal = {0.15, 0.15, 0.34};
-  in.encoder = {1.0, 1000.0};
-  in.runs = {{kCw, -0.28, -0.36}, {kCw, -0.32, -0.34}, {kCcw, 0.09, -0.12}, {kCcw, 0.11, -0.08}};
-  return in;
+  return testing::labmate_square(0,
+                                 {{kCw, -0.28, -0.36}, {kCw, -0.32, -0.34}, {kCcw, 0.09, -0.12}, {kCcw, 0.11, -0.08}});
 }
 
 TEST(ClassicUmbmark, HandComputedLabmateCaseFollowsEquations2_3To2_13) {

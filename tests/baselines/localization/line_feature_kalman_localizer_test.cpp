@@ -18,10 +18,24 @@ namespace {
 
 using Eigen::Vector3d;
 
+// The robot's true pose in the room and its wheelbase [m] in the tests below.
+const Pose2 kTruth{2.0, 1.0, deg(46.0)};
+constexpr double kWheelbase = 0.33;
+
 LineFeatureKalmanOptions with_p0(const Vector3d& p0) {
   LineFeatureKalmanOptions o;
   o.initial_covariance = p0;
   return o;
+}
+
+// The diagonal prior covariance of standard deviations `sigma_xy` [m] in x and y, `sigma_theta` [rad].
+Vector3d prior(double sigma_xy, double sigma_theta) {
+  return {sigma_xy * sigma_xy, sigma_xy * sigma_xy, std::pow(sigma_theta, 2)};
+}
+
+// A localizer of the default options starting at `start` with the prior covariance `p0`.
+LineFeatureKalmanLocalizer localizer_at(const Pose2& start, const Vector3d& p0) {
+  return LineFeatureKalmanLocalizer(with_p0(p0), kWheelbase, start);
 }
 
 // Observations of the room from `truth` (5 mm noise): lines fitted to the robot-frame points
@@ -39,11 +53,9 @@ TEST(ValidationGate, IsTheChiSquareQuantileWithTwoDegreesOfFreedom) {
 
 TEST(LineFeatureKalmanLocalizer, GateRejectsAnOutlierLineAndLeavesTheEstimateAsWithout) {
   const LineMap room = sim::room_world();
-  const Pose2 truth{2.0, 1.0, deg(46.0)};
   const Pose2 start{2.05, 0.97, deg(44.0)};
-  const Vector3d p0{0.05 * 0.05, 0.05 * 0.05, std::pow(deg(3.0), 2)};
   Rng rng(4);
-  const auto obs = observe(room, truth, rng);
+  const auto obs = observe(room, kTruth, rng);
   ASSERT_GE(obs.size(), 5u);
   // A line no map segment explains: 0.4 m in front of the robot, facing it (a person).
   std::vector<LineObservation> with_outlier = obs;
@@ -53,7 +65,8 @@ TEST(LineFeatureKalmanLocalizer, GateRejectsAnOutlierLineAndLeavesTheEstimateAsW
   ghost.covariance = Eigen::Vector2d(std::pow(deg(1.0), 2), 1e-4).asDiagonal();
   with_outlier.push_back(ghost);
 
-  LineFeatureKalmanLocalizer a(with_p0(p0), 0.33, start), b(with_p0(p0), 0.33, start);
+  LineFeatureKalmanLocalizer a = localizer_at(start, prior(0.05, deg(3.0)));
+  LineFeatureKalmanLocalizer b = localizer_at(start, prior(0.05, deg(3.0)));
   const LineUpdate ua = a.update(obs, room);
   const LineUpdate ub = b.update(with_outlier, room);
   EXPECT_EQ(ua.pairs.size(), obs.size());
@@ -67,13 +80,12 @@ TEST(LineFeatureKalmanLocalizer, GateRejectsAnOutlierLineAndLeavesTheEstimateAsW
 
 TEST(LineFeatureKalmanLocalizer, PairsEachObservationWithTheSegmentItCameFrom) {
   const LineMap room = sim::room_world();
-  const Pose2 truth{2.0, 1.0, deg(46.0)};
   Rng rng(8);
-  const auto scan = test::ray_cast_scan(room, truth, &rng);
-  const auto matches = test::matches_by_true_hit(scan, truth);
+  const auto scan = test::ray_cast_scan(room, kTruth, &rng);
+  const auto matches = test::matches_by_true_hit(scan, kTruth);
   const auto obs = line_observations(matches);
   ASSERT_EQ(obs.size(), matches.size());
-  LineFeatureKalmanLocalizer loc(with_p0({0.01, 0.01, 0.003}), 0.33, Pose2{2.08, 0.95, deg(43.0)});
+  LineFeatureKalmanLocalizer loc = localizer_at(Pose2{2.08, 0.95, deg(43.0)}, {0.01, 0.01, 0.003});
   const LineUpdate u = loc.associate(obs, room);
   ASSERT_EQ(u.pairs.size(), obs.size());
   for (const auto& p : u.pairs) EXPECT_EQ(p.map_segment, matches[p.observation].map_segment);
@@ -83,12 +95,11 @@ TEST(LineFeatureKalmanLocalizer, StackedUpdateWithFullInnovationCovarianceEquals
   // h is affine in the pose, so one update with Σ_IN = ∇h Σ_p ∇hᵀ + blockdiag(Σ_R) must equal
   // the updates one line at a time. (The slides' block-diagonal Σ_IN would not.)
   const LineMap room = sim::room_world();
-  const Pose2 truth{2.0, 1.0, deg(46.0)};
   const Pose2 start{2.1, 1.1, deg(43.0)};
-  const Vector3d p0{0.1 * 0.1, 0.1 * 0.1, std::pow(deg(4.0), 2)};
   Rng rng(2);
-  const auto obs = observe(room, truth, rng);
-  LineFeatureKalmanLocalizer batch(with_p0(p0), 0.33, start), seq(with_p0(p0), 0.33, start);
+  const auto obs = observe(room, kTruth, rng);
+  LineFeatureKalmanLocalizer batch = localizer_at(start, prior(0.1, deg(4.0)));
+  LineFeatureKalmanLocalizer seq = localizer_at(start, prior(0.1, deg(4.0)));
   const LineUpdate ub = batch.update(obs, room);
   ASSERT_EQ(ub.pairs.size(), obs.size());
   for (const auto& p : ub.pairs) {
@@ -103,14 +114,13 @@ TEST(LineFeatureKalmanLocalizer, ConvergesOnTheRoomFromAWrongStart) {
   // Start 0.15 m and 4° off with a prior that covers it; the robot drives 2 m along its heading
   // at 0.2 m/s (5 Hz), odometry with 0.2% wheel-diameter error, one scan per step.
   const LineMap room = sim::room_world();
-  Pose2 truth{2.0, 1.0, deg(46.0)};
-  const Pose2 start{2.1, 1.1, deg(42.0)};
-  LineFeatureKalmanLocalizer loc(with_p0({0.15 * 0.15, 0.15 * 0.15, std::pow(deg(5.0), 2)}), 0.33, start);
+  Pose2 truth = kTruth;
+  LineFeatureKalmanLocalizer loc = localizer_at(Pose2{2.1, 1.1, deg(42.0)}, prior(0.15, deg(5.0)));
   Rng rng(21);
   double first_error = 0.0;
   for (int k = 0; k < 50; ++k) {
     const WheelDisplacement ground{0.04, 0.04};
-    truth = odometry_step(truth, ground, 0.33);
+    truth = odometry_step(truth, ground, kWheelbase);
     loc.predict({0.04 * 1.001, 0.04 * 0.999});
     const LineUpdate u = loc.update(observe(room, truth, rng), room);
     EXPECT_GE(u.pairs.size(), 3u) << k;
@@ -128,8 +138,8 @@ TEST(LineFeatureKalmanLocalizer, RejectsInvalidInput) {
   EXPECT_THROW(LineFeatureKalmanLocalizer({}, -1.0, Pose2{}), UsageError);
   LineFeatureKalmanOptions o;
   o.gate_probability = 0.0;
-  EXPECT_THROW(LineFeatureKalmanLocalizer(o, 0.33, Pose2{}), UsageError);
-  LineFeatureKalmanLocalizer loc({}, 0.33, Pose2{});
+  EXPECT_THROW(LineFeatureKalmanLocalizer(o, kWheelbase, Pose2{}), UsageError);
+  LineFeatureKalmanLocalizer loc({}, kWheelbase, Pose2{});
   LineObservation bad;
   bad.r = std::numeric_limits<double>::quiet_NaN();
   const std::vector<LineObservation> obs{bad};

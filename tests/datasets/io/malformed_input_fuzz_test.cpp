@@ -32,6 +32,30 @@ const std::string kSample =
     "FLASER 4 1 2 3 50 0 0 0 0 0 0 3 h 3\n"
     "ODOM 0.1 0.2 0.3 0.5 -0.25 0 3 h 3\n";
 
+// Valid samples of the other formats read here, mutated by the properties below: Freiburg
+// relations, a TUM trajectory, Censi's tuples and published results, tick motions.
+const std::string kRelationsSample =
+    "# t1 t2 x y z roll pitch yaw\n90.239599 90.719599 0.422330 -0.000750 0 0 0 0.017260\n"
+    "1 2 3 4 5 6 7 8\n";
+
+const std::string kTumSample = "# tum\n1 0 0 0 0 0 0 1\n2 1 2 0 0 0 0.7071067811865476 0.7071067811865476\n";
+
+const std::string kCensiTuplesSample =
+    "{ \"T\": 7.943960e-01, \"phi_l\": 1.401765e-01, \"phi_r\": -1.373157e-01, \"sm\": [ "
+    "1.092608e-03, -5.089714e-04, -2.748851e-02 ] }\n"
+    "{ \"T\": 0.79, \"phi_l\": 0.49, \"phi_r\": -0.49, \"sm\": [ 0.0013, -9.7e-05, -0.18 ] }"
+    "{ \"T\": 0.8, \"phi_l\": 0.5, \"phi_r\": 0.5, \"sm\": [ 0.01, 0, 0 ] }\n";
+
+const std::string kCensiResultsSample =
+    "{ \"axle\": 0.0878146, \"l_diam\": 0.0410529, \"r_diam\": 0.041384, \"l_x\": "
+    "-0.00265427, \"l_y\": 0.00583491, \"l_theta\": -1.55197, \"E_d\": 1.00807, \"E_b\": "
+    "0.975718,\n\"covariance\": [ [ 4, 0, 0, 0, 0, 0 ], [ 0, 9, 0, 0, 0, 0 ],\n[ 0, 0, 16, 0, 0, "
+    "1 ], [ 0, 0, 0, 1, 0, 0 ], [ 0, 0, 0, 0, 1, 0 ], [ 0, 0, 1, 0, 0, 25 ] ] }\n";
+
+const std::string kTickMotionsSample =
+    "0 0 -0.000735349  1.50913e-05  0.000174196\n-0.0212839  0.0210924   0.0154077 0.000291585 "
+    " -0.0023148\n";
+
 const std::vector<std::string> kNastyTokens = {"",
                                                "nan",
                                                "-nan",
@@ -153,14 +177,20 @@ std::string mutate(std::string text) {
 // Runs `read`; fails the property unless it returns or throws InputError.
 using testing::reads_or_rejects;
 
+// Mutates the valid `sample` and fails the property unless `parse(text, source_name)` reads the
+// mutated text or throws InputError.
+template <class Parse>
+void mutation_is_read_or_rejected(const std::string& sample, Parse parse, const std::string& source_name) {
+  const std::string text = mutate(sample);
+  reads_or_rejects([&] { parse(text, source_name); });
+}
+
 RC_GTEST_PROP(CarmenFuzz, MutatedSampleLogIsReadOrRejectedWithInputError, ()) {
-  const std::string text = mutate(kSample);
-  reads_or_rejects([&] { parse_carmen_log(text, "fuzz.clf"); });
+  mutation_is_read_or_rejected(kSample, parse_carmen_log, "fuzz.clf");
 }
 
 RC_GTEST_PROP(CarmenFuzz, MutatedRandomLogIsReadOrRejectedWithInputError, ()) {
-  const std::string text = mutate(format_carmen_log(testing::random_carmen_log()));
-  reads_or_rejects([&] { parse_carmen_log(text, "fuzz.clf"); });
+  mutation_is_read_or_rejected(format_carmen_log(testing::random_carmen_log()), parse_carmen_log, "fuzz.clf");
 }
 
 RC_GTEST_PROP(CarmenFuzz, RandomBytesAreReadOrRejectedWithInputError, ()) {
@@ -169,15 +199,11 @@ RC_GTEST_PROP(CarmenFuzz, RandomBytesAreReadOrRejectedWithInputError, ()) {
 }
 
 RC_GTEST_PROP(RelationsFuzz, MutatedRelationsAreReadOrRejectedWithInputError, ()) {
-  const std::string text = mutate(
-      "# t1 t2 x y z roll pitch yaw\n90.239599 90.719599 0.422330 -0.000750 0 0 0 0.017260\n"
-      "1 2 3 4 5 6 7 8\n");
-  reads_or_rejects([&] { parse_relations(text, "fuzz.relations"); });
+  mutation_is_read_or_rejected(kRelationsSample, parse_relations, "fuzz.relations");
 }
 
 RC_GTEST_PROP(TumFuzz, MutatedTrajectoriesAreReadOrRejectedWithInputError, ()) {
-  const std::string text = mutate("# tum\n1 0 0 0 0 0 0 1\n2 1 2 0 0 0 0.7071067811865476 0.7071067811865476\n");
-  reads_or_rejects([&] { parse_tum(text, "fuzz.tum"); });
+  mutation_is_read_or_rejected(kTumSample, parse_tum, "fuzz.tum");
 }
 
 // Bytes of a valid .clf.gz flipped or cut: zlib errors surface as InputError.
@@ -209,21 +235,11 @@ TEST(CarmenFuzz, CorruptedGzipFilesAreReadOrRejectedWithInputError) {
 }
 
 RC_GTEST_PROP(CensiTupleFuzz, MutatedTuplesAreReadOrRejectedWithInputError, ()) {
-  const std::string text = mutate(
-      "{ \"T\": 7.943960e-01, \"phi_l\": 1.401765e-01, \"phi_r\": -1.373157e-01, \"sm\": [ "
-      "1.092608e-03, -5.089714e-04, -2.748851e-02 ] }\n"
-      "{ \"T\": 0.79, \"phi_l\": 0.49, \"phi_r\": -0.49, \"sm\": [ 0.0013, -9.7e-05, -0.18 ] }"
-      "{ \"T\": 0.8, \"phi_l\": 0.5, \"phi_r\": 0.5, \"sm\": [ 0.01, 0, 0 ] }\n");
-  reads_or_rejects([&] { parse_censi_tuples(text, "fuzz.tuple"); });
+  mutation_is_read_or_rejected(kCensiTuplesSample, parse_censi_tuples, "fuzz.tuple");
 }
 
 RC_GTEST_PROP(CensiResultsFuzz, MutatedResultsAreReadOrRejectedWithInputError, ()) {
-  const std::string text = mutate(
-      "{ \"axle\": 0.0878146, \"l_diam\": 0.0410529, \"r_diam\": 0.041384, \"l_x\": "
-      "-0.00265427, \"l_y\": 0.00583491, \"l_theta\": -1.55197, \"E_d\": 1.00807, \"E_b\": "
-      "0.975718,\n\"covariance\": [ [ 4, 0, 0, 0, 0, 0 ], [ 0, 9, 0, 0, 0, 0 ],\n[ 0, 0, 16, 0, 0, "
-      "1 ], [ 0, 0, 0, 1, 0, 0 ], [ 0, 0, 0, 0, 1, 0 ], [ 0, 0, 1, 0, 0, 25 ] ] }\n");
-  reads_or_rejects([&] { parse_censi_results(text, "fuzz_results.json"); });
+  mutation_is_read_or_rejected(kCensiResultsSample, parse_censi_results, "fuzz_results.json");
 }
 
 RC_GTEST_PROP(RelativeMotionFuzz, MutatedMotionPairsAreReadOrRejectedWithInputError, ()) {
@@ -233,10 +249,7 @@ RC_GTEST_PROP(RelativeMotionFuzz, MutatedMotionPairsAreReadOrRejectedWithInputEr
 }
 
 RC_GTEST_PROP(RelativeMotionFuzz, MutatedTickMotionsAreReadOrRejectedWithInputError, ()) {
-  const std::string text = mutate(
-      "0 0 -0.000735349  1.50913e-05  0.000174196\n-0.0212839  0.0210924   0.0154077 0.000291585 "
-      " -0.0023148\n");
-  reads_or_rejects([&] { parse_tick_motions(text, "dd.txt"); });
+  mutation_is_read_or_rejected(kTickMotionsSample, parse_tick_motions, "dd.txt");
 }
 
 RC_GTEST_PROP(CalibrationFuzz, RandomBytesAreReadOrRejectedWithInputError, ()) {
