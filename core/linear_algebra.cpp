@@ -34,6 +34,13 @@ bool cholesky_lower_solve(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, Ei
   return true;
 }
 
+bool cholesky_lower_solve(const Eigen::Matrix3d& a, const Eigen::Vector3d& b, Eigen::Vector3d& out) {
+  const Eigen::LLT<Eigen::Matrix3d> llt(a);
+  if (llt.info() != Eigen::Success) return false;
+  out = llt.matrixL().solve(b);
+  return true;
+}
+
 Eigen::MatrixXd inverse(const Eigen::MatrixXd& a) { return a.inverse(); }
 
 }  // namespace locbench::linalg

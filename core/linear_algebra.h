@@ -48,6 +48,8 @@ LdltSolve ldlt_solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b);
 // positive definite (then `out` is untouched).
 bool cholesky_lower_solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& out);
 bool cholesky_lower_solve(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, Eigen::MatrixXd& out);
+// The same for a 3×3 matrix (Eigen::LLT<Matrix3d>): no allocation, for per-step pose checks.
+bool cholesky_lower_solve(const Eigen::Matrix3d& a, const Eigen::Vector3d& b, Eigen::Vector3d& out);
 
 // a.inverse() of a dynamic-size matrix (Eigen: by PartialPivLU).
 Eigen::MatrixXd inverse(const Eigen::MatrixXd& a);

@@ -21,7 +21,9 @@ double nees(const Eigen::Ref<const Eigen::VectorXd>& error, const Eigen::Ref<con
 
 double pose_nees(const Pose2& truth, const Eigen::Vector3d& mean, const Eigen::Matrix3d& cov) {
   const Eigen::Vector3d e(mean(0) - truth.x, mean(1) - truth.y, angle_diff(mean(2), truth.theta));
-  return nees(e, cov);
+  Eigen::Vector3d w;
+  if (!linalg::cholesky_lower_solve(cov, e, w)) return std::numeric_limits<double>::infinity();
+  return w.squaredNorm();
 }
 
 double nis(double innovation, double innovation_variance) {
