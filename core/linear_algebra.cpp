@@ -20,25 +20,29 @@ LdltSolve ldlt_solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
   return out;
 }
 
-bool cholesky_lower_solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& out) {
-  const Eigen::LLT<Eigen::MatrixXd> llt(a);
+namespace {
+
+// L⁻¹b for the lower Cholesky factor L of a; false (out untouched) when a is not positive definite.
+template <class Matrix, class Rhs>
+bool lower_solve(const Matrix& a, const Rhs& b, Rhs& out) {
+  const Eigen::LLT<Matrix> llt(a);
   if (llt.info() != Eigen::Success) return false;
   out = llt.matrixL().solve(b);
   return true;
+}
+
+}  // namespace
+
+bool cholesky_lower_solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& out) {
+  return lower_solve(a, b, out);
 }
 
 bool cholesky_lower_solve(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, Eigen::MatrixXd& out) {
-  const Eigen::LLT<Eigen::MatrixXd> llt(a);
-  if (llt.info() != Eigen::Success) return false;
-  out = llt.matrixL().solve(b);
-  return true;
+  return lower_solve(a, b, out);
 }
 
 bool cholesky_lower_solve(const Eigen::Matrix3d& a, const Eigen::Vector3d& b, Eigen::Vector3d& out) {
-  const Eigen::LLT<Eigen::Matrix3d> llt(a);
-  if (llt.info() != Eigen::Success) return false;
-  out = llt.matrixL().solve(b);
-  return true;
+  return lower_solve(a, b, out);
 }
 
 Eigen::MatrixXd inverse(const Eigen::MatrixXd& a) { return a.inverse(); }
