@@ -1,8 +1,8 @@
 # One precompiled header of the heavy third-party and standard headers, built once and reused by
 # every static library and executable of the project (REUSE_FROM), for LOCBENCH_PCH builds.
 # Every target gets the same header-only dependencies and fmt, so that each compiles with the
-# flags and definitions the header was made with; a unit whose flags differ (the C++17 MCAP
-# unit) parses its headers as usual. docs/decisions.md: "One precompiled header for make build".
+# flags and definitions the header was made with. The C++17 ROS 1 unit is marked
+# SKIP_PRECOMPILE_HEADERS (datasets/io). docs/decisions.md: "One precompiled header for make build".
 set(LOCBENCH_PCH_HEADERS
     <algorithm> <cmath> <functional> <map> <memory> <optional> <string> <variant> <vector>
     <Eigen/Core> <Eigen/Dense> <nlohmann/json.hpp> <fmt/format.h>)

@@ -136,9 +136,9 @@ std::set<std::string> element_ids(const std::string& svg) {
   std::set<std::string> ids;
   std::size_t p = svg.find("id=");
   while (p != std::string::npos) {
-    std::size_t next = p + 3;
     const bool starts_word = p == 0 || !(std::isalnum(static_cast<unsigned char>(svg[p - 1])) || svg[p - 1] == '_');
-    const std::size_t open = p + 3;
+    const std::size_t open = p + 3;  // the opening quote
+    std::size_t next = open;
     if (starts_word && open < svg.size() && (svg[open] == '"' || svg[open] == '\'')) {
       const std::size_t close = svg.find_first_of("'\"", open + 1);
       if (close != std::string::npos && svg[close] == svg[open] && close > open + 1) {
