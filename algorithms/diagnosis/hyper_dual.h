@@ -227,6 +227,21 @@ LOCBENCH_HD_INLINE HyperDual<C> log1p(const HyperDual<C>& a) {
   return a.apply(std::log1p(a.v), 1.0 / d, -1.0 / (d * d));
 }
 template <int C>
+LOCBENCH_HD_INLINE HyperDual<C> sqrt(const HyperDual<C>& a) {
+  const double r = std::sqrt(a.v);
+  return a.apply(r, 0.5 / r, -0.25 / (r * a.v));
+}
+// atan2(y, x) through atan of the smaller ratio: atan(y/x) (+ a constant) where |x| ≥ |y|, else
+// −atan(x/y) (+ a constant).
+template <int C>
+LOCBENCH_HD_INLINE HyperDual<C> atan2(const HyperDual<C>& y, const HyperDual<C>& x) {
+  const double angle = std::atan2(y.v, x.v);
+  const bool by_x = std::abs(x.v) >= std::abs(y.v);
+  const HyperDual<C> u = by_x ? y / x : x / y;
+  const double q = 1.0 / (1.0 + u.v * u.v), sign = by_x ? 1.0 : -1.0;
+  return u.apply(angle, sign * q, -sign * 2.0 * u.v * q * q);
+}
+template <int C>
 LOCBENCH_HD_INLINE HyperDual<C> abs(const HyperDual<C>& a) {
   return a.v < 0.0 ? -a : a;
 }

@@ -11,6 +11,7 @@
 
 #include "algorithms/diagnosis/cause_catalog.h"
 #include "algorithms/diagnosis/landmark_battery.h"
+#include "algorithms/diagnosis/landmark_derivatives.h"
 #include "algorithms/diagnosis/ml_fit.h"
 #include "algorithms/diagnosis/selection.h"
 #include "core/angle.h"
@@ -78,7 +79,9 @@ struct LmDisplacement {
 
 class LmFitter {
  public:
-  LmFitter(const LandmarkData& d, std::vector<std::size_t> index) : d_(d), index_(std::move(index)) {}
+  // `exact_derivatives`: the fits' Newton steps use landmark_derivatives.h (else central differences).
+  LmFitter(const LandmarkData& d, std::vector<std::size_t> index, bool exact_derivatives)
+      : d_(d), index_(std::move(index)), exact_(exact_derivatives) {}
 
   const std::vector<LandmarkGeometry>& geometry(double offset) const {
     if (auto it = geometry_.find(offset); it != geometry_.end()) return it->second;
@@ -170,12 +173,25 @@ class LmFitter {
       return x;
     };
     const auto& g = geometry(m.time_offset);
+    NllDerivatives derivatives;
+    if (exact_) {
+      derivatives = [&](const std::vector<double>& v, Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian) {
+        const LandmarkModel x = apply(v);
+        if (!(x.dof <= 1e4) || !landmark_nll_derivatives(d_, g, x, index_, out.coords, gradient, hessian)) return false;
+        if (v[0] < 0.0) {  // σ_r = |v₀|
+          gradient[0] = -gradient[0];
+          hessian.row(0) *= -1.0;
+          hessian.col(0) *= -1.0;
+        }
+        return true;
+      };
+    }
     out.fit = fit_max_likelihood(
         [&](const std::vector<double>& v) {
           const LandmarkModel x = apply(v);
           return x.dof <= 1e4 ? landmark_nll(d_, g, x, index_) : std::numeric_limits<double>::infinity();
         },
-        fp, iterations);
+        fp, iterations, derivatives);
     for (const auto& p : fp) out.fit.names.push_back(p.name);
     out.model = apply(out.fit.values);
     out.nll = out.fit.nll;
@@ -184,6 +200,7 @@ class LmFitter {
 
   const LandmarkData& d_;
   std::vector<std::size_t> index_;
+  bool exact_;
   mutable std::map<double, std::vector<LandmarkGeometry>> geometry_;
 };
 
@@ -438,7 +455,7 @@ LandmarkChannelResult diagnose_landmarks(const LandmarkData& d, const DiagnosisO
   if (rr.size() < 40 || test.empty()) return out;
   out.testable = true;
 
-  const LmFitter fitter(d, train);
+  const LmFitter fitter(d, train, opt.exact_derivatives);
   LandmarkModel start;
   start.sigma_range = std::max(rms(rr), 1e-4);
   start.sigma_bearing = std::max(rms(rb), 1e-5);
