@@ -223,13 +223,18 @@ class Describe {
 
 }  // namespace option_fields
 
-// The writing visitors (ToJson, Validate, Describe) only read the fields: one visit_fields per
-// struct serves both directions, so the const object is visited through a non-const reference.
+// Visits the fields of `o` with `v` and returns it. For the writing visitors (ToJson, Validate,
+// Describe), which only read the fields: one visit_fields per struct serves both directions, so
+// the const object is visited through a non-const reference.
+template <class V, class O>
+V visit_const(V v, const O& o) {
+  visit_fields(v, const_cast<O&>(o));
+  return v;
+}
+
 template <class O>
 nlohmann::json fields_to_json(const O& o) {
-  option_fields::ToJson v;
-  visit_fields(v, const_cast<O&>(o));
-  return v.take();
+  return visit_const(option_fields::ToJson{}, o).take();
 }
 
 // Reads the keys present in `j` into `o` (absent keys keep o's values); `what` names the
@@ -259,15 +264,12 @@ void options_from_json(const nlohmann::json& j, O& o, const char* what) {
 
 template <class O>
 void validate_fields(const O& o, const char* what) {
-  option_fields::Validate v(what);
-  visit_fields(v, const_cast<O&>(o));
+  visit_const(option_fields::Validate(what), o);
 }
 
 template <class O>
 std::vector<FieldDoc> describe_fields(const O& defaults = O{}) {
-  option_fields::Describe v;
-  visit_fields(v, const_cast<O&>(defaults));
-  return v.take();
+  return visit_const(option_fields::Describe{}, defaults).take();
 }
 
 }  // namespace locbench

@@ -221,16 +221,13 @@ T adl_from_json(const nlohmann::json& j) {
 // The options as JSON: every field, nested ones through their own to_json.
 template <class O>
 nlohmann::json options_json(const O& o) {
-  options_detail::ToJson v;
-  visit_fields(v, const_cast<O&>(o));
-  return v.take();
+  return visit_const(options_detail::ToJson{}, o).take();
 }
 
 // Checks the fields' ranges; `what` names the options in errors ("<experiment>.key: …").
 template <class O>
 void validate_options(const O& o, const std::string& what) {
-  options_detail::Validate v(what);
-  visit_fields(v, const_cast<O&>(o));
+  visit_const(options_detail::Validate(what), o);
 }
 
 // Reads the keys of `j` into `o` (absent keys keep o's values; others are a UsageError naming
@@ -254,9 +251,7 @@ O read_options(const nlohmann::json& config, const std::string& what, O o = O{})
 // The options' documentation rows (fields_markdown formats them).
 template <class O>
 std::vector<FieldDoc> describe_options(const O& defaults = O{}) {
-  options_detail::Describe v;
-  visit_fields(v, const_cast<O&>(defaults));
-  return v.take();
+  return visit_const(options_detail::Describe{}, defaults).take();
 }
 
 }  // namespace locbench::experiments

@@ -117,15 +117,11 @@ void add_table_2_1(reports::ExperimentResults& out, const std::vector<std::array
   const double published[5][3] = {{670, 158, 117}, {722, 185, 141}, {650, 151, 109}, {773, 221, 179}, {748, 202, 159}};
   const char* columns[3] = {"before", "UMBmark", "improved"};
   for (int c = 0; c < 3; ++c) {
-    reports::PublishedComparison t;
-    t.source = "thesis Table 2.1";
-    t.quantity = std::string("E_max,syst ") + columns[c];
-    t.unit = "mm";
-    std::vector<double> published_mm, ours_mm;
-    for (const auto& p : published) published_mm.push_back(p[c]);
+    std::vector<double> ours_mm;
     for (const auto& r : rows) ours_mm.push_back(r[c] * 1e3);
-    t.rows = reports::numbered_rows("experiment", published_mm, ours_mm);
-    out.published.push_back(std::move(t));
+    out.published.push_back(reports::numbered_comparison("thesis Table 2.1", std::string("E_max,syst ") + columns[c],
+                                                         "mm", "experiment", reports::table_column(published, c),
+                                                         ours_mm));
   }
   // Plain words from the numbers.
   double pub[3] = {0, 0, 0}, ours[3] = {0, 0, 0};

@@ -11,6 +11,7 @@
 #include "algorithms/filters/consistency.h"
 #include "algorithms/filters/motion_model_ekf.h"
 #include "core/chi_square.h"
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/statistics.h"
 
@@ -53,18 +54,15 @@ std::vector<diagnosis::OdometryStep> cut_steps(const std::vector<diagnosis::Odom
 
 }  // namespace
 
-const char* to_string(Method m) {
-  switch (m) {
-    case Method::kFixedQ: return "fixed_q";
-    case Method::kAdaptiveThesis: return "adaptive_thesis";
-    case Method::kAdaptiveJacobian: return "adaptive_jacobian";
-    case Method::kSageHusa: return "sage_husa";
-    case Method::kVbAkf: return "vb_akf";
-    case Method::kNominalModel: return "nominal_model";
-    case Method::kDiagnosedModel: return "diagnosed_model";
-  }
-  return "?";
-}
+constexpr EnumNames<Method, 7> kTrackingMethods{{{Method::kFixedQ, "fixed_q"},
+                                                 {Method::kAdaptiveThesis, "adaptive_thesis"},
+                                                 {Method::kAdaptiveJacobian, "adaptive_jacobian"},
+                                                 {Method::kSageHusa, "sage_husa"},
+                                                 {Method::kVbAkf, "vb_akf"},
+                                                 {Method::kNominalModel, "nominal_model"},
+                                                 {Method::kDiagnosedModel, "diagnosed_model"}}};
+
+const char* to_string(Method m) { return enum_name(kTrackingMethods, m); }
 
 TrackingData tracking_data(const Log& log, double from, double to, double wheelbase) {
   TrackingData data;

@@ -88,6 +88,27 @@ std::vector<Record> ThesisTableExperiment::records_of(const std::vector<nlohmann
   return r;
 }
 
+std::vector<reports::PublishedComparison> ThesisTableExperiment::thesis_tables(
+    const std::string& source, const std::string& unit, const std::vector<std::string>& quantities) {
+  std::vector<reports::PublishedComparison> tables(quantities.size());
+  for (std::size_t i = 0; i < quantities.size(); ++i) {
+    tables[i].source = source;
+    tables[i].quantity = quantities[i];
+    tables[i].unit = unit;
+  }
+  return tables;
+}
+
+void ThesisTableExperiment::publish(reports::ExperimentResults& out, std::vector<reports::PublishedComparison> tables,
+                                    const std::string& note, double tolerance, const std::string& tolerance_basis) {
+  for (reports::PublishedComparison& t : tables) {
+    t.note = note;
+    t.tolerance = tolerance;
+    t.tolerance_basis = tolerance_basis;
+    out.published.push_back(std::move(t));
+  }
+}
+
 void ThesisTableExperiment::add(reports::ExperimentResults& out, const std::string& method, const std::string& ds,
                                 const std::string& variant, const std::string& unit, std::vector<double> v,
                                 const char* better) {

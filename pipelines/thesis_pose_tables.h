@@ -88,6 +88,12 @@ class ThesisTableExperiment : public MonteCarloExperiment<TableOptions, Setup> {
   static void add(reports::ExperimentResults& out, const std::string& method, const std::string& ds,
                   const std::string& variant, const std::string& unit, std::vector<double> v,
                   const char* better = "lower");
+  // The thesis's table `source` beside ours: one comparison per quantity, all in `unit`.
+  static std::vector<reports::PublishedComparison> thesis_tables(const std::string& source, const std::string& unit,
+                                                                 const std::vector<std::string>& quantities);
+  // Moves `tables` to out.published, each with the same note, tolerance and tolerance basis.
+  static void publish(reports::ExperimentResults& out, std::vector<reports::PublishedComparison> tables,
+                      const std::string& note, double tolerance, const std::string& tolerance_basis);
 };
 
 }  // namespace locbench::experiments::thesis_pose

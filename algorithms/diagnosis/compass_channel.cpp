@@ -23,18 +23,14 @@ namespace locbench::diagnosis {
 
 std::vector<CompassResidual> compass_residuals(const CompassData& d, double time_offset) {
   std::vector<CompassResidual> out(d.readings.size());
-  TruthInterpolator truth(d.truth);
-  for (std::size_t i = 0; i < d.readings.size(); ++i) {
-    const double t = d.readings[i].t - time_offset;
-    const auto a = truth.at(t - 0.05), p = truth.at(t), b = truth.at(t + 0.05);
-    if (!p) continue;
+  for_each_truth_sample(d.truth, d.readings, time_offset, [&](std::size_t i, const TruthSample& s) {
     out[i].t = d.readings[i].t;
-    out[i].r = angle_diff(d.readings[i].heading, p->theta);
-    out[i].x = p->x;
-    out[i].y = p->y;
-    out[i].turn_rate = a && b ? angle_diff(b->theta, a->theta) / 0.1 : 0.0;
+    out[i].r = angle_diff(d.readings[i].heading, s.pose.theta);
+    out[i].x = s.pose.x;
+    out[i].y = s.pose.y;
+    out[i].turn_rate = s.turn_rate;
     out[i].valid = true;
-  }
+  });
   return out;
 }
 
@@ -168,10 +164,9 @@ class CompassFitter {
       return c;
     };
     CompassFit f;
-    f.fit = fit_max_likelihood([&](const std::vector<double>& v) { return nll(apply(v)); }, fp, iterations);
+    adopt_fit(f, fit_max_likelihood([&](const std::vector<double>& v) { return nll(apply(v)); }, fp, iterations),
+              apply);
     for (const auto& p : fp) f.fit.names.push_back(p.name);
-    f.model = apply(f.fit.values);
-    f.nll = f.fit.nll;
     return f;
   }
   const CompassData& d_;

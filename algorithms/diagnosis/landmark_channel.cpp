@@ -186,15 +186,12 @@ class LmFitter {
         return true;
       };
     }
-    out.fit = fit_max_likelihood(
-        [&](const std::vector<double>& v) {
-          const LandmarkModel x = apply(v);
-          return x.dof <= 1e4 ? landmark_nll(d_, g, x, index_) : std::numeric_limits<double>::infinity();
-        },
-        fp, iterations, derivatives);
+    const auto objective = [&](const std::vector<double>& v) {
+      const LandmarkModel x = apply(v);
+      return x.dof <= 1e4 ? landmark_nll(d_, g, x, index_) : std::numeric_limits<double>::infinity();
+    };
+    adopt_fit(out, fit_max_likelihood(objective, fp, iterations, derivatives), apply);
     for (const auto& p : fp) out.fit.names.push_back(p.name);
-    out.model = apply(out.fit.values);
-    out.nll = out.fit.nll;
     return out;
   }
 

@@ -76,21 +76,18 @@ LandmarkData make_landmark_data(const std::vector<LandmarkReading>& readings, co
 
 std::vector<LandmarkGeometry> landmark_geometry(const LandmarkData& d, double time_offset) {
   std::vector<LandmarkGeometry> out(d.readings.size());
-  TruthInterpolator truth(d.truth);
-  for (std::size_t i = 0; i < d.readings.size(); ++i) {
-    const double t = d.readings[i].t - time_offset;
-    const auto a = truth.at(t - 0.05), p = truth.at(t), b = truth.at(t + 0.05);
-    if (!p) continue;
+  for_each_truth_sample(d.truth, d.readings, time_offset, [&](std::size_t i, const TruthSample& s) {
     LandmarkGeometry& g = out[i];
     const MapLandmark& m = d.map[static_cast<std::size_t>(d.landmark[i])];
+    const Pose2& p = s.pose;
     g.valid = true;
-    g.x = p->x;
-    g.y = p->y;
-    g.theta = p->theta;
-    g.rho = std::hypot(m.x - p->x, m.y - p->y);
-    g.phi = wrap_angle(std::atan2(m.y - p->y, m.x - p->x) - p->theta);
-    g.turn_rate = a && b ? angle_diff(b->theta, a->theta) / 0.1 : 0.0;
-  }
+    g.x = p.x;
+    g.y = p.y;
+    g.theta = p.theta;
+    g.rho = std::hypot(m.x - p.x, m.y - p.y);
+    g.phi = wrap_angle(std::atan2(m.y - p.y, m.x - p.x) - p.theta);
+    g.turn_rate = s.turn_rate;
+  });
   return out;
 }
 

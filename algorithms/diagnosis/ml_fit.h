@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace locbench::diagnosis {
@@ -45,5 +46,14 @@ using NllDerivatives =
 // `nll` may return +inf for invalid values (the step is then shortened).
 FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params,
                              int max_iterations = 100, const NllDerivatives& derivatives = {});
+
+// Stores `fit` in a channel's fit result (members fit, model, nll) with the model `apply` makes of
+// the fitted values and the NLL there.
+template <class ChannelFit, class Apply>
+void adopt_fit(ChannelFit& out, FitResult fit, const Apply& apply) {
+  out.fit = std::move(fit);
+  out.model = apply(out.fit.values);
+  out.nll = out.fit.nll;
+}
 
 }  // namespace locbench::diagnosis

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/angle.h"
 #include "core/log.h"
 #include "core/pose2.h"
 #include "core/robot_params.h"
@@ -30,6 +31,15 @@ struct OdometryStep {
   double a = 0.0;  // encoder: ΔN_L [ticks]; pose: ΔD [m] (signed, along the mid heading)
   double b = 0.0;  // encoder: ΔN_R [ticks]; pose: Δθ [rad]
 };
+
+// A pose step's length and logged rates a/Δt and b/Δt (0 over a step of no length).
+struct StepRates {
+  double dt = 0.0, v = 0.0, rate = 0.0;
+};
+inline StepRates step_rates(const OdometryStep& s) {
+  const double dt = s.t1 - s.t0;
+  return {dt, dt > 0.0 ? s.a / dt : 0.0, dt > 0.0 ? s.b / dt : 0.0};
+}
 
 struct MotionWindow {
   std::size_t first = 0, last = 0;  // steps [first, last)
@@ -88,6 +98,24 @@ class TruthInterpolator {
   const std::vector<TruePose>& truth_;
   std::size_t next_ = 0;  // index of the first record with time ≥ the last query's
 };
+
+// The true pose at a reading's time and the turn rate around it.
+struct TruthSample {
+  Pose2 pose;
+  double turn_rate = 0.0;  // heading change over t ± 0.05 s [rad/s]; 0 where the truth lacks either end
+};
+
+// Calls f(i, sample) for each reading i, in order, whose time less `time_offset` the truth covers.
+template <class Readings, class F>
+void for_each_truth_sample(const std::vector<TruePose>& truth, const Readings& readings, double time_offset, F&& f) {
+  TruthInterpolator interpolator(truth);
+  for (std::size_t i = 0; i < readings.size(); ++i) {
+    const double t = readings[i].t - time_offset;
+    const auto a = interpolator.at(t - 0.05), p = interpolator.at(t), b = interpolator.at(t + 0.05);
+    if (p) f(i, TruthSample{*p, a && b ? angle_diff(b->theta, a->theta) / 0.1 : 0.0});
+  }
+}
+
 // The compass heading at time t (interpolated along the shorter arc); nullopt outside.
 std::optional<double> interpolate_compass(const std::vector<CompassReading>& compass, double t);
 

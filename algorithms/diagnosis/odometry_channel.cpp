@@ -141,14 +141,14 @@ class Fitter {
                negative_log_likelihood_derivatives(d_, m, index_, fields, g, h, &cache_, &differenced).has_value();
       };
     }
-    out.fit = fit_max_likelihood(
-        [&](const std::vector<double>& v) {
-          const OdometryModel m = apply(v);
-          return plausible(m) ? nll(m) : std::numeric_limits<double>::infinity();
-        },
-        fp, max_iterations, derivatives);
-    out.model = apply(out.fit.values);
-    out.nll = out.fit.nll;
+    adopt_fit(out,
+              fit_max_likelihood(
+                  [&](const std::vector<double>& v) {
+                    const OdometryModel m = apply(v);
+                    return plausible(m) ? nll(m) : std::numeric_limits<double>::infinity();
+                  },
+                  fp, max_iterations, derivatives),
+              apply);
     return out;
   }
 

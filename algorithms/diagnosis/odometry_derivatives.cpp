@@ -99,9 +99,7 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
   const Mean turn_scale = s(&OdometryModel::turn_rate_scale), turn_bias = s(&OdometryModel::turn_rate_bias);
   if (increments != nullptr) {
     for (std::size_t i = w.first; i < w.last; ++i) {
-      const auto& st = d.steps[i];
-      const double dt = st.t1 - st.t0;
-      const double v = dt > 0.0 ? st.a / dt : 0.0;
+      const auto [dt, v, rate] = step_rates(d.steps[i]);
       const double* inc = increments + 2 * (i - w.first);
       const Mean scale = velocity_scale + speed_slope * std::abs(v);
       p = advance(p, scale * Mean(inc[0]), turn_scale * Mean(inc[1]) + turn_bias * dt);
@@ -109,17 +107,11 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
     return p;
   }
   const std::size_t start = drive_run_in_start(d, w, tau.v);
-  Mean u(0.0), omega(0.0);
-  if (tau.v > 0.0) {
-    const auto& s0 = d.steps[start];
-    const double dt0 = s0.t1 - s0.t0;
-    u = dt0 > 0.0 ? s0.a / dt0 : 0.0;
-    omega = dt0 > 0.0 ? s0.b / dt0 : 0.0;
-  }
+  const StepRates r0 = drive_start_rates(d, start, tau.v);
+  Mean u(r0.v), omega(r0.rate);
   for (std::size_t i = start; i < w.last; ++i) {
     const auto& st = d.steps[i];
-    const double dt = st.t1 - st.t0;
-    const double v = dt > 0.0 ? st.a / dt : 0.0, rate = dt > 0.0 ? st.b / dt : 0.0;
+    const auto [dt, v, rate] = step_rates(st);
     Mean dd(st.a), dth(st.b);
     if (tau.v > 0.0 && dt > 0.0) {
       const Mean decay = exp(-dt / tau);

@@ -72,20 +72,18 @@ std::size_t drive_run_in_start(const MotionData& d, const MotionWindow& w, doubl
   return start;
 }
 
+StepRates drive_start_rates(const MotionData& d, std::size_t start, double tau) {
+  return tau > 0.0 ? step_rates(d.steps[start]) : StepRates{};
+}
+
 void drive_increments(const MotionData& d, const MotionWindow& w, double tau, double* out) {
   // The drive's state at the window's start: the response run from 4τ before it (e^−4 = 2%).
   const std::size_t start = drive_run_in_start(d, w, tau);
-  double u = 0.0, omega = 0.0;
-  if (tau > 0.0) {
-    const auto& s0 = d.steps[start];
-    const double dt0 = s0.t1 - s0.t0;
-    u = dt0 > 0.0 ? s0.a / dt0 : 0.0;
-    omega = dt0 > 0.0 ? s0.b / dt0 : 0.0;
-  }
+  const StepRates r0 = drive_start_rates(d, start, tau);
+  double u = r0.v, omega = r0.rate;
   for (std::size_t i = start; i < w.last; ++i) {
     const auto& s = d.steps[i];
-    const double dt = s.t1 - s.t0;
-    const double v = dt > 0.0 ? s.a / dt : 0.0, rate = dt > 0.0 ? s.b / dt : 0.0;
+    const auto [dt, v, rate] = step_rates(s);
     double dd = s.a, dth = s.b;
     if (tau > 0.0 && dt > 0.0) {
       const double decay = std::exp(-dt / tau);
@@ -112,9 +110,7 @@ Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryM
   }
   const double kept = 1.0 - expected_stall_loss(d, w, m);
   for (std::size_t i = w.first; i < w.last; ++i) {
-    const auto& s = d.steps[i];
-    const double dt = s.t1 - s.t0;
-    const double v = dt > 0.0 ? s.a / dt : 0.0;
+    const auto [dt, v, rate] = step_rates(d.steps[i]);
     const double* inc = increments + 2 * (i - w.first);
     const double scale = (m.velocity_scale + m.speed_slope * std::abs(v)) * kept;
     p = advance(p, scale * inc[0], m.turn_rate_scale * inc[1] + m.turn_rate_bias * dt);

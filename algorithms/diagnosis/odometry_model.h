@@ -92,6 +92,8 @@ void drive_increments(const MotionData& d, const MotionWindow& w, double tau, do
 // The first step of w's drive run-in under τ: steps contiguous before w back to 4τ (e^−4 = 2%);
 // w.first when τ ≤ 0.
 std::size_t drive_run_in_start(const MotionData& d, const MotionWindow& w, double tau);
+// The drive's state where that run-in starts (step `start`): the step's logged rates; 0 when τ ≤ 0.
+StepRates drive_start_rates(const MotionData& d, std::size_t start, double tau);
 // predict_window with w's drive_increments under m.drive_tau given (pose odometry; the same
 // result bit for bit).
 Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m, const double* increments);

@@ -11,38 +11,40 @@ namespace locbench::diagnosis {
 
 double two_sided_normal_p(double z) { return std::min(1.0, 2.0 * normal_upper_tail(std::abs(z))); }
 
+namespace {
+
+// Test `t` with its strength, its statistic z and z's two-sided normal p-value.
+ResidualTest two_sided_z_test(ResidualTest t, double strength, double z) {
+  t.strength = strength;
+  t.value = z;
+  t.p_value = two_sided_normal_p(z);
+  return t;
+}
+
+}  // namespace
+
 ResidualTest bias_test(std::span<const double> r, const std::string& residual) {
-  ResidualTest t{"bias", residual, "", "z"};
   const double n = static_cast<double>(r.size());
   const double s = sample_stddev(r);
-  t.strength = s > 0.0 ? mean(r) / s : 0.0;
-  t.value = t.strength * std::sqrt(n);
-  t.p_value = two_sided_normal_p(t.value);
-  return t;
+  const double strength = s > 0.0 ? mean(r) / s : 0.0;
+  return two_sided_z_test({"bias", residual, "", "z"}, strength, strength * std::sqrt(n));
 }
 
 ResidualTest dependence_test(std::span<const double> r, std::span<const double> x, const std::string& name,
                              const std::string& residual, const std::string& variable) {
-  ResidualTest t{name, residual, variable, "z"};
   const double rho = std::clamp(pearson_correlation(r, x), -0.999999, 0.999999);
-  t.strength = rho;
-  t.value = std::atanh(rho) * std::sqrt(std::max(0.0, static_cast<double>(r.size()) - 3.0));
-  t.p_value = two_sided_normal_p(t.value);
-  return t;
+  return two_sided_z_test({name, residual, variable, "z"}, rho,
+                          std::atanh(rho) * std::sqrt(std::max(0.0, static_cast<double>(r.size()) - 3.0)));
 }
 
 // The thesis's moment statistics (eqs. 3.5–3.8), with p-values from their normalising
 // transforms (core/statistics.h): read as N(0, 1), u1 and u2 reject normal residuals far more
 // often than the stated level at the small per-test levels the diagnosis uses.
 ResidualTest skewness_test(std::span<const double> r, const std::string& residual) {
-  ResidualTest t{"normality_skewness", residual, "", "z_dagostino"};
   const double n = static_cast<double>(r.size());
   const double b2 = central_moment(r, 2), b3 = central_moment(r, 3);
   const double g1 = b2 > 0.0 ? b3 / std::pow(b2, 1.5) : 0.0;  // (3.5)
-  t.strength = g1;
-  t.value = n >= 8.0 ? skewness_z(g1, n) : 0.0;
-  t.p_value = two_sided_normal_p(t.value);
-  return t;
+  return two_sided_z_test({"normality_skewness", residual, "", "z_dagostino"}, g1, n >= 8.0 ? skewness_z(g1, n) : 0.0);
 }
 
 ResidualTest heavy_tail_test(std::span<const double> r, const std::string& residual) {

@@ -18,6 +18,15 @@ inline void require_finite_estimate(const Pose2& estimate, const char* who) {
   }
 }
 
+// A correction's result before any correction: the estimate (checked as above) as `corrected`.
+template <class Correction>
+Correction uncorrected(const Pose2& estimate, const char* who) {
+  require_finite_estimate(estimate, who);
+  Correction out;
+  out.corrected = estimate;
+  return out;
+}
+
 // The map segment a match names; throws UsageError "<who>: a match names map segment k, the
 // map has n" when there is no such segment.
 inline const Segment& matched_segment(const laser::SegmentMatch& m, const LineMap& map, const char* who) {

@@ -208,9 +208,7 @@ IteratedCorrection solve_point_to_line(std::span<const laser::SegmentMatch> matc
 IteratedCorrection iterated_point_to_line(const laser::SegmentMatcher& matcher, const Scan& scan, const LineMap& map,
                                           const Pose2& estimate, const IteratedCorrectionOptions& options) {
   validate(options);
-  require_finite_estimate(estimate, "iterated_point_to_line");
-  IteratedCorrection out;
-  out.corrected = estimate;
+  IteratedCorrection out = uncorrected<IteratedCorrection>(estimate, "iterated_point_to_line");
   Pose2 pose = estimate;
   // Only the last iteration's covariance and trimmed statistics are returned: they are computed
   // once, after the loop (finish), from that iteration's steps.

@@ -25,9 +25,7 @@ LOCBENCH_OPTIONS_JSON(PoseCorrectionOptions)
 PoseCorrection correct_pose(std::span<const laser::SegmentMatch> matches, const LineMap& map, const Pose2& estimate,
                             const Pose2& sensor_mount, const PoseCorrectionOptions& options) {
   validate(options);
-  require_finite_estimate(estimate, "correct_pose");
-  PoseCorrection out;
-  out.corrected = estimate;
+  PoseCorrection out = uncorrected<PoseCorrection>(estimate, "correct_pose");
   Pose2 pose = estimate;
   for (int pass = 0; pass < options.iterations; ++pass) {
     out.orientation = correct_orientation(matches, map, pose, sensor_mount, options.orientation);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/option_fields.h"
 #include "core/statistics.h"
@@ -44,15 +45,12 @@ double slip_threshold(double probability) {
   return normal_quantile(0.5 * (1.0 + probability));
 }
 
-const char* to_string(SampleStatus s) {
-  switch (s) {
-    case SampleStatus::kNoSlip: return "no_slip";
-    case SampleStatus::kLeftSlip: return "left_slip";
-    case SampleStatus::kRightSlip: return "right_slip";
-    case SampleStatus::kCompassDisturbed: return "compass_disturbed";
-  }
-  return "?";
-}
+constexpr EnumNames<SampleStatus, 4> kSampleStatuses{{{SampleStatus::kNoSlip, "no_slip"},
+                                                      {SampleStatus::kLeftSlip, "left_slip"},
+                                                      {SampleStatus::kRightSlip, "right_slip"},
+                                                      {SampleStatus::kCompassDisturbed, "compass_disturbed"}}};
+
+const char* to_string(SampleStatus s) { return enum_name(kSampleStatuses, s); }
 
 bool compass_disturbed(const WheelDisplacement& u, double theta_c, double wheelbase, double margin) {
   const double a = -u.left / wheelbase, b = u.right / wheelbase;

@@ -127,17 +127,22 @@ class Clustering {
     ++work_;
     return mahalanobis2(clusters_[a].line, clusters_[b].line);
   }
-  void offer(std::size_t a, std::size_t b, double d2) {
-    if (d2 < clusters_[a].nn_d2) clusters_[a].nn = b, clusters_[a].nn_d2 = d2;
-    if (d2 < clusters_[b].nn_d2) clusters_[b].nn = a, clusters_[b].nn_d2 = d2;
+  // x becomes k's nearest neighbour if it is nearer than the one k has.
+  void consider(std::size_t k, std::size_t x, double d2) {
+    if (d2 < clusters_[k].nn_d2) clusters_[k].nn = x, clusters_[k].nn_d2 = d2;
   }
-  void rescan(std::size_t k) {
+  void offer(std::size_t a, std::size_t b, double d2) {
+    consider(a, b, d2);
+    consider(b, a, d2);
+  }
+  void forget_nearest(std::size_t k) {
     clusters_[k].nn = kNone;
     clusters_[k].nn_d2 = kInf;
+  }
+  void rescan(std::size_t k) {
+    forget_nearest(k);
     for (const std::size_t x : active_) {
-      if (x == k) continue;
-      const double d2 = distance(k, x);
-      if (d2 < clusters_[k].nn_d2) clusters_[k].nn = x, clusters_[k].nn_d2 = d2;
+      if (x != k) consider(k, x, distance(k, x));
     }
   }
 
@@ -164,12 +169,11 @@ class Clustering {
 
   // Only distances to the merged cluster `a` changed; `gone` no longer exists.
   void update_after_merge(std::size_t a, std::size_t gone) {
-    clusters_[a].nn = kNone;
-    clusters_[a].nn_d2 = kInf;
+    forget_nearest(a);
     for (const std::size_t k : active_) {
       if (k == a) continue;
       const double d2 = distance(k, a);
-      if (d2 < clusters_[a].nn_d2) clusters_[a].nn = k, clusters_[a].nn_d2 = d2;
+      consider(a, k, d2);
       Cluster& ck = clusters_[k];
       if (ck.nn == a || ck.nn == gone) {
         if (d2 <= ck.nn_d2) {
@@ -177,8 +181,8 @@ class Clustering {
         } else {
           rescan(k);
         }
-      } else if (d2 < ck.nn_d2) {
-        ck.nn = a, ck.nn_d2 = d2;
+      } else {
+        consider(k, a, d2);
       }
     }
   }

@@ -34,11 +34,11 @@ class Table61 final : public ThesisTableExperiment {
     return r;
   }
   void tabulate(const std::vector<Record>& recs, reports::ExperimentResults& out) const override {
-    reports::PublishedComparison pl, pp;
-    pl.source = pp.source = "thesis Table 6.1";
-    pl.quantity = "E_p² after point-to-line LS, by heading error E_o¹ (mean over runs)";
-    pp.quantity = "E_p² after point-to-point LS, by heading error E_o¹ (mean over runs)";
-    pl.unit = pp.unit = "mm";
+    std::vector<reports::PublishedComparison> tables =
+        thesis_tables("thesis Table 6.1", "mm",
+                      {"E_p² after point-to-line LS, by heading error E_o¹ (mean over runs)",
+                       "E_p² after point-to-point LS, by heading error E_o¹ (mean over runs)"});
+    reports::PublishedComparison &pl = tables[0], &pp = tables[1];
     int pp_wins = 0, pp_wins_published = 0;
     for (std::size_t row = 0; row < 11; ++row) {
       const int e = static_cast<int>(row) - 5;
@@ -56,14 +56,10 @@ class Table61 final : public ThesisTableExperiment {
     const std::string why =
         "Same true pose, estimate and heading errors as the thesis; the scan is ours (obstacle "
         "placement reconstructed, σ = 5 mm, +15 mm range offset), so individual rows differ.";
-    pl.note = pp.note = why;
     pl.claim = "point-to-line LS leaves 23–68 mm of position error at heading errors of −5…5°";
     pp.claim = "point-to-point LS leaves 5–64 mm, less than point-to-line in most rows";
-    pl.tolerance = pp.tolerance = 10.0;
-    pl.tolerance_basis = pp.tolerance_basis =
-        "10 mm: two standard deviations of the LMS 200 range noise (σ = 5 mm); the scan is ours";
-    out.published.push_back(std::move(pl));
-    out.published.push_back(std::move(pp));
+    publish(out, std::move(tables), why, 10.0,
+            "10 mm: two standard deviations of the LMS 200 range noise (σ = 5 mm); the scan is ours");
     out.notes.push_back(fmt::format("Point-to-point beats point-to-line in {} of 11 rows here (thesis: {} of 11).",
                                     pp_wins, pp_wins_published));
   }

@@ -39,11 +39,10 @@ class Tables6364 final : public ThesisTableExperiment {
     return r;
   }
   void tabulate(const std::vector<Record>& recs, reports::ExperimentResults& out) const override {
-    reports::PublishedComparison eo, ep;
-    eo.source = ep.source = "thesis Tables 6.3/6.4";
-    eo.quantity = "|E_o²/E_o¹| per experiment (mean over runs)";
-    ep.quantity = "E_p²/E_p¹ per experiment (mean over runs)";
-    eo.unit = ep.unit = "%";
+    std::vector<reports::PublishedComparison> tables =
+        thesis_tables("thesis Tables 6.3/6.4", "%",
+                      {"|E_o²/E_o¹| per experiment (mean over runs)", "E_p²/E_p¹ per experiment (mean over runs)"});
+    reports::PublishedComparison &eo = tables[0], &ep = tables[1];
     double worst_eo = 0.0, worst_ep = 0.0, best_ep = 1e9;
     for (std::size_t i = 0; i < std::size(kTable63); ++i) {
       const Row63& row = kTable63[i];
@@ -65,16 +64,13 @@ class Tables6364 final : public ThesisTableExperiment {
         best_ep = std::min(best_ep, ep_m);
       }
     }
-    eo.note = ep.note =
-        "Published ratios computed from Table 6.3 (they equal Table 6.4's). Our "
-        "room's obstacles are a reconstruction.";
     eo.claim = "the weighted LS heading correction leaves under 10% of the heading error";
     ep.claim = "point-to-point correction leaves 5–51% of the position error";
-    eo.tolerance = ep.tolerance = 5.0;
-    eo.tolerance_basis = ep.tolerance_basis =
-        "5 percentage points: the thesis prints E_o² to 0.01° for E_o¹ of 2–6° and our room is a reconstruction";
-    out.published.push_back(std::move(eo));
-    out.published.push_back(std::move(ep));
+    publish(out, std::move(tables),
+            "Published ratios computed from Table 6.3 (they equal Table 6.4's). Our room's obstacles are a "
+            "reconstruction.",
+            5.0,
+            "5 percentage points: the thesis prints E_o² to 0.01° for E_o¹ of 2–6° and our room is a reconstruction");
     out.notes.push_back(
         fmt::format("Heading error after correction is at most {:.1f}% of before (thesis: < 10%); position "
                     "error after is {:.1f}–{:.1f}% of before (thesis: 5.24–51.38%).",

@@ -125,9 +125,7 @@ class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {
                                sample_stddev(s.final_error[1]) * 1e3};
     double pub_sd[3];
     for (int c = 0; c < 3; ++c) {
-      std::vector<double> col;
-      for (const auto& row : published) col.push_back(row[c]);
-      pub_sd[c] = sample_stddev(col);
+      pub_sd[c] = sample_stddev(reports::table_column(published, c));
     }
     const ConsistencySummary adaptive_nees = summarize_consistency(common_length(s.nees[1]), 3);
     const std::string note = fmt::format(
@@ -148,14 +146,11 @@ class NoiseTables final : public MonteCarloExperiment<Options, NoiseSetup> {
               "sample to sample, which a white-noise model over-counts)"
             : "");
     for (int c = 0; c < 3; ++c) {
-      reports::PublishedComparison t;
-      t.source = "thesis Tables 4.1/4.2";
-      t.quantity = std::string("final position error, ") + columns[c];
-      t.unit = "mm";
-      std::vector<double> published_mm, ours_mm;
-      for (const auto& p : published) published_mm.push_back(p[c]);
+      std::vector<double> ours_mm;
       for (const double e : s.final_error[ours_index[c]]) ours_mm.push_back(e * 1e3);
-      t.rows = reports::numbered_rows("run", published_mm, ours_mm);
+      reports::PublishedComparison t =
+          reports::numbered_comparison("thesis Tables 4.1/4.2", std::string("final position error, ") + columns[c],
+                                       "mm", "run", reports::table_column(published, c), ours_mm);
       t.note = note;
       out.published.push_back(std::move(t));
     }

@@ -1,6 +1,7 @@
 #pragma once
 // Reading a diagnosis in tests: find a cause, ask whether it was kept, print the whole verdict
-// when an expectation fails; what the histogram reader says of malformed input.
+// when an expectation fails; what the histogram reader says of malformed input; the points of the
+// derivative tests.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,16 @@
 #include "tests/input_error_message.h"
 
 namespace locbench::diagnosis::test_support {
+
+// A model with the fields whose exact derivatives are checked, and the central-difference step of
+// each (the derivative tests of the odometry and landmark likelihoods).
+template <class Model>
+struct DerivativePoint {
+  Model model;
+  std::vector<double Model::*> fields;
+  std::vector<double> steps;
+  std::string what;
+};
 
 inline const Cause* find_cause(const Diagnosis& d, const std::string& id) {
   for (const auto& c : d.causes) {

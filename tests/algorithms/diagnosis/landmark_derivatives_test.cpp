@@ -12,18 +12,14 @@
 
 #include "algorithms/diagnosis/landmark_channel.h"
 #include "datasets/diagnosis/landmark_effects.h"
+#include "diagnosis_test_helpers.h"
 
 namespace locbench::diagnosis {
 namespace {
 
 using LmField = double LandmarkModel::*;
 
-struct LmPoint {
-  LandmarkModel model;
-  std::vector<LmField> fields;
-  std::vector<double> steps;  // central-difference step per field
-  std::string what;
-};
+using LmPoint = test_support::DerivativePoint<LandmarkModel>;
 
 LandmarkData simulated_landmarks(const std::vector<sim::HiddenEffect>& effects, double duration) {
   sim::LandmarkLogOptions o;

@@ -14,19 +14,14 @@
 #include "algorithms/diagnosis/odometry_derivatives.h"
 #include "datasets/catalog/dataset_catalog.h"
 #include "datasets/diagnosis/hidden_effects.h"
+#include "diagnosis_test_helpers.h"
 #include "tests/test_data.h"
 
 namespace locbench::diagnosis {
 namespace {
 
 using Field = double OdometryModel::*;
-
-struct Point {
-  OdometryModel model;
-  std::vector<Field> fields;
-  std::vector<double> steps;  // central-difference step per field
-  std::string what;
-};
+using Point = test_support::DerivativePoint<OdometryModel>;
 
 double nll_at(const MotionData& d, OdometryModel m, const Point& p, std::size_t i, double delta) {
   m.*(p.fields[i]) += delta;
