@@ -8,6 +8,8 @@
 #include "core/angle.h"
 
 namespace locbench::diagnosis {
+// The differentiated formulas' own names (a unity build batches this file with the plain ones).
+namespace landmark_ad {
 namespace {
 
 using Number = HyperDual<kMaxLandmarkDifferentiatedFields>;
@@ -59,10 +61,10 @@ Number with_value(Number x, double v) {
 
 }  // namespace
 
-std::optional<double> landmark_nll_derivatives(const LandmarkData& d, const std::vector<LandmarkGeometry>& geometry,
-                                               const LandmarkModel& m, const std::vector<std::size_t>& index,
-                                               const std::vector<Field>& fields, Eigen::VectorXd& gradient,
-                                               Eigen::MatrixXd& hessian) {
+std::optional<double> derivatives(const LandmarkData& d, const std::vector<LandmarkGeometry>& geometry,
+                                  const LandmarkModel& m, const std::vector<std::size_t>& index,
+                                  const std::vector<Field>& fields, Eigen::VectorXd& gradient,
+                                  Eigen::MatrixXd& hessian) {
   const int n = static_cast<int>(fields.size());
   if (n > kMaxLandmarkDifferentiatedFields) return std::nullopt;
   for (Field f : fields) {
@@ -121,6 +123,15 @@ std::optional<double> landmark_nll_derivatives(const LandmarkData& d, const std:
     for (int b = 0; b < n; ++b) hessian(a, b) = nll.hessian(a, b);
   }
   return nll.v;
+}
+
+}  // namespace landmark_ad
+
+std::optional<double> landmark_nll_derivatives(const LandmarkData& d, const std::vector<LandmarkGeometry>& geometry,
+                                               const LandmarkModel& m, const std::vector<std::size_t>& index,
+                                               const std::vector<double LandmarkModel::*>& fields,
+                                               Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian) {
+  return landmark_ad::derivatives(d, geometry, m, index, fields, gradient, hessian);
 }
 
 }  // namespace locbench::diagnosis
