@@ -66,6 +66,17 @@ struct LoadedRealLog {
 // (reason = its message). A user's files: InputError propagates (exit 2).
 LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path& data_root);
 
+// Copies what a load gave (status, reason, and the dataset's path, checksum and record count)
+// into the fields of the same names of a Monte-Carlo experiment's per-task record.
+template <class Record>
+void record_load(const LoadedRealLog& loaded, Record& rec) {
+  rec.status = loaded.status;
+  rec.reason = loaded.reason;
+  rec.path = loaded.dataset.path;
+  rec.checksum = loaded.dataset.checksum;
+  rec.records = loaded.dataset.records;
+}
+
 // The loop of a non-Monte-Carlo real-data experiment: for each spec, report progress, load it,
 // turn skipped/failed into a case "<case_prefix>/<name>" of `out`, else add its DatasetRef to
 // out.datasets and call `run(spec, loaded, out)`.

@@ -141,13 +141,9 @@ class GlobalRealLogs final : public MonteCarloExperiment<Options, Setup> {
     const std::uint64_t seed = plan.run_seed(task / nd);
     Record rec;
     const LoadedRealLog loaded = load_real_log(s.specs[static_cast<std::size_t>(task % nd)], plan.data_root);
-    rec.path = loaded.dataset.path;
-    rec.status = loaded.status;
-    rec.reason = loaded.reason;
+    record_load(loaded, rec);
     if (loaded.status != "ok") return rec;
     const Log& log = loaded.log;
-    rec.checksum = loaded.dataset.checksum;
-    rec.records = loaded.dataset.records;
     std::vector<ScanStep> all = global::scan_steps(log);
     if (all.size() < 20) {
       rec.status = "failed";

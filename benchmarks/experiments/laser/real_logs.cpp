@@ -166,11 +166,7 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
   nlohmann::json run_task(const Setup& s, const McPlan& plan, int task) const override {
     Record rec;
     LoadedRealLog loaded = load_real_log(s.datasets[static_cast<std::size_t>(task)], plan.data_root);
-    rec.status = loaded.status;
-    rec.reason = loaded.reason;
-    rec.path = loaded.dataset.path;
-    rec.checksum = loaded.dataset.checksum;
-    rec.records = loaded.dataset.records;
+    record_load(loaded, rec);
     rec.duration = loaded.dataset.duration_s;
     if (loaded.status != "ok") return rec;
     Log& log = loaded.log;
