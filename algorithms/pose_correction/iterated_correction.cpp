@@ -20,34 +20,44 @@ struct PointOnLine {
   Eigen::Vector2d normal;  // (cos β, sin β) of its map line
   double rho = 0.0;
   std::size_t segment = 0;
-  double residual = 0.0;
 };
 
 std::vector<PointOnLine> points_on_lines(std::span<const laser::SegmentMatch> matches, const LineMap& map) {
   std::vector<PointOnLine> out;
+  std::size_t n = 0;
+  for (const auto& m : matches) n += m.points.size();
+  out.reserve(n);
   for (const auto& m : matches) {
     const Segment& segment = matched_segment(m, map, "iterated_point_to_line");
     const LineParams line = segment.line();
     const Eigen::Vector2d normal(std::cos(line.beta), std::sin(line.beta));
-    for (const auto& p : m.points) out.push_back({p.robot, normal, line.rho, m.map_segment, 0.0});
+    for (const auto& p : m.points) out.push_back({p.robot, normal, line.rho, m.map_segment});
   }
   return out;
 }
 
-// Residuals under `pose`, then keep the keep_fraction with the smallest |r|.
-void trim(std::vector<PointOnLine>& pts, const Pose2& pose, double keep_fraction) {
+// A point's |residual| and its index in the points: trimming moves these, not the points.
+struct Ranked {
+  double abs_residual;
+  std::size_t index;
+};
+
+// The keep_fraction of `pts` with the smallest |r| under `pose`, as indices into `pts` (in
+// `kept`, whose storage is reused from call to call).
+void trim(const std::vector<PointOnLine>& pts, const Pose2& pose, double keep_fraction, std::vector<Ranked>& kept) {
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);  // once, not per point
-  for (auto& p : pts) {
+  kept.resize(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const PointOnLine& p = pts[i];
     const Eigen::Vector2d q(pose.x + c * p.robot.x() - s * p.robot.y(),
                             pose.y + s * p.robot.x() + c * p.robot.y());  // = pose * p.robot
-    p.residual = p.normal.dot(q) - p.rho;
+    kept[i] = {std::abs(p.normal.dot(q) - p.rho), i};
   }
   const auto keep = static_cast<std::size_t>(std::ceil(keep_fraction * static_cast<double>(pts.size())));
   if (keep >= pts.size()) return;
-  std::nth_element(
-      pts.begin(), pts.begin() + static_cast<std::ptrdiff_t>(keep), pts.end(),
-      [](const PointOnLine& a, const PointOnLine& b) { return std::abs(a.residual) < std::abs(b.residual); });
-  pts.resize(keep);
+  std::nth_element(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(keep), kept.end(),
+                   [](const Ranked& a, const Ranked& b) { return a.abs_residual < b.abs_residual; });
+  kept.resize(keep);
 }
 
 struct Normal {
@@ -56,13 +66,14 @@ struct Normal {
   double ss = 0.0;
 };
 
-// JᵀJ, Jᵀr and Σr² with J_i = (n_x, n_y, nᵀ ∂(R p)/∂θ): the six distinct entries of the
-// symmetric JᵀJ summed as scalars (the same sums, in the same order, as j jᵀ).
-Normal normal_equations(const std::vector<PointOnLine>& pts, const Pose2& pose) {
+// JᵀJ, Jᵀr and Σr² over the kept points with J_i = (n_x, n_y, nᵀ ∂(R p)/∂θ): the six distinct
+// entries of the symmetric JᵀJ summed as scalars (the same sums, in the same order, as j jᵀ).
+Normal normal_equations(const std::vector<PointOnLine>& pts, const std::vector<Ranked>& kept, const Pose2& pose) {
   Normal n;
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
   double h00 = 0, h01 = 0, h02 = 0, h11 = 0, h12 = 0, h22 = 0, g0 = 0, g1 = 0, g2 = 0, ss = 0;
-  for (const auto& p : pts) {
+  for (const Ranked& k : kept) {
+    const PointOnLine& p = pts[k.index];
     const double rx = c * p.robot.x() - s * p.robot.y(), ry = s * p.robot.x() + c * p.robot.y();
     const double nx = p.normal.x(), ny = p.normal.y();
     const double r = nx * (rx + pose.x) + ny * (ry + pose.y) - p.rho;
@@ -82,6 +93,20 @@ Normal normal_equations(const std::vector<PointOnLine>& pts, const Pose2& pose) 
   n.g << g0, g1, g2;
   n.ss = ss;
   return n;
+}
+
+// How many map segments the kept points lie on.
+std::size_t distinct_segments(const std::vector<PointOnLine>& pts, const std::vector<Ranked>& kept) {
+  std::size_t end = 0;
+  for (const PointOnLine& p : pts) end = std::max(end, p.segment + 1);
+  std::vector<char> seen(end, 0);
+  std::size_t count = 0;
+  for (const Ranked& k : kept) {
+    char& s = seen[pts[k.index].segment];
+    count += s == 0 ? 1 : 0;
+    s = 1;
+  }
+  return count;
 }
 
 double rms_range(const std::vector<PointOnLine>& pts) {
@@ -125,11 +150,10 @@ std::optional<Steps> gauss_newton(std::span<const laser::SegmentMatch> matches, 
   if (all.size() < static_cast<std::size_t>(options.min_points)) return std::nullopt;
   const double length = rms_range(all);
   Pose2 x = pose;
-  std::vector<PointOnLine> kept;
+  std::vector<Ranked> kept;
   for (int step = 0; step < options.inner_steps; ++step) {
-    kept = all;
-    trim(kept, x, options.keep_fraction);
-    const Normal n = normal_equations(kept, x);
+    trim(all, x, options.keep_fraction, kept);
+    const Normal n = normal_equations(all, kept, x);
     const PoseObservability e = pose_observability(n.h, length, options.degenerate_ratio);
     const Eigen::Vector3d g = e.scale * n.g;
     Eigen::Vector3d d = Eigen::Vector3d::Zero();
@@ -153,9 +177,9 @@ IteratedCorrection finish(Steps st, const IteratedCorrectionOptions& options) {
   IteratedCorrection out;
   const Pose2 x = st.pose;
   const double length = st.length;
-  std::vector<PointOnLine> kept = std::move(st.all);
-  trim(kept, x, options.keep_fraction);
-  const Normal n = normal_equations(kept, x);
+  std::vector<Ranked> kept;
+  trim(st.all, x, options.keep_fraction, kept);
+  const Normal n = normal_equations(st.all, kept, x);
   const PoseObservability e = pose_observability(n.h, length, options.degenerate_ratio);
   const double dof = static_cast<double>(kept.size()) - 3.0;
   out.residual_rms = std::sqrt(n.ss / static_cast<double>(kept.size()));
@@ -179,10 +203,7 @@ IteratedCorrection finish(Steps st, const IteratedCorrectionOptions& options) {
       }
     }
   }
-  std::vector<std::size_t> segs;
-  for (const auto& p : kept) segs.push_back(p.segment);
-  std::sort(segs.begin(), segs.end());
-  out.segments_used = static_cast<std::size_t>(std::unique(segs.begin(), segs.end()) - segs.begin());
+  out.segments_used = distinct_segments(st.all, kept);
   out.points_used = kept.size();
   out.degenerate = e.degenerate;
   out.corrected = x;
