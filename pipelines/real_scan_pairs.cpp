@@ -3,7 +3,9 @@
 #include <cmath>
 
 #include "core/scan.h"
+#include "core/trajectory.h"
 #include "core/units.h"
+#include "datasets/io/odometry_interpolation.h"
 
 namespace locbench::experiments {
 
@@ -25,6 +27,23 @@ std::optional<std::size_t> scan_near(const std::map<double, std::size_t>& scans,
     if (std::abs(it->first - t) < std::abs(best->first - t)) best = it;
   }
   return best->second;
+}
+
+std::vector<RelationScanPair> relation_scan_pairs(const Log& log, double max_dt, std::size_t max_pairs) {
+  const Trajectory odom = io::odometry_trajectory(log);
+  std::map<double, std::size_t> scan_at;
+  for (std::size_t i = 0; i < log.laser.size(); ++i) scan_at[log.laser[i].scan.timestamp] = i;
+  std::vector<RelationScanPair> out;
+  for (std::size_t k = 0; k < log.relations.size(); ++k) {
+    if (max_pairs != 0 && out.size() >= max_pairs) break;
+    const Relation& r = log.relations[k];
+    if (r.t2 - r.t1 > max_dt) continue;
+    const auto a = scan_near(scan_at, r.t1), b = scan_near(scan_at, r.t2);
+    const auto o1 = odom.pose_at(r.t1), o2 = odom.pose_at(r.t2);
+    if (!a || !b || !o1 || !o2) continue;
+    out.push_back({k, *a, *b, between(*o1, *o2)});
+  }
+  return out;
 }
 
 void apply_beam_angles(Log& log, const std::string& convention) {

@@ -9,14 +9,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <numeric>
 #include <vector>
 
 #include "baselines/laser/extract_then_match.h"
 #include "datasets/catalog/data_root.h"
 #include "datasets/catalog/dataset_catalog.h"
-#include "datasets/io/odometry_interpolation.h"
 #include "pipelines/laser_correctors.h"
 #include "pipelines/real_scan_pairs.h"
 
@@ -66,9 +64,6 @@ int main() {
     }
     Log log = catalog::load_catalog_dataset(*e, catalog::data_root());
     experiments::apply_beam_angles(log, "log");
-    const Trajectory odom = io::odometry_trajectory(log);
-    std::map<double, std::size_t> scan_at;
-    for (std::size_t i = 0; i < log.laser.size(); ++i) scan_at[log.laser[i].scan.timestamp] = i;
     const auto correctors = experiments::make_correctors({"pl_icp"}, experiments::default_corrector_options());
     const baselines::laser::SplitAndMergeMatcher extractor;
     struct option* ops = options_allocate(100);
@@ -89,16 +84,14 @@ int main() {
     params.max_reading = 1000.0;
     params.laser[0] = params.laser[1] = params.laser[2] = 0.0;
     Stats lb, csm;
-    std::size_t pairs = 0;
-    for (const Relation& r : log.relations) {
-      if (r.t2 - r.t1 > 30.0) continue;
-      const auto a = experiments::scan_near(scan_at, r.t1), b = experiments::scan_near(scan_at, r.t2);
-      const auto o1 = odom.pose_at(r.t1), o2 = odom.pose_at(r.t2);
-      if (!a || !b || !o1 || !o2) continue;
-      const Scan& first = log.laser[*a].scan;
-      const Scan& second = log.laser[*b].scan;
+    // laser/real_logs' pairs (its max_relation_dt_s 30 s).
+    const std::vector<experiments::RelationScanPair> pairs = experiments::relation_scan_pairs(log, 30.0);
+    for (const experiments::RelationScanPair& p : pairs) {
+      const Relation& r = log.relations[p.relation];
+      const Scan& first = log.laser[p.first].scan;
+      const Scan& second = log.laser[p.second].scan;
       const LineMap map = experiments::lines_as_map(extractor.extract_lines(first));
-      const Pose2 guess = between(*o1, *o2);
+      const Pose2 guess = p.odometry;
       const Pose2 mount = first.sensor_pose;
       const Pose2 guess_laser = mount.inverse() * guess * mount;
       double best_lb = 1e30, best_csm = 1e30;
@@ -133,9 +126,8 @@ int main() {
       csm.terr.push_back(std::hypot(ec.x, ec.y));
       csm.rerr.push_back(std::abs(ec.theta));
       csm.iters.push_back(res.iterations);
-      ++pairs;
     }
-    std::printf("%s: %zu relation pairs\n", name, pairs);
+    std::printf("%s: %zu relation pairs\n", name, pairs.size());
     print("locbench", lb);
     print("CSM", csm);
   }

@@ -12,6 +12,7 @@
 #include "core/errors.h"
 #include "experiment_framework/experiment.h"
 #include "pipelines/laser_correctors.h"
+#include "pipelines/real_scan_pairs.h"
 #include "tests/benchmarks/small_real_log.h"
 #include "tests/test_data.h"
 
@@ -34,6 +35,34 @@ reports::ExperimentResults run_on(const std::string& experiment, nlohmann::json 
   RunOptions o;
   o.data_root = "/nonexistent";  // nothing from the catalog is read
   return e->run(config, o);
+}
+
+// Odometry along x at 0.1 m/s from t = 0 to 10 s, scans at 1, 2, 3 and 5 s: a relation pairs two
+// scans when both stamps have one (within 1 ms), it spans at most max_dt and the odometry covers
+// it; the guess is the odometry's motion between the stamps.
+TEST(RelationScanPairs, KeepRelationsWithTwoScansInsideTheOdometryUpToMaxPairs) {
+  Log log;
+  for (int t = 0; t <= 10; ++t) log.odometry.push_back({static_cast<double>(t), Pose2(0.1 * t, 0.0, 0.0), 0.1, 0.0});
+  for (const double t : {1.0, 2.0, 3.0, 5.0}) {
+    LaserReading r;
+    r.scan.timestamp = t;
+    log.laser.push_back(r);
+  }
+  log.relations = {{1.0, 2.0, {}},
+                   {2.0, 3.0005, {}},
+                   {3.0, 4.0, {}},  // no scan at 4 s
+                   {1.0, 5.0, {}},  // 4 s > max_dt
+                   {3.0, 5.0, {}}};
+  const std::vector<RelationScanPair> all = relation_scan_pairs(log, 3.0);
+  ASSERT_EQ(all.size(), 3u);
+  EXPECT_EQ(all[0].relation, 0u);
+  EXPECT_EQ(all[1].relation, 1u);
+  EXPECT_EQ(all[2].relation, 4u);
+  EXPECT_EQ(all[1].first, 1u);
+  EXPECT_EQ(all[1].second, 2u);
+  EXPECT_NEAR(all[2].odometry.x, 0.2, 1e-12);
+  EXPECT_NEAR(all[2].odometry.y, 0.0, 1e-12);
+  EXPECT_EQ(relation_scan_pairs(log, 3.0, 2).size(), 2u);
 }
 
 TEST(RealLogSpecs, TakeCatalogNamesAndUserFiles) {

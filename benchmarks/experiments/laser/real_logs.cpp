@@ -11,14 +11,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
 #include <optional>
 
 #include "baselines/laser/extract_then_match.h"
 #include "core/errors.h"
 #include "core/statistics.h"
-#include "datasets/io/odometry_interpolation.h"
 #include "experiment_framework/monte_carlo.h"
 #include "experiment_framework/plot_series.h"
 #include "experiment_framework/registry.h"
@@ -28,7 +26,6 @@
 #include "pipelines/relation_drawing.h"
 
 namespace locbench::experiments::laser_real_logs {
-using io::odometry_trajectory;
 
 const ExperimentInfo kInfo{
     .name = "laser/real_logs",
@@ -174,9 +171,6 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     if (s.laser_mount) {
       for (auto& l : log.laser) l.scan.sensor_pose = *s.laser_mount;
     }
-    const Trajectory odom = odometry_trajectory(log);
-    std::map<double, std::size_t> scan_at;
-    for (std::size_t i = 0; i < log.laser.size(); ++i) scan_at[log.laser[i].scan.timestamp] = i;
     const auto& correctors = s.correctors;
     const baselines::laser::SplitAndMergeMatcher extractor;
     const std::size_t methods = 1 + correctors.size();
@@ -188,21 +182,14 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     rec.moved.assign(methods, {});
     rec.information_ratio.assign(methods, {});
     rec.heading_spread.assign(methods, {});
-    struct Pair {
-      std::size_t first, second;
-      Pose2 odometry, reference;
-    };
-    std::vector<Pair> pairs;  // per recorded relation, to draw the worst ones afterwards
-    for (const Relation& r : log.relations) {
-      if (s.max_relations && rec.relations >= s.max_relations) break;
-      if (r.t2 - r.t1 > s.max_dt) continue;
-      const auto a = scan_near(scan_at, r.t1), b = scan_near(scan_at, r.t2);
-      const auto o1 = odom.pose_at(r.t1), o2 = odom.pose_at(r.t2);
-      if (!a || !b || !o1 || !o2) continue;
-      const Scan& first = log.laser[*a].scan;
-      const Scan& second = log.laser[*b].scan;
+    // Every pair is recorded; the worst ones are drawn afterwards.
+    const std::vector<RelationScanPair> pairs = relation_scan_pairs(log, s.max_dt, s.max_relations);
+    for (const RelationScanPair& p : pairs) {
+      const Relation& r = log.relations[p.relation];
+      const Scan& first = log.laser[p.first].scan;
+      const Scan& second = log.laser[p.second].scan;
       const LineMap map = lines_as_map(extractor.extract_lines(first));
-      const Pose2 estimate = between(*o1, *o2);
+      const Pose2 estimate = p.odometry;
       const auto record = [&](std::size_t method, const ScanPairCorrection& c) {
         const Pose2 e = between(r.delta, c.motion);
         rec.translation[method].push_back(std::hypot(e.x, e.y));
@@ -225,7 +212,6 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
       rec.t2.push_back(r.t2);
       rec.lines.push_back(static_cast<double>(map.segments.size()));
       rec.reference_length.push_back(r.delta.translation().norm());
-      pairs.push_back({*a, *b, estimate, r.delta});
       ++rec.relations;
     }
     if (rec.relations == 0) {
@@ -244,11 +230,11 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
         order.begin(), order.begin() + static_cast<std::ptrdiff_t>(k), order.end(),
         [&](std::size_t x, std::size_t y) { return rec.translation[worst_of][x] > rec.translation[worst_of][y]; });
     for (std::size_t i = 0; i < k; ++i) {
-      const Pair& p = pairs[order[i]];
+      const RelationScanPair& p = pairs[order[i]];
       const Scan& first = log.laser[p.first].scan;
       rec.drawn_index.push_back(order[i]);
       rec.drawn.push_back(draw_relation(first, lines_as_map(extractor.extract_lines(first)), log.laser[p.second].scan,
-                                        p.odometry, p.reference, s.corrector_options));
+                                        p.odometry, log.relations[p.relation].delta, s.corrector_options));
     }
     return rec;
   }
