@@ -48,6 +48,11 @@ struct NoiseCorrelation {
 // model variance: heading error that persists over many windows is what makes long-horizon drift.
 struct MotionNoiseStructure {
   NoiseCorrelation x, y, theta;
+  // The probability that a drive stall goes on into the next window, P(stall in k + 1 | stall in k):
+  // real stalls come in runs of several windows (the robot pushing against something), which the
+  // diagnosis's mixture, independent per window, does not draw (0: not measured; the twin then
+  // draws stalls independently). Carried by the twin only.
+  double stall_persistence = 0.0;
   bool correlated() const { return x.share > 0.0 || y.share > 0.0 || theta.share > 0.0; }
 };
 

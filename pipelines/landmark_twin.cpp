@@ -1,5 +1,6 @@
 #include "pipelines/landmark_twin.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -77,7 +78,16 @@ MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& dat
     y.push_back(r.r.y() / std::sqrt(r.variance.y()));
     theta.push_back(r.r.z() / std::sqrt(r.variance.z()));
   }
-  return {fit_noise_correlation(t, x), fit_noise_correlation(t, y), fit_noise_correlation(t, theta)};
+  MotionNoiseStructure s{fit_noise_correlation(t, x), fit_noise_correlation(t, y), fit_noise_correlation(t, theta)};
+  const std::vector<std::optional<double>> stalled = diagnosis::stall_posteriors(data, model);
+  double together = 0.0, first = 0.0;
+  for (std::size_t k = 0; k + 1 < data.windows.size(); ++k) {
+    if (data.windows[k + 1].first != data.windows[k].last || !stalled[k] || !stalled[k + 1]) continue;
+    together += *stalled[k] * *stalled[k + 1];
+    first += *stalled[k];
+  }
+  if (first >= kMinStallWindows) s.stall_persistence = std::clamp(together / first, 0.0, kMaxStallPersistence);
+  return s;
 }
 
 TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryModel& motion,
@@ -103,6 +113,7 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
   Pose2 pose = origin;
   CorrelatedPart along(structure.x), left(structure.y), turn(structure.theta);
   std::size_t next = 0;  // first step not walked yet
+  bool stalled = false;  // the previous window held a stall
   for (const diagnosis::MotionWindow& w : d.windows) {
     if (w.first > next)
       pose = walk_block(d, block(d, next, w.first), mean_model, 1.0, Eigen::Vector3d::Zero(), pose, truth);
@@ -112,9 +123,12 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
                             std::sqrt(v.z()) * turn.draw(w.t0, motion.dof, rng));
     double keep = 1.0;
     const double length = w.t1 - w.t0;
-    if (motion.stall_rate > 0.0 && motion.stall_duration > 0.0 && length > 0.0 &&
-        rng.bernoulli(1.0 - std::exp(-motion.stall_rate * length))) {
-      keep = 1.0 - std::min(motion.stall_duration / length, 1.0);
+    if (motion.stall_rate > 0.0 && motion.stall_duration > 0.0 && length > 0.0) {
+      // A two-state chain with the mixture's p as its stationary probability: after a stall the
+      // next window stalls with q, after none with p·(1 − q)/(1 − p) (independent when q ≤ p).
+      const double p = 1.0 - std::exp(-motion.stall_rate * length), q = structure.stall_persistence;
+      stalled = rng.bernoulli(q <= p ? p : stalled ? q : p * (1.0 - q) / (1.0 - p));
+      if (stalled) keep = 1.0 - std::min(motion.stall_duration / length, 1.0);
     }
     pose = walk_block(d, w, mean_model, keep, r, pose, truth);
     next = w.last;

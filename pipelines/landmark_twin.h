@@ -11,7 +11,10 @@
 //                                           when dof = 0; v from diagnosis::window_variance),
 // with the prediction of diagnosis::predict_window under the model without stalls, and with
 // probability p = 1 − exp(−rate·T) a stall that removes the fraction f = min(duration/T, 1) of its
-// translation — the mixture odometry_model.h defines. Steps between windows (gaps) move as
+// translation — the mixture odometry_model.h defines, its stalls drawn as a two-state chain whose
+// stationary probability is p and which stays stalled into the next window with the measured
+// persistence q (MotionNoiseStructure::stall_persistence; independent windows when q ≤ p). Steps
+// between windows (gaps) move as
 // predicted, without noise. Inside a window the truth follows the prediction's partial sums with
 // the window's noise and stall spread in proportion to time. The truth is stamped in true time:
 // logged time − the model's time_offset.
@@ -33,7 +36,12 @@
 
 namespace locbench::experiments::landmarks {
 
-// Fitted (fit_noise_correlation) on the windows of `data` under `model`.
+// Fitted (fit_noise_correlation) on the windows of `data` under `model`; the stall persistence
+// q = Σ π_k·π_{k+1} / Σ π_k over adjacent windows k, k + 1 that would both show a stall, with π
+// their stall posteriors (diagnosis::stall_posteriors), kept within [0, kMaxStallPersistence]; 0 when
+// the stalls expected in those windows, Σ π_k, are fewer than kMinStallWindows.
+inline constexpr double kMaxStallPersistence = 0.95;
+inline constexpr double kMinStallWindows = 5.0;
 MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& data,
                                                 const diagnosis::OdometryModel& model);
 

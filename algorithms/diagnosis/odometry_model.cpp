@@ -302,6 +302,15 @@ double log_density(const Eigen::Vector3d& r, const Eigen::Vector3d& v, bool head
   return s;
 }
 
+// The stall mixture's two terms for a window's residual: log(1 − p) + `moving` (its log-density
+// without a stall) and log p + the log-density of the residual less the stall's loss (the
+// fraction f of the predicted translation).
+std::pair<double, double> stall_mixture_terms(const StallOdds& s, const WindowResidual& res, double moving,
+                                              const Density& density) {
+  const Eigen::Vector3d shift{-s.fraction * res.prediction.x, -s.fraction * res.prediction.y, 0.0};
+  return {std::log1p(-s.p) + moving, std::log(s.p) + log_density(res.r - shift, res.variance, false, density)};
+}
+
 }  // namespace
 
 double component_log_density(double r, double v, double dof) { return Density(dof)(r, v); }
@@ -358,9 +367,7 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m, cons
     if (stalls && !res.heading_only) {
       const StallOdds s = stall_odds(d, w, m);
       if (s.p > 0.0) {
-        const Eigen::Vector3d shift{-s.fraction * res.prediction.x, -s.fraction * res.prediction.y, 0.0};
-        const double l0 = std::log1p(-s.p) + ll;
-        const double l1 = std::log(s.p) + log_density(res.r - shift, res.variance, false, density);
+        const auto [l0, l1] = stall_mixture_terms(s, res, ll, density);
         const double mx = std::max(l0, l1);
         ll = mx + std::log(std::exp(l0 - mx) + std::exp(l1 - mx));
       }
@@ -368,6 +375,25 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m, cons
     nll -= ll;
   }
   return nll;
+}
+
+std::vector<std::optional<double>> stall_posteriors(const MotionData& d, const OdometryModel& m) {
+  std::vector<std::optional<double>> posterior(d.windows.size());
+  if (!has_stalls(d, m) || d.reference == ReferenceKind::kCompass) return posterior;
+  OdometryModel m_moving = m;
+  m_moving.stall_rate = 0.0;
+  const Density density(m.dof);
+  for (std::size_t wi = 0; wi < d.windows.size(); ++wi) {
+    const MotionWindow& w = d.windows[wi];
+    const WindowResidual res = window_residual(d, w, m_moving);
+    if (!res.valid || res.heading_only) continue;
+    const StallOdds s = stall_odds(d, w, m);
+    if (!(s.p > 0.0)) continue;
+    if (std::abs(s.fraction * res.prediction.x) < kVisibleStallSigmas * std::sqrt(res.variance.x())) continue;
+    const auto [l0, l1] = stall_mixture_terms(s, res, log_density(res.r, res.variance, false, density), density);
+    posterior[wi] = 1.0 / (1.0 + std::exp(l0 - l1));
+  }
+  return posterior;
 }
 
 double mean_distance_scale(const MotionData& d, const OdometryModel& m) {

@@ -149,6 +149,14 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m, cons
 // Log-density of one residual component r with (squared) scale v: normal (dof = 0) or Student-t.
 double component_log_density(double r, double v, double dof);
 
+// Per window of d, the posterior probability under m that it holds a drive stall: the stall
+// component's share of the window's likelihood in the mixture negative_log_likelihood sums
+// (Bayes' rule with the prior p of stall_odds). None where a stall would not show: m has no
+// stalls, the window is heading-only or not covered by the reference, or a stall would move its
+// residual by less than kVisibleStallSigmas of its σ along the track (a robot standing still).
+inline constexpr double kVisibleStallSigmas = 3.0;
+std::vector<std::optional<double>> stall_posteriors(const MotionData& d, const OdometryModel& m);
+
 // Σ|predicted translation| / Σ|logged translation| over all windows: the distance scale a
 // path-length ratio measures, with every speed cause and the stalls' expected loss in it.
 double mean_distance_scale(const MotionData& d, const OdometryModel& m);

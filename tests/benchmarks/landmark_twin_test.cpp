@@ -105,6 +105,33 @@ TEST(LandmarkTwin, ItsSensorDrawsTheNoiseStructureItIsGiven) {
       << (b.data.to - b.data.from) << " s";
 }
 
+// Stalls that go on into the next window (a robot pushing against something for seconds) are
+// drawn as a chain with the mixture's stall probability p per window, and the persistence
+// q = P(stall | stall before) is measured back from the stall posteriors of adjacent windows;
+// independent stalls measure about p.
+TEST(LandmarkTwin, TheStallPersistenceItDrawsIsMeasuredBack) {
+  const Base b = base_log(47);
+  diagnosis::OdometryModel model;
+  model.stall_rate = 0.3;  // p = 1 − e^(−0.3) = 0.26 per 1 s window
+  model.stall_duration = 0.6;
+  model.sigma_x = model.sigma_y = 0.004;
+  model.sigma_theta = 0.002;
+  const double p = 1.0 - std::exp(-0.3);
+  MotionNoiseStructure persistent;
+  persistent.stall_persistence = 0.7;
+  double in_runs = 0.0, independent = 0.0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    in_runs +=
+        fit_motion_noise_structure(landmark_twin(b.data, model, {}, seed, persistent).motion, model).stall_persistence /
+        4.0;
+    independent +=
+        fit_motion_noise_structure(landmark_twin(b.data, model, {}, seed, {}).motion, model).stall_persistence / 4.0;
+  }
+  EXPECT_NEAR(in_runs, 0.7, 0.12) << independent;
+  EXPECT_NEAR(independent, p, 0.1) << in_runs;
+  EXPECT_GT(in_runs - independent, 0.3);
+}
+
 TEST(NoiseCorrelation, AGaussMarkovShareAndTimeAreRecovered) {
   Rng rng(5);
   std::vector<double> t, r;

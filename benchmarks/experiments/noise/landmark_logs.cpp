@@ -484,8 +484,10 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     const MotionNoiseStructure& ms = o.models.diagnosed_motion_structure;
     s.text += fmt::format(
         "; the diagnosed motion model's window residuals: along {:.0f}% with τ {:.2g} s, left {:.0f}% with τ "
-        "{:.2g} s, heading {:.0f}% with τ {:.2g} s",
-        100.0 * ms.x.share, ms.x.time_s, 100.0 * ms.y.share, ms.y.time_s, 100.0 * ms.theta.share, ms.theta.time_s);
+        "{:.2g} s, heading {:.0f}% with τ {:.2g} s; a stall goes on into the next window with probability {:.2f} "
+        "(0: independent windows)",
+        100.0 * ms.x.share, ms.x.time_s, 100.0 * ms.y.share, ms.y.time_s, 100.0 * ms.theta.share, ms.theta.time_s,
+        ms.stall_persistence);
     for (const auto& [variant, value] :
          {std::pair{"tuning_range_sigma", a.range_sigma}, std::pair{"heldout_range_sigma", b.range_sigma}}) {
       s.results.push_back(reports::make_estimate("sensor_noise", ds, variant, "m", value, 0.0, 1));
