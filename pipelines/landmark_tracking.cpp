@@ -113,6 +113,33 @@ struct BlockScale {
 
 }  // namespace
 
+LargeResidualRuns large_residual_runs(const std::vector<double>& z, const std::vector<bool>& adjacent) {
+  LargeResidualRuns out;
+  double squares = 0.0, large_squares = 0.0;
+  std::size_t negative = 0, runs = 0, run_windows = 0;
+  int run_sign = 0;  // the sign of the run going on (0: none)
+  for (std::size_t k = 0; k < z.size(); ++k) {
+    squares += z[k] * z[k];
+    const int sign = z[k] < 0.0 ? -1 : 1;
+    if (run_sign != 0 && (!adjacent[k] || sign != run_sign || !(std::abs(z[k]) > kRunResidualSigmas))) run_sign = 0;
+    if (std::abs(z[k]) > kLargeResidualSigmas) {
+      ++out.windows;
+      large_squares += z[k] * z[k];
+      negative += sign < 0 ? 1 : 0;
+      if (run_sign == 0) {
+        ++runs;
+        run_sign = sign;
+      }
+    }
+    if (run_sign != 0) ++run_windows;
+  }
+  if (out.windows == 0) return out;
+  out.share_of_squares = large_squares / squares;
+  out.negative_fraction = static_cast<double>(negative) / static_cast<double>(out.windows);
+  out.mean_run_windows = static_cast<double>(run_windows) / static_cast<double>(runs);
+  return out;
+}
+
 NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::vector<double>& r) {
   NoiseCorrelation none;
   if (r.size() < 40 || t.size() != r.size()) return none;

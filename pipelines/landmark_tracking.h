@@ -46,8 +46,26 @@ struct NoiseCorrelation {
 
 // The time correlation of a motion model's window residuals (x, y, θ), standardized by their
 // model variance: heading error that persists over many windows is what makes long-horizon drift.
+// Residuals far out in their tails and how they cluster: windows whose standardized residual is
+// beyond kLargeResidualSigmas, their share of the summed squares, the fraction of them negative,
+// and the mean length of their runs (a run starts at such a window and goes on over adjacent
+// windows beyond kRunResidualSigmas with the same sign). Reported, not drawn: independent
+// Student-t tails give runs of about one window and half of them negative.
+inline constexpr double kLargeResidualSigmas = 4.0;
+inline constexpr double kRunResidualSigmas = 2.0;
+struct LargeResidualRuns {
+  std::size_t windows = 0;
+  double share_of_squares = 0.0;
+  double negative_fraction = 0.0;
+  double mean_run_windows = 0.0;
+};
+// `z`: standardized residuals in time order; `adjacent[k]`: window k follows window k − 1 without a
+// gap (same size as z).
+LargeResidualRuns large_residual_runs(const std::vector<double>& z, const std::vector<bool>& adjacent);
+
 struct MotionNoiseStructure {
   NoiseCorrelation x, y, theta;
+  LargeResidualRuns along_large;  // of the along-track residuals (stalls: negative, in runs)
   // The probability that a drive stall goes on into the next window, P(stall in k + 1 | stall in k):
   // real stalls come in runs of several windows (the robot pushing against something), which the
   // diagnosis's mixture, independent per window, does not draw (0: not measured; the twin then

@@ -70,15 +70,23 @@ class CorrelatedPart {
 MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& data,
                                                 const diagnosis::OdometryModel& model) {
   std::vector<double> t, x, y, theta;
+  std::vector<bool> adjacent;  // the window kept before is the one just before, without a gap
+  bool previous_kept = false;
+  std::size_t previous_last = 0;
   for (const diagnosis::MotionWindow& w : data.windows) {
     const diagnosis::WindowResidual r = diagnosis::window_residual(data, w, model);
-    if (!r.valid || r.heading_only) continue;
+    const bool follows = previous_kept && w.first == previous_last;
+    previous_last = w.last;
+    previous_kept = r.valid && !r.heading_only;
+    if (!previous_kept) continue;
+    adjacent.push_back(follows);
     t.push_back(w.t0);
     x.push_back(r.r.x() / std::sqrt(r.variance.x()));
     y.push_back(r.r.y() / std::sqrt(r.variance.y()));
     theta.push_back(r.r.z() / std::sqrt(r.variance.z()));
   }
-  MotionNoiseStructure s{fit_noise_correlation(t, x), fit_noise_correlation(t, y), fit_noise_correlation(t, theta)};
+  MotionNoiseStructure s{fit_noise_correlation(t, x), fit_noise_correlation(t, y), fit_noise_correlation(t, theta),
+                         large_residual_runs(x, adjacent)};
   const std::vector<std::optional<double>> stalled = diagnosis::stall_posteriors(data, model);
   double together = 0.0, first = 0.0;
   for (std::size_t k = 0; k + 1 < data.windows.size(); ++k) {

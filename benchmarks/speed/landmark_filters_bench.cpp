@@ -57,7 +57,8 @@ void BM_LandmarkFilterFamily_mrclam6(benchmark::State& state) {
   models.nominal_motion.sigma_theta = 0.02;
   models.diagnosed_motion = models.nominal_motion;
   const NoiseCorrelation half{0.5, 5.0};  // Dataset 6's shares and times are 5–100%, 0.4–30 s
-  models.diagnosed_motion_structure = {half, half, half};
+  models.diagnosed_motion_structure.x = models.diagnosed_motion_structure.y = half;
+  models.diagnosed_motion_structure.theta = half;
   models.diagnosed_sensor.structure.range_correlation = half;
   models.diagnosed_sensor.structure.bearing_correlation = half;
   const FamilyOptions options;

@@ -132,6 +132,29 @@ TEST(LandmarkTwin, TheStallPersistenceItDrawsIsMeasuredBack) {
   EXPECT_GT(in_runs - independent, 0.3);
 }
 
+// Beyond 4σ: −5, +6 and −4.5; the first run goes on over −3 and −2.5 (same sign, beyond 2σ), the
+// second stops at +1, the third at the gap before −3.
+TEST(LargeResidualRuns, CountsTheTailWindowsTheirSignAndHowLongTheirRunsLast) {
+  const std::vector<double> z{0.1, -5.0, -3.0, -2.5, 0.2, 6.0, 1.0, -4.5, -3.0};
+  const std::vector<bool> adjacent{false, true, true, true, true, true, true, true, false};
+  const LargeResidualRuns r = large_residual_runs(z, adjacent);
+  double squares = 0.0;
+  for (double v : z) squares += v * v;
+  EXPECT_EQ(r.windows, 3u);
+  EXPECT_DOUBLE_EQ(r.share_of_squares, (25.0 + 36.0 + 20.25) / squares);
+  EXPECT_DOUBLE_EQ(r.negative_fraction, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(r.mean_run_windows, 5.0 / 3.0);  // runs of 3, 1 and 1 windows
+  EXPECT_EQ(large_residual_runs({0.5, -1.0}, {false, true}).windows, 0u);
+  // Independent Student-t tails (ν = 3): runs of about one window, half of them negative.
+  Rng rng(11);
+  std::vector<double> t(20000);
+  for (double& v : t) v = rng.student_t(3.0);
+  const LargeResidualRuns independent = large_residual_runs(t, std::vector<bool>(t.size(), true));
+  EXPECT_GT(independent.windows, 300u);
+  EXPECT_NEAR(independent.negative_fraction, 0.5, 0.07);
+  EXPECT_LT(independent.mean_run_windows, 1.2);
+}
+
 TEST(NoiseCorrelation, AGaussMarkovShareAndTimeAreRecovered) {
   Rng rng(5);
   std::vector<double> t, r;
