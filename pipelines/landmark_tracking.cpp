@@ -114,6 +114,7 @@ struct BlockScale {
 }  // namespace
 
 LargeResidualRuns large_residual_runs(const std::vector<double>& z, const std::vector<bool>& adjacent) {
+  if (adjacent.size() != z.size()) throw UsageError("large_residual_runs: one adjacency flag per residual");
   LargeResidualRuns out;
   double squares = 0.0, large_squares = 0.0;
   std::size_t negative = 0, runs = 0, run_windows = 0;

@@ -44,8 +44,6 @@ struct NoiseCorrelation {
   double time_s = 0.0;
 };
 
-// The time correlation of a motion model's window residuals (x, y, θ), standardized by their
-// model variance: heading error that persists over many windows is what makes long-horizon drift.
 // Residuals far out in their tails and how they cluster: windows whose standardized residual is
 // beyond kLargeResidualSigmas, their share of the summed squares, the fraction of them negative,
 // and the mean length of their runs (a run starts at such a window and goes on over adjacent
@@ -60,9 +58,11 @@ struct LargeResidualRuns {
   double mean_run_windows = 0.0;
 };
 // `z`: standardized residuals in time order; `adjacent[k]`: window k follows window k − 1 without a
-// gap (same size as z).
+// gap. Throws UsageError when the two differ in size.
 LargeResidualRuns large_residual_runs(const std::vector<double>& z, const std::vector<bool>& adjacent);
 
+// The time correlation of a motion model's window residuals (x, y, θ), standardized by their
+// model variance: heading error that persists over many windows is what makes long-horizon drift.
 struct MotionNoiseStructure {
   NoiseCorrelation x, y, theta;
   LargeResidualRuns along_large;  // of the along-track residuals (stalls: negative, in runs)
