@@ -56,6 +56,7 @@ MethodSetup base_setup(Method method, const PartMotion& motion, const FilterMode
       if (!o.correlated_sensor_noise) s.sensor.structure = {};
       if (o.correlated_motion_noise) s.motion_structure = m.diagnosed_motion_structure;
       s.noise_window_s = m.noise_window_s;
+      s.stall = stall_loss_process(m.diagnosed_motion, m.noise_window_s, s.motion_structure.stall_persistence);
       break;
     default:
       s.motion = &motion.logged;

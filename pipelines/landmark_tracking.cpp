@@ -357,17 +357,47 @@ std::vector<MotionStep> model_motion(const TrackingData& data, const diagnosis::
     const double chord = std::hypot(p.x, p.y);
     const double full = p.x < 0.0 ? -chord : chord;
     s.distance = (1.0 - phi) * full;
+    if (phi > 0.0) s.stall_distance = full;
     s.turn = p.theta;
     const double dt = s.t1 - s.t0;
     const double travel = 2.0 * std::abs(full) + std::abs(p.theta) * b;  // W of the diagnosis's windows
     Vector3 v = floor_per_s * dt;
-    v(0) += model.k2 * travel / 4.0 + phi * (1.0 - phi) * full * full;  // eq. 4.36 with k², stalls
+    v(0) += model.k2 * travel / 4.0;  // eq. 4.36 with k²
     v(1) += model.k2 * travel / 4.0;
     v(2) += model.k2 * travel / (b * b);  // eq. 4.37
     s.body_covariance = v.asDiagonal();
     out.push_back(s);
   }
   return out;
+}
+
+namespace {
+
+// Adjacent window means of a Gauss–Markov process with x = window/τ: their correlation.
+double adjacent_mean_correlation(double x) {
+  const double e = std::exp(-x);
+  return (1.0 - e) * (1.0 - e) / (2.0 * (x - 1.0 + e));
+}
+
+}  // namespace
+
+filters::GaussMarkovBias stall_loss_process(const diagnosis::OdometryModel& model, double window_s,
+                                            double persistence) {
+  const diagnosis::StallOdds odds = diagnosis::window_stall_odds(model, window_s);
+  if (!(odds.p > 0.0) || !(odds.fraction > 0.0)) return {};
+  double x = window_s * (model.stall_rate + 1.0 / model.stall_duration);
+  if (persistence > odds.p && odds.p < 1.0) {
+    const double rho = std::min((persistence - odds.p) / (1.0 - odds.p), 0.999);
+    double lo = 1e-6, hi = 1e3;  // the correlation falls from 1 to 0 as x grows
+    for (int i = 0; i < 100; ++i) {
+      const double mid = std::sqrt(lo * hi);
+      (adjacent_mean_correlation(mid) > rho ? lo : hi) = mid;
+    }
+    x = std::sqrt(lo * hi);
+  }
+  const double g = 2.0 * (x - 1.0 + std::exp(-x)) / (x * x);
+  const double window_variance = odds.p * (1.0 - odds.p) * odds.fraction * odds.fraction;
+  return {std::sqrt(window_variance / g), window_s / x};
 }
 
 double TrackResult::position_rmse() const { return position_error.empty() ? 0.0 : rms(position_error); }
@@ -450,13 +480,15 @@ AnyFilter make_filter(const MethodSetup& s, double wheelbase, const Pose2& start
     }
     case Method::kNominalModel:
     case Method::kDiagnosedModel:
-      if (s.sensor.correlated() || s.motion_structure.correlated()) {
+      if (s.sensor.correlated() || s.motion_structure.correlated() || s.stall.sigma > 0.0) {
         const NoiseStructure& st = s.sensor.structure;
+        filters::MotionNoiseCorrelation motion = motion_correlation(s.motion_structure, s.noise_window_s);
+        motion.stall = {std::sqrt(s.process_scale) * s.stall.sigma, s.stall.time_s};
         return BiasAugmentedEkf(
             wheelbase, start, Matrix3(p0.asDiagonal()),
             {correlated_part(st.range_correlation, s.sensor.range_sigma / s.sensor.range_scale, s.knob),
              correlated_part(st.bearing_correlation, s.sensor.bearing_sigma, s.knob)},
-            motion_correlation(s.motion_structure, s.noise_window_s));
+            motion);
       }
       return MotionModelEkf(wheelbase, start, Matrix3(p0.asDiagonal()));
   }
@@ -562,7 +594,7 @@ void predict_step(AnyFilter& filter, const MotionStep& s, const WheelDisplacemen
         if constexpr (std::is_same_v<F, MotionModelEkf>) {
           f.predict(u, process_scale * s.body_covariance);
         } else if constexpr (std::is_same_v<F, BiasAugmentedEkf>) {
-          f.predict(u, process_scale * s.body_covariance, dt);
+          f.predict(u, process_scale * s.body_covariance, dt, s.stall_distance);
         } else if constexpr (std::is_same_v<F, CompassEkf>) {
           f.predict(u);
         } else {
@@ -636,6 +668,9 @@ class ObservationFeed {
 TrackResult track(const TrackingData& data, const MethodSetup& setup, const GatePolicy& gate) {
   if (!setup.motion || setup.motion->empty()) throw UsageError("track: no motion steps");
   const std::vector<MotionStep>& steps = *setup.motion;
+  if (!(setup.stall.sigma > 0.0) &&
+      std::any_of(steps.begin(), steps.end(), [](const MotionStep& s) { return s.stall_distance != 0.0; }))
+    throw UsageError("track: motion steps with stalls need the stall loss process (MethodSetup::stall)");
   diagnosis::TruthInterpolator truth(data.motion.truth);
   const auto start = diagnosis::interpolate_truth(data.motion.truth, steps.front().t0);
   if (!start) throw InputError(data.log, 0, "the ground truth does not cover the span's start");

@@ -23,6 +23,7 @@
 #include "algorithms/diagnosis/landmark_model.h"
 #include "algorithms/diagnosis/motion_windows.h"
 #include "algorithms/diagnosis/odometry_model.h"
+#include "algorithms/filters/bias_augmented_ekf.h"
 #include "algorithms/filters/compass_ekf.h"
 #include "baselines/filters/fixed_q_ekf.h"
 #include "baselines/filters/sage_husa_aekf.h"
@@ -177,22 +178,36 @@ inline constexpr std::size_t kMinFramePairs = 20;
 // No correlation (share 0) with fewer than 40 residuals or 2 usable lengths.
 NoiseCorrelation fit_noise_correlation(const std::vector<double>& t, const std::vector<double>& r);
 
-// One step of a model's motion, in true time: the increment (ΔD along the chord, Δθ) and the
-// model's covariance of it in the robot frame at the step's start (x along, y left, θ).
+// One step of a model's motion, in true time: the increment (ΔD along the chord, Δθ), the
+// model's covariance of it in the robot frame at the step's start (x along, y left, θ), and the
+// translation before the stalls' mean loss, which a stall's loss acts on (0: the model has no
+// stalls).
 struct MotionStep {
   double t0 = 0.0, t1 = 0.0;
   double distance = 0.0, turn = 0.0;
   Matrix3 body_covariance = Matrix3::Zero();
+  double stall_distance = 0.0;
 };
 
 // The steps of `model` over the span, cut at the observations' true times (`cuts`), its
 // increments from diagnosis::predict_window (drive lag, scales, turn bias) with the stalls' mean
 // loss φ = rate·duration/(1 + rate·duration) taken off the translation, and its covariance per
 // step: the white floor (σ per noise_window_s, scaled by dt/noise_window_s; × ν/(ν − 2) for
-// Student-t tails with ν > 2), the k² growth of eq. 4.36–4.37 and the stall mixture's
-// φ(1 − φ)ΔD² along the track.
+// Student-t tails with ν > 2) and the k² growth of eq. 4.36–4.37. The stalls' spread about their
+// mean loss is not white: a filter carries it as a state (stall_loss_process).
 std::vector<MotionStep> model_motion(const TrackingData& data, const diagnosis::OdometryModel& model,
                                      double noise_window_s, const std::vector<double>& cuts);
+
+// The stall loss a filter carries, the fraction of a step's translation lost beyond its mean, as a
+// Gauss–Markov process (σ, τ) whose mean over a window of `window_s` has the variance of the
+// diagnosis's stall mixture, p(1 − p)f² (diagnosis::window_stall_odds), and whose adjacent window
+// means are correlated as the twin's stall chain: ρ = (q − p)/(1 − p) with q the stall
+// persistence (MotionNoiseStructure::stall_persistence). For a process of correlation time τ,
+// x = window_s/τ, a window mean has variance σ²·g(x), g(x) = 2(x − 1 + e^(−x))/x², and adjacent means
+// correlate (1 − e^(−x))²/(x²·g(x)). Without persistence (q ≤ p) the stalls are a two-state chain
+// of their own rate and duration, τ = 1/(rate + 1/duration). σ = 0 for a model without stalls.
+filters::GaussMarkovBias stall_loss_process(const diagnosis::OdometryModel& model, double window_s,
+                                            double persistence);
 
 enum class Method { kFixedQ, kAdaptiveThesis, kAdaptiveJacobian, kSageHusa, kVbAkf, kNominalModel, kDiagnosedModel };
 inline constexpr Method kMethods[] = {Method::kFixedQ,        Method::kAdaptiveThesis, Method::kAdaptiveJacobian,
@@ -217,6 +232,9 @@ struct MethodSetup {
   // covariance is taken out of its white noise; the model's noise window [s].
   MotionNoiseStructure motion_structure;
   double noise_window_s = 1.0;
+  // The stall loss the filter carries as a state (stall_loss_process; σ = 0: none). Required
+  // for motion steps with a stall distance.
+  filters::GaussMarkovBias stall;
   // Noise levels that vary along the log, tracked (fitted models only; 0: not tracked): each
   // channel's R is multiplied by λ = (σ_w / reference)², σ_w the robust σ (1.4826·MAD) of the
   // channel's innovations, standardized by their predicted σ under the untracked R, over the last

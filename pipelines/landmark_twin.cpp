@@ -131,12 +131,12 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
                             std::sqrt(v.z()) * turn.draw(w.t0, motion.dof, rng));
     double keep = 1.0;
     const double length = w.t1 - w.t0;
-    if (motion.stall_rate > 0.0 && motion.stall_duration > 0.0 && length > 0.0) {
+    if (const diagnosis::StallOdds odds = diagnosis::window_stall_odds(motion, length); odds.p > 0.0) {
       // A two-state chain with the mixture's p as its stationary probability: after a stall the
       // next window stalls with q, after none with p·(1 − q)/(1 − p) (independent when q ≤ p).
-      const double p = 1.0 - std::exp(-motion.stall_rate * length), q = structure.stall_persistence;
+      const double p = odds.p, q = structure.stall_persistence;
       stalled = rng.bernoulli(q <= p ? p : stalled ? q : p * (1.0 - q) / (1.0 - p));
-      if (stalled) keep = 1.0 - std::min(motion.stall_duration / length, 1.0);
+      if (stalled) keep = 1.0 - odds.fraction;
     }
     pose = walk_block(d, w, mean_model, keep, r, pose, truth);
     next = w.last;

@@ -33,17 +33,16 @@ bool has_stalls(const MotionData& d, const OdometryModel& m) {
   return d.odometry == OdometryKind::kPose && m.stall_rate > 0.0 && m.stall_duration > 0.0;
 }
 
-struct StallOdds {
-  double p = 0.0;         // probability that the window holds a stall
-  double fraction = 0.0;  // the fraction of its translation a stall takes
-};
 StallOdds stall_odds(const MotionData& d, const MotionWindow& w, const OdometryModel& m) {
-  const double span = w.t1 - w.t0;
-  if (!has_stalls(d, m) || !(span > 0.0)) return {};
-  return {-std::expm1(-m.stall_rate * span), std::min(m.stall_duration / span, 1.0)};
+  return has_stalls(d, m) ? window_stall_odds(m, w.t1 - w.t0) : StallOdds{};
 }
 
 }  // namespace
+
+StallOdds window_stall_odds(const OdometryModel& m, double span) {
+  if (!(m.stall_rate > 0.0 && m.stall_duration > 0.0 && span > 0.0)) return {};
+  return {-std::expm1(-m.stall_rate * span), std::min(m.stall_duration / span, 1.0)};
+}
 
 WheelStepMeans mean_wheel_steps(const MotionData& d, const MotionWindow& w) {
   WheelStepMeans m;

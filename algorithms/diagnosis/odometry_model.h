@@ -67,6 +67,15 @@ struct WheelStepMeans {
 };
 WheelStepMeans mean_wheel_steps(const MotionData& d, const MotionWindow& w);
 
+// A window of length `span` [s] under m's stalls: the probability p = 1 − e^(−rate·span) that it
+// holds one and the fraction f = min(duration/span, 1) of its translation one takes (0, 0 without
+// stalls).
+struct StallOdds {
+  double p = 0.0;
+  double fraction = 0.0;
+};
+StallOdds window_stall_odds(const OdometryModel& m, double span);
+
 // The expected fraction of a window's translation lost to drive stalls, p·f above (0 when the
 // model has none or the odometry is encoder counts).
 double expected_stall_loss(const MotionData& d, const MotionWindow& w, const OdometryModel& m);

@@ -34,6 +34,7 @@ BiasAugmentedEkf::BiasAugmentedEkf(double wheelbase, const Pose2& start, const M
   require_valid(bias.range, "range");
   require_valid(bias.bearing, "bearing");
   require_valid(motion);
+  require_valid(motion.stall, "stall");
   x_.setZero();
   x_.head<3>() = to_vector(start);
   p_.setZero();
@@ -41,9 +42,11 @@ BiasAugmentedEkf::BiasAugmentedEkf(double wheelbase, const Pose2& start, const M
   p_(3, 3) = bias.range.sigma * bias.range.sigma;
   p_(4, 4) = bias.bearing.sigma * bias.bearing.sigma;
   for (int j = 0; j < 3; ++j) p_(5 + j, 5 + j) = motion.share(j) > 0.0 ? 1.0 : 0.0;
+  p_(8, 8) = motion.stall.sigma * motion.stall.sigma;
 }
 
-void BiasAugmentedEkf::predict(const WheelDisplacement& u, const Matrix3& body_covariance, double dt) {
+void BiasAugmentedEkf::predict(const WheelDisplacement& u, const Matrix3& body_covariance, double dt,
+                               double stall_distance) {
   const MotionPrediction pred = predict_motion(x_.head<3>(), u, wheelbase_);  // eq. 4.1–4.2
   const double dt_pos = std::max(dt, 0.0);
   // The step's covariance: its white part, and the gains A of the correlated motion states.
@@ -57,8 +60,10 @@ void BiasAugmentedEkf::predict(const WheelDisplacement& u, const Matrix3& body_c
   }
   const Matrix3 q = body_to_world_covariance(white, x_(2));
   const double c = std::cos(x_(2)), sn = std::sin(x_(2));
-  const Vector3 moved = gain.cwiseProduct(x_.tail<3>());  // A·m in the robot frame
-  Matrix8 f = Matrix8::Identity();
+  const double stall_gain = motion_.stall.sigma > 0.0 ? -stall_distance : 0.0;
+  Vector3 moved = gain.cwiseProduct(x_.segment<3>(5));  // A·m in the robot frame
+  moved(0) += stall_gain * x_(8);                         // −l·D along the track
+  StateMatrix f = StateMatrix::Identity();
   f.topLeftCorner<3, 3>() = pred.jacobian;
   f(0, 2) += -sn * moved(0) - c * moved(1);  // ∂(R(θ)·A·m)/∂θ
   f(1, 2) += c * moved(0) - sn * moved(1);
@@ -67,23 +72,26 @@ void BiasAugmentedEkf::predict(const WheelDisplacement& u, const Matrix3& body_c
   f(1, 5) = sn * gain(0);
   f(1, 6) = c * gain(1);
   f(2, 7) = gain(2);
-  Vector8 decay;
+  f(0, 8) = c * stall_gain;
+  f(1, 8) = sn * stall_gain;
+  StateVector decay;
   decay << 1.0, 1.0, 1.0, std::exp(-dt_pos / bias_.range.time_s), std::exp(-dt_pos / bias_.bearing.time_s),
       std::exp(-dt_pos / motion_.time_s(0)), std::exp(-dt_pos / motion_.time_s(1)),
-      std::exp(-dt_pos / motion_.time_s(2));
+      std::exp(-dt_pos / motion_.time_s(2)), std::exp(-dt_pos / motion_.stall.time_s);
   for (int j = 3; j < kStates; ++j) f(j, j) = decay(j);
   x_.head<3>() = pred.mean;
   x_(0) += c * moved(0) - sn * moved(1);
   x_(1) += sn * moved(0) + c * moved(1);
   x_(2) += moved(2);
-  x_.tail<5>() = x_.tail<5>().cwiseProduct(decay.tail<5>());
-  Matrix8 p = f * p_ * f.transpose();
+  x_.tail<6>() = x_.tail<6>().cwiseProduct(decay.tail<6>());
+  StateMatrix p = f * p_ * f.transpose();
   p.topLeftCorner<3, 3>() += q;
   p(3, 3) += bias_.range.sigma * bias_.range.sigma * (1.0 - decay(3) * decay(3));
   p(4, 4) += bias_.bearing.sigma * bias_.bearing.sigma * (1.0 - decay(4) * decay(4));
-  for (int j = 5; j < kStates; ++j) {
+  for (int j = 5; j < 8; ++j) {
     if (motion_.share(j - 5) > 0.0) p(j, j) += 1.0 - decay(j) * decay(j);
   }
+  p(8, 8) += motion_.stall.sigma * motion_.stall.sigma * (1.0 - decay(8) * decay(8));
   p_ = 0.5 * (p + p.transpose());
 }
 
@@ -132,7 +140,7 @@ MeasurementUpdate BiasAugmentedEkf::update(const PoseMeasurement& z, double gate
   }
   x_ += k * u.innovation;
   x_(2) = wrap_angle(x_(2));
-  const Matrix8 p = p_ - k * (l.H * p_);  // (I − K H) P
+  const StateMatrix p = p_ - k * (l.H * p_);  // (I − K H) P
   p_ = 0.5 * (p + p.transpose());
   return u;
 }

@@ -82,6 +82,49 @@ Family run_family(const std::vector<sim::HiddenEffect>& effects, std::uint64_t s
   return f;
 }
 
+// The stall loss a filter carries, drawn as its Gauss–Markov process at 0.01 s over 20,000
+// windows of 1 s: the windows' mean loss has the stall mixture's variance p(1 − p)f² and adjacent
+// windows correlate as the twin's chain, (q − p)/(1 − p).
+TEST(StallLossProcess, ItsWindowMeansHaveTheMixturesVarianceAndTheChainsCorrelation) {
+  diagnosis::OdometryModel model;
+  model.stall_rate = 0.1;      // p = 1 − e^(−0.1) = 0.095
+  model.stall_duration = 0.6;  // f = 0.6
+  const double window = 1.0, q = 0.5;
+  const filters::GaussMarkovBias process = stall_loss_process(model, window, q);
+  const double p = 1.0 - std::exp(-0.1), f = 0.6;
+
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> normal;
+  const double dt = 0.01, a = std::exp(-dt / process.time_s);
+  double l = process.sigma * normal(rng);
+  std::vector<double> means;
+  for (int w = 0; w < 20000; ++w) {
+    double sum = 0.0;
+    for (int k = 0; k < 100; ++k) {
+      l = a * l + process.sigma * std::sqrt(1.0 - a * a) * normal(rng);
+      sum += l;
+    }
+    means.push_back(sum / 100.0);
+  }
+  double var = 0.0, cov = 0.0;
+  for (std::size_t i = 0; i < means.size(); ++i) {
+    var += means[i] * means[i];
+    if (i > 0) cov += means[i] * means[i - 1];
+  }
+  var /= static_cast<double>(means.size());
+  cov /= static_cast<double>(means.size() - 1);
+  EXPECT_NEAR(var, p * (1.0 - p) * f * f, 0.06 * p * (1.0 - p) * f * f);  // 0.0309
+  EXPECT_NEAR(cov / var, (q - p) / (1.0 - p), 0.03);                      // 0.448
+}
+
+TEST(StallLossProcess, WithoutPersistenceTheStallsAreAChainOfTheirOwnRateAndDuration) {
+  diagnosis::OdometryModel model;
+  model.stall_rate = 0.1;
+  model.stall_duration = 0.6;
+  EXPECT_NEAR(stall_loss_process(model, 1.0, 0.0).time_s, 1.0 / (0.1 + 1.0 / 0.6), 1e-12);
+  EXPECT_EQ(stall_loss_process(diagnosis::OdometryModel{}, 1.0, 0.5).sigma, 0.0);
+}
+
 TEST(LandmarkTuning, ASettingRunOnTwoTuningPartsIsScoredOnBothJoined) {
   // The tuning part given twice, as two parts: each setting's steps are those of one part twice
   // over, so its RMSE, mean NEES and log score are those of one part, and the same settings win
