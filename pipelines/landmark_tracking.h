@@ -206,8 +206,7 @@ std::vector<MotionStep> model_motion(const TrackingData& data, const diagnosis::
 // x = window_s/τ, a window mean has variance σ²·g(x), g(x) = 2(x − 1 + e^(−x))/x², and adjacent means
 // correlate (1 − e^(−x))²/(x²·g(x)). Without persistence (q ≤ p) the stalls are a two-state chain
 // of their own rate and duration, τ = 1/(rate + 1/duration). σ = 0 for a model without stalls.
-filters::GaussMarkovBias stall_loss_process(const diagnosis::OdometryModel& model, double window_s,
-                                            double persistence);
+filters::GaussMarkovBias stall_loss_process(const diagnosis::OdometryModel& model, double window_s, double persistence);
 
 enum class Method { kFixedQ, kAdaptiveThesis, kAdaptiveJacobian, kSageHusa, kVbAkf, kNominalModel, kDiagnosedModel };
 inline constexpr Method kMethods[] = {Method::kFixedQ,        Method::kAdaptiveThesis, Method::kAdaptiveJacobian,

@@ -1,7 +1,7 @@
 #pragma once
 // The twin of a landmark log: a synthetic copy of one span that keeps everything the
 // robot was told and when it looked — the logged odometry, the landmark map, the observation
-// schedule (times and landmark ids) — and draws what the world did from a fitted model, so a
+// schedule (frame times and landmarks per frame) — and draws what the world did from a fitted model, so a
 // filter can be run on as many copies of the log as wanted and its real result predicted.
 //
 // One model: the truth is drawn from the diagnosis's own window likelihood, not from a separate
@@ -19,9 +19,13 @@
 // the window's noise and stall spread in proportion to time. The truth is stamped in true time:
 // logged time − the model's time_offset.
 //
-// Each observation keeps its logged time and landmark; it was taken at true time t − the sensor's
-// time_offset, from the twin's pose then, of the landmark at its surveyed position plus the
-// sensor's landmark_shift, and is drawn from the sensor model (landmark_tracking.h):
+// The camera keeps the log's frames: each frame (observations sharing a logged time t) looks at
+// true time t − the sensor's time_offset, from the twin's pose then, and sees as many landmarks as
+// the log's frame did, within the camera's reach the log shows (the widest |bearing| and the
+// longest range among its observations): a landmark the log saw where it is in reach, else another
+// one in reach drawn at random (none left: fewer). Each observation is of the landmark at its
+// surveyed position plus the sensor's landmark_shift, drawn from the sensor model
+// (landmark_tracking.h):
 //   z_r = range_scale_at(φ)·ρ + range_bias + n_r,  z_φ = φ + bearing_bias + n_φ,
 //   n_r = √(range_sigma² + (range_noise_slope·ρ)²) · u_r,
 //   n_φ = √(bearing_sigma² + (bearing_noise_turn_slope·ω)²) · u_φ  (ω: the truth's turn rate, ±0.05 s),

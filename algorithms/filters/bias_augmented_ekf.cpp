@@ -62,7 +62,7 @@ void BiasAugmentedEkf::predict(const WheelDisplacement& u, const Matrix3& body_c
   const double c = std::cos(x_(2)), sn = std::sin(x_(2));
   const double stall_gain = motion_.stall.sigma > 0.0 ? -stall_distance : 0.0;
   Vector3 moved = gain.cwiseProduct(x_.segment<3>(5));  // A·m in the robot frame
-  moved(0) += stall_gain * x_(8);                         // −l·D along the track
+  moved(0) += stall_gain * x_(8);                       // −l·D along the track
   StateMatrix f = StateMatrix::Identity();
   f.topLeftCorner<3, 3>() = pred.jacobian;
   f(0, 2) += -sn * moved(0) - c * moved(1);  // ∂(R(θ)·A·m)/∂θ

@@ -74,7 +74,7 @@ class BiasAugmentedEkf {
   Matrix3 covariance() const { return p_.topLeftCorner<3, 3>(); }
   Eigen::Vector2d bias() const { return x_.segment<2>(3); }
   Vector3 motion_error() const { return x_.segment<3>(5); }  // m_x, m_y, m_θ (unit variance)
-  double stall_loss() const { return x_(8); }                 // l
+  double stall_loss() const { return x_(8); }                // l
 
  private:
   struct Linearized {

@@ -105,6 +105,50 @@ TEST(LandmarkTwin, ItsSensorDrawsTheNoiseStructureItIsGiven) {
       << (b.data.to - b.data.from) << " s";
 }
 
+// A twin whose velocity scale is 25% off drifts far from the log's path. Its camera still keeps
+// the log's frames (times, and as many landmarks per frame), but sees only landmarks within the
+// reach the log's observations show (the simulated camera's |bearing| ≤ 0.5 rad and range ≤ 6 m,
+// as observed: with their noise) from the twin's own pose: the log's landmarks where they are in
+// view, others in view where not.
+TEST(LandmarkTwin, ItsCameraSeesOnlyWhatIsInReachFromTheTwinsPose) {
+  const Base b = base_log(49);
+  diagnosis::OdometryModel model;
+  model.velocity_scale = 1.25;
+  model.sigma_x = model.sigma_y = 0.01;
+  model.sigma_theta = 0.005;
+  const TrackingData twin = landmark_twin(b.data, model, LandmarkSensorModel{}, 5);
+  diagnosis::TruthInterpolator at(twin.motion.truth);
+  double reach_bearing = 0.0, reach_range = 0.0;
+  for (const Observation& o : b.data.observations) {
+    reach_bearing = std::max(reach_bearing, std::abs(o.bearing));
+    reach_range = std::max(reach_range, o.range);
+  }
+  EXPECT_NEAR(reach_bearing, 0.5, 0.05);
+  double widest = 0.0, farthest = 0.0;
+  std::size_t kept = 0, beyond_before = 0;
+  for (const Observation& o : twin.observations) {
+    const auto p = at.at(o.t);
+    ASSERT_TRUE(p.has_value());
+    const Eigen::Vector2d l = b.data.map.at(o.id);
+    widest = std::max(widest, std::abs(wrap_angle(std::atan2(l.y() - p->y, l.x() - p->x) - p->theta)));
+    farthest = std::max(farthest, std::hypot(l.x() - p->x, l.y() - p->y));
+  }
+  for (std::size_t i = 0; i < b.data.observations.size(); ++i) {
+    const Observation& o = b.data.observations[i];
+    const auto p = at.at(o.t);
+    if (!p) continue;
+    const Eigen::Vector2d l = b.data.map.at(o.id);
+    if (std::abs(wrap_angle(std::atan2(l.y() - p->y, l.x() - p->x) - p->theta)) > reach_bearing) ++beyond_before;
+    for (const Observation& z : twin.observations)
+      if (z.t == o.t && z.id == o.id) ++kept;
+  }
+  EXPECT_LE(widest, reach_bearing);
+  EXPECT_LE(farthest, reach_range);
+  EXPECT_GT(beyond_before, b.data.observations.size() / 10) << "the log's schedule from the drifted pose";
+  EXPECT_LE(twin.observations.size(), b.data.observations.size());
+  EXPECT_GT(twin.observations.size(), b.data.observations.size() / 2) << kept << " kept as the log saw them";
+}
+
 // Stalls that go on into the next window (a robot pushing against something for seconds) are
 // drawn as a chain with the mixture's stall probability p per window, and the persistence
 // q = P(stall | stall before) is measured back from the stall posteriors of adjacent windows;
