@@ -110,6 +110,34 @@ TEST(BiasAugmentedEkf, AHiddenRangeBiasIsFoundAndThePoseStaysOnTrack) {
   EXPECT_NEAR(augmented.bias()(0), mean_residual / 4.0, 0.05);
 }
 
+// Both filters updated with the four landmarks seen from `truth` (σ_r = 2 cm, σ_φ = 0.01 rad).
+void observe_landmarks(const Pose2& truth, Rng& rng, MotionModelEkf& plain, BiasAugmentedEkf& augmented) {
+  for (const auto& lm : kLandmarks) {
+    const double dx = lm.x() - truth.x, dy = lm.y() - truth.y;
+    const LandmarkRangeBearing z{std::hypot(dx, dy) + 0.02 * rng.normal(),
+                                 wrap_angle(std::atan2(dy, dx) - truth.theta + 0.01 * rng.normal()),
+                                 lm.x(),
+                                 lm.y(),
+                                 0.02 * 0.02,
+                                 0.01 * 0.01};
+    plain.update(z);
+    augmented.update(z);
+  }
+}
+
+// The mean NEES of the plain and the augmented filter over 20 seeds of `run`.
+template <class Run>
+std::pair<double, double> mean_over_seeds(Run run) {
+  double plain = 0.0, augmented = 0.0;
+  const int seeds = 20;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    const auto [p, a] = run(static_cast<std::uint64_t>(seed));
+    plain += p / seeds;
+    augmented += a / seeds;
+  }
+  return {plain, augmented};
+}
+
 // 300 s on the circle with a motion error in the robot frame per 1 s window of σ 1 cm along,
 // 0.5 cm left and 0.01 rad in heading, of which the share s = 0.8 is a Gauss–Markov process of
 // τ = 10 s (the rest white); the four landmarks are seen every second for 10 s out of every 30 s.
@@ -146,17 +174,7 @@ std::pair<double, double> mean_nees_across_gaps(std::uint64_t seed) {
     plain.predict(u, body);
     augmented.predict(u, body, dt);
     if (k % 10 == 0 && (k / 10) % 30 < 10) {
-      for (const auto& lm : kLandmarks) {
-        const double dx = lm.x() - truth.x, dy = lm.y() - truth.y;
-        const LandmarkRangeBearing z{std::hypot(dx, dy) + 0.02 * rng.normal(),
-                                     wrap_angle(std::atan2(dy, dx) - truth.theta + 0.01 * rng.normal()),
-                                     lm.x(),
-                                     lm.y(),
-                                     0.02 * 0.02,
-                                     0.01 * 0.01};
-        plain.update(z);
-        augmented.update(z);
-      }
+      observe_landmarks(truth, rng, plain, augmented);
     }
     plain_sum += pose_nees(truth, plain.mean(), plain.covariance());
     augmented_sum += pose_nees(truth, augmented.mean(), augmented.covariance());
@@ -165,13 +183,7 @@ std::pair<double, double> mean_nees_across_gaps(std::uint64_t seed) {
 }
 
 TEST(BiasAugmentedEkf, ACorrelatedMotionErrorIsCoveredAcrossGapsInTheObservations) {
-  double plain = 0.0, augmented = 0.0;
-  const int seeds = 20;
-  for (int seed = 1; seed <= seeds; ++seed) {
-    const auto [p, a] = mean_nees_across_gaps(static_cast<std::uint64_t>(seed));
-    plain += p / seeds;
-    augmented += a / seeds;
-  }
+  const auto [plain, augmented] = mean_over_seeds(mean_nees_across_gaps);
   // The NEES of a consistent 3-dof estimate averages 3.
   EXPECT_GT(augmented, 2.4);
   EXPECT_LT(augmented, 3.6);
@@ -212,17 +224,7 @@ std::pair<double, double> mean_nees_with_stalls(std::uint64_t seed) {
     plain.predict(u, plain_body);
     augmented.predict(u, Matrix3(floor.asDiagonal()), dt, d);
     if (k % 10 == 0 && (k / 10) % 15 < 10) {
-      for (const auto& lm : kLandmarks) {
-        const double dx = lm.x() - truth.x, dy = lm.y() - truth.y;
-        const LandmarkRangeBearing z{std::hypot(dx, dy) + 0.02 * rng.normal(),
-                                     wrap_angle(std::atan2(dy, dx) - truth.theta + 0.01 * rng.normal()),
-                                     lm.x(),
-                                     lm.y(),
-                                     0.02 * 0.02,
-                                     0.01 * 0.01};
-        plain.update(z);
-        augmented.update(z);
-      }
+      observe_landmarks(truth, rng, plain, augmented);
     }
     plain_sum += pose_nees(truth, plain.mean(), plain.covariance());
     augmented_sum += pose_nees(truth, augmented.mean(), augmented.covariance());
@@ -231,13 +233,7 @@ std::pair<double, double> mean_nees_with_stalls(std::uint64_t seed) {
 }
 
 TEST(BiasAugmentedEkf, StallsThatLastSecondsAreCoveredByTheStallState) {
-  double plain = 0.0, augmented = 0.0;
-  const int seeds = 20;
-  for (int seed = 1; seed <= seeds; ++seed) {
-    const auto [p, a] = mean_nees_with_stalls(static_cast<std::uint64_t>(seed));
-    plain += p / seeds;
-    augmented += a / seeds;
-  }
+  const auto [plain, augmented] = mean_over_seeds(mean_nees_with_stalls);
   EXPECT_GT(augmented, 2.4);
   EXPECT_LT(augmented, 3.6);
   EXPECT_GT(plain, 2.0 * augmented) << "plain " << plain << ", augmented " << augmented;
