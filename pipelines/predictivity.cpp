@@ -62,8 +62,11 @@ MetricPredictivity predictivity(const std::vector<PredictivityCell>& cells) {
   std::vector<const PredictivityCell*> usable;
   std::vector<double> real, nominal, extended;
   for (const PredictivityCell& c : cells) {
-    m.nominal.covered += c.nominal.covers(c.real) ? 1 : 0;
-    m.extended.covered += c.extended.covers(c.real) ? 1 : 0;
+    for (auto [t, interval] : {std::pair{&m.nominal, &c.nominal}, std::pair{&m.extended, &c.extended}}) {
+      t->covered += interval->covers(c.real) ? 1 : 0;
+      t->above += c.real > interval->high ? 1 : 0;
+      t->below += c.real < interval->low ? 1 : 0;
+    }
     if (!finite_cell(c)) continue;
     usable.push_back(&c);
     real.push_back(c.real);

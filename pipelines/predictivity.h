@@ -40,6 +40,9 @@ struct PredictivityCell {
 
 struct TwinPredictivity {
   std::size_t covered = 0;
+  // The cells missed, by side: the real value above the interval's high end (for an error, the
+  // log fared worse than the twin forecast) and below its low end (better).
+  std::size_t above = 0, below = 0;
   double pearson = 0.0, spearman = 0.0, mmrv = 0.0;
 };
 struct MetricPredictivity {

@@ -321,6 +321,9 @@ TEST(Predictivity, CoverageCorrelationAndRankViolationsAreCountedPerMetric) {
   EXPECT_TRUE(m.log_scale);
   EXPECT_EQ(m.extended.covered, 5u);
   EXPECT_EQ(m.nominal.covered, 3u) << "A's m1 (2.1 ± 10%) and m2 (1.0 ± 10%) miss";
+  EXPECT_EQ(m.nominal.below, 1u) << "A's m1: real 1 below [1.89, 2.31]";
+  EXPECT_EQ(m.nominal.above, 1u) << "A's m2: real 2 above [0.9, 1.1]";
+  EXPECT_EQ(m.extended.above + m.extended.below, 0u);
   // Nominal on A: m1 and m2 swapped, |1 − 2| / mean(1, 2, 4) = 3/7 for each of them, 0 for m3:
   // MMRV_A = (2 · 3/7) / 3; MMRV_B = 0; the mean over logs is 1/7.
   EXPECT_NEAR(m.nominal.mmrv, 1.0 / 7.0, 1e-12);

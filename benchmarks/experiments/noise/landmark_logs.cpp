@@ -668,8 +668,9 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
       covered_extended += m.extended.covered;
       const bool correlations = m.compared >= kMinCorrelatedCells;
       text += fmt::format(
-          "\n  {:<20} {} cells ({} compared): covered nominal {} / extended {}{}", metric, m.cells, m.compared,
-          m.nominal.covered, m.extended.covered,
+          "\n  {:<20} {} cells ({} compared): covered nominal {} / extended {} (the extended twin's misses: real "
+          "above the interval {}, below {}){}",
+          metric, m.cells, m.compared, m.nominal.covered, m.extended.covered, m.extended.above, m.extended.below,
           correlations
               ? fmt::format("; Pearson r{} {:.2f} / {:.2f}; Spearman ρ {:.2f} / {:.2f}; MMRV {:.3f} / {:.3f}{}",
                             m.log_scale ? " (of logs)" : "", m.nominal.pearson, m.extended.pearson, m.nominal.spearman,
