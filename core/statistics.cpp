@@ -97,6 +97,17 @@ double student_t_critical(double confidence, double dof) {
   return boost::math::quantile(dist, 0.5 + 0.5 * confidence);
 }
 
+double student_t_quantile(double p, double dof) {
+  if (!(dof > 0.0)) return normal_quantile(p);
+  return boost::math::quantile(boost::math::students_t(dof), p);
+}
+
+double student_t_two_sided_tail(double x, double dof) {
+  const double a = std::abs(x);
+  if (!(dof > 0.0)) return 2.0 * normal_upper_tail(a);
+  return 2.0 * boost::math::cdf(boost::math::complement(boost::math::students_t(dof), a));
+}
+
 double normal_quantile(double p) { return boost::math::quantile(boost::math::normal_distribution<double>(), p); }
 
 double normal_upper_tail(double z) {

@@ -34,6 +34,10 @@ Summary summarize(std::span<const double> v);
 
 // Two-sided Student-t critical value t_{1−α/2, dof} (Boost.Math).
 double student_t_critical(double confidence, double dof);
+// Student-t with `dof` degrees of freedom (dof = 0: the standard normal): the quantile F⁻¹(p)
+// and the two-sided tail P(|T| > x) (Boost.Math).
+double student_t_quantile(double p, double dof);
+double student_t_two_sided_tail(double x, double dof);
 // Standard normal quantile Φ⁻¹(p) and upper-tail probability 1 − Φ(z).
 double normal_quantile(double p);
 double normal_upper_tail(double z);

@@ -317,6 +317,22 @@ LandmarkSensorModel measured_sensor_noise(const TrackingData& data, LandmarkSens
   sensor.structure.bearing_level_sigma = noise_level_spread(times, bearing_within);
   sensor.structure.range_correlation = fit_noise_correlation(times, range_within);
   sensor.structure.bearing_correlation = fit_noise_correlation(times, bearing_within);
+  // Outliers: beyond kOutlierSigmas robust σ in either channel, against the share the noise model
+  // gives there (its robust σ is 1.4826·F⁻¹(0.75) in its own units; the channels independent).
+  std::vector<double> range_units(range.size());
+  for (std::size_t i = 0; i < range.size(); ++i) range_units[i] = range[i] / range_model_sigma[i];
+  const double range_scale = robust_sigma(range_units), bearing_scale = robust_sigma(bearing);
+  for (std::size_t i = 0; i < range.size(); ++i) {
+    if (std::abs(range_units[i]) > kOutlierSigmas * range_scale ||
+        std::abs(bearing[i]) > kOutlierSigmas * bearing_scale)
+      sensor.structure.outliers.emplace_back(range_units[i], bearing[i]);
+  }
+  const double beyond = kOutlierSigmas * 1.4826 * student_t_quantile(0.75, sensor.dof);
+  const double channel = student_t_two_sided_tail(beyond, sensor.dof);
+  const double expected = 1.0 - (1.0 - channel) * (1.0 - channel);
+  const double observed = static_cast<double>(sensor.structure.outliers.size()) / static_cast<double>(range.size());
+  sensor.structure.outlier_rate = std::max(0.0, observed - expected);
+  if (!(sensor.structure.outlier_rate > 0.0)) sensor.structure.outliers.clear();
   return sensor;
 }
 

@@ -85,7 +85,15 @@ struct NoiseStructure {
   // Noise levels that vary along the log: the spread of ln σ between blocks of kLevelBlockS
   // (noise_level_spread), drawn anew per block by the twin.
   double range_level_sigma = 0.0, bearing_level_sigma = 0.0;
+  // Gross outliers (a misread barcode, a reflection): the share of observations with a range or
+  // bearing residual beyond kOutlierSigmas robust σ, less the share the sensor's own noise
+  // (normal, or Student-t with its dof) puts there; the twin draws an outlier with this
+  // probability, its residual resampled from `outliers` (range in units of the sensor's σ(ρ),
+  // bearing in rad). Filters meet them through their gate.
+  double outlier_rate = 0.0;
+  std::vector<Eigen::Vector2d> outliers;
 };
+inline constexpr double kOutlierSigmas = 5.0;
 
 struct LandmarkSensorModel {
   double range_scale = 1.0, range_bias = 0.0, bearing_bias = 0.0;

@@ -242,6 +242,13 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
               range_level * sigma_r * range_part.draw(o.t, sensor.dof, rng);
     z.bearing = wrap_angle(phi + sensor.bearing_bias + bearing_bias +
                            bearing_level * sigma_b * bearing_part.draw(o.t, sensor.dof, rng));
+    const NoiseStructure& st = sensor.structure;
+    if (!st.outliers.empty() && camera.bernoulli(st.outlier_rate)) {  // a gross outlier instead of the noise
+      const auto pick = static_cast<std::size_t>(camera.uniform(0.0, static_cast<double>(st.outliers.size())));
+      const Eigen::Vector2d& e = st.outliers[std::min(pick, st.outliers.size() - 1)];
+      z.range = sensor.range_scale_at(wrap_angle(phi)) * rho + sensor.range_bias + e.x() * sigma_r;
+      z.bearing = wrap_angle(phi + sensor.bearing_bias + e.y());
+    }
     twin.observations.push_back(z);
   }
   return twin;

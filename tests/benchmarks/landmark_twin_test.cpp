@@ -105,6 +105,35 @@ TEST(LandmarkTwin, ItsSensorDrawsTheNoiseStructureItIsGiven) {
       << (b.data.to - b.data.from) << " s";
 }
 
+// Gross outliers: the twin replaces 2% of its observations by residuals resampled from the given
+// ones (a range 12 σ long, a bearing 0.4 rad off), and the share is measured back (mean of 8
+// twins of ~1,230 observations); with normal noise alone (P beyond 5σ: 6e-7 per channel) none are
+// measured.
+TEST(LandmarkTwin, GrossOutliersItDrawsAreMeasuredBackAndNormalNoiseHasNone) {
+  const Base b = base_log(51);
+  LandmarkSensorModel sensor;
+  sensor.range_sigma = 0.05;
+  sensor.bearing_sigma = 0.01;
+  diagnosis::OdometryModel still;
+  still.sigma_x = still.sigma_y = still.sigma_theta = 0.0;
+  const LandmarkSensorModel clean = measured_sensor_noise(landmark_twin(b.data, still, sensor, 9), sensor);
+  EXPECT_EQ(clean.structure.outlier_rate, 0.0);
+  EXPECT_TRUE(clean.structure.outliers.empty());
+  sensor.structure.outlier_rate = 0.02;
+  sensor.structure.outliers = {{12.0, 0.0}, {0.0, 0.4}};
+  double rate = 0.0;
+  for (std::uint64_t seed = 9; seed < 17; ++seed) {
+    const LandmarkSensorModel m = measured_sensor_noise(landmark_twin(b.data, still, sensor, seed), sensor);
+    rate += m.structure.outlier_rate / 8.0;
+  }
+  EXPECT_NEAR(rate, 0.02, 0.004);
+  const TrackingData twin = landmark_twin(b.data, still, sensor, 9);
+  const LandmarkSensorModel measured = measured_sensor_noise(twin, sensor);  // residuals in units of its σ_r
+  ASSERT_FALSE(measured.structure.outliers.empty());
+  for (const Eigen::Vector2d& e : measured.structure.outliers)
+    EXPECT_TRUE(std::abs(e.x() - 12.0) < 4.0 || std::abs(e.y() - 0.4) < 0.05) << e.transpose();
+}
+
 // A twin whose velocity scale is 25% off drifts far from the log's path. Its camera still keeps
 // the log's frames (times, and as many landmarks per frame), but sees only landmarks within the
 // reach the log's observations show (the simulated camera's |bearing| ≤ 0.5 rad and range ≤ 6 m,

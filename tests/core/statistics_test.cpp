@@ -54,6 +54,15 @@ TEST(StudentT, CriticalValuesMatchTheTable) {
   EXPECT_NEAR(student_t_critical(0.95, 1000), 1.962, 1e-3);
 }
 
+TEST(StudentT, QuantileAndTwoSidedTailMatchTheTableAndDofZeroIsTheNormal) {
+  EXPECT_NEAR(student_t_quantile(0.975, 4), 2.776, 1e-3);
+  EXPECT_NEAR(student_t_quantile(0.75, 3), 0.765, 1e-3);
+  EXPECT_NEAR(student_t_two_sided_tail(2.776, 4), 0.05, 1e-4);
+  EXPECT_NEAR(student_t_two_sided_tail(-2.776, 4), 0.05, 1e-4);
+  EXPECT_NEAR(student_t_quantile(0.975, 0), 1.959964, 1e-6);
+  EXPECT_NEAR(student_t_two_sided_tail(1.959964, 0), 0.05, 1e-7);
+}
+
 TEST(Normal, QuantileAndTail) {
   EXPECT_NEAR(normal_quantile(0.975), 1.959964, 1e-6);
   EXPECT_NEAR(normal_upper_tail(1.959964), 0.025, 1e-7);

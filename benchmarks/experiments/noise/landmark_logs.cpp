@@ -477,10 +477,11 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         "\n  noise structure on the tuning half (the extended twin draws it): per-landmark biases spread σ "
         "{:.3f} m, {:.4f} rad; time correlation without them: range {:.0f}% of the variance with τ {:.2g} s, "
         "bearing {:.0f}% with τ {:.2g} s; noise level between {:.0f} s blocks: ln σ spread range {:.2f}, "
-        "bearing {:.2f}",
+        "bearing {:.2f}; gross outliers (beyond {:g} robust σ, more than the sensor's noise puts there): {:.2f}% of "
+        "the observations ({} residuals to resample)",
         st.range_landmark_sigma, st.bearing_landmark_sigma, 100.0 * st.range_correlation.share,
         st.range_correlation.time_s, 100.0 * st.bearing_correlation.share, st.bearing_correlation.time_s, kLevelBlockS,
-        st.range_level_sigma, st.bearing_level_sigma);
+        st.range_level_sigma, st.bearing_level_sigma, kOutlierSigmas, 100.0 * st.outlier_rate, st.outliers.size());
     const MotionNoiseStructure& ms = o.models.diagnosed_motion_structure;
     s.text += fmt::format(
         "; the diagnosed motion model's window residuals: along {:.0f}% with τ {:.2g} s, left {:.0f}% with τ "
