@@ -31,7 +31,9 @@
 //   n_φ = √(bearing_sigma² + (bearing_noise_turn_slope·ω)²) · u_φ  (ω: the truth's turn rate, ±0.05 s),
 // u = √(1 − s)·t_ν + √s·b, with s and b the share and the Gauss–Markov process of the channel's
 // NoiseCorrelation (time correlation common to all landmarks; s = 0: white), plus each landmark's
-// own range and bearing bias, drawn once per twin from N(0, landmark σ²) (sensor.structure).
+// own range and bearing bias, drawn once per twin from N(0, landmark σ²) (sensor.structure). With
+// probability sensor.structure.outlier_rate the observation is a gross outlier instead: its range
+// and bearing residuals resampled from sensor.structure.outliers (range in units of σ(ρ)).
 // An observation whose true time the twin's truth does not cover is left out.
 #include <cstdint>
 
