@@ -2,7 +2,9 @@
 // The only source of randomness: an explicitly seeded generator passed by reference.
 // Distributions are implemented here (not std::normal_distribution, whose output differs
 // between standard libraries) so a seed gives the same numbers with any compiler.
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <random>
 
@@ -28,6 +30,10 @@ class Rng {
   double uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
   bool bernoulli(double p) { return uniform() < p; }
+  // A uniform index in [0, n) (n > 0).
+  std::size_t index(std::size_t n) {
+    return std::min(n - 1, static_cast<std::size_t>(uniform() * static_cast<double>(n)));
+  }
   // Standard normal by Box–Muller (cached second value).
   double normal() {
     if (has_spare_) {

@@ -98,8 +98,8 @@ std::vector<Observation> visible_schedule(const TrackingData& real, diagnosis::T
   out.reserve(real.observations.size());
   const auto& obs = real.observations;
   for (std::size_t i = 0, j = 0; i < obs.size(); i = j) {
-    for (j = i + 1; j < obs.size() && obs[j].t == obs[i].t; ++j) {
-    }
+    j = i + 1;
+    while (j < obs.size() && obs[j].t == obs[i].t) ++j;  // the frame: [i, j)
     const auto p = at.at(obs[i].t - sensor.time_offset);
     if (!p) continue;
     std::vector<int> seen, free;
@@ -112,9 +112,9 @@ std::vector<Observation> visible_schedule(const TrackingData& real, diagnosis::T
       Observation o = obs[k];
       if (std::find(seen.begin(), seen.end(), o.id) == seen.end()) {
         if (free.empty()) continue;
-        const std::size_t pick = static_cast<std::size_t>(rng.uniform(0.0, static_cast<double>(free.size())));
-        o.id = free[std::min(pick, free.size() - 1)];
-        free.erase(free.begin() + static_cast<std::ptrdiff_t>(std::min(pick, free.size() - 1)));
+        const std::size_t pick = rng.index(free.size());
+        o.id = free[pick];
+        free.erase(free.begin() + static_cast<std::ptrdiff_t>(pick));
       }
       out.push_back(o);
     }
@@ -242,10 +242,11 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
               range_level * sigma_r * range_part.draw(o.t, sensor.dof, rng);
     z.bearing = wrap_angle(phi + sensor.bearing_bias + bearing_bias +
                            bearing_level * sigma_b * bearing_part.draw(o.t, sensor.dof, rng));
-    const NoiseStructure& st = sensor.structure;
-    if (!st.outliers.empty() && camera.bernoulli(st.outlier_rate)) {  // a gross outlier instead of the noise
-      const auto pick = static_cast<std::size_t>(camera.uniform(0.0, static_cast<double>(st.outliers.size())));
-      const Eigen::Vector2d& e = st.outliers[std::min(pick, st.outliers.size() - 1)];
+    // A gross outlier instead of the noise (drawn above all the same, so that the noise streams
+    // stay the same with and without outliers).
+    const std::vector<Eigen::Vector2d>& outliers = sensor.structure.outliers;
+    if (!outliers.empty() && camera.bernoulli(sensor.structure.outlier_rate)) {
+      const Eigen::Vector2d& e = outliers[camera.index(outliers.size())];
       z.range = sensor.range_scale_at(wrap_angle(phi)) * rho + sensor.range_bias + e.x() * sigma_r;
       z.bearing = wrap_angle(phi + sensor.bearing_bias + e.y());
     }

@@ -132,8 +132,7 @@ void observe(GeneratedLog& g, const std::vector<TruePose>& truth, const std::vec
       if (r >= o.min_range && r <= o.max_range && std::abs(b) <= o.field_of_view) visible.push_back(k);
     }
     if (visible.empty()) continue;
-    const std::size_t k =
-        visible[std::min(visible.size() - 1, static_cast<std::size_t>(rng.uniform() * visible.size()))];
+    const std::size_t k = visible[rng.index(visible.size())];
     const double rho = std::hypot(real[k].x - p->x, real[k].y - p->y);
     const double phi = angle_diff(std::atan2(real[k].y - p->y, real[k].x - p->x), p->theta);
     const double sr = std::sqrt(o.sigma_range * o.sigma_range + c.slope * rho * c.slope * rho);
