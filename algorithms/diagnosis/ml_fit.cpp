@@ -40,10 +40,25 @@ class Surface {
       h = last_h_;
       return;
     }
-    compute_gradient_hessian(x, fx, g, h);
+    compute_gradient_hessian(x, fx, g, h, true);
     last_x_ = x;
     last_g_ = g;
     last_h_ = h;
+  }
+
+  // The Hessian for the intervals: exact wherever the caller gives derivatives, also for the
+  // parameters the descent differences (FitParameter::differences).
+  Eigen::MatrixXd interval_hessian(const Eigen::VectorXd& x, double fx) {
+    Eigen::VectorXd g;
+    Eigen::MatrixXd h;
+    const bool marked =
+        std::any_of(params_.begin(), params_.end(), [](const FitParameter& p) { return p.differences; });
+    if (marked && derivatives_) {
+      compute_gradient_hessian(x, fx, g, h, false);
+    } else {
+      gradient_hessian(x, fx, g, h);
+    }
+    return h;
   }
 
   const Coordinates& coords() const { return coords_; }
@@ -51,10 +66,10 @@ class Surface {
  private:
   // Exact derivatives with respect to the values, mapped to the fitted coordinates z (v = e^z
   // for positive parameters: ∂f/∂z = v·∂f/∂v, ∂²f/∂z_i∂z_j = v_i·v_j·∂²f/∂v_i∂v_j + δ_ij·v_i·∂f/∂v_i).
-  bool exact(const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& h) const {
+  bool exact(const Eigen::VectorXd& x, const std::vector<bool>& skipped, Eigen::VectorXd& g, Eigen::MatrixXd& h) const {
     if (!derivatives_) return false;
     const std::vector<double> v = coords_.values(x);
-    if (!derivatives_(v, g, h) || !g.allFinite() || !h.allFinite()) return false;
+    if (!derivatives_(v, skipped, g, h) || !g.allFinite() || !h.allFinite()) return false;
     for (std::size_t i = 0; i < n_; ++i) {
       if (!params_[i].positive) continue;
       h.row(i) *= v[i];
@@ -66,16 +81,19 @@ class Surface {
   }
 
   // Central differences for every coordinate without exact derivatives, and for the rows and
-  // columns of those marked `differences` when there are.
-  void compute_gradient_hessian(const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) const {
+  // columns of those marked `differences` when there are and `marked_differences` is set.
+  void compute_gradient_hessian(const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h,
+                                bool marked_differences) const {
     const auto& f = *this;
     const std::size_t n = n_;
-    const bool have_exact = exact(x, g, h);
+    std::vector<bool> skipped(n, false);
+    for (std::size_t i = 0; i < n && marked_differences; ++i) skipped[i] = params_[i].differences;
+    const bool have_exact = exact(x, skipped, g, h);
     if (!have_exact) {
       g.resize(n);
       h.resize(n, n);
     }
-    auto differenced = [&](std::size_t i) { return !have_exact || params_[i].differences; };
+    auto differenced = [&](std::size_t i) { return !have_exact || skipped[i]; };
     std::vector<double> fp(n), fm(n);
     for (std::size_t i = 0; i < n; ++i) {
       if (!differenced(i)) continue;
@@ -174,9 +192,7 @@ void descend(Surface& f, Descent& d, int max_iterations, FitResult& r) {
 void fill_intervals(Surface& f, const Eigen::VectorXd& z, double fx, const std::vector<FitParameter>& params,
                     FitResult& r) {
   const std::size_t n = params.size();
-  Eigen::VectorXd g;
-  Eigen::MatrixXd h;
-  f.gradient_hessian(z, fx, g, h);
+  const Eigen::MatrixXd h = f.interval_hessian(z, fx);
   const linalg::SymmetricEigen eig = linalg::symmetric_eigen(Eigen::MatrixXd(0.5 * (h + h.transpose())));
   r.hessian_ok = eig.values.minCoeff() > 1e-12 * std::max(1.0, eig.values.maxCoeff());
   if (r.hessian_ok) {

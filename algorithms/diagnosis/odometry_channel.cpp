@@ -104,8 +104,8 @@ class Fitter {
       }
       out.coords.emplace_back(name, field);
       // The drive response's likelihood jumps where 4τ, the span its state is run over before a
-      // window, crosses an odometry step: the derivatives in τ stay central differences, which
-      // see those jumps as the fits always did.
+      // window, crosses an odometry step: the descent's derivatives in τ stay central differences,
+      // which see those jumps as the fits always did (its interval takes the exact curvature).
       fp.push_back({name, initial, scale, positive, field == &OdometryModel::drive_tau});
     };
     if (d_.reference != ReferenceKind::kCompass) {
@@ -128,17 +128,14 @@ class Fitter {
       return m;
     };
     std::vector<Field> fields;
-    std::vector<bool> differenced;  // by ml_fit: left out of the exact derivatives
-    for (std::size_t i = 0; i < fp.size(); ++i) {
-      fields.push_back(out.coords[i].second);
-      differenced.push_back(fp[i].differences);
-    }
+    for (std::size_t i = 0; i < fp.size(); ++i) fields.push_back(out.coords[i].second);
     NllDerivatives derivatives;
     if (exact_) {
-      derivatives = [&](const std::vector<double>& v, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
+      derivatives = [&](const std::vector<double>& v, const std::vector<bool>& skipped, Eigen::VectorXd& g,
+                        Eigen::MatrixXd& h) {
         const OdometryModel m = apply(v);
         return plausible(m) &&
-               negative_log_likelihood_derivatives(d_, m, index_, fields, g, h, &cache_, &differenced).has_value();
+               negative_log_likelihood_derivatives(d_, m, index_, fields, g, h, &cache_, &skipped).has_value();
       };
     }
     adopt_fit(out,

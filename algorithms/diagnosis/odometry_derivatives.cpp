@@ -79,6 +79,25 @@ PoseT<T> advance(const PoseT<T>& p, const T& dd, const T& dth) {
   return {p.x + chord * c, p.y + chord * s, p.theta + dth};
 }
 
+// A number over τ alone.
+using TauNumber = HyperDual<1>;
+
+// τ's place among the mean fields (−1: not fitted).
+int tau_index(const Seeded<Mean>& s) {
+  const auto it = std::find(s.fields.begin(), s.fields.end(), &OdometryModel::drive_tau);
+  return it == s.fields.end() ? -1 : static_cast<int>(it - s.fields.begin());
+}
+
+// A number over τ as a number over the n mean fields, τ the at-th.
+Mean lift_tau(const TauNumber& x, int at, int n) {
+  if (x.n == 0) return Mean(x.v);
+  Mean r = Mean::zero(n);
+  r.v = x.v;
+  r.g[at] = x.g[0];
+  r.h[at * n - at * (at - 1) / 2] = x.h[0];
+  return r;
+}
+
 // predict_window of odometry_model.cpp without stalls (the likelihood's mean model). `increments`
 // (pose odometry, τ not differentiated): the window's drive_increments, constants here.
 PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mean>& s, const double* increments) {
@@ -106,23 +125,27 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
     }
     return p;
   }
+  // The drive's increments depend on τ alone: they are run in as numbers over τ only and lifted
+  // to the mean fields per step (a run-in over all mean fields costs several times more).
+  const int at = tau_index(s);
+  const TauNumber t = at >= 0 ? TauNumber::variable(tau.v, 0, 1) : TauNumber(tau.v);
   const std::size_t start = drive_run_in_start(d, w, tau.v);
   const StepRates r0 = drive_start_rates(d, start, tau.v);
-  Mean u(r0.v), omega(r0.rate);
+  TauNumber u(r0.v), omega(r0.rate);
   for (std::size_t i = start; i < w.last; ++i) {
     const auto& st = d.steps[i];
     const auto [dt, v, rate] = step_rates(st);
-    Mean dd(st.a), dth(st.b);
+    TauNumber dd(st.a), dth(st.b);
     if (tau.v > 0.0 && dt > 0.0) {
-      const Mean decay = exp(-dt / tau);
-      dd = v * dt + (u - v) * tau * (1.0 - decay);
+      const TauNumber decay = exp(-dt / t);
+      dd = v * dt + (u - v) * t * (1.0 - decay);
       u = v + (u - v) * decay;
-      dth = rate * dt + (omega - rate) * tau * (1.0 - decay);
+      dth = rate * dt + (omega - rate) * t * (1.0 - decay);
       omega = rate + (omega - rate) * decay;
     }
     if (i < w.first) continue;
     const Mean scale = velocity_scale + speed_slope * std::abs(v);
-    p = advance(p, scale * dd, turn_scale * dth + turn_bias * dt);
+    p = advance(p, scale * lift_tau(dd, at, s.n), turn_scale * lift_tau(dth, at, s.n) + turn_bias * dt);
   }
   return p;
 }
