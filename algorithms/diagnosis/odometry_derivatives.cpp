@@ -126,7 +126,7 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
     return p;
   }
   // The drive's increments depend on τ alone: they are run in as numbers over τ only and lifted
-  // to the mean fields per step (a run-in over all mean fields costs several times more).
+  // to the mean fields per step (a run-in over all mean fields costs a third more per call).
   const int at = tau_index(s);
   const TauNumber t = at >= 0 ? TauNumber::variable(tau.v, 0, 1) : TauNumber(tau.v);
   const std::size_t start = drive_run_in_start(d, w, tau.v);
