@@ -14,6 +14,7 @@ OdoResiduals odometry_residuals(const MotionData& d, const OdometryModel& m, con
     const auto r = window_residual(d, w, m);
     if (!r.valid) continue;
     o.along.push_back(r.r[0] / std::sqrt(r.variance[0]));
+    o.lateral.push_back(r.r[1] / std::sqrt(r.variance[1]));
     o.heading.push_back(r.r[2] / std::sqrt(r.variance[2]));
     o.distance.push_back(w.signed_distance);
     o.turn.push_back(w.turn);
@@ -37,6 +38,9 @@ std::vector<ResidualTest> odometry_battery(const MotionData& d, const OdoResidua
   if (pos) t.push_back(bias_test(o.along, "along_track"));
   t.push_back(dependence_test(o.heading, o.distance, "drift_with_distance", "heading", "distance"));
   if (pos) t.push_back(dependence_test(o.along, o.distance, "drift_with_distance", "along_track", "distance"));
+  // A reference frame turned against the direction of travel moves the robot sideways in
+  // proportion to the distance driven.
+  if (pos) t.push_back(dependence_test(o.lateral, o.distance, "drift_with_distance", "lateral", "distance"));
   t.push_back(dependence_test(o.heading, o.turn, "drift_with_turning", "heading", "turn"));
   if (pos) t.push_back(dependence_test(o.along, o.speed, "speed_dependence", "along_track", "speed"));
   t.push_back(dependence_test(o.heading, o.speed, "speed_dependence", "heading", "speed"));

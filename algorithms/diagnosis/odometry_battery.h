@@ -12,7 +12,7 @@
 namespace locbench::diagnosis {
 
 struct OdoResiduals {
-  std::vector<double> along, heading, distance, turn, speed, travel, cos_h, sin_h, x, y, dturn;
+  std::vector<double> along, lateral, heading, distance, turn, speed, travel, cos_h, sin_h, x, y, dturn;
 };
 
 // The windows `index` that the (shifted) reference covers.

@@ -14,10 +14,11 @@ namespace {
 
 // 400 windows of standardized normal residuals with covariates that vary.
 OdoResiduals clean(std::uint64_t seed) {
-  Rng rng(seed);
+  Rng rng(seed), sideways(seed + 1000);  // the lateral residuals from a stream of their own
   OdoResiduals o;
   for (int k = 0; k < 400; ++k) {
     o.along.push_back(rng.normal());
+    o.lateral.push_back(sideways.normal());
     o.heading.push_back(rng.normal());
     o.distance.push_back(rng.uniform(0.0, 0.5));
     o.turn.push_back(rng.uniform(-0.5, 0.5));
@@ -57,10 +58,23 @@ TEST(OdometryBattery, CleanResidualsPassAndAnAlongTrackLossGrowingWithSpeedIsFou
   EXPECT_GT(p_value(tests, "bias", "heading"), 1e-3);
 }
 
-TEST(OdometryBattery, AHeadingOnlyReferenceHasNoAlongTrackTests) {
+TEST(OdometryBattery, ASidewaysDriftGrowingWithDistanceIsFoundInTheLateralResiduals) {
+  // A reference frame turned by δ against the direction of travel: the lateral residual is −δ·d.
+  OdoResiduals o = clean(7);
+  EXPECT_GT(p_value(odometry_battery(positions(), o), "drift_with_distance", "lateral"), 1e-3);
+  for (std::size_t k = 0; k < o.lateral.size(); ++k) o.lateral[k] -= 3.0 * o.distance[k];  // 0 to −1.5σ
+  const auto tests = odometry_battery(positions(), o);
+  EXPECT_LT(p_value(tests, "drift_with_distance", "lateral"), 1e-6);
+  EXPECT_GT(p_value(tests, "drift_with_distance", "along_track"), 1e-3);
+}
+
+TEST(OdometryBattery, AHeadingOnlyReferenceHasNoAlongTrackOrLateralTests) {
   MotionData d = positions();
   d.reference = ReferenceKind::kCompass;
-  for (const auto& t : odometry_battery(d, clean(6))) EXPECT_NE(t.residual, "along_track") << t.name;
+  for (const auto& t : odometry_battery(d, clean(6))) {
+    EXPECT_NE(t.residual, "along_track") << t.name;
+    EXPECT_NE(t.residual, "lateral") << t.name;
+  }
 }
 
 }  // namespace
