@@ -142,6 +142,7 @@ struct Outcome {
   FilterModels models;
   double from = 0.0, mid = 0.0, to = 0.0;
   std::size_t other_robot_observations = 0, observations = 0;
+  std::vector<double> heldout_observation_times;  // logged, sorted: where the held-out half sees nothing
   // The sensor noise measured against the truth on each half (a check of stationarity, used by no
   // method): a held-out half noisier than the tuning half makes every tuned setting overconfident.
   std::optional<LandmarkSensorModel> tuning_noise, heldout_noise;
@@ -205,6 +206,8 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
   const double wheelbase = log.nominal_model() ? log.nominal_model()->wheelbase : c.wheelbase_m;
   const TrackingData train = tracking_data(log, from, mid, wheelbase);
   const TrackingData test = tracking_data(log, mid, to, wheelbase);
+  for (const Observation& z : test.observations) o.heldout_observation_times.push_back(z.t);
+  std::sort(o.heldout_observation_times.begin(), o.heldout_observation_times.end());
   if (c.model_file.empty()) {
     o.models = fitted_models(log, train, c, sensor);
   } else {
@@ -502,9 +505,22 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     return s;
   }
 
+  // The longest stretch of [a, b) without an observation (`times` sorted) [s].
+  static double longest_blind_stretch(const std::vector<double>& times, double a, double b) {
+    double last = a, longest = 0.0;
+    for (auto it = std::lower_bound(times.begin(), times.end(), a); it != times.end() && *it < b; ++it) {
+      longest = std::max(longest, *it - last);
+      last = *it;
+    }
+    return std::max(longest, b - last);
+  }
+
   // Where a NEES above its band comes from: its mean over each block of the held-out half, the
-  // median of those means (inside the band: an episode, not the whole half) and the worst one.
-  static std::string nees_blocks_text(const TrackResult& r, double t0, double block_s, std::size_t blocks) {
+  // median of those means (inside the band: an episode, not the whole half), the worst one with
+  // its longest stretch without an observation (the filter runs on odometry alone there), and the
+  // time average without that block.
+  static std::string nees_blocks_text(const TrackResult& r, const std::vector<double>& observation_times, double t0,
+                                      double block_s, std::size_t blocks) {
     std::vector<double> root(r.nees.size());
     std::transform(r.nees.begin(), r.nees.end(), root.begin(), [](double n) { return std::sqrt(std::max(0.0, n)); });
     const ErrorBlocks b = error_blocks(r.t, root, t0, block_s, blocks);
@@ -516,8 +532,19 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
       if (b.squares[i] / b.counts[i] > b.squares[worst] / std::max(1.0, b.counts[worst])) worst = i;
     }
     if (means.empty()) return "";
-    return fmt::format("; by {:g} s block: median {:.3g}, worst {:.3g} at +{:.0f} s", block_s, quantile(means, 0.5),
-                       b.squares[worst] / std::max(1.0, b.counts[worst]), (static_cast<double>(worst) + 0.5) * block_s);
+    double rest = 0.0, rest_count = 0.0;
+    for (std::size_t i = 0; i < b.counts.size(); ++i) {
+      if (i == worst) continue;
+      rest += b.squares[i];
+      rest_count += b.counts[i];
+    }
+    const double from = t0 + static_cast<double>(worst) * block_s;
+    return fmt::format(
+        "; by {:g} s block: median {:.3g}, worst {:.3g} at +{:.0f} s (longest without an observation there: {:.1f} "
+        "s), {:.3g} without it",
+        block_s, quantile(means, 0.5), b.squares[worst] / std::max(1.0, b.counts[worst]),
+        (static_cast<double>(worst) + 0.5) * block_s, longest_blind_stretch(observation_times, from, from + block_s),
+        rest_count > 0.0 ? rest / rest_count : std::numeric_limits<double>::quiet_NaN());
   }
 
   // One method on the held-out half: its metrics, its line of the table, and its tally.
@@ -564,7 +591,10 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         method, m.process_scale, m.method == Method::kSageHusa || m.method == Method::kVbAkf ? "forget" : "R×", m.knob,
         m.tuning_rmse, m.tuning_nees, m.consistent_setting ? " (inside)" : " (outside)", pos.summary.mean,
         pos.summary.ci95_low, pos.summary.ci95_high, r.heading_rmse(), nees, inside ? "inside" : "outside", band.lower,
-        band.upper, std::isfinite(nees) && nees > band.upper ? nees_blocks_text(r, o.mid, c.block_s, blocks) : "",
+        band.upper,
+        std::isfinite(nees) && nees > band.upper
+            ? nees_blocks_text(r, o.heldout_observation_times, o.mid, c.block_s, blocks)
+            : "",
         100.0 * r.gated_fraction(), r.observations, r.recoveries, r.diverged ? ", DIVERGED" : "");
     tally.rmse.push_back(pos.summary.mean);
     tally.diverged += r.diverged ? 1 : 0;
