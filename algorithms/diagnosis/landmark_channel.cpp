@@ -175,8 +175,7 @@ class LmFitter {
     const auto& g = geometry(m.time_offset);
     NllDerivatives derivatives;
     if (exact_) {
-      derivatives = [&](const std::vector<double>& v, const std::vector<bool>& /*skipped: none marked*/,
-                        Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian) {
+      derivatives = [&](const std::vector<double>& v, Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian) {
         const LandmarkModel x = apply(v);
         if (!(x.dof <= 1e4) || !landmark_nll_derivatives(d_, g, x, index_, out.coords, gradient, hessian)) return false;
         if (v[0] < 0.0) {  // σ_r = |v₀|

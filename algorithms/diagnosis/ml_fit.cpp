@@ -40,25 +40,10 @@ class Surface {
       h = last_h_;
       return;
     }
-    compute_gradient_hessian(x, fx, g, h, true);
+    compute_gradient_hessian(x, fx, g, h);
     last_x_ = x;
     last_g_ = g;
     last_h_ = h;
-  }
-
-  // The Hessian for the intervals: exact wherever the caller gives derivatives, also for the
-  // parameters the descent differences (FitParameter::differences).
-  Eigen::MatrixXd interval_hessian(const Eigen::VectorXd& x, double fx) {
-    Eigen::VectorXd g;
-    Eigen::MatrixXd h;
-    const bool marked =
-        std::any_of(params_.begin(), params_.end(), [](const FitParameter& p) { return p.differences; });
-    if (marked && derivatives_) {
-      compute_gradient_hessian(x, fx, g, h, false);
-    } else {
-      gradient_hessian(x, fx, g, h);
-    }
-    return h;
   }
 
   const Coordinates& coords() const { return coords_; }
@@ -66,10 +51,10 @@ class Surface {
  private:
   // Exact derivatives with respect to the values, mapped to the fitted coordinates z (v = e^z
   // for positive parameters: ∂f/∂z = v·∂f/∂v, ∂²f/∂z_i∂z_j = v_i·v_j·∂²f/∂v_i∂v_j + δ_ij·v_i·∂f/∂v_i).
-  bool exact(const Eigen::VectorXd& x, const std::vector<bool>& skipped, Eigen::VectorXd& g, Eigen::MatrixXd& h) const {
+  bool exact(const Eigen::VectorXd& x, Eigen::VectorXd& g, Eigen::MatrixXd& h) const {
     if (!derivatives_) return false;
     const std::vector<double> v = coords_.values(x);
-    if (!derivatives_(v, skipped, g, h) || !g.allFinite() || !h.allFinite()) return false;
+    if (!derivatives_(v, g, h) || !g.allFinite() || !h.allFinite()) return false;
     for (std::size_t i = 0; i < n_; ++i) {
       if (!params_[i].positive) continue;
       h.row(i) *= v[i];
@@ -80,34 +65,23 @@ class Surface {
     return true;
   }
 
-  // Central differences for every coordinate without exact derivatives, and for the rows and
-  // columns of those marked `differences` when there are and `marked_differences` is set.
-  void compute_gradient_hessian(const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h,
-                                bool marked_differences) const {
+  // Central differences when the caller gives no exact derivatives (or not at x).
+  void compute_gradient_hessian(const Eigen::VectorXd& x, double fx, Eigen::VectorXd& g, Eigen::MatrixXd& h) const {
+    if (exact(x, g, h)) return;
     const auto& f = *this;
     const std::size_t n = n_;
-    std::vector<bool> skipped(n, false);
-    for (std::size_t i = 0; i < n && marked_differences; ++i) skipped[i] = params_[i].differences;
-    const bool have_exact = exact(x, skipped, g, h);
-    if (!have_exact) {
-      g.resize(n);
-      h.resize(n, n);
-    }
-    auto differenced = [&](std::size_t i) { return !have_exact || skipped[i]; };
-    std::vector<double> fp(n), fm(n);
+    g.resize(n);
+    h.resize(n, n);
     for (std::size_t i = 0; i < n; ++i) {
-      if (!differenced(i)) continue;
       Eigen::VectorXd a = x, b = x;
       a[i] += coords_.step(i);
       b[i] -= coords_.step(i);
-      fp[i] = f(a);
-      fm[i] = f(b);
-      g[i] = (fp[i] - fm[i]) / (2.0 * coords_.step(i));
-      h(i, i) = (fp[i] - 2.0 * fx + fm[i]) / (coords_.step(i) * coords_.step(i));
+      const double fp = f(a), fm = f(b);
+      g[i] = (fp - fm) / (2.0 * coords_.step(i));
+      h(i, i) = (fp - 2.0 * fx + fm) / (coords_.step(i) * coords_.step(i));
     }
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = i + 1; j < n; ++j) {
-        if (!differenced(i) && !differenced(j)) continue;
         Eigen::VectorXd pp = x, pm = x, mp = x, mm = x;
         pp[i] += coords_.step(i), pp[j] += coords_.step(j);
         pm[i] += coords_.step(i), pm[j] -= coords_.step(j);
@@ -153,6 +127,18 @@ bool damped_newton_step(const Surface& f, const Eigen::VectorXd& g, const Eigen:
     const Eigen::VectorXd zn = d.z + dz;
     // A step below the resolution of z (strong damping) leaves z as it is, and f(z) = fx.
     const double fn = zn == d.z ? d.fx : f(zn);
+    // An (almost) undamped step whose quadratic model promises next to nothing: the optimum, up to
+    // the likelihood's rounding (raising the damping to find a step that still descends would cost
+    // up to 30 evaluations for nothing).
+    const double promised = -(g.dot(dz) + 0.5 * dz.dot(h * dz));
+    if (tries == 0 && d.lambda <= 1e-2 && promised >= 0.0 && promised < 1e-9 * (1.0 + std::abs(d.fx))) {
+      if (fn < d.fx) {
+        d.z = zn;
+        d.fx = fn;
+      }
+      converged = true;
+      return true;
+    }
     if (fn < d.fx) {
       const double gain = d.fx - fn;
       d.z = zn;
@@ -176,15 +162,21 @@ void descend(Surface& f, Descent& d, int max_iterations, FitResult& r) {
     const double before_restart = d.fx;
     d.lambda = 1e-3;
     r.converged = false;
+    bool settled = false;  // an (almost) undamped step gained next to nothing: at the optimum
     for (int it = 0; it < max_iterations; ++it, ++r.iterations) {
       f.gradient_hessian(d.z, d.fx, g, h);
       if (!damped_newton_step(f, g, h, d, r.converged)) {
         r.converged = true;  // no descent step exists at this resolution: a (local) minimum
         break;
       }
-      if (r.converged) break;
+      if (r.converged) {
+        settled = true;
+        break;
+      }
     }
-    if (before_restart - d.fx < 1e-9 * (1.0 + std::abs(d.fx))) break;
+    // A restart is for a descent that stopped because no damped step descended or it ran out of
+    // iterations; one that settled has nothing left to gain.
+    if (settled || before_restart - d.fx < 1e-9 * (1.0 + std::abs(d.fx))) break;
   }
 }
 
@@ -192,7 +184,9 @@ void descend(Surface& f, Descent& d, int max_iterations, FitResult& r) {
 void fill_intervals(Surface& f, const Eigen::VectorXd& z, double fx, const std::vector<FitParameter>& params,
                     FitResult& r) {
   const std::size_t n = params.size();
-  const Eigen::MatrixXd h = f.interval_hessian(z, fx);
+  Eigen::VectorXd g;
+  Eigen::MatrixXd h;
+  f.gradient_hessian(z, fx, g, h);
   const linalg::SymmetricEigen eig = linalg::symmetric_eigen(Eigen::MatrixXd(0.5 * (h + h.transpose())));
   r.hessian_ok = eig.values.minCoeff() > 1e-12 * std::max(1.0, eig.values.maxCoeff());
   if (r.hessian_ok) {

@@ -17,11 +17,6 @@ struct FitParameter {
   double initial = 0.0;
   double scale = 1.0;     // a typical size of a change (sets finite-difference steps)
   bool positive = false;  // fitted as log(value)
-  // Its gradient entry and Hessian row by central differences even when the caller gives exact
-  // derivatives: for a parameter the likelihood is not smooth in (jumps smaller than the steps).
-  // The descent only: the intervals' Hessian at the optimum is the exact one, as central
-  // differences across a jump see a curvature that is not there.
-  bool differences = false;
 };
 
 struct FitResult {
@@ -41,11 +36,9 @@ struct FitResult {
 using NegLogLikelihood = std::function<double(const std::vector<double>& values)>;
 
 // The exact gradient and Hessian of the NLL with respect to the values (not their log scale) at
-// `values`; false when they cannot be given there (central differences are then used). The
-// entries of the parameters marked in `skipped` are not needed (the fit differences them) and may
-// be left as anything.
-using NllDerivatives = std::function<bool(const std::vector<double>& values, const std::vector<bool>& skipped,
-                                          Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian)>;
+// `values`; false when they cannot be given there (central differences are then used).
+using NllDerivatives =
+    std::function<bool(const std::vector<double>& values, Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian)>;
 
 // `nll` may return +inf for invalid values (the step is then shortened).
 FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitParameter>& params,

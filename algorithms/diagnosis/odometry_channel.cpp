@@ -103,10 +103,7 @@ class Fitter {
         if (c.second == field) return;
       }
       out.coords.emplace_back(name, field);
-      // The drive response's likelihood jumps where 4τ, the span its state is run over before a
-      // window, crosses an odometry step: the descent's derivatives in τ stay central differences,
-      // which see those jumps as the fits always did (its interval takes the exact curvature).
-      fp.push_back({name, initial, scale, positive, field == &OdometryModel::drive_tau});
+      fp.push_back({name, initial, scale, positive});
     };
     if (d_.reference != ReferenceKind::kCompass) {
       add("sigma_x", &OdometryModel::sigma_x, start.sigma_x, 0.0, true);
@@ -131,11 +128,9 @@ class Fitter {
     for (std::size_t i = 0; i < fp.size(); ++i) fields.push_back(out.coords[i].second);
     NllDerivatives derivatives;
     if (exact_) {
-      derivatives = [&](const std::vector<double>& v, const std::vector<bool>& skipped, Eigen::VectorXd& g,
-                        Eigen::MatrixXd& h) {
+      derivatives = [&](const std::vector<double>& v, Eigen::VectorXd& g, Eigen::MatrixXd& h) {
         const OdometryModel m = apply(v);
-        return plausible(m) &&
-               negative_log_likelihood_derivatives(d_, m, index_, fields, g, h, &cache_, &skipped).has_value();
+        return plausible(m) && negative_log_likelihood_derivatives(d_, m, index_, fields, g, h, &cache_).has_value();
       };
     }
     adopt_fit(out,
@@ -257,8 +252,22 @@ class OdoFitsBySet {
     std::sort(key.begin(), key.end());
     if (auto it = fits_.find(key); it != fits_.end()) return it->second;
     std::vector<std::size_t> without(active.begin(), active.end() - 1);
-    const OdometryModel start = (*this)(without).model;
+    const OdometryModel start = start_of(active, (*this)(without).model);
     return fits_[key] = fitter_.fit(specs(key), start, false);
+  }
+
+  // The start of `active`'s fit: the fit without its last member, with that member's parameters
+  // where it was fitted alone, when it was (nearer the optimum than the catalog's initial values:
+  // fewer Newton steps). Not a time offset: fitted alone it takes up the drive's lag, and its
+  // profile started there stays on that side of the lag–offset ridge.
+  OdometryModel start_of(const std::vector<std::size_t>& active, OdometryModel start) const {
+    if (active.size() < 2 || candidates_[active.back()]->id == cause::kTimeOffset) return start;
+    const auto alone = fits_.find({active.back()});
+    if (alone == fits_.end()) return start;
+    for (const auto& p : candidates_[active.back()]->params) {
+      if (p.field != nullptr) start.*(p.field) = alone->second.model.*(p.field);
+    }
+    return start;
   }
 
   // The fits of `sets` not fitted yet, side by side (each from the fit without its last member,
@@ -273,12 +282,16 @@ class OdoFitsBySet {
       std::sort(key.begin(), key.end());
       const bool queued = std::any_of(jobs.begin(), jobs.end(), [&](const FitJob& j) { return j.key == key; });
       if (fits_.count(key) != 0 || queued) continue;
-      jobs.push_back({key, {}});
+      jobs.push_back({key, {}, active.back()});
       starts.emplace_back(active.begin(), active.end() - 1);
     }
     if (jobs.empty()) return;
     prefit(starts);
-    for (std::size_t i = 0; i < jobs.size(); ++i) jobs[i].start = (*this)(starts[i]).model;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      std::vector<std::size_t> active = starts[i];
+      active.push_back(jobs[i].last);
+      jobs[i].start = start_of(active, (*this)(starts[i]).model);
+    }
     fit_side_by_side(jobs, false, fits_);
   }
 
@@ -306,6 +319,7 @@ class OdoFitsBySet {
   struct FitJob {
     std::vector<std::size_t> key;
     OdometryModel start;
+    std::size_t last = 0;  // the member added last (prefit)
   };
 
   // The fits of `jobs` in parallel, each with its own copy of the fitter's window cache, entered

@@ -129,14 +129,18 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
   // to the mean fields per step (a run-in over all mean fields costs a third more per call).
   const int at = tau_index(s);
   const TauNumber t = at >= 0 ? TauNumber::variable(tau.v, 0, 1) : TauNumber(tau.v);
-  const std::size_t start = drive_run_in_start(d, w, tau.v);
-  const StepRates r0 = drive_start_rates(d, start, tau.v);
-  TauNumber u(r0.v), omega(r0.rate);
-  for (std::size_t i = start; i < w.last; ++i) {
+  const DriveRunIn run_in = drive_run_in(d, w, tau.v);
+  // t_s = (w's first step's start) − 4τ moves with τ unless clamped; the state there is the
+  // interpolated rate.
+  const TauNumber start = run_in.clamped ? TauNumber(run_in.t) : d.steps[w.first].t0 - 4.0 * t;
+  const TauNumber moved = start - run_in.t;
+  TauNumber u = run_in.v + run_in.v_slope * moved, omega = run_in.rate + run_in.rate_slope * moved;
+  for (std::size_t i = run_in.step; i < w.last; ++i) {
     const auto& st = d.steps[i];
-    const auto [dt, v, rate] = step_rates(st);
+    const auto [full_dt, v, rate] = step_rates(st);
+    const TauNumber dt = i == run_in.step && i < w.first ? st.t1 - start : TauNumber(full_dt);
     TauNumber dd(st.a), dth(st.b);
-    if (tau.v > 0.0 && dt > 0.0) {
+    if (tau.v > 0.0 && dt.v > 0.0) {
       const TauNumber decay = exp(-dt / t);
       dd = v * dt + (u - v) * t * (1.0 - decay);
       u = v + (u - v) * decay;
@@ -145,7 +149,7 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
     }
     if (i < w.first) continue;
     const Mean scale = velocity_scale + speed_slope * std::abs(v);
-    p = advance(p, scale * lift_tau(dd, at, s.n), turn_scale * lift_tau(dth, at, s.n) + turn_bias * dt);
+    p = advance(p, scale * lift_tau(dd, at, s.n), turn_scale * lift_tau(dth, at, s.n) + turn_bias * full_dt);
   }
   return p;
 }
@@ -412,27 +416,8 @@ std::optional<double> negative_log_likelihood_derivatives(const MotionData& d, c
                                                           const std::vector<std::size_t>& index,
                                                           const std::vector<double OdometryModel::*>& fields,
                                                           Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian,
-                                                          WindowCache* cache, const std::vector<bool>* skip) {
-  if (skip == nullptr) return derivatives_of(d, m, index, fields, gradient, hessian, cache);
-  std::vector<double OdometryModel::*> kept;
-  std::vector<Eigen::Index> at;
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    if ((*skip)[i]) continue;
-    kept.push_back(fields[i]);
-    at.push_back(static_cast<Eigen::Index>(i));
-  }
-  Eigen::VectorXd g;
-  Eigen::MatrixXd h;
-  const auto value = derivatives_of(d, m, index, kept, g, h, cache);
-  if (!value) return std::nullopt;
-  const auto n = static_cast<Eigen::Index>(fields.size());
-  gradient = Eigen::VectorXd::Zero(n);
-  hessian = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::Index a = 0; a < g.size(); ++a) {
-    gradient[at[a]] = g[a];
-    for (Eigen::Index b = 0; b < g.size(); ++b) hessian(at[a], at[b]) = h(a, b);
-  }
-  return value;
+                                                          WindowCache* cache) {
+  return derivatives_of(d, m, index, fields, gradient, hessian, cache);
 }
 
 }  // namespace locbench::diagnosis

@@ -23,14 +23,11 @@ inline constexpr int kMaxDifferentiatedFields = 12;
 // m.*fields[i] (i in fields' order) and returns the likelihood's value. Returns nullopt, with
 // nothing filled, when a field is not differentiable here (time_offset: it is profiled, not
 // fitted by Newton), there are too many, or the model has drive stalls on a compass reference.
-// `cache` (optional, belonging to d) supplies the reference windows. The fields marked in `skip`
-// (optional, one flag per field) are held: their gradient entries and Hessian rows are zero (for
-// a caller that differences them).
+// `cache` (optional, belonging to d) supplies the reference windows.
 std::optional<double> negative_log_likelihood_derivatives(const MotionData& d, const OdometryModel& m,
                                                           const std::vector<std::size_t>& index,
                                                           const std::vector<double OdometryModel::*>& fields,
                                                           Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian,
-                                                          WindowCache* cache = nullptr,
-                                                          const std::vector<bool>* skip = nullptr);
+                                                          WindowCache* cache = nullptr);
 
 }  // namespace locbench::diagnosis

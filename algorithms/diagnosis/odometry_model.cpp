@@ -61,28 +61,57 @@ double expected_stall_loss(const MotionData& d, const MotionWindow& w, const Odo
   return s.p * s.fraction;
 }
 
-std::size_t drive_run_in_start(const MotionData& d, const MotionWindow& w, double tau) {
-  std::size_t start = w.first;
-  double span = 0.0;
-  while (tau > 0.0 && start > 0 && span < 4.0 * tau && d.steps[start - 1].t1 == d.steps[start].t0) {
-    --start;
-    span += d.steps[start].t1 - d.steps[start].t0;
-  }
-  return start;
+namespace {
+
+bool contiguous(const MotionData& d, std::size_t i) { return d.steps[i - 1].t1 == d.steps[i].t0; }
+
+double midpoint(const OdometryStep& s) { return 0.5 * (s.t0 + s.t1); }
+
+// The logged rates at time t inside step k, interpolated linearly between the midpoints of k and
+// its contiguous neighbour on t's side (k's own rates where there is none).
+void interpolated_rates(const MotionData& d, std::size_t k, double t, DriveRunIn& r) {
+  const StepRates here = step_rates(d.steps[k]);
+  r.v = here.v;
+  r.rate = here.rate;
+  r.v_slope = r.rate_slope = 0.0;
+  const double mid = midpoint(d.steps[k]);
+  std::size_t other = k;
+  if (t < mid && k > 0 && contiguous(d, k)) other = k - 1;
+  if (t >= mid && k + 1 < d.steps.size() && contiguous(d, k + 1)) other = k + 1;
+  const double span = midpoint(d.steps[other]) - mid;
+  if (other == k || span == 0.0) return;
+  const StepRates there = step_rates(d.steps[other]);
+  r.v_slope = (there.v - here.v) / span;
+  r.rate_slope = (there.rate - here.rate) / span;
+  r.v += r.v_slope * (t - mid);
+  r.rate += r.rate_slope * (t - mid);
 }
 
-StepRates drive_start_rates(const MotionData& d, std::size_t start, double tau) {
-  return tau > 0.0 ? step_rates(d.steps[start]) : StepRates{};
+}  // namespace
+
+DriveRunIn drive_run_in(const MotionData& d, const MotionWindow& w, double tau) {
+  DriveRunIn r;
+  r.step = w.first;
+  if (w.first >= d.steps.size()) return r;
+  r.t = d.steps[w.first].t0;
+  if (!(tau > 0.0)) return r;
+  r.t -= 4.0 * tau;
+  while (r.step > 0 && d.steps[r.step].t0 > r.t && contiguous(d, r.step)) --r.step;
+  if (d.steps[r.step].t0 > r.t) {
+    r.t = d.steps[r.step].t0;
+    r.clamped = true;
+  }
+  interpolated_rates(d, r.step, r.t, r);
+  return r;
 }
 
 void drive_increments(const MotionData& d, const MotionWindow& w, double tau, double* out) {
-  // The drive's state at the window's start: the response run from 4τ before it (e^−4 = 2%).
-  const std::size_t start = drive_run_in_start(d, w, tau);
-  const StepRates r0 = drive_start_rates(d, start, tau);
-  double u = r0.v, omega = r0.rate;
-  for (std::size_t i = start; i < w.last; ++i) {
+  const DriveRunIn r = drive_run_in(d, w, tau);
+  double u = r.v, omega = r.rate;
+  for (std::size_t i = r.step; i < w.last; ++i) {
     const auto& s = d.steps[i];
-    const auto [dt, v, rate] = step_rates(s);
+    auto [dt, v, rate] = step_rates(s);
+    if (i == r.step && i < w.first) dt = s.t1 - r.t;  // the part of the run-in's first step after t_s
     double dd = s.a, dth = s.b;
     if (tau > 0.0 && dt > 0.0) {
       const double decay = std::exp(-dt / tau);
@@ -190,8 +219,8 @@ WindowResidual window_residual(const MotionData& d, const MotionWindow& w, const
 
 namespace {
 constexpr std::size_t kReferenceEntries = 256;  // reference windows at this many time offsets
-// Predictions for this many mean models: a Newton step of a fit with τ differenced asks for τ ± h
-// alone and with ± each other mean parameter, up to 18 models (ml_fit.cpp).
+// Predictions for this many mean models: a Newton step by central differences (where exact
+// derivatives are not given, ml_fit.cpp) asks for each mean parameter ± h alone and in pairs.
 constexpr std::size_t kPredictionEntries = 32;
 
 // The entry of `entries` that `matches` (the last such); else a slot for a new one, `is_new` set:

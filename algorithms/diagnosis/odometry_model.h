@@ -94,15 +94,24 @@ Eigen::Vector3d window_variance(const MotionData& d, const MotionWindow& w, cons
 // The prediction of window w under model m (in the frame of the window's start).
 Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m);
 // Pose odometry: the true increments (ΔD, Δθ) of window w's own steps [w.first, w.last) through
-// the drive response of time constant `tau` (its state run in from 4τ before the window; the
-// logged increments when tau = 0), two per step into `out`. They depend on τ alone, so the fits
+// the drive response of time constant `tau` (its state run in from 4τ before the window,
+// drive_run_in; the logged increments when tau = 0), two per step into `out`. They depend on τ alone, so the fits
 // reuse them while the scales and the bias move (WindowCache::increments).
 void drive_increments(const MotionData& d, const MotionWindow& w, double tau, double* out);
-// The first step of w's drive run-in under τ: steps contiguous before w back to 4τ (e^−4 = 2%);
-// w.first when τ ≤ 0.
-std::size_t drive_run_in_start(const MotionData& d, const MotionWindow& w, double tau);
-// The drive's state where that run-in starts (step `start`): the step's logged rates; 0 when τ ≤ 0.
-StepRates drive_start_rates(const MotionData& d, std::size_t start, double tau);
+// Where window w's drive run-in starts under τ > 0: at t_s = 4τ before w's first step (e^−4 = 2%), or at the first
+// of w's contiguous steps when that is later (`clamped`: t_s then does not move with τ). The drive's
+// state there is the logged rate interpolated linearly between the midpoints of contiguous steps,
+// and the run-in covers only the part of its first step after t_s, so a window's prediction is
+// continuous in τ (a run-in from a step's start at that step's rate jumped wherever 4τ crossed a
+// step, and the descent in τ needs derivatives). τ ≤ 0: no run-in, step w.first.
+struct DriveRunIn {
+  std::size_t step = 0;                    // the step holding t_s
+  double t = 0.0;                          // t_s
+  bool clamped = false;                    // t_s at the start of the contiguous steps
+  double v = 0.0, rate = 0.0;              // the interpolated rates at t_s [m/s, rad/s]
+  double v_slope = 0.0, rate_slope = 0.0;  // their derivatives in t_s
+};
+DriveRunIn drive_run_in(const MotionData& d, const MotionWindow& w, double tau);
 // predict_window with w's drive_increments under m.drive_tau given (pose odometry; the same
 // result bit for bit).
 Pose2 predict_window(const MotionData& d, const MotionWindow& w, const OdometryModel& m, const double* increments);

@@ -52,6 +52,29 @@ TEST(OdometryModel, TheDriveResponseMovesAsAFineEulerIntegrationOfTheFirstOrderL
   EXPECT_NEAR(p.x, 0.5 * (1.0 - 0.3 * (1.0 - std::exp(-1.0 / 0.3))), 1e-9);
 }
 
+TEST(OdometryModel, TheDrivePredictionIsContinuousInTauWhereItsRunInCrossesAStep) {
+  // Steps of 0.125 s (exact in binary, so they are contiguous) whose speed alternates 0.2 / 0.6 m/s;
+  // at τ = 0.25 s the run-in's start, 4τ = 1 s before the window, falls on a step boundary. A
+  // run-in that started there at that step's own speed jumped by ~e^−4·0.4·τ·(1 − e^(−Δt/τ)) ≈ 1.4 mm.
+  MotionData d;
+  d.odometry = OdometryKind::kPose;
+  d.reference = ReferenceKind::kRelations;
+  for (int i = 0; i < 40; ++i) {
+    const double v = i % 2 == 0 ? 0.2 : 0.6;
+    d.steps.push_back({0.125 * i, 0.125 * (i + 1), v * 0.125, 0.0});
+  }
+  const MotionWindow w = window_over(20, 28, 3.5);
+  OdometryModel below, above;
+  below.drive_tau = 0.25 - 1e-9;
+  above.drive_tau = 0.25 + 1e-9;
+  EXPECT_EQ(drive_run_in(d, w, 0.25).step, 12u);
+  EXPECT_NEAR(predict_window(d, w, below).x, predict_window(d, w, above).x, 1e-9);
+  // And it still responds to τ: 10 ms more lag moves the window's end by a measurable amount.
+  OdometryModel later = above;
+  later.drive_tau = 0.26;
+  EXPECT_GT(std::abs(predict_window(d, w, later).x - predict_window(d, w, above).x), 1e-5);
+}
+
 TEST(OdometryModel, ScalesActOnTheLoggedMotionAndTheSpeedSlopeOnItsSpeed) {
   const MotionData d = one_second_at_0_4_m_per_s();
   const MotionWindow w = window_over(0, 10);

@@ -116,26 +116,5 @@ TEST(MaxLikelihoodFit, RecoversTheMeanAndSigmaOfANormalSampleWithCalibratedInter
   EXPECT_LE(covered, 197);
 }
 
-TEST(MaxLikelihoodFit, AParameterDescendedByDifferencesGetsItsIntervalFromTheExactCurvature) {
-  // NLL (x − 1)²/(2·0.1²) plus a jump of 1e-5 at x = 1.00003, the way a truncated run-in makes the
-  // drive response's likelihood jump; the exact derivatives are the smooth part's. Central
-  // differences (steps 1e-4) straddle the jump: a curvature of 100 + 1e-5/1e-8 = 1100 instead of 100.
-  const auto nll = [](const std::vector<double>& p) {
-    return 0.5 * (p[0] - 1.0) * (p[0] - 1.0) / 0.01 + (p[0] > 1.00003 ? 1e-5 : 0.0);
-  };
-  const NllDerivatives exact = [](const std::vector<double>& p, const std::vector<bool>& skipped, Eigen::VectorXd& g,
-                                  Eigen::MatrixXd& h) {
-    g = Eigen::VectorXd::Constant(1, skipped[0] ? 0.0 : (p[0] - 1.0) / 0.01);
-    h = Eigen::MatrixXd::Constant(1, 1, skipped[0] ? 0.0 : 1.0 / 0.01);
-    return true;
-  };
-  FitParameter x{"x", 0.7, 1.0, false};
-  x.differences = true;
-  const FitResult f = fit_max_likelihood(nll, {x}, 100, exact);
-  EXPECT_NEAR(f.values[0], 1.0, 1e-4);
-  EXPECT_NEAR(f.ci_high[0] - f.values[0], 1.959963984540054 * 0.1, 1e-9);  // σ = 0.1: the smooth part's
-  EXPECT_NEAR(f.values[0] - f.ci_low[0], 1.959963984540054 * 0.1, 1e-9);
-}
-
 }  // namespace
 }  // namespace locbench::diagnosis
