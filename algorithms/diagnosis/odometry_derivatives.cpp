@@ -82,21 +82,132 @@ PoseT<T> advance(const PoseT<T>& p, const T& dd, const T& dth) {
 // A number over τ alone.
 using TauNumber = HyperDual<1>;
 
-// τ's place among the mean fields (−1: not fitted).
-int tau_index(const Seeded<Mean>& s) {
-  const auto it = std::find(s.fields.begin(), s.fields.end(), &OdometryModel::drive_tau);
-  return it == s.fields.end() ? -1 : static_cast<int>(it - s.fields.begin());
-}
+// The window pose of pose odometry over its mean fields by the chain rule. Each step adds
+// T = a·K(b/2)·(cos φ, sin φ) with a = (scale + slope·|v|)·ΔD(τ) the step's distance,
+// b = turn_scale·Δθ(τ) + turn_bias·Δt its turn, φ the heading at its middle and K(h) = sin h / h
+// the chord's factor (eq. 1.3 with the arc's chord); T's derivatives in (a, b, φ) are closed form,
+// and (a, b, φ) are at most quadratic in the five fields (scale, slope, turn scale, turn bias, τ).
+// The values are computed as predict_window computes them.
+class ChainPose {
+ public:
+  enum Param { kScale, kSlope, kTurnScale, kTurnBias, kTau, kParams };
 
-// A number over τ as a number over the n mean fields, τ the at-th.
-Mean lift_tau(const TauNumber& x, int at, int n) {
-  if (x.n == 0) return Mean(x.v);
-  Mean r = Mean::zero(n);
-  r.v = x.v;
-  r.g[at] = x.g[0];
-  r.h[at * n - at * (at - 1) / 2] = x.h[0];
-  return r;
-}
+  ChainPose(double scale, double slope, double turn_scale, double turn_bias)
+      : scale_(scale), slope_(slope), turn_scale_(turn_scale), turn_bias_(turn_bias) {}
+
+  // One step: its logged distance and turn increments through the drive response (value, ∂τ, ∂²τ),
+  // its duration and its logged speed.
+  void step(const HyperDual<1>& dd, const HyperDual<1>& dth, double dt, double speed) {
+    const double d1 = dd.n ? dd.g[0] : 0.0, d2 = dd.n ? dd.h[0] : 0.0;
+    const double t1 = dth.n ? dth.g[0] : 0.0, t2 = dth.n ? dth.h[0] : 0.0;
+    const double s = scale_ + slope_ * speed;
+    const double a = s * dd.v;
+    const double b = turn_scale_ * dth.v + turn_bias_ * dt;
+    const double half = 0.5 * b;
+    const double phi = theta_ + half;
+    // K(h) with predict_window's value; its derivatives by the series where sin h / h cancels.
+    const double k = std::abs(half) < 1e-6 ? 1.0 : std::sin(half) / half;
+    double k1, k2;
+    if (std::abs(half) < 1e-2) {
+      const double h2 = half * half;
+      k1 = -half / 3.0 + half * h2 / 30.0;
+      k2 = -1.0 / 3.0 + h2 / 10.0;
+    } else {
+      const double sh = std::sin(half), ch = std::cos(half);
+      k1 = (half * ch - sh) / (half * half);
+      k2 = -sh / half - 2.0 * ch / (half * half) + 2.0 * sh / (half * half * half);
+    }
+    const double sn = std::sin(phi), cs = std::cos(phi);
+    const double chord = std::abs(half) < 1e-6 ? a : a * std::sin(half) / half;
+    x_ += chord * cs;
+    y_ += chord * sn;
+    // J: ∂(a, b, φ)/∂params, and their second derivatives (only τ's cross terms).
+    const double run1 = turn1_ + 0.5 * t1, run2 = turn2_ + 0.5 * t2;  // φ's Σ Δθ' and Σ Δθ'' to the middle
+    double J[3][kParams] = {{dd.v, speed * dd.v, 0.0, 0.0, s * d1},
+                            {0.0, 0.0, dth.v, dt, turn_scale_ * t1},
+                            {0.0, 0.0, turn0_ + 0.5 * dth.v, time_ + 0.5 * dt, turn_scale_ * run1}};
+    // T's derivatives in (a, b, φ) for x (cos) and y (sin); ∂/∂b = ½K'·…, ∂²/∂b² = ¼K''·….
+    const double gx[3] = {k * cs, 0.5 * a * k1 * cs, -a * k * sn};
+    const double gy[3] = {k * sn, 0.5 * a * k1 * sn, a * k * cs};
+    const double hx[3][3] = {{0.0, 0.5 * k1 * cs, -k * sn},
+                             {0.5 * k1 * cs, 0.25 * a * k2 * cs, -0.5 * a * k1 * sn},
+                             {-k * sn, -0.5 * a * k1 * sn, -a * k * cs}};
+    const double hy[3][3] = {{0.0, 0.5 * k1 * sn, k * cs},
+                             {0.5 * k1 * sn, 0.25 * a * k2 * sn, 0.5 * a * k1 * cs},
+                             {k * cs, 0.5 * a * k1 * cs, -a * k * sn}};
+    add(gx, hx, J, gx_, hx_);
+    add(gy, hy, J, gy_, hy_);
+    // Second derivatives of a, b, φ in the params (symmetric pairs with τ).
+    const double a_st = d1, a_lt = speed * d1, a_tt = s * d2;
+    const double b_tt = turn_scale_ * t2, b_ct = t1;  // (turn scale, τ)
+    const double f_tt = turn_scale_ * run2, f_ct = run1;
+    for (int c = 0; c < 2; ++c) {
+      const double* g = c == 0 ? gx : gy;
+      double(&h)[kParams][kParams] = c == 0 ? hx_ : hy_;
+      h[kScale][kTau] += g[0] * a_st;
+      h[kTau][kScale] += g[0] * a_st;
+      h[kSlope][kTau] += g[0] * a_lt;
+      h[kTau][kSlope] += g[0] * a_lt;
+      h[kTau][kTau] += g[0] * a_tt + g[1] * b_tt + g[2] * f_tt;
+      h[kTurnScale][kTau] += g[1] * b_ct + g[2] * f_ct;
+      h[kTau][kTurnScale] += g[1] * b_ct + g[2] * f_ct;
+    }
+    theta_ += b;
+    turn0_ += dth.v;
+    turn1_ += t1;
+    turn2_ += t2;
+    time_ += dt;
+  }
+
+  // The pose as numbers over the fitted mean fields; `at[p]` is param p's place among them (−1: not fitted).
+  template <class Number>
+  PoseT<Number> pose(const std::array<int, kParams>& at, int n) const {
+    PoseT<Number> out;
+    double gt[kParams] = {0.0, 0.0, turn0_, time_, turn_scale_ * turn1_};
+    double ht[kParams][kParams] = {};
+    ht[kTurnScale][kTau] = ht[kTau][kTurnScale] = turn1_;
+    ht[kTau][kTau] = turn_scale_ * turn2_;
+    out.x = number<Number>(x_, gx_, hx_, at, n);
+    out.y = number<Number>(y_, gy_, hy_, at, n);
+    out.theta = number<Number>(theta_, gt, ht, at, n);
+    return out;
+  }
+
+ private:
+  static void add(const double (&g)[3], const double (&h)[3][3], const double (&J)[3][kParams], double (&gs)[kParams],
+                  double (&hs)[kParams][kParams]) {
+    double m[3][kParams];  // h·J
+    for (int u = 0; u < 3; ++u) {
+      for (int p = 0; p < kParams; ++p) m[u][p] = h[u][0] * J[0][p] + h[u][1] * J[1][p] + h[u][2] * J[2][p];
+    }
+    for (int p = 0; p < kParams; ++p) {
+      gs[p] += g[0] * J[0][p] + g[1] * J[1][p] + g[2] * J[2][p];
+      for (int q = 0; q < kParams; ++q) hs[p][q] += J[0][p] * m[0][q] + J[1][p] * m[1][q] + J[2][p] * m[2][q];
+    }
+  }
+  template <class Number>
+  static Number number(double v, const double (&g)[kParams], const double (&h)[kParams][kParams],
+                       const std::array<int, kParams>& at, int n) {
+    if (n == 0) return Number(v);
+    Number r = Number::zero(n);
+    r.v = v;
+    for (int p = 0; p < kParams; ++p) {
+      if (at[p] < 0) continue;
+      r.g[at[p]] = g[p];
+      for (int q = 0; q < kParams; ++q) {
+        if (at[q] < at[p]) continue;
+        r.h[at[p] * n - at[p] * (at[p] - 1) / 2 + (at[q] - at[p])] = h[p][q];
+      }
+    }
+    return r;
+  }
+
+  double scale_, slope_, turn_scale_, turn_bias_;
+  double x_ = 0.0, y_ = 0.0, theta_ = 0.0;
+  double turn0_ = 0.0, turn1_ = 0.0, turn2_ = 0.0, time_ = 0.0;  // Σ Δθ, Σ ∂τΔθ, Σ ∂²τΔθ, Σ Δt so far
+  double gx_[kParams] = {}, gy_[kParams] = {};
+  double hx_[kParams][kParams] = {}, hy_[kParams][kParams] = {};
+};
 
 // predict_window of odometry_model.cpp without stalls (the likelihood's mean model). `increments`
 // (pose odometry, τ not differentiated): the window's drive_increments, constants here.
@@ -113,23 +224,26 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
     }
     return p;
   }
-  const Mean tau = s(&OdometryModel::drive_tau);
-  const Mean velocity_scale = s(&OdometryModel::velocity_scale), speed_slope = s(&OdometryModel::speed_slope);
-  const Mean turn_scale = s(&OdometryModel::turn_rate_scale), turn_bias = s(&OdometryModel::turn_rate_bias);
+  const auto field = [&](double OdometryModel::*f) {
+    const auto it = std::find(s.fields.begin(), s.fields.end(), f);
+    return it == s.fields.end() ? -1 : static_cast<int>(it - s.fields.begin());
+  };
+  const std::array<int, ChainPose::kParams> at{
+      field(&OdometryModel::velocity_scale), field(&OdometryModel::speed_slope), field(&OdometryModel::turn_rate_scale),
+      field(&OdometryModel::turn_rate_bias), field(&OdometryModel::drive_tau)};
+  ChainPose chain(s.m.velocity_scale, s.m.speed_slope, s.m.turn_rate_scale, s.m.turn_rate_bias);
   if (increments != nullptr) {
     for (std::size_t i = w.first; i < w.last; ++i) {
       const auto [dt, v, rate] = step_rates(d.steps[i]);
       const double* inc = increments + 2 * (i - w.first);
-      const Mean scale = velocity_scale + speed_slope * std::abs(v);
-      p = advance(p, scale * Mean(inc[0]), turn_scale * Mean(inc[1]) + turn_bias * dt);
+      chain.step(TauNumber(inc[0]), TauNumber(inc[1]), dt, std::abs(v));
     }
-    return p;
+    return chain.pose<Mean>(at, s.n);
   }
-  // The drive's increments depend on τ alone: they are run in as numbers over τ only and lifted
-  // to the mean fields per step (a run-in over all mean fields costs a third more per call).
-  const int at = tau_index(s);
-  const TauNumber t = at >= 0 ? TauNumber::variable(tau.v, 0, 1) : TauNumber(tau.v);
-  const DriveRunIn run_in = drive_run_in(d, w, tau.v);
+  // The drive's increments depend on τ alone: they are run in as numbers over τ only.
+  const double tau = s.m.drive_tau;
+  const TauNumber t = at[ChainPose::kTau] >= 0 ? TauNumber::variable(tau, 0, 1) : TauNumber(tau);
+  const DriveRunIn run_in = drive_run_in(d, w, tau);
   // t_s = (w's first step's start) − 4τ moves with τ unless clamped; the state there is the
   // interpolated rate.
   const TauNumber start = run_in.clamped ? TauNumber(run_in.t) : d.steps[w.first].t0 - 4.0 * t;
@@ -140,7 +254,7 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
     const auto [full_dt, v, rate] = step_rates(st);
     const TauNumber dt = i == run_in.step && i < w.first ? st.t1 - start : TauNumber(full_dt);
     TauNumber dd(st.a), dth(st.b);
-    if (tau.v > 0.0 && dt.v > 0.0) {
+    if (tau > 0.0 && dt.v > 0.0) {
       const TauNumber decay = exp(-dt / t);
       dd = v * dt + (u - v) * t * (1.0 - decay);
       u = v + (u - v) * decay;
@@ -148,10 +262,9 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
       omega = rate + (omega - rate) * decay;
     }
     if (i < w.first) continue;
-    const Mean scale = velocity_scale + speed_slope * std::abs(v);
-    p = advance(p, scale * lift_tau(dd, at, s.n), turn_scale * lift_tau(dth, at, s.n) + turn_bias * full_dt);
+    chain.step(dd, dth, full_dt, std::abs(v));
   }
-  return p;
+  return chain.pose<Mean>(at, s.n);
 }
 
 // A prediction over the mean fields as a number over all fitted fields.
