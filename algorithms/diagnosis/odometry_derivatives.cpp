@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "algorithms/diagnosis/component_density.h"
 #include "algorithms/diagnosis/hyper_dual.h"
 #include "core/angle.h"
 #include "core/units.h"
@@ -466,36 +467,12 @@ ad::Full with_stall(const ad::Full& ll, const std::array<ad::Full, 3>& r, const 
 // from each residual component on numbers over (residual, variance, ν) and the stall mixture's
 // log-sum-exp; then ∇ = Jᵀ∇_u and ∇² = Jᵀ∇²_u J + Σ_a ∂ℓ/∂u_a·∇²u_a with J = ∂u/∂fields, which
 // is sparse. The same likelihood as the hyper-dual pass over all fields, at a fraction of its cost.
-namespace chain {
+namespace window_terms {
 
-using Component = HyperDual<3>;  // over (residual, variance, ν) of one component
+using chain::Component;
 enum Inner { kPx, kPy, kPtheta, kVx, kVy, kVtheta, kNu, kP, kF, kInner };
 using InnerVector = Eigen::Matrix<double, kInner, 1>;
 using InnerMatrix = Eigen::Matrix<double, kInner, kInner>;
-
-// The Student-t constant lgamma((ν+1)/2) − lgamma(ν/2) − ½·log(νπ) and its derivatives in ν.
-struct StudentConstant {
-  bool student = false;
-  double nu = 0.0, c = 0.0, c1 = 0.0, c2 = 0.0;
-  explicit StudentConstant(double dof) : student(dof > 0.0), nu(dof) {
-    if (!student) return;
-    c = std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu) - 0.5 * std::log(nu * kPi);
-    c1 = 0.5 * digamma(0.5 * (nu + 1.0)) - 0.5 * digamma(0.5 * nu) - 0.5 / nu;
-    c2 = 0.25 * trigamma(0.5 * (nu + 1.0)) - 0.25 * trigamma(0.5 * nu) + 0.5 / (nu * nu);
-  }
-};
-
-// One component's log-density at residual x and variance (squared scale) v.
-Component component_density(double x, double v, const StudentConstant& k) {
-  const Component r = Component::variable(x, 0, 3), var = Component::variable(v, 1, 3);
-  if (!k.student) return -0.5 * (r * r / var + log(2.0 * kPi * var));
-  const Component nu = Component::variable(k.nu, 2, 3);
-  Component constant = Component::zero(3);
-  constant.v = k.c;
-  constant.g[2] = k.c1;
-  constant.h[5] = k.c2;  // (ν, ν) in the packed upper triangle of 3
-  return constant - 0.5 * log(var) - 0.5 * (nu + 1.0) * log1p(r * r / (nu * var));
-}
 
 // A log-likelihood term in u: its value, gradient and Hessian.
 struct Term {
@@ -555,7 +532,7 @@ struct Jacobian {
   }
 };
 
-}  // namespace chain
+}  // namespace window_terms
 
 // The fields a chain-rule pass handles: pose odometry's causes and noise, E_b not fitted.
 bool chain_rule_applies(const MotionData& d, const std::vector<double OdometryModel::*>& fields) {
@@ -582,7 +559,9 @@ double chain_rule_pass(const MotionData& d, const OdometryModel& m, const std::v
                        const Prediction& predicted, std::vector<std::optional<std::optional<Pose2>>>* references,
                        bool stalls, Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian) {
   using namespace ad;
-  using namespace chain;
+  using namespace window_terms;
+  using chain::component_density;
+  using chain::StudentConstant;
   const int n = static_cast<int>(fields.size());
   auto at = [&](double OdometryModel::*f) {
     const auto it = std::find(fields.begin(), fields.end(), f);
