@@ -43,12 +43,11 @@ build: setup
 # Default suite on embedded defaults → JSON reports under $(OUT)/, a summary table, and the page
 # a person reads, $(OUT)/report.html (tables and gnuplot charts, self-contained). Monte-Carlo
 # runs use every core (THREADS, default all; results are the same for any number).
-# The real-log diagnosis dominates the suite's time, so `make run` diagnoses 2 whole logs (ACES,
-# Intel) and compares twins of ACES and MRCLAM robot 2 over their first 120 s, which diagnoses
-# those spans (benchmarks/suites/make_run.json; the timings behind the trim: docs/decisions.md).
-# `make run RUN_CONFIG=` runs every log at full length.
+# The whole default suite, every real log at full length (the trim it once had is gone since the
+# diagnosis got faster: docs/decisions.md). `make run RUN_CONFIG=FILE` runs it with a config's
+# overrides (`locbench run --config`).
 THREADS ?= $(shell nproc)
-RUN_CONFIG ?= benchmarks/suites/make_run.json
+RUN_CONFIG ?=
 run: build
 	@s=$$(date +%s); $(RELEASE)/cli/locbench run --out $(OUT) --threads $(THREADS) $(if $(RUN_CONFIG),--config $(RUN_CONFIG)); rc=$$?; \
 	  echo "make: suite took $$(( $$(date +%s) - s )) s"; exit $$rc
