@@ -295,6 +295,22 @@ class OdoFitsBySet {
     fit_side_by_side(jobs, false, fits_);
   }
 
+  // The fits of `sets` not fitted yet, side by side, each started from `start` (a fit of a larger
+  // set: the causes a set lacks are nominal in its fit, a time offset it lacks set to 0).
+  void prefit_from(const RoundSets& sets, const OdometryModel& start) {
+    std::vector<FitJob> jobs;
+    for (const auto& active : sets) {
+      std::vector<std::size_t> key = active;
+      std::sort(key.begin(), key.end());
+      const bool queued = std::any_of(jobs.begin(), jobs.end(), [&](const FitJob& j) { return j.key == key; });
+      if (key.empty() || fits_.count(key) != 0 || queued) continue;
+      OdometryModel from = start;
+      if (!has_offset(key)) from.time_offset = 0.0;
+      jobs.push_back({key, from, key.back()});
+    }
+    fit_side_by_side(jobs, false, fits_);
+  }
+
   const OdoFit& reported(std::vector<std::size_t> active) {
     std::sort(active.begin(), active.end());
     if (!has_offset(active)) return (*this)(active);
@@ -431,7 +447,9 @@ HeldOutCheck eliminate_causes_without_gain(const MotionData& d, OdoFitsBySet& fi
         if (j != i) drop_one.back().push_back(j);
       }
     }
-    fit_set.prefit(drop_one);
+    // Each drop-one set from the full fit, the dropped cause nominal (not from a chain of its
+    // prefixes, which selection never fitted).
+    fit_set.prefit_from(drop_one, full.model);
     std::optional<std::size_t> worst;
     for (std::size_t i : kept) {
       std::vector<std::size_t> others;
