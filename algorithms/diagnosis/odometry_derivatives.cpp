@@ -107,19 +107,20 @@ class ChainPose {
     const double half = 0.5 * b;
     const double phi = theta_ + half;
     // K(h) with predict_window's value; its derivatives by the series where sin h / h cancels.
-    const double k = std::abs(half) < 1e-6 ? 1.0 : std::sin(half) / half;
+    const double sh = std::sin(half);
+    const double k = std::abs(half) < 1e-6 ? 1.0 : sh / half;
     double k1, k2;
     if (std::abs(half) < 1e-2) {
       const double h2 = half * half;
       k1 = -half / 3.0 + half * h2 / 30.0;
       k2 = -1.0 / 3.0 + h2 / 10.0;
     } else {
-      const double sh = std::sin(half), ch = std::cos(half);
+      const double ch = std::cos(half);
       k1 = (half * ch - sh) / (half * half);
       k2 = -sh / half - 2.0 * ch / (half * half) + 2.0 * sh / (half * half * half);
     }
     const double sn = std::sin(phi), cs = std::cos(phi);
-    const double chord = std::abs(half) < 1e-6 ? a : a * std::sin(half) / half;
+    const double chord = std::abs(half) < 1e-6 ? a : a * sh / half;
     x_ += chord * cs;
     y_ += chord * sn;
     // J: ∂(a, b, φ)/∂params, and their second derivatives (only τ's cross terms).
