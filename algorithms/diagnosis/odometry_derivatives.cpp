@@ -93,8 +93,14 @@ class ChainPose {
  public:
   enum Param { kScale, kSlope, kTurnScale, kTurnBias, kTau, kParams };
 
-  ChainPose(double scale, double slope, double turn_scale, double turn_bias)
-      : scale_(scale), slope_(slope), turn_scale_(turn_scale), turn_bias_(turn_bias) {}
+  // `at[p]`: param p's place among the fitted mean fields (−1: not fitted; its derivatives are
+  // not accumulated).
+  ChainPose(double scale, double slope, double turn_scale, double turn_bias, const std::array<int, kParams>& at)
+      : scale_(scale), slope_(slope), turn_scale_(turn_scale), turn_bias_(turn_bias) {
+    for (int p = 0; p < kParams; ++p) {
+      if (at[p] >= 0) active_[active_count_++] = p;
+    }
+  }
 
   // One step: its logged distance and turn increments through the drive response (value, ∂τ, ∂²τ),
   // its duration and its logged speed.
@@ -176,15 +182,23 @@ class ChainPose {
   }
 
  private:
-  static void add(const double (&g)[3], const double (&h)[3][3], const double (&J)[3][kParams], double (&gs)[kParams],
-                  double (&hs)[kParams][kParams]) {
+  // g·J and Jᵀ·h·J over the fitted params.
+  void add(const double (&g)[3], const double (&h)[3][3], const double (&J)[3][kParams], double (&gs)[kParams],
+           double (&hs)[kParams][kParams]) const {
     double m[3][kParams];  // h·J
     for (int u = 0; u < 3; ++u) {
-      for (int p = 0; p < kParams; ++p) m[u][p] = h[u][0] * J[0][p] + h[u][1] * J[1][p] + h[u][2] * J[2][p];
+      for (int a = 0; a < active_count_; ++a) {
+        const int p = active_[a];
+        m[u][p] = h[u][0] * J[0][p] + h[u][1] * J[1][p] + h[u][2] * J[2][p];
+      }
     }
-    for (int p = 0; p < kParams; ++p) {
+    for (int a = 0; a < active_count_; ++a) {
+      const int p = active_[a];
       gs[p] += g[0] * J[0][p] + g[1] * J[1][p] + g[2] * J[2][p];
-      for (int q = 0; q < kParams; ++q) hs[p][q] += J[0][p] * m[0][q] + J[1][p] * m[1][q] + J[2][p] * m[2][q];
+      for (int b = 0; b < active_count_; ++b) {
+        const int q = active_[b];
+        hs[p][q] += J[0][p] * m[0][q] + J[1][p] * m[1][q] + J[2][p] * m[2][q];
+      }
     }
   }
   template <class Number>
@@ -205,6 +219,8 @@ class ChainPose {
   }
 
   double scale_, slope_, turn_scale_, turn_bias_;
+  int active_[kParams] = {};
+  int active_count_ = 0;
   double x_ = 0.0, y_ = 0.0, theta_ = 0.0;
   double turn0_ = 0.0, turn1_ = 0.0, turn2_ = 0.0, time_ = 0.0;  // Σ Δθ, Σ ∂τΔθ, Σ ∂²τΔθ, Σ Δt so far
   double gx_[kParams] = {}, gy_[kParams] = {};
@@ -233,7 +249,7 @@ PoseT<Mean> predict(const MotionData& d, const MotionWindow& w, const Seeded<Mea
   const std::array<int, ChainPose::kParams> at{
       field(&OdometryModel::velocity_scale), field(&OdometryModel::speed_slope), field(&OdometryModel::turn_rate_scale),
       field(&OdometryModel::turn_rate_bias), field(&OdometryModel::drive_tau)};
-  ChainPose chain(s.m.velocity_scale, s.m.speed_slope, s.m.turn_rate_scale, s.m.turn_rate_bias);
+  ChainPose chain(s.m.velocity_scale, s.m.speed_slope, s.m.turn_rate_scale, s.m.turn_rate_bias, at);
   if (increments != nullptr) {
     for (std::size_t i = w.first; i < w.last; ++i) {
       const auto [dt, v, rate] = step_rates(d.steps[i]);
