@@ -1,6 +1,6 @@
 // The diagnosis of two catalog logs keeps its causes and their values to the CLI's printed
-// precision (6 significant digits): the figures of the reports measured on 2026-11-29, after the
-// diagnosis got its chain-rule derivatives (algorithms/diagnosis/README.md, "A run-in smooth in τ").
+// precision (6 significant digits): the figures of the reports in the last column of the CPU table
+// in algorithms/diagnosis/README.md ("A run-in smooth in τ").
 // A change that moves them — a faster fit, a new cause — is a change of what the suite reports,
 // to be made on purpose (and the figures here with it), never by accident. Skips without the
 // Freiburg logs.
