@@ -175,11 +175,17 @@ std::optional<double> derivatives(const LandmarkData& d, const std::vector<Landm
       return std::nullopt;
     }
   }
-  // landmark_nll's +inf, and its floor on σ_r² (below it the plain likelihood is not this formula).
+  // landmark_nll's +inf, and its floor on σ_r²: below it the plain likelihood is not this formula
+  // where it uses σ_r² alone (a reading the truth does not cover, or no range-dependent noise). With
+  // a slope every covered reading's variance is σ_r² + (slope·ρ)² in both, so σ_r at its boundary 0
+  // (the slope explains the range noise) keeps its exact derivatives.
   const bool range_noise = m.sigma_range > 0.0 || (m.sigma_range == 0.0 && m.range_noise_slope > 0.0);
-  if (!range_noise || !(m.sigma_bearing > 0.0) || !(m.range_scale > 0.0) || m.dof < 0.0 ||
-      m.sigma_range * m.sigma_range < 1e-12) {
-    return std::nullopt;
+  if (!range_noise || !(m.sigma_bearing > 0.0) || !(m.range_scale > 0.0) || m.dof < 0.0) return std::nullopt;
+  if (m.sigma_range * m.sigma_range < 1e-12) {
+    const std::size_t count = index.empty() ? d.readings.size() : index.size();
+    bool floored = !(m.range_noise_slope > 0.0);
+    for (std::size_t k = 0; k < count && !floored; ++k) floored = !geometry[index.empty() ? k : index[k]].valid;
+    if (floored) return std::nullopt;
   }
   // Every reading but the moved landmark's by the chain rule; those (their prediction depends on the
   // position error when it is fitted) on hyper-dual numbers below.

@@ -21,8 +21,9 @@ inline constexpr int kMaxLandmarkDifferentiatedFields = 12;
 // Fills `gradient` and `hessian` of landmark_nll(d, geometry, m, index) with respect to
 // m.*fields[i] (i in fields' order) and returns the likelihood's value. Returns nullopt, with
 // nothing filled, where central differences must serve: a field that is not differentiable here
-// (the time offset: it is profiled), too many fields, a σ_r² below the likelihood's floor of 1e-12, or a model the
-// likelihood rejects (+inf).
+// (the time offset: it is profiled), too many fields, a σ_r² below the likelihood's floor of 1e-12
+// where the likelihood uses it alone (a reading the truth does not cover, or no range noise slope),
+// or a model the likelihood rejects (+inf).
 std::optional<double> landmark_nll_derivatives(const LandmarkData& d, const std::vector<LandmarkGeometry>& geometry,
                                                const LandmarkModel& m, const std::vector<std::size_t>& index,
                                                const std::vector<double LandmarkModel::*>& fields,

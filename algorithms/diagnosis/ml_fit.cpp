@@ -180,6 +180,38 @@ void descend(Surface& f, Descent& d, int max_iterations, FitResult& r) {
   }
 }
 
+// A descent that settled where the Hessian has a clearly negative eigenvalue stopped at a saddle,
+// not a minimum: a parameter used as |v| (σ_r, linear, so that it may reach 0) makes v = 0 a
+// stationary point, and where the data want v > 0 the damped Newton steps cannot leave it (the
+// gradient there is 0). Steps along that eigenvector, from the parameters' own scale down by tens
+// (both signs), and the first that lowers the NLL is taken. Returns whether one did.
+bool leave_saddle(Surface& f, const std::vector<FitParameter>& params, Descent& d) {
+  const std::size_t n = params.size();
+  if (n == 0) return false;
+  Eigen::VectorXd g;
+  Eigen::MatrixXd h;
+  f.gradient_hessian(d.z, d.fx, g, h);
+  const linalg::SymmetricEigen eig = linalg::symmetric_eigen(Eigen::MatrixXd(0.5 * (h + h.transpose())));
+  Eigen::Index k = 0;
+  const double lowest = eig.values.minCoeff(&k);
+  if (!(lowest < -1e-9 * std::max(1.0, eig.values.maxCoeff()))) return false;
+  const Eigen::VectorXd u = eig.vectors.col(k);
+  double reach = 0.0;  // the eigenvector's length in the parameters' scales
+  for (std::size_t i = 0; i < n; ++i) reach += std::abs(u[static_cast<Eigen::Index>(i)]) * (params[i].positive ? 1.0 : params[i].scale);
+  for (double t = reach; t > 1e-6 * reach; t /= 10.0) {
+    for (double sign : {1.0, -1.0}) {
+      const Eigen::VectorXd zn = d.z + sign * t * u;
+      const double fn = f(zn);
+      if (fn < d.fx) {
+        d.z = zn;
+        d.fx = fn;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 // Standard errors, 95% intervals and correlations from the Hessian at the optimum z.
 void fill_intervals(Surface& f, const Eigen::VectorXd& z, double fx, const std::vector<FitParameter>& params,
                     FitResult& r) {
@@ -225,6 +257,7 @@ FitResult fit_max_likelihood(const NegLogLikelihood& nll, const std::vector<FitP
   d.fx = f(d.z);
   FitResult r;
   descend(f, d, max_iterations, r);
+  for (int escape = 0; escape < 3 && leave_saddle(f, params, d); ++escape) descend(f, d, max_iterations, r);
   r.nll = d.fx;
   r.values = f.coords().values(d.z);
   r.ci_low.assign(n, 0.0);

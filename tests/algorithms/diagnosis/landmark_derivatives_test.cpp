@@ -116,6 +116,28 @@ TEST(LandmarkDerivatives, DeclineTheTimeOffsetWhichIsProfiled) {
       landmark_nll_derivatives(d, landmark_geometry(d, 0.0), m, {}, {&LandmarkModel::time_offset}, g, h).has_value());
 }
 
+// σ_r at its boundary 0, the range noise all in the slope (MRCLAM's fits put it there): every
+// covered reading's variance is (slope·ρ)² in the plain likelihood too, so the derivatives stay
+// exact; without a slope the likelihood uses its floor on σ_r² and they are declined.
+TEST(LandmarkDerivatives, StayExactWithSigmaRangeAtZeroWhenTheSlopeCarriesTheRangeNoise) {
+  const LandmarkData d = simulated_landmarks({}, 60.0);
+  LandmarkModel m;
+  m.sigma_range = 1e-9;
+  m.sigma_bearing = 0.01;
+  m.range_noise_slope = 0.02;
+  expect_exact_landmark_derivatives(
+      d, {m,
+          {&LandmarkModel::sigma_bearing, &LandmarkModel::range_noise_slope, &LandmarkModel::range_bias},
+          {1e-6, 1e-6, 1e-6},
+          "sigma_range 1e-9"});
+  Eigen::VectorXd g;
+  Eigen::MatrixXd h;
+  const auto geometry = landmark_geometry(d, 0.0);
+  EXPECT_TRUE(landmark_nll_derivatives(d, geometry, m, {}, {&LandmarkModel::sigma_range}, g, h).has_value());
+  m.range_noise_slope = 0.0;
+  EXPECT_FALSE(landmark_nll_derivatives(d, geometry, m, {}, {&LandmarkModel::sigma_range}, g, h).has_value());
+}
+
 // The channel with exact derivatives and with central differences: the same causes, and every
 // detected cause's estimates equal to 1e-3 of their interval's width and interval ends to 1% of it
 // (the central-difference Hessian has rounding noise of that order).

@@ -116,5 +116,20 @@ TEST(MaxLikelihoodFit, RecoversTheMeanAndSigmaOfANormalSampleWithCalibratedInter
   EXPECT_LE(covered, 197);
 }
 
+// A parameter used as |v| (the landmark channel's σ_r) makes v = 0 a stationary point of the NLL. A
+// fit that starts there, where the data want |v| = 1, has a zero gradient and a negative curvature:
+// the fit leaves the saddle along it and ends at the minimum with a positive definite Hessian.
+TEST(MaxLikelihoodFit, LeavesASaddleWhereTheGradientVanishes) {
+  const auto nll = [](const std::vector<double>& p) {
+    const double a = std::abs(p[0]);
+    return (a * a - 1.0) * (a * a - 1.0) + (p[1] - 2.0) * (p[1] - 2.0);
+  };
+  const FitResult f = fit_max_likelihood(nll, {{"v", 0.0, 0.01, false}, {"w", 0.0, 1.0, false}});
+  EXPECT_NEAR(std::abs(f.values[0]), 1.0, 1e-6);
+  EXPECT_NEAR(f.values[1], 2.0, 1e-6);
+  EXPECT_NEAR(f.nll, 0.0, 1e-12);
+  EXPECT_TRUE(f.hessian_ok);
+}
+
 }  // namespace
 }  // namespace locbench::diagnosis
