@@ -9,6 +9,7 @@
 #include <numbers>
 #include <random>
 
+#include "core/angle.h"
 #include "core/errors.h"
 
 namespace locbench::diagnosis {
@@ -91,6 +92,41 @@ TEST(MotionWindows, TheSteppingTruthInterpolatorEqualsTheBinarySearchBitForBit) 
       std::adjacent_find(truth.begin(), truth.end(), [](const TruePose& a, const TruePose& b) { return a.t == b.t; });
   ASSERT_NE(repeated, truth.end());
   EXPECT_EQ(TruthInterpolator(truth).at(repeated->t)->x, interpolate_truth(truth, repeated->t)->x);
+}
+
+// interpolate_truth searches from where a steady rate puts t (galloping), not by bisection: on
+// truth with repeated stamps, a burst of fast records and a 30 s gap (the rate guess far off), it
+// finds the record std::lower_bound finds, so every value is the bisection's bit for bit.
+TEST(MotionWindows, TheGuessedSearchFindsTheRecordTheBisectionFinds) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<TruePose> truth;
+  double t = 0.0;
+  for (int k = 0; k < 3000; ++k) {
+    if (k == 1000) t += 30.0;                                 // a gap
+    const double step = k > 2000 && k < 2500 ? 0.001 : 0.01;  // a burst
+    if (u(rng) > 0.1) t += step * (0.5 + u(rng));             // one record in ten repeats the previous time
+    truth.push_back({t, {u(rng), u(rng), 6.0 * u(rng) - 3.0}, {}});
+  }
+  const auto bisection = [&](double q) {
+    const auto b = std::lower_bound(truth.begin(), truth.end(), q, [](const TruePose& p, double v) { return p.t < v; });
+    if (b == truth.begin()) return b->pose;
+    const auto a = b - 1;
+    const double dt = b->t - a->t, f = dt > 0.0 ? (q - a->t) / dt : 0.0;
+    return Pose2(a->pose.x + f * (b->pose.x - a->pose.x), a->pose.y + f * (b->pose.y - a->pose.y),
+                 a->pose.theta + f * angle_diff(b->pose.theta, a->pose.theta));
+  };
+  std::vector<double> queries{truth.front().t, truth.back().t};
+  for (const TruePose& p : truth) queries.push_back(p.t);  // every stamp, repeated ones too
+  for (int q = 0; q < 5000; ++q) queries.push_back(truth.front().t + u(rng) * (t - truth.front().t));
+  for (double q : queries) {
+    const auto got = interpolate_truth(truth, q);
+    ASSERT_TRUE(got.has_value()) << "t = " << q;
+    const Pose2 want = bisection(q);
+    ASSERT_EQ(got->x, want.x) << "t = " << q;
+    ASSERT_EQ(got->y, want.y) << "t = " << q;
+    ASSERT_EQ(got->theta, want.theta) << "t = " << q;
+  }
 }
 
 TEST(MotionWindows, CompassIsInterpolatedAlongTheShorterArc) {
