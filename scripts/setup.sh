@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
+  ninja-build          # build tool: keeps both cores busy across targets (make build 140 → 128 s, docs/decisions.md)
   lld                  # linker: the test executables link 4× faster than with GNU ld (CMakeLists.txt)
   libeigen3-dev        # linear algebra (poses, covariances)
   libgtest-dev libgmock-dev   # unit tests
