@@ -87,7 +87,7 @@ std::size_t build_motion_data_calls();
 // outside the truth's time span.
 std::optional<Pose2> interpolate_truth(const std::vector<TruePose>& truth, double t);
 // interpolate_truth for many times in (roughly) increasing order: the same values, bit for bit,
-// with the bracketing record found by stepping from the previous one instead of a binary search
+// with the bracketing record found by stepping from the previous one instead of a search
 // (the compass likelihood interpolates three times per reading at every evaluation).
 class TruthInterpolator {
  public:

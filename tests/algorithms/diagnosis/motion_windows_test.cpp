@@ -65,7 +65,7 @@ TEST(MotionWindows, TruthIsInterpolatedLinearlyAndOnlyInsideItsSpan) {
 // 400 random queries — three per reading as the compass likelihood asks, plus jumps back and
 // beyond either end — on truth with repeated time stamps: the stepping interpolator gives
 // interpolate_truth's values bit for bit.
-TEST(MotionWindows, TheSteppingTruthInterpolatorEqualsTheBinarySearchBitForBit) {
+TEST(MotionWindows, TheSteppingTruthInterpolatorEqualsInterpolateTruthBitForBit) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<TruePose> truth;
