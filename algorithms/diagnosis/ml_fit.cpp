@@ -197,7 +197,8 @@ bool leave_saddle(Surface& f, const std::vector<FitParameter>& params, Descent& 
   if (!(lowest < -1e-9 * std::max(1.0, eig.values.maxCoeff()))) return false;
   const Eigen::VectorXd u = eig.vectors.col(k);
   double reach = 0.0;  // the eigenvector's length in the parameters' scales
-  for (std::size_t i = 0; i < n; ++i) reach += std::abs(u[static_cast<Eigen::Index>(i)]) * (params[i].positive ? 1.0 : params[i].scale);
+  for (std::size_t i = 0; i < n; ++i)
+    reach += std::abs(u[static_cast<Eigen::Index>(i)]) * (params[i].positive ? 1.0 : params[i].scale);
   for (double t = reach; t > 1e-6 * reach; t /= 10.0) {
     for (double sign : {1.0, -1.0}) {
       const Eigen::VectorXd zn = d.z + sign * t * u;

@@ -65,13 +65,16 @@ TEST(DiagnosisOfTheCatalogLogs, IntelKeepsItsCausesAndValuesToSixDigits) {
 TEST(DiagnosisOfTheCatalogLogs, MitCsailKeepsItsCausesAndValuesToSixDigits) {
   LOCBENCH_REQUIRE_DATA("slam_benchmark");
   expect_report("mit_csail", {"drive_response", "heavy_tailed_noise"},
-                {{"drive_response", "tau_s", 0.170073},
-                 {"heavy_tailed_noise", "dof", 2.67595}});
+                {{"drive_response", "tau_s", 0.170073}, {"heavy_tailed_noise", "dof", 2.67595}});
 }
 
 TEST(DiagnosisOfTheCatalogLogs, MrclamRobot1KeepsItsCausesAndValuesToSixDigits) {
   LOCBENCH_REQUIRE_DATA("mrclam");
-  expect_report("mrclam6_robot1", {"sensor_time_offset", "drive_stall", "turn_rate_scale", "odometry_noise_growth", "heavy_tailed_noise", "landmark_range_scale", "landmark_range_bias", "landmark_range_off_axis_scale", "landmark_time_offset", "landmark_range_dependent_noise", "landmark_turn_dependent_bearing_noise", "landmark_position_error", "landmark_heavy_tails"},
+  expect_report("mrclam6_robot1",
+                {"sensor_time_offset", "drive_stall", "turn_rate_scale", "odometry_noise_growth", "heavy_tailed_noise",
+                 "landmark_range_scale", "landmark_range_bias", "landmark_range_off_axis_scale", "landmark_time_offset",
+                 "landmark_range_dependent_noise", "landmark_turn_dependent_bearing_noise", "landmark_position_error",
+                 "landmark_heavy_tails"},
                 {{"sensor_time_offset", "offset_s", -0.246308},
                  {"drive_stall", "duration_s", 0.366218},
                  {"drive_stall", "rate_per_s", 0.143413},
@@ -92,7 +95,11 @@ TEST(DiagnosisOfTheCatalogLogs, MrclamRobot1KeepsItsCausesAndValuesToSixDigits) 
 
 TEST(DiagnosisOfTheCatalogLogs, MrclamRobot2KeepsItsCausesAndValuesToSixDigits) {
   LOCBENCH_REQUIRE_DATA("mrclam");
-  expect_report("mrclam6_robot2", {"drive_response", "drive_stall", "turn_rate_scale", "odometry_noise_growth", "heavy_tailed_noise", "landmark_range_scale", "landmark_range_bias", "landmark_range_off_axis_scale", "landmark_bearing_bias", "landmark_time_offset", "landmark_range_dependent_noise", "landmark_turn_dependent_bearing_noise", "landmark_position_error", "landmark_heavy_tails"},
+  expect_report("mrclam6_robot2",
+                {"drive_response", "drive_stall", "turn_rate_scale", "odometry_noise_growth", "heavy_tailed_noise",
+                 "landmark_range_scale", "landmark_range_bias", "landmark_range_off_axis_scale",
+                 "landmark_bearing_bias", "landmark_time_offset", "landmark_range_dependent_noise",
+                 "landmark_turn_dependent_bearing_noise", "landmark_position_error", "landmark_heavy_tails"},
                 {{"drive_response", "tau_s", 0.2416},
                  {"drive_stall", "duration_s", 0.345086},
                  {"drive_stall", "rate_per_s", 0.202736},
@@ -114,7 +121,12 @@ TEST(DiagnosisOfTheCatalogLogs, MrclamRobot2KeepsItsCausesAndValuesToSixDigits) 
 
 TEST(DiagnosisOfTheCatalogLogs, MrclamRobot3KeepsItsCausesAndValuesToSixDigits) {
   LOCBENCH_REQUIRE_DATA("mrclam");
-  expect_report("mrclam6_robot3", {"drive_response", "drive_stall", "turn_rate_scale", "sensor_time_offset", "odometry_noise_growth", "velocity_scale", "heavy_tailed_noise", "landmark_range_scale", "landmark_range_bias", "landmark_range_off_axis_scale", "landmark_bearing_bias", "landmark_time_offset", "landmark_range_dependent_noise", "landmark_turn_dependent_bearing_noise", "landmark_position_error", "landmark_heavy_tails"},
+  expect_report("mrclam6_robot3",
+                {"drive_response", "drive_stall", "turn_rate_scale", "sensor_time_offset", "odometry_noise_growth",
+                 "velocity_scale", "heavy_tailed_noise", "landmark_range_scale", "landmark_range_bias",
+                 "landmark_range_off_axis_scale", "landmark_bearing_bias", "landmark_time_offset",
+                 "landmark_range_dependent_noise", "landmark_turn_dependent_bearing_noise", "landmark_position_error",
+                 "landmark_heavy_tails"},
                 {{"drive_response", "tau_s", 0.156349},
                  {"drive_stall", "duration_s", 0.360371},
                  {"drive_stall", "rate_per_s", 0.147913},
@@ -138,7 +150,11 @@ TEST(DiagnosisOfTheCatalogLogs, MrclamRobot3KeepsItsCausesAndValuesToSixDigits) 
 
 TEST(DiagnosisOfTheCatalogLogs, MrclamRobot4KeepsItsCausesAndValuesToSixDigits) {
   LOCBENCH_REQUIRE_DATA("mrclam");
-  expect_report("mrclam6_robot4", {"drive_response", "odometry_noise_growth", "turn_rate_scale", "sensor_time_offset", "velocity_scale", "heavy_tailed_noise", "landmark_range_bias", "landmark_range_off_axis_scale", "landmark_bearing_bias", "landmark_time_offset", "landmark_range_dependent_noise", "landmark_turn_dependent_bearing_noise", "landmark_position_error"},
+  expect_report("mrclam6_robot4",
+                {"drive_response", "odometry_noise_growth", "turn_rate_scale", "sensor_time_offset", "velocity_scale",
+                 "heavy_tailed_noise", "landmark_range_bias", "landmark_range_off_axis_scale", "landmark_bearing_bias",
+                 "landmark_time_offset", "landmark_range_dependent_noise", "landmark_turn_dependent_bearing_noise",
+                 "landmark_position_error"},
                 {{"drive_response", "tau_s", 0.168908},
                  {"odometry_noise_growth", "k2_m", 3.21522e-05},
                  {"turn_rate_scale", "scale", 0.910489},
@@ -158,7 +174,12 @@ TEST(DiagnosisOfTheCatalogLogs, MrclamRobot4KeepsItsCausesAndValuesToSixDigits) 
 
 TEST(DiagnosisOfTheCatalogLogs, MrclamRobot5KeepsItsCausesAndValuesToSixDigits) {
   LOCBENCH_REQUIRE_DATA("mrclam");
-  expect_report("mrclam6_robot5", {"drive_response", "drive_stall", "sensor_time_offset", "odometry_noise_growth", "turn_rate_scale", "velocity_scale", "heavy_tailed_noise", "landmark_range_scale", "landmark_range_bias", "landmark_range_off_axis_scale", "landmark_bearing_bias", "landmark_time_offset", "landmark_range_dependent_noise", "landmark_turn_dependent_bearing_noise", "landmark_position_error", "landmark_heavy_tails"},
+  expect_report("mrclam6_robot5",
+                {"drive_response", "drive_stall", "sensor_time_offset", "odometry_noise_growth", "turn_rate_scale",
+                 "velocity_scale", "heavy_tailed_noise", "landmark_range_scale", "landmark_range_bias",
+                 "landmark_range_off_axis_scale", "landmark_bearing_bias", "landmark_time_offset",
+                 "landmark_range_dependent_noise", "landmark_turn_dependent_bearing_noise", "landmark_position_error",
+                 "landmark_heavy_tails"},
                 {{"drive_response", "tau_s", 0.17478},
                  {"drive_stall", "duration_s", 0.395878},
                  {"drive_stall", "rate_per_s", 0.156211},
