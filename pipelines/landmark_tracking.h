@@ -72,6 +72,11 @@ struct MotionNoiseStructure {
   // diagnosis's mixture, independent per window, does not draw (0: not measured; the twin then
   // draws stalls independently). Carried by the twin only.
   double stall_persistence = 0.0;
+  // A turn-rate bias that moves along the log: the spread [rad/s] of the heading residual's rate
+  // between blocks of kLevelBlockS beyond what the windows' own noise (white and correlated, as
+  // fitted) puts there; the twin draws a new bias per block (0: not measured or none). Carried by
+  // the twin only.
+  double turn_bias_spread = 0.0;
   bool correlated() const { return x.share > 0.0 || y.share > 0.0 || theta.share > 0.0; }
 };
 

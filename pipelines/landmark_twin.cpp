@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "core/angle.h"
@@ -124,9 +125,62 @@ std::vector<Observation> visible_schedule(const TrackingData& real, diagnosis::T
 
 }  // namespace
 
+namespace {
+
+// The spread of the heading residual's rate between blocks of kLevelBlockS beyond the windows'
+// own noise. Per block b (≥ 10 windows): its rate m_b = Σ r_θ / Σ Δt, and the variance the model
+// expects of it, Σ_ij √(v_i·v_j)·c·((1 − s)·δ_ij + s·e^(−|t_i − t_j|/τ)) / (Σ Δt)², with v the
+// windows' model variances, (s, τ) the fitted correlation and c the residuals' own scale about
+// their block's rate, Σ (r_i − m_b·Δt_i)²/v_i / (N − B). The excess is the variance of the m_b
+// (about their Δt-weighted mean) less the mean expected one.
+double turn_bias_spread(const std::vector<double>& t, const std::vector<double>& span, const std::vector<double>& r,
+                        const std::vector<double>& v, const NoiseCorrelation& c) {
+  struct Block {
+    std::size_t first, last;
+    double rate, duration;
+  };
+  std::vector<Block> blocks;
+  for (std::size_t i = 0, j = 0; i < t.size(); i = j) {
+    double sum = 0.0, duration = 0.0;
+    for (j = i; j < t.size() && t[j] < t[i] + kLevelBlockS; ++j) {
+      sum += r[j];
+      duration += span[j];
+    }
+    if (j - i >= 10 && duration > 0.0) blocks.push_back({i, j, sum / duration, duration});
+  }
+  if (blocks.size() < 3) return 0.0;
+  double scale = 0.0, count = 0.0;
+  for (const Block& b : blocks) {
+    for (std::size_t a = b.first; a < b.last; ++a) scale += std::pow(r[a] - b.rate * span[a], 2) / v[a];
+    count += static_cast<double>(b.last - b.first) - 1.0;
+  }
+  scale /= count;
+  double total = 0.0, mean = 0.0, model = 0.0;
+  for (const Block& b : blocks) {
+    mean += b.duration * b.rate;
+    total += b.duration;
+    double variance = 0.0;
+    for (std::size_t a = b.first; a < b.last; ++a) {
+      for (std::size_t k = b.first; k < b.last; ++k) {
+        const double shared =
+            c.share > 0.0 && c.time_s > 0.0 ? c.share * std::exp(-std::abs(t[a] - t[k]) / c.time_s) : 0.0;
+        variance += std::sqrt(v[a] * v[k]) * scale * ((a == k ? 1.0 - c.share : 0.0) + shared);
+      }
+    }
+    model += variance / (b.duration * b.duration);
+  }
+  mean /= total;
+  double spread = 0.0;
+  for (const Block& b : blocks) spread += (b.rate - mean) * (b.rate - mean);
+  const double n = static_cast<double>(blocks.size());
+  return std::sqrt(std::max(spread / (n - 1.0) - model / n, 0.0));
+}
+
+}  // namespace
+
 MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& data,
                                                 const diagnosis::OdometryModel& model) {
-  std::vector<double> t, x, y, theta;
+  std::vector<double> t, x, y, theta, span, heading, heading_variance;
   std::vector<bool> adjacent;  // the window kept before is the one just before, without a gap
   bool previous_kept = false;
   std::size_t previous_last = 0;
@@ -141,9 +195,13 @@ MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& dat
     x.push_back(r.r.x() / std::sqrt(r.variance.x()));
     y.push_back(r.r.y() / std::sqrt(r.variance.y()));
     theta.push_back(r.r.z() / std::sqrt(r.variance.z()));
+    span.push_back(w.t1 - w.t0);
+    heading.push_back(r.r.z());
+    heading_variance.push_back(r.variance.z());
   }
   MotionNoiseStructure s{fit_noise_correlation(t, x), fit_noise_correlation(t, y), fit_noise_correlation(t, theta),
                          large_residual_runs(x, adjacent)};
+  s.turn_bias_spread = turn_bias_spread(t, span, heading, heading_variance, s.theta);
   const std::vector<std::optional<double>> stalled = diagnosis::stall_posteriors(data, model);
   double together = 0.0, first = 0.0;
   for (std::size_t k = 0; k + 1 < data.windows.size(); ++k) {
@@ -177,15 +235,26 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
   truth.push_back({t_start, origin, {}});
   Pose2 pose = origin;
   CorrelatedPart along(structure.x), left(structure.y), turn(structure.theta);
+  // The turn-rate bias that moves along the log: a new one per block of kLevelBlockS, on a stream
+  // of its own (the other draws stay those of a twin without it).
+  Rng bias_rng(Rng::derive_seed(seed, 2));
+  double bias = 0.0, bias_block_end = -std::numeric_limits<double>::infinity();
   std::size_t next = 0;  // first step not walked yet
   bool stalled = false;  // the previous window held a stall
   for (const diagnosis::MotionWindow& w : d.windows) {
     if (w.first > next)
       pose = walk_block(d, block(d, next, w.first), mean_model, 1.0, Eigen::Vector3d::Zero(), pose, truth);
     const Eigen::Vector3d v = diagnosis::window_variance(d, w, motion);
-    const Eigen::Vector3d r(std::sqrt(v.x()) * along.draw(w.t0, motion.dof, rng),
-                            std::sqrt(v.y()) * left.draw(w.t0, motion.dof, rng),
-                            std::sqrt(v.z()) * turn.draw(w.t0, motion.dof, rng));
+    Eigen::Vector3d r(std::sqrt(v.x()) * along.draw(w.t0, motion.dof, rng),
+                      std::sqrt(v.y()) * left.draw(w.t0, motion.dof, rng),
+                      std::sqrt(v.z()) * turn.draw(w.t0, motion.dof, rng));
+    if (structure.turn_bias_spread > 0.0) {
+      if (w.t0 >= bias_block_end) {
+        bias = structure.turn_bias_spread * bias_rng.normal();
+        bias_block_end = w.t0 + kLevelBlockS;
+      }
+      r.z() += bias * (w.t1 - w.t0);
+    }
     double keep = 1.0;
     const double length = w.t1 - w.t0;
     if (const diagnosis::StallOdds odds = diagnosis::window_stall_odds(motion, length); odds.p > 0.0) {

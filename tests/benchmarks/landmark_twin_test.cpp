@@ -205,6 +205,30 @@ TEST(LandmarkTwin, TheStallPersistenceItDrawsIsMeasuredBack) {
   EXPECT_GT(in_runs - independent, 0.3);
 }
 
+// A turn-rate bias drawn anew every 60 s with spread 0.01 rad/s (σ_θ 2 mrad per 1 s window: a
+// block's mean rate has a sampling error of ~0.3 mrad/s) is measured back from the twin's window
+// residuals; a twin without it, with its heading noise 30% correlated over 5 s, shows none.
+TEST(LandmarkTwin, ATurnRateBiasMovingBetweenBlocksIsMeasuredBackAndCorrelatedNoiseIsNotOne) {
+  const Base b = base_log(53);
+  diagnosis::OdometryModel model;
+  model.sigma_x = model.sigma_y = 0.004;
+  model.sigma_theta = 0.002;
+  MotionNoiseStructure moving;
+  moving.turn_bias_spread = 0.01;
+  MotionNoiseStructure correlated;
+  correlated.theta = {0.3, 5.0};
+  double measured = 0.0, none = 0.0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    measured +=
+        fit_motion_noise_structure(landmark_twin(b.data, model, {}, seed, moving).motion, model).turn_bias_spread / 4.0;
+    none +=
+        fit_motion_noise_structure(landmark_twin(b.data, model, {}, seed, correlated).motion, model).turn_bias_spread /
+        4.0;
+  }
+  EXPECT_NEAR(measured, 0.01, 0.004) << none;
+  EXPECT_LT(none, 0.001) << measured;
+}
+
 // Beyond 4σ: −5, +6 and −4.5; the first run goes on over −3 and −2.5 (same sign, beyond 2σ), the
 // second stops at +1, the third at the gap before −3.
 TEST(LargeResidualRuns, CountsTheTailWindowsTheirSignAndHowLongTheirRunsLast) {

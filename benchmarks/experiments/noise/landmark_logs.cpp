@@ -488,12 +488,15 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     const MotionNoiseStructure& ms = o.models.diagnosed_motion_structure;
     s.text += fmt::format(
         "; the diagnosed motion model's window residuals: along {:.0f}% with τ {:.2g} s, left {:.0f}% with τ "
-        "{:.2g} s, heading {:.0f}% with τ {:.2g} s; a stall goes on into the next window with probability {:.2f} "
-        "(0: independent windows); along-track residuals beyond {:g} σ: {} windows ({:.0f}% of the squared residual), "
-        "{:.0f}% of them negative (the robot moved less than the model), in runs of {:.1f} windows on average",
+        "{:.2g} s, heading {:.0f}% with τ {:.2g} s; a turn-rate bias moving between {:.0f} s blocks with spread "
+        "{:.4f} rad/s (beyond the windows' own noise; 0: none); a stall goes on into the next window with "
+        "probability {:.2f} (0: independent windows); along-track residuals beyond {:g} σ: {} windows ({:.0f}% of "
+        "the squared residual), {:.0f}% of them negative (the robot moved less than the model), in runs of {:.1f} "
+        "windows on average",
         100.0 * ms.x.share, ms.x.time_s, 100.0 * ms.y.share, ms.y.time_s, 100.0 * ms.theta.share, ms.theta.time_s,
-        ms.stall_persistence, kLargeResidualSigmas, ms.along_large.windows, 100.0 * ms.along_large.share_of_squares,
-        100.0 * ms.along_large.negative_fraction, ms.along_large.mean_run_windows);
+        kLevelBlockS, ms.turn_bias_spread, ms.stall_persistence, kLargeResidualSigmas, ms.along_large.windows,
+        100.0 * ms.along_large.share_of_squares, 100.0 * ms.along_large.negative_fraction,
+        ms.along_large.mean_run_windows);
     for (const auto& [variant, value] :
          {std::pair{"tuning_range_sigma", a.range_sigma}, std::pair{"heldout_range_sigma", b.range_sigma}}) {
       s.results.push_back(reports::make_estimate("sensor_noise", ds, variant, "m", value, 0.0, 1));
