@@ -123,12 +123,11 @@ std::vector<Observation> visible_schedule(const TrackingData& real, diagnosis::T
   return out;
 }
 
-}  // namespace
-
-namespace {
+// A block with fewer windows says little about its rate.
+constexpr std::size_t kMinBiasBlockWindows = 10;
 
 // The spread of the heading residual's rate between blocks of kLevelBlockS beyond the windows'
-// own noise. Per block b (≥ 10 windows): its rate m_b = Σ r_θ / Σ Δt, and the variance the model
+// own noise. Per block b (≥ kMinBiasBlockWindows windows): its rate m_b = Σ r_θ / Σ Δt, and the variance the model
 // expects of it, Σ_ij √(v_i·v_j)·c·((1 − s)·δ_ij + s·e^(−|t_i − t_j|/τ)) / (Σ Δt)², with v the
 // windows' model variances, (s, τ) the fitted correlation and c the residuals' own scale about
 // their block's rate, Σ (r_i − m_b·Δt_i)²/v_i / (N − B). The excess is the variance of the m_b
@@ -146,7 +145,7 @@ double turn_bias_spread(const std::vector<double>& t, const std::vector<double>&
       sum += r[j];
       duration += span[j];
     }
-    if (j - i >= 10 && duration > 0.0) blocks.push_back({i, j, sum / duration, duration});
+    if (j - i >= kMinBiasBlockWindows && duration > 0.0) blocks.push_back({i, j, sum / duration, duration});
   }
   if (blocks.size() < 3) return 0.0;
   double scale = 0.0, count = 0.0;

@@ -36,9 +36,6 @@ std::string MotionData::describe() const {
 
 namespace {
 
-// The value of time-sorted `records` at time t: value(record) at a record's own time, else
-// blend(value(a), value(b), s) between the two records around t, s the fraction of the way from
-// a to b; nullopt outside the records' span.
 // The first of time-sorted `records` with time ≥ t, as std::lower_bound finds it, searched from
 // where a uniform rate puts t: references are sampled at a nearly steady rate, so the guess is a
 // few records off and the galloping search a few steps, where a bisection of a long log takes ~16
@@ -68,6 +65,9 @@ typename std::vector<Record>::const_iterator first_at_or_after(const std::vector
   return std::lower_bound(first + static_cast<std::ptrdiff_t>(lo), first + static_cast<std::ptrdiff_t>(hi), t, before);
 }
 
+// The value of time-sorted `records` at time t: value(record) at a record's own time, else
+// blend(value(a), value(b), s) between the two records around t, s the fraction of the way from
+// a to b; nullopt outside the records' span.
 template <typename Record, typename Value, typename Blend>
 auto interpolate_records(const std::vector<Record>& records, double t, Value value, Blend blend)
     -> std::optional<decltype(value(records.front()))> {
