@@ -150,7 +150,10 @@ double turn_bias_spread(const std::vector<double>& t, const std::vector<double>&
   if (blocks.size() < 3) return 0.0;
   double scale = 0.0, count = 0.0;
   for (const Block& b : blocks) {
-    for (std::size_t a = b.first; a < b.last; ++a) scale += std::pow(r[a] - b.rate * span[a], 2) / v[a];
+    for (std::size_t a = b.first; a < b.last; ++a) {
+      const double about_rate = r[a] - b.rate * span[a];
+      scale += about_rate * about_rate / v[a];
+    }
     count += static_cast<double>(b.last - b.first) - 1.0;
   }
   scale /= count;
