@@ -8,7 +8,7 @@
 namespace locbench::io {
 namespace {
 
-std::string type_name(const nlohmann::json& v) {
+std::string article_type_name(const nlohmann::json& v) {
   if (v.is_number()) return "a number";
   if (v.is_string()) return "a string";
   if (v.is_array()) return "an array";
@@ -45,7 +45,7 @@ double json_finite(const nlohmann::json& obj, const char* key, const std::string
     throw InputError(file, line, std::string("missing key \"") + key + "\"");
   }
   if (!it->is_number()) {
-    throw InputError(file, line, std::string("\"") + key + "\": expected a number, found " + type_name(*it));
+    throw InputError(file, line, std::string("\"") + key + "\": expected a number, found " + article_type_name(*it));
   }
   const double v = it->get<double>();
   if (!std::isfinite(v)) {
@@ -63,14 +63,14 @@ void json_finite_array(const nlohmann::json& obj, const char* key, double* out, 
   if (!it->is_array() || it->size() != n) {
     throw InputError(file, line,
                      std::string("\"") + key + "\": expected an array of " + std::to_string(n) + " numbers, found " +
-                         (it->is_array() ? "an array of " + std::to_string(it->size()) : type_name(*it)));
+                         (it->is_array() ? "an array of " + std::to_string(it->size()) : article_type_name(*it)));
   }
   for (std::size_t i = 0; i < n; ++i) {
     const auto& v = (*it)[i];
     if (!v.is_number() || !std::isfinite(v.get<double>())) {
-      throw InputError(
-          file, line,
-          std::string("\"") + key + "\"[" + std::to_string(i) + "]: expected a finite number, found " + type_name(v));
+      throw InputError(file, line,
+                       std::string("\"") + key + "\"[" + std::to_string(i) + "]: expected a finite number, found " +
+                           article_type_name(v));
     }
     out[i] = v.get<double>();
   }

@@ -25,7 +25,7 @@ constexpr double kMaxSide = 100.0;
 // Leg counts × nominal metres per tick must be within this fraction of the side.
 constexpr double kLegTolerance = 0.25;
 
-std::string type_name(const json& v) {
+std::string described(const json& v) {
   if (v.is_string()) return "string \"" + v.get<std::string>() + "\"";
   return json_type_name(v);
 }
@@ -37,9 +37,9 @@ bool names_non_finite(std::string w) {
 }
 
 // The required, unit-checked fields of one object of the file, on the strict reader.
-class Fields {
+class ObjectFields {
  public:
-  Fields(const json& j, std::string path, const std::string& source, std::initializer_list<const char*> keys)
+  ObjectFields(const json& j, std::string path, const std::string& source, std::initializer_list<const char*> keys)
       : r_(j, std::move(path), source) {
     r_.allow_only(keys);
   }
@@ -53,7 +53,7 @@ class Fields {
       fail(key, "is the string \"" + v.get<std::string>() +
                     "\"; NaN and Infinity are not allowed: give a finite number" + unit);
     }
-    if (!v.is_number()) fail(key, "expected a number" + unit + ", found " + type_name(v));
+    if (!v.is_number()) fail(key, "expected a number" + unit + ", found " + described(v));
     const double x = v.get<double>();
     if (!std::isfinite(x)) fail(key, "is not a finite number (NaN and Infinity are not allowed)");
     return x;
@@ -90,15 +90,15 @@ class Fields {
 }  // namespace
 
 UmbmarkInput umbmark_input_from_json(const json& j, const std::string& source) {
-  Fields r(j, "", source, {"side_length_m", "nominal", "tape_measure_scale", "leg_ticks", "runs"});
+  ObjectFields r(j, "", source, {"side_length_m", "nominal", "tape_measure_scale", "leg_ticks", "runs"});
 
   UmbmarkInput in;
   in.side_length = r.length("side_length_m", kMaxSide);
 
   const json& nom = r.reader().required("nominal");
-  Fields n(nom, "nominal", source,
-           {"wheel_diameter_m", "wheel_diameter_left_m", "wheel_diameter_right_m", "wheelbase_m", "gear_ratio",
-            "counts_per_rev"});
+  ObjectFields n(nom, "nominal", source,
+                 {"wheel_diameter_m", "wheel_diameter_left_m", "wheel_diameter_right_m", "wheelbase_m", "gear_ratio",
+                  "counts_per_rev"});
   const bool per_wheel = nom.contains("wheel_diameter_left_m") || nom.contains("wheel_diameter_right_m");
   if (per_wheel && nom.contains("wheel_diameter_m")) {
     r.fail("nominal",
@@ -124,7 +124,7 @@ UmbmarkInput umbmark_input_from_json(const json& j, const std::string& source) {
     }
   }
 
-  Fields legs(r.reader().required("leg_ticks"), "leg_ticks", source, {"left", "right"});
+  ObjectFields legs(r.reader().required("leg_ticks"), "leg_ticks", source, {"left", "right"});
   in.leg_ticks_left = legs.count("left");
   in.leg_ticks_right = legs.count("right");
   const RobotParams robot{in.nominal, in.nominal, in.encoder};
@@ -142,7 +142,7 @@ UmbmarkInput umbmark_input_from_json(const json& j, const std::string& source) {
   }
 
   const json& runs = r.reader().required("runs");
-  if (!runs.is_array()) r.fail("runs", "expected an array of runs, found " + type_name(runs));
+  if (!runs.is_array()) r.fail("runs", "expected an array of runs, found " + described(runs));
   if (runs.empty()) {
     r.fail("runs",
            "is empty: UMBmark needs return errors of runs in both directions "
@@ -150,7 +150,7 @@ UmbmarkInput umbmark_input_from_json(const json& j, const std::string& source) {
   }
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const std::string path = fmt::format("runs[{}]", i);
-    Fields run(runs[i], path, source, {"direction", "x_error_m", "y_error_m"});
+    ObjectFields run(runs[i], path, source, {"direction", "x_error_m", "y_error_m"});
     const json& dir = run.reader().required("direction");
     UmbmarkReturn ret;
     if (dir == "cw") {
@@ -158,7 +158,7 @@ UmbmarkInput umbmark_input_from_json(const json& j, const std::string& source) {
     } else if (dir == "ccw") {
       ret.direction = UmbmarkDirection::kCounterClockwise;
     } else {
-      run.fail("direction", "expected \"cw\" or \"ccw\", found " + type_name(dir));
+      run.fail("direction", "expected \"cw\" or \"ccw\", found " + described(dir));
     }
     for (const char* key : {"x_error_m", "y_error_m"}) {
       const double e = run.number(key, " in metres");
