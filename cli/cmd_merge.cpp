@@ -36,7 +36,7 @@ struct ShardFile {
   reports::ShardReport shard;
 };
 
-ShardFile load(const std::filesystem::path& path) {
+ShardFile load_shard(const std::filesystem::path& path) {
   const nlohmann::json j = read_json_file(path, "shard report (JSON)");
   if (j.is_object() && j.value("schema", "") == reports::kReportSchema) {
     throw InputError(path.string(), 0, "a full report, not a shard report (made by `locbench run --shard K/N`)");
@@ -48,7 +48,7 @@ ShardFile load(const std::filesystem::path& path) {
 }
 
 // Files as given; a folder contributes its *.shard-K-of-N.json files.
-std::vector<ShardFile> load_all(const std::vector<std::string>& inputs) {
+std::vector<ShardFile> load_shards(const std::vector<std::string>& inputs) {
   std::vector<ShardFile> files;
   for (const std::string& in : inputs) {
     const std::filesystem::path p(in);
@@ -62,9 +62,9 @@ std::vector<ShardFile> load_all(const std::vector<std::string>& inputs) {
       }
       if (found.empty()) throw InputError(in, 0, "folder holds no *.shard-K-of-N.json files");
       std::sort(found.begin(), found.end());
-      for (const auto& f : found) files.push_back(load(f));
+      for (const auto& f : found) files.push_back(load_shard(f));
     } else {
-      files.push_back(load(p));
+      files.push_back(load_shard(p));
     }
   }
   return files;
@@ -169,7 +169,7 @@ int merge(const MergeArgs& args, const std::string& command_line) {
   } else {
     lock.emplace(args.out);
   }
-  const std::vector<ShardFile> files = load_all(args.inputs);
+  const std::vector<ShardFile> files = load_shards(args.inputs);
   std::map<std::string, std::vector<const ShardFile*>> groups;
   for (const ShardFile& f : files) groups[f.shard.experiment].push_back(&f);
   const bool single_file = groups.size() == 1 && args.out.ends_with(".json");
