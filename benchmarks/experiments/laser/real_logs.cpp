@@ -18,6 +18,7 @@
 #include "core/errors.h"
 #include "core/statistics.h"
 #include "experiment_framework/monte_carlo.h"
+#include "experiment_framework/parallel_tasks.h"
 #include "experiment_framework/plot_series.h"
 #include "experiment_framework/registry.h"
 #include "pipelines/laser_correctors.h"
@@ -184,11 +185,25 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
     rec.heading_spread.assign(methods, {});
     // Every pair is recorded; the worst ones are drawn afterwards.
     const std::vector<RelationScanPair> pairs = relation_scan_pairs(log, s.max_dt, s.max_relations);
-    for (const RelationScanPair& p : pairs) {
-      const Relation& r = log.relations[p.relation];
+    // The pairs are independent: corrected on the run's threads, recorded in order (the same
+    // report for any number of threads).
+    struct PairCorrections {
+      std::size_t lines = 0;  // split-and-merge's lines in the first scan
+      std::vector<ScanPairCorrection> by_corrector;
+    };
+    std::vector<PairCorrections> corrected(pairs.size());
+    parallel_tasks(plan.threads, pairs.size(), [&](std::size_t i) {
+      const RelationScanPair& p = pairs[i];
       const Scan& first = log.laser[p.first].scan;
-      const Scan& second = log.laser[p.second].scan;
       const LineMap map = lines_as_map(extractor.extract_lines(first));
+      corrected[i].lines = map.segments.size();
+      for (const auto& c : correctors) {
+        corrected[i].by_corrector.push_back(c->correct(first, map, log.laser[p.second].scan, p.odometry));
+      }
+    });
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const RelationScanPair& p = pairs[i];
+      const Relation& r = log.relations[p.relation];
       const Pose2 estimate = p.odometry;
       const auto record = [&](std::size_t method, const ScanPairCorrection& c) {
         const Pose2 e = between(r.delta, c.motion);
@@ -205,12 +220,10 @@ class LaserRealLogs final : public MonteCarloExperiment<Options, Setup> {
       ScanPairCorrection odometry;
       odometry.motion = estimate;
       record(0, odometry);
-      for (std::size_t m = 0; m < correctors.size(); ++m) {
-        record(1 + m, correctors[m]->correct(first, map, second, estimate));
-      }
+      for (std::size_t m = 0; m < correctors.size(); ++m) record(1 + m, corrected[i].by_corrector[m]);
       rec.t1.push_back(r.t1);
       rec.t2.push_back(r.t2);
-      rec.lines.push_back(static_cast<double>(map.segments.size()));
+      rec.lines.push_back(static_cast<double>(corrected[i].lines));
       rec.reference_length.push_back(r.delta.translation().norm());
       ++rec.relations;
     }
