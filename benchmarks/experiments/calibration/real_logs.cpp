@@ -6,8 +6,13 @@
 //   measure the relative-motion error of calibrated vs uncalibrated odometry on the second.
 #include <fmt/format.h>
 
+#include <atomic>
 #include <cmath>
+#include <functional>
+#include <iterator>
+#include <mutex>
 #include <optional>
+#include <vector>
 
 #include "algorithms/calibration/calibration_data.h"
 #include "algorithms/calibration/held_out_evaluation.h"
@@ -19,6 +24,7 @@
 #include "datasets/io/censi_results_reader.h"
 #include "experiment_framework/experiment.h"
 #include "experiment_framework/options_experiment.h"
+#include "experiment_framework/parallel_tasks.h"
 #include "experiment_framework/registry.h"
 #include "pipelines/real_log_harness.h"
 
@@ -156,6 +162,18 @@ void record_held_out(const std::string& name, const CalibrationData& d, const Ml
                   h.calibrated_rotation.rmse, -100 * h.rotation_rmse_reduction));
 }
 
+// `part`'s datasets, results, published comparisons, cases, notes and plots after `out`'s.
+void append_results(reports::ExperimentResults& out, reports::ExperimentResults part) {
+  const auto move_all = [](auto& to, auto& from) { std::move(from.begin(), from.end(), std::back_inserter(to)); };
+  move_all(out.datasets, part.datasets);
+  move_all(out.results, part.results);
+  move_all(out.published, part.published);
+  move_all(out.cases, part.cases);
+  move_all(out.notes, part.notes);
+  move_all(out.plots, part.plots);
+  move_all(out.diagnoses, part.diagnoses);
+}
+
 class CalibrationRealLogs final : public OptionsExperiment<Options> {
  public:
   reports::ExperimentResults run_with(const Options& c, const RunOptions& options) const override {
@@ -163,36 +181,28 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
     const std::vector<std::string>& parts = c.censi_parts;
     const auto rel_logs = real_log_specs(c.relations_logs, name() + ": relations_logs");
     const auto vel_logs = real_log_specs(c.velocity_logs, name() + ": velocity_logs");
-    const std::size_t total = parts.size() + rel_logs.size() + vel_logs.size();
-    std::size_t done = 0;
-    auto progress = [&] { options.report_progress(static_cast<double>(done++) / total); };
-
+    // Each Censi set and each log is calibrated on its own, side by side on the run's threads, and
+    // appended to the report in this order (the same report for any number of threads).
+    std::vector<std::function<void(reports::ExperimentResults&, Agreement&)>> jobs;
     const DatasetEntry* censi = find_dataset("censi_khepera");
-    Agreement agreement;
     for (const std::string& part : parts) {
-      progress();
-      compare_with_censi(part, *censi, options.data_root, out, agreement);
+      jobs.push_back([&, part](reports::ExperimentResults& r, Agreement& a) {
+        compare_with_censi(part, *censi, options.data_root, r, a);
+      });
     }
-    if (agreement.compared > 0) {
-      out.notes.push_back(
-          fmt::format("Censi's Khepera data: {} of {} parameter estimates agree with the published solutions "
-                      "within 2·√(σ_pub² + σ_ours²).",
-                      agreement.agree, agreement.compared));
-    }
-
     // Calibrates on each log of `specs` that loads; a missing catalog log is a skipped case.
-    auto each_loaded = [&](const std::vector<RealLogSpec>& specs, const MlCalibrationOptions& o,
-                           const auto& samples_of) {
+    auto each_loaded = [&](const std::vector<RealLogSpec>& specs, const MlCalibrationOptions& o, auto samples_of) {
       for (const RealLogSpec& spec : specs) {
-        progress();
-        LoadedRealLog loaded = load_real_log(spec, options.data_root);
-        if (loaded.status == "failed") throw InputError(loaded.dataset.path, 0, loaded.reason);
-        if (loaded.status != "ok") {
-          out.cases.push_back(
-              {"calibration/" + spec.name, loaded.status, "dataset not found at " + loaded.dataset.path});
-          continue;
-        }
-        record_held_out(spec.name, samples_of(loaded.log), o, loaded.dataset.path, c.training_fraction, out);
+        jobs.push_back([&, spec, o, samples_of](reports::ExperimentResults& r, Agreement&) {
+          LoadedRealLog loaded = load_real_log(spec, options.data_root);
+          if (loaded.status == "failed") throw InputError(loaded.dataset.path, 0, loaded.reason);
+          if (loaded.status != "ok") {
+            r.cases.push_back(
+                {"calibration/" + spec.name, loaded.status, "dataset not found at " + loaded.dataset.path});
+            return;
+          }
+          record_held_out(spec.name, samples_of(loaded.log), o, loaded.dataset.path, c.training_fraction, r);
+        });
       }
     };
     RelationSampleOptions local;
@@ -200,13 +210,37 @@ class CalibrationRealLogs final : public OptionsExperiment<Options> {
     MlCalibrationOptions with_rotation_per_distance;
     with_rotation_per_distance.estimate_rotation_per_distance = true;
     each_loaded(rel_logs, with_rotation_per_distance,
-                [&](const Log& log) { return calibration_data_from_relations(log, local); });
+                [local](const Log& log) { return calibration_data_from_relations(log, local); });
     SampleIntervalOptions intervals;
     intervals.odometry_time_offset = c.velocity_time_offset_s;
     MlCalibrationOptions per_component;
     per_component.noise.kind = NoiseModelKind::kPerComponent;
     each_loaded(vel_logs, per_component,
-                [&](const Log& log) { return calibration_data_from_velocities(log, intervals); });
+                [intervals](const Log& log) { return calibration_data_from_velocities(log, intervals); });
+
+    std::vector<reports::ExperimentResults> results(jobs.size());
+    std::vector<Agreement> agreements(jobs.size());
+    std::atomic<std::size_t> done{0};
+    std::mutex progress_mutex;
+    parallel_tasks(options.threads, jobs.size(), [&](std::size_t i) {
+      jobs[i](results[i], agreements[i]);
+      const std::size_t d = ++done;
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      options.report_progress(static_cast<double>(d) / static_cast<double>(jobs.size()));
+    });
+    Agreement agreement;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      append_results(out, std::move(results[i]));
+      agreement.agree += agreements[i].agree;
+      agreement.compared += agreements[i].compared;
+    }
+    if (agreement.compared > 0) {
+      out.notes.push_back(
+          fmt::format("Censi's Khepera data: {} of {} parameter estimates agree with the published solutions "
+                      "within 2·√(σ_pub² + σ_ours²).",
+                      agreement.agree, agreement.compared));
+    }
+    for (std::size_t i = parts.size(); i < jobs.size(); ++i) append_results(out, std::move(results[i]));
     options.report_progress(1.0);
     return out;
   }
