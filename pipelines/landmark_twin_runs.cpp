@@ -1,11 +1,13 @@
 #include "pipelines/landmark_twin_runs.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 
 #include "core/rng.h"
 #include "core/statistics.h"
+#include "experiment_framework/parallel_tasks.h"
 
 namespace locbench::experiments::landmarks {
 namespace {
@@ -70,15 +72,17 @@ TwinForecast twin_predictions(const TrackingData& test, const std::vector<Method
 
   // twin j (0 nominal, 1 extended) → its runs' metrics
   std::vector<RunMetrics> runs[2];
-  for (int j = 0; j < 2; ++j) {
+  const auto per_twin = static_cast<std::size_t>(std::max(options.runs, 0));
+  runs[0].resize(per_twin);
+  runs[1].resize(per_twin);
+  experiments::parallel_tasks(options.threads, 2 * per_twin, [&](std::size_t task) {
+    const int j = static_cast<int>(task / per_twin), k = static_cast<int>(task % per_twin);
     const diagnosis::OdometryModel& motion = j == 0 ? models.nominal_motion : models.diagnosed_motion;
     const LandmarkSensorModel& sensor = j == 0 ? models.nominal_sensor : models.diagnosed_sensor;
-    for (int k = 0; k < options.runs; ++k) {
-      const TrackingData twin = landmark_twin(test, motion, sensor, Rng::derive_seed(options.seed, 2 * k + j),
-                                              j == 0 ? MotionNoiseStructure{} : models.diagnosed_motion_structure);
-      runs[j].push_back(run_metrics(twin, run_tuned(twin, tuned, models, family), family));
-    }
-  }
+    const TrackingData twin = landmark_twin(test, motion, sensor, Rng::derive_seed(options.seed, 2 * k + j),
+                                            j == 0 ? MotionNoiseStructure{} : models.diagnosed_motion_structure);
+    runs[j][static_cast<std::size_t>(k)] = run_metrics(twin, run_tuned(twin, tuned, models, family), family);
+  });
   const auto interval = [&](int j, auto&& value) {
     std::vector<double> v;
     for (const RunMetrics& r : runs[j]) v.push_back(value(r));

@@ -27,6 +27,7 @@ namespace locbench::experiments::landmarks {
 struct TwinRunOptions {
   int runs = 20;           // seeded runs of each twin
   std::uint64_t seed = 1;  // run k of twin j of this log has seed Rng::derive_seed(seed, 2k + j)
+  int threads = 1;         // the runs side by side (experiments::parallel_tasks); same results for any number
 };
 
 using PredictivityCells = std::map<std::string, std::vector<PredictivityCell>>;  // by metric

@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "core/errors.h"
 #include "experiment_framework/parallel_tasks.h"
@@ -61,6 +65,38 @@ TEST(ParallelTasks, RethrowsTheErrorOfTheLowestFailingIndexWhateverTheSchedule) 
     }
     EXPECT_EQ(ran.load(), 20);  // every task still ran
   }
+}
+
+TEST(ParallelTasks, TasksStartedInsideATaskEachRunOnceAndRethrowTheLowestError) {
+  std::vector<std::vector<std::atomic<int>>> hits(4);
+  for (auto& h : hits) h = std::vector<std::atomic<int>>(30);
+  std::vector<std::string> errors(4);
+  parallel_tasks(2, hits.size(), [&](std::size_t i) {
+    try {
+      parallel_tasks(8, hits[i].size(), [&](std::size_t k) {
+        ++hits[i][k];
+        if (k == 11 || k == 23) throw std::runtime_error("inner " + std::to_string(k));
+      });
+    } catch (const std::runtime_error& e) {
+      errors[i] = e.what();
+    }
+  });
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    for (const auto& h : hits[i]) EXPECT_EQ(h.load(), 1);
+    EXPECT_EQ(errors[i], "inner 11");
+  }
+}
+
+TEST(ParallelTasks, OneThreadKeepsTasksStartedInsideATaskOnTheCallingThread) {
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<int> elsewhere{0};
+  parallel_tasks(1, 3, [&](std::size_t) {
+    parallel_tasks(1, 20, [&](std::size_t) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));  // time for another thread to steal
+      if (std::this_thread::get_id() != caller) ++elsewhere;
+    });
+  });
+  EXPECT_EQ(elsewhere.load(), 0);
 }
 
 TEST(ParallelTasks, HardwareThreadsIsAtLeastOne) { EXPECT_GE(hardware_threads(), 1); }

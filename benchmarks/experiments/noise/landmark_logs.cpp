@@ -194,8 +194,9 @@ std::vector<TuningPart> tuning_parts(const Log& log, const TrackingData& train, 
   return {{a, fitted_models(log, b, c, sensor)}, {b, fitted_models(log, a, c, sensor)}};
 }
 
+// `threads`: for the twins' runs (the same results for any number).
 Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, const LandmarkSensorModel& sensor,
-                std::uint64_t twin_seed) {
+                std::uint64_t twin_seed, int threads) {
   Outcome o;
   double from = -std::numeric_limits<double>::infinity(), to = std::numeric_limits<double>::infinity();
   if (!log.odometry.empty()) from = log.odometry.front().t, to = log.odometry.back().t;
@@ -228,11 +229,11 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
     std::vector<MethodScore> replayed = o.scores;
     const std::vector<TrackResult> tuning = run_tuned(train, replayed, o.models, family);
     for (std::size_t i = 0; i < replayed.size(); ++i) replayed[i].heldout = tuning[i];
-    TwinForecast f = twin_predictions(train, replayed, o.models, family, {c.twin_runs, twin_seed});
+    TwinForecast f = twin_predictions(train, replayed, o.models, family, {c.twin_runs, twin_seed, threads});
     o.twin_cells = std::move(f.cells);
     o.twin_residuals = std::move(f.residuals);
   } else if (c.twin_runs > 0) {
-    TwinForecast f = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed});
+    TwinForecast f = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed, threads});
     o.twin_cells = std::move(f.cells);
     o.twin_residuals = std::move(f.residuals);
   }
@@ -357,7 +358,7 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         return;
       }
       try {
-        o = run_log(loaded.log, c, family, sensor, Rng::derive_seed(options.seed, 1000 + i));
+        o = run_log(loaded.log, c, family, sensor, Rng::derive_seed(options.seed, 1000 + i), options.threads);
         o.dataset = loaded.dataset;
       } catch (const InputError& err) {
         if (!specs[i].from_catalog) throw;
