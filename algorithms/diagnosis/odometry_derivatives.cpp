@@ -388,12 +388,9 @@ NoiseSeeds noise_seeds(const ad::Seeded<ad::Full>& seed, double base) {
 
 // The reference of window `wi`, from the cache when there is one.
 std::optional<Pose2> window_reference(const MotionData& d, std::size_t wi, const OdometryModel& mean_model,
-                                      std::vector<std::optional<std::optional<Pose2>>>* references) {
-  const MotionWindow& w = d.windows[wi];
-  if (references == nullptr) return reference_window(d, w, mean_model);
-  auto& cached = (*references)[wi];
-  if (!cached) cached = reference_window(d, w, mean_model);
-  return *cached;
+                                      const std::vector<std::optional<Pose2>>* references) {
+  if (references == nullptr) return reference_window(d, d.windows[wi], mean_model);
+  return (*references)[wi];
 }
 
 // The predicted pose of window `wi`: values (cached) when no mean field is fitted, else
@@ -573,8 +570,8 @@ bool chain_rule_applies(const MotionData& d, const std::vector<double OdometryMo
 // The likelihood's value, gradient and Hessian by the chain rule (chain_rule_applies).
 double chain_rule_pass(const MotionData& d, const OdometryModel& m, const std::vector<std::size_t>& index,
                        const std::vector<double OdometryModel::*>& fields, const MeanFields& mean,
-                       const Prediction& predicted, std::vector<std::optional<std::optional<Pose2>>>* references,
-                       bool stalls, Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian) {
+                       const Prediction& predicted, const std::vector<std::optional<Pose2>>* references, bool stalls,
+                       Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian) {
   using namespace ad;
   using namespace window_terms;
   using chain::component_density;

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <type_traits>
 
 #include "core/angle.h"
@@ -239,9 +242,46 @@ Entry& entry_or_slot(std::vector<Entry>& entries, std::size_t limit, Matches mat
 }
 }  // namespace
 
-WindowCache::WindowCache(const MotionData& d) : d_(d) {
+// The references of every window at each time offset asked for, kept for the last
+// kReferenceEntries offsets asked for. Shared by a cache's copies, which may run side by side.
+class WindowCache::ReferenceStore {
+ public:
+  using References = std::vector<std::optional<Pose2>>;
+  std::shared_ptr<const References> at(const MotionData& d, double offset) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (const auto it = entries_.find(offset); it != entries_.end()) {
+        it->second.used = ++clock_;
+        return it->second.values;
+      }
+    }
+    OdometryModel m;
+    m.time_offset = offset;
+    auto values = std::make_shared<References>();
+    values->reserve(d.windows.size());
+    for (const MotionWindow& w : d.windows) values->push_back(reference_window(d, w, m));
+    const std::lock_guard<std::mutex> lock(mutex_);
+    auto [it, inserted] = entries_.try_emplace(offset, Entry{std::move(values), 0});
+    it->second.used = ++clock_;
+    if (inserted && entries_.size() > kReferenceEntries) {
+      entries_.erase(std::min_element(entries_.begin(), entries_.end(),
+                                      [](const auto& a, const auto& b) { return a.second.used < b.second.used; }));
+    }
+    return it->second.values;
+  }
+
+ private:
+  struct Entry {
+    std::shared_ptr<const References> values;
+    std::uint64_t used = 0;
+  };
+  std::mutex mutex_;
+  std::map<double, Entry> entries_;
+  std::uint64_t clock_ = 0;
+};
+
+WindowCache::WindowCache(const MotionData& d) : d_(d), references_(std::make_shared<ReferenceStore>()) {
   predictions_.reserve(kPredictionEntries);
-  references_.reserve(kReferenceEntries);
   increments_.reserve(kEntries);
   offsets_.reserve(d.windows.size() + 1);
   std::size_t at = 0;
@@ -274,8 +314,7 @@ const double* WindowCache::increments(std::size_t wi, double tau) {
 template <typename T>
 std::vector<std::optional<T>>& WindowCache::table(std::vector<Entry<T>>& entries, const std::vector<double>& key) {
   ++clock_;
-  // Sizes: see kPredictionEntries and kReferenceEntries.
-  const std::size_t limit = std::is_same_v<T, Pose2> ? kPredictionEntries : kReferenceEntries;
+  const std::size_t limit = kPredictionEntries;
   bool is_new = false;
   Entry<T>& e = entry_or_slot(
       entries, limit, [&](const Entry<T>& x) { return x.key == key; }, is_new);
@@ -291,8 +330,9 @@ std::vector<std::optional<Pose2>>& WindowCache::predictions(const OdometryModel&
   return table(predictions_, mean_key(m));
 }
 
-std::vector<std::optional<std::optional<Pose2>>>& WindowCache::references(const OdometryModel& m) {
-  return table(references_, {m.time_offset});
+const std::vector<std::optional<Pose2>>& WindowCache::references(const OdometryModel& m) {
+  last_references_ = references_->at(d_, m.time_offset);
+  return *last_references_;
 }
 
 namespace {
@@ -362,15 +402,14 @@ double negative_log_likelihood(const MotionData& d, const OdometryModel& m, cons
     const MotionWindow& w = d.windows[wi];
     WindowResidual res;
     if (cache != nullptr) {
-      auto& ref = (*references)[wi];
-      if (!ref) ref = reference_window(d, w, mean_model);
+      const std::optional<Pose2>& ref = (*references)[wi];
       auto& pred = (*predictions)[wi];
-      if (*ref && !pred) {
+      if (ref && !pred) {
         pred = d.odometry == OdometryKind::kPose
                    ? predict_window(d, w, mean_model, cache->increments(wi, mean_model.drive_tau))
                    : predict_window(d, w, mean_model, nullptr);
       }
-      res = residual_of(d, w, mean_model, *ref, *ref ? *pred : Pose2());
+      res = residual_of(d, w, mean_model, ref, ref ? *pred : Pose2());
     } else {
       res = window_residual(d, w, mean_model);
     }

@@ -32,6 +32,7 @@
 // errors) is the translation scaled by 1 − p·f.
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
@@ -127,7 +128,11 @@ class WindowCache {
   explicit WindowCache(const MotionData& d);
   // Per window, empty until computed; valid until the next call for another model.
   std::vector<std::optional<Pose2>>& predictions(const OdometryModel& m);
-  std::vector<std::optional<std::optional<Pose2>>>& references(const OdometryModel& m);
+  // Per window, its reference motion at m's time offset (reference_window; nullopt where the
+  // shifted reference does not cover it), computed for every window at once and shared with
+  // every copy of this cache (the fits made side by side profile the same offsets); valid until
+  // the next call.
+  const std::vector<std::optional<Pose2>>& references(const OdometryModel& m);
   // Window wi's drive_increments under τ (pose odometry), memoized by τ; valid until the next call
   // with another τ.
   const double* increments(std::size_t wi, double tau);
@@ -150,11 +155,14 @@ class WindowCache {
     std::uint64_t used = 0;
   };
 
+  class ReferenceStore;  // time offset → every window's reference; thread-safe
+
   const MotionData& d_;
   std::vector<std::size_t> offsets_;  // window → its first value in Increments::values
   std::vector<Increments> increments_;
   std::vector<Entry<Pose2>> predictions_;
-  std::vector<Entry<std::optional<Pose2>>> references_;
+  std::shared_ptr<ReferenceStore> references_;
+  std::shared_ptr<const std::vector<std::optional<Pose2>>> last_references_;  // what references() returned
   std::uint64_t clock_ = 0;
 };
 

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "algorithms/diagnosis/odometry_model.h"
 
@@ -126,6 +128,55 @@ TEST(OdometryModel, TheStudentTDensityIsNormalisedAndTendsToTheNormal) {
   EXPECT_NEAR(component_log_density(1.3, 2.0, 1e7), component_log_density(1.3, 2.0, 0.0), 1e-6);
   // Heavier tails: at 5 scale units the t with 3 dof is far more likely than the normal.
   EXPECT_GT(component_log_density(5.0, 1.0, 3.0), component_log_density(5.0, 1.0, 0.0) + 5.0);
+}
+
+// A true-pose reference at 100 Hz along a 0.4 m/s arc and 1 s windows over it.
+MotionData windows_on_a_true_pose_arc() {
+  MotionData d = straight_steps(100, [](std::size_t) { return 0.4; });
+  d.reference = ReferenceKind::kTruePose;
+  for (int i = 0; i <= 1000; ++i) {
+    const double t = 0.01 * i;
+    d.truth.push_back({t, Pose2(0.4 * t, 0.05 * t * t, 0.1 * t)});
+  }
+  for (std::size_t k = 0; k + 10 <= 100; k += 5) {
+    MotionWindow w = window_over(k, k + 10, 0.1 * static_cast<double>(k + 10));
+    w.t0 = 0.1 * static_cast<double>(k);
+    d.windows.push_back(w);
+  }
+  return d;
+}
+
+TEST(WindowCache, GivesEachWindowsReferenceAtTheOffsetAndSharesItWithItsCopies) {
+  const MotionData d = windows_on_a_true_pose_arc();
+  WindowCache cache(d);
+  for (const double offset : {0.0, 0.237, -0.5, 2.0}) {
+    OdometryModel m;
+    m.time_offset = offset;
+    const std::vector<std::optional<Pose2>> refs = cache.references(m);
+    ASSERT_EQ(refs.size(), d.windows.size());
+    std::size_t uncovered = 0;
+    for (std::size_t i = 0; i < d.windows.size(); ++i) {
+      const std::optional<Pose2> expected = reference_window(d, d.windows[i], m);
+      ASSERT_EQ(refs[i].has_value(), expected.has_value()) << "window " << i << ", offset " << offset;
+      if (!expected) {
+        ++uncovered;
+        continue;
+      }
+      EXPECT_EQ(refs[i]->x, expected->x);  // the same computation: equal to the last bit
+      EXPECT_EQ(refs[i]->y, expected->y);
+      EXPECT_EQ(refs[i]->theta, expected->theta);
+    }
+    // The truth is looked up at t − offset: 0.237 s and 2 s uncover the windows starting in the
+    // log's first 0.237 s and 2 s; −0.5 s uncovers the last window (it ends at the truth's end).
+    const std::size_t expected_uncovered = offset == 0.0 ? 0 : offset == 2.0 ? 4 : 1;
+    EXPECT_EQ(uncovered, expected_uncovered) << "offset " << offset;
+  }
+  // A copy (a fit made side by side) is handed the very values its original computed.
+  OdometryModel m;
+  m.time_offset = 0.237;
+  const std::vector<std::optional<Pose2>>* original = &cache.references(m);
+  WindowCache copy = cache;
+  EXPECT_EQ(&copy.references(m), original);
 }
 
 }  // namespace
