@@ -6,7 +6,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <type_traits>
 
 #include "core/angle.h"
 #include "core/units.h"
