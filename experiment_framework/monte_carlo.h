@@ -27,7 +27,7 @@ struct McPlan {
   std::uint64_t seed = 1;  // base seed
   int runs = 1;            // Monte-Carlo runs: --runs, else the configuration's "runs" (≥ 1)
   std::filesystem::path data_root;
-  int threads = 1;  // for parallel_tasks inside summarise; never changes a result
+  int threads = 1;  // for parallel_tasks inside run_task or summarise; never changes a result
   // The seed of Monte-Carlo run k (recorded in the report's seeds).
   std::uint64_t run_seed(int k) const { return Rng::derive_seed(seed, static_cast<std::uint64_t>(k)); }
 };
