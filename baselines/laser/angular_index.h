@@ -14,7 +14,7 @@ namespace locbench::baselines::laser {
 
 class AngularIndex {
  public:
-  // Keeps a reference to `points`, which must outlive the index.
+  // Copies what it needs of `points`.
   explicit AngularIndex(const std::vector<Eigen::Vector2d>& points);
 
   // The nearest point within √max_d2 of q (a point at exactly √max_d2 counts): true with its
@@ -22,9 +22,10 @@ class AngularIndex {
   bool nearest(const Eigen::Vector2d& q, double max_d2, std::size_t& index, double& d2) const;
 
  private:
-  const std::vector<Eigen::Vector2d>& points_;
-  std::vector<std::size_t> order_;  // indices into points_ by angle
-  std::vector<double> angle_;       // their angles, ascending
+  std::vector<std::size_t> order_;      // indices into the points by angle
+  std::vector<double> angle_;           // their angles, ascending
+  std::vector<Eigen::Vector2d> point_;  // the points in that order
+  std::vector<Eigen::Vector2d> unit_;   // their directions (0 for a point at the origin)
 };
 
 }  // namespace locbench::baselines::laser

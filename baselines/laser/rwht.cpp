@@ -33,14 +33,24 @@ double beam_spacing(std::span<const ScanPoint> points) {
   return *mid;
 }
 
+// The vote and voter counts of every cell, kept by each thread from scan to scan: an
+// accumulator zeroes the cells it touched when it is done, so a scan pays for its own votes and
+// not for clearing the whole (α, r) grid.
+struct CellStore {
+  std::vector<double> votes;
+  std::vector<std::uint32_t> voters;
+  std::vector<std::size_t> touched;  // the cells with a voter, in voting order
+};
+
 struct Accumulator {
   std::size_t n_alpha = 0, n_r = 0;
   double d_alpha = 0.0, d_r = 0.0;
   std::vector<double> cos_a, sin_a;
-  std::vector<double> votes;
-  std::vector<std::uint32_t> voters;
+  CellStore& store;
+  std::span<double> votes;
+  std::span<std::uint32_t> voters;
 
-  Accumulator(double angle_bin, double range_bin, double r_max) : d_r(range_bin) {
+  Accumulator(double angle_bin, double range_bin, double r_max, CellStore& cells) : d_r(range_bin), store(cells) {
     n_alpha = static_cast<std::size_t>(std::ceil(2.0 * kPi / angle_bin - 1e-9));
     d_alpha = 2.0 * kPi / static_cast<double>(n_alpha);
     n_r = static_cast<std::size_t>(std::floor(r_max / range_bin)) + 1;
@@ -50,9 +60,24 @@ struct Accumulator {
       cos_a[k] = std::cos(alpha(k));
       sin_a[k] = std::sin(alpha(k));
     }
-    votes.assign(n_alpha * n_r, 0.0);
-    voters.assign(n_alpha * n_r, 0);
+    const std::size_t n = n_alpha * n_r;
+    if (store.votes.size() < n) {
+      store.votes.resize(n, 0.0);
+      store.voters.resize(n, 0);
+    }
+    votes = std::span<double>(store.votes).first(n);
+    voters = std::span<std::uint32_t>(store.voters).first(n);
   }
+  ~Accumulator() {
+    for (const std::size_t c : store.touched) {
+      votes[c] = 0.0;
+      voters[c] = 0;
+    }
+    store.touched.clear();
+  }
+  Accumulator(const Accumulator&) = delete;
+  Accumulator& operator=(const Accumulator&) = delete;
+  const std::vector<std::size_t>& touched() const { return store.touched; }
   double alpha(std::size_t k) const { return -kPi + (static_cast<double>(k) + 0.5) * d_alpha; }
   double r(std::size_t j) const { return (static_cast<double>(j) + 0.5) * d_r; }
   std::size_t cell(std::size_t k, std::size_t j) const { return k * n_r + j; }
@@ -63,8 +88,9 @@ struct Accumulator {
       if (rr < 0.0) continue;
       const auto j = static_cast<std::size_t>(rr / d_r);
       if (j >= n_r) continue;
-      votes[cell(k, j)] += weight;
-      ++voters[cell(k, j)];
+      const std::size_t c = cell(k, j);
+      votes[c] += weight;
+      if (voters[c]++ == 0) store.touched.push_back(c);
     }
   }
 
@@ -107,21 +133,19 @@ struct ScanView {
 // Peaks with non-maximum suppression, strongest first.
 std::vector<Candidate> peak_candidates(const Accumulator& acc, const RwhtOptions& options) {
   std::vector<Candidate> candidates;
-  for (std::size_t k = 0; k < acc.n_alpha; ++k) {
-    for (std::size_t j = 0; j < acc.n_r; ++j) {
-      const std::size_t c = acc.cell(k, j);
-      if (acc.votes[c] <= 0.0) continue;
-      // thresholds on the cell with its two range neighbours: a short line whose votes
-      // straddle a range-bin boundary still counts all of them
-      double votes = 0.0;
-      std::size_t voters = 0;
-      for (std::size_t jj = j > 0 ? j - 1 : 0; jj <= j + 1 && jj < acc.n_r; ++jj) {
-        votes += acc.votes[acc.cell(k, jj)];
-        voters += acc.voters[acc.cell(k, jj)];
-      }
-      if (votes < options.min_peak_votes || voters < options.acceptance.min_points) continue;
-      if (acc.is_peak(k, j, options.nms_radius)) candidates.push_back({acc.votes[c], k, j});
+  for (const std::size_t c : acc.touched()) {  // a cell without votes is never a peak
+    if (acc.votes[c] <= 0.0) continue;
+    const std::size_t k = c / acc.n_r, j = c % acc.n_r;
+    // thresholds on the cell with its two range neighbours: a short line whose votes
+    // straddle a range-bin boundary still counts all of them
+    double votes = 0.0;
+    std::size_t voters = 0;
+    for (std::size_t jj = j > 0 ? j - 1 : 0; jj <= j + 1 && jj < acc.n_r; ++jj) {
+      votes += acc.votes[acc.cell(k, jj)];
+      voters += acc.voters[acc.cell(k, jj)];
     }
+    if (votes < options.min_peak_votes || voters < options.acceptance.min_points) continue;
+    if (acc.is_peak(k, j, options.nms_radius)) candidates.push_back({acc.votes[c], k, j});
   }
   std::sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
     return a.votes != b.votes ? a.votes > b.votes : acc.cell(a.k, a.j) < acc.cell(b.k, b.j);
@@ -367,7 +391,8 @@ RwhtExtraction rwht_lines(std::span<const ScanPoint> points, LineFrame frame, co
   const double n_cells = std::ceil(2.0 * kPi / options.angle_bin) * (std::floor(r_max / options.range_bin) + 1.0);
   detail::require(n_cells <= kMaxCells, "RwhtOptions: angle_bin and range_bin give " + std::to_string(n_cells) +
                                             " cells (max " + std::to_string(kMaxCells) + ")");
-  Accumulator acc(options.angle_bin, options.range_bin, r_max);
+  thread_local CellStore cells;
+  Accumulator acc(options.angle_bin, options.range_bin, r_max, cells);
   out.cells = acc.n_alpha * acc.n_r;
   const double dphi = beam_spacing(points);
   for (std::size_t i = 0; i < n; ++i) acc.vote(v.s[i], points[i].range * dphi);
