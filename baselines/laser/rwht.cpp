@@ -80,7 +80,10 @@ struct Accumulator {
   const std::vector<std::size_t>& touched() const { return store.touched; }
   double alpha(std::size_t k) const { return -kPi + (static_cast<double>(k) + 0.5) * d_alpha; }
   double r(std::size_t j) const { return (static_cast<double>(j) + 0.5) * d_r; }
+  // A cell's rank, which orders ties (α-major), and its slot in the store (r-major: a point's
+  // votes at neighbouring α mostly fall in neighbouring slots).
   std::size_t cell(std::size_t k, std::size_t j) const { return k * n_r + j; }
+  std::size_t slot(std::size_t k, std::size_t j) const { return j * n_alpha + k; }
 
   void vote(const Eigen::Vector2d& p, double weight) {
     for (std::size_t k = 0; k < n_alpha; ++k) {
@@ -88,7 +91,7 @@ struct Accumulator {
       if (rr < 0.0) continue;
       const auto j = static_cast<std::size_t>(rr / d_r);
       if (j >= n_r) continue;
-      const std::size_t c = cell(k, j);
+      const std::size_t c = slot(k, j);
       votes[c] += weight;
       if (voters[c]++ == 0) store.touched.push_back(c);
     }
@@ -97,7 +100,7 @@ struct Accumulator {
   // Whether (k, j) beats every other cell within `radius` bins (α wraps; ties go to the lower
   // cell index so a plateau yields one peak).
   bool is_peak(std::size_t k, std::size_t j, int radius) const {
-    const double v = votes[cell(k, j)];
+    const double v = votes[slot(k, j)];
     const auto na = static_cast<long>(n_alpha);
     for (int dk = -radius; dk <= radius; ++dk) {
       const auto kk = static_cast<std::size_t>(((static_cast<long>(k) + dk) % na + na) % na);
@@ -106,7 +109,7 @@ struct Accumulator {
         if (jl < 0 || jl >= static_cast<long>(n_r)) continue;
         const auto jj = static_cast<std::size_t>(jl);
         if (kk == k && jj == j) continue;
-        const double u = votes[cell(kk, jj)];
+        const double u = votes[slot(kk, jj)];
         if (u > v || (u == v && cell(kk, jj) < cell(k, j))) return false;
       }
     }
@@ -135,14 +138,14 @@ std::vector<Candidate> peak_candidates(const Accumulator& acc, const RwhtOptions
   std::vector<Candidate> candidates;
   for (const std::size_t c : acc.touched()) {  // a cell without votes is never a peak
     if (acc.votes[c] <= 0.0) continue;
-    const std::size_t k = c / acc.n_r, j = c % acc.n_r;
+    const std::size_t k = c % acc.n_alpha, j = c / acc.n_alpha;
     // thresholds on the cell with its two range neighbours: a short line whose votes
     // straddle a range-bin boundary still counts all of them
     double votes = 0.0;
     std::size_t voters = 0;
     for (std::size_t jj = j > 0 ? j - 1 : 0; jj <= j + 1 && jj < acc.n_r; ++jj) {
-      votes += acc.votes[acc.cell(k, jj)];
-      voters += acc.voters[acc.cell(k, jj)];
+      votes += acc.votes[acc.slot(k, jj)];
+      voters += acc.voters[acc.slot(k, jj)];
     }
     if (votes < options.min_peak_votes || voters < options.acceptance.min_points) continue;
     if (acc.is_peak(k, j, options.nms_radius)) candidates.push_back({acc.votes[c], k, j});
