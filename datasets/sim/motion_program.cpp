@@ -135,10 +135,11 @@ MotionPhase replay_phase(const WheelSpeeds& u) {
   return u.left * u.right < 0.0 ? MotionPhase::kTurn : MotionPhase::kStraight;
 }
 
-std::size_t replay_command_index(const std::vector<ReplayCommand>& commands, double t) {
-  const auto it =
-      std::upper_bound(commands.begin(), commands.end(), t, [](double v, const ReplayCommand& c) { return v < c.t; });
-  return static_cast<std::size_t>(it - commands.begin());
+std::size_t replay_command_index(const std::vector<ReplayCommand>& commands, double t, std::size_t hint) {
+  std::size_t i = std::min(hint, commands.size());
+  while (i > 0 && commands[i - 1].t > t) --i;
+  while (i < commands.size() && commands[i].t <= t) ++i;
+  return i;
 }
 
 }  // namespace locbench::sim

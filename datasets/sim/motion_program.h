@@ -78,7 +78,8 @@ WheelSpeeds replay_wheel_speeds(const BodyVelocity& b, double wheelbase);
 // (which slip profile applies).
 MotionPhase replay_phase(const WheelSpeeds& u);
 // The number of commands with t ≤ time: the command in force is the one before that index
-// (none when 0).
-std::size_t replay_command_index(const std::vector<ReplayCommand>& commands, double time);
+// (none when 0). The commands are in increasing time; the search steps from `hint`, the index
+// of an earlier call (a simulation asks for times in increasing order).
+std::size_t replay_command_index(const std::vector<ReplayCommand>& commands, double time, std::size_t hint = 0);
 
 }  // namespace locbench::sim

@@ -114,8 +114,9 @@ class Simulation {
     record_due();
     emit();
     const auto end = static_cast<std::int64_t>(std::llround((cmds.back().t - latency) / dt_));
+    std::size_t in_force = 0;
     while (n_ < end) {
-      const std::size_t in_force = replay_command_index(cmds, now() + latency + 0.5 * dt_);
+      in_force = replay_command_index(cmds, now() + latency + 0.5 * dt_, in_force);
       const BodyVelocity command =
           in_force == 0 ? BodyVelocity{} : BodyVelocity{cmds[in_force - 1].v, cmds[in_force - 1].omega};
       BodyVelocity drive = apply_response(sc_.drive.response, lag_.step(command, dt_));

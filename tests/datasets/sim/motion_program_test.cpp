@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "sim_test_helpers.h"
 
@@ -108,6 +110,18 @@ TEST(WaypointsInSimulation, TheRobotBelievesItReachedEveryWaypoint) {
   EXPECT_NEAR(end.x, 0.5, 1e-3);
   EXPECT_NEAR(end.y, 1.5, 1e-3);
   EXPECT_NEAR(r.log.truth.back().pose.x, 0.5, 1e-3);
+}
+
+TEST(ReplayCommandIndex, CountsTheCommandsDueByTheTimeFromAnyHint) {
+  const std::vector<ReplayCommand> commands{{1.0, 0.1, 0.0}, {2.0, 0.2, 0.0}, {2.5, 0.0, 0.1}, {4.0, 0.0, 0.0}};
+  const std::vector<std::pair<double, std::size_t>> due{{0.5, 0}, {1.0, 1}, {1.9, 1}, {2.0, 2},
+                                                        {3.0, 3}, {4.0, 4}, {9.0, 4}};
+  for (const auto& [time, count] : due) {
+    for (std::size_t hint = 0; hint <= commands.size() + 2; ++hint) {
+      EXPECT_EQ(replay_command_index(commands, time, hint), count) << "time " << time << ", hint " << hint;
+    }
+  }
+  EXPECT_EQ(replay_command_index({}, 1.0, 3), 0U);
 }
 
 }  // namespace
