@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <future>
 #include <iterator>
+#include <map>
+#include <mutex>
 #include <set>
 
 #include "core/errors.h"
@@ -124,17 +127,10 @@ std::vector<std::string> real_log_names(const std::vector<RealLogSpec>& specs) {
   return out;
 }
 
-LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path& data_root) {
+namespace {
+
+LoadedRealLog read_real_log(const RealLogSpec& spec, const std::filesystem::path& data_root) {
   LoadedRealLog out;
-  if (spec.from_catalog) {
-    const std::string path = catalog::catalog_log_spec(*find_dataset(spec.name), data_root);
-    if (!std::filesystem::exists(catalog::log_spec_file(path))) {
-      out.status = "skipped";
-      out.reason = "dataset not found at " + path + " (set LOCBENCH_DATA)";
-      out.dataset.path = path;
-      return out;
-    }
-  }
   const catalog::LogSpec load{spec.name,         spec.from_catalog ? spec.name : spec.log,
                               spec.relations,    spec.ground_truth,
                               spec.landmark_map, spec.landmark_observations};
@@ -148,6 +144,57 @@ LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path
     out.reason = e.what();
   }
   return out;
+}
+
+// The catalog's logs as read once in this process: several experiments of a suite read the same
+// log, and the catalog's data are read in place, never written. Keyed by the log's file (or
+// folder) with its size and modification time, so a log that changes is read again; a user's
+// files are read at every call.
+class CatalogLogCache {
+ public:
+  LoadedRealLog load(const RealLogSpec& spec, const std::filesystem::path& data_root, const std::string& path) {
+    std::shared_future<LoadedRealLog> entry;
+    std::promise<LoadedRealLog> promise;
+    {
+      const std::lock_guard lock(mutex_);
+      const auto [it, inserted] = entries_.try_emplace(key(spec, path), promise.get_future().share());
+      entry = it->second;
+      if (!inserted) return entry.get();  // waits while another thread reads it
+    }
+    try {
+      promise.set_value(read_real_log(spec, data_root));  // a catalog log's InputError is a "failed" value
+    } catch (...) {
+      promise.set_exception(std::current_exception());
+    }
+    return entry.get();
+  }
+
+ private:
+  static std::string key(const RealLogSpec& spec, const std::string& path) {
+    const std::filesystem::path file = catalog::log_spec_file(path);
+    std::error_code ec;
+    const auto size = std::filesystem::is_regular_file(file, ec) ? std::filesystem::file_size(file, ec) : 0;
+    const auto stamp = std::filesystem::last_write_time(file, ec).time_since_epoch().count();
+    return spec.name + "\n" + path + "\n" + std::to_string(size) + "\n" + std::to_string(stamp);
+  }
+  std::mutex mutex_;
+  std::map<std::string, std::shared_future<LoadedRealLog>> entries_;
+};
+
+}  // namespace
+
+LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path& data_root) {
+  if (!spec.from_catalog) return read_real_log(spec, data_root);
+  const std::string path = catalog::catalog_log_spec(*find_dataset(spec.name), data_root);
+  if (!std::filesystem::exists(catalog::log_spec_file(path))) {
+    LoadedRealLog out;
+    out.status = "skipped";
+    out.reason = "dataset not found at " + path + " (set LOCBENCH_DATA)";
+    out.dataset.path = path;
+    return out;
+  }
+  static CatalogLogCache cache;
+  return cache.load(spec, data_root, path);
 }
 
 void for_each_real_log(

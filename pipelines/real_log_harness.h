@@ -63,7 +63,9 @@ struct LoadedRealLog {
 };
 
 // Loads one spec under `data_root`. Catalog data: absent → "skipped", InputError → "failed"
-// (reason = its message). A user's files: InputError propagates (exit 2).
+// (reason = its message); read once per process and copied to each caller (the experiments of a
+// suite share the catalog's logs), read again when the log's file changes. A user's files: read
+// at every call; InputError propagates (exit 2).
 LoadedRealLog load_real_log(const RealLogSpec& spec, const std::filesystem::path& data_root);
 
 // Copies what a load gave (status, reason, and the dataset's path, checksum and record count)

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 
 #include <fstream>
 #include <map>
@@ -138,6 +139,28 @@ TEST(RealLogSpecs, AnMrclamFolderWithARobotSuffixIsAUsersLog) {
   EXPECT_EQ(l.log.odometry.size(), 3u);
   const std::string absent = (dir.path() / "MRCLAM_Dataset8").string() + "#robot1";
   EXPECT_THROW(real_log_specs(nlohmann::json::array({{{"name", "m"}, {"log", absent}}}), "x"), InputError);
+}
+
+TEST(RealLogSpecs, ACatalogLogIsReadOnceAndReadAgainWhenItsFilesChange) {
+  ScratchDir dir;
+  const auto folder = dir.path() / "mrclam" / "MRCLAM_Dataset6";
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "Robot1_Odometry.dat") << "# h\n10 0.1 0\n11 0.1 0\n12 0 0\n";
+  std::ofstream(folder / "Robot1_Groundtruth.dat") << "# h\n10 0 0 0\n12 0.2 0 0\n";
+  std::ofstream(folder / "Robot1_Measurement.dat") << "# h\n";
+  const auto specs = real_log_specs({"mrclam6_robot1"}, "x");
+  const LoadedRealLog first = load_real_log(specs.at(0), dir.path());
+  ASSERT_EQ(first.status, "ok") << first.reason;
+  EXPECT_EQ(first.log.odometry.size(), 3u);
+  const LoadedRealLog again = load_real_log(specs.at(0), dir.path());
+  EXPECT_EQ(again.log.odometry.size(), 3u);
+  EXPECT_EQ(again.dataset.checksum, first.dataset.checksum);
+
+  std::filesystem::remove(folder / "Robot1_Odometry.dat");
+  std::ofstream(folder / "Robot1_Odometry.dat") << "# h\n10 0.1 0\n11 0.1 0\n12 0 0\n13 0 0\n";
+  std::filesystem::last_write_time(folder, std::filesystem::last_write_time(folder) + std::chrono::seconds(10));
+  const LoadedRealLog changed = load_real_log(specs.at(0), dir.path());
+  EXPECT_EQ(changed.log.odometry.size(), 4u);
 }
 
 TEST(RealLogSpecs, LandmarkFilesAreAttachedOnLoad) {
