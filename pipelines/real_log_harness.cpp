@@ -149,7 +149,8 @@ LoadedRealLog read_real_log(const RealLogSpec& spec, const std::filesystem::path
 // The catalog's logs as read once in this process: several experiments of a suite read the same
 // log, and the catalog's data are read in place, never written. Keyed by the log's file (or
 // folder) with its size and modification time, so a log that changes is read again; a user's
-// files are read at every call.
+// files are read at every call. The read itself starts no parallel work, so a thread that waits
+// here for another's read can never be the one that read is waiting for.
 class CatalogLogCache {
  public:
   LoadedRealLog load(const RealLogSpec& spec, const std::filesystem::path& data_root, const std::string& path) {
