@@ -115,5 +115,32 @@ TEST(Rwht, FinerBinsPlaceLinesCloserAndCoarserBinsCostFewerCells) {
   }
 }
 
+// The accumulator's cells are kept per thread from scan to scan (a fine grid is released): what a
+// scan gives must not depend on the scans extracted before it, on any grid.
+TEST(Rwht, TheLinesOfAScanDoNotDependOnTheScansExtractedBefore) {
+  const LineMap room = sim::room_world();
+  const auto points_at = [&](const Pose2& pose) {
+    return scan_points(test::lms_scan(room, pose, mm(5.0), 3), Pose2());
+  };
+  const auto a = points_at(kThesisPose), b = points_at(Pose2(3.0, 2.0, deg(-20.0)));
+  RwhtOptions fine;
+  fine.angle_bin = deg(0.05);  // 7,200 × ~1,600 cells: beyond what is kept for the next scan
+  fine.range_bin = 0.005;
+  const RwhtExtraction first = rwht_lines(a, LineFrame::robot);
+  rwht_lines(b, LineFrame::robot, fine);
+  rwht_lines(b, LineFrame::robot);
+  const RwhtExtraction again = rwht_lines(a, LineFrame::robot);
+  ASSERT_EQ(again.peaks.size(), first.peaks.size());
+  for (std::size_t i = 0; i < first.peaks.size(); ++i) {
+    EXPECT_EQ(again.peaks[i].votes, first.peaks[i].votes);
+    EXPECT_EQ(again.peaks[i].cell.rho, first.peaks[i].cell.rho);
+    EXPECT_EQ(again.peaks[i].cell.beta, first.peaks[i].cell.beta);
+  }
+  ASSERT_EQ(again.extraction.lines.size(), first.extraction.lines.size());
+  for (std::size_t i = 0; i < first.extraction.lines.size(); ++i) {
+    EXPECT_EQ(again.extraction.lines[i].points.size(), first.extraction.lines[i].points.size());
+  }
+}
+
 }  // namespace
 }  // namespace locbench::baselines::laser
