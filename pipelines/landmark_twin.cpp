@@ -178,6 +178,62 @@ double turn_bias_spread(const std::vector<double>& t, const std::vector<double>&
   return std::sqrt(std::max(spread / (n - 1.0) - model / n, 0.0));
 }
 
+// The observations of `real`'s schedule (visible_schedule) drawn from `sensor` as seen from the
+// truth `at`: the noise and each landmark's bias from `rng`, the schedule's substitutes and the
+// gross outliers from `camera`.
+std::vector<Observation> draw_observations(const TrackingData& real, diagnosis::TruthInterpolator& at,
+                                           const LandmarkSensorModel& sensor, Rng& rng, Rng& camera) {
+  std::vector<Observation> out;
+  CorrelatedPart range_part(sensor.structure.range_correlation), bearing_part(sensor.structure.bearing_correlation);
+  std::map<int, std::pair<double, double>> landmark_bias;  // drawn per twin: range, bearing
+  for (const auto& [id, position] : real.map) {
+    landmark_bias[id] = {sensor.structure.range_landmark_sigma * rng.normal(),
+                         sensor.structure.bearing_landmark_sigma * rng.normal()};
+  }
+  // Noise levels that vary along the log: one factor per block of kLevelBlockS, e^(s·N(0, 1)).
+  std::map<long, std::pair<double, double>> level;  // block → range, bearing factors
+  const auto level_at = [&](double t) {
+    const long b = static_cast<long>(std::floor((t - real.from) / kLevelBlockS));
+    auto it = level.find(b);
+    if (it == level.end()) {
+      const double fr = std::exp(sensor.structure.range_level_sigma * rng.normal());
+      const double fb = std::exp(sensor.structure.bearing_level_sigma * rng.normal());
+      it = level.emplace(b, std::pair{fr, fb}).first;
+    }
+    return it->second;
+  };
+  for (const Observation& o : visible_schedule(real, at, sensor, camera)) {
+    const auto p = at.at(o.t - sensor.time_offset);
+    if (!p) continue;
+    Eigen::Vector2d l = real.map.at(o.id);
+    if (const auto s = sensor.landmark_shift.find(o.id); s != sensor.landmark_shift.end()) l += s->second;
+    const double rho = std::hypot(l.x() - p->x, l.y() - p->y);
+    const double phi = std::atan2(l.y() - p->y, l.x() - p->x) - p->theta;
+    const double sigma_r = std::hypot(sensor.range_sigma, sensor.range_noise_slope * rho);
+    const auto before = at.at(o.t - sensor.time_offset - 0.05), after = at.at(o.t - sensor.time_offset + 0.05);
+    const double turn_rate = before && after ? angle_diff(after->theta, before->theta) / 0.1 : 0.0;
+    const double sigma_b = std::hypot(sensor.bearing_sigma, sensor.bearing_noise_turn_slope * turn_rate);
+    Observation z = o;
+    const auto [range_bias, bearing_bias] = landmark_bias.at(o.id);
+    const bool varies = sensor.structure.range_level_sigma > 0.0 || sensor.structure.bearing_level_sigma > 0.0;
+    const auto [range_level, bearing_level] = varies ? level_at(o.t) : std::pair{1.0, 1.0};
+    z.range = sensor.range_scale_at(wrap_angle(phi)) * rho + sensor.range_bias + range_bias +
+              range_level * sigma_r * range_part.draw(o.t, sensor.dof, rng);
+    z.bearing = wrap_angle(phi + sensor.bearing_bias + bearing_bias +
+                           bearing_level * sigma_b * bearing_part.draw(o.t, sensor.dof, rng));
+    // A gross outlier instead of the noise (drawn above all the same, so that the noise streams
+    // stay the same with and without outliers).
+    const std::vector<Eigen::Vector2d>& outliers = sensor.structure.outliers;
+    if (!outliers.empty() && camera.bernoulli(sensor.structure.outlier_rate)) {
+      const Eigen::Vector2d& e = outliers[camera.index(outliers.size())];
+      z.range = sensor.range_scale_at(wrap_angle(phi)) * rho + sensor.range_bias + e.x() * sigma_r;
+      z.bearing = wrap_angle(phi + sensor.bearing_bias + e.y());
+    }
+    out.push_back(z);
+  }
+  return out;
+}
+
 }  // namespace
 
 MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& data,
@@ -273,56 +329,18 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
     pose = walk_block(d, block(d, next, d.steps.size()), mean_model, 1.0, Eigen::Vector3d::Zero(), pose, truth);
   truth.push_back({truth.back().t + kTwinTruthMargin, pose, {}});
 
-  twin.observations.clear();
   diagnosis::TruthInterpolator at(truth);
-  CorrelatedPart range_part(sensor.structure.range_correlation), bearing_part(sensor.structure.bearing_correlation);
-  std::map<int, std::pair<double, double>> landmark_bias;  // drawn per twin: range, bearing
-  for (const auto& [id, position] : real.map) {
-    landmark_bias[id] = {sensor.structure.range_landmark_sigma * rng.normal(),
-                         sensor.structure.bearing_landmark_sigma * rng.normal()};
-  }
-  // Noise levels that vary along the log: one factor per block of kLevelBlockS, e^(s·N(0, 1)).
-  std::map<long, std::pair<double, double>> level;  // block → range, bearing factors
-  const auto level_at = [&](double t) {
-    const long b = static_cast<long>(std::floor((t - real.from) / kLevelBlockS));
-    auto it = level.find(b);
-    if (it == level.end()) {
-      const double fr = std::exp(sensor.structure.range_level_sigma * rng.normal());
-      const double fb = std::exp(sensor.structure.bearing_level_sigma * rng.normal());
-      it = level.emplace(b, std::pair{fr, fb}).first;
-    }
-    return it->second;
-  };
   Rng camera(Rng::derive_seed(seed, 1));
-  for (const Observation& o : visible_schedule(real, at, sensor, camera)) {
-    const auto p = at.at(o.t - sensor.time_offset);
-    if (!p) continue;
-    Eigen::Vector2d l = real.map.at(o.id);
-    if (const auto s = sensor.landmark_shift.find(o.id); s != sensor.landmark_shift.end()) l += s->second;
-    const double rho = std::hypot(l.x() - p->x, l.y() - p->y);
-    const double phi = std::atan2(l.y() - p->y, l.x() - p->x) - p->theta;
-    const double sigma_r = std::hypot(sensor.range_sigma, sensor.range_noise_slope * rho);
-    const auto before = at.at(o.t - sensor.time_offset - 0.05), after = at.at(o.t - sensor.time_offset + 0.05);
-    const double turn_rate = before && after ? angle_diff(after->theta, before->theta) / 0.1 : 0.0;
-    const double sigma_b = std::hypot(sensor.bearing_sigma, sensor.bearing_noise_turn_slope * turn_rate);
-    Observation z = o;
-    const auto [range_bias, bearing_bias] = landmark_bias.at(o.id);
-    const bool varies = sensor.structure.range_level_sigma > 0.0 || sensor.structure.bearing_level_sigma > 0.0;
-    const auto [range_level, bearing_level] = varies ? level_at(o.t) : std::pair{1.0, 1.0};
-    z.range = sensor.range_scale_at(wrap_angle(phi)) * rho + sensor.range_bias + range_bias +
-              range_level * sigma_r * range_part.draw(o.t, sensor.dof, rng);
-    z.bearing = wrap_angle(phi + sensor.bearing_bias + bearing_bias +
-                           bearing_level * sigma_b * bearing_part.draw(o.t, sensor.dof, rng));
-    // A gross outlier instead of the noise (drawn above all the same, so that the noise streams
-    // stay the same with and without outliers).
-    const std::vector<Eigen::Vector2d>& outliers = sensor.structure.outliers;
-    if (!outliers.empty() && camera.bernoulli(sensor.structure.outlier_rate)) {
-      const Eigen::Vector2d& e = outliers[camera.index(outliers.size())];
-      z.range = sensor.range_scale_at(wrap_angle(phi)) * rho + sensor.range_bias + e.x() * sigma_r;
-      z.bearing = wrap_angle(phi + sensor.bearing_bias + e.y());
-    }
-    twin.observations.push_back(z);
-  }
+  twin.observations = draw_observations(real, at, sensor, rng, camera);
+  return twin;
+}
+
+TrackingData landmark_sensor_twin(const TrackingData& real, const LandmarkSensorModel& sensor, std::uint64_t seed) {
+  if (real.motion.truth.empty()) throw InputError(real.log, 0, "the sensor twin needs the span's truth");
+  TrackingData twin = real;
+  diagnosis::TruthInterpolator at(twin.motion.truth);
+  Rng rng(seed), camera(Rng::derive_seed(seed, 1));
+  twin.observations = draw_observations(real, at, sensor, rng, camera);
   return twin;
 }
 

@@ -58,4 +58,12 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
                            const LandmarkSensorModel& sensor, std::uint64_t seed,
                            const MotionNoiseStructure& structure = {});
 
+// The sensor twin of `real`: the log itself — its odometry and its truth — with the landmark
+// observations of its schedule drawn anew from `sensor` from the log's truth, as landmark_twin
+// draws them from its own. A method's result on it differs from the real one only where the
+// sensor model differs from the log's sensor, so beside the extended twin it tells a forecast
+// missed by the motion model (the sensor twin covers the real value) from one missed by the
+// sensor model. Throws InputError (naming the log) when the span has no truth.
+TrackingData landmark_sensor_twin(const TrackingData& real, const LandmarkSensorModel& sensor, std::uint64_t seed);
+
 }  // namespace locbench::experiments::landmarks

@@ -32,14 +32,21 @@ std::array<std::vector<double>, 3> window_residuals(const TrackingData& data) {
   return out;
 }
 
+// The filter metrics of one run of the methods: metric → one value per method.
+std::map<std::string, std::vector<double>> filter_metrics(const std::vector<TrackResult>& results) {
+  std::map<std::string, std::vector<double>> per_method;
+  for (const TrackResult& r : results) {
+    per_method["position_rmse"].push_back(r.position_rmse());
+    per_method["heading_rmse"].push_back(r.heading_rmse());
+    per_method["nees"].push_back(r.nees.empty() ? std::numeric_limits<double>::infinity() : mean(r.nees));
+    per_method["gated_fraction"].push_back(r.gated_fraction());
+  }
+  return per_method;
+}
+
 RunMetrics run_metrics(const TrackingData& data, const std::vector<TrackResult>& results, const FamilyOptions& family) {
   RunMetrics m;
-  for (const TrackResult& r : results) {
-    m.per_method["position_rmse"].push_back(r.position_rmse());
-    m.per_method["heading_rmse"].push_back(r.heading_rmse());
-    m.per_method["nees"].push_back(r.nees.empty() ? std::numeric_limits<double>::infinity() : mean(r.nees));
-    m.per_method["gated_fraction"].push_back(r.gated_fraction());
-  }
+  m.per_method = filter_metrics(results);
   m.dead_reckoning["dead_reckoning_rmse"] = dead_reckoning(data, family.gate).position_rmse();
   for (std::size_t h = 0; h < std::size(kHorizons); ++h)
     m.dead_reckoning[kHorizonNames[h]] = odometry_rpe(data, kHorizons[h]);
@@ -70,18 +77,23 @@ TwinForecast twin_predictions(const TrackingData& test, const std::vector<Method
   for (const MethodScore& m : tuned) real_results.push_back(m.heldout);
   const RunMetrics real = run_metrics(test, real_results, family);
 
-  // twin j (0 nominal, 1 extended) → its runs' metrics
-  std::vector<RunMetrics> runs[2];
+  // twin j (0 nominal, 1 extended, 2 the sensor twin) → its runs' metrics
+  std::vector<RunMetrics> runs[3];
   const auto per_twin = static_cast<std::size_t>(std::max(options.runs, 0));
-  runs[0].resize(per_twin);
-  runs[1].resize(per_twin);
-  experiments::parallel_tasks(options.threads, 2 * per_twin, [&](std::size_t task) {
+  for (std::vector<RunMetrics>& r : runs) r.resize(per_twin);
+  experiments::parallel_tasks(options.threads, 3 * per_twin, [&](std::size_t task) {
     const int j = static_cast<int>(task / per_twin), k = static_cast<int>(task % per_twin);
-    const diagnosis::OdometryModel& motion = j == 0 ? models.nominal_motion : models.diagnosed_motion;
-    const LandmarkSensorModel& sensor = j == 0 ? models.nominal_sensor : models.diagnosed_sensor;
-    const TrackingData twin = landmark_twin(test, motion, sensor, Rng::derive_seed(options.seed, 2 * k + j),
-                                            j == 0 ? MotionNoiseStructure{} : models.diagnosed_motion_structure);
-    runs[j][static_cast<std::size_t>(k)] = run_metrics(twin, run_tuned(twin, tuned, models, family), family);
+    const TrackingData twin =
+        j == 2 ? landmark_sensor_twin(test, models.diagnosed_sensor, Rng::derive_seed(options.seed, 2 * per_twin + k))
+               : landmark_twin(test, j == 0 ? models.nominal_motion : models.diagnosed_motion,
+                               j == 0 ? models.nominal_sensor : models.diagnosed_sensor,
+                               Rng::derive_seed(options.seed, 2 * k + j),
+                               j == 0 ? MotionNoiseStructure{} : models.diagnosed_motion_structure);
+    // The sensor twin's odometry is the log's: its dead reckoning and window residuals are the
+    // real ones, not computed again.
+    runs[j][static_cast<std::size_t>(k)] =
+        j == 2 ? RunMetrics{filter_metrics(run_tuned(twin, tuned, models, family)), {}, {}}
+               : run_metrics(twin, run_tuned(twin, tuned, models, family), family);
   });
   const auto interval = [&](int j, auto&& value) {
     std::vector<double> v;
@@ -99,6 +111,7 @@ TwinForecast twin_predictions(const TrackingData& test, const std::vector<Method
       c.real_diverged = tuned[i].heldout.diverged;
       c.nominal = interval(0, [&, &m = metric](const RunMetrics& r) { return r.per_method.at(m)[i]; });
       c.extended = interval(1, [&, &m = metric](const RunMetrics& r) { return r.per_method.at(m)[i]; });
+      if (per_twin > 0) c.sensor = interval(2, [&, &m = metric](const RunMetrics& r) { return r.per_method.at(m)[i]; });
       cells[metric].push_back(c);
     }
   }

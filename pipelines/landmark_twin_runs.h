@@ -2,7 +2,9 @@
 // The predictivity cells of one landmark log: the real held-out result of every tuned
 // method and of dead reckoning, beside the results of seeded twins (landmark_twin.h) of the
 // held-out part under the nominal models (the fitted white floor, the nominal sensor) and under
-// the diagnosed ones (every kept cause, the fitted landmark sensor). Every twin run uses the
+// the diagnosed ones (every kept cause, the fitted landmark sensor), and of sensor twins
+// (landmark_sensor_twin: the part's own odometry and truth, the observations drawn from the fitted
+// landmark sensor), which tell a miss of the motion model from one of the sensor model. Every twin run uses the
 // methods' settings tuned on the real tuning part — the twin forecasts what the user will see.
 //
 // Metrics (one list of cells each; predictivity.h): for each filter method "position_rmse" [m],
@@ -26,7 +28,8 @@ namespace locbench::experiments::landmarks {
 
 struct TwinRunOptions {
   int runs = 20;           // seeded runs of each twin
-  std::uint64_t seed = 1;  // run k of twin j of this log has seed Rng::derive_seed(seed, 2k + j)
+  std::uint64_t seed = 1;  // run k of twin j (0 nominal, 1 extended) has seed Rng::derive_seed(seed, 2k + j), of
+                           // the sensor twin Rng::derive_seed(seed, 2·runs + k)
   int threads = 1;         // the runs side by side (experiments::parallel_tasks); same results for any number
 };
 

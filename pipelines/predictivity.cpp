@@ -67,6 +67,12 @@ MetricPredictivity predictivity(const std::vector<PredictivityCell>& cells) {
       t->above += c.real > interval->high ? 1 : 0;
       t->below += c.real < interval->low ? 1 : 0;
     }
+    if (c.sensor) {
+      ++m.sensor_cells;
+      const bool sensor_covers = c.sensor->covers(c.real);
+      m.sensor_covered += sensor_covers ? 1 : 0;
+      if (!c.extended.covers(c.real)) ++(sensor_covers ? m.extended_misses_of_motion : m.extended_misses_of_sensor);
+    }
     if (!finite_cell(c)) continue;
     usable.push_back(&c);
     real.push_back(c.real);

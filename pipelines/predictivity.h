@@ -18,6 +18,7 @@
 // the MMRV. When every compared value is positive,
 // Pearson r is taken on their logarithms: the metrics are ratio scales whose values span orders of magnitude (a
 // diverged filter's NEES of 1e11 beside consistent ones near 3 would make r ≈ 1 whatever the rest).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ struct PredictivityCell {
   double real = 0.0;
   bool real_diverged = false;
   PredictiveInterval nominal, extended;
+  // The sensor twin's (landmark_sensor_twin: the log's own motion, the fitted sensor), for a
+  // metric the sensor moves; none for one of the odometry alone.
+  std::optional<PredictiveInterval> sensor;
 };
 
 struct TwinPredictivity {
@@ -50,6 +54,11 @@ struct MetricPredictivity {
   std::size_t compared = 0;  // finite real value and predictions of both twins, real run not diverged
   bool log_scale = false;    // Pearson r on logarithms (every compared value > 0)
   TwinPredictivity nominal, extended;
+  // Over the cells with a sensor twin: the ones it covers, and the extended twin's misses split by
+  // it — covered by the sensor twin (the motion model missed: with the log's own motion the
+  // forecast holds) or missed by it too (the sensor model missed).
+  std::size_t sensor_cells = 0, sensor_covered = 0;
+  std::size_t extended_misses_of_motion = 0, extended_misses_of_sensor = 0;
 };
 MetricPredictivity predictivity(const std::vector<PredictivityCell>& cells);
 

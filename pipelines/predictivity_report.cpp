@@ -41,6 +41,7 @@ std::string cell_lines(const std::vector<PredictivityCell>& cells, const std::st
     s += fmt::format("\n    {:<18} real {:.4g}{} | nominal twin {} | extended twin {}", c.method, c.real,
                      unit.empty() ? "" : " " + unit, interval_text(c.nominal, c.real),
                      interval_text(c.extended, c.real));
+    if (c.sensor) s += " | sensor twin " + interval_text(*c.sensor, c.real);
   }
   return s;
 }
@@ -58,6 +59,20 @@ std::vector<reports::MetricResult> predictivity_results(const std::string& metri
     out.push_back(count(twin, metric + "_mmrv", t.mmrv, m.compared, "lower",
                         "mean maximum rank violation of the methods per log, relative to the log's mean real value"));
   }
+  if (m.sensor_cells == 0) return out;
+  out.push_back(count("sensor_twin", metric + "_covered_fraction",
+                      static_cast<double>(m.sensor_covered) / static_cast<double>(m.sensor_cells), m.sensor_cells,
+                      "higher",
+                      "cells whose real value the sensor twin's (the log's own motion, the fitted sensor) 95% "
+                      "predictive interval contains"));
+  out.push_back(count("extended_twin", metric + "_misses_of_the_motion_model",
+                      static_cast<double>(m.extended_misses_of_motion), m.sensor_cells, "lower",
+                      "cells the extended twin misses and the sensor twin covers: with the log's own motion the "
+                      "forecast holds"));
+  out.push_back(count("extended_twin", metric + "_misses_of_the_sensor_model",
+                      static_cast<double>(m.extended_misses_of_sensor), m.sensor_cells, "lower",
+                      "cells the extended twin and the sensor twin both miss: the fitted sensor does not forecast "
+                      "the log even with its own motion"));
   return out;
 }
 
@@ -76,7 +91,7 @@ reports::Plot interval_plot(const std::string& name, const std::string& title, c
                             const std::vector<PredictivityCell>& cells) {
   reports::Plot p = scatter_chart(name, title, "method", "", "value", unit);
   reports::PlotSeries real{"real", {}, {}}, nominal{"nominal twin intervals", {}, {}},
-      extended{"extended twin intervals", {}, {}};
+      extended{"extended twin intervals", {}, {}}, sensor{"sensor twin intervals", {}, {}};
   std::string order;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const auto x = static_cast<double>(i);
@@ -89,9 +104,14 @@ reports::Plot interval_plot(const std::string& name, const std::string& title, c
       series->x.insert(series->x.end(), {x + dx, x + dx});
       series->y.insert(series->y.end(), {interval->low, interval->high});
     }
+    if (c.sensor && std::isfinite(c.sensor->low) && std::isfinite(c.sensor->high)) {
+      sensor.x.insert(sensor.x.end(), {x + 0.3, x + 0.3});
+      sensor.y.insert(sensor.y.end(), {c.sensor->low, c.sensor->high});
+    }
     order += fmt::format("{}{} = {}", i ? ", " : "", i, c.method);
   }
   p.series = {real, nominal, extended};
+  if (!sensor.x.empty()) p.series.push_back(sensor);
   p.note = fmt::format("x: {}; bars: the twins' 95% predictive intervals ({} seeded runs each)", order,
                        cells.empty() ? 0 : cells.front().nominal.runs);
   return p;

@@ -1,12 +1,13 @@
 // The landmark twin draws a log from a model; the diagnosis, run on the drawn log,
-// gives the model back. Its sensor draws the noise structure it is given, and the predictivity
-// summary counts coverage, correlation and rank violations as defined.
+// gives the model back. The sensor twin keeps the log's motion and draws its observations. Its sensor draws the noise
+// structure it is given, and the predictivity summary counts coverage, correlation and rank violations as defined.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numeric>
 
 #include "algorithms/diagnosis/diagnosis.h"
+#include "core/angle.h"
 #include "core/rng.h"
 #include "core/statistics.h"
 #include "datasets/diagnosis/hidden_effects.h"
@@ -103,6 +104,51 @@ TEST(LandmarkTwin, ItsSensorDrawsTheNoiseStructureItIsGiven) {
   const TrackingData varying = landmark_twin(b.data, still, sensor, 3);
   EXPECT_GT(measured_sensor_noise(varying, LandmarkSensorModel{}).structure.range_level_sigma, 0.3)
       << (b.data.to - b.data.from) << " s";
+}
+
+// The sensor twin is the log with only its landmark observations drawn anew: the log's odometry and
+// truth unchanged; with a noiseless sensor every observation of the log is drawn again, at its time
+// and of its landmark, at the range and bearing the log's truth sees it from (the simulated log's
+// own observations differ by their noise, 5 cm and 0.02 rad); with a noisy one the noise is the
+// sensor's.
+TEST(LandmarkSensorTwin, KeepsTheLogsMotionAndDrawsItsObservationsFromTheLogsTruth) {
+  const Base b = base_log(55);
+  LandmarkSensorModel noiseless;
+  noiseless.range_sigma = noiseless.bearing_sigma = 0.0;
+  const TrackingData clean = landmark_sensor_twin(b.data, noiseless, 2);
+  ASSERT_EQ(clean.motion.steps.size(), b.data.motion.steps.size());
+  for (std::size_t i = 0; i < clean.motion.steps.size(); ++i) {
+    EXPECT_EQ(clean.motion.steps[i].a, b.data.motion.steps[i].a);
+    EXPECT_EQ(clean.motion.steps[i].b, b.data.motion.steps[i].b);
+  }
+  ASSERT_EQ(clean.motion.truth.size(), b.data.motion.truth.size());
+  EXPECT_EQ(clean.motion.truth.back().pose.x, b.data.motion.truth.back().pose.x);
+  ASSERT_EQ(clean.observations.size(), b.data.observations.size()) << "every landmark the log saw is in reach";
+  diagnosis::TruthInterpolator at(b.data.motion.truth);
+  double worst_range = 0.0, worst_bearing = 0.0, logged_range = 0.0;
+  for (std::size_t i = 0; i < clean.observations.size(); ++i) {
+    const Observation &z = clean.observations[i], &o = b.data.observations[i];
+    ASSERT_EQ(z.t, o.t);
+    ASSERT_EQ(z.id, o.id);
+    const auto p = at.at(z.t);
+    ASSERT_TRUE(p.has_value());
+    const Eigen::Vector2d l = b.data.map.at(z.id);
+    const double rho = std::hypot(l.x() - p->x, l.y() - p->y);
+    worst_range = std::max(worst_range, std::abs(z.range - rho));
+    worst_bearing =
+        std::max(worst_bearing, std::abs(angle_diff(z.bearing, std::atan2(l.y() - p->y, l.x() - p->x) - p->theta)));
+    logged_range = std::max(logged_range, std::abs(o.range - rho));
+  }
+  EXPECT_LT(worst_range, 1e-9);
+  EXPECT_LT(worst_bearing, 1e-9);
+  EXPECT_GT(logged_range, 0.05) << "the log's own observations carry its noise";
+  LandmarkSensorModel noisy;
+  noisy.range_sigma = 0.08;
+  noisy.bearing_sigma = 0.01;
+  const LandmarkSensorModel measured =
+      measured_sensor_noise(landmark_sensor_twin(b.data, noisy, 2), LandmarkSensorModel{});
+  EXPECT_NEAR(measured.range_sigma, 0.08, 0.01);
+  EXPECT_NEAR(measured.bearing_sigma, 0.01, 0.0015);
 }
 
 // Gross outliers: the twin replaces 2% of its observations by residuals resampled from the given
@@ -384,6 +430,23 @@ TEST(Predictivity, CoverageCorrelationAndRankViolationsAreCountedPerMetric) {
   EXPECT_GT(m.extended.pearson, 0.99);
   EXPECT_LT(m.nominal.pearson, m.extended.pearson);
   EXPECT_DOUBLE_EQ(m.extended.spearman, 1.0);
+}
+
+// The sensor twin splits the extended twin's misses: a miss the sensor twin covers is the motion
+// model's, one it misses too is the sensor model's; cells without a sensor twin (dead reckoning)
+// are in neither count.
+TEST(Predictivity, TheSensorTwinTellsAMissOfTheMotionModelFromOneOfTheSensorModel) {
+  std::vector<PredictivityCell> cells = {cell("A", "motion", 1.0, 1.0, 2.0), cell("A", "sensor", 1.0, 1.0, 2.0),
+                                         cell("A", "held", 1.0, 1.0, 1.0), cell("A", "dead_reckoning", 1.0, 1.0, 2.0)};
+  cells[0].sensor = PredictiveInterval{0.95, 1.0, 1.05, 20};
+  cells[1].sensor = PredictiveInterval{1.5, 1.6, 1.7, 20};
+  cells[2].sensor = PredictiveInterval{0.9, 1.0, 1.1, 20};
+  const MetricPredictivity m = predictivity(cells);
+  EXPECT_EQ(m.extended.covered, 1u);
+  EXPECT_EQ(m.sensor_cells, 3u);
+  EXPECT_EQ(m.sensor_covered, 2u);
+  EXPECT_EQ(m.extended_misses_of_motion, 1u);
+  EXPECT_EQ(m.extended_misses_of_sensor, 1u) << "dead reckoning's miss has no sensor twin to tell";
 }
 
 TEST(Predictivity, ANonFiniteCellIsCountedButNotCorrelated) {

@@ -646,8 +646,10 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
   static std::string twin_note(const std::string& ds, const Outcome& o, const Options& c) {
     std::string twins = fmt::format(
         "{} — twin forecasts of the {}: each method at its tuned setting on {} seeded runs of the "
-        "nominal twin (fitted floor, nominal sensor) and of the extended twin (every diagnosed cause, the fitted "
-        "landmark sensor); the real value beside each twin's 95% predictive interval",
+        "nominal twin (fitted floor, nominal sensor), of the extended twin (every diagnosed cause, the fitted "
+        "landmark sensor) and of the sensor twin (the log's own odometry and truth, the landmark observations drawn "
+        "from the fitted sensor: where the extended twin misses and the sensor twin covers, the motion model is "
+        "what misses); the real value beside each twin's 95% predictive interval",
         ds, twin_part(c), o.twin_cells.begin()->second.front().nominal.runs);
     for (const auto& [name, m] :
          {std::pair{"nominal", o.models.nominal_sensor}, std::pair{"extended", o.models.diagnosed_sensor}}) {
@@ -688,6 +690,7 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         all[metric].insert(all[metric].end(), cells.begin(), cells.end());
     if (all.empty()) return;
     std::size_t cells_total = 0, covered_nominal = 0, covered_extended = 0;
+    std::size_t sensor_cells = 0, covered_sensor = 0, misses_of_motion = 0, misses_of_sensor = 0;
     std::string text = fmt::format(
         "Twin predictivity (issue 29) on the {}, {} seeded runs per twin and log; per metric across methods × logs "
         "(never "
@@ -701,11 +704,21 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
       cells_total += m.cells;
       covered_nominal += m.nominal.covered;
       covered_extended += m.extended.covered;
+      sensor_cells += m.sensor_cells;
+      covered_sensor += m.sensor_covered;
+      misses_of_motion += m.extended_misses_of_motion;
+      misses_of_sensor += m.extended_misses_of_sensor;
       const bool correlations = m.compared >= kMinCorrelatedCells;
       text += fmt::format(
           "\n  {:<20} {} cells ({} compared): covered nominal {} / extended {} (the extended twin's misses: real "
-          "above the interval {}, below {}){}",
+          "above the interval {}, below {}{}){}",
           metric, m.cells, m.compared, m.nominal.covered, m.extended.covered, m.extended.above, m.extended.below,
+          m.sensor_cells > 0
+              ? fmt::format("; the sensor twin covers {} of the {} cells, and {} of the misses: {} "
+                            "the motion model's, {} the sensor model's",
+                            m.sensor_covered, m.sensor_cells, m.extended_misses_of_motion + m.extended_misses_of_sensor,
+                            m.extended_misses_of_motion, m.extended_misses_of_sensor)
+              : "",
           correlations
               ? fmt::format("; Pearson r{} {:.2f} / {:.2f}; Spearman ρ {:.2f} / {:.2f}; MMRV {:.3f} / {:.3f}{}",
                             m.log_scale ? " (of logs)" : "", m.nominal.pearson, m.extended.pearson, m.nominal.spearman,
@@ -723,6 +736,11 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         "\n  All cells: the extended twin covers {} of {} ({:.0f}%; target ≥ 80%), the nominal twin {} ({:.0f}%).",
         covered_extended, cells_total, 100.0 * extended_fraction, covered_nominal,
         cells_total ? 100.0 * covered_nominal / cells_total : 0.0);
+    if (sensor_cells > 0)
+      text += fmt::format(
+          " Of the {} filter cells the sensor twin covers {}; of the extended twin's misses among them, {} are the "
+          "motion model's (the log's own motion makes the forecast hold) and {} the sensor model's.",
+          sensor_cells, covered_sensor, misses_of_motion, misses_of_sensor);
     std::size_t ks_cells = 0, ks_nominal = 0, ks_extended = 0;
     for (const Outcome& o : outcomes) {
       for (const ResidualKs& k : o.twin_residuals) {
