@@ -77,6 +77,12 @@ struct MotionNoiseStructure {
   // fitted) puts there; the twin draws a new bias per block (0: not measured or none). Carried by
   // the twin only.
   double turn_bias_spread = 0.0;
+  // A noise level that moves along the log: the spread of ln σ of the standardized window residuals
+  // (x, y, θ) between blocks of kLevelBlockS beyond their sampling spread (noise_level_spread) —
+  // episodes of harder driving, as the sensor's NoiseStructure::range_level_sigma is for its noise.
+  // The twin draws one level per block, common to the three components, e^(s_c·N(0, 1)) (0: none).
+  // Carried by the twin only.
+  Eigen::Vector3d level_spread = Eigen::Vector3d::Zero();
   bool correlated() const { return x.share > 0.0 || y.share > 0.0 || theta.share > 0.0; }
 };
 

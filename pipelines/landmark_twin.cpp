@@ -40,6 +40,47 @@ Pose2 walk_block(const diagnosis::MotionData& d, const diagnosis::MotionWindow& 
   return end;
 }
 
+// How the twin's commands are steered toward the log's path (landmark_twin): a window that moves
+// less than kMinSteerDistance and turns less than kMinSteerTurn stands and is not steered; the
+// cross-track error is aimed at over kSteerLookahead; a window's correction is at most half its own
+// distance, and half its own turn plus kMaxSteerTurn.
+constexpr double kSteerLookahead = 1.0;     // [m]
+constexpr double kMinSteerDistance = 0.01;  // [m]
+constexpr double kMinSteerTurn = 0.02;      // [rad]
+constexpr double kMaxSteerTurn = 0.05;      // [rad]
+
+// Steers the commands (pose odometry) of window `w` of `m`: `e` is the log's true pose in the frame
+// of the twin's, both at the window's start, and g = min(1, T/follow_time_s) of it is asked of the
+// window beyond its own commands, in the model's units (÷ its velocity and turn-rate scales): g·e_x
+// along the track, spread over the steps in proportion to their distance, and a turn
+// g·(e_θ + atan2(±e_y, kSteerLookahead)) (the cross-track term when the window drives; its sign
+// follows the direction of travel), spread over the moving steps in proportion to their time. The
+// window's covariates are refreshed.
+void steer_window(diagnosis::MotionData& m, diagnosis::MotionWindow& w, const Pose2& e,
+                  const diagnosis::OdometryModel& model, double follow_time_s) {
+  double moved = 0.0, signed_moved = 0.0, turned = 0.0, moving_time = 0.0;
+  for (std::size_t k = w.first; k < w.last; ++k) {
+    const diagnosis::OdometryStep& s = m.steps[k];
+    moved += std::abs(s.a);
+    signed_moved += s.a;
+    turned += std::abs(s.b);
+    if (s.a != 0.0 || s.b != 0.0) moving_time += s.t1 - s.t0;
+  }
+  if ((moved < kMinSteerDistance && turned < kMinSteerTurn) || !(moving_time > 0.0)) return;
+  const double g = std::min(1.0, (w.t1 - w.t0) / follow_time_s);
+  const double along = std::clamp(g * e.x / model.velocity_scale, -0.5 * moved, 0.5 * moved);
+  const double cross = moved >= kMinSteerDistance ? std::atan2(signed_moved < 0.0 ? -e.y : e.y, kSteerLookahead) : 0.0;
+  const double cap = 0.5 * turned + kMaxSteerTurn;
+  const double turn = std::clamp(g * wrap_angle(e.theta + cross) / model.turn_rate_scale, -cap, cap);
+  for (std::size_t k = w.first; k < w.last; ++k) {
+    diagnosis::OdometryStep& s = m.steps[k];
+    if (s.a == 0.0 && s.b == 0.0) continue;
+    if (moved > 0.0) s.a += along * std::abs(s.a) / moved;
+    s.b += turn * (s.t1 - s.t0) / moving_time;
+  }
+  diagnosis::fill_covariates(m, w);
+}
+
 // Unit-variance sensor noise with a share of it correlated in time (NoiseCorrelation): the white
 // part Student-t (normal for dof 0), the shared part a stationary Gauss–Markov process,
 // b ← e^(−Δt/τ)·b + √(1 − e^(−2Δt/τ))·N(0, 1).
@@ -260,6 +301,7 @@ MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& dat
   MotionNoiseStructure s{fit_noise_correlation(t, x), fit_noise_correlation(t, y), fit_noise_correlation(t, theta),
                          large_residual_runs(x, adjacent)};
   s.turn_bias_spread = turn_bias_spread(t, span, heading, heading_variance, s.theta);
+  s.level_spread = {noise_level_spread(t, x), noise_level_spread(t, y), noise_level_spread(t, theta)};
   const std::vector<std::optional<double>> stalled = diagnosis::stall_posteriors(data, model);
   double together = 0.0, first = 0.0;
   for (std::size_t k = 0; k + 1 < data.windows.size(); ++k) {
@@ -272,8 +314,8 @@ MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& dat
 }
 
 TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryModel& motion,
-                           const LandmarkSensorModel& sensor, std::uint64_t seed,
-                           const MotionNoiseStructure& structure) {
+                           const LandmarkSensorModel& sensor, std::uint64_t seed, const MotionNoiseStructure& structure,
+                           double follow_time_s) {
   const diagnosis::MotionData& d = real.motion;
   if (d.windows.empty() || d.steps.empty()) throw InputError(real.log, 0, "the twin needs the span's motion windows");
   const auto first = diagnosis::interpolate_truth(d.truth, d.steps.front().t0 - motion.time_offset);
@@ -286,7 +328,9 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
   mean_model.stall_duration = 0.0;
 
   TrackingData twin = real;
-  std::vector<TruePose>& truth = twin.motion.truth;
+  diagnosis::MotionData& m = twin.motion;  // the twin's commands: the log's, steered when follow_time_s > 0
+  const bool steers = follow_time_s > 0.0 && m.odometry == diagnosis::OdometryKind::kPose;
+  std::vector<TruePose>& truth = m.truth;
   truth.clear();
   const double t_start = d.steps.front().t0 - motion.time_offset;
   truth.push_back({t_start - kTwinTruthMargin, origin, {}});
@@ -297,15 +341,32 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
   // of its own (the other draws stay those of a twin without it).
   Rng bias_rng(Rng::derive_seed(seed, 2));
   double bias = 0.0, bias_block_end = -std::numeric_limits<double>::infinity();
+  // The motion noise level that moves along the log: one draw per block of kLevelBlockS, on a
+  // stream of its own.
+  Rng level_rng(Rng::derive_seed(seed, 3));
+  long level_block = std::numeric_limits<long>::min();
+  double level = 0.0;
+  const bool levels = structure.level_spread.maxCoeff() > 0.0;
   std::size_t next = 0;  // first step not walked yet
   bool stalled = false;  // the previous window held a stall
-  for (const diagnosis::MotionWindow& w : d.windows) {
+  for (diagnosis::MotionWindow& w : m.windows) {
     if (w.first > next)
-      pose = walk_block(d, block(d, next, w.first), mean_model, 1.0, Eigen::Vector3d::Zero(), pose, truth);
-    const Eigen::Vector3d v = diagnosis::window_variance(d, w, motion);
+      pose = walk_block(m, block(m, next, w.first), mean_model, 1.0, Eigen::Vector3d::Zero(), pose, truth);
+    if (steers)
+      if (const auto on_path = diagnosis::interpolate_truth(d.truth, w.t0 - motion.time_offset))
+        steer_window(m, w, between(pose, *on_path), motion, follow_time_s);
+    const Eigen::Vector3d v = diagnosis::window_variance(m, w, motion);
     Eigen::Vector3d r(std::sqrt(v.x()) * along.draw(w.t0, motion.dof, rng),
                       std::sqrt(v.y()) * left.draw(w.t0, motion.dof, rng),
                       std::sqrt(v.z()) * turn.draw(w.t0, motion.dof, rng));
+    if (levels) {
+      const auto b = static_cast<long>(std::floor((w.t0 - m.windows.front().t0) / kLevelBlockS));
+      if (b != level_block) {
+        level_block = b;
+        level = level_rng.normal();
+      }
+      for (int c = 0; c < 3; ++c) r(c) *= std::exp(structure.level_spread(c) * level);
+    }
     if (structure.turn_bias_spread > 0.0) {
       if (w.t0 >= bias_block_end) {
         bias = structure.turn_bias_spread * bias_rng.normal();
@@ -322,11 +383,11 @@ TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryMo
       stalled = rng.bernoulli(q <= p ? p : stalled ? q : p * (1.0 - q) / (1.0 - p));
       if (stalled) keep = 1.0 - odds.fraction;
     }
-    pose = walk_block(d, w, mean_model, keep, r, pose, truth);
+    pose = walk_block(m, w, mean_model, keep, r, pose, truth);
     next = w.last;
   }
-  if (next < d.steps.size())
-    pose = walk_block(d, block(d, next, d.steps.size()), mean_model, 1.0, Eigen::Vector3d::Zero(), pose, truth);
+  if (next < m.steps.size())
+    pose = walk_block(m, block(m, next, m.steps.size()), mean_model, 1.0, Eigen::Vector3d::Zero(), pose, truth);
   truth.push_back({truth.back().t + kTwinTruthMargin, pose, {}});
 
   diagnosis::TruthInterpolator at(truth);

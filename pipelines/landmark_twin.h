@@ -17,7 +17,16 @@
 // between windows (gaps) move as
 // predicted, without noise. Inside a window the truth follows the prediction's partial sums with
 // the window's noise and stall spread in proportion to time. The truth is stamped in true time:
-// logged time − the model's time_offset.
+// logged time − the model's time_offset. A noise level that moves along the log
+// (MotionNoiseStructure::level_spread) scales each block's residuals by one draw per block.
+//
+// Steering (follow_time_s > 0, pose odometry): a logged robot was steered by where it was, so its
+// commands replayed open loop walk the twin's robot away from the log's path (on MRCLAM Dataset 6,
+// 1.4–3.0 m RMS), and the twin's camera, which sees only what is in reach, loses a third of the
+// log's view. With steering each moving window's commands get a correction toward the log's truth
+// at the window's start, closing T/follow_time_s of the gap (steer_window in the .cpp); standing
+// windows are left alone. The twin's odometry is the steered commands, and its truth is the model
+// applied to them plus the drawn residual, as without steering.
 //
 // The camera keeps the log's frames: each frame (observations sharing a logged time t) looks at
 // true time t − the sensor's time_offset, from the twin's pose then, and sees as many landmarks as
@@ -51,12 +60,13 @@ inline constexpr double kMinStallWindows = 5.0;
 MotionNoiseStructure fit_motion_noise_structure(const diagnosis::MotionData& data,
                                                 const diagnosis::OdometryModel& model);
 
-// A twin of `real` drawn with `seed`; `structure` correlates its window residuals in time
+// A twin of `real` drawn with `seed`, steered toward the log's path with `follow_time_s` (0: the
+// logged commands replayed open loop); `structure` correlates its window residuals in time
 // (each component √(1 − s)·t_ν + √s·b with b a Gauss–Markov process over the windows' times). Throws InputError (naming
 // the log) when the span has no diagnosis window or its truth does not cover the span's start.
 TrackingData landmark_twin(const TrackingData& real, const diagnosis::OdometryModel& motion,
                            const LandmarkSensorModel& sensor, std::uint64_t seed,
-                           const MotionNoiseStructure& structure = {});
+                           const MotionNoiseStructure& structure = {}, double follow_time_s = 0.0);
 
 // The sensor twin of `real`: the log itself — its odometry and its truth — with the landmark
 // observations of its schedule drawn anew from `sensor` from the log's truth, as landmark_twin

@@ -84,11 +84,12 @@ TwinForecast twin_predictions(const TrackingData& test, const std::vector<Method
   experiments::parallel_tasks(options.threads, 3 * per_twin, [&](std::size_t task) {
     const int j = static_cast<int>(task / per_twin), k = static_cast<int>(task % per_twin);
     const TrackingData twin =
-        j == 2 ? landmark_sensor_twin(test, models.diagnosed_sensor, Rng::derive_seed(options.seed, 2 * per_twin + k))
-               : landmark_twin(test, j == 0 ? models.nominal_motion : models.diagnosed_motion,
-                               j == 0 ? models.nominal_sensor : models.diagnosed_sensor,
-                               Rng::derive_seed(options.seed, 2 * k + j),
-                               j == 0 ? MotionNoiseStructure{} : models.diagnosed_motion_structure);
+        j == 2
+            ? landmark_sensor_twin(test, models.diagnosed_sensor, Rng::derive_seed(options.seed, 2 * per_twin + k))
+            : landmark_twin(test, j == 0 ? models.nominal_motion : models.diagnosed_motion,
+                            j == 0 ? models.nominal_sensor : models.diagnosed_sensor,
+                            Rng::derive_seed(options.seed, 2 * k + j),
+                            j == 0 ? MotionNoiseStructure{} : models.diagnosed_motion_structure, options.follow_time_s);
     // The sensor twin's odometry is the log's: its dead reckoning and window residuals are the
     // real ones, not computed again.
     runs[j][static_cast<std::size_t>(k)] =

@@ -31,6 +31,9 @@ struct TwinRunOptions {
   std::uint64_t seed = 1;  // run k of twin j (0 nominal, 1 extended) has seed Rng::derive_seed(seed, 2k + j), of
                            // the sensor twin Rng::derive_seed(seed, 2·runs + k)
   int threads = 1;         // the runs side by side (experiments::parallel_tasks); same results for any number
+  // The nominal and extended twins steer toward the log's path with this time constant [s]
+  // (landmark_twin; 0: open-loop replay of the logged commands).
+  double follow_time_s = 40.0;
 };
 
 using PredictivityCells = std::map<std::string, std::vector<PredictivityCell>>;  // by metric

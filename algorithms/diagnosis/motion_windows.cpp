@@ -104,6 +104,29 @@ std::optional<Pose2> TruthInterpolator::at(double t) {
   return blend_poses(a.pose, b.pose, dt > 0.0 ? (t - a.t) / dt : 0.0);
 }
 
+void fill_covariates(const MotionData& m, MotionWindow& w) {
+  w.distance = w.signed_distance = w.turn = w.wheel_travel = 0.0;
+  const double base = m.nominal.wheelbase > 0.0 ? m.nominal.wheelbase : 0.5;
+  for (std::size_t i = w.first; i < w.last; ++i) {
+    const auto& s = m.steps[i];
+    double dd = 0.0, dth = 0.0, travel = 0.0;
+    if (m.odometry == OdometryKind::kEncoder) {
+      const double ul = s.a * m.nominal.meters_per_tick_left, ur = s.b * m.nominal.meters_per_tick_right;
+      dd = 0.5 * (ul + ur);
+      dth = (ur - ul) / m.nominal.wheelbase;
+      travel = std::abs(ul) + std::abs(ur);
+    } else {
+      dd = s.a;
+      dth = s.b;
+      travel = std::abs(dd - 0.5 * base * dth) + std::abs(dd + 0.5 * base * dth);
+    }
+    w.distance += std::abs(dd);
+    w.signed_distance += dd;
+    w.turn += dth;
+    w.wheel_travel += travel;
+  }
+}
+
 std::optional<double> interpolate_compass(const std::vector<CompassReading>& compass, double t) {
   return interpolate_records(
       compass, t, [](const CompassReading& c) { return c.heading; },
@@ -146,28 +169,6 @@ OdometryStep pose_step(const OdometryReading& a, const OdometryReading& b) {
   double d = std::hypot(dx, dy);
   if (dx * std::cos(mid) + dy * std::sin(mid) < 0.0) d = -d;
   return {a.t, b.t, d, dth};
-}
-
-void fill_covariates(const MotionData& m, MotionWindow& w) {
-  const double base = m.nominal.wheelbase > 0.0 ? m.nominal.wheelbase : 0.5;
-  for (std::size_t i = w.first; i < w.last; ++i) {
-    const auto& s = m.steps[i];
-    double dd = 0.0, dth = 0.0, travel = 0.0;
-    if (m.odometry == OdometryKind::kEncoder) {
-      const double ul = s.a * m.nominal.meters_per_tick_left, ur = s.b * m.nominal.meters_per_tick_right;
-      dd = 0.5 * (ul + ur);
-      dth = (ur - ul) / m.nominal.wheelbase;
-      travel = std::abs(ul) + std::abs(ur);
-    } else {
-      dd = s.a;
-      dth = s.b;
-      travel = std::abs(dd - 0.5 * base * dth) + std::abs(dd + 0.5 * base * dth);
-    }
-    w.distance += std::abs(dd);
-    w.signed_distance += dd;
-    w.turn += dth;
-    w.wheel_travel += travel;
-  }
 }
 
 // The data judged before any fit: a robot that never moves gives no test any power (nothing could

@@ -80,6 +80,10 @@ struct MotionData {
 // per tick above 0.01 m — millimetres by mistake).
 MotionData build_motion_data(const Log& log, const WindowOptions& options = {});
 
+// The window's covariates under the nominal model (distance, signed distance, turn, wheel
+// travel) from its steps in `m`, set afresh (a twin that changes the steps refreshes them).
+void fill_covariates(const MotionData& m, MotionWindow& w);
+
 // How many times build_motion_data has been called in this process (for tests).
 std::size_t build_motion_data_calls();
 

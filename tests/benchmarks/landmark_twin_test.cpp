@@ -224,6 +224,84 @@ TEST(LandmarkTwin, ItsCameraSeesOnlyWhatIsInReachFromTheTwinsPose) {
   EXPECT_GT(twin.observations.size(), b.data.observations.size() / 2) << kept << " kept as the log saw them";
 }
 
+// A twin whose heading wanders (σ_θ 0.02 rad per 1 s window, a random walk of ~0.3 rad over
+// its few minutes) replayed open loop drifts off the log's path and its camera loses part of the
+// log's view; steered toward the path with a 40 s time constant it stays near it and keeps the view.
+TEST(LandmarkTwin, ASteeredTwinStaysOnTheLogsPathAndKeepsTheLogsView) {
+  const Base b = base_log(49);
+  diagnosis::OdometryModel model;
+  model.sigma_x = model.sigma_y = 0.01;
+  model.sigma_theta = 0.02;
+  const auto off_path = [&](const TrackingData& twin) {
+    diagnosis::TruthInterpolator at(twin.motion.truth);
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (const TruePose& p : b.data.motion.truth)
+      if (const auto q = at.at(p.t)) sum += std::pow(q->x - p.pose.x, 2) + std::pow(q->y - p.pose.y, 2), ++n;
+    return std::sqrt(sum / static_cast<double>(n));
+  };
+  const TrackingData open = landmark_twin(b.data, model, LandmarkSensorModel{}, 5);
+  const TrackingData steered = landmark_twin(b.data, model, LandmarkSensorModel{}, 5, {}, 40.0);
+  const double seen = static_cast<double>(b.data.observations.size());
+  EXPECT_GT(off_path(open), 0.6);                       // 0.82 m, 94% of the view (seed 5)
+  EXPECT_LT(off_path(steered), 0.4) << off_path(open);  // 0.28 m, 98.7%
+  EXPECT_GT(off_path(open), 2.0 * off_path(steered));
+  EXPECT_LT(static_cast<double>(open.observations.size()) / seen, 0.96);
+  EXPECT_GT(static_cast<double>(steered.observations.size()) / seen, 0.97);
+}
+
+// Steering changes the twin's commands, not its model: the twin's truth against the model applied
+// to the twin's own (steered) commands has the model's window variance (standardized residuals of
+// mean square 1), a window that stands keeps its zero commands, one that turns in place keeps a
+// zero translation, and every command is finite.
+TEST(LandmarkTwin, ASteeredTwinIsStillTheModelAppliedToItsOwnCommands) {
+  const Base b = base_log(57);
+  diagnosis::OdometryModel model;
+  model.velocity_scale = 1.1;
+  model.sigma_x = 0.01, model.sigma_y = 0.006, model.sigma_theta = 0.004;
+  const TrackingData twin = landmark_twin(b.data, model, LandmarkSensorModel{}, 3, {}, 20.0);
+  Eigen::Vector3d squares = Eigen::Vector3d::Zero();
+  std::size_t windows = 0, steered = 0;
+  for (const diagnosis::MotionWindow& w : twin.motion.windows) {
+    const diagnosis::WindowResidual r = diagnosis::window_residual(twin.motion, w, model);
+    if (!r.valid || r.heading_only) continue;
+    squares += r.r.cwiseAbs2().cwiseQuotient(r.variance);
+    ++windows;
+  }
+  for (std::size_t i = 0; i < twin.motion.steps.size(); ++i) {
+    const diagnosis::OdometryStep &s = twin.motion.steps[i], &o = b.data.motion.steps[i];
+    ASSERT_TRUE(std::isfinite(s.a) && std::isfinite(s.b)) << i;
+    if (o.a == 0.0) EXPECT_EQ(s.a, 0.0) << i;
+    if (o.a == 0.0 && o.b == 0.0) EXPECT_EQ(s.b, 0.0) << i;
+    steered += s.a != o.a || s.b != o.b ? 1 : 0;
+  }
+  ASSERT_GT(windows, 200u);
+  EXPECT_GT(steered, twin.motion.steps.size() / 4) << "most moving steps are corrected";
+  const Eigen::Vector3d mean_square = squares / static_cast<double>(windows);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean_square(c), 1.0, 0.15) << c;
+}
+
+// A motion noise level drawn anew every 60 s, e^(0.5·N(0, 1)) common to the three components, is
+// measured back from the twin's window residuals; a twin without it measures near none.
+TEST(LandmarkTwin, AMotionNoiseLevelMovingBetweenBlocksIsMeasuredBack) {
+  const Base b = base_log(59);
+  diagnosis::OdometryModel model;
+  model.sigma_x = model.sigma_y = 0.006;
+  model.sigma_theta = 0.003;
+  MotionNoiseStructure moving;
+  moving.level_spread = {0.5, 0.5, 0.5};
+  Eigen::Vector3d measured = Eigen::Vector3d::Zero(), none = Eigen::Vector3d::Zero();
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    measured +=
+        fit_motion_noise_structure(landmark_twin(b.data, model, {}, seed, moving).motion, model).level_spread / 4.0;
+    none += fit_motion_noise_structure(landmark_twin(b.data, model, {}, seed, {}).motion, model).level_spread / 4.0;
+  }
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(measured(c), 0.5, 0.15) << c;
+    EXPECT_LT(none(c), 0.1) << c;
+  }
+}
+
 // Stalls that go on into the next window (a robot pushing against something for seconds) are
 // drawn as a chain with the mixture's stall probability p per window, and the persistence
 // q = P(stall | stall before) is measured back from the stall posteriors of adjacent windows;

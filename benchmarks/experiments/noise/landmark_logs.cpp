@@ -82,6 +82,7 @@ struct Options {
   std::string model_file;  // a `locbench diagnose --report` file: its models instead of fitting the first half
   int twin_runs = 20;      // seeded runs of each twin of the held-out half (0: no twin predictions)
   bool twin_replays_tuning_half = false;  // the twins replay the tuning half instead (the model's own check)
+  double twin_follow_time_s = TwinRunOptions{}.follow_time_s;  // the twins steer toward the log's path (0: open loop)
   bool correlated_sensor_noise = true;  // the diagnosed model's filter carries the sensor's correlated noise as biases
   bool correlated_motion_noise = true;  // … and its motion noise's correlated share as states
   bool track_noise_level = false;       // the diagnosed model's filter tracks its sensor's noise level
@@ -114,6 +115,9 @@ void visit_fields(V& v, Options& o) {
   v.field("model_file", o.model_file, "", Range{}, "diagnosis report whose models replace the first-half fit");
   v.field("twin_runs", o.twin_runs, "", at_least(0),
           "seeded runs of the nominal and the extended twin of each held-out half (0: no twin predictions)");
+  v.field("twin_follow_time_s", o.twin_follow_time_s, "s", non_negative(),
+          "time constant with which the nominal and extended twins steer their commands toward the log's path "
+          "(the log's robot was steered by where it was; 0: the logged commands replayed open loop)");
   v.flag("twin_replays_tuning_half", o.twin_replays_tuning_half,
          "the twins replay the tuning half, the one their models were fitted on, and are scored against the tuned "
          "methods' real results there: what they miss is the model's own, not a change of the log between halves");
@@ -229,11 +233,13 @@ Outcome run_log(const Log& log, const Options& c, const FamilyOptions& family, c
     std::vector<MethodScore> replayed = o.scores;
     const std::vector<TrackResult> tuning = run_tuned(train, replayed, o.models, family);
     for (std::size_t i = 0; i < replayed.size(); ++i) replayed[i].heldout = tuning[i];
-    TwinForecast f = twin_predictions(train, replayed, o.models, family, {c.twin_runs, twin_seed, threads});
+    TwinForecast f =
+        twin_predictions(train, replayed, o.models, family, {c.twin_runs, twin_seed, threads, c.twin_follow_time_s});
     o.twin_cells = std::move(f.cells);
     o.twin_residuals = std::move(f.residuals);
   } else if (c.twin_runs > 0) {
-    TwinForecast f = twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed, threads});
+    TwinForecast f =
+        twin_predictions(test, o.scores, o.models, family, {c.twin_runs, twin_seed, threads, c.twin_follow_time_s});
     o.twin_cells = std::move(f.cells);
     o.twin_residuals = std::move(f.residuals);
   }
@@ -490,14 +496,15 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     s.text += fmt::format(
         "; the diagnosed motion model's window residuals: along {:.0f}% with τ {:.2g} s, left {:.0f}% with τ "
         "{:.2g} s, heading {:.0f}% with τ {:.2g} s; a turn-rate bias moving between {:.0f} s blocks with spread "
-        "{:.4f} rad/s (beyond the windows' own noise; 0: none); a stall goes on into the next window with "
+        "{:.4f} rad/s (beyond the windows' own noise; 0: none); noise level between {:.0f} s blocks: ln σ spread "
+        "along {:.2f}, left {:.2f}, heading {:.2f}; a stall goes on into the next window with "
         "probability {:.2f} (0: independent windows); along-track residuals beyond {:g} σ: {} windows ({:.0f}% of "
         "the squared residual), {:.0f}% of them negative (the robot moved less than the model), in runs of {:.1f} "
         "windows on average",
         100.0 * ms.x.share, ms.x.time_s, 100.0 * ms.y.share, ms.y.time_s, 100.0 * ms.theta.share, ms.theta.time_s,
-        kLevelBlockS, ms.turn_bias_spread, ms.stall_persistence, kLargeResidualSigmas, ms.along_large.windows,
-        100.0 * ms.along_large.share_of_squares, 100.0 * ms.along_large.negative_fraction,
-        ms.along_large.mean_run_windows);
+        kLevelBlockS, ms.turn_bias_spread, kLevelBlockS, ms.level_spread.x(), ms.level_spread.y(), ms.level_spread.z(),
+        ms.stall_persistence, kLargeResidualSigmas, ms.along_large.windows, 100.0 * ms.along_large.share_of_squares,
+        100.0 * ms.along_large.negative_fraction, ms.along_large.mean_run_windows);
     for (const auto& [variant, value] :
          {std::pair{"tuning_range_sigma", a.range_sigma}, std::pair{"heldout_range_sigma", b.range_sigma}}) {
       s.results.push_back(reports::make_estimate("sensor_noise", ds, variant, "m", value, 0.0, 1));
@@ -647,10 +654,13 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     std::string twins = fmt::format(
         "{} — twin forecasts of the {}: each method at its tuned setting on {} seeded runs of the "
         "nominal twin (fitted floor, nominal sensor), of the extended twin (every diagnosed cause, the fitted "
-        "landmark sensor) and of the sensor twin (the log's own odometry and truth, the landmark observations drawn "
+        "landmark sensor) — both steering their commands toward the log's path with a time constant of {} — and "
+        "of the sensor twin (the log's own odometry and truth, the landmark observations drawn "
         "from the fitted sensor: where the extended twin misses and the sensor twin covers, the motion model is "
         "what misses); the real value beside each twin's 95% predictive interval",
-        ds, twin_part(c), o.twin_cells.begin()->second.front().nominal.runs);
+        ds, twin_part(c), o.twin_cells.begin()->second.front().nominal.runs,
+        c.twin_follow_time_s > 0.0 ? fmt::format("{:g} s", c.twin_follow_time_s)
+                                   : std::string("0 (off: the logged commands replayed open loop)"));
     for (const auto& [name, m] :
          {std::pair{"nominal", o.models.nominal_sensor}, std::pair{"extended", o.models.diagnosed_sensor}}) {
       twins += fmt::format("\n  {} twin's sensor: {}", name, sensor_text(m));
