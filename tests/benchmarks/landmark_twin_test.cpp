@@ -271,8 +271,12 @@ TEST(LandmarkTwin, ASteeredTwinIsStillTheModelAppliedToItsOwnCommands) {
   for (std::size_t i = 0; i < twin.motion.steps.size(); ++i) {
     const diagnosis::OdometryStep &s = twin.motion.steps[i], &o = b.data.motion.steps[i];
     ASSERT_TRUE(std::isfinite(s.a) && std::isfinite(s.b)) << i;
-    if (o.a == 0.0) EXPECT_EQ(s.a, 0.0) << i;
-    if (o.a == 0.0 && o.b == 0.0) EXPECT_EQ(s.b, 0.0) << i;
+    if (o.a == 0.0) {
+      EXPECT_EQ(s.a, 0.0) << i;
+    }
+    if (o.a == 0.0 && o.b == 0.0) {
+      EXPECT_EQ(s.b, 0.0) << i;
+    }
     steered += s.a != o.a || s.b != o.b ? 1 : 0;
   }
   ASSERT_GT(windows, 200u);
