@@ -149,7 +149,8 @@ std::string gain_text(const KeptCause& c) {
 std::string twin_rows(const std::vector<Report>& reports) {
   std::string rows;
   for (const Report& r : reports) {
-    // metric → statistic → {nominal, extended}
+    // metric → statistic → {nominal, extended}; for the extended twin's misses split by the sensor
+    // twin, {the motion model's, the sensor model's}
     std::map<std::string, std::map<std::string, std::pair<std::optional<double>, std::optional<double>>>> by_metric;
     for (const MetricResult& m : r.body.results) {
       if (m.dataset != "all_logs" || (m.method != "nominal_twin" && m.method != "extended_twin")) continue;
@@ -157,6 +158,11 @@ std::string twin_rows(const std::vector<Report>& reports) {
         if (!m.variant.ends_with(statistic)) continue;
         auto& pair = by_metric[m.variant.substr(0, m.variant.size() - std::strlen(statistic))][statistic];
         (m.method == "nominal_twin" ? pair.first : pair.second) = m.summary.mean;
+      }
+      for (const char* model : {"_misses_of_the_motion_model", "_misses_of_the_sensor_model"}) {
+        if (m.method != "extended_twin" || !m.variant.ends_with(model)) continue;
+        auto& pair = by_metric[m.variant.substr(0, m.variant.size() - std::strlen(model))]["_misses"];
+        (std::strcmp(model, "_misses_of_the_motion_model") == 0 ? pair.first : pair.second) = m.summary.mean;
       }
     }
     for (const auto& [metric, stats] : by_metric) {
@@ -168,9 +174,10 @@ std::string twin_rows(const std::vector<Report>& reports) {
         };
         return show(it->second.first) + " / " + show(it->second.second);
       };
-      rows += fmt::format("<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                          anchor(r.body.experiment), html_escape(r.body.experiment), html_escape(metric),
-                          cell("_covered_fraction", true), cell("_pearson_r", false), cell("_mmrv", false));
+      rows += fmt::format(
+          "<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+          anchor(r.body.experiment), html_escape(r.body.experiment), html_escape(metric),
+          cell("_covered_fraction", true), cell("_pearson_r", false), cell("_mmrv", false), cell("_misses", false));
     }
   }
   return rows;
@@ -231,9 +238,10 @@ void findings_section(std::string& h, const std::vector<Report>& reports) {
          "<p class=note>Per metric across methods × logs: the share of real values inside each twin's 95% "
          "predictive interval, Pearson r of its prediction against the real value and the mean maximum rank "
          "violation of the methods (MMRV, lower is better) — nominal twin / extended twin (the diagnosed "
-         "model).</p>\n"
+         "model); and the extended twin's misses that a sensor twin (the log's own motion, the fitted sensor) "
+         "covers, the motion model's, / those it misses too, the sensor model's.</p>\n"
          "<table class=findings-twins><thead><tr><th>experiment</th><th>metric</th><th>covered</th><th>Pearson "
-         "r</th><th>MMRV</th></tr></thead><tbody>\n" +
+         "r</th><th>MMRV</th><th>misses: motion / sensor model</th></tr></thead><tbody>\n" +
          twins + "</tbody></table>\n";
   }
   h += "</section>\n";

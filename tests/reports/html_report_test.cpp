@@ -90,11 +90,16 @@ TEST(HtmlReport, FindingsShowHowWellEachTwinForecastsTheRealResults) {
       make_estimate("extended_twin", "all_logs", "position_rmse_covered_fraction", "", 0.49, 0, 35));
   r.body.results.push_back(make_estimate("nominal_twin", "all_logs", "position_rmse_mmrv", "", 0.339, 0, 32));
   r.body.results.push_back(make_estimate("extended_twin", "all_logs", "position_rmse_mmrv", "", 0.057, 0, 32));
+  r.body.results.push_back(
+      make_estimate("extended_twin", "all_logs", "position_rmse_misses_of_the_motion_model", "", 2, 0, 35));
+  r.body.results.push_back(
+      make_estimate("extended_twin", "all_logs", "position_rmse_misses_of_the_sensor_model", "", 1, 0, 35));
   StubRenderer stub;
   const std::string h = html_report({r}, stub.renderer());
   EXPECT_NE(h.find("Twins: does the simulator forecast the real result?"), std::string::npos);
-  EXPECT_NE(h.find("<td>position_rmse</td><td>14% / 49%</td><td>—</td><td>0.339 / 0.057</td>"), std::string::npos)
-      << "covered, Pearson (not reported), MMRV: nominal / extended";
+  EXPECT_NE(h.find("<td>position_rmse</td><td>14% / 49%</td><td>—</td><td>0.339 / 0.057</td><td>2 / 1</td>"),
+            std::string::npos)
+      << "covered, Pearson (not reported), MMRV: nominal / extended; the extended twin's misses: motion / sensor";
   EXPECT_EQ(sample_page().find("findings-twins"), std::string::npos) << "no twin results, no table";
 }
 
