@@ -100,4 +100,10 @@ MetricPredictivity predictivity(const std::vector<PredictivityCell>& cells) {
   return m;
 }
 
+std::string excess_source(double real, double low, double high, const PredictiveInterval& sensor) {
+  if (real > high) return sensor.median > high ? "motion" : sensor.high <= high ? "sensor" : "both";
+  if (real < low) return sensor.median < low ? "motion" : sensor.low >= low ? "sensor" : "both";
+  return "";
+}
+
 }  // namespace locbench::experiments

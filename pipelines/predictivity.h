@@ -62,4 +62,12 @@ struct MetricPredictivity {
 };
 MetricPredictivity predictivity(const std::vector<PredictivityCell>& cells);
 
+// Which model a real value outside its band [low, high] (a filter's NEES against its χ² band) is
+// due to, read from the sensor twin (the log's own motion, the fitted sensor): "motion" when the
+// sensor twin's median is itself beyond the band on the same side (with the fitted sensor, the
+// log's own motion puts it there), "sensor" when the sensor twin's interval stays on the band's
+// side of that bound (with the log's motion the fitted sensor would not: the log's sensor does),
+// "both" when the interval straddles it; "" for a real value inside the band.
+std::string excess_source(double real, double low, double high, const PredictiveInterval& sensor);
+
 }  // namespace locbench::experiments

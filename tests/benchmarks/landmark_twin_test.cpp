@@ -531,6 +531,18 @@ TEST(Predictivity, TheSensorTwinTellsAMissOfTheMotionModelFromOneOfTheSensorMode
   EXPECT_EQ(m.extended_misses_of_sensor, 1u) << "dead reckoning's miss has no sensor twin to tell";
 }
 
+// A NEES above its band [2.3, 3.8]: the sensor twin (the log's own motion, the fitted sensor)
+// already above it names the motion; one staying inside names the sensor; one straddling the
+// bound, both. Below the band, the same mirrored; inside it, nothing to explain.
+TEST(Predictivity, TheSensorTwinNamesWhatPutsANeesOutsideItsBand) {
+  EXPECT_EQ(excess_source(5.0, 2.3, 3.8, {4.0, 4.5, 5.5, 20}), "motion");
+  EXPECT_EQ(excess_source(5.0, 2.3, 3.8, {1.3, 1.9, 2.6, 20}), "sensor");
+  EXPECT_EQ(excess_source(5.0, 2.3, 3.8, {2.2, 3.4, 5.5, 20}), "both");
+  EXPECT_EQ(excess_source(2.0, 2.3, 3.8, {1.3, 1.9, 2.6, 20}), "motion");
+  EXPECT_EQ(excess_source(2.0, 2.3, 3.8, {2.5, 3.0, 3.5, 20}), "sensor");
+  EXPECT_EQ(excess_source(3.0, 2.3, 3.8, {4.0, 4.5, 5.5, 20}), "");
+}
+
 TEST(Predictivity, ANonFiniteCellIsCountedButNotCorrelated) {
   std::vector<PredictivityCell> cells = {cell("A", "m1", 1.0, 1.0, 1.0), cell("A", "m2", 2.0, 2.0, 2.0),
                                          cell("A", "m3", 3.0, 3.0, 3.0)};

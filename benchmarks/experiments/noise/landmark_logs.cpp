@@ -530,6 +530,27 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
   // median of those means (inside the band: an episode, not the whole half), the worst one with
   // its longest stretch without an observation (the filter runs on odometry alone there), and the
   // time average without that block.
+  // Outside its band: what the sensor twin of the held-out half says the excess is due to
+  // (excess_source).
+  static std::string excess_text(const Outcome& o, const Options& c, const std::string& method, double nees,
+                                 const filters::ChiSquareInterval& band) {
+    const auto cells = o.twin_cells.find("nees");
+    if (c.twin_replays_tuning_half || !std::isfinite(nees) || cells == o.twin_cells.end()) return "";
+    for (const PredictivityCell& cell : cells->second) {
+      if (cell.method != method || !cell.sensor) continue;
+      const std::string source = excess_source(nees, band.lower, band.upper, *cell.sensor);
+      if (source.empty()) return "";
+      const char* why = source == "motion"   ? "the log's own motion puts it there: the motion model's"
+                        : source == "sensor" ? "the fitted sensor would not: the log's sensor's"
+                                             : "both";
+      return fmt::format(
+          "; with the log's own motion and the fitted sensor (sensor twin) [{:.3g}, {:.3g}], median "
+          "{:.3g}: {}",
+          cell.sensor->low, cell.sensor->high, cell.sensor->median, why);
+    }
+    return "";
+  }
+
   static std::string nees_blocks_text(const TrackResult& r, const std::vector<double>& observation_times, double t0,
                                       double block_s, std::size_t blocks) {
     std::vector<double> root(r.nees.size());
@@ -603,9 +624,10 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
         m.tuning_rmse, m.tuning_nees, m.consistent_setting ? " (inside)" : " (outside)", pos.summary.mean,
         pos.summary.ci95_low, pos.summary.ci95_high, r.heading_rmse(), nees, inside ? "inside" : "outside", band.lower,
         band.upper,
-        std::isfinite(nees) && nees > band.upper
-            ? nees_blocks_text(r, o.heldout_observation_times, o.mid, c.block_s, blocks)
-            : "",
+        (std::isfinite(nees) && nees > band.upper
+             ? nees_blocks_text(r, o.heldout_observation_times, o.mid, c.block_s, blocks)
+             : std::string()) +
+            excess_text(o, c, method, nees, band),
         100.0 * r.gated_fraction(), r.observations, r.recoveries, r.diverged ? ", DIVERGED" : "");
     tally.rmse.push_back(pos.summary.mean);
     tally.diverged += r.diverged ? 1 : 0;
