@@ -112,7 +112,7 @@ TwinForecast twin_predictions(const TrackingData& test, const std::vector<Method
       c.real_diverged = tuned[i].heldout.diverged;
       c.nominal = interval(0, [&, &m = metric](const RunMetrics& r) { return r.per_method.at(m)[i]; });
       c.extended = interval(1, [&, &m = metric](const RunMetrics& r) { return r.per_method.at(m)[i]; });
-      if (per_twin > 0) c.sensor = interval(2, [&, &m = metric](const RunMetrics& r) { return r.per_method.at(m)[i]; });
+      c.sensor = interval(2, [&, &m = metric](const RunMetrics& r) { return r.per_method.at(m)[i]; });
       cells[metric].push_back(c);
     }
   }

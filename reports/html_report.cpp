@@ -159,10 +159,11 @@ std::string twin_rows(const std::vector<Report>& reports) {
         auto& pair = by_metric[m.variant.substr(0, m.variant.size() - std::strlen(statistic))][statistic];
         (m.method == "nominal_twin" ? pair.first : pair.second) = m.summary.mean;
       }
-      for (const char* model : {"_misses_of_the_motion_model", "_misses_of_the_sensor_model"}) {
+      for (const auto& [model, motion] :
+           {std::pair{"_misses_of_the_motion_model", true}, std::pair{"_misses_of_the_sensor_model", false}}) {
         if (m.method != "extended_twin" || !m.variant.ends_with(model)) continue;
         auto& pair = by_metric[m.variant.substr(0, m.variant.size() - std::strlen(model))]["_misses"];
-        (std::strcmp(model, "_misses_of_the_motion_model") == 0 ? pair.first : pair.second) = m.summary.mean;
+        (motion ? pair.first : pair.second) = m.summary.mean;
       }
     }
     for (const auto& [metric, stats] : by_metric) {

@@ -526,10 +526,6 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     return std::max(longest, b - last);
   }
 
-  // Where a NEES above its band comes from: its mean over each block of the held-out half, the
-  // median of those means (inside the band: an episode, not the whole half), the worst one with
-  // its longest stretch without an observation (the filter runs on odometry alone there), and the
-  // time average without that block.
   // Outside its band: what the sensor twin of the held-out half says the excess is due to
   // (excess_source).
   static std::string excess_text(const Outcome& o, const Options& c, const std::string& method, double nees,
@@ -551,6 +547,10 @@ class NoiseLandmarkLogs final : public OptionsExperiment<Options> {
     return "";
   }
 
+  // Where a NEES above its band comes from: its mean over each block of the held-out half, the
+  // median of those means (inside the band: an episode, not the whole half), the worst one with
+  // its longest stretch without an observation (the filter runs on odometry alone there), and the
+  // time average without that block.
   static std::string nees_blocks_text(const TrackResult& r, const std::vector<double>& observation_times, double t0,
                                       double block_s, std::size_t blocks) {
     std::vector<double> root(r.nees.size());
